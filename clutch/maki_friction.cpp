@@ -1,0 +1,93 @@
+#include "clutch/maki_friction.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace shudder::clutch {
+
+double MakiSet::mu(double v) const { return c1 * std::tanh(c2 * v) + c3 * std::pow(v, 0.1) + c4; }
+
+double MakiSet::dmu_dv(double v) const {
+  const double th = std::tanh(c2 * v);
+  return c1 * c2 * (1.0 - th * th) + 0.1 * c3 * std::pow(v, -0.9);
+}
+
+MakiSet shifted_row(const MakiSet& edge, double edge_temp_C, double temp_C, double slope_per_C) {
+  MakiSet out = edge;
+  out.c4 -= slope_per_C * (temp_C - edge_temp_C);
+  return out;
+}
+
+namespace {
+
+void require_increasing(const std::vector<double>& axis, const char* what) {
+  if (axis.empty()) throw std::invalid_argument(std::string(what) + " must not be empty");
+  for (std::size_t i = 0; i < axis.size(); ++i) {
+    if (!std::isfinite(axis[i]))
+      throw std::invalid_argument(std::string(what) + " holds a non-finite value");
+    if (i > 0 && axis[i] <= axis[i - 1])
+      throw std::invalid_argument(std::string(what) + " must be strictly increasing");
+  }
+}
+
+// Index i and weight w such that x lies between axis[i] and axis[i+1] (w = 0 at axis[i]),
+// after clamping x to the axis ends. A single-point axis gives (0, 0).
+std::pair<std::size_t, double> bracket(const std::vector<double>& axis, double x) {
+  if (axis.size() == 1 || x <= axis.front()) return {0, 0.0};
+  if (x >= axis.back()) return {axis.size() - 2, 1.0};
+  const auto it = std::upper_bound(axis.begin(), axis.end(), x);
+  const std::size_t i = static_cast<std::size_t>(it - axis.begin()) - 1;
+  return {i, (x - axis[i]) / (axis[i + 1] - axis[i])};
+}
+
+}  // namespace
+
+MakiFrictionMatrix::MakiFrictionMatrix(std::vector<double> loads_N, std::vector<double> temps_C,
+                                       std::vector<MakiSet> sets, double min_speed_mm_s,
+                                       double max_speed_mm_s)
+    : loads_N_(std::move(loads_N)),
+      temps_C_(std::move(temps_C)),
+      sets_(std::move(sets)),
+      min_speed_mm_s_(min_speed_mm_s),
+      max_speed_mm_s_(max_speed_mm_s) {
+  require_increasing(loads_N_, "friction matrix loads");
+  require_increasing(temps_C_, "friction matrix temperatures");
+  if (sets_.size() != loads_N_.size() * temps_C_.size())
+    throw std::invalid_argument("friction matrix has " + std::to_string(sets_.size()) +
+                                " parameter sets; loads x temperatures needs " +
+                                std::to_string(loads_N_.size() * temps_C_.size()));
+  for (const auto& s : sets_)
+    if (!std::isfinite(s.c1) || !std::isfinite(s.c2) || !std::isfinite(s.c3) ||
+        !std::isfinite(s.c4))
+      throw std::invalid_argument("friction matrix holds a non-finite coefficient");
+  if (!(min_speed_mm_s_ > 0.0) || !(max_speed_mm_s_ > min_speed_mm_s_))
+    throw std::invalid_argument("friction speed range must satisfy 0 < min < max");
+}
+
+template <class F>
+double MakiFrictionMatrix::blend(double temp_C, double load_N, F&& f) const {
+  const auto [it, wt] = bracket(temps_C_, temp_C);
+  const auto [il, wl] = bracket(loads_N_, load_N);
+  const std::size_t it1 = std::min(it + 1, temps_C_.size() - 1);
+  const std::size_t il1 = std::min(il + 1, loads_N_.size() - 1);
+  const double lo = (1.0 - wl) * f(set(it, il)) + wl * f(set(it, il1));
+  const double hi = (1.0 - wl) * f(set(it1, il)) + wl * f(set(it1, il1));
+  return (1.0 - wt) * lo + wt * hi;
+}
+
+double MakiFrictionMatrix::mu(double speed_mm_s, double temp_C, double load_N) const {
+  const double v = std::clamp(std::abs(speed_mm_s), min_speed_mm_s_, max_speed_mm_s_);
+  return blend(temp_C, load_N, [v](const MakiSet& s) { return s.mu(v); });
+}
+
+double MakiFrictionMatrix::dmu_dv_per_mm_s(double speed_mm_s, double temp_C,
+                                           double load_N) const {
+  const double v = std::abs(speed_mm_s);
+  // Held constant outside the measured speed range: zero slope there.
+  if (v < min_speed_mm_s_ || v > max_speed_mm_s_) return 0.0;
+  return blend(temp_C, load_N, [v](const MakiSet& s) { return s.dmu_dv(v); });
+}
+
+}  // namespace shudder::clutch

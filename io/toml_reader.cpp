@@ -1,0 +1,235 @@
+#include "io/toml_reader.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace shudder::io {
+
+bool Range::contains(double x) const {
+  if (min_exclusive ? !(x > min) : !(x >= min)) return false;
+  if (max_exclusive ? !(x < max) : !(x <= max)) return false;
+  return true;
+}
+
+std::string Range::describe() const {
+  std::ostringstream os;
+  os.precision(10);
+  const bool has_min = std::isfinite(min), has_max = std::isfinite(max);
+  if (has_min && has_max)
+    os << (min_exclusive ? "(" : "[") << min << ", " << max << (max_exclusive ? ")" : "]");
+  else if (has_min)
+    os << (min_exclusive ? "> " : ">= ") << min;
+  else if (has_max)
+    os << (max_exclusive ? "< " : "<= ") << max;
+  else
+    os << "any finite number";
+  return os.str();
+}
+
+TomlTable::TomlTable(const toml::table& table, std::string file, std::string path)
+    : table_(&table), file_(std::move(file)), path_(std::move(path)) {}
+
+toml::table TomlTable::parse_file(const std::string& file) {
+  try {
+    return toml::parse_file(file);
+  } catch (const toml::parse_error& e) {
+    const auto& src = e.source();
+    // toml++ reports an unreadable file as a parse error at line 0.
+    throw InputError(file, static_cast<long>(src.begin.line), "",
+                     std::string(e.description()));
+  }
+}
+
+std::string TomlTable::full_key(const std::string& key) const {
+  return path_.empty() ? key : path_ + "." + key;
+}
+
+long TomlTable::line_of(const std::string& key) const {
+  if (const auto* n = table_->get(key)) return static_cast<long>(n->source().begin.line);
+  return static_cast<long>(table_->source().begin.line);
+}
+
+void TomlTable::fail(const std::string& key, const std::string& message) const {
+  throw InputError(file_, line_of(key), full_key(key), message);
+}
+
+bool TomlTable::has(const std::string& key) const { return table_->contains(key); }
+
+const toml::node* TomlTable::get(const std::string& key) const { return table_->get(key); }
+
+namespace {
+const char* type_name(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::table: return "a table";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a floating-point number";
+    case toml::node_type::boolean: return "a boolean";
+    default: return "a date/time";
+  }
+}
+}  // namespace
+
+double TomlTable::number(const std::string& key, Range range) {
+  const auto* n = get(key);
+  if (!n) fail(key, "missing; expected a number in " + range.describe());
+  read_.insert(key);
+  double x = 0.0;
+  if (auto v = n->as_floating_point())
+    x = v->get();
+  else if (auto i = n->as_integer())
+    x = static_cast<double>(i->get());
+  else
+    fail(key, std::string("is ") + type_name(*n) + "; expected a number in " + range.describe());
+  if (!std::isfinite(x)) fail(key, "is not finite (nan/inf); expected a number in " + range.describe());
+  if (!range.contains(x)) {
+    std::ostringstream os;
+    os.precision(10);
+    os << "value " << x << " is out of range; allowed " << range.describe();
+    fail(key, os.str());
+  }
+  return x;
+}
+
+double TomlTable::number_or(const std::string& key, double fallback, Range range) {
+  return has(key) ? number(key, range) : (read_.insert(key), fallback);
+}
+
+long TomlTable::integer(const std::string& key, long min, long max) {
+  const auto* n = get(key);
+  const std::string allowed =
+      "expected an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]";
+  if (!n) fail(key, "missing; " + allowed);
+  read_.insert(key);
+  const auto* i = n->as_integer();
+  if (!i) fail(key, std::string("is ") + type_name(*n) + "; " + allowed);
+  const long x = static_cast<long>(i->get());
+  if (x < min || x > max) fail(key, "value " + std::to_string(x) + " is out of range; " + allowed);
+  return x;
+}
+
+long TomlTable::integer_or(const std::string& key, long fallback, long min, long max) {
+  return has(key) ? integer(key, min, max) : (read_.insert(key), fallback);
+}
+
+bool TomlTable::boolean(const std::string& key) {
+  const auto* n = get(key);
+  if (!n) fail(key, "missing; expected true or false");
+  read_.insert(key);
+  const auto* b = n->as_boolean();
+  if (!b) fail(key, std::string("is ") + type_name(*n) + "; expected true or false");
+  return b->get();
+}
+
+bool TomlTable::boolean_or(const std::string& key, bool fallback) {
+  return has(key) ? boolean(key) : (read_.insert(key), fallback);
+}
+
+std::string TomlTable::string(const std::string& key) {
+  const auto* n = get(key);
+  if (!n) fail(key, "missing; expected a string");
+  read_.insert(key);
+  const auto* s = n->as_string();
+  if (!s) fail(key, std::string("is ") + type_name(*n) + "; expected a string");
+  return s->get();
+}
+
+std::string TomlTable::string_or(const std::string& key, const std::string& fallback) {
+  return has(key) ? string(key) : (read_.insert(key), fallback);
+}
+
+std::string TomlTable::choice_or(const std::string& key, const std::string& fallback,
+                                 const std::vector<std::string>& choices) {
+  const std::string v = string_or(key, fallback);
+  for (const auto& c : choices)
+    if (c == v) return v;
+  std::string list;
+  for (const auto& c : choices) list += (list.empty() ? "" : ", ") + ("\"" + c + "\"");
+  fail(key, "\"" + v + "\" is not allowed; expected one of " + list);
+}
+
+std::vector<double> TomlTable::numbers(const std::string& key, Range range,
+                                       std::size_t min_size) {
+  const auto* n = get(key);
+  const std::string allowed = "expected an array of at least " + std::to_string(min_size) +
+                              " numbers in " + range.describe();
+  if (!n) fail(key, "missing; " + allowed);
+  read_.insert(key);
+  const auto* arr = n->as_array();
+  if (!arr) fail(key, std::string("is ") + type_name(*n) + "; " + allowed);
+  std::vector<double> out;
+  out.reserve(arr->size());
+  for (std::size_t i = 0; i < arr->size(); ++i) {
+    const auto& e = *arr->get(i);
+    double x = 0.0;
+    if (auto v = e.as_floating_point())
+      x = v->get();
+    else if (auto iv = e.as_integer())
+      x = static_cast<double>(iv->get());
+    else
+      fail(key, "element " + std::to_string(i) + " is " + type_name(e) + "; " + allowed);
+    if (!std::isfinite(x)) fail(key, "element " + std::to_string(i) + " is not finite; " + allowed);
+    if (!range.contains(x)) {
+      std::ostringstream os;
+      os.precision(10);
+      os << "element " << i << " = " << x << " is out of range; allowed " << range.describe();
+      fail(key, os.str());
+    }
+    out.push_back(x);
+  }
+  if (out.size() < min_size) fail(key, "has " + std::to_string(out.size()) + " elements; " + allowed);
+  return out;
+}
+
+TomlTable TomlTable::table(const std::string& key) {
+  const auto* n = get(key);
+  if (!n) fail(key, "missing table [" + full_key(key) + "]");
+  read_.insert(key);
+  const auto* t = n->as_table();
+  if (!t) fail(key, std::string("is ") + type_name(*n) + "; expected a table");
+  return TomlTable(*t, file_, full_key(key));
+}
+
+std::optional<TomlTable> TomlTable::optional_table(const std::string& key) {
+  if (!has(key)) {
+    read_.insert(key);
+    return std::nullopt;
+  }
+  return table(key);
+}
+
+std::vector<TomlTable> TomlTable::table_array(const std::string& key) {
+  const auto* n = get(key);
+  if (!n) fail(key, "missing; expected an array of tables [[" + full_key(key) + "]]");
+  read_.insert(key);
+  const auto* arr = n->as_array();
+  if (!arr) fail(key, std::string("is ") + type_name(*n) + "; expected an array of tables");
+  std::vector<TomlTable> out;
+  for (std::size_t i = 0; i < arr->size(); ++i) {
+    const auto* t = arr->get(i)->as_table();
+    if (!t) fail(key, "element " + std::to_string(i) + " is not a table");
+    out.emplace_back(*t, file_, full_key(key) + "[" + std::to_string(i) + "]");
+  }
+  return out;
+}
+
+std::vector<std::string> TomlTable::subtable_keys() const {
+  std::vector<std::string> out;
+  for (const auto& [k, v] : *table_)
+    if (v.is_table()) out.emplace_back(k.str());
+  return out;
+}
+
+void TomlTable::finish() const {
+  for (const auto& [k, v] : *table_) {
+    const std::string key(k.str());
+    if (read_.count(key)) continue;
+    std::string allowed;
+    for (const auto& r : read_) allowed += (allowed.empty() ? "" : ", ") + r;
+    throw InputError(file_, static_cast<long>(v.source().begin.line), full_key(key),
+                     "unknown key; allowed keys here: " + (allowed.empty() ? "(none)" : allowed));
+  }
+}
+
+}  // namespace shudder::io

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs everything shudder needs to build, test and plot, from Debian 12 packages only.
+# Safe to run again: apt-get skips what is already there. Needs root (or sudo).
+set -euo pipefail
+packages=(
+  g++ cmake make pkg-config
+  libeigen3-dev          # dense/sparse linear algebra (thermal solver, modal analysis)
+  libboost-dev           # Boost.Odeint (header-only) for time integration
+  libfftw3-dev           # spectra
+  libhdf5-dev            # HDF5 output (C API)
+  libtomlplusplus-dev    # TOML scenario parsing (toml++ 3.3, header-only, reports line/column)
+  libcli11-dev           # command line parsing (CLI11, header-only)
+  libgtest-dev libgmock-dev  # unit tests
+  libbenchmark-dev       # benchmarks
+  gnuplot-nox            # plots (PNG/SVG), driven by the program
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
