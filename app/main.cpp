@@ -3,9 +3,42 @@
 
 #include <iostream>
 
+#include "app/commands.hpp"
+
 int main(int argc, char** argv) {
+  using namespace shudder::app;
   CLI::App app{"shudder: stick-slip and shudder in wet-clutch drivetrains"};
   app.require_subcommand(1);
-  CLI11_PARSE(app, argc, argv);
-  return 0;
+  app.set_version_flag("--version", SHUDDER_VERSION);
+
+  RunOptions run;
+  auto* run_cmd = app.add_subcommand("run", "Run a scenario; write HDF5 and print a summary");
+  run_cmd->add_option("scenario", run.scenario, "Scenario file (TOML)")->required();
+  run_cmd->add_option("-o,--output", run.output, "HDF5 output (default: <scenario name>.h5)");
+  run_cmd->add_option("--measurement", run.measurement,
+                      "Also write the sensor signals as a measured-run CSV");
+  run_cmd->add_option("--sample-rate", run.measurement_rate_Hz,
+                      "Sample rate of the measured-run CSV, Hz (default: recording rate)")
+      ->check(CLI::Range(1e-3, 1e6));
+  run_cmd->add_flag("--noise", run.noise, "Add sensor noise of the rig's stated accuracy");
+  run_cmd->add_option("--seed", run.seed, "Seed of the sensor noise (deterministic)");
+  run_cmd->add_flag("--profile", run.profile, "Print the simulation's wall time");
+
+  ValidateOptions validate;
+  auto* val_cmd = app.add_subcommand(
+      "validate", "Run the Paper G / Paper B calibration cases; regenerate docs/validation.md and plots");
+  val_cmd->add_option("--scenarios", validate.scenarios_dir, "Folder holding the scenarios");
+  val_cmd->add_option("--docs", validate.docs_dir, "Folder to write validation.md and PNGs into");
+  val_cmd->add_flag("!--no-plots", validate.plots, "Skip the PNG plots (no gnuplot needed)");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // CLI11 uses exit code 0 for --help/--version; map every real usage error to 2.
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+  if (*run_cmd) return run_command(run);
+  if (*val_cmd) return validate_command(validate);
+  return 2;
 }

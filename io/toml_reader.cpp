@@ -55,6 +55,11 @@ void TomlTable::fail(const std::string& key, const std::string& message) const {
 
 bool TomlTable::has(const std::string& key) const { return table_->contains(key); }
 
+bool TomlTable::is_array(const std::string& key) const {
+  const auto* n = get(key);
+  return n && n->is_array();
+}
+
 const toml::node* TomlTable::get(const std::string& key) const { return table_->get(key); }
 
 namespace {

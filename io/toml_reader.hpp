@@ -38,6 +38,7 @@ class TomlTable {
   static toml::table parse_file(const std::string& file);
 
   bool has(const std::string& key) const;
+  bool is_array(const std::string& key) const;
 
   double number(const std::string& key, Range range = {});
   double number_or(const std::string& key, double fallback, Range range = {});

@@ -1,0 +1,70 @@
+#include "app/summary.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <set>
+
+namespace shudder::app {
+
+double signal_at(const dynamics::Recording& rec, const char* name, double t) {
+  const auto* time = rec.find("time_s");
+  const auto* sig = rec.find(name);
+  if (!time || !sig || time->values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const auto& ts = time->values;
+  const auto& v = sig->values;
+  if (t <= ts.front()) return v.front();
+  if (t >= ts.back()) return v.back();
+  const auto it = std::upper_bound(ts.begin(), ts.end(), t);
+  const std::size_t i = static_cast<std::size_t>(it - ts.begin());
+  const double w = (t - ts[i - 1]) / (ts[i] - ts[i - 1]);
+  return (1 - w) * v[i - 1] + w * v[i];
+}
+
+namespace {
+double scalar(const dynamics::Recording& rec, const char* name) {
+  const auto* s = rec.find_scalar(name);
+  return s ? s->value : std::numeric_limits<double>::quiet_NaN();
+}
+}  // namespace
+
+void print_run_summary(std::ostream& os, const io::Scenario& sc, const dynamics::Recording& rec) {
+  const double end = sc.settings.duration_s;
+  char line[256];
+  std::snprintf(line, sizeof line, "Scenario  %s (%s), fluid %s, %.3g s simulated\n",
+                sc.name.c_str(), sc.type.c_str(), sc.fluid.name.c_str(), end);
+  os << line;
+  os << "Effects on:";
+  for (const auto& e : sc.enabled_effects) os << " " << e;
+  os << "\n\n";
+
+  // Key times: every drive breakpoint inside the run, five even splits, and the end.
+  std::set<double> times{0.0, end};
+  for (double t : sc.cycle.slip_speed_rpm.times_s()) if (t > 0 && t < end) times.insert(t);
+  for (int k = 1; k < 5; ++k) times.insert(end * k / 5.0);
+  os << "   t [s]  speed [rpm]  force [kN]  torque [Nm]  thermocouple [C]  IR [C]  sump [C]\n";
+  for (double t : times) {
+    std::snprintf(line, sizeof line, "%8.2f  %11.2f  %10.2f  %11.2f  %16.2f  %7.2f  %8.2f\n", t,
+                  signal_at(rec, "speed_rpm", t), signal_at(rec, "normal_force_N", t) / 1e3,
+                  signal_at(rec, "torque_Nm", t), signal_at(rec, "temp_C", t),
+                  signal_at(rec, "ir_temp_C", t), signal_at(rec, "sump_temp_C", t));
+    os << line;
+  }
+  std::snprintf(line, sizeof line,
+                "\nFinal temperatures: thermocouple %.2f C, IR %.2f C, interface max %.2f C, "
+                "sump %.2f C (peak interface %.2f C)\n",
+                signal_at(rec, "temp_C", end), signal_at(rec, "ir_temp_C", end),
+                signal_at(rec, "interface_max_temp_C", end), signal_at(rec, "sump_temp_C", end),
+                scalar(rec, "peak_interface_temp_C"));
+  os << line;
+  std::snprintf(line, sizeof line,
+                "Energy: generated %.1f J = stored in discs %.1f J + to sump %.1f J + to rig %.1f J; "
+                "balance error %.2e (relative)\n",
+                scalar(rec, "heat_generated_J"), scalar(rec, "heat_stored_in_discs_J"),
+                scalar(rec, "heat_to_sump_J"), scalar(rec, "heat_to_rig_J"),
+                scalar(rec, "energy_balance_relative_error"));
+  os << line;
+}
+
+}  // namespace shudder::app

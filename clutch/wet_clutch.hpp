@@ -1,0 +1,75 @@
+#pragma once
+// Wet clutch: boundary friction on radial rings coupled both ways with the thermal field.
+//
+//   p      = F / A                         uniform nominal pressure on the model annulus (Pa)
+//   v_i    = r_i * |Δω|                    local sliding speed of ring i (m/s; mm/s for mu)
+//   mu_i   = mu(v_i, T_i, F)               boundary friction (Paper G eq. 13) at the ring's
+//                                          interface temperature
+//   M      = n * sum_i r_i * p * mu_i * A_i * sign(Δω)  (+ viscous shear)   torque, N m
+//   q_i    = |Δω| * r_i * p * mu_i * A_i   heat into ring i of ONE interface (Paper G eq. 4), W
+//
+// n = number of sliding interfaces (Paper G simulates one). Each interface has the same
+// thermal domain by symmetry, so one ThermalModel serves them all.
+//
+// Effect switches handled here (FORMATS.md):
+//   temperature_dependent_friction  off: every ring uses the clutch start temperature
+//   load_dependent_friction         off: friction evaluated at reference_load_N
+//   viscous_shear                   adds the Couette torque of the film,
+//                                   M_v = n * sum_i eta(T_i) * r_i|Δω| / h_v * r_i * A_i,
+//                                   eta = rho * nu(T) (Walther), and its heat.
+// The thermal ones (oil cooling, sump, rig mass, sensor lag) live in ThermalModel.
+
+#include <Eigen/Dense>
+
+#include "clutch/fluid.hpp"
+#include "clutch/thermal_model.hpp"
+
+namespace shudder::clutch {
+
+struct WetClutchParams {
+  int sliding_interfaces = 1;         // Paper G: one
+  double start_temp_C = 20.0;         // discs and inner boundary at t = 0
+  double sump_start_temp_C = 20.0;    // sump (outer boundary) at t = 0
+  ThermalParams thermal;
+  bool temperature_dependent_friction = true;
+  bool load_dependent_friction = true;
+  double reference_load_N = 20000.0;  // used when load_dependent_friction is off (Paper E load)
+  bool viscous_shear = false;
+  double viscous_gap_m = 10e-6;       // estimate: Paper G's mean film thickness h_mean
+};
+
+class WetClutch {
+ public:
+  /// Throws std::invalid_argument for invalid parameters.
+  WetClutch(WetClutchParams params, Fluid fluid);
+
+  ThermalState initial_state() const;
+  const ThermalModel& thermal() const { return thermal_; }
+  const Fluid& fluid() const { return fluid_; }
+  const WetClutchParams& params() const { return p_; }
+
+  double pressure_Pa(double force_N) const { return force_N / thermal_.contact_area_m2(); }
+  /// Area-weighted mean radius r_eff = sum(r_i A_i) / sum(A_i), m.
+  double mean_radius_m() const;
+
+  /// Friction coefficient per ring (n_r) at the given slip, force and ring temperatures.
+  void ring_mu(double slip_rad_s, double force_N, const Eigen::VectorXd& ring_temp_C,
+               Eigen::VectorXd& mu) const;
+  /// Total torque of all sliding interfaces, signed like slip_rad_s, N m.
+  double torque_Nm(double slip_rad_s, double force_N, const Eigen::VectorXd& ring_temp_C) const;
+  /// Heat power into each ring of one interface's domain (n_r), W, >= 0.
+  void ring_heat_W(double slip_rad_s, double force_N, const Eigen::VectorXd& ring_temp_C,
+                   Eigen::VectorXd& heat) const;
+
+ private:
+  // Torque contribution per ring of one interface (n_r), N m, for |slip|.
+  void ring_torque_Nm(double slip_rad_s, double force_N, const Eigen::VectorXd& ring_temp_C,
+                      Eigen::VectorXd& torque) const;
+
+  WetClutchParams p_;
+  Fluid fluid_;
+  ThermalModel thermal_;
+  WaltherViscosity viscosity_;
+};
+
+}  // namespace shudder::clutch

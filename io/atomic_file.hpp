@@ -1,0 +1,21 @@
+#pragma once
+// Temp-file-then-rename for output files (FORMATS.md: "a reader never sees half a file").
+// A writer fills `temp_path_for(path)`, closes it, then calls commit_temp_file(); on any failure
+// before that it calls discard_temp_file(). commit flushes the data to disk (fsync) before the
+// rename, so even a crash leaves either the old file or the complete new one at `path`.
+
+#include <string>
+
+namespace shudder::io {
+
+/// The temporary name written first: `path + ".tmp"`.
+std::string temp_path_for(const std::string& path);
+
+/// fsync()s `tmp` and renames it to `path` (replacing an existing file). On failure removes
+/// `tmp` and throws InputError naming `path` and the system's reason.
+void commit_temp_file(const std::string& tmp, const std::string& path);
+
+/// Removes `tmp` if it exists; never throws.
+void discard_temp_file(const std::string& tmp) noexcept;
+
+}  // namespace shudder::io

@@ -1,0 +1,194 @@
+#include "io/fluid_loader.hpp"
+
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+#include "clutch/linear_friction.hpp"
+#include "clutch/maki_friction.hpp"
+#include "io/toml_reader.hpp"
+
+namespace shudder::io {
+
+namespace {
+
+constexpr double kDefaultDensity_kg_m3 = 868.0;  // Paper G Table 1, oil at 40 °C
+constexpr double kDefaultMinSpeed_mm_s = 6.0;    // Paper G range rule
+constexpr double kDefaultMaxSpeed_mm_s = 590.0;
+constexpr const char* kCoefficientNames[4] = {"C1", "C2", "C3", "C4"};
+
+std::string describe_type(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::table: return "a table";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a floating-point number";
+    case toml::node_type::boolean: return "a boolean";
+    default: return "a date/time";
+  }
+}
+
+std::string num(double x) {
+  std::ostringstream os;
+  os.precision(10);
+  os << x;
+  return os.str();
+}
+
+// Rejects an axis that is not strictly increasing, naming the offending element.
+void require_increasing(TomlTable& t, const std::string& key, const std::vector<double>& axis) {
+  for (std::size_t i = 1; i < axis.size(); ++i)
+    if (!(axis[i] > axis[i - 1]))
+      t.fail(key, "element " + std::to_string(i) + " = " + num(axis[i]) +
+                      " is not greater than element " + std::to_string(i - 1) + " = " +
+                      num(axis[i - 1]) + "; values must be strictly increasing");
+}
+
+// One row's `sets`: an array with one [C1, C2, C3, C4] per load, all finite numbers.
+std::vector<clutch::MakiSet> read_sets(TomlTable& row, const toml::table& raw_row,
+                                       const std::vector<double>& loads_N) {
+  const std::string shape = "expected an array of " + std::to_string(loads_N.size()) +
+                            " sets [C1, C2, C3, C4], one per load in maki.loads_N";
+  const toml::node* node = raw_row.get("sets");
+  if (!node) row.fail("sets", "missing; " + shape);
+  row.mark_read("sets");
+  const toml::array* sets = node->as_array();
+  if (!sets) row.fail("sets", "is " + describe_type(*node) + "; " + shape);
+  if (sets->size() != loads_N.size())
+    row.fail("sets", "has " + std::to_string(sets->size()) +
+                         " sets; expected one per load (" + std::to_string(loads_N.size()) + ")");
+
+  std::vector<clutch::MakiSet> out;
+  for (std::size_t j = 0; j < sets->size(); ++j) {
+    const std::string which =
+        "set " + std::to_string(j) + " (load " + num(loads_N[j]) + " N)";
+    const toml::array* c = sets->get(j)->as_array();
+    if (!c) row.fail("sets", which + " is " + describe_type(*sets->get(j)) +
+                                 "; expected an array [C1, C2, C3, C4]");
+    if (c->size() != 4)
+      row.fail("sets", which + " has " + std::to_string(c->size()) +
+                           " numbers; expected 4 [C1, C2, C3, C4]");
+    double v[4] = {};
+    for (std::size_t k = 0; k < 4; ++k) {
+      const toml::node& e = *c->get(k);
+      const std::string elem = which + " " + kCoefficientNames[k];
+      if (auto f = e.as_floating_point())
+        v[k] = f->get();
+      else if (auto i = e.as_integer())
+        v[k] = static_cast<double>(i->get());
+      else
+        row.fail("sets", elem + " is " + describe_type(e) + "; expected a finite number");
+      if (!std::isfinite(v[k]))
+        row.fail("sets", elem + " is not finite (nan/inf); expected a finite number");
+    }
+    out.push_back({v[0], v[1], v[2], v[3]});
+  }
+  return out;
+}
+
+std::shared_ptr<const clutch::FrictionLaw> read_maki(TomlTable& maki, const toml::table& raw) {
+  const double vmin = maki.number_or("min_speed_mm_s", kDefaultMinSpeed_mm_s, Range::positive());
+  const double vmax = maki.number_or("max_speed_mm_s", kDefaultMaxSpeed_mm_s, Range::positive());
+  if (!(vmax > vmin))
+    maki.fail("max_speed_mm_s", "value " + num(vmax) + " must exceed min_speed_mm_s = " +
+                                    num(vmin));
+  const std::vector<double> loads = maki.numbers("loads_N", Range::positive());
+  require_increasing(maki, "loads_N", loads);
+
+  std::vector<TomlTable> rows = maki.table_array("row");
+  if (rows.empty()) maki.fail("row", "is empty; expected at least one [[maki.row]]");
+  const toml::array& raw_rows = *raw.get("row")->as_array();
+
+  std::vector<double> temps;
+  std::vector<clutch::MakiSet> sets;  // (n_temp * n_load) row-major
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    TomlTable& row = rows[i];
+    const double t = row.number("temp_C", Range::closed(-273.15, 1000.0));
+    if (!temps.empty() && !(t > temps.back()))
+      row.fail("temp_C", "value " + num(t) + " is not above the previous row's " +
+                             num(temps.back()) + "; rows must be strictly increasing in temp_C");
+    temps.push_back(t);
+    row.string_or("origin", "");
+    const auto row_sets = read_sets(row, *raw_rows.get(i)->as_table(), loads);
+    sets.insert(sets.end(), row_sets.begin(), row_sets.end());
+    row.finish();
+  }
+  maki.finish();
+  try {
+    return std::make_shared<clutch::MakiFrictionMatrix>(loads, temps, std::move(sets), vmin, vmax);
+  } catch (const std::invalid_argument& e) {
+    maki.fail("row", e.what());
+  }
+}
+
+std::shared_ptr<const clutch::FrictionLaw> read_linear(TomlTable& lin) {
+  lin.number_or("load_N", 20000.0, Range::positive());  // informational: the lines' test load
+  const double radius_mm = lin.number("mean_radius_mm", Range::positive());
+  const std::vector<double> rpm = lin.numbers("speeds_rpm", Range::positive());
+  require_increasing(lin, "speeds_rpm", rpm);
+  const std::vector<double> alpha = lin.numbers("alpha_per_C");
+  const std::vector<double> beta = lin.numbers("beta");
+  for (const auto& [key, v] : {std::pair{"alpha_per_C", &alpha}, std::pair{"beta", &beta}})
+    if (v->size() != rpm.size())
+      lin.fail(key, "has " + std::to_string(v->size()) + " elements; expected one per speed in "
+                    "speeds_rpm (" + std::to_string(rpm.size()) + ")");
+  lin.finish();
+
+  // rpm -> local sliding speed at the mean radius: v = rpm * 2*pi/60 * r (1 rpm = 4.82 mm/s at 46 mm).
+  std::vector<clutch::LinearTemperaturePoint> points;
+  for (std::size_t i = 0; i < rpm.size(); ++i)
+    points.push_back({rpm[i] * 2.0 * std::numbers::pi / 60.0 * radius_mm, alpha[i], beta[i]});
+  try {
+    return std::make_shared<clutch::LinearTemperatureFriction>(std::move(points));
+  } catch (const std::invalid_argument& e) {
+    lin.fail("speeds_rpm", e.what());
+  }
+}
+
+}  // namespace
+
+clutch::Fluid load_fluid(const std::string& path) {
+  const toml::table doc = TomlTable::parse_file(path);
+  TomlTable root(doc, path, "");
+  clutch::Fluid fluid;
+
+  // [fluid]: identity and viscosity (Walther needs nu40 > nu100 > 0).
+  TomlTable f = root.table("fluid");
+  fluid.name = f.string("name");
+  if (fluid.name.empty()) f.fail("name", "is empty; expected a non-empty fluid name");
+  f.string_or("description", "");
+  fluid.nu40_cSt = f.number("nu40_cSt", Range::positive());
+  fluid.nu100_cSt = f.number("nu100_cSt", Range{0.0, fluid.nu40_cSt, true, true});
+  fluid.density_kg_m3 = f.number_or("density_kg_m3", kDefaultDensity_kg_m3, Range::positive());
+  f.finish();
+
+  // [static_friction]: mu_s = breakaway_ratio * mu_k(v_min, T, F).
+  TomlTable s = root.table("static_friction");
+  fluid.breakaway_ratio = s.number("breakaway_ratio", Range::closed(0.5, 3.0));
+  s.string_or("source", "");
+  s.finish();
+
+  // Exactly one friction law.
+  const bool has_maki = root.has("maki"), has_linear = root.has("linear");
+  if (has_maki && has_linear)
+    root.fail("linear", "given together with [maki]; a fluid has exactly one friction law: "
+                        "[maki] (Paper G matrix) or [linear] (Papers B/C/E lines)");
+  if (!has_maki && !has_linear)
+    root.fail("maki", "missing; a fluid needs exactly one friction law: [maki] (Paper G matrix) "
+                      "or [linear] (Papers B/C/E lines)");
+  if (has_maki) {
+    TomlTable maki = root.table("maki");
+    fluid.friction = read_maki(maki, *doc.get("maki")->as_table());
+  } else {
+    TomlTable lin = root.table("linear");
+    fluid.friction = read_linear(lin);
+  }
+  root.finish();
+  return fluid;
+}
+
+}  // namespace shudder::io

@@ -1,0 +1,424 @@
+// Run output <-> HDF5 (layout in hdf5_run.hpp). HDF5 C API with RAII handles; the library's
+// automatic error printing is switched off while we work and its innermost error message is
+// attached to the InputError instead.
+#include "io/hdf5_run.hpp"
+
+#include <hdf5.h>
+
+#include <algorithm>
+#include <cstring>
+#include <ctime>
+#include <filesystem>
+#include <optional>
+#include <set>
+#include <stdexcept>
+#include <utility>
+
+#include "io/atomic_file.hpp"
+#include "io/input_error.hpp"
+
+namespace shudder::io {
+namespace {
+
+using dynamics::Recording;
+
+// An HDF5 failure inside this file; converted to InputError (with the path) at the public edge.
+struct Failure : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Owns one hid_t and closes it with the matching H5?close.
+class Handle {
+ public:
+  using Closer = herr_t (*)(hid_t);
+  Handle(hid_t id, Closer close) : id_(id), close_(close) {}
+  Handle(Handle&& o) noexcept : id_(std::exchange(o.id_, H5I_INVALID_HID)), close_(o.close_) {}
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  Handle& operator=(Handle&&) = delete;
+  ~Handle() {
+    if (id_ >= 0) close_(id_);
+  }
+  operator hid_t() const { return id_; }  // NOLINT: implicit, so handles pass straight to H5*
+  /// Closes now and reports failure (closing a file flushes it: errors matter there).
+  herr_t close() { return id_ >= 0 ? close_(std::exchange(id_, H5I_INVALID_HID)) : 0; }
+
+ private:
+  hid_t id_;
+  Closer close_;
+};
+
+// Switches HDF5's automatic error printing off for its lifetime, restoring it afterwards.
+class QuietHdf5 {
+ public:
+  QuietHdf5() {
+    H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
+  QuietHdf5(const QuietHdf5&) = delete;
+  QuietHdf5& operator=(const QuietHdf5&) = delete;
+  ~QuietHdf5() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
+
+ private:
+  H5E_auto2_t func_ = nullptr;
+  void* data_ = nullptr;
+};
+
+// The most specific message on HDF5's error stack (then cleared), e.g. "unable to open file".
+std::string hdf5_reason() {
+  std::string reason;
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_UPWARD,
+      [](unsigned n, const H5E_error2_t* e, void* out) -> herr_t {
+        if (n == 0 && e->desc) *static_cast<std::string*>(out) = e->desc;
+        return 0;
+      },
+      &reason);
+  H5Eclear2(H5E_DEFAULT);
+  return reason.empty() ? std::string() : " (HDF5: " + reason + ")";
+}
+
+Handle own(hid_t id, Handle::Closer close, const std::string& what) {
+  if (id < 0) throw Failure("cannot " + what + hdf5_reason());
+  return Handle(id, close);
+}
+
+void ok(herr_t status, const std::string& what) {
+  if (status < 0) throw Failure("cannot " + what + hdf5_reason());
+}
+
+// ---- writing -------------------------------------------------------------------------------
+
+Handle vlen_string_type() {
+  Handle type = own(H5Tcopy(H5T_C_S1), H5Tclose, "create string type");
+  ok(H5Tset_size(type, H5T_VARIABLE), "size string type");
+  ok(H5Tset_cset(type, H5T_CSET_UTF8), "set string encoding");
+  return type;
+}
+
+void write_string_attr(hid_t obj, const std::string& name, const std::string& value) {
+  const Handle type = vlen_string_type();
+  const Handle space = own(H5Screate(H5S_SCALAR), H5Sclose, "create dataspace");
+  const Handle attr = own(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT),
+                          H5Aclose, "create attribute '" + name + "'");
+  const char* text = value.c_str();
+  ok(H5Awrite(attr, type, &text), "write attribute '" + name + "'");
+}
+
+// A group whose links remember creation order, so readers can return them in write order.
+Handle make_group(hid_t parent, const std::string& name) {
+  const Handle gcpl = own(H5Pcreate(H5P_GROUP_CREATE), H5Pclose, "create property list");
+  ok(H5Pset_link_creation_order(gcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED),
+     "track creation order");
+  return own(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, gcpl, H5P_DEFAULT), H5Gclose,
+             "create group '" + name + "'");
+}
+
+// A double dataset of shape `dims` (empty = scalar), row-major `data`, with a `units` attribute.
+void write_doubles(hid_t parent, const std::string& name, const std::vector<hsize_t>& dims,
+                   const double* data, const std::string& units) {
+  const Handle space =
+      dims.empty() ? own(H5Screate(H5S_SCALAR), H5Sclose, "create dataspace")
+                   : own(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
+                         H5Sclose, "create dataspace for '" + name + "'");
+  const Handle dset = own(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT,
+                                     H5P_DEFAULT, H5P_DEFAULT),
+                          H5Dclose, "create dataset '" + name + "'");
+  hsize_t count = 1;
+  for (hsize_t d : dims) count *= d;
+  if (count > 0)
+    ok(H5Dwrite(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
+       "write dataset '" + name + "'");
+  write_string_attr(dset, "units", units);
+}
+
+std::string utc_now_iso8601() {
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+// Checks everything that can be checked before touching the disk.
+void validate(const std::string& path, const Recording& rec) {
+  const auto bad = [&](const std::string& key, const std::string& msg) {
+    throw InputError(path, 0, key, msg);
+  };
+  const auto check_names = [&](const auto& items, const char* what) {
+    std::set<std::string> seen;
+    for (const auto& item : items) {
+      if (item.name.empty() || item.name == "." || item.name.find('/') != std::string::npos)
+        bad(item.name, std::string(what) + " name must be non-empty and contain no '/'");
+      if (!seen.insert(item.name).second) bad(item.name, std::string("duplicate ") + what);
+    }
+  };
+  check_names(rec.signals, "signal");
+  check_names(rec.scalars, "scalar");
+  for (const auto& s : rec.signals)
+    if (s.values.size() != rec.signals.front().values.size())
+      bad(s.name, "signal has " + std::to_string(s.values.size()) + " samples but '" +
+                      rec.signals.front().name + "' has " +
+                      std::to_string(rec.signals.front().values.size()) +
+                      "; all signals must have the same length");
+  for (const auto& snap : rec.snapshots) {
+    const auto& first = rec.snapshots.front().temp_C;
+    if (snap.temp_C.rows() != first.rows() || snap.temp_C.cols() != first.cols())
+      bad("thermal/temp_C", "snapshots differ in shape; all must be (n_z x n_r)");
+    if ((!rec.grid_z_m.empty() && snap.temp_C.rows() != static_cast<long>(rec.grid_z_m.size())) ||
+        (!rec.grid_r_m.empty() && snap.temp_C.cols() != static_cast<long>(rec.grid_r_m.size())))
+      bad("thermal/temp_C", "snapshot shape " + std::to_string(snap.temp_C.rows()) + " x " +
+                                std::to_string(snap.temp_C.cols()) + " does not match grid " +
+                                std::to_string(rec.grid_z_m.size()) + " (z) x " +
+                                std::to_string(rec.grid_r_m.size()) + " (r)");
+  }
+}
+
+void write_thermal(hid_t file, const Recording& rec) {
+  if (rec.grid_r_m.empty() && rec.grid_z_m.empty() && rec.snapshots.empty()) return;
+  const Handle thermal = make_group(file, "thermal");
+  if (!rec.grid_r_m.empty()) write_doubles(thermal, "r_m", {rec.grid_r_m.size()}, rec.grid_r_m.data(), "m");
+  if (!rec.grid_z_m.empty()) write_doubles(thermal, "z_m", {rec.grid_z_m.size()}, rec.grid_z_m.data(), "m");
+  if (rec.snapshots.empty()) return;
+  // Flatten to (n_snap x n_z x n_r), row-major (Eigen's own storage is column-major).
+  const auto n_snap = rec.snapshots.size();
+  const auto n_z = static_cast<std::size_t>(rec.snapshots.front().temp_C.rows());
+  const auto n_r = static_cast<std::size_t>(rec.snapshots.front().temp_C.cols());
+  std::vector<double> times(n_snap), temps(n_snap * n_z * n_r);
+  for (std::size_t k = 0; k < n_snap; ++k) {
+    times[k] = rec.snapshots[k].time_s;
+    for (std::size_t i = 0; i < n_z; ++i)
+      for (std::size_t j = 0; j < n_r; ++j)
+        temps[(k * n_z + i) * n_r + j] = rec.snapshots[k].temp_C(static_cast<long>(i), static_cast<long>(j));
+  }
+  write_doubles(thermal, "times_s", {n_snap}, times.data(), "s");
+  write_doubles(thermal, "temp_C", {n_snap, n_z, n_r}, temps.data(), "degC");
+}
+
+void write_file(const std::string& file_name, const Recording& rec, const std::string& scenario) {
+  Handle file = own(H5Fcreate(file_name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
+                    H5Fclose, "create file '" + file_name + "'");
+  {
+    // Signals: all the same length (validated).
+    const Handle signals = make_group(file, "signals");
+    for (const auto& s : rec.signals)
+      write_doubles(signals, s.name, {s.values.size()}, s.values.data(), s.units);
+    write_thermal(file, rec);
+    // Summary scalars.
+    if (!rec.scalars.empty()) {
+      const Handle analysis = make_group(file, "analysis");
+      const Handle summary = make_group(analysis, "summary");
+      for (const auto& s : rec.scalars) write_doubles(summary, s.name, {}, &s.value, s.units);
+    }
+    // Root attributes.
+    write_string_attr(file, "scenario", scenario);
+    write_string_attr(file, "shudder_version", SHUDDER_VERSION);
+    write_string_attr(file, "created_utc", utc_now_iso8601());
+  }
+  ok(file.close(), "close (flush) file '" + file_name + "'");
+}
+
+// ---- reading -------------------------------------------------------------------------------
+
+bool has_link(hid_t parent, const std::string& name) {
+  const htri_t exists = H5Lexists(parent, name.c_str(), H5P_DEFAULT);
+  ok(exists, "look up '" + name + "'");
+  return exists > 0;
+}
+
+// Link names in creation order when the group tracks it, else in name order.
+std::vector<std::string> link_names(hid_t group) {
+  H5G_info_t info;
+  ok(H5Gget_info(group, &info), "read group info");
+  H5_index_t index = H5_INDEX_NAME;
+  {
+    const Handle gcpl = own(H5Gget_create_plist(group), H5Pclose, "read group properties");
+    unsigned flags = 0;
+    ok(H5Pget_link_creation_order(gcpl, &flags), "read creation order");
+    if (flags & H5P_CRT_ORDER_INDEXED) index = H5_INDEX_CRT_ORDER;
+  }
+  std::vector<std::string> names;
+  for (hsize_t i = 0; i < info.nlinks; ++i) {
+    const ssize_t len = H5Lget_name_by_idx(group, ".", index, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
+    if (len < 0) throw Failure("cannot read link name" + hdf5_reason());
+    std::vector<char> buf(static_cast<std::size_t>(len) + 1, '\0');
+    H5Lget_name_by_idx(group, ".", index, H5_ITER_INC, i, buf.data(), buf.size(), H5P_DEFAULT);
+    names.emplace_back(buf.data(), static_cast<std::size_t>(len));
+  }
+  return names;
+}
+
+std::optional<std::string> read_string_attr(hid_t obj, const std::string& name) {
+  const htri_t exists = H5Aexists(obj, name.c_str());
+  ok(exists, "look up attribute '" + name + "'");
+  if (exists == 0) return std::nullopt;
+  const Handle attr = own(H5Aopen(obj, name.c_str(), H5P_DEFAULT), H5Aclose, "open attribute '" + name + "'");
+  const Handle file_type = own(H5Aget_type(attr), H5Tclose, "read type of '" + name + "'");
+  if (H5Tget_class(file_type) != H5T_STRING) throw Failure("attribute '" + name + "' is not a string");
+  if (H5Tis_variable_str(file_type) > 0) {
+    const Handle mem_type = vlen_string_type();
+    char* text = nullptr;
+    ok(H5Aread(attr, mem_type, &text), "read attribute '" + name + "'");
+    std::string value = text ? text : "";
+    H5free_memory(text);
+    return value;
+  }
+  // Fixed-length string (as written by some other tools).
+  const std::size_t size = H5Tget_size(file_type);
+  std::vector<char> buf(size + 1, '\0');
+  ok(H5Aread(attr, file_type, buf.data()), "read attribute '" + name + "'");
+  return std::string(buf.data(), strnlen(buf.data(), size));
+}
+
+struct Array {
+  std::vector<hsize_t> dims;
+  std::vector<double> values;  // row-major
+  std::string units;
+};
+
+Array read_doubles(hid_t parent, const std::string& name) {
+  const Handle dset = own(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), H5Dclose, "open dataset '" + name + "'");
+  {
+    const Handle type = own(H5Dget_type(dset), H5Tclose, "read type of '" + name + "'");
+    const H5T_class_t cls = H5Tget_class(type);
+    if (cls != H5T_FLOAT && cls != H5T_INTEGER) throw Failure("dataset '" + name + "' is not numeric");
+  }
+  const Handle space = own(H5Dget_space(dset), H5Sclose, "read shape of '" + name + "'");
+  const int rank = H5Sget_simple_extent_ndims(space);
+  if (rank < 0) throw Failure("cannot read shape of '" + name + "'" + hdf5_reason());
+  Array a;
+  a.dims.resize(static_cast<std::size_t>(rank));
+  if (rank > 0) ok(H5Sget_simple_extent_dims(space, a.dims.data(), nullptr), "read shape of '" + name + "'");
+  hsize_t count = 1;
+  for (hsize_t d : a.dims) count *= d;
+  a.values.resize(count);
+  if (count > 0)
+    ok(H5Dread(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, a.values.data()),
+       "read dataset '" + name + "'");
+  a.units = read_string_attr(dset, "units").value_or("");
+  return a;
+}
+
+void read_signals(hid_t file, Recording& rec) {
+  if (!has_link(file, "signals")) throw Failure("no /signals group; not a shudder run file");
+  const Handle group = own(H5Gopen2(file, "signals", H5P_DEFAULT), H5Gclose, "open /signals");
+  for (const auto& name : link_names(group)) {
+    Array a = read_doubles(group, name);
+    if (a.dims.size() != 1) throw Failure("signal '" + name + "' is not 1-D");
+    if (!rec.signals.empty() && a.values.size() != rec.signals.front().values.size())
+      throw Failure("signal '" + name + "' has " + std::to_string(a.values.size()) +
+                    " samples but '" + rec.signals.front().name + "' has " +
+                    std::to_string(rec.signals.front().values.size()));
+    rec.signals.push_back({name, std::move(a.units), std::move(a.values)});
+  }
+  std::stable_partition(rec.signals.begin(), rec.signals.end(),
+                        [](const dynamics::Signal& s) { return s.name == "time_s"; });
+}
+
+void read_thermal(hid_t file, Recording& rec) {
+  if (!has_link(file, "thermal")) return;
+  const Handle group = own(H5Gopen2(file, "thermal", H5P_DEFAULT), H5Gclose, "open /thermal");
+  if (has_link(group, "r_m")) rec.grid_r_m = read_doubles(group, "r_m").values;
+  if (has_link(group, "z_m")) rec.grid_z_m = read_doubles(group, "z_m").values;
+  if (!has_link(group, "temp_C")) return;
+  if (!has_link(group, "times_s")) throw Failure("/thermal/temp_C without /thermal/times_s");
+  const std::vector<double> times = read_doubles(group, "times_s").values;
+  const Array temps = read_doubles(group, "temp_C");
+  if (temps.dims.size() != 3 || temps.dims[0] != times.size())
+    throw Failure("/thermal/temp_C must be (n_snap x n_z x n_r) with n_snap = size of times_s");
+  const auto n_z = static_cast<long>(temps.dims[1]), n_r = static_cast<long>(temps.dims[2]);
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    dynamics::ThermalSnapshot snap{times[k], Eigen::MatrixXd(n_z, n_r)};
+    for (long i = 0; i < n_z; ++i)
+      for (long j = 0; j < n_r; ++j)
+        snap.temp_C(i, j) = temps.values[(k * static_cast<std::size_t>(n_z) + static_cast<std::size_t>(i)) *
+                                             static_cast<std::size_t>(n_r) + static_cast<std::size_t>(j)];
+    rec.snapshots.push_back(std::move(snap));
+  }
+}
+
+void read_scalars(hid_t file, Recording& rec) {
+  if (!has_link(file, "analysis")) return;
+  const Handle analysis = own(H5Gopen2(file, "analysis", H5P_DEFAULT), H5Gclose, "open /analysis");
+  if (!has_link(analysis, "summary")) return;
+  const Handle summary = own(H5Gopen2(analysis, "summary", H5P_DEFAULT), H5Gclose, "open /analysis/summary");
+  for (const auto& name : link_names(summary)) {
+    Array a = read_doubles(summary, name);
+    if (a.values.size() != 1) throw Failure("summary value '" + name + "' is not a scalar");
+    rec.scalars.push_back({name, std::move(a.units), a.values.front()});
+  }
+}
+
+// Opens `path` read-only after checking it exists and is HDF5; throws InputError otherwise.
+Handle open_for_reading(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError(path, 0, "", "cannot read run file: no such file");
+  if (H5Fis_hdf5(path.c_str()) <= 0)
+    throw InputError(path, 0, "", "cannot read run file: not an HDF5 file" + hdf5_reason());
+  try {
+    return own(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open file");
+  } catch (const Failure& e) {
+    throw InputError(path, 0, "", e.what());
+  }
+}
+
+}  // namespace
+
+void write_run_hdf5(const std::string& path, const Recording& rec, const std::string& scenario_text) {
+  validate(path, rec);
+  const QuietHdf5 quiet;
+  const std::string tmp = temp_path_for(path);
+  try {
+    write_file(tmp, rec, scenario_text);
+  } catch (const Failure& e) {
+    discard_temp_file(tmp);
+    throw InputError(path, 0, "", std::string("cannot write run file: ") + e.what() +
+                                      "; check the directory exists and is writable");
+  } catch (...) {
+    discard_temp_file(tmp);
+    throw;
+  }
+  commit_temp_file(tmp, path);
+}
+
+Recording read_run_hdf5(const std::string& path) {
+  const QuietHdf5 quiet;
+  const Handle file = open_for_reading(path);
+  Recording rec;
+  try {
+    read_signals(file, rec);
+    read_thermal(file, rec);
+    read_scalars(file, rec);
+  } catch (const Failure& e) {
+    throw InputError(path, 0, "", e.what());
+  }
+  return rec;
+}
+
+std::string read_run_attribute(const std::string& path, const std::string& name) {
+  const QuietHdf5 quiet;
+  const Handle file = open_for_reading(path);
+  try {
+    return read_string_attr(file, name).value_or("");
+  } catch (const Failure& e) {
+    throw InputError(path, 0, "", e.what());
+  }
+}
+
+namespace detail {
+long open_hdf5_identifiers() {
+  const QuietHdf5 quiet;
+  long total = 0;
+  for (H5I_type_t type : {H5I_FILE, H5I_GROUP, H5I_DATATYPE, H5I_DATASPACE, H5I_DATASET, H5I_ATTR,
+                          H5I_GENPROP_LST}) {
+    hsize_t n = 0;
+    if (H5Inmembers(type, &n) >= 0) total += static_cast<long>(n);
+  }
+  H5Eclear2(H5E_DEFAULT);
+  return total;
+}
+}  // namespace detail
+
+}  // namespace shudder::io

@@ -1,0 +1,226 @@
+#include "io/scenario.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "clutch/effects.hpp"
+#include "io/fluid_loader.hpp"
+#include "io/toml_reader.hpp"
+
+namespace shudder::io {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kMaxForce_N = 30000.0;     // rig cylinder maximum (thesis Method)
+constexpr double kMaxSlip_rpm = 1000.0;     // beyond any LSC use; friction data end at 100 rpm
+const Range kTemp_C = Range::closed(-60.0, 250.0);  // friction matrix spans -40..200 °C
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, 0, "", "cannot open the file for reading");
+  std::ostringstream os;
+  os << in.rdbuf();
+  return os.str();
+}
+
+void read_layer(TomlTable& parent, const std::string& key, clutch::Layer& layer) {
+  auto t = parent.optional_table(key);
+  if (!t) return;
+  layer.thickness_m = t->number_or("thickness_mm", layer.thickness_m * 1e3, Range::positive()) * 1e-3;
+  layer.density_kg_m3 = t->number_or("density_kg_m3", layer.density_kg_m3, Range::positive());
+  layer.specific_heat_J_per_kgK =
+      t->number_or("specific_heat_J_per_kgK", layer.specific_heat_J_per_kgK, Range::positive());
+  layer.conductivity_W_per_mK =
+      t->number_or("conductivity_W_per_mK", layer.conductivity_W_per_mK, Range::positive());
+  layer.cells = static_cast<int>(t->integer_or("cells", layer.cells, 1, 200));
+  t->finish();
+}
+
+void read_clutch(TomlTable& root, Scenario& s) {
+  auto c = root.table("clutch");
+  auto& p = s.clutch;
+  auto& th = p.thermal;
+  const std::string fluid = c.string("fluid");
+  s.fluid_path = (fs::path(s.path).parent_path() / fluid).string();
+  if (!fs::exists(s.fluid_path)) c.fail("fluid", "file '" + s.fluid_path + "' does not exist");
+  s.fluid = load_fluid(s.fluid_path);
+  p.sliding_interfaces = static_cast<int>(c.integer_or("sliding_interfaces", 1, 1, 64));
+  p.start_temp_C = c.number("start_temp_C", kTemp_C);
+  p.sump_start_temp_C = c.number_or("sump_start_temp_C", p.start_temp_C, kTemp_C);
+  th.inner_radius_m = c.number_or("inner_radius_mm", th.inner_radius_m * 1e3, Range::positive()) * 1e-3;
+  th.outer_radius_m = c.number_or("outer_radius_mm", th.outer_radius_m * 1e3, Range::positive()) * 1e-3;
+  if (!(th.outer_radius_m > th.inner_radius_m))
+    c.fail("outer_radius_mm", "must exceed inner_radius_mm");
+  read_layer(c, "separator", th.separator);
+  read_layer(c, "lining", th.lining);
+  read_layer(c, "core", th.core);
+  if (auto oil = c.optional_table("oil")) {
+    th.oil_density_kg_m3 = oil->number_or("density_kg_m3", th.oil_density_kg_m3, Range::positive());
+    th.oil_specific_heat_J_per_kgK =
+        oil->number_or("specific_heat_J_per_kgK", th.oil_specific_heat_J_per_kgK, Range::positive());
+    th.film_thickness_m = oil->number_or("film_thickness_um", th.film_thickness_m * 1e6, Range::positive()) * 1e-6;
+    th.sump_volume_m3 = oil->number_or("sump_volume_ml", th.sump_volume_m3 * 1e6, Range::positive()) * 1e-6;
+    th.supply_flow_m3_s = oil->number_or("supply_flow_ml_min", th.supply_flow_m3_s * 6e7,
+                                         Range::closed(0.0, 1000.0)) / 6e7;  // rig pump: 0–1000 ml/min
+    oil->finish();
+  }
+  if (auto tc = c.optional_table("thermocouple")) {
+    th.thermocouple_r_m = tc->number_or("r_mm", th.thermocouple_r_m * 1e3, Range::positive()) * 1e-3;
+    th.thermocouple_z_m = tc->number_or("z_mm", th.thermocouple_z_m * 1e3, Range::non_negative()) * 1e-3;
+    tc->finish();
+  }
+  if (auto ir = c.optional_table("ir_pyrometer")) {
+    th.ir_r_m = ir->number_or("r_mm", th.ir_r_m * 1e3, Range::positive()) * 1e-3;
+    th.ir_spot_diameter_m = ir->number_or("spot_diameter_mm", th.ir_spot_diameter_m * 1e3, Range::positive()) * 1e-3;
+    ir->finish();
+  }
+  const double z_total = th.separator.thickness_m + th.lining.thickness_m + th.core.thickness_m;
+  if (th.thermocouple_z_m > z_total) c.fail("thermocouple", "z_mm lies outside the disc stack");
+  c.finish();
+}
+
+rig_models::PiecewiseLinear read_schedule(TomlTable& drive, const std::string& key,
+                                          const std::vector<double>& times, Range range) {
+  // A single number means constant; an array must align with time_s.
+  if (!drive.is_array(key)) return {{0.0}, {drive.number(key, range)}};
+  const auto values = drive.numbers(key, range, 1);
+  if (values.size() != times.size())
+    drive.fail(key, "has " + std::to_string(values.size()) + " values but time_s has " +
+                        std::to_string(times.size()) + "; give one value per time or a single number");
+  return {times, values};
+}
+
+void read_drive(TomlTable& root, Scenario& s) {
+  auto d = root.table("drive");
+  const auto times = d.numbers("time_s", Range::non_negative(), 1);
+  for (std::size_t i = 1; i < times.size(); ++i)
+    if (times[i] <= times[i - 1]) d.fail("time_s", "must be strictly increasing");
+  s.cycle.slip_speed_rpm = read_schedule(d, "speed_rpm", times, Range::closed(-kMaxSlip_rpm, kMaxSlip_rpm));
+  s.cycle.normal_force_N = read_schedule(d, "normal_force_N", times, Range::closed(0.0, kMaxForce_N));
+  d.finish();
+}
+
+void read_effects(TomlTable& root, Scenario& s) {
+  auto& p = s.clutch;
+  auto& th = p.thermal;
+  auto& drag = s.settings.bearing_drag;
+  auto effects = root.optional_table("effects");
+  if (!effects) return;
+  for (const auto& name : effects->subtable_keys()) {
+    bool known = false;
+    for (auto n : clutch::kEffectNames) known = known || n == name;
+    if (!known) {
+      std::string list;
+      for (auto n : clutch::kEffectNames) list += (list.empty() ? "" : ", ") + std::string(n);
+      effects->fail(name, "unknown effect; valid effects are: " + list);
+    }
+  }
+  const auto section = [&](const char* name, bool& enabled, auto&& read_params) {
+    auto t = effects->optional_table(name);
+    if (!t) return;
+    enabled = t->boolean("enabled");
+    read_params(*t);
+    t->finish();
+  };
+  section("temperature_dependent_friction", p.temperature_dependent_friction, [](TomlTable&) {});
+  section("interface_oil_cooling", th.interface_oil_cooling, [&](TomlTable& t) {
+    auto& f = th.oil_flow;
+    f.a = t.number_or("a", f.a);
+    f.b = t.number_or("b", f.b, Range::closed(-5.0, 5.0));
+    f.c = t.number_or("c", f.c);
+    f.d = t.number_or("d", f.d, Range::closed(-5.0, 5.0));
+    f.e = t.number_or("e", f.e);
+    const std::string form = t.choice_or(
+        "film_advection",
+        f.form == clutch::FilmAdvectionForm::kPaperGLiteral ? "paper_g_literal" : "film_energy_balance",
+        {"paper_g_literal", "film_energy_balance"});
+    f.form = form == "paper_g_literal" ? clutch::FilmAdvectionForm::kPaperGLiteral
+                                       : clutch::FilmAdvectionForm::kFilmEnergyBalance;
+  });
+  section("sump_heating", th.sump_heating, [](TomlTable&) {});
+  section("rig_heat_capacity", th.rig_heat_capacity, [&](TomlTable& t) {
+    th.rig_heat_capacity_J_per_K = t.number_or("heat_capacity_J_per_K", th.rig_heat_capacity_J_per_K, Range::positive());
+    th.rig_conductance_W_per_K = t.number_or("conductance_W_per_K", th.rig_conductance_W_per_K, Range::non_negative());
+  });
+  section("temperature_sensor_lag", th.temperature_sensor_lag, [&](TomlTable& t) {
+    th.sensor_time_constant_s = t.number_or("time_constant_s", th.sensor_time_constant_s, Range::positive());
+  });
+  section("viscous_shear", p.viscous_shear, [&](TomlTable& t) {
+    p.viscous_gap_m = t.number_or("gap_um", p.viscous_gap_m * 1e6, Range::positive()) * 1e-6;
+  });
+  section("load_dependent_friction", p.load_dependent_friction, [&](TomlTable& t) {
+    p.reference_load_N = t.number_or("reference_load_N", p.reference_load_N, Range::closed(1.0, kMaxForce_N));
+  });
+  section("bearing_drag", drag.enabled, [&](TomlTable& t) {
+    drag.equivalent_mu = t.number_or("equivalent_mu", drag.equivalent_mu, Range::closed(0.0, 0.1));
+    drag.radius_m = t.number_or("radius_mm", drag.radius_m * 1e3, Range::positive()) * 1e-3;
+  });
+  bool stick_time = false;
+  section("stick_time_static_friction", stick_time, [](TomlTable&) {});
+  if (stick_time && s.type == "prescribed_slip")
+    s.warnings.push_back("effect stick_time_static_friction has no effect in a prescribed_slip "
+                         "scenario (the slip is imposed, nothing sticks)");
+  effects->finish();
+}
+
+}  // namespace
+
+Scenario load_scenario(const std::string& path) {
+  Scenario s;
+  s.path = path;
+  s.text = read_text(path);
+  const toml::table doc = TomlTable::parse_file(path);
+  TomlTable root(doc, path, "");
+
+  auto head = root.table("scenario");
+  s.name = head.string_or("name", fs::path(path).stem().string());
+  s.type = head.choice_or("type", "prescribed_slip", {"prescribed_slip"});
+  s.description = head.string_or("description", "");
+  s.settings.duration_s = head.number("duration_s", Range::closed(1e-3, 1e5));
+  head.finish();
+
+  read_clutch(root, s);
+  read_drive(root, s);
+
+  if (auto solver = root.optional_table("solver")) {
+    s.clutch.thermal.radial_cells = static_cast<int>(solver->integer_or("radial_cells", s.clutch.thermal.radial_cells, 2, 2000));
+    s.settings.thermal_step_s = solver->number_or("thermal_step_ms", s.settings.thermal_step_s * 1e3, Range::closed(1e-3, 1e4)) * 1e-3;
+    solver->finish();
+  }
+  if (auto out = root.optional_table("output")) {
+    s.settings.sample_rate_Hz = out->number_or("sample_rate_Hz", s.settings.sample_rate_Hz, Range::closed(1e-3, 1e6));
+    if (out->has("snapshot_times_s"))
+      s.settings.snapshot_times_s = out->numbers("snapshot_times_s", Range::non_negative(), 0);
+    else
+      out->mark_read("snapshot_times_s");
+    out->finish();
+  }
+  read_effects(root, s);
+  root.finish();
+
+  const auto& th = s.clutch.thermal;
+  const auto& p = s.clutch;
+  const auto on = [&](const char* n, bool b) { if (b) s.enabled_effects.emplace_back(n); };
+  on("temperature_dependent_friction", p.temperature_dependent_friction);
+  on("interface_oil_cooling", th.interface_oil_cooling);
+  on("sump_heating", th.sump_heating);
+  on("rig_heat_capacity", th.rig_heat_capacity);
+  on("temperature_sensor_lag", th.temperature_sensor_lag);
+  on("bearing_drag", s.settings.bearing_drag.enabled);
+  on("viscous_shear", p.viscous_shear);
+  on("load_dependent_friction", p.load_dependent_friction);
+  return s;
+}
+
+clutch::WetClutch Scenario::make_clutch() const {
+  try {
+    return clutch::WetClutch(clutch, fluid);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(path, 0, "", e.what());
+  }
+}
+
+}  // namespace shudder::io

@@ -1,0 +1,37 @@
+#pragma once
+// Scenario files (TOML) -> validated plain structs in SI units. The schema, with every key,
+// unit, default and allowed range, is documented in docs/scenario_format.md. Loading is strict:
+// missing required keys, unknown keys, wrong types, non-finite numbers and out-of-range values
+// are io::InputError naming the file, line, key and what is allowed.
+
+#include <string>
+#include <vector>
+
+#include "clutch/fluid.hpp"
+#include "clutch/wet_clutch.hpp"
+#include "rig_models/drive_cycle.hpp"
+#include "rig_models/prescribed_slip.hpp"
+
+namespace shudder::io {
+
+struct Scenario {
+  std::string path;         // as given
+  std::string text;         // the file's text (stored in outputs)
+  std::string name;
+  std::string type;         // "prescribed_slip"
+  std::string description;
+  std::string fluid_path;   // resolved relative to the scenario file
+  clutch::Fluid fluid;
+  clutch::WetClutchParams clutch;
+  rig_models::DriveCycle cycle;
+  rig_models::PrescribedSlipSettings settings;
+  std::vector<std::string> enabled_effects;  // names from clutch::kEffectNames
+  std::vector<std::string> warnings;         // accepted but worth telling the user
+
+  /// Builds the clutch; throws InputError if the parameters are inconsistent.
+  clutch::WetClutch make_clutch() const;
+};
+
+Scenario load_scenario(const std::string& path);
+
+}  // namespace shudder::io
