@@ -1,6 +1,7 @@
 #include "io/fluid_loader.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <memory>
 #include <numbers>
 #include <sstream>
@@ -50,7 +51,7 @@ void require_increasing(TomlTable& t, const std::string& key, const std::vector<
 
 // One row's `sets`: an array with one [C1, C2, C3, C4] per load, all finite numbers.
 std::vector<clutch::MakiSet> read_sets(TomlTable& row, const toml::table& raw_row,
-                                       const std::vector<double>& loads_N) {
+                                       const std::vector<double>& loads_N, double temp_C) {
   const std::string shape = "expected an array of " + std::to_string(loads_N.size()) +
                             " sets [C1, C2, C3, C4], one per load in maki.loads_N";
   const toml::node* node = raw_row.get("sets");
@@ -60,7 +61,8 @@ std::vector<clutch::MakiSet> read_sets(TomlTable& row, const toml::table& raw_ro
   if (!sets) row.fail("sets", "is " + describe_type(*node) + "; " + shape);
   if (sets->size() != loads_N.size())
     row.fail("sets", "has " + std::to_string(sets->size()) +
-                         " sets; expected one per load (" + std::to_string(loads_N.size()) + ")");
+                         " sets; expected one per load (" + std::to_string(loads_N.size()) +
+                         ") in the row at temp_C = " + num(temp_C));
 
   std::vector<clutch::MakiSet> out;
   for (std::size_t j = 0; j < sets->size(); ++j) {
@@ -113,7 +115,7 @@ std::shared_ptr<const clutch::FrictionLaw> read_maki(TomlTable& maki, const toml
                              num(temps.back()) + "; rows must be strictly increasing in temp_C");
     temps.push_back(t);
     row.string_or("origin", "");
-    const auto row_sets = read_sets(row, *raw_rows.get(i)->as_table(), loads);
+    const auto row_sets = read_sets(row, *raw_rows.get(i)->as_table(), loads, t);
     sets.insert(sets.end(), row_sets.begin(), row_sets.end());
     row.finish();
   }
@@ -138,7 +140,8 @@ std::shared_ptr<const clutch::FrictionLaw> read_linear(TomlTable& lin) {
                     "speeds_rpm (" + std::to_string(rpm.size()) + ")");
   lin.finish();
 
-  // rpm -> local sliding speed at the mean radius: v = rpm * 2*pi/60 * r (1 rpm = 4.82 mm/s at 46 mm).
+  // rpm -> local sliding speed at the mean radius: v = rpm * 2*pi/60 * r
+  // (1 rpm = 4.82 mm/s at 46 mm).
   std::vector<clutch::LinearTemperaturePoint> points;
   for (std::size_t i = 0; i < rpm.size(); ++i)
     points.push_back({rpm[i] * 2.0 * std::numbers::pi / 60.0 * radius_mm, alpha[i], beta[i]});
@@ -152,6 +155,10 @@ std::shared_ptr<const clutch::FrictionLaw> read_linear(TomlTable& lin) {
 }  // namespace
 
 clutch::Fluid load_fluid(const std::string& path) {
+  // toml++ reads a directory as an empty document; say what is wrong instead.
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw InputError(path, 0, "", "is not a regular file; expected a fluid TOML file");
   const toml::table doc = TomlTable::parse_file(path);
   TomlTable root(doc, path, "");
   clutch::Fluid fluid;

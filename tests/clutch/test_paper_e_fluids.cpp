@@ -56,8 +56,8 @@ TEST(PaperEFluids, MatchTableFourOneDegreeBelowItsLabel) {
 TEST(PaperEFluids, ViscositiesFromTableOne) {
   const double nu[5][2] = {{7.05, 2.18}, {9.74, 2.71}, {35.0, 6.70}, {58.9, 8.26}, {63.1, 9.71}};
   for (int i = 0; i < 5; ++i) {
-    const auto fluid = shudder::io::load_fluid(std::string(SHUDDER_SOURCE_DIR "/scenarios/fluids/") +
-                                               kFluids[i].file);
+    const auto fluid = shudder::io::load_fluid(
+        std::string(SHUDDER_SOURCE_DIR "/scenarios/fluids/") + kFluids[i].file);
     EXPECT_EQ(fluid.nu40_cSt, nu[i][0]) << kFluids[i].file;
     EXPECT_EQ(fluid.nu100_cSt, nu[i][1]) << kFluids[i].file;
   }

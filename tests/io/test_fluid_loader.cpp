@@ -74,10 +74,22 @@ std::string with(std::string text, const std::string& from, const std::string& t
   return text.replace(at, from.size(), to);
 }
 
-// Writes `text` to <tmp>/shudder_fluid_<pid>/<test name>.toml and returns the path.
+// <tmp>/shudder_fluid_<pid>, removed when the test program exits.
+const fs::path& scratch_dir() {
+  struct Dir {
+    fs::path path = fs::temp_directory_path() / ("shudder_fluid_" + std::to_string(::getpid()));
+    ~Dir() {
+      std::error_code ec;
+      fs::remove_all(path, ec);
+    }
+  };
+  static const Dir dir;
+  return dir.path;
+}
+
+// Writes `text` to <scratch dir>/<test name>.toml and returns the path.
 std::string write(const std::string& text) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("shudder_fluid_" + std::to_string(::getpid()));
+  const fs::path& dir = scratch_dir();
   fs::create_directories(dir);
   const std::string name =
       ::testing::UnitTest::GetInstance()->current_test_info()->name() + std::string(".toml");
@@ -183,7 +195,8 @@ TEST(LoadFluid, HoleInTheMatrixNamesRowLineAndCounts) {
   const auto path = write(with(kMaki, ", [0, 0, 0, 0.12]]", "]"));
   EXPECT_THAT([&] { load_fluid(path); },
               ThrowsMessage<InputError>(HasSubstr(
-                  path + ":17: key 'maki.row[0].sets': has 3 sets; expected one per load (4)")));
+                  path + ":17: key 'maki.row[0].sets': has 3 sets; expected one per load (4) "
+                         "in the row at temp_C = 20")));
 }
 
 TEST(LoadFluid, SetWithOtherThanFourNumbers) {
@@ -258,7 +271,8 @@ TEST(LoadFluid, UnreadableFileIsADirectory) {
   const fs::path dir = fs::path(write(kMaki)).parent_path() / "a_directory.toml";
   fs::create_directories(dir);
   EXPECT_THAT([&] { load_fluid(dir.string()); },
-              ThrowsMessage<InputError>(HasSubstr(dir.string())));
+              ThrowsMessage<InputError>(
+                  AllOf(HasSubstr(dir.string()), HasSubstr("is not a regular file"))));
 }
 
 TEST(LoadFluid, TomlSyntaxErrorNamesTheLine) {

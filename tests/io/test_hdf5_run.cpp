@@ -1,0 +1,193 @@
+// Run output through HDF5: a small synthetic Recording written and read back must come back
+// bit-for-bit (doubles are stored as IEEE float64, no conversion); failed writes must leave
+// neither the target nor the temporary file; reading rejects what is not a run file; no HDF5
+// identifier leaks.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <regex>
+
+#include <unistd.h>
+
+#include "io/hdf5_run.hpp"
+#include "io/input_error.hpp"
+
+namespace fs = std::filesystem;
+using shudder::dynamics::Recording;
+using shudder::io::InputError;
+using testing::HasSubstr;
+
+namespace {
+
+// A fresh directory per test, removed afterwards.
+class Hdf5Run : public testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("shudder_hdf5_" + std::to_string(::getpid()) + "_" +
+            testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  fs::path dir_;
+};
+
+// Values chosen to catch any lossy conversion: 1/3, -0, a subnormal, the largest double.
+Recording sample_recording() {
+  Recording rec;
+  rec.add_signal("speed_rpm", "rpm").values = {1.0, 1.0 / 3.0, -0.0, 100.0};
+  rec.add_signal("time_s", "s").values = {0.0, 1e-3, 2e-3, 3e-3};
+  rec.add_signal("torque_Nm", "N m").values = {98.4, std::numeric_limits<double>::denorm_min(),
+                                               std::numeric_limits<double>::max(), -7.25};
+  rec.grid_r_m = {0.040, 0.046, 0.052};  // (n_r = 3)
+  rec.grid_z_m = {0.0005, 0.0015};       // (n_z = 2)
+  for (int k = 0; k < 2; ++k) {
+    Eigen::MatrixXd t(2, 3);  // (n_z x n_r), every entry distinct to catch transposition
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 3; ++j) t(i, j) = 20.0 + 100.0 * k + 10.0 * i + j + 0.125;
+    rec.snapshots.push_back({0.5 * k, t});
+  }
+  rec.scalars = {{"torque_at_10s_Nm", "N m", 101.5}, {"peak_temp_C", "degC", 1.0 / 7.0}};
+  return rec;
+}
+
+}  // namespace
+
+TEST_F(Hdf5Run, RoundTripIsExact) {
+  const Recording rec = sample_recording();
+  const std::string scenario = "[run]\nname = \"case 1\"  # 77 °C\n";
+  shudder::io::write_run_hdf5(path("run.h5"), rec, scenario);
+  const Recording back = shudder::io::read_run_hdf5(path("run.h5"));
+
+  // Signals: time_s moved first, otherwise file (= write) order; values and units exact.
+  ASSERT_EQ(back.signals.size(), 3u);
+  EXPECT_EQ(back.signals[0].name, "time_s");
+  EXPECT_EQ(back.signals[1].name, "speed_rpm");
+  EXPECT_EQ(back.signals[2].name, "torque_Nm");
+  for (const auto& s : back.signals) {
+    const auto* orig = rec.find(s.name);
+    ASSERT_NE(orig, nullptr);
+    EXPECT_EQ(s.units, orig->units) << s.name;
+    EXPECT_EQ(s.values, orig->values) << s.name;
+  }
+  EXPECT_TRUE(std::signbit(back.find("speed_rpm")->values[2]));  // -0 stays -0
+
+  // Thermal grid and snapshots.
+  EXPECT_EQ(back.grid_r_m, rec.grid_r_m);
+  EXPECT_EQ(back.grid_z_m, rec.grid_z_m);
+  ASSERT_EQ(back.snapshots.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(back.snapshots[k].time_s, rec.snapshots[k].time_s);
+    EXPECT_TRUE(back.snapshots[k].temp_C == rec.snapshots[k].temp_C) << back.snapshots[k].temp_C;
+  }
+
+  // Scalars in order, with units.
+  ASSERT_EQ(back.scalars.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(back.scalars[k].name, rec.scalars[k].name);
+    EXPECT_EQ(back.scalars[k].units, rec.scalars[k].units);
+    EXPECT_EQ(back.scalars[k].value, rec.scalars[k].value);
+  }
+
+  // Root attributes; no temporary left behind.
+  EXPECT_EQ(shudder::io::read_run_attribute(path("run.h5"), "scenario"), scenario);
+  EXPECT_EQ(shudder::io::read_run_attribute(path("run.h5"), "shudder_version"), SHUDDER_VERSION);
+  EXPECT_TRUE(std::regex_match(shudder::io::read_run_attribute(path("run.h5"), "created_utc"),
+                               std::regex(R"(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ)")));
+  EXPECT_FALSE(fs::exists(path("run.h5.tmp")));
+}
+
+TEST_F(Hdf5Run, OmitsThermalAndSummaryWhenEmpty) {
+  Recording rec;
+  rec.add_signal("time_s", "s").values = {0.0, 0.5};
+  shudder::io::write_run_hdf5(path("run.h5"), rec, "");
+  const Recording back = shudder::io::read_run_hdf5(path("run.h5"));
+  ASSERT_EQ(back.signals.size(), 1u);
+  EXPECT_EQ(back.signals[0].values, rec.signals[0].values);
+  EXPECT_TRUE(back.grid_r_m.empty() && back.grid_z_m.empty());
+  EXPECT_TRUE(back.snapshots.empty());
+  EXPECT_TRUE(back.scalars.empty());
+}
+
+TEST_F(Hdf5Run, UnequalSignalLengthsLeaveNoFile) {
+  Recording rec = sample_recording();
+  rec.signals[2].values.pop_back();
+  try {
+    shudder::io::write_run_hdf5(path("run.h5"), rec, "");
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("torque_Nm"));
+    EXPECT_THAT(e.what(), HasSubstr("same length"));
+  }
+  EXPECT_FALSE(fs::exists(path("run.h5")));
+  EXPECT_FALSE(fs::exists(path("run.h5.tmp")));
+}
+
+TEST_F(Hdf5Run, SnapshotShapeMustMatchGrid) {
+  Recording rec = sample_recording();
+  rec.grid_r_m.push_back(0.058);
+  EXPECT_THAT([&] { shudder::io::write_run_hdf5(path("run.h5"), rec, ""); },
+              testing::ThrowsMessage<InputError>(HasSubstr("does not match grid")));
+  EXPECT_FALSE(fs::exists(path("run.h5")));
+}
+
+TEST_F(Hdf5Run, MissingDirectoryLeavesNoFile) {
+  const std::string target = path("no_such_dir/run.h5");
+  EXPECT_THAT([&] { shudder::io::write_run_hdf5(target, sample_recording(), ""); },
+              testing::ThrowsMessage<InputError>(HasSubstr("cannot write run file")));
+  EXPECT_FALSE(fs::exists(target));
+  EXPECT_FALSE(fs::exists(target + ".tmp"));
+}
+
+// The whole file is written, then the rename fails (the target is a directory): the complete
+// temporary must still be removed.
+TEST_F(Hdf5Run, FailedRenameRemovesTemporary) {
+  fs::create_directory(path("run.h5"));
+  EXPECT_THAT([&] { shudder::io::write_run_hdf5(path("run.h5"), sample_recording(), ""); },
+              testing::ThrowsMessage<InputError>(HasSubstr("rename")));
+  EXPECT_TRUE(fs::is_directory(path("run.h5")));
+  EXPECT_FALSE(fs::exists(path("run.h5.tmp")));
+}
+
+TEST_F(Hdf5Run, FailedWriteKeepsPreviousFile) {
+  Recording good;
+  good.add_signal("time_s", "s").values = {0.0, 1.0};
+  shudder::io::write_run_hdf5(path("run.h5"), good, "first");
+  Recording bad = sample_recording();
+  bad.signals[0].values.clear();
+  EXPECT_THROW(shudder::io::write_run_hdf5(path("run.h5"), bad, "second"), InputError);
+  EXPECT_EQ(shudder::io::read_run_attribute(path("run.h5"), "scenario"), "first");
+  EXPECT_EQ(shudder::io::read_run_hdf5(path("run.h5")).signals[0].values, good.signals[0].values);
+}
+
+TEST_F(Hdf5Run, ReaderRejectsMissingAndNonHdf5Files) {
+  EXPECT_THAT([&] { shudder::io::read_run_hdf5(path("absent.h5")); },
+              testing::ThrowsMessage<InputError>(HasSubstr("absent.h5: cannot read run file: no such file")));
+  std::ofstream(path("text.h5")) << "time_s,torque_Nm\n0,1\n";
+  EXPECT_THAT([&] { shudder::io::read_run_hdf5(path("text.h5")); },
+              testing::ThrowsMessage<InputError>(HasSubstr("not an HDF5 file")));
+}
+
+TEST_F(Hdf5Run, NoHdf5IdentifiersLeak) {
+  // Warm up: the library registers its predefined types and property lists on first use.
+  shudder::io::write_run_hdf5(path("run.h5"), sample_recording(), "x");
+  (void)shudder::io::read_run_hdf5(path("run.h5"));
+  const long before = shudder::io::detail::open_hdf5_identifiers();
+
+  // Successful and failing writes and reads.
+  shudder::io::write_run_hdf5(path("run.h5"), sample_recording(), "x");
+  (void)shudder::io::read_run_hdf5(path("run.h5"));
+  (void)shudder::io::read_run_attribute(path("run.h5"), "scenario");
+  EXPECT_THROW(shudder::io::write_run_hdf5(path("missing/run.h5"), sample_recording(), ""), InputError);
+  fs::create_directory(path("dir.h5"));
+  EXPECT_THROW(shudder::io::write_run_hdf5(path("dir.h5"), sample_recording(), ""), InputError);
+  std::ofstream(path("text.h5")) << "not hdf5\n";
+  EXPECT_THROW(shudder::io::read_run_hdf5(path("text.h5")), InputError);
+
+  EXPECT_EQ(shudder::io::detail::open_hdf5_identifiers(), before);
+}
