@@ -21,8 +21,8 @@ void commit_temp_file(const std::string& tmp, const std::string& path) {
     const int err = errno;
     discard_temp_file(tmp);
     throw InputError(path, 0, "",
-                     std::string("cannot ") + step + " temporary file '" + tmp + "': " +
-                         std::strerror(err) + "; check the directory is writable and " +
+                     std::string("cannot ") + step + " temporary file '" + tmp +
+                         "': " + std::strerror(err) + "; check the directory is writable and " +
                          "the target is not a directory");
   };
   // Data on disk before the rename, so a crash cannot leave a short file at `path`.

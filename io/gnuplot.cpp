@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -90,9 +91,24 @@ void write_data(const fs::path& file, const Plot& plot) {
   if (!out.flush()) throw std::runtime_error("cannot write gnuplot data file " + file.string());
 }
 
+/// "[lo:hi]" spanning the finite y values with 5 % headroom either side, so no curve runs
+/// along a border (gnuplot's `set offsets` covers only the left axis); "[*:*]" if none.
+std::string padded_range(const std::vector<Series>& all) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (const auto& v : all)
+    for (double y : v.y)
+      if (std::isfinite(y)) lo = std::min(lo, y), hi = std::max(hi, y);
+  if (!(lo <= hi)) return "[*:*]";
+  const double pad = hi > lo ? 0.05 * (hi - lo) : std::max(1.0, 0.05 * std::abs(hi));
+  char buf[80];
+  std::snprintf(buf, sizeof buf, "[%.10g:%.10g]", lo - pad, hi + pad);
+  return buf;
+}
+
 std::string script_text(const Plot& plot, bool svg, const std::string& output,
                         const fs::path& data) {
   std::ostringstream s;
+  const std::size_t entries = plot.series.size() + plot.series_y2.size();
   const std::string size = std::to_string(plot.width_px) + "," + std::to_string(plot.height_px);
   s << "set encoding utf8\n";
   if (svg) {
@@ -109,13 +125,16 @@ std::string script_text(const Plot& plot, bool svg, const std::string& output,
   s << "set xlabel " << quoted(plot.xlabel) << "\n"
     << "set ylabel " << quoted(plot.ylabel) << "\n"
     << "set grid xtics ytics lc rgb '#d0d0d0' lt 1\n"
-    // Legend below the axes: it can never hide a curve.
-    << "set key below horizontal center box opaque spacing 1.2 width 1\n"
+    // Legend below the axes (it can never hide a curve), in at most two columns, with a
+    // bottom margin reserved for tic labels, x label and legend rows so they do not collide.
+    << "set key below horizontal center box Left reverse maxcols 2 spacing 1.2 width 2\n"
+    << "set bmargin " << 5 + 1.3 * ((entries + 1) / 2) << "\n"
     << "set border 3\nset xtics nomirror out\nset ytics nomirror out\n"
-    << "set autoscale xfixmin\nset autoscale xfixmax\nset offsets 0, 0, graph 0.05, graph 0.05\n";
-  const bool y2 = !plot.series_y2.empty();
-  if (y2) {
-    s << "set border 11\nset y2tics nomirror out\nset y2label " << quoted(plot.y2label) << "\n";
+    << "set autoscale xfixmin\nset autoscale xfixmax\n";
+  s << "set yrange " << padded_range(plot.series) << "\n";
+  if (!plot.series_y2.empty()) {
+    s << "set border 11\nset y2tics nomirror out\nset y2label " << quoted(plot.y2label) << "\n"
+      << "set y2range " << padded_range(plot.series_y2) << "\n";
   }
   int next_color = 0;
   std::string sep = "plot ";

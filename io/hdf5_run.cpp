@@ -178,8 +178,10 @@ void validate(const std::string& path, const Recording& rec) {
 void write_thermal(hid_t file, const Recording& rec) {
   if (rec.grid_r_m.empty() && rec.grid_z_m.empty() && rec.snapshots.empty()) return;
   const Handle thermal = make_group(file, "thermal");
-  if (!rec.grid_r_m.empty()) write_doubles(thermal, "r_m", {rec.grid_r_m.size()}, rec.grid_r_m.data(), "m");
-  if (!rec.grid_z_m.empty()) write_doubles(thermal, "z_m", {rec.grid_z_m.size()}, rec.grid_z_m.data(), "m");
+  if (!rec.grid_r_m.empty())
+    write_doubles(thermal, "r_m", {rec.grid_r_m.size()}, rec.grid_r_m.data(), "m");
+  if (!rec.grid_z_m.empty())
+    write_doubles(thermal, "z_m", {rec.grid_z_m.size()}, rec.grid_z_m.data(), "m");
   if (rec.snapshots.empty()) return;
   // Flatten to (n_snap x n_z x n_r), row-major (Eigen's own storage is column-major).
   const auto n_snap = rec.snapshots.size();
@@ -190,15 +192,16 @@ void write_thermal(hid_t file, const Recording& rec) {
     times[k] = rec.snapshots[k].time_s;
     for (std::size_t i = 0; i < n_z; ++i)
       for (std::size_t j = 0; j < n_r; ++j)
-        temps[(k * n_z + i) * n_r + j] = rec.snapshots[k].temp_C(static_cast<long>(i), static_cast<long>(j));
+        temps[(k * n_z + i) * n_r + j] =
+            rec.snapshots[k].temp_C(static_cast<long>(i), static_cast<long>(j));
   }
   write_doubles(thermal, "times_s", {n_snap}, times.data(), "s");
   write_doubles(thermal, "temp_C", {n_snap, n_z, n_r}, temps.data(), "degC");
 }
 
 void write_file(const std::string& file_name, const Recording& rec, const std::string& scenario) {
-  Handle file = own(H5Fcreate(file_name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
-                    H5Fclose, "create file '" + file_name + "'");
+  Handle file = own(H5Fcreate(file_name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
+                    "create file '" + file_name + "'");
   {
     // Signals: all the same length (validated).
     const Handle signals = make_group(file, "signals");
@@ -240,7 +243,8 @@ std::vector<std::string> link_names(hid_t group) {
   }
   std::vector<std::string> names;
   for (hsize_t i = 0; i < info.nlinks; ++i) {
-    const ssize_t len = H5Lget_name_by_idx(group, ".", index, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
+    const ssize_t len =
+        H5Lget_name_by_idx(group, ".", index, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
     if (len < 0) throw Failure("cannot read link name" + hdf5_reason());
     std::vector<char> buf(static_cast<std::size_t>(len) + 1, '\0');
     H5Lget_name_by_idx(group, ".", index, H5_ITER_INC, i, buf.data(), buf.size(), H5P_DEFAULT);
@@ -253,9 +257,11 @@ std::optional<std::string> read_string_attr(hid_t obj, const std::string& name) 
   const htri_t exists = H5Aexists(obj, name.c_str());
   ok(exists, "look up attribute '" + name + "'");
   if (exists == 0) return std::nullopt;
-  const Handle attr = own(H5Aopen(obj, name.c_str(), H5P_DEFAULT), H5Aclose, "open attribute '" + name + "'");
+  const Handle attr =
+      own(H5Aopen(obj, name.c_str(), H5P_DEFAULT), H5Aclose, "open attribute '" + name + "'");
   const Handle file_type = own(H5Aget_type(attr), H5Tclose, "read type of '" + name + "'");
-  if (H5Tget_class(file_type) != H5T_STRING) throw Failure("attribute '" + name + "' is not a string");
+  if (H5Tget_class(file_type) != H5T_STRING)
+    throw Failure("attribute '" + name + "' is not a string");
   if (H5Tis_variable_str(file_type) > 0) {
     const Handle mem_type = vlen_string_type();
     char* text = nullptr;
@@ -278,18 +284,21 @@ struct Array {
 };
 
 Array read_doubles(hid_t parent, const std::string& name) {
-  const Handle dset = own(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), H5Dclose, "open dataset '" + name + "'");
+  const Handle dset =
+      own(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), H5Dclose, "open dataset '" + name + "'");
   {
     const Handle type = own(H5Dget_type(dset), H5Tclose, "read type of '" + name + "'");
     const H5T_class_t cls = H5Tget_class(type);
-    if (cls != H5T_FLOAT && cls != H5T_INTEGER) throw Failure("dataset '" + name + "' is not numeric");
+    if (cls != H5T_FLOAT && cls != H5T_INTEGER)
+      throw Failure("dataset '" + name + "' is not numeric");
   }
   const Handle space = own(H5Dget_space(dset), H5Sclose, "read shape of '" + name + "'");
   const int rank = H5Sget_simple_extent_ndims(space);
   if (rank < 0) throw Failure("cannot read shape of '" + name + "'" + hdf5_reason());
   Array a;
   a.dims.resize(static_cast<std::size_t>(rank));
-  if (rank > 0) ok(H5Sget_simple_extent_dims(space, a.dims.data(), nullptr), "read shape of '" + name + "'");
+  if (rank > 0)
+    ok(H5Sget_simple_extent_dims(space, a.dims.data(), nullptr), "read shape of '" + name + "'");
   hsize_t count = 1;
   for (hsize_t d : a.dims) count *= d;
   a.values.resize(count);
@@ -327,13 +336,14 @@ void read_thermal(hid_t file, Recording& rec) {
   const Array temps = read_doubles(group, "temp_C");
   if (temps.dims.size() != 3 || temps.dims[0] != times.size())
     throw Failure("/thermal/temp_C must be (n_snap x n_z x n_r) with n_snap = size of times_s");
-  const auto n_z = static_cast<long>(temps.dims[1]), n_r = static_cast<long>(temps.dims[2]);
+  const std::size_t n_z = temps.dims[1], n_r = temps.dims[2];
   for (std::size_t k = 0; k < times.size(); ++k) {
+    // Row-major (n_snap x n_z x n_r) -> one (n_z x n_r) matrix per snapshot.
+    const double* first = temps.values.data() + k * n_z * n_r;
     dynamics::ThermalSnapshot snap{times[k], Eigen::MatrixXd(n_z, n_r)};
-    for (long i = 0; i < n_z; ++i)
-      for (long j = 0; j < n_r; ++j)
-        snap.temp_C(i, j) = temps.values[(k * static_cast<std::size_t>(n_z) + static_cast<std::size_t>(i)) *
-                                             static_cast<std::size_t>(n_r) + static_cast<std::size_t>(j)];
+    for (std::size_t i = 0; i < n_z; ++i)
+      for (std::size_t j = 0; j < n_r; ++j)
+        snap.temp_C(static_cast<long>(i), static_cast<long>(j)) = first[i * n_r + j];
     rec.snapshots.push_back(std::move(snap));
   }
 }
@@ -342,7 +352,8 @@ void read_scalars(hid_t file, Recording& rec) {
   if (!has_link(file, "analysis")) return;
   const Handle analysis = own(H5Gopen2(file, "analysis", H5P_DEFAULT), H5Gclose, "open /analysis");
   if (!has_link(analysis, "summary")) return;
-  const Handle summary = own(H5Gopen2(analysis, "summary", H5P_DEFAULT), H5Gclose, "open /analysis/summary");
+  const Handle summary =
+      own(H5Gopen2(analysis, "summary", H5P_DEFAULT), H5Gclose, "open /analysis/summary");
   for (const auto& name : link_names(summary)) {
     Array a = read_doubles(summary, name);
     if (a.values.size() != 1) throw Failure("summary value '" + name + "' is not a scalar");
@@ -366,7 +377,8 @@ Handle open_for_reading(const std::string& path) {
 
 }  // namespace
 
-void write_run_hdf5(const std::string& path, const Recording& rec, const std::string& scenario_text) {
+void write_run_hdf5(const std::string& path, const Recording& rec,
+                    const std::string& scenario_text) {
   validate(path, rec);
   const QuietHdf5 quiet;
   const std::string tmp = temp_path_for(path);
@@ -374,8 +386,9 @@ void write_run_hdf5(const std::string& path, const Recording& rec, const std::st
     write_file(tmp, rec, scenario_text);
   } catch (const Failure& e) {
     discard_temp_file(tmp);
-    throw InputError(path, 0, "", std::string("cannot write run file: ") + e.what() +
-                                      "; check the directory exists and is writable");
+    throw InputError(path, 0, "",
+                     std::string("cannot write run file: ") + e.what() +
+                         "; check the directory exists and is writable");
   } catch (...) {
     discard_temp_file(tmp);
     throw;
@@ -411,8 +424,8 @@ namespace detail {
 long open_hdf5_identifiers() {
   const QuietHdf5 quiet;
   long total = 0;
-  for (H5I_type_t type : {H5I_FILE, H5I_GROUP, H5I_DATATYPE, H5I_DATASPACE, H5I_DATASET, H5I_ATTR,
-                          H5I_GENPROP_LST}) {
+  for (H5I_type_t type :
+       {H5I_FILE, H5I_GROUP, H5I_DATATYPE, H5I_DATASPACE, H5I_DATASET, H5I_ATTR, H5I_GENPROP_LST}) {
     hsize_t n = 0;
     if (H5Inmembers(type, &n) >= 0) total += static_cast<long>(n);
   }

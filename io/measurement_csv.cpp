@@ -20,8 +20,8 @@ namespace {
 // One output column: its recorded values and the noise it gets.
 struct Column {
   const char* name;
-  double sigma;        // noise standard deviation, column unit
-  bool non_negative;   // clip noisy values at 0 (normal force)
+  double sigma;       // noise standard deviation, column unit
+  bool non_negative;  // clip noisy values at 0 (normal force)
   std::vector<double> values;
 };
 
@@ -128,9 +128,11 @@ std::vector<Column> sensor_columns(const std::string& path, const dynamics::Reco
       throw InputError(path, 0, s->name, "signal length differs from time_s");
     for (std::size_t i = 0; i < time.size(); ++i) {
       if (!std::isfinite(s->values[i]))
-        throw InputError(path, 0, s->name, "non-finite value at t = " + std::to_string(time[i]) + " s");
+        throw InputError(path, 0, s->name,
+                         "non-finite value at t = " + std::to_string(time[i]) + " s");
       if (cols[c].non_negative && s->values[i] < 0.0)
-        throw InputError(path, 0, s->name, "negative value at t = " + std::to_string(time[i]) + " s");
+        throw InputError(path, 0, s->name,
+                         "negative value at t = " + std::to_string(time[i]) + " s");
     }
     cols[c].values = s->values;
     present.push_back(std::move(cols[c]));
@@ -141,10 +143,12 @@ std::vector<Column> sensor_columns(const std::string& path, const dynamics::Reco
 const std::vector<double>& recorded_time(const std::string& path, const dynamics::Recording& rec) {
   const dynamics::Signal* t = rec.find("time_s");
   if (!t) throw InputError(path, 0, "time_s", "recording has no time_s signal");
-  if (t->values.size() < 2) throw InputError(path, 0, "time_s", "recording has fewer than 2 samples");
+  if (t->values.size() < 2)
+    throw InputError(path, 0, "time_s", "recording has fewer than 2 samples");
   for (std::size_t i = 0; i < t->values.size(); ++i)
     if (!std::isfinite(t->values[i]) || (i > 0 && !(t->values[i] > t->values[i - 1])))
-      throw InputError(path, 0, "time_s", "not finite and strictly increasing at sample " + std::to_string(i));
+      throw InputError(path, 0, "time_s",
+                       "not finite and strictly increasing at sample " + std::to_string(i));
   return t->values;
 }
 
@@ -165,7 +169,8 @@ void write_measurement_csv(const std::string& path, const dynamics::Recording& r
   } else {
     const auto n = static_cast<std::size_t>(std::floor((t_end - t0) * rate + 1e-9)) + 1;
     time.resize(n);
-    for (std::size_t k = 0; k < n; ++k) time[k] = std::min(t0 + static_cast<double>(k) / rate, t_end);
+    for (std::size_t k = 0; k < n; ++k)
+      time[k] = std::min(t0 + static_cast<double>(k) / rate, t_end);
     for (auto& c : cols) c.values = interpolate(t_rec, c.values, time);
   }
   if (time.size() < 10)
@@ -187,7 +192,9 @@ void write_measurement_csv(const std::string& path, const dynamics::Recording& r
   const std::string tmp = temp_path_for(path);
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError(path, 0, "", "cannot create '" + tmp + "'; check the directory exists and is writable");
+    if (!out)
+      throw InputError(path, 0, "",
+                       "cannot create '" + tmp + "'; check the directory exists and is writable");
     const auto g6 = [](double v) { return format(v, std::chars_format::general, 6); };
     out << "# format: shudder-measurement/1\n";
     if (!opt.rig.empty()) out << "# rig: " << opt.rig << '\n';

@@ -29,14 +29,14 @@ namespace shudder::io {
 /// Stated accuracy (a +- bound, in the channel's unit) of each LSCTR channel.
 /// Source: PHYSICS.md §4 (thesis Method; Papers B, D).
 struct SensorAccuracy {
-  static constexpr double full_scale_fraction = 0.0025;   // torque and force: "< 0.25 % F.S."
-  static constexpr double torque_full_scale_Nm = 500.0;   // assumed = drive's max torque, 500 Nm
-  static constexpr double force_full_scale_N = 30e3;      // cylinder's max normal force, 30 kN
-  static constexpr double torque_Nm = full_scale_fraction * torque_full_scale_Nm;      // 1.25
-  static constexpr double normal_force_N = full_scale_fraction * force_full_scale_N;   // 75
+  static constexpr double full_scale_fraction = 0.0025;  // torque and force: "< 0.25 % F.S."
+  static constexpr double torque_full_scale_Nm = 500.0;  // assumed = drive's max torque, 500 Nm
+  static constexpr double force_full_scale_N = 30e3;     // cylinder's max normal force, 30 kN
+  static constexpr double torque_Nm = full_scale_fraction * torque_full_scale_Nm;     // 1.25
+  static constexpr double normal_force_N = full_scale_fraction * force_full_scale_N;  // 75
   static constexpr double thermocouple_C = 0.67;  // separator thermocouple (temp_C, sump_temp_C)
   static constexpr double ir_C = 1.5;             // IR pyrometer (ir_temp_C)
-  static constexpr double speed_rpm = 0.01;  // NOT stated: estimate, drive-encoder resolution
+  static constexpr double speed_rpm = 0.01;       // NOT stated: estimate, drive-encoder resolution
   /// Noise sigma = this x accuracy: the bound is taken as 2 sigma (~95 % of samples inside).
   static constexpr double sigma_per_accuracy = 0.5;
 };
