@@ -12,6 +12,7 @@
 #include "io/input_error.hpp"
 #include "io/measurement_csv.hpp"
 #include "io/scenario.hpp"
+#include "rig_models/lsctr_rig.hpp"
 #include "rig_models/prescribed_slip.hpp"
 
 namespace shudder::app {
@@ -24,7 +25,9 @@ int run_command(const RunOptions& opt) {
 
     const auto t0 = std::chrono::steady_clock::now();
     const dynamics::Recording rec =
-        rig_models::run_prescribed_slip(clutch, scenario.cycle, scenario.settings);
+        scenario.type == "rig"
+            ? rig_models::run_rig(scenario.rig, clutch, scenario.cycle, scenario.rig_settings())
+            : rig_models::run_prescribed_slip(clutch, scenario.cycle, scenario.settings);
     const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
     const std::string out = opt.output.empty() ? scenario.name + ".h5" : opt.output;
@@ -52,6 +55,9 @@ int run_command(const RunOptions& opt) {
     return 0;
   } catch (const io::InputError& e) {
     std::cerr << "shudder: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "shudder: error: " << opt.scenario << ": " << e.what() << "\n";
     return 2;
   } catch (const std::exception& e) {
     std::cerr << "shudder: simulation failed: " << e.what() << "\n";

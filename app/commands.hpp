@@ -18,6 +18,11 @@ struct RunOptions {
 };
 int run_command(const RunOptions& options);
 
+struct ModesOptions {
+  std::string scenario;
+};
+int modes_command(const ModesOptions& options);
+
 struct ValidateOptions {
   std::string scenarios_dir = "scenarios";
   std::string docs_dir = "docs";

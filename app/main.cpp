@@ -24,6 +24,10 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--seed", run.seed, "Seed of the sensor noise (deterministic)");
   run_cmd->add_flag("--profile", run.profile, "Print the simulation's wall time");
 
+  ModesOptions modes;
+  auto* modes_cmd = app.add_subcommand("modes", "Natural frequencies and mode shapes of a rig scenario");
+  modes_cmd->add_option("scenario", modes.scenario, "Scenario file (TOML, type = \"rig\")")->required();
+
   ValidateOptions validate;
   auto* val_cmd = app.add_subcommand(
       "validate", "Run the Paper G / Paper B calibration cases; regenerate docs/validation.md and plots");
@@ -40,5 +44,6 @@ int main(int argc, char** argv) {
   }
   if (*run_cmd) return run_command(run);
   if (*val_cmd) return validate_command(validate);
+  if (*modes_cmd) return modes_command(modes);
   return 2;
 }

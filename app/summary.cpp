@@ -31,7 +31,7 @@ double scalar(const dynamics::Recording& rec, const char* name) {
 
 void print_run_summary(std::ostream& os, const io::Scenario& sc, const dynamics::Recording& rec) {
   const double end = sc.settings.duration_s;
-  char line[256];
+  char line[512];
   std::snprintf(line, sizeof line, "Scenario  %s (%s), fluid %s, %.3g s simulated\n",
                 sc.name.c_str(), sc.type.c_str(), sc.fluid.name.c_str(), end);
   os << line;
@@ -64,6 +64,17 @@ void print_run_summary(std::ostream& os, const io::Scenario& sc, const dynamics:
                 scalar(rec, "heat_generated_J"), scalar(rec, "heat_stored_in_discs_J"),
                 scalar(rec, "heat_to_sump_J"), scalar(rec, "heat_to_rig_J"),
                 scalar(rec, "energy_balance_relative_error"));
+  os << line;
+  if (sc.type != "rig") return;
+  std::snprintf(line, sizeof line,
+                "Rig: torsion bar %.4g N m/rad, clutch-side mode %.2f Hz; mechanical energy error "
+                "%.2e (relative)\n"
+                "Integrator: %.0f steps, %.0f rhs evaluations; events: %.0f stick, %.0f breakaway, "
+                "%.0f reversal\n",
+                scalar(rec, "bar_stiffness_Nm_per_rad"), scalar(rec, "clutch_side_frequency_Hz"),
+                scalar(rec, "mechanical_energy_relative_error"), scalar(rec, "integrator_steps"),
+                scalar(rec, "rhs_evaluations"), scalar(rec, "stick_events"),
+                scalar(rec, "breakaway_events"), scalar(rec, "reversal_events"));
   os << line;
 }
 

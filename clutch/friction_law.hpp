@@ -6,7 +6,20 @@
 // matrices of Paper G are tabulated over load, not pressure). Laws are immutable after
 // construction and safe to share between threads.
 
+#include <vector>
+
 namespace shudder::clutch {
+
+/// mu as a function of speed alone at one (T, F), in the Mäki form
+///     mu(v) = Σ_j a_j tanh(b_j v) + c v^0.1 + d,   v clamped to [v_min, v_max] (mm/s).
+/// Built once per thermal step so the fast dynamics evaluate the friction cheaply.
+struct SpeedCurve {
+  std::vector<double> tanh_weight;  // a_j
+  std::vector<double> tanh_rate;    // b_j, 1/(mm/s)
+  double power_weight = 0.0;        // c
+  double offset = 0.0;              // d
+  double min_speed_mm_s = 0.0, max_speed_mm_s = 0.0;
+};
 
 class FrictionLaw {
  public:
@@ -21,6 +34,12 @@ class FrictionLaw {
 
   /// Lowest speed at which the law is defined by data; below it the law is held constant.
   virtual double min_speed_mm_s() const = 0;
+
+  /// The law at fixed (T, F) as a SpeedCurve, if it has that form (false otherwise; callers
+  /// then evaluate mu() directly).
+  virtual bool speed_curve(double /*temp_C*/, double /*load_N*/, SpeedCurve& /*out*/) const {
+    return false;
+  }
 };
 
 }  // namespace shudder::clutch

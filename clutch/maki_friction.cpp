@@ -91,3 +91,34 @@ double MakiFrictionMatrix::dmu_dv_per_mm_s(double speed_mm_s, double temp_C,
 }
 
 }  // namespace shudder::clutch
+
+namespace shudder::clutch {
+
+bool MakiFrictionMatrix::speed_curve(double temp_C, double load_N, SpeedCurve& out) const {
+  const auto [it, wt] = bracket(temps_C_, temp_C);
+  const auto [il, wl] = bracket(loads_N_, load_N);
+  const std::size_t it1 = std::min(it + 1, temps_C_.size() - 1);
+  const std::size_t il1 = std::min(il + 1, loads_N_.size() - 1);
+  out = SpeedCurve{};
+  out.min_speed_mm_s = min_speed_mm_s_;
+  out.max_speed_mm_s = max_speed_mm_s_;
+  const auto add = [&out](const MakiSet& s, double w) {
+    if (w == 0.0) return;
+    out.power_weight += w * s.c3;
+    out.offset += w * s.c4;
+    for (std::size_t j = 0; j < out.tanh_rate.size(); ++j)
+      if (out.tanh_rate[j] == s.c2) {
+        out.tanh_weight[j] += w * s.c1;
+        return;
+      }
+    out.tanh_rate.push_back(s.c2);
+    out.tanh_weight.push_back(w * s.c1);
+  };
+  add(set(it, il), (1 - wt) * (1 - wl));
+  add(set(it, il1), (1 - wt) * wl);
+  add(set(it1, il), wt * (1 - wl));
+  add(set(it1, il1), wt * wl);
+  return true;
+}
+
+}  // namespace shudder::clutch

@@ -51,6 +51,9 @@ class MakiFrictionMatrix final : public FrictionLaw {
   double dmu_dv_per_mm_s(double speed_mm_s, double temp_C, double load_N) const override;
   double min_speed_mm_s() const override { return min_speed_mm_s_; }
   double max_speed_mm_s() const { return max_speed_mm_s_; }
+  /// Exact: the blend of four Mäki sets is itself of SpeedCurve form (tanh terms with equal
+  /// rates merged).
+  bool speed_curve(double temp_C, double load_N, SpeedCurve& out) const override;
 
   const std::vector<double>& loads_N() const { return loads_N_; }
   const std::vector<double>& temps_C() const { return temps_C_; }

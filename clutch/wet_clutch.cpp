@@ -1,5 +1,6 @@
 #include "clutch/wet_clutch.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -62,6 +63,52 @@ void WetClutch::ring_heat_W(double slip_rad_s, double force_N, const Eigen::Vect
                             Eigen::VectorXd& heat) const {
   ring_torque_Nm(slip_rad_s, force_N, ring_temp_C, heat);
   heat *= std::abs(slip_rad_s);
+}
+
+FrozenFriction WetClutch::freeze(const Eigen::VectorXd& ring_temp_C, double force_N) const {
+  const auto& r = thermal_.ring_radius_m();
+  const auto& a = thermal_.ring_area_m2();
+  FrozenFriction f;
+  f.ring_temp_C = ring_temp_C;
+  f.load_N = friction_load_N(force_N);
+  f.viscous_Nms = Eigen::VectorXd::Zero(r.size());
+  f.radius_pow = (r * 1e3).array().pow(0.1);
+  f.curves.resize(static_cast<std::size_t>(r.size()));
+  for (Eigen::Index i = 0; i < r.size(); ++i) {
+    const double temp = p_.temperature_dependent_friction ? ring_temp_C[i] : p_.start_temp_C;
+    if (!fluid_.friction->speed_curve(temp, f.load_N, f.curves[static_cast<std::size_t>(i)])) {
+      f.curves.clear();
+      break;
+    }
+  }
+  if (p_.viscous_shear)
+    for (Eigen::Index i = 0; i < r.size(); ++i)
+      f.viscous_Nms[i] = fluid_.density_kg_m3 * viscosity_.kinematic_cSt(ring_temp_C[i]) * 1e-6 *
+                         r[i] * r[i] * a[i] / p_.viscous_gap_m;
+  return f;
+}
+
+void WetClutch::ring_torque_Nm(const FrozenFriction& f, double abs_slip, double force_N,
+                               Eigen::VectorXd& torque) const {
+  if (f.curves.empty()) {  // law without a SpeedCurve form: evaluate it directly
+    ring_torque_Nm(abs_slip, force_N, f.ring_temp_C, torque);
+    return;
+  }
+  const auto& r = thermal_.ring_radius_m();
+  const auto& a = thermal_.ring_area_m2();
+  const double p = pressure_Pa(force_N);
+  // One pow per call: v_i^0.1 = (r_i [mm])^0.1 · |Δω|^0.1 wherever v_i is not clamped.
+  const double slip_pow = std::pow(abs_slip, 0.1);
+  torque.resize(r.size());
+  for (Eigen::Index i = 0; i < r.size(); ++i) {
+    const SpeedCurve& c = f.curves[static_cast<std::size_t>(i)];
+    const double v_raw = r[i] * abs_slip * 1e3;
+    const double v = std::clamp(v_raw, c.min_speed_mm_s, c.max_speed_mm_s);
+    const double v_pow = v == v_raw ? f.radius_pow[i] * slip_pow : std::pow(v, 0.1);
+    double mu = c.power_weight * v_pow + c.offset;
+    for (std::size_t j = 0; j < c.tanh_rate.size(); ++j) mu += c.tanh_weight[j] * std::tanh(c.tanh_rate[j] * v);
+    torque[i] = r[i] * a[i] * p * mu + f.viscous_Nms[i] * abs_slip;
+  }
 }
 
 }  // namespace shudder::clutch

@@ -38,6 +38,17 @@ struct WetClutchParams {
   double viscous_gap_m = 10e-6;       // estimate: Paper G's mean film thickness h_mean
 };
 
+/// Every ring's friction at held temperatures and one load, as a function of slip only: built
+/// once per thermal step so the fast dynamics evaluate the clutch cheaply (ring_torque_Nm of a
+/// frozen state equals the direct evaluation to round-off).
+struct FrozenFriction {
+  std::vector<SpeedCurve> curves;  // (n_r); empty if the law has no SpeedCurve form
+  Eigen::VectorXd ring_temp_C;     // (n_r) held temperatures
+  Eigen::VectorXd viscous_Nms;     // (n_r) viscous torque per rad/s of slip, per ring
+  Eigen::VectorXd radius_pow;      // (n_r) (r_i in mm)^0.1: v_i^0.1 = r_i^0.1 · |Δω|^0.1
+  double load_N = 0.0;             // load at which mu was frozen
+};
+
 class WetClutch {
  public:
   /// Throws std::invalid_argument for invalid parameters.
@@ -60,6 +71,17 @@ class WetClutch {
   /// Heat power into each ring of one interface's domain (n_r), W, >= 0.
   void ring_heat_W(double slip_rad_s, double force_N, const Eigen::VectorXd& ring_temp_C,
                    Eigen::VectorXd& heat) const;
+
+  /// Freezes the friction of every ring at the given temperatures and force.
+  FrozenFriction freeze(const Eigen::VectorXd& ring_temp_C, double force_N) const;
+  /// Load at which mu is evaluated for a clamp force (the reference load when
+  /// load_dependent_friction is off).
+  double friction_load_N(double force_N) const {
+    return p_.load_dependent_friction ? force_N : p_.reference_load_N;
+  }
+  /// Torque per ring of ONE interface (n_r), N m, at |slip| with a frozen state.
+  void ring_torque_Nm(const FrozenFriction& frozen, double abs_slip_rad_s, double force_N,
+                      Eigen::VectorXd& torque) const;
 
  private:
   // Torque contribution per ring of one interface (n_r), N m, for |slip|.

@@ -103,6 +103,52 @@ void read_drive(TomlTable& root, Scenario& s) {
   d.finish();
 }
 
+void read_rig(TomlTable& root, Scenario& s) {
+  auto& r = s.rig;
+  // Speeds the motor can hold (thesis: 0.5–125 rpm).
+  auto drive_speeds = s.cycle.slip_speed_rpm.values();
+  auto rig = root.optional_table("rig");
+  if (rig) {
+    r.drive_inertia_kg_m2 = rig->number_or("drive_inertia_kg_m2", r.drive_inertia_kg_m2, Range::positive());
+    r.housing_inertia_kg_m2 = rig->number_or("housing_inertia_kg_m2", r.housing_inertia_kg_m2, Range::positive());
+    r.start_at_rest = rig->choice_or("start", "steady_sliding", {"steady_sliding", "at_rest"}) == "at_rest";
+    if (auto bar = rig->optional_table("torsion_bar")) {
+      const bool by_f = bar->has("natural_frequency_Hz"), by_k = bar->has("stiffness_Nm_per_rad");
+      if (by_f == by_k)
+        bar->fail(by_f ? "stiffness_Nm_per_rad" : "natural_frequency_Hz",
+                  "give exactly one of natural_frequency_Hz (the bar is derived from it) or stiffness_Nm_per_rad");
+      if (by_f) {
+        r.bar_natural_frequency_Hz = bar->number("natural_frequency_Hz", Range::closed(1.0, 10000.0));
+        if (r.bar_natural_frequency_Hz < 100.0 || r.bar_natural_frequency_Hz > 500.0)
+          s.warnings.push_back(s.path + ": rig.torsion_bar.natural_frequency_Hz = " +
+                               std::to_string(r.bar_natural_frequency_Hz) +
+                               " Hz lies outside the rig's 100-500 Hz bars (accepted as another bar)");
+        bar->mark_read("stiffness_Nm_per_rad");
+      } else {
+        r.bar_stiffness_Nm_per_rad = bar->number("stiffness_Nm_per_rad", Range::positive());
+        bar->mark_read("natural_frequency_Hz");
+      }
+      r.bar_damping_ratio = bar->number_or("damping_ratio", r.bar_damping_ratio, Range::closed(0.0, 2.0));
+      bar->finish();
+    }
+    if (auto motor = rig->optional_table("motor")) {
+      r.speed_loop_bandwidth_Hz = motor->number_or("speed_loop_bandwidth_Hz", r.speed_loop_bandwidth_Hz, Range::closed(0.01, 1000.0));
+      r.motor_torque_limit_Nm = motor->number_or("torque_limit_Nm", r.motor_torque_limit_Nm, Range::positive());
+      motor->finish();
+    }
+    rig->finish();
+  }
+  for (double v : drive_speeds)
+    if (v < r.min_speed_rpm || v > r.max_speed_rpm) {
+      auto drive = root.table("drive");
+      drive.mark_read("time_s");
+      drive.mark_read("speed_rpm");
+      drive.mark_read("normal_force_N");
+      drive.fail("speed_rpm", "value " + std::to_string(v) +
+                                  " rpm is outside the rig motor's range; allowed [0.5, 125] rpm");
+    }
+}
+
 void read_effects(TomlTable& root, Scenario& s) {
   auto& p = s.clutch;
   auto& th = p.thermal;
@@ -158,9 +204,12 @@ void read_effects(TomlTable& root, Scenario& s) {
     drag.equivalent_mu = t.number_or("equivalent_mu", drag.equivalent_mu, Range::closed(0.0, 0.1));
     drag.radius_m = t.number_or("radius_mm", drag.radius_m * 1e3, Range::positive()) * 1e-3;
   });
-  bool stick_time = false;
-  section("stick_time_static_friction", stick_time, [](TomlTable&) {});
-  if (stick_time && s.type == "prescribed_slip")
+  auto& stick = s.rig.stick_time;
+  section("stick_time_static_friction", stick.enabled, [&](TomlTable& t) {
+    stick.max_increase = t.number_or("max_increase", stick.max_increase, Range::closed(0.0, 5.0));
+    stick.time_constant_s = t.number_or("time_constant_s", stick.time_constant_s, Range::positive());
+  });
+  if (stick.enabled && s.type == "prescribed_slip")
     s.warnings.push_back("effect stick_time_static_friction has no effect in a prescribed_slip "
                          "scenario (the slip is imposed, nothing sticks)");
   effects->finish();
@@ -177,17 +226,28 @@ Scenario load_scenario(const std::string& path) {
 
   auto head = root.table("scenario");
   s.name = head.string_or("name", fs::path(path).stem().string());
-  s.type = head.choice_or("type", "prescribed_slip", {"prescribed_slip"});
+  s.type = head.choice_or("type", "prescribed_slip", {"prescribed_slip", "rig"});
   s.description = head.string_or("description", "");
   s.settings.duration_s = head.number("duration_s", Range::closed(1e-3, 1e5));
   head.finish();
 
   read_clutch(root, s);
   read_drive(root, s);
+  if (s.type == "rig") {
+    read_rig(root, s);
+    s.settings.sample_rate_Hz = 1000.0;  // rig default: the thesis' typical 100 S/s–1 kS/s
+  } else {
+    root.mark_read("rig");
+    if (root.has("rig")) s.warnings.push_back("[rig] is ignored by a prescribed_slip scenario");
+  }
 
   if (auto solver = root.optional_table("solver")) {
     s.clutch.thermal.radial_cells = static_cast<int>(solver->integer_or("radial_cells", s.clutch.thermal.radial_cells, 2, 2000));
     s.settings.thermal_step_s = solver->number_or("thermal_step_ms", s.settings.thermal_step_s * 1e3, Range::closed(1e-3, 1e4)) * 1e-3;
+    auto& integ = s.rig.integrator;
+    integ.abs_tol = solver->number_or("abs_tol", integ.abs_tol, Range::closed(1e-15, 1e-2));
+    integ.rel_tol = solver->number_or("rel_tol", integ.rel_tol, Range::closed(1e-15, 1e-2));
+    integ.max_step_s = solver->number_or("max_step_ms", integ.max_step_s * 1e3, Range::closed(1e-6, 1e3)) * 1e-3;
     solver->finish();
   }
   if (auto out = root.optional_table("output")) {
@@ -199,6 +259,7 @@ Scenario load_scenario(const std::string& path) {
     out->finish();
   }
   read_effects(root, s);
+  s.rig.bearing_drag = s.settings.bearing_drag;
   root.finish();
 
   const auto& th = s.clutch.thermal;
@@ -210,9 +271,19 @@ Scenario load_scenario(const std::string& path) {
   on("rig_heat_capacity", th.rig_heat_capacity);
   on("temperature_sensor_lag", th.temperature_sensor_lag);
   on("bearing_drag", s.settings.bearing_drag.enabled);
+  on("stick_time_static_friction", s.rig.stick_time.enabled);
   on("viscous_shear", p.viscous_shear);
   on("load_dependent_friction", p.load_dependent_friction);
   return s;
+}
+
+rig_models::RigSettings Scenario::rig_settings() const {
+  rig_models::RigSettings r;
+  r.duration_s = settings.duration_s;
+  r.thermal_step_s = settings.thermal_step_s;
+  r.sample_rate_Hz = settings.sample_rate_Hz;
+  r.snapshot_times_s = settings.snapshot_times_s;
+  return r;
 }
 
 clutch::WetClutch Scenario::make_clutch() const {

@@ -10,6 +10,7 @@
 #include "clutch/fluid.hpp"
 #include "clutch/wet_clutch.hpp"
 #include "rig_models/drive_cycle.hpp"
+#include "rig_models/lsctr_rig.hpp"
 #include "rig_models/prescribed_slip.hpp"
 
 namespace shudder::io {
@@ -18,18 +19,20 @@ struct Scenario {
   std::string path;         // as given
   std::string text;         // the file's text (stored in outputs)
   std::string name;
-  std::string type;         // "prescribed_slip"
+  std::string type;         // "prescribed_slip" or "rig"
   std::string description;
   std::string fluid_path;   // resolved relative to the scenario file
   clutch::Fluid fluid;
   clutch::WetClutchParams clutch;
   rig_models::DriveCycle cycle;
-  rig_models::PrescribedSlipSettings settings;
+  rig_models::PrescribedSlipSettings settings;  // duration, steps, sampling, bearing drag
+  rig_models::RigParams rig;                    // type "rig" only
   std::vector<std::string> enabled_effects;  // names from clutch::kEffectNames
   std::vector<std::string> warnings;         // accepted but worth telling the user
 
   /// Builds the clutch; throws InputError if the parameters are inconsistent.
   clutch::WetClutch make_clutch() const;
+  rig_models::RigSettings rig_settings() const;
 };
 
 Scenario load_scenario(const std::string& path);

@@ -1,0 +1,66 @@
+// `shudder modes`: natural frequencies, mode shapes and damped eigenvalues of a rig scenario's
+// torsional network, with the clutch slipping (no stiffness through the contact) and stuck.
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <numbers>
+
+#include "app/commands.hpp"
+#include "io/input_error.hpp"
+#include "io/scenario.hpp"
+#include "rig_models/lsctr_rig.hpp"
+
+namespace shudder::app {
+
+namespace {
+
+void print_modes(const dynamics::TorsionalNetwork& net, const dynamics::Modes& m, const char* title) {
+  std::printf("%s\n  mode  frequency [Hz]   shape:", title);
+  for (const auto& in : net.inertias()) std::printf(" %10s", in.name.c_str());
+  std::printf("\n");
+  for (Eigen::Index j = 0; j < m.frequencies_Hz.size(); ++j) {
+    std::printf("  %4ld  %14.3f         ", static_cast<long>(j + 1), m.frequencies_Hz[j]);
+    for (Eigen::Index i = 0; i < m.shapes.rows(); ++i) std::printf(" %10.4f", m.shapes(i, j));
+    std::printf("\n");
+  }
+  std::printf("  damped eigenvalues (oscillatory ones once, real ones all):\n");
+  std::printf("     real [1/s]      imag [1/s]   frequency [Hz]   damping ratio\n");
+  for (Eigen::Index k = 0; k < m.damped_eigenvalues.size(); ++k) {
+    const auto l = m.damped_eigenvalues[k];
+    if (l.imag() < 0) continue;
+    std::printf("  %12.4f  %14.4f   %14.3f   %13.5f\n", l.real(), l.imag(),
+                l.imag() / (2 * std::numbers::pi), -l.real() / std::abs(l));
+  }
+}
+
+}  // namespace
+
+int modes_command(const ModesOptions& opt) {
+  try {
+    const io::Scenario sc = io::load_scenario(opt.scenario);
+    for (const auto& w : sc.warnings) std::cerr << "shudder: warning: " << w << "\n";
+    if (sc.type != "rig")
+      throw io::InputError(opt.scenario, 0, "scenario.type",
+                           "\"" + sc.type + "\" has no torsional network; modes needs type = \"rig\"");
+    const clutch::WetClutch clutch = sc.make_clutch();
+    const rig_models::LsctrRig rig(sc.rig, clutch, sc.cycle);
+    const auto& net = rig.network();
+    std::printf("Scenario %s: torsion bar %.6g N m/rad (c = %.4g N m s/rad), speed loop Kp %.4g N m s/rad, "
+                "Ki %.4g N m/rad\n\n",
+                sc.name.c_str(), rig.bar_stiffness_Nm_per_rad(), rig.bar_damping_Nms_per_rad(),
+                rig.motor_kp(), rig.motor_ki());
+    print_modes(net, net.modes({false}), "Clutch slipping:");
+    std::printf("\n");
+    print_modes(net, net.modes({true}), "Clutch stuck:");
+    std::printf("\nClutch-side mode (slipping): %.3f Hz\n", rig.clutch_side_frequency_Hz());
+    return 0;
+  } catch (const io::InputError& e) {
+    std::cerr << "shudder: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "shudder: error: " << opt.scenario << ": " << e.what() << "\n";
+    return 2;
+  }
+}
+
+}  // namespace shudder::app

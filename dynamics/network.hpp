@@ -1,0 +1,124 @@
+#pragma once
+// A torsional multi-body network: rigid inertias (nodes) joined by shafts (spring–dampers),
+// ideal gears, friction contacts; driven by torque sources, speed sources and speed-controlled
+// motors. The network is the const MODEL (parameters, topology); the integrator owns the state.
+//
+// Equations of motion (node angles θ, speeds ω, rad and rad/s):
+//
+//     J_i dω_i/dt = Σ shaft, source, motor and slipping-contact torques on i  − (Gᵀ μ)_i
+//     G dω/dt     = b(t)                       (active kinematic constraints)
+//
+// Shaft k between a and b:  T = k_s (θ_a − θ_b) + c_s (ω_a − ω_b), acting −T on a, +T on b.
+// Gear (a, b, ratio):       ω_a = ratio · ω_b  (constraint row e_a − ratio e_b).
+// Speed source on i:        ω_i = ω_ref(t)      (constraint row e_i, b = dω_ref/dt).
+// Stuck contact (a, b):     ω_a = ω_b           (constraint row e_a − e_b); its torque −μ.
+// Motor on i (PI speed loop with torque limit and anti-windup):
+//     T_m = clamp(K_p e + K_i ∫e dt, ±T_max),  e = ω_ref(t) − ω_i.
+// Node index kGround (−1) is the fixed frame.
+
+#include <Eigen/Dense>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "dynamics/contact_law.hpp"
+
+namespace shudder::dynamics {
+
+inline constexpr int kGround = -1;
+using TimeFunction = std::function<double(double t_s)>;
+
+struct Inertia {
+  std::string name;
+  double inertia_kg_m2 = 0.0;
+};
+struct Shaft {
+  std::string name;
+  int a = kGround, b = kGround;
+  double stiffness_Nm_per_rad = 0.0;
+  double damping_Nms_per_rad = 0.0;
+};
+struct Gear {
+  std::string name;
+  int a = kGround, b = kGround;
+  double ratio = 1.0;  // ω_a = ratio · ω_b
+};
+struct TorqueSource {
+  std::string name;
+  int node = kGround;
+  TimeFunction torque_Nm;
+};
+struct SpeedSource {
+  std::string name;
+  int node = kGround;
+  TimeFunction speed_rad_s;
+  TimeFunction acceleration_rad_s2;  // derivative of speed_rad_s
+};
+struct Motor {
+  std::string name;
+  int node = kGround;
+  TimeFunction speed_ref_rad_s;
+  double kp_Nms_per_rad = 0.0;    // proportional gain
+  double ki_Nm_per_rad = 0.0;     // integral gain
+  double torque_limit_Nm = 0.0;   // |T_m| <= limit
+};
+struct FrictionContact {
+  std::string name;
+  int a = kGround, b = kGround;  // Δω = ω_a − ω_b
+  std::shared_ptr<const ContactLaw> law;
+};
+
+/// Modal data of the undamped system K φ = ω² M φ (gears and constraints eliminated).
+struct Modes {
+  Eigen::VectorXd frequencies_Hz;   // ascending; rigid-body modes have 0
+  Eigen::MatrixXd shapes;           // columns: node amplitudes, max |entry| = 1
+  Eigen::VectorXcd damped_eigenvalues;  // of the first-order system, 1/s (sorted by |imag|)
+};
+
+class TorsionalNetwork {
+ public:
+  int add_inertia(Inertia i);
+  int add_shaft(Shaft s);
+  int add_gear(Gear g);
+  int add_torque_source(TorqueSource s);
+  int add_speed_source(SpeedSource s);
+  int add_motor(Motor m);
+  int add_contact(FrictionContact c);
+
+  int nodes() const { return static_cast<int>(inertias_.size()); }
+  const std::vector<Inertia>& inertias() const { return inertias_; }
+  const std::vector<Shaft>& shafts() const { return shafts_; }
+  const std::vector<Gear>& gears() const { return gears_; }
+  const std::vector<TorqueSource>& torque_sources() const { return torque_sources_; }
+  const std::vector<SpeedSource>& speed_sources() const { return speed_sources_; }
+  const std::vector<Motor>& motors() const { return motors_; }
+  const std::vector<FrictionContact>& contacts() const { return contacts_; }
+
+  /// Mass, stiffness and damping matrices over the nodes (n x n). Motors count as a spring
+  /// K_i and damper K_p to ground (their linear, unsaturated loop); contacts add nothing.
+  Eigen::MatrixXd mass_matrix() const;
+  Eigen::MatrixXd stiffness_matrix() const;
+  Eigen::MatrixXd damping_matrix() const;
+  /// Modes with the given contacts stuck (others slipping, i.e. no stiffness).
+  /// `extra_damping` (n x n, may be empty) adds e.g. friction-slope terms.
+  Modes modes(const std::vector<bool>& stuck = {}, const Eigen::MatrixXd& extra_damping = {}) const;
+  /// Basis N (n x r) of the node speeds allowed by gears, speed sources (ω fixed → 0) and the
+  /// stuck contacts: ω = N q.
+  Eigen::MatrixXd constraint_basis(const std::vector<bool>& stuck) const;
+
+  /// Throws std::invalid_argument naming the element if a node index or parameter is invalid.
+  void validate() const;
+
+ private:
+  void check_node(int node, const std::string& what, bool ground_ok) const;
+  std::vector<Inertia> inertias_;
+  std::vector<Shaft> shafts_;
+  std::vector<Gear> gears_;
+  std::vector<TorqueSource> torque_sources_;
+  std::vector<SpeedSource> speed_sources_;
+  std::vector<Motor> motors_;
+  std::vector<FrictionContact> contacts_;
+};
+
+}  // namespace shudder::dynamics

@@ -1,0 +1,454 @@
+#include "dynamics/simulation.hpp"
+
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+namespace shudder::dynamics {
+
+namespace odeint = boost::numeric::odeint;
+
+struct Simulation::Forces {
+  Eigen::VectorXd tau;         // (n) applied torques, constraint torques excluded
+  Eigen::VectorXd acc;         // (n)
+  Eigen::VectorXd motor_T;     // (n_motors)
+  Eigen::VectorXd motor_dI;    // (n_motors) d/dt of the integral state
+  Eigen::VectorXd shaft_T;     // (n_shafts)
+  Eigen::VectorXd contact_T;   // (n_contacts) torque on b (−it on a)
+  Eigen::VectorXd friction_P;  // (n_contacts) dissipated power, W
+  double source_P = 0.0, damper_P = 0.0;
+};
+
+struct Simulation::System {
+  const Simulation* sim;
+  void operator()(const State& x, State& dxdt, double t) const { sim->derivative(x, dxdt, t); }
+};
+
+namespace {
+double sign_of(ContactMode m) { return m == ContactMode::kSlipPositive ? 1.0 : -1.0; }
+ContactMode slip_mode(double direction) {
+  return direction >= 0.0 ? ContactMode::kSlipPositive : ContactMode::kSlipNegative;
+}
+}  // namespace
+
+Simulation::Simulation(const TorsionalNetwork& network, IntegratorSettings settings)
+    : net_(network), cfg_(settings) {
+  net_.validate();
+  if (!(cfg_.abs_tol > 0) || !(cfg_.rel_tol > 0) || !(cfg_.max_step_s > 0) ||
+      !(cfg_.initial_step_s > 0) || !(cfg_.event_time_tol_s > 0))
+    throw std::invalid_argument("integrator tolerances and step limits must be > 0");
+  n_ = net_.nodes();
+  motor_offset_ = 2 * n_;
+  int off = motor_offset_ + static_cast<int>(net_.motors().size());
+  for (const auto& c : net_.contacts()) {
+    channel_offset_.push_back(off);
+    off += c.law->heat_channels();
+  }
+  friction_offset_ = off;
+  off += static_cast<int>(net_.contacts().size());
+  source_offset_ = off++;
+  damper_offset_ = off++;
+  size_ = off;
+  modes_.assign(net_.contacts().size(), ContactMode::kSlipPositive);
+  stick_start_s_.assign(net_.contacts().size(), 0.0);
+  impact_loss_J_.assign(net_.contacts().size(), 0.0);
+  x_.assign(size_, 0.0);
+  stepper_ = odeint::make_dense_output(cfg_.abs_tol, cfg_.rel_tol, cfg_.max_step_s,
+                                       odeint::runge_kutta_dopri5<State>());
+}
+
+double Simulation::stick_time(int c, double t) const {
+  return modes_[c] == ContactMode::kStuck ? std::max(t - stick_start_s_[c], 0.0) : 0.0;
+}
+
+void Simulation::equalise_stuck_groups(double* v) const {
+  // Union–find over nodes plus ground (index n_): members of one stuck group get one value.
+  std::vector<int> parent(n_ + 1);
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto find = [&](int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  bool any = false;
+  for (std::size_t c = 0; c < net_.contacts().size(); ++c) {
+    if (modes_[c] != ContactMode::kStuck) continue;
+    const auto& k = net_.contacts()[c];
+    const int a = find(k.a), b = find(k.b == kGround ? n_ : k.b);
+    // The root is the larger index, so ground (n_) roots every group it belongs to.
+    if (a != b) parent[std::min(a, b)] = std::max(a, b);
+    any = true;
+  }
+  if (!any) return;
+  std::vector<int> first(n_ + 1, -1);
+  for (int i = 0; i < n_; ++i) {
+    const int r = find(i);
+    if (r == n_) {
+      v[i] = 0.0;
+    } else if (first[r] < 0) {
+      first[r] = i;
+    } else {
+      v[i] = v[first[r]];
+    }
+  }
+}
+
+void Simulation::compute(const State& x, double t, Forces& f) const {
+  const auto& J = net_.inertias();
+  const auto& shafts = net_.shafts();
+  const auto& motors = net_.motors();
+  const auto& contacts = net_.contacts();
+  const double* th = x.data();
+  const double* om = x.data() + n_;
+  const auto node_speed = [&](int i) { return i == kGround ? 0.0 : om[i]; };
+  const auto node_angle = [&](int i) { return i == kGround ? 0.0 : th[i]; };
+
+  f.tau = Eigen::VectorXd::Zero(n_);
+  f.source_P = f.damper_P = 0.0;
+  // Shafts.
+  f.shaft_T.resize(static_cast<Eigen::Index>(shafts.size()));
+  for (std::size_t k = 0; k < shafts.size(); ++k) {
+    const auto& s = shafts[k];
+    const double dw = node_speed(s.a) - node_speed(s.b);
+    const double T = s.stiffness_Nm_per_rad * (node_angle(s.a) - node_angle(s.b)) +
+                     s.damping_Nms_per_rad * dw;
+    f.shaft_T[k] = T;
+    f.tau[s.a] -= T;
+    if (s.b != kGround) f.tau[s.b] += T;
+    f.damper_P += s.damping_Nms_per_rad * dw * dw;
+  }
+  // Torque sources.
+  for (const auto& s : net_.torque_sources()) {
+    const double T = s.torque_Nm(t);
+    f.tau[s.node] += T;
+    f.source_P += T * om[s.node];
+  }
+  // Motors: PI speed loop, torque limit, conditional integration (anti-windup).
+  f.motor_T.resize(static_cast<Eigen::Index>(motors.size()));
+  f.motor_dI.resize(static_cast<Eigen::Index>(motors.size()));
+  for (std::size_t m = 0; m < motors.size(); ++m) {
+    const auto& mo = motors[m];
+    const double e = mo.speed_ref_rad_s(t) - om[mo.node];
+    const double cmd = mo.kp_Nms_per_rad * e + mo.ki_Nm_per_rad * x[motor_offset_ + m];
+    const double T = std::clamp(cmd, -mo.torque_limit_Nm, mo.torque_limit_Nm);
+    const bool winding_up = (cmd > mo.torque_limit_Nm && e > 0) || (cmd < -mo.torque_limit_Nm && e < 0);
+    f.motor_T[m] = T;
+    f.motor_dI[m] = winding_up ? 0.0 : e;
+    f.tau[mo.node] += T;
+    f.source_P += T * om[mo.node];
+  }
+  // Slipping contacts: torque −s·T_k on a, +s·T_k on b.
+  f.contact_T = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(contacts.size()));
+  f.friction_P = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(contacts.size()));
+  for (std::size_t c = 0; c < contacts.size(); ++c) {
+    if (modes_[c] == ContactMode::kStuck) continue;
+    const auto& k = contacts[c];
+    const double s = sign_of(modes_[c]);
+    const double dw = om[k.a] - node_speed(k.b);
+    const double T = s * k.law->kinetic_torque_Nm(std::abs(dw), t);
+    f.contact_T[c] = T;
+    f.friction_P[c] = T * dw;  // exact work rate, also if a stage overshoots the reversal
+    f.tau[k.a] -= T;
+    if (k.b != kGround) f.tau[k.b] += T;
+  }
+
+  // Constraints: gears, speed sources, stuck contacts. Rows G, right-hand side b.
+  struct Row { int a; double ga; int b; double gb; double rhs; int contact; int speed_node; };
+  std::vector<Row> rows;
+  for (const auto& g : net_.gears()) rows.push_back({g.a, 1.0, g.b, -g.ratio, 0.0, -1, -1});
+  for (const auto& s : net_.speed_sources())
+    rows.push_back({s.node, 1.0, kGround, 0.0, s.acceleration_rad_s2(t), -1, s.node});
+  for (std::size_t c = 0; c < contacts.size(); ++c)
+    if (modes_[c] == ContactMode::kStuck)
+      rows.push_back({contacts[c].a, 1.0, contacts[c].b, -1.0, 0.0, static_cast<int>(c), -1});
+
+  f.acc.resize(n_);
+  if (rows.empty()) {
+    for (int i = 0; i < n_; ++i) f.acc[i] = f.tau[i] / J[i].inertia_kg_m2;
+    return;
+  }
+  const int m = static_cast<int>(rows.size());
+  Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(n_ + m, n_ + m);
+  Eigen::VectorXd rhs(n_ + m);
+  for (int i = 0; i < n_; ++i) kkt(i, i) = J[i].inertia_kg_m2;
+  rhs.head(n_) = f.tau;
+  for (int r = 0; r < m; ++r) {
+    const Row& w = rows[r];
+    kkt(n_ + r, w.a) += w.ga;
+    kkt(w.a, n_ + r) += w.ga;
+    if (w.b != kGround) {
+      kkt(n_ + r, w.b) += w.gb;
+      kkt(w.b, n_ + r) += w.gb;
+    }
+    rhs[n_ + r] = w.rhs;
+  }
+  // Complete orthogonal decomposition: the minimum-norm solution stays defined when rows are
+  // dependent (several contacts locking one loop); accelerations are unique regardless.
+  const Eigen::VectorXd sol = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(kkt).solve(rhs);
+  f.acc = sol.head(n_);
+  for (int r = 0; r < m; ++r) {
+    const double mu = sol[n_ + r];
+    if (rows[r].contact >= 0) f.contact_T[rows[r].contact] = mu;
+    if (rows[r].speed_node >= 0) f.source_P += -mu * om[rows[r].speed_node];
+  }
+  equalise_stuck_groups(f.acc.data());
+}
+
+void Simulation::derivative(const State& x, State& dxdt, double t) const {
+  ++counters_.rhs_calls;
+  thread_local Forces f;
+  compute(x, t, f);
+  dxdt.assign(size_, 0.0);
+  for (int i = 0; i < n_; ++i) {
+    dxdt[i] = x[n_ + i];
+    dxdt[n_ + i] = f.acc[i];
+  }
+  for (Eigen::Index m = 0; m < f.motor_dI.size(); ++m) dxdt[motor_offset_ + m] = f.motor_dI[m];
+  const auto& contacts = net_.contacts();
+  for (std::size_t c = 0; c < contacts.size(); ++c) {
+    dxdt[friction_offset_ + c] = f.friction_P[c];
+    if (modes_[c] == ContactMode::kStuck || contacts[c].law->heat_channels() == 0) continue;
+    const double dw = x[n_ + contacts[c].a] - (contacts[c].b == kGround ? 0.0 : x[n_ + contacts[c].b]);
+    contacts[c].law->channel_heat_W(std::abs(dw), t, &dxdt[channel_offset_[c]]);
+  }
+  dxdt[source_offset_] = f.source_P;
+  dxdt[damper_offset_] = f.damper_P;
+}
+
+double Simulation::event_function(int c, const State& x, double t, const Forces& f) const {
+  const auto& k = net_.contacts()[c];
+  if (modes_[c] == ContactMode::kStuck)
+    return k.law->static_capacity_Nm(t, stick_time(c, t)) - std::abs(f.contact_T[c]);
+  const double dw = x[n_ + k.a] - (k.b == kGround ? 0.0 : x[n_ + k.b]);
+  return sign_of(modes_[c]) * dw;
+}
+
+void Simulation::project_velocities(State& x, double t) {
+  // ω' = ω − M⁻¹Gᵀ y with (G M⁻¹ Gᵀ) y = G ω − b: the closest velocities in the kinetic-energy
+  // metric that satisfy every active constraint (momentum-conserving for a stuck pair).
+  std::vector<Eigen::VectorXd> rows;
+  std::vector<double> b;
+  const auto add = [&](int a, double ga, int bb, double gb, double rhs) {
+    Eigen::VectorXd r = Eigen::VectorXd::Zero(n_);
+    r[a] += ga;
+    if (bb != kGround) r[bb] += gb;
+    rows.push_back(r);
+    b.push_back(rhs);
+  };
+  for (const auto& g : net_.gears()) add(g.a, 1.0, g.b, -g.ratio, 0.0);
+  for (const auto& s : net_.speed_sources()) add(s.node, 1.0, kGround, 0.0, s.speed_rad_s(t));
+  for (std::size_t c = 0; c < net_.contacts().size(); ++c)
+    if (modes_[c] == ContactMode::kStuck) add(net_.contacts()[c].a, 1.0, net_.contacts()[c].b, -1.0, 0.0);
+  if (rows.empty()) return;
+  Eigen::MatrixXd G(static_cast<Eigen::Index>(rows.size()), n_);
+  for (std::size_t r = 0; r < rows.size(); ++r) G.row(static_cast<Eigen::Index>(r)) = rows[r];
+  Eigen::VectorXd minv(n_);
+  for (int i = 0; i < n_; ++i) minv[i] = 1.0 / net_.inertias()[i].inertia_kg_m2;
+  Eigen::Map<Eigen::VectorXd> om(x.data() + n_, n_);
+  const Eigen::VectorXd before = om;
+  const Eigen::MatrixXd gm = G * minv.asDiagonal();
+  const Eigen::VectorXd resid = G * om - Eigen::Map<const Eigen::VectorXd>(b.data(), static_cast<Eigen::Index>(b.size()));
+  const Eigen::VectorXd y = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(gm * G.transpose()).solve(resid);
+  om -= gm.transpose() * y;
+  equalise_stuck_groups(om.data());
+  double lost = 0.0;
+  for (int i = 0; i < n_; ++i)
+    lost += 0.5 * net_.inertias()[i].inertia_kg_m2 * (before[i] * before[i] - om[i] * om[i]);
+  // Book the (tiny, root-tolerance sized) impact loss on the first stuck contact as heat.
+  for (std::size_t c = 0; c < modes_.size(); ++c)
+    if (modes_[c] == ContactMode::kStuck) {
+      impact_loss_J_[c] += lost;
+      break;
+    }
+}
+
+void Simulation::resolve_contacts(State& x, double t, std::vector<int> sticking,
+                                  std::vector<int> releasing) {
+  Forces f;
+  if (!releasing.empty()) compute(x, t, f);
+  for (int c : releasing) {
+    modes_[c] = slip_mode(f.contact_T[c]);
+    ++counters_.breakaway_events;
+  }
+  for (int c : sticking) {
+    modes_[c] = ContactMode::kStuck;
+    stick_start_s_[c] = t;
+  }
+  if (!sticking.empty()) project_velocities(x, t);
+  // Active set: release, one at a time, the stuck contact most over its capacity.
+  for (std::size_t guard = 0; guard <= modes_.size(); ++guard) {
+    compute(x, t, f);
+    int worst = -1;
+    double worst_ratio = 1.0 + 1e-12;
+    for (std::size_t c = 0; c < modes_.size(); ++c) {
+      if (modes_[c] != ContactMode::kStuck) continue;
+      const double cap = net_.contacts()[c].law->static_capacity_Nm(t, stick_time(static_cast<int>(c), t));
+      const double ratio = std::abs(f.contact_T[c]) / std::max(cap, 1e-300);
+      if (ratio > worst_ratio) {
+        worst_ratio = ratio;
+        worst = static_cast<int>(c);
+      }
+    }
+    if (worst < 0) break;
+    modes_[worst] = slip_mode(f.contact_T[worst]);
+    const bool was_sticking = std::find(sticking.begin(), sticking.end(), worst) != sticking.end();
+    ++(was_sticking ? counters_.reversal_events : counters_.breakaway_events);
+    if (was_sticking) sticking.erase(std::find(sticking.begin(), sticking.end(), worst));
+  }
+  counters_.stick_events += static_cast<long>(sticking.size());
+}
+
+void Simulation::initialize(double t0, const Eigen::VectorXd& theta, const Eigen::VectorXd& omega,
+                            const Eigen::VectorXd& motor_integral, double stick_speed_tol) {
+  if (theta.size() != n_ || omega.size() != n_)
+    throw std::invalid_argument("initial angles and speeds need one value per node");
+  x_.assign(size_, 0.0);
+  for (int i = 0; i < n_; ++i) {
+    x_[i] = theta[i];
+    x_[n_ + i] = omega[i];
+  }
+  for (Eigen::Index m = 0; m < motor_integral.size() && m < static_cast<Eigen::Index>(net_.motors().size()); ++m)
+    x_[motor_offset_ + m] = motor_integral[m];
+  t_ = t0;
+  std::fill(impact_loss_J_.begin(), impact_loss_J_.end(), 0.0);
+  std::vector<int> sticking;
+  for (std::size_t c = 0; c < net_.contacts().size(); ++c) {
+    const auto& k = net_.contacts()[c];
+    const double dw = omega[k.a] - (k.b == kGround ? 0.0 : omega[k.b]);
+    if (std::abs(dw) > stick_speed_tol) {
+      modes_[c] = slip_mode(dw);
+    } else {
+      sticking.push_back(static_cast<int>(c));
+    }
+  }
+  resolve_contacts(x_, t_, sticking, {});
+  counters_ = {};
+  const EnergyAccount e = energy();
+  initial_kinetic_J_ = e.kinetic_J;
+  initial_elastic_J_ = e.elastic_J;
+  last_dt_ = cfg_.initial_step_s;
+  restart();
+}
+
+void Simulation::restart() { stepper_.initialize(x_, t_, std::min(last_dt_, cfg_.max_step_s)); }
+
+EnergyAccount Simulation::energy() const {
+  EnergyAccount e;
+  for (int i = 0; i < n_; ++i) e.kinetic_J += 0.5 * net_.inertias()[i].inertia_kg_m2 * x_[n_ + i] * x_[n_ + i];
+  for (const auto& s : net_.shafts()) {
+    const double d = x_[s.a] - (s.b == kGround ? 0.0 : x_[s.b]);
+    e.elastic_J += 0.5 * s.stiffness_Nm_per_rad * d * d;
+  }
+  for (std::size_t c = 0; c < net_.contacts().size(); ++c) e.friction_heat_J += friction_work_J(static_cast<int>(c));
+  e.source_work_J = x_[source_offset_];
+  e.damper_loss_J = x_[damper_offset_];
+  e.initial_kinetic_J = initial_kinetic_J_;
+  e.initial_elastic_J = initial_elastic_J_;
+  return e;
+}
+
+Sample Simulation::evaluate(const State& x, double t) const {
+  Forces f;
+  compute(x, t, f);
+  Sample s;
+  s.t_s = t;
+  s.theta_rad = Eigen::Map<const Eigen::VectorXd>(x.data(), n_);
+  s.omega_rad_s = Eigen::Map<const Eigen::VectorXd>(x.data() + n_, n_);
+  s.motor_torque_Nm = f.motor_T;
+  s.shaft_torque_Nm = f.shaft_T;
+  s.contact_torque_Nm = f.contact_T;
+  s.contact_slip_rad_s.resize(static_cast<Eigen::Index>(net_.contacts().size()));
+  for (std::size_t c = 0; c < net_.contacts().size(); ++c) {
+    const auto& k = net_.contacts()[c];
+    s.contact_slip_rad_s[c] = x[n_ + k.a] - (k.b == kGround ? 0.0 : x[n_ + k.b]);
+  }
+  s.modes = modes_;
+  return s;
+}
+
+void Simulation::advance(double t_end, const std::vector<double>& samples, const SampleCallback& cb) {
+  auto next = std::upper_bound(samples.begin(), samples.end(), t_);
+  const int nc = static_cast<int>(net_.contacts().size());
+  std::vector<double> g0(nc);
+  const auto refresh_g0 = [&] {
+    Forces f;
+    compute(x_, t_, f);
+    for (int c = 0; c < nc; ++c) g0[c] = event_function(c, x_, t_, f);
+  };
+  refresh_g0();
+  State xs(size_);
+  Forces f;
+  int events_at_same_time = 0;
+  double last_event_t = -std::numeric_limits<double>::infinity();
+
+  while (t_ < t_end) {
+    const auto [t0, t1] = stepper_.do_step(System{this});
+    ++counters_.steps;
+    last_dt_ = stepper_.current_time_step();
+    const State& x1 = stepper_.current_state();
+    for (double v : x1)
+      if (!std::isfinite(v))
+        throw std::runtime_error("integration produced a non-finite state at t = " + std::to_string(t1) + " s");
+
+    // Locate the earliest event in (t0, t1] by bisection on the dense output.
+    compute(x1, t1, f);
+    double t_event = std::numeric_limits<double>::infinity();
+    std::vector<std::pair<int, double>> roots;
+    for (int c = 0; c < nc; ++c) {
+      const double g1 = event_function(c, x1, t1, f);
+      // A contact released exactly at t0 starts at g = 0; only a clear sign change counts.
+      if (!(g1 < 0.0) || (g0[c] <= 0.0 && g1 > -1e-13)) continue;
+      double lo = t0, hi = t1;
+      while (hi - lo > cfg_.event_time_tol_s) {
+        const double mid = 0.5 * (lo + hi);
+        stepper_.calc_state(mid, xs);
+        Forces fm;
+        compute(xs, mid, fm);
+        (event_function(c, xs, mid, fm) < 0.0 ? hi : lo) = mid;
+      }
+      roots.emplace_back(c, hi);
+      t_event = std::min(t_event, hi);
+    }
+    const bool event = t_event <= t_end;
+    const double t_stop = event ? t_event : std::min(t1, t_end);
+
+    for (; next != samples.end() && *next <= t_stop; ++next) {
+      stepper_.calc_state(*next, xs);
+      if (cb) cb(evaluate(xs, *next));
+    }
+
+    if (event) {
+      stepper_.calc_state(t_event, xs);
+      std::vector<int> sticking, releasing;
+      for (const auto& [c, tc] : roots) {
+        if (tc > t_event + 1e3 * cfg_.event_time_tol_s) continue;  // later: found again after restart
+        (modes_[c] == ContactMode::kStuck ? releasing : sticking).push_back(c);
+      }
+      x_ = xs;
+      t_ = t_event;
+      resolve_contacts(x_, t_, sticking, releasing);
+      events_at_same_time = (t_ - last_event_t <= 1e3 * cfg_.event_time_tol_s) ? events_at_same_time + 1 : 0;
+      last_event_t = t_;
+      if (events_at_same_time > 100)
+        throw std::runtime_error("contact '" + net_.contacts()[roots.front().first].name +
+                                 "' keeps switching between stick and slip at t = " + std::to_string(t_) + " s");
+      restart();
+      refresh_g0();
+    } else if (t1 > t_end) {
+      stepper_.calc_state(t_end, xs);
+      x_ = xs;
+      t_ = t_end;
+      restart();
+      refresh_g0();
+    } else {
+      x_ = x1;
+      t_ = t1;
+      for (int c = 0; c < nc; ++c) g0[c] = event_function(c, x1, t1, f);
+    }
+  }
+}
+
+}  // namespace shudder::dynamics
