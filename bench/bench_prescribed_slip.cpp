@@ -44,4 +44,4 @@ void BM_Case1_25kN(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_Case1_25kN)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
-BENCHMARK_MAIN();
+
