@@ -12,8 +12,10 @@
 // Gear (a, b, ratio):       ω_a = ratio · ω_b  (constraint row e_a − ratio e_b).
 // Speed source on i:        ω_i = ω_ref(t)      (constraint row e_i, b = dω_ref/dt).
 // Stuck contact (a, b):     ω_a = ω_b           (constraint row e_a − e_b); its torque −μ.
-// Motor on i (PI speed loop with torque limit and anti-windup):
-//     T_m = clamp(K_p e + K_i ∫e dt, ±T_max),  e = ω_ref(t) − ω_i.
+// Motor on i (PI speed loop with torque limit and anti-windup by back-calculation):
+//     T_m = clamp(K_p e + K_i I, ±T_max),  e = ω_ref(t) − ω_i,
+//     dI/dt = e + (T_m − K_p e − K_i I)/(0.9 K_p)   (= e while not clamped; K_p = 0: dI/dt = e,
+//     frozen while clamped and e pushes further).
 // Node index kGround (−1) is the fixed frame.
 
 #include <Eigen/Dense>

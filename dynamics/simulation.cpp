@@ -126,7 +126,13 @@ void Simulation::compute(const State& x, double t, Forces& f) const {
     f.tau[s.node] += T;
     f.source_P += T * om[s.node];
   }
-  // Motors: PI speed loop, torque limit, conditional integration (anti-windup).
+  // Motors: PI speed loop, torque limit, anti-windup by back-calculation (as Modelica's LimPID
+  // with N_i = 0.9): while clamped, the integral relaxes towards the value that puts the command
+  // on the limit, with time constant N_i K_p/K_i:  dI/dt = e + (T − cmd)/(N_i K_p).
+  // This keeps the right-hand side continuous. Conditional integration (dI/dt = 0 while clamped
+  // and e pushes further) is discontinuous on the limit: leaving saturation with K_i e > K_p de/dt
+  // it chatters there (a sliding mode) and stalls the step-size control. With K_p = 0 the limit
+  // does not move with e, nothing chatters, and conditional integration is kept.
   f.motor_T.resize(static_cast<Eigen::Index>(motors.size()));
   f.motor_dI.resize(static_cast<Eigen::Index>(motors.size()));
   for (std::size_t m = 0; m < motors.size(); ++m) {
@@ -134,9 +140,14 @@ void Simulation::compute(const State& x, double t, Forces& f) const {
     const double e = mo.speed_ref_rad_s(t) - om[mo.node];
     const double cmd = mo.kp_Nms_per_rad * e + mo.ki_Nm_per_rad * x[motor_offset_ + m];
     const double T = std::clamp(cmd, -mo.torque_limit_Nm, mo.torque_limit_Nm);
-    const bool winding_up = (cmd > mo.torque_limit_Nm && e > 0) || (cmd < -mo.torque_limit_Nm && e < 0);
+    constexpr double kNi = 0.9;
     f.motor_T[m] = T;
-    f.motor_dI[m] = winding_up ? 0.0 : e;
+    if (mo.kp_Nms_per_rad > 0.0) {
+      f.motor_dI[m] = e + (T - cmd) / (kNi * mo.kp_Nms_per_rad);
+    } else {
+      const bool winding_up = (cmd > mo.torque_limit_Nm && e > 0) || (cmd < -mo.torque_limit_Nm && e < 0);
+      f.motor_dI[m] = winding_up ? 0.0 : e;
+    }
     f.tau[mo.node] += T;
     f.source_P += T * om[mo.node];
   }
@@ -226,7 +237,7 @@ double Simulation::event_function(int c, const State& x, double t, const Forces&
   return sign_of(modes_[c]) * dw;
 }
 
-void Simulation::project_velocities(State& x, double t) {
+double Simulation::project_velocities(State& x, double t) {
   // ω' = ω − M⁻¹Gᵀ y with (G M⁻¹ Gᵀ) y = G ω − b: the closest velocities in the kinetic-energy
   // metric that satisfy every active constraint (momentum-conserving for a stuck pair).
   std::vector<Eigen::VectorXd> rows;
@@ -242,7 +253,7 @@ void Simulation::project_velocities(State& x, double t) {
   for (const auto& s : net_.speed_sources()) add(s.node, 1.0, kGround, 0.0, s.speed_rad_s(t));
   for (std::size_t c = 0; c < net_.contacts().size(); ++c)
     if (modes_[c] == ContactMode::kStuck) add(net_.contacts()[c].a, 1.0, net_.contacts()[c].b, -1.0, 0.0);
-  if (rows.empty()) return;
+  if (rows.empty()) return 0.0;
   Eigen::MatrixXd G(static_cast<Eigen::Index>(rows.size()), n_);
   for (std::size_t r = 0; r < rows.size(); ++r) G.row(static_cast<Eigen::Index>(r)) = rows[r];
   Eigen::VectorXd minv(n_);
@@ -254,15 +265,11 @@ void Simulation::project_velocities(State& x, double t) {
   const Eigen::VectorXd y = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(gm * G.transpose()).solve(resid);
   om -= gm.transpose() * y;
   equalise_stuck_groups(om.data());
+  // Kinetic energy taken out by the projection.
   double lost = 0.0;
   for (int i = 0; i < n_; ++i)
     lost += 0.5 * net_.inertias()[i].inertia_kg_m2 * (before[i] * before[i] - om[i] * om[i]);
-  // Book the (tiny, root-tolerance sized) impact loss on the first stuck contact as heat.
-  for (std::size_t c = 0; c < modes_.size(); ++c)
-    if (modes_[c] == ContactMode::kStuck) {
-      impact_loss_J_[c] += lost;
-      break;
-    }
+  return lost;
 }
 
 void Simulation::resolve_contacts(State& x, double t, std::vector<int> sticking,
@@ -277,7 +284,8 @@ void Simulation::resolve_contacts(State& x, double t, std::vector<int> sticking,
     modes_[c] = ContactMode::kStuck;
     stick_start_s_[c] = t;
   }
-  if (!sticking.empty()) project_velocities(x, t);
+  // The (tiny, root-tolerance sized) impact loss of a stick is heat of a contact that sticks.
+  if (!sticking.empty()) impact_loss_J_[sticking.front()] += project_velocities(x, t);
   // Active set: release, one at a time, the stuck contact most over its capacity.
   for (std::size_t guard = 0; guard <= modes_.size(); ++guard) {
     compute(x, t, f);
@@ -313,18 +321,19 @@ void Simulation::initialize(double t0, const Eigen::VectorXd& theta, const Eigen
   for (Eigen::Index m = 0; m < motor_integral.size() && m < static_cast<Eigen::Index>(net_.motors().size()); ++m)
     x_[motor_offset_ + m] = motor_integral[m];
   t_ = t0;
-  std::fill(impact_loss_J_.begin(), impact_loss_J_.end(), 0.0);
+  // Classify the contacts on the given speeds, then project those onto the gears and speed
+  // sources (no contact stuck yet), then let the candidates stick (projecting again).
   std::vector<int> sticking;
   for (std::size_t c = 0; c < net_.contacts().size(); ++c) {
     const auto& k = net_.contacts()[c];
     const double dw = omega[k.a] - (k.b == kGround ? 0.0 : omega[k.b]);
-    if (std::abs(dw) > stick_speed_tol) {
-      modes_[c] = slip_mode(dw);
-    } else {
-      sticking.push_back(static_cast<int>(c));
-    }
+    modes_[c] = slip_mode(dw);
+    if (!(std::abs(dw) > stick_speed_tol)) sticking.push_back(static_cast<int>(c));
   }
+  project_velocities(x_, t_);
   resolve_contacts(x_, t_, sticking, {});
+  // Projection losses at the start are not part of the run's energy account.
+  std::fill(impact_loss_J_.begin(), impact_loss_J_.end(), 0.0);
   counters_ = {};
   const EnergyAccount e = energy();
   initial_kinetic_J_ = e.kinetic_J;
@@ -404,6 +413,7 @@ void Simulation::advance(double t_end, const std::vector<double>& samples, const
       double lo = t0, hi = t1;
       while (hi - lo > cfg_.event_time_tol_s) {
         const double mid = 0.5 * (lo + hi);
+        if (mid <= lo || mid >= hi) break;  // adjacent doubles (large t): cannot shrink further
         stepper_.calc_state(mid, xs);
         Forces fm;
         compute(xs, mid, fm);

@@ -76,7 +76,9 @@ class Simulation {
   Simulation(const TorsionalNetwork& network, IntegratorSettings settings = {});
 
   /// Sets the state at t0. Contacts with |Δω| below `stick_speed_tol` start stuck if they can
-  /// hold, otherwise slipping in the direction of Δω (or of the holding torque).
+  /// hold, otherwise slipping in the direction of Δω (or of the holding torque). Speeds that
+  /// violate a gear, a speed source or a starting stick are projected onto the constraints
+  /// (closest in kinetic energy); the energy account starts after that projection.
   void initialize(double t0_s, const Eigen::VectorXd& theta_rad, const Eigen::VectorXd& omega_rad_s,
                   const Eigen::VectorXd& motor_integral = {}, double stick_speed_tol = 0.0);
 
@@ -108,7 +110,7 @@ class Simulation {
   void derivative(const State& x, State& dxdt, double t) const;
   double event_function(int c, const State& x, double t, const Forces& f) const;
   double stick_time(int c, double t) const;
-  void project_velocities(State& x, double t);
+  double project_velocities(State& x, double t);
   void resolve_contacts(State& x, double t, std::vector<int> sticking, std::vector<int> releasing);
   void equalise_stuck_groups(double* v) const;
 
