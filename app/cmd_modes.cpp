@@ -1,5 +1,6 @@
 // `shudder modes`: natural frequencies, mode shapes and damped eigenvalues of a rig scenario's
 // torsional network, with the clutch slipping (no stiffness through the contact) and stuck.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -26,7 +27,8 @@ void print_modes(const dynamics::TorsionalNetwork& net, const dynamics::Modes& m
   std::printf("  damped eigenvalues (oscillatory ones once, real ones all):\n");
   std::printf("     real [1/s]      imag [1/s]   frequency [Hz]   damping ratio\n");
   for (Eigen::Index k = 0; k < m.damped_eigenvalues.size(); ++k) {
-    const auto l = m.damped_eigenvalues[k];
+    auto l = m.damped_eigenvalues[k];
+    if (std::abs(l.imag()) < 1e-9 * std::max(1.0, std::abs(l))) l.imag(0.0);  // real root
     if (l.imag() < 0) continue;
     std::printf("  %12.4f  %14.4f   %14.3f   %13.5f\n", l.real(), l.imag(),
                 l.imag() / (2 * std::numbers::pi), -l.real() / std::abs(l));

@@ -170,7 +170,10 @@ dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& cl
   Eigen::VectorXd heat_before = Eigen::VectorXd::Zero(nr), heat_now(nr);
   while (sim.time_s() < cfg.duration_s - 1e-12) {
     const double ta = sim.time_s();
-    const double tb = std::min(ta + cfg.thermal_step_s, cfg.duration_s);
+    double tb = std::min(ta + cfg.thermal_step_s, cfg.duration_s);
+    // Land exactly on the end: summed steps fall short of it by round-off (1000 x 10 ms gives
+    // 9.99999999999983 s), which would end the loop before the last sample time.
+    if (cfg.duration_s - tb < 1e-9 * cfg.thermal_step_s) tb = cfg.duration_s;
     const std::size_t first_new = rec.signals[kT].values.size();
     const auto sa = sim.sample();
     sim.advance(tb, sample_times, push_mechanical);
