@@ -28,7 +28,7 @@ void print_modes(const dynamics::TorsionalNetwork& net, const dynamics::Modes& m
   std::printf("     real [1/s]      imag [1/s]   frequency [Hz]   damping ratio\n");
   for (Eigen::Index k = 0; k < m.damped_eigenvalues.size(); ++k) {
     auto l = m.damped_eigenvalues[k];
-    if (std::abs(l.imag()) < 1e-9 * std::max(1.0, std::abs(l))) l.imag(0.0);  // real root
+    if (std::abs(l.imag()) < 1e-6 * std::max(1.0, std::abs(l))) l.imag(0.0);  // real (a double root splits by ~sqrt(eps))
     if (l.imag() < 0) continue;
     std::printf("  %12.4f  %14.4f   %14.3f   %13.5f\n", l.real(), l.imag(),
                 l.imag() / (2 * std::numbers::pi), -l.real() / std::abs(l));

@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace shudder::app {
 
@@ -22,6 +23,25 @@ struct ModesOptions {
   std::string scenario;
 };
 int modes_command(const ModesOptions& options);
+
+struct SweepOptions {
+  std::string scenario;
+  std::vector<std::string> sets;  // KEY=START:STOP:STEP or KEY=V1,V2,...
+  unsigned jobs = 0;              // 0 = all cores
+  std::string output;
+  bool quiet = false;
+  bool keep_parts = false;        // keep OUT.h5.parts/ after assembling (default: remove)
+};
+int sweep_command(const SweepOptions& options);
+
+struct ScreenOptions {
+  std::string fluid;          // fluid TOML
+  std::string rig;            // rig scenario TOML; empty = default rigs (100, 300, 500 Hz bars)
+  double load_N = 20000.0;    // normal load of the indices and maps
+  std::string temps;          // "40,80,120"; empty = 40/80/120 °C where the data reach
+  std::string json;           // JSON output path; empty = none
+};
+int screen_command(const ScreenOptions& options);
 
 struct ValidateOptions {
   std::string scenarios_dir = "scenarios";

@@ -28,6 +28,23 @@ int main(int argc, char** argv) {
   auto* modes_cmd = app.add_subcommand("modes", "Natural frequencies and mode shapes of a rig scenario");
   modes_cmd->add_option("scenario", modes.scenario, "Scenario file (TOML, type = \"rig\")")->required();
 
+  SweepOptions sweep;
+  auto* sweep_cmd = app.add_subcommand("sweep", "Run a scenario over a grid of key values, in parallel");
+  sweep_cmd->add_option("scenario", sweep.scenario, "Scenario file (TOML)")->required();
+  sweep_cmd->add_option("--set", sweep.sets, "KEY=START:STOP:STEP or KEY=V1,V2,... (repeatable)")->required();
+  sweep_cmd->add_option("--jobs", sweep.jobs, "Parallel cases (default: all cores)")->check(CLI::Range(1u, 1024u));
+  sweep_cmd->add_option("-o,--output", sweep.output, "Sweep HDF5 file")->required();
+  sweep_cmd->add_flag("--quiet", sweep.quiet, "No progress bar or summary");
+  sweep_cmd->add_flag("--keep-parts", sweep.keep_parts, "Keep the per-case files (OUT.h5.parts/)");
+
+  ScreenOptions screen;
+  auto* screen_cmd = app.add_subcommand("screen", "Screen a fluid's friction data for vibration risk");
+  screen_cmd->add_option("fluid", screen.fluid, "Fluid file (TOML)")->required();
+  screen_cmd->add_option("--rig", screen.rig, "Rig scenario (TOML, type = \"rig\"); default: rigs with 100, 300, 500 Hz bars");
+  screen_cmd->add_option("--load-N", screen.load_N, "Normal load, N (default 20000)");
+  screen_cmd->add_option("--temps", screen.temps, "Temperatures, degC, comma-separated (default 40,80,120 where the data reach)");
+  screen_cmd->add_option("--json", screen.json, "Write the results as JSON");
+
   ValidateOptions validate;
   auto* val_cmd = app.add_subcommand(
       "validate", "Run the Paper G / Paper B calibration cases; regenerate docs/validation.md and plots");
@@ -45,5 +62,7 @@ int main(int argc, char** argv) {
   if (*run_cmd) return run_command(run);
   if (*val_cmd) return validate_command(validate);
   if (*modes_cmd) return modes_command(modes);
+  if (*sweep_cmd) return sweep_command(sweep);
+  if (*screen_cmd) return screen_command(screen);
   return 2;
 }

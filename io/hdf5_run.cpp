@@ -9,6 +9,7 @@
 #include <cstring>
 #include <ctime>
 #include <filesystem>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -377,9 +378,17 @@ Handle open_for_reading(const std::string& path) {
 
 }  // namespace
 
+// Debian's libhdf5 is built without thread safety and sweeps write from worker threads: every
+// entry point serialises on this mutex.
+std::mutex& hdf5_mutex() {
+  static std::mutex m;
+  return m;
+}
+
 void write_run_hdf5(const std::string& path, const Recording& rec,
                     const std::string& scenario_text) {
   validate(path, rec);
+  const std::lock_guard lock(hdf5_mutex());
   const QuietHdf5 quiet;
   const std::string tmp = temp_path_for(path);
   try {
@@ -397,6 +406,7 @@ void write_run_hdf5(const std::string& path, const Recording& rec,
 }
 
 Recording read_run_hdf5(const std::string& path) {
+  const std::lock_guard lock(hdf5_mutex());
   const QuietHdf5 quiet;
   const Handle file = open_for_reading(path);
   Recording rec;
@@ -411,6 +421,7 @@ Recording read_run_hdf5(const std::string& path) {
 }
 
 std::string read_run_attribute(const std::string& path, const std::string& name) {
+  const std::lock_guard lock(hdf5_mutex());
   const QuietHdf5 quiet;
   const Handle file = open_for_reading(path);
   try {
@@ -433,5 +444,73 @@ long open_hdf5_identifiers() {
   return total;
 }
 }  // namespace detail
+
+}  // namespace shudder::io
+
+// ---- sweeps ----------------------------------------------------------------------------------
+
+#include "io/hdf5_sweep.hpp"
+
+namespace shudder::io {
+
+namespace {
+
+void write_strings(hid_t parent, const std::string& name, const std::vector<std::string>& values) {
+  const Handle type = vlen_string_type();
+  const hsize_t n = values.size();
+  const Handle space = own(H5Screate_simple(1, &n, nullptr), H5Sclose, "create dataspace for '" + name + "'");
+  const Handle dset = own(H5Dcreate2(parent, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                          H5Dclose, "create dataset '" + name + "'");
+  std::vector<const char*> ptrs;
+  for (const auto& v : values) ptrs.push_back(v.c_str());
+  if (n > 0) ok(H5Dwrite(dset, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()), "write dataset '" + name + "'");
+}
+
+void write_sweep_file(const std::string& file_name, const SweepOutput& sw) {
+  Handle file = own(H5Fcreate(file_name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
+                    "create file '" + file_name + "'");
+  {
+    const Handle cases = make_group(file, "cases");
+    for (const auto& c : sw.columns) write_doubles(cases, c.name, {c.values.size()}, c.values.data(), c.units);
+    write_strings(cases, sw.text_column_name, sw.text_column);
+    for (std::size_t k = 0; k < sw.case_recordings.size(); ++k) {
+      char name[32];
+      std::snprintf(name, sizeof name, "case_%05zu", k);
+      const Handle group = make_group(file, name);
+      const Handle signals = make_group(group, "signals");
+      for (const auto& s : sw.case_recordings[k].signals)
+        write_doubles(signals, s.name, {s.values.size()}, s.values.data(), s.units);
+      if (k < sw.case_scenarios.size()) write_string_attr(group, "scenario", sw.case_scenarios[k]);
+    }
+    write_string_attr(file, "scenario", sw.base_scenario_text);
+    write_string_attr(file, "shudder_version", SHUDDER_VERSION);
+    write_string_attr(file, "created_utc", utc_now_iso8601());
+  }
+  ok(file.close(), "close (flush) file '" + file_name + "'");
+}
+
+}  // namespace
+
+void write_sweep_hdf5(const std::string& path, const SweepOutput& sweep) {
+  const std::size_t n = sweep.text_column.size();
+  for (const auto& c : sweep.columns)
+    if (c.values.size() != n)
+      throw InputError(path, 0, "", "sweep column '" + c.name + "' has " + std::to_string(c.values.size()) +
+                                        " rows, expected " + std::to_string(n));
+  const std::lock_guard lock(hdf5_mutex());
+  const QuietHdf5 quiet;
+  const std::string tmp = temp_path_for(path);
+  try {
+    write_sweep_file(tmp, sweep);
+  } catch (const Failure& e) {
+    discard_temp_file(tmp);
+    throw InputError(path, 0, "", std::string("cannot write sweep file: ") + e.what() +
+                                      "; check the directory exists and is writable");
+  } catch (...) {
+    discard_temp_file(tmp);
+    throw;
+  }
+  commit_temp_file(tmp, path);
+}
 
 }  // namespace shudder::io

@@ -217,11 +217,35 @@ void read_effects(TomlTable& root, Scenario& s) {
 
 }  // namespace
 
-Scenario load_scenario(const std::string& path) {
+std::string set_scenario_key(const std::string& text, const std::string& path,
+                             const std::string& key, double value) {
+  toml::table doc = TomlTable::parse_text(text, path);
+  // Walk/create the tables of a dotted key ("rig.torsion_bar.natural_frequency_Hz").
+  toml::table* table = &doc;
+  std::size_t start = 0;
+  for (std::size_t dot; (dot = key.find('.', start)) != std::string::npos; start = dot + 1) {
+    const std::string part = key.substr(start, dot - start);
+    if (!table->contains(part)) table->insert(part, toml::table{});
+    table = (*table)[part].as_table();
+    if (!table) throw InputError(path, 0, key, "'" + part + "' is not a table; cannot set a value below it");
+  }
+  const std::string leaf = key.substr(start);
+  if (leaf.empty()) throw InputError(path, 0, key, "empty key");
+  if (const auto* old = table->get(leaf); old && !old->is_number())
+    throw InputError(path, 0, key, "holds a non-number; only numeric keys can be swept");
+  table->insert_or_assign(leaf, value);
+  std::ostringstream os;
+  os << doc;
+  return os.str();
+}
+
+Scenario load_scenario(const std::string& path) { return load_scenario_text(read_text(path), path); }
+
+Scenario load_scenario_text(const std::string& text, const std::string& path) {
   Scenario s;
   s.path = path;
-  s.text = read_text(path);
-  const toml::table doc = TomlTable::parse_file(path);
+  s.text = text;
+  const toml::table doc = TomlTable::parse_text(text, path);
   TomlTable root(doc, path, "");
 
   auto head = root.table("scenario");

@@ -36,5 +36,11 @@ struct Scenario {
 };
 
 Scenario load_scenario(const std::string& path);
+/// Loads scenario text; `path` names it in messages and anchors relative fluid paths.
+Scenario load_scenario_text(const std::string& text, const std::string& path);
+/// The scenario text with numeric `key` (dotted, tables created as needed) set to `value`
+/// (comments are not kept). Used by sweeps.
+std::string set_scenario_key(const std::string& text, const std::string& path,
+                             const std::string& key, double value);
 
 }  // namespace shudder::io

@@ -40,6 +40,14 @@ toml::table TomlTable::parse_file(const std::string& file) {
   }
 }
 
+toml::table TomlTable::parse_text(const std::string& text, const std::string& file) {
+  try {
+    return toml::parse(text, file);
+  } catch (const toml::parse_error& e) {
+    throw InputError(file, static_cast<long>(e.source().begin.line), "", std::string(e.description()));
+  }
+}
+
 std::string TomlTable::full_key(const std::string& key) const {
   return path_.empty() ? key : path_ + "." + key;
 }

@@ -36,6 +36,8 @@ class TomlTable {
 
   /// Parses a whole file; a syntax error or an unreadable file throws InputError.
   static toml::table parse_file(const std::string& file);
+  /// Parses text; `file` names it in messages.
+  static toml::table parse_text(const std::string& text, const std::string& file);
 
   bool has(const std::string& key) const;
   bool is_array(const std::string& key) const;

@@ -1,0 +1,191 @@
+// `shudder sweep`: runs a scenario over the cartesian product of --set axes, in parallel, and
+// writes one HDF5 with a /cases table (io/hdf5_sweep.hpp). Finished cases are kept in
+// OUT.h5.parts/ (one run file each, tagged with the case's scenario text) so an interrupted
+// sweep resumes where it stopped; the folder is removed once OUT.h5 is complete.
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <mutex>
+#include <thread>
+
+#include "app/commands.hpp"
+#include "io/hdf5_run.hpp"
+#include "io/hdf5_sweep.hpp"
+#include "io/input_error.hpp"
+#include "io/scenario.hpp"
+#include "io/sweep_spec.hpp"
+#include "rig_models/case_evaluation.hpp"
+
+namespace shudder::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Signals kept per case in the sweep file (the full record stays in the part while running).
+constexpr const char* kKeptSignals[] = {"time_s", "speed_rpm", "slip_rpm", "torque_Nm", "temp_C"};
+const char* kVerdicts[] = {"none", "vibration", "stick_slip"};
+
+double verdict_code(const std::string& v) {
+  for (int i = 0; i < 3; ++i)
+    if (v == kVerdicts[i]) return i;
+  return 0;
+}
+
+// Runs one case and writes its part file (recording + outcome as summary scalars).
+void run_case(const std::string& text, const std::string& path, const std::string& part) {
+  const io::Scenario sc = io::load_scenario_text(text, path);
+  const clutch::WetClutch clutch = sc.make_clutch();
+  dynamics::Recording rec;
+  const rig_models::CaseOutcome o =
+      sc.type == "rig" ? rig_models::evaluate_rig_case(sc.rig, clutch, sc.cycle, sc.rig_settings(), rec)
+                       : rig_models::evaluate_prescribed_case(clutch, sc.cycle, sc.settings, rec);
+  dynamics::Recording kept;
+  for (const char* name : kKeptSignals)
+    if (const auto* s = rec.find(name)) kept.signals.push_back(*s);
+  kept.scalars = {{"predicted_stable", "1", o.predicted_stable ? 1.0 : 0.0},
+                  {"predicted_margin_per_s", "1/s", o.predicted_margin_per_s},
+                  {"predicted_frequency_Hz", "Hz", o.predicted_frequency_Hz},
+                  {"simulated_verdict_code", "1", verdict_code(o.simulated_verdict)},
+                  {"simulated_frequency_Hz", "Hz", o.simulated_frequency_Hz},
+                  {"amplitude_Nm", "N m", o.amplitude_Nm},
+                  {"onset_time_s", "s", o.onset_time_s}};
+  io::write_run_hdf5(part, kept, text);
+}
+
+void progress(std::size_t done, std::size_t total, double elapsed_s) {
+  constexpr int kWidth = 30;
+  const int filled = total ? static_cast<int>(kWidth * done / total) : kWidth;
+  const double eta = done ? elapsed_s * static_cast<double>(total - done) / static_cast<double>(done) : 0.0;
+  std::fprintf(stderr, "\r[%.*s%.*s] %zu/%zu cases, %.1f s elapsed, ~%.0f s left ", filled,
+               "##############################", kWidth - filled, "..............................",
+               done, total, elapsed_s, eta);
+  std::fflush(stderr);
+}
+
+}  // namespace
+
+int sweep_command(const SweepOptions& opt) {
+  try {
+    const io::Scenario base = io::load_scenario(opt.scenario);
+    for (const auto& w : base.warnings) std::cerr << "shudder: warning: " << w << "\n";
+    if (opt.sets.empty()) throw io::InputError("--set", 0, "", "give at least one --set KEY=START:STOP:STEP");
+    std::vector<io::SweepAxis> axes;
+    for (const auto& s : opt.sets) axes.push_back(io::parse_sweep_axis(s));
+    const auto rows = io::sweep_cases(axes);
+
+    // Case texts, each validated now so bad keys or values stop the sweep before it runs.
+    std::vector<std::string> texts;
+    for (const auto& row : rows) {
+      std::string text = base.text;
+      for (std::size_t a = 0; a < axes.size(); ++a) text = io::set_scenario_key(text, opt.scenario, axes[a].key, row[a]);
+      (void)io::load_scenario_text(text, opt.scenario);
+      texts.push_back(std::move(text));
+    }
+
+    // Resume: a part whose stored scenario equals the case's text is finished.
+    const fs::path parts = opt.output + ".parts";
+    fs::create_directories(parts);
+    std::vector<std::string> part_paths;
+    std::vector<std::size_t> todo;
+    for (std::size_t k = 0; k < texts.size(); ++k) {
+      char name[32];
+      std::snprintf(name, sizeof name, "case_%05zu.h5", k);
+      part_paths.push_back((parts / name).string());
+      bool finished = false;
+      if (fs::exists(part_paths.back())) {
+        try {
+          finished = io::read_run_attribute(part_paths.back(), "scenario") == texts[k];
+        } catch (const io::InputError&) {
+          finished = false;  // unreadable leftover: run the case again
+        }
+      }
+      if (!finished) todo.push_back(k);
+    }
+    if (todo.size() < texts.size())
+      std::cerr << "shudder: resuming: " << texts.size() - todo.size() << " of " << texts.size()
+                << " cases already finished in " << parts.string() << "\n";
+
+    // Worker pool.
+    const unsigned jobs = std::max(1u, opt.jobs ? opt.jobs : std::thread::hardware_concurrency());
+    const bool show = isatty(STDERR_FILENO) && !opt.quiet;
+    std::atomic<std::size_t> next{0}, done{0};
+    std::mutex error_mutex;
+    std::string first_error;
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto worker = [&] {
+      for (std::size_t i; (i = next++) < todo.size();) {
+        const std::size_t k = todo[i];
+        try {
+          run_case(texts[k], opt.scenario, part_paths[k]);
+        } catch (const std::exception& e) {
+          const std::lock_guard lock(error_mutex);
+          if (first_error.empty()) first_error = "case " + std::to_string(k) + ": " + e.what();
+        }
+        ++done;
+      }
+    };
+    std::vector<std::thread> pool;
+    for (unsigned j = 0; j < std::min<std::size_t>(jobs, std::max<std::size_t>(todo.size(), 1)); ++j) pool.emplace_back(worker);
+    while (show && done < todo.size()) {
+      progress(done, todo.size(), std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    }
+    for (auto& t : pool) t.join();
+    const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (show) {
+      progress(done, todo.size(), wall_s);
+      std::fprintf(stderr, "\n");
+    }
+    if (!first_error.empty())
+      throw std::runtime_error(first_error + " (finished cases are kept in " + parts.string() + "; rerun to resume)");
+
+    // Assemble the sweep file from the parts.
+    io::SweepOutput out;
+    out.base_scenario_text = base.text;
+    for (const auto& a : axes) out.columns.push_back({a.key, "", {}});
+    const char* results[] = {"predicted_stable", "predicted_margin_per_s", "predicted_frequency_Hz",
+                             "simulated_frequency_Hz", "amplitude_Nm", "onset_time_s"};
+    const char* units[] = {"1", "1/s", "Hz", "Hz", "N m", "s"};
+    for (int r = 0; r < 6; ++r) out.columns.push_back({results[r], units[r], {}});
+    for (std::size_t k = 0; k < texts.size(); ++k) {
+      dynamics::Recording part = io::read_run_hdf5(part_paths[k]);
+      for (std::size_t a = 0; a < axes.size(); ++a) out.columns[a].values.push_back(rows[k][a]);
+      for (int r = 0; r < 6; ++r) out.columns[axes.size() + r].values.push_back(part.find_scalar(results[r])->value);
+      out.text_column.push_back(kVerdicts[static_cast<int>(part.find_scalar("simulated_verdict_code")->value)]);
+      out.case_scenarios.push_back(texts[k]);
+      part.scalars.clear();
+      out.case_recordings.push_back(std::move(part));
+    }
+    io::write_sweep_hdf5(opt.output, out);
+    if (!opt.keep_parts) fs::remove_all(parts);
+    if (!opt.quiet) {
+      std::printf("Sweep of %s: %zu cases (%zu run now, %u jobs) in %.2f s -> %s\n", base.name.c_str(),
+                  texts.size(), todo.size(), jobs, wall_s, opt.output.c_str());
+      std::size_t counts[3] = {0, 0, 0};
+      for (const auto& v : out.text_column) counts[static_cast<int>(verdict_code(v))]++;
+      std::printf("Simulated: %zu none, %zu vibration, %zu stick-slip; predicted unstable: %zu\n", counts[0],
+                  counts[1], counts[2],
+                  static_cast<std::size_t>(std::count(out.columns[axes.size()].values.begin(),
+                                                      out.columns[axes.size()].values.end(), 0.0)));
+    }
+    return 0;
+  } catch (const io::InputError& e) {
+    std::cerr << "shudder: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "shudder: error: " << opt.scenario << ": " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "shudder: sweep failed: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace shudder::app

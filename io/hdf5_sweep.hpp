@@ -1,0 +1,37 @@
+#pragma once
+// A sweep's HDF5 file (FORMATS.md: "A sweep writes one file with a /cases table and one group
+// per case"):
+//   /cases/<column>      1-D (n_cases): one double dataset per swept key (named as the key) and
+//                        per numeric result, `units` attribute; `simulated_verdict` as strings
+//   /case_NNNNN/signals/<name>   the case's recorded signals (a chosen subset)
+//   /case_NNNNN attribute `scenario`: the case's scenario text
+//   root attributes `scenario` (the base scenario), `shudder_version`, `created_utc`
+// Written to a temporary name and renamed when complete. Implemented in hdf5_run.cpp (shared
+// HDF5 helpers and the library-wide HDF5 mutex).
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "dynamics/recording.hpp"
+
+namespace shudder::io {
+
+struct SweepColumn {
+  std::string name;
+  std::string units;
+  std::vector<double> values;  // (n_cases)
+};
+
+struct SweepOutput {
+  std::string base_scenario_text;
+  std::vector<SweepColumn> columns;                  // swept keys first, then results
+  std::string text_column_name = "simulated_verdict";
+  std::vector<std::string> text_column;              // (n_cases)
+  std::vector<std::string> case_scenarios;           // (n_cases)
+  std::vector<dynamics::Recording> case_recordings;  // (n_cases) signals only are written
+};
+
+void write_sweep_hdf5(const std::string& path, const SweepOutput& sweep);
+
+}  // namespace shudder::io

@@ -1,0 +1,72 @@
+#include "io/sweep_spec.hpp"
+
+#include <charconv>
+#include <cmath>
+
+#include "io/input_error.hpp"
+
+namespace shudder::io {
+
+namespace {
+
+constexpr std::size_t kMaxValuesPerAxis = 100000;
+
+[[noreturn]] void bad(const std::string& arg, const std::string& why) {
+  throw InputError("--set", 0, "", "'" + arg + "': " + why +
+                                       "; expected KEY=START:STOP:STEP (STEP > 0, STOP >= START) "
+                                       "or KEY=V1,V2,...");
+}
+
+double number(const std::string& arg, const std::string& text) {
+  double x = 0.0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, x);
+  if (ec != std::errc() || ptr != end || !std::isfinite(x)) bad(arg, "'" + text + "' is not a finite number");
+  return x;
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  for (std::size_t pos; (pos = s.find(sep, start)) != std::string::npos; start = pos + 1)
+    out.push_back(s.substr(start, pos - start));
+  out.push_back(s.substr(start));
+  return out;
+}
+
+}  // namespace
+
+SweepAxis parse_sweep_axis(const std::string& arg) {
+  const auto eq = arg.find('=');
+  if (eq == std::string::npos || eq == 0) bad(arg, "no KEY=");
+  SweepAxis axis{arg.substr(0, eq), {}};
+  const std::string spec = arg.substr(eq + 1);
+  if (spec.find(':') != std::string::npos) {
+    const auto parts = split(spec, ':');
+    if (parts.size() != 3) bad(arg, "a range needs START:STOP:STEP");
+    const double start = number(arg, parts[0]), stop = number(arg, parts[1]), step = number(arg, parts[2]);
+    if (!(step > 0.0) || stop < start) bad(arg, "STEP must be > 0 and STOP >= START");
+    const double n = std::floor((stop - start) / step + 1e-9);
+    if (n + 1 > static_cast<double>(kMaxValuesPerAxis)) bad(arg, "more than 100000 values");
+    for (long i = 0; i <= static_cast<long>(n); ++i) axis.values.push_back(start + static_cast<double>(i) * step);
+  } else {
+    for (const auto& v : split(spec, ',')) axis.values.push_back(number(arg, v));
+  }
+  return axis;
+}
+
+std::vector<std::vector<double>> sweep_cases(const std::vector<SweepAxis>& axes) {
+  std::vector<std::vector<double>> rows{{}};
+  for (const auto& axis : axes) {
+    std::vector<std::vector<double>> next;
+    for (const auto& row : rows)
+      for (double v : axis.values) {
+        next.push_back(row);
+        next.back().push_back(v);
+      }
+    rows = std::move(next);
+  }
+  return rows;
+}
+
+}  // namespace shudder::io

@@ -1,0 +1,75 @@
+#include "rig_models/case_evaluation.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "analysis/shudder_detection.hpp"
+#include "rig_models/rig_stability.hpp"
+
+namespace shudder::rig_models {
+
+namespace {
+
+// Value of a recorded signal at time t (samples are uniform from 0, so index by rate).
+double at(const dynamics::Signal& time, const dynamics::Signal& sig, double t) {
+  const auto& ts = time.values;
+  if (ts.size() < 2) return sig.values.front();
+  const double dt = ts[1] - ts[0];
+  const auto i = static_cast<std::size_t>(std::clamp(std::round((t - ts[0]) / dt), 0.0,
+                                                     static_cast<double>(ts.size() - 1)));
+  return sig.values[i];
+}
+
+void fill_simulated(const dynamics::Recording& rec, CaseOutcome& o) {
+  const analysis::ShudderDetector detector;
+  const analysis::ShudderResult r = detector.detect(rec);
+  o.simulated_verdict = std::string(analysis::to_string(r.verdict));
+  o.amplitude_Nm = r.amplitude_Nm;
+  o.simulated_frequency_Hz = r.verdict == analysis::Verdict::kNone ? CaseOutcome::kNaN : r.frequency_Hz;
+  o.onset_time_s = r.verdict == analysis::Verdict::kNone ? CaseOutcome::kNaN : r.onset_time_s;
+}
+
+}  // namespace
+
+CaseOutcome evaluate_rig_case(const RigParams& params, const clutch::WetClutch& clutch,
+                              const DriveCycle& cycle, const RigSettings& settings,
+                              dynamics::Recording& rec, double interval_s) {
+  rec = run_rig(params, clutch, cycle, settings);
+  CaseOutcome o;
+  fill_simulated(rec, o);
+
+  // Prediction: linearise about steady sliding at the operating points the run passes through
+  // (reference slip, mean interface temperature, force), every interval_s; keep the worst.
+  LsctrRig rig(params, clutch, cycle);
+  const auto* time = rec.find("time_s");
+  const auto* temp = rec.find("interface_mean_temp_C");
+  double worst = -std::numeric_limits<double>::infinity();
+  for (double t = 0.0; t <= settings.duration_s + 1e-12; t += interval_s) {
+    const double slip = cycle.slip_speed_rpm(t);
+    rig.clutch_law().set_ring_temperatures(
+        Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), at(*time, *temp, t)));
+    analysis::StabilityPoint p;
+    try {
+      p = rig_stability(rig, slip, t);
+    } catch (const std::invalid_argument&) {
+      continue;  // steady sliding impossible (motor saturated): no linearisation there
+    }
+    if (p.margin_per_s > worst) {
+      worst = p.margin_per_s;
+      o.predicted_margin_per_s = p.margin_per_s;
+      o.predicted_frequency_Hz = p.frequency_Hz;
+      o.predicted_stable = p.stable;
+    }
+  }
+  return o;
+}
+
+CaseOutcome evaluate_prescribed_case(const clutch::WetClutch& clutch, const DriveCycle& cycle,
+                                     const PrescribedSlipSettings& settings, dynamics::Recording& rec) {
+  rec = run_prescribed_slip(clutch, cycle, settings);
+  CaseOutcome o;
+  o.amplitude_Nm = 0.0;
+  return o;
+}
+
+}  // namespace shudder::rig_models
