@@ -163,6 +163,32 @@ void validate(const std::string& path, const Recording& rec) {
                       rec.signals.front().name + "' has " +
                       std::to_string(rec.signals.front().values.size()) +
                       "; all signals must have the same length");
+  check_names(rec.maps, "map");
+  for (const auto& m : rec.maps) {
+    const std::string where = "analysis/" + m.name;
+    if (m.name == "summary") bad(where, "map name 'summary' is taken by the summary scalars");
+    // Dataset names inside the map's group: grid axes, layers and scalars, all distinct.
+    std::set<std::string> names;
+    const auto dataset_name = [&](const std::string& n, const char* what) {
+      if (n.empty() || n == "." || n.find('/') != std::string::npos)
+        bad(where, std::string(what) + " name '" + n + "' must be non-empty and contain no '/'");
+      if (!names.insert(n).second) bad(where, "duplicate dataset name '" + n + "'");
+    };
+    dataset_name(m.x_name, "x axis");
+    dataset_name(m.y_name, "y axis");
+    for (const auto& l : m.layers) dataset_name(l.name, "layer");
+    for (const auto& sc : m.scalars) dataset_name(sc.name, "scalar");
+    for (const auto* axis : {&m.x, &m.y})
+      if (axis->empty()) bad(where, "map axes must have at least one value");
+    if (m.layers.empty()) bad(where, "a map needs at least one layer of values");
+    for (const auto& l : m.layers)
+      if (l.values.rows() != static_cast<long>(m.x.size()) ||
+          l.values.cols() != static_cast<long>(m.y.size()))
+        bad(where + "/" + l.name, "layer is " + std::to_string(l.values.rows()) + " x " +
+                                      std::to_string(l.values.cols()) + " but the grid is " +
+                                      std::to_string(m.x.size()) + " (" + m.x_name + ") x " +
+                                      std::to_string(m.y.size()) + " (" + m.y_name + ")");
+  }
   for (const auto& snap : rec.snapshots) {
     const auto& first = rec.snapshots.front().temp_C;
     if (snap.temp_C.rows() != first.rows() || snap.temp_C.cols() != first.cols())
@@ -200,6 +226,23 @@ void write_thermal(hid_t file, const Recording& rec) {
   write_doubles(thermal, "temp_C", {n_snap, n_z, n_r}, temps.data(), "degC");
 }
 
+// One map as /analysis/<name>/: the two axes (1-D), each layer (n_x x n_y, row-major) and the
+// map's scalars, each with `units`; group attributes `x`, `y` name the axis datasets.
+void write_map(hid_t analysis, const dynamics::Map2D& m) {
+  const Handle group = make_group(analysis, m.name);
+  write_string_attr(group, "description", m.description);
+  write_string_attr(group, "x", m.x_name);
+  write_string_attr(group, "y", m.y_name);
+  write_doubles(group, m.x_name, {m.x.size()}, m.x.data(), m.x_units);
+  write_doubles(group, m.y_name, {m.y.size()}, m.y.data(), m.y_units);
+  for (const auto& l : m.layers) {
+    // Eigen stores column-major; the file is row-major (n_x x n_y).
+    const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows = l.values;
+    write_doubles(group, l.name, {m.x.size(), m.y.size()}, rows.data(), l.units);
+  }
+  for (const auto& s : m.scalars) write_doubles(group, s.name, {}, &s.value, s.units);
+}
+
 void write_file(const std::string& file_name, const Recording& rec, const std::string& scenario) {
   Handle file = own(H5Fcreate(file_name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
                     "create file '" + file_name + "'");
@@ -209,11 +252,14 @@ void write_file(const std::string& file_name, const Recording& rec, const std::s
     for (const auto& s : rec.signals)
       write_doubles(signals, s.name, {s.values.size()}, s.values.data(), s.units);
     write_thermal(file, rec);
-    // Summary scalars.
-    if (!rec.scalars.empty()) {
+    // Summary scalars and maps.
+    if (!rec.scalars.empty() || !rec.maps.empty()) {
       const Handle analysis = make_group(file, "analysis");
-      const Handle summary = make_group(analysis, "summary");
-      for (const auto& s : rec.scalars) write_doubles(summary, s.name, {}, &s.value, s.units);
+      if (!rec.scalars.empty()) {
+        const Handle summary = make_group(analysis, "summary");
+        for (const auto& s : rec.scalars) write_doubles(summary, s.name, {}, &s.value, s.units);
+      }
+      for (const auto& m : rec.maps) write_map(analysis, m);
     }
     // Root attributes.
     write_string_attr(file, "scenario", scenario);
@@ -362,6 +408,57 @@ void read_scalars(hid_t file, Recording& rec) {
   }
 }
 
+// Every group under /analysis carrying the `x` and `y` attributes is a map (write_map); other
+// groups (the summary, analyses this reader does not know) are skipped.
+void read_maps(hid_t file, Recording& rec) {
+  if (!has_link(file, "analysis")) return;
+  const Handle analysis = own(H5Gopen2(file, "analysis", H5P_DEFAULT), H5Gclose, "open /analysis");
+  for (const auto& name : link_names(analysis)) {
+    if (name == "summary") continue;
+    {
+      const Handle obj = own(H5Oopen(analysis, name.c_str(), H5P_DEFAULT), H5Oclose,
+                             "open /analysis/" + name);
+      if (H5Iget_type(obj) != H5I_GROUP) continue;
+    }
+    const Handle group = own(H5Gopen2(analysis, name.c_str(), H5P_DEFAULT), H5Gclose,
+                             "open /analysis/" + name);
+    const auto x_name = read_string_attr(group, "x"), y_name = read_string_attr(group, "y");
+    if (!x_name || !y_name) continue;
+    const std::string where = "/analysis/" + name;
+    dynamics::Map2D m;
+    m.name = name;
+    m.description = read_string_attr(group, "description").value_or("");
+    m.x_name = *x_name;
+    m.y_name = *y_name;
+    for (const auto* axis : {&m.x_name, &m.y_name})
+      if (!has_link(group, *axis)) throw Failure(where + ": axis dataset '" + *axis + "' missing");
+    Array x = read_doubles(group, m.x_name), y = read_doubles(group, m.y_name);
+    if (x.dims.size() != 1 || y.dims.size() != 1) throw Failure(where + ": map axes must be 1-D");
+    m.x = std::move(x.values);
+    m.x_units = std::move(x.units);
+    m.y = std::move(y.values);
+    m.y_units = std::move(y.units);
+    for (const auto& dname : link_names(group)) {
+      if (dname == m.x_name || dname == m.y_name) continue;
+      Array a = read_doubles(group, dname);
+      if (a.dims.empty()) {
+        m.scalars.push_back({dname, std::move(a.units), a.values.front()});
+        continue;
+      }
+      if (a.dims.size() != 2 || a.dims[0] != m.x.size() || a.dims[1] != m.y.size())
+        throw Failure(where + "/" + dname + ": a map layer must be (n_x x n_y) = (" +
+                      std::to_string(m.x.size()) + " x " + std::to_string(m.y.size()) + ")");
+      // Row-major (n_x x n_y) in the file.
+      m.layers.push_back({dname, std::move(a.units),
+                          Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic,
+                                                         Eigen::RowMajor>>(
+                              a.values.data(), static_cast<long>(a.dims[0]),
+                              static_cast<long>(a.dims[1]))});
+    }
+    rec.maps.push_back(std::move(m));
+  }
+}
+
 // Opens `path` read-only after checking it exists and is HDF5; throws InputError otherwise.
 Handle open_for_reading(const std::string& path) {
   std::error_code ec;
@@ -414,6 +511,7 @@ Recording read_run_hdf5(const std::string& path) {
     read_signals(file, rec);
     read_thermal(file, rec);
     read_scalars(file, rec);
+    read_maps(file, rec);
   } catch (const Failure& e) {
     throw InputError(path, 0, "", e.what());
   }
@@ -511,6 +609,53 @@ void write_sweep_hdf5(const std::string& path, const SweepOutput& sweep) {
     throw;
   }
   commit_temp_file(tmp, path);
+}
+
+}  // namespace shudder::io
+
+namespace shudder::io {
+
+namespace {
+
+std::vector<std::string> read_strings(hid_t parent, const std::string& name) {
+  const Handle dset = own(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), H5Dclose, "open dataset '" + name + "'");
+  const Handle space = own(H5Dget_space(dset), H5Sclose, "read shape of '" + name + "'");
+  const hssize_t n = H5Sget_simple_extent_npoints(space);
+  if (n < 0) throw Failure("cannot read shape of '" + name + "'");
+  const Handle type = vlen_string_type();
+  std::vector<char*> raw(static_cast<std::size_t>(n), nullptr);
+  if (n > 0) ok(H5Dread(dset, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, raw.data()), "read dataset '" + name + "'");
+  std::vector<std::string> out;
+  for (char* p : raw) out.emplace_back(p ? p : "");
+  if (n > 0) H5Dvlen_reclaim(type, space, H5P_DEFAULT, raw.data());
+  return out;
+}
+
+}  // namespace
+
+SweepTable read_sweep_table(const std::string& path) {
+  const std::lock_guard lock(hdf5_mutex());
+  const QuietHdf5 quiet;
+  const Handle file = open_for_reading(path);
+  try {
+    if (!has_link(file, "cases")) throw Failure("no /cases group: not a sweep file");
+    const Handle cases = own(H5Gopen2(file, "cases", H5P_DEFAULT), H5Gclose, "open /cases");
+    SweepTable t;
+    for (const auto& name : link_names(cases)) {
+      const Handle dset = own(H5Dopen2(cases, name.c_str(), H5P_DEFAULT), H5Dclose, "open '" + name + "'");
+      const Handle type = own(H5Dget_type(dset), H5Tclose, "read type of '" + name + "'");
+      if (H5Tget_class(type) == H5T_STRING) {
+        t.text_column_name = name;
+        t.text_column = read_strings(cases, name);
+      } else {
+        Array a = read_doubles(cases, name);
+        t.columns.push_back({name, a.units, std::move(a.values)});
+      }
+    }
+    return t;
+  } catch (const Failure& e) {
+    throw InputError(path, 0, "", std::string("cannot read sweep file: ") + e.what());
+  }
 }
 
 }  // namespace shudder::io

@@ -34,4 +34,17 @@ struct SweepOutput {
 
 void write_sweep_hdf5(const std::string& path, const SweepOutput& sweep);
 
+/// The /cases table of a sweep file (numeric columns in file order, the string column apart).
+struct SweepTable {
+  std::vector<SweepColumn> columns;
+  std::string text_column_name;
+  std::vector<std::string> text_column;
+  const SweepColumn* find(const std::string& name) const {
+    for (const auto& c : columns)
+      if (c.name == name) return &c;
+    return nullptr;
+  }
+};
+SweepTable read_sweep_table(const std::string& path);
+
 }  // namespace shudder::io

@@ -57,7 +57,9 @@ CaseOutcome evaluate_rig_case(const RigParams& params, const clutch::WetClutch& 
     if (p.margin_per_s > worst) {
       worst = p.margin_per_s;
       o.predicted_margin_per_s = p.margin_per_s;
-      o.predicted_frequency_Hz = p.frequency_Hz;
+      // The frequency a shudder would have: the least damped OSCILLATORY mode (the largest
+      // real part overall often belongs to the drive loop's real, non-oscillating mode).
+      o.predicted_frequency_Hz = p.oscillatory_frequency_Hz;
       o.predicted_stable = p.stable;
     }
   }

@@ -20,7 +20,7 @@ struct CaseOutcome {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   bool predicted_stable = true;
   double predicted_margin_per_s = kNaN;  // largest real part along the run, 1/s
-  double predicted_frequency_Hz = kNaN;  // frequency of that mode
+  double predicted_frequency_Hz = kNaN;  // least damped oscillatory mode at that point
   std::string simulated_verdict = "none";  // none / vibration / stick_slip
   double simulated_frequency_Hz = kNaN;
   double amplitude_Nm = 0.0;
