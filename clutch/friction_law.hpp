@@ -6,6 +6,8 @@
 // matrices of Paper G are tabulated over load, not pressure). Laws are immutable after
 // construction and safe to share between threads.
 
+#include <limits>
+#include <utility>
 #include <vector>
 
 namespace shudder::clutch {
@@ -34,6 +36,17 @@ class FrictionLaw {
 
   /// Lowest speed at which the law is defined by data; below it the law is held constant.
   virtual double min_speed_mm_s() const = 0;
+
+  /// Highest speed at which the law is defined by data; above it the law is held constant
+  /// (+infinity: the law has no upper limit).
+  virtual double max_speed_mm_s() const { return std::numeric_limits<double>::infinity(); }
+
+  /// Temperatures spanned by the law's data, °C, as {lowest, highest}; outside them the law
+  /// holds or extrapolates ({-inf, +inf}: the law is defined for any temperature, e.g. the
+  /// lines mu = alpha*T + beta). Used to mark screening results outside the data.
+  virtual std::pair<double, double> temp_range_C() const {
+    return {-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  }
 
   /// The law at fixed (T, F) as a SpeedCurve, if it has that form (false otherwise; callers
   /// then evaluate mu() directly).

@@ -29,6 +29,7 @@ class LinearTemperatureFriction final : public FrictionLaw {
   double mu(double speed_mm_s, double temp_C, double load_N) const override;
   double dmu_dv_per_mm_s(double speed_mm_s, double temp_C, double load_N) const override;
   double min_speed_mm_s() const override { return points_.front().speed_mm_s; }
+  double max_speed_mm_s() const override { return points_.back().speed_mm_s; }
 
   const std::vector<LinearTemperaturePoint>& points() const { return points_; }
 

@@ -50,7 +50,9 @@ class MakiFrictionMatrix final : public FrictionLaw {
   double mu(double speed_mm_s, double temp_C, double load_N) const override;
   double dmu_dv_per_mm_s(double speed_mm_s, double temp_C, double load_N) const override;
   double min_speed_mm_s() const override { return min_speed_mm_s_; }
-  double max_speed_mm_s() const { return max_speed_mm_s_; }
+  double max_speed_mm_s() const override { return max_speed_mm_s_; }
+  /// The first and last rows (the matrix' end rows; temperature is clamped beyond them).
+  std::pair<double, double> temp_range_C() const override { return {temps_C_.front(), temps_C_.back()}; }
   /// Exact: the blend of four Mäki sets is itself of SpeedCurve form (tanh terms with equal
   /// rates merged).
   bool speed_curve(double temp_C, double load_N, SpeedCurve& out) const override;
