@@ -1,19 +1,23 @@
 // `shudder run`: load a scenario, simulate, write HDF5 (and optionally a measured-run CSV),
-// print a readable summary.
+// print a readable summary; optionally a report directory (summary.txt and plots).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <set>
+#include <sstream>
+#include <stdexcept>
 
 #include "app/commands.hpp"
 #include "app/summary.hpp"
 #include "io/hdf5_run.hpp"
 #include "io/input_error.hpp"
 #include "io/measurement_csv.hpp"
+#include "io/plots.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/lsctr_rig.hpp"
 #include "rig_models/prescribed_slip.hpp"
+#include "rig_models/run_stability_map.hpp"
 
 namespace shudder::app {
 
@@ -24,11 +28,21 @@ int run_command(const RunOptions& opt) {
     const clutch::WetClutch clutch = scenario.make_clutch();
 
     const auto t0 = std::chrono::steady_clock::now();
-    const dynamics::Recording rec =
+    dynamics::Recording rec =
         scenario.type == "rig"
             ? rig_models::run_rig(scenario.rig, clutch, scenario.cycle, scenario.rig_settings())
             : rig_models::run_prescribed_slip(clutch, scenario.cycle, scenario.settings);
     const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    // Rig runs carry their stability map (/analysis/stability_map) for `shudder plot`; a map
+    // that cannot be made (e.g. a cycle that never loads the clutch) costs the run nothing.
+    if (scenario.type == "rig") {
+      try {
+        rec.maps.push_back(rig_models::run_stability_map(scenario.rig, clutch, scenario.cycle,
+                                                         scenario.clutch.start_temp_C));
+      } catch (const std::invalid_argument& e) {
+        std::cerr << "shudder: warning: no stability map stored: " << e.what() << "\n";
+      }
+    }
 
     const std::string out = opt.output.empty() ? scenario.name + ".h5" : opt.output;
     io::write_run_hdf5(out, rec, scenario.text);
@@ -47,10 +61,25 @@ int run_command(const RunOptions& opt) {
       io::write_measurement_csv(opt.measurement, rec, m);
     }
 
-    print_run_summary(std::cout, scenario, rec);
-    std::cout << "Output: " << out;
-    if (!opt.measurement.empty()) std::cout << ", " << opt.measurement;
-    std::cout << "\n";
+    std::ostringstream summary;
+    print_run_summary(summary, scenario, rec);
+    summary << "Output: " << out;
+    if (!opt.measurement.empty()) summary << ", " << opt.measurement;
+    summary << "\n";
+    std::cout << summary.str();
+    if (!opt.report.empty()) {
+      try {
+        const io::Report report =
+            io::write_run_report(opt.report, rec, scenario.name, summary.str(), scenario.type == "rig");
+        std::cout << "Report: " << opt.report << " (" << report.files.size() << " files)\n";
+        for (const auto& s : report.skipped) std::cerr << "shudder: warning: report: " << s << "\n";
+      } catch (const io::InputError&) {
+        throw;
+      } catch (const std::exception& e) {
+        std::cerr << "shudder: report failed: " << e.what() << " (the run itself is in " << out << ")\n";
+        return 1;
+      }
+    }
     if (opt.profile) std::cout << "Profile: simulation wall time " << wall_s * 1e3 << " ms\n";
     return 0;
   } catch (const io::InputError& e) {

@@ -18,6 +18,7 @@
 #include "io/hdf5_run.hpp"
 #include "io/hdf5_sweep.hpp"
 #include "io/input_error.hpp"
+#include "io/plots.hpp"
 #include "io/scenario.hpp"
 #include "io/sweep_spec.hpp"
 #include "rig_models/case_evaluation.hpp"
@@ -165,15 +166,35 @@ int sweep_command(const SweepOptions& opt) {
     }
     io::write_sweep_hdf5(opt.output, out);
     if (!opt.keep_parts) fs::remove_all(parts);
-    if (!opt.quiet) {
-      std::printf("Sweep of %s: %zu cases (%zu run now, %u jobs) in %.2f s -> %s\n", base.name.c_str(),
-                  texts.size(), todo.size(), jobs, wall_s, opt.output.c_str());
+    std::string summary;
+    {
+      char line[512];
+      std::snprintf(line, sizeof line, "Sweep of %s: %zu cases (%zu run now, %u jobs) in %.2f s -> %s\n",
+                    base.name.c_str(), texts.size(), todo.size(), jobs, wall_s, opt.output.c_str());
+      summary += line;
       std::size_t counts[3] = {0, 0, 0};
       for (const auto& v : out.text_column) counts[static_cast<int>(verdict_code(v))]++;
-      std::printf("Simulated: %zu none, %zu vibration, %zu stick-slip; predicted unstable: %zu\n", counts[0],
-                  counts[1], counts[2],
-                  static_cast<std::size_t>(std::count(out.columns[axes.size()].values.begin(),
-                                                      out.columns[axes.size()].values.end(), 0.0)));
+      std::snprintf(line, sizeof line, "Simulated: %zu none, %zu vibration, %zu stick-slip; predicted unstable: %zu\n",
+                    counts[0], counts[1], counts[2],
+                    static_cast<std::size_t>(std::count(out.columns[axes.size()].values.begin(),
+                                                        out.columns[axes.size()].values.end(), 0.0)));
+      summary += line;
+    }
+    if (!opt.quiet) std::fputs(summary.c_str(), stdout);
+    if (!opt.report.empty()) {
+      io::SweepTable table;
+      table.columns = out.columns;
+      table.text_column_name = out.text_column_name;
+      table.text_column = out.text_column;
+      try {
+        io::write_sweep_report(opt.report, table, base.name, summary);
+      } catch (const io::InputError&) {
+        throw;
+      } catch (const std::exception& e) {
+        std::cerr << "shudder: report failed: " << e.what() << " (the sweep itself is in " << opt.output << ")\n";
+        return 1;
+      }
+      if (!opt.quiet) std::printf("Report: %s (summary.txt, sweep.png)\n", opt.report.c_str());
     }
     return 0;
   } catch (const io::InputError& e) {

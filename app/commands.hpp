@@ -16,6 +16,7 @@ struct RunOptions {
   bool noise = false;
   unsigned seed = 1;
   bool profile = false;
+  std::string report;                  // report directory (summary.txt + plots); empty = none
 };
 int run_command(const RunOptions& options);
 
@@ -31,6 +32,7 @@ struct SweepOptions {
   std::string output;
   bool quiet = false;
   bool keep_parts = false;        // keep OUT.h5.parts/ after assembling (default: remove)
+  std::string report;             // report directory (summary.txt + sweep.png); empty = none
 };
 int sweep_command(const SweepOptions& options);
 
@@ -42,6 +44,13 @@ struct ScreenOptions {
   std::string json;           // JSON output path; empty = none
 };
 int screen_command(const ScreenOptions& options);
+
+struct PlotOptions {
+  std::string file;    // run or sweep HDF5
+  std::string what;    // torque|temperature|spectrum|spectrogram|stability_map|sweep
+  std::string output;  // .png or .svg
+};
+int plot_command(const PlotOptions& options);
 
 struct ValidateOptions {
   std::string scenarios_dir = "scenarios";

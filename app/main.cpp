@@ -23,6 +23,8 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--noise", run.noise, "Add sensor noise of the rig's stated accuracy");
   run_cmd->add_option("--seed", run.seed, "Seed of the sensor noise (deterministic)");
   run_cmd->add_flag("--profile", run.profile, "Print the simulation's wall time");
+  run_cmd->add_option("--report", run.report,
+                      "Also write a report directory: summary.txt and the key plots (PNG)");
 
   ModesOptions modes;
   auto* modes_cmd = app.add_subcommand("modes", "Natural frequencies and mode shapes of a rig scenario");
@@ -36,6 +38,7 @@ int main(int argc, char** argv) {
   sweep_cmd->add_option("-o,--output", sweep.output, "Sweep HDF5 file")->required();
   sweep_cmd->add_flag("--quiet", sweep.quiet, "No progress bar or summary");
   sweep_cmd->add_flag("--keep-parts", sweep.keep_parts, "Keep the per-case files (OUT.h5.parts/)");
+  sweep_cmd->add_option("--report", sweep.report, "Also write a report directory: summary.txt and sweep.png");
 
   ScreenOptions screen;
   auto* screen_cmd = app.add_subcommand("screen", "Screen a fluid's friction data for vibration risk");
@@ -44,6 +47,14 @@ int main(int argc, char** argv) {
   screen_cmd->add_option("--load-N", screen.load_N, "Normal load, N (default 20000)");
   screen_cmd->add_option("--temps", screen.temps, "Temperatures, degC, comma-separated (default 40,80,120 where the data reach)");
   screen_cmd->add_option("--json", screen.json, "Write the results as JSON");
+
+  PlotOptions plot;
+  auto* plot_cmd = app.add_subcommand("plot", "Plot a run or sweep file (PNG or SVG, via gnuplot)");
+  plot_cmd->add_option("file", plot.file, "Run or sweep HDF5 file")->required();
+  plot_cmd->add_option("--what", plot.what, "torque|temperature|spectrum|spectrogram|stability_map|sweep")
+      ->required()
+      ->check(CLI::IsMember({"torque", "temperature", "spectrum", "spectrogram", "stability_map", "sweep"}));
+  plot_cmd->add_option("-o,--output", plot.output, "Image to write (.png or .svg)")->required();
 
   ValidateOptions validate;
   auto* val_cmd = app.add_subcommand(
@@ -64,5 +75,6 @@ int main(int argc, char** argv) {
   if (*modes_cmd) return modes_command(modes);
   if (*sweep_cmd) return sweep_command(sweep);
   if (*screen_cmd) return screen_command(screen);
+  if (*plot_cmd) return plot_command(plot);
   return 2;
 }

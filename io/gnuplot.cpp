@@ -62,6 +62,12 @@ struct TempDir {
   TempDir& operator=(const TempDir&) = delete;
 };
 
+/// Characters (UTF-8 code points) in `s`.
+std::size_t utf8_length(const std::string& s) {
+  const auto starts_a_character = [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; };
+  return static_cast<std::size_t>(std::count_if(s.begin(), s.end(), starts_a_character));
+}
+
 void check_series(const Series& s) {
   if (s.x.size() != s.y.size())
     throw std::invalid_argument("plot series '" + s.label + "': x has " +
@@ -91,6 +97,107 @@ void write_data(const fs::path& file, const Plot& plot) {
   if (!out.flush()) throw std::runtime_error("cannot write gnuplot data file " + file.string());
 }
 
+/// The map as "x y value" lines, one block per x (blank line between blocks); NaN for
+/// non-finite values, which gnuplot leaves unpainted.
+void write_map_data(const fs::path& file, const ColorMap& map) {
+  std::ofstream out(file);
+  char line[96];
+  const std::size_t ny = map.y.size();
+  for (std::size_t i = 0; i < map.x.size(); ++i) {
+    for (std::size_t j = 0; j < ny; ++j) {
+      const double v = map.values[i * ny + j];
+      if (std::isfinite(v)) std::snprintf(line, sizeof line, "%.10g %.10g %.10g\n", map.x[i], map.y[j], v);
+      else std::snprintf(line, sizeof line, "%.10g %.10g NaN\n", map.x[i], map.y[j]);
+      out << line;
+    }
+    out << "\n";
+  }
+  if (!out.flush()) throw std::runtime_error("cannot write gnuplot data file " + file.string());
+}
+
+void check_uniform(const std::vector<double>& v, const char* axis) {
+  if (v.size() < 2)
+    throw std::invalid_argument(std::string("colour map: the ") + axis + " grid needs >= 2 values");
+  const double step = (v.back() - v.front()) / static_cast<double>(v.size() - 1);
+  if (!(step > 0) || !std::isfinite(step))
+    throw std::invalid_argument(std::string("colour map: the ") + axis + " grid must increase");
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (std::abs(v[i] - (v.front() + step * static_cast<double>(i))) > 1e-6 * step)
+      throw std::invalid_argument(std::string("colour map: the ") + axis +
+                                  " grid must be uniformly spaced (gnuplot `with image`)");
+}
+
+void check_map(const ColorMap& map) {
+  check_uniform(map.x, "x");
+  check_uniform(map.y, "y");
+  if (map.values.size() != map.x.size() * map.y.size())
+    throw std::invalid_argument("colour map: " + std::to_string(map.values.size()) +
+                                " values for a " + std::to_string(map.x.size()) + " x " +
+                                std::to_string(map.y.size()) + " grid");
+}
+
+/// "[a:b]" of a grid's pixel extent: half a step beyond the first and last points.
+std::string pixel_range(const std::vector<double>& v) {
+  const double half = 0.5 * (v.back() - v.front()) / static_cast<double>(v.size() - 1);
+  char buf[80];
+  std::snprintf(buf, sizeof buf, "[%.10g:%.10g]", v.front() - half, v.back() + half);
+  return buf;
+}
+
+/// "[lo:hi]" in whole decades around the positive y values, at most 8 decades under the
+/// largest (a log axis would otherwise stretch to round-off floors); "[*:*]" if none.
+std::string log_range(const std::vector<Series>& all) {
+  double lo = INFINITY, hi = 0.0;
+  for (const auto& v : all)
+    for (double y : v.y)
+      if (std::isfinite(y) && y > 0) lo = std::min(lo, y), hi = std::max(hi, y);
+  if (!(hi > 0)) return "[*:*]";
+  lo = std::max(lo, hi * 1e-8);
+  char buf[80];
+  std::snprintf(buf, sizeof buf, "[%.10g:%.10g]", std::pow(10.0, std::floor(std::log10(lo))),
+                std::pow(10.0, std::ceil(std::log10(hi) + 1e-9)));
+  return buf;
+}
+
+/// The colour map's settings: grey background (shows through unpainted pixels), palette,
+/// colour range and bar label.
+void map_settings(std::ostringstream& s, const ColorMap& map) {
+  double lo = map.min, hi = map.max;
+  if (std::isnan(lo) || std::isnan(hi)) {
+    double dlo = INFINITY, dhi = -INFINITY;
+    for (double v : map.values)
+      if (std::isfinite(v)) dlo = std::min(dlo, v), dhi = std::max(dhi, v);
+    if (!(dlo <= dhi)) dlo = -1.0, dhi = 1.0;  // nothing finite: any range
+    // A signed quantity's range always includes 0, so white means 0 on every map.
+    if (map.diverging) dlo = std::min(dlo, 0.0), dhi = std::max(dhi, 0.0);
+    if (std::isnan(lo)) lo = dlo;
+    if (std::isnan(hi)) hi = dhi;
+  }
+  if (!(hi > lo)) {
+    const double pad = std::max(1e-12, 1e-3 * std::abs(hi));
+    lo -= pad;
+    hi += pad;
+  }
+  char buf[256];
+  s << "set object 1 rectangle from graph 0,0 to graph 1,1 behind fillcolor rgb '#c8c8c8' "
+       "fillstyle solid 1.0 noborder\n";
+  if (map.diverging && lo < 0 && hi > 0) {
+    std::snprintf(buf, sizeof buf,
+                  "set palette defined (%.10g '#2166ac', 0 '#f7f7f7', %.10g '#b2182b')\n", lo, hi);
+    s << buf;
+  } else if (map.diverging && lo >= 0) {
+    s << "set palette defined (0 '#f7f7f7', 1 '#b2182b')\n";
+  } else if (map.diverging) {
+    s << "set palette defined (0 '#2166ac', 1 '#f7f7f7')\n";
+  } else {
+    s << "set palette defined (0 '#440154', 0.25 '#3b528b', 0.5 '#21908d', 0.75 '#5dc963', "
+         "1 '#fde725')\n";
+  }
+  std::snprintf(buf, sizeof buf, "set cbrange [%.10g:%.10g]\n", lo, hi);
+  s << buf << "set cblabel " << quoted(map.label) << "\n"
+    << "set colorbox\nset cbtics out\n";
+}
+
 /// "[lo:hi]" spanning the finite y values with 5 % headroom either side, so no curve runs
 /// along a border (gnuplot's `set offsets` covers only the left axis); "[*:*]" if none.
 std::string padded_range(const std::vector<Series>& all) {
@@ -106,9 +213,18 @@ std::string padded_range(const std::vector<Series>& all) {
 }
 
 std::string script_text(const Plot& plot, bool svg, const std::string& output,
-                        const fs::path& data) {
+                        const fs::path& data, const fs::path& map_data) {
   std::ostringstream s;
-  const std::size_t entries = plot.series.size() + plot.series_y2.size();
+  // Legend entries; two columns unless an entry is long (> 40 characters), which would widen
+  // the legend past the plot.
+  std::size_t entries = 0, longest = 0;
+  for (const auto* group : {&plot.series, &plot.series_y2})
+    for (const auto& v : *group) {
+      if (v.label.empty()) continue;
+      ++entries;
+      longest = std::max(longest, utf8_length(v.label));
+    }
+  const std::size_t columns = longest > 40 ? 1 : 2;
   const std::string size = std::to_string(plot.width_px) + "," + std::to_string(plot.height_px);
   s << "set encoding utf8\n";
   if (svg) {
@@ -127,11 +243,38 @@ std::string script_text(const Plot& plot, bool svg, const std::string& output,
     << "set grid xtics ytics lc rgb '#d0d0d0' lt 1\n"
     // Legend below the axes (it can never hide a curve), in at most two columns, with a
     // bottom margin reserved for tic labels, x label and legend rows so they do not collide.
-    << "set key below horizontal center box Left reverse maxcols 2 spacing 1.2 width 2\n"
-    << "set bmargin " << 5 + 1.3 * ((entries + 1) / 2) << "\n"
+    << "set key below horizontal center box Left reverse maxcols " << columns
+    << " spacing 1.2 width 2\n"
+    << "set bmargin " << 5 + 1.3 * ((entries + columns - 1) / columns) << "\n"
+    << (entries == 0 ? "unset key\n" : "")
     << "set border 3\nset xtics nomirror out\nset ytics nomirror out\n"
     << "set autoscale xfixmin\nset autoscale xfixmax\n";
-  s << "set yrange " << padded_range(plot.series) << "\n";
+  const bool map = !plot.map.empty();
+  if (map) {
+    map_settings(s, plot.map);
+    s << "set xrange " << pixel_range(plot.map.x) << "\n"
+      << "set yrange " << pixel_range(plot.map.y) << "\n";
+  } else if (plot.log_y) {
+    s << "set logscale y 10\nset format y '%g'\nset yrange " << log_range(plot.series) << "\n";
+  } else {
+    s << "set yrange " << padded_range(plot.series) << "\n";
+  }
+  if (!std::isnan(plot.x_min) || !std::isnan(plot.x_max)) {
+    // An open end (NaN) stays with gnuplot's autoscale ("*").
+    const auto end = [](double v) {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%.10g", v);
+      return std::isnan(v) ? std::string("*") : std::string(buf);
+    };
+    s << "set xrange [" << end(plot.x_min) << ":" << end(plot.x_max) << "]\n";
+  }
+  if (!plot.labels.empty()) s << "set style textbox opaque fillcolor rgb 'white' noborder\n";
+  int label_id = 1;
+  for (const auto& l : plot.labels) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, " at %.10g,%.10g offset character 1,0.8 front boxed\n", l.x, l.y);
+    s << "set label " << label_id++ << " " << quoted(l.text) << buf;
+  }
   if (!plot.series_y2.empty()) {
     s << "set border 11\nset y2tics nomirror out\nset y2label " << quoted(plot.y2label) << "\n"
       << "set y2range " << padded_range(plot.series_y2) << "\n";
@@ -139,11 +282,22 @@ std::string script_text(const Plot& plot, bool svg, const std::string& output,
   int next_color = 0;
   std::string sep = "plot ";
   int index = 0;
+  if (map) {
+    s << sep << quoted(map_data.string()) << " using 1:2:3 with image notitle";
+    sep = ", \\\n     ";
+  }
   const auto entry = [&](const Series& v, const char* axes) {
     const int c = v.color >= 0 ? v.color : next_color++;
-    s << sep << quoted(data.string()) << " index " << index++ << " using 1:2 axes " << axes
-      << " with lines lw 2 dt " << (v.dashed ? 2 : 1) << " lc rgb '"
-      << kPalette[c % kPaletteSize] << "' ";
+    const std::string color = v.rgb.empty() ? kPalette[c % kPaletteSize] : v.rgb;
+    s << sep << quoted(data.string()) << " index " << index++ << " using 1:2 axes " << axes;
+    if (v.style == SeriesStyle::kPoints)
+      s << " with points pt " << v.point_type << " ps " << v.point_size;
+    else
+      s << (v.style == SeriesStyle::kLinesPoints ? " with linespoints" : " with lines") << " lw "
+        << v.line_width << " dt " << (v.dashed ? 2 : 1);
+    if (v.style == SeriesStyle::kLinesPoints)
+      s << " pt " << v.point_type << " ps " << v.point_size;
+    s << " lc rgb '" << color << "' ";
     if (v.label.empty()) s << "notitle";
     else s << "title " << quoted(v.label);
     sep = ", \\\n     ";
@@ -194,7 +348,13 @@ void write_plot(const std::string& path, const Plot& plot) {
   const bool svg = ext == ".svg";
   if (!svg && ext != ".png")
     throw InputError(path, 0, "", "unsupported plot format '" + ext + "'; use .png or .svg");
-  if (plot.series.empty()) throw std::invalid_argument("plot '" + plot.title + "' has no series");
+  if (plot.series.empty() && plot.map.empty())
+    throw std::invalid_argument("plot '" + plot.title + "' has no series");
+  if (!plot.map.empty()) {
+    check_map(plot.map);
+    if (!plot.series_y2.empty())
+      throw std::invalid_argument("plot '" + plot.title + "': a colour map takes no right axis");
+  }
   if (plot.width_px < 100 || plot.height_px < 100)
     throw std::invalid_argument("plot '" + plot.title + "': image smaller than 100 px");
   for (const auto& s : plot.series) check_series(s);
@@ -209,11 +369,12 @@ void write_plot(const std::string& path, const Plot& plot) {
   try {
     TempDir dir;
     const fs::path data = dir.path / "data.txt", script = dir.path / "plot.gp",
-                   log = dir.path / "gnuplot.log";
+                   log = dir.path / "gnuplot.log", map_data = dir.path / "map.txt";
     write_data(data, plot);
+    if (!plot.map.empty()) write_map_data(map_data, plot.map);
     {
       std::ofstream out(script);
-      out << script_text(plot, svg, tmp, data);
+      out << script_text(plot, svg, tmp, data, map_data);
       if (!out.flush()) throw std::runtime_error("cannot write gnuplot script " + script.string());
     }
     const int status = run_gnuplot(script, log);

@@ -6,20 +6,53 @@
 // libgd png when gnuplot lacks cairo), .svg -> svg. Output is date-free: the same plot gives
 // the same bytes.
 //
-// Errors: unsupported extension or unwritable destination -> io::InputError; empty plots or
-// series whose x and y differ in length -> std::invalid_argument; gnuplot missing or failing
-// -> std::runtime_error quoting gnuplot's own message.
+// Beyond line plots: point markers, text labels, a logarithmic y axis and a colour map with a
+// colour bar under the curves (spectrograms, stability maps).
+//
+// Errors: unsupported extension or unwritable destination -> io::InputError; empty plots,
+// series whose x and y differ in length or a malformed colour map -> std::invalid_argument;
+// gnuplot missing or failing -> std::runtime_error quoting gnuplot's own message.
 
+#include <cmath>
 #include <string>
 #include <vector>
 
 namespace shudder::io {
+
+enum class SeriesStyle { kLines, kPoints, kLinesPoints };
 
 struct Series {
   std::string label;           // legend entry, e.g. "torque [Nm]"; empty = no legend entry
   std::vector<double> x, y;    // equal lengths; non-finite values leave a gap in the line
   int color = -1;              // index into a fixed palette; -1 = next colour in order
   bool dashed = false;
+  SeriesStyle style = SeriesStyle::kLines;
+  int point_type = 7;          // gnuplot point type: 7 filled circle, 6 open circle, 5 filled
+                               // square, 9 filled triangle, 2 cross, 1 plus
+  double point_size = 1.2;
+  double line_width = 2.0;
+  std::string rgb = "";        // e.g. "#000000": this colour instead of the palette's
+};
+
+/// Text at a data position (left axes), drawn above the curves with a small offset.
+struct Label {
+  double x = 0.0, y = 0.0;
+  std::string text;
+};
+
+/// A colour map drawn under the curves (gnuplot `with image`): one pixel per grid point, a
+/// colour bar on the right. The grid must be uniform in x and in y (within 1e-6 of a step).
+struct ColorMap {
+  std::vector<double> x;       // (n_x) increasing, uniform, >= 2 values
+  std::vector<double> y;       // (n_y) increasing, uniform, >= 2 values
+  std::vector<double> values;  // (n_x * n_y): value at (x[i], y[j]) is values[i * n_y + j];
+                               // non-finite = no pixel (the grey background shows)
+  std::string label;           // colour-bar label with the unit
+  bool diverging = false;      // blue-white-red with white at 0 (signed quantities such as a
+                               // margin; the automatic range then includes 0); otherwise a
+                               // sequential (viridis-like) palette
+  double min = NAN, max = NAN; // colour range; NaN = the finite data's range
+  bool empty() const { return x.empty(); }
 };
 
 struct Plot {
@@ -28,6 +61,10 @@ struct Plot {
   std::vector<Series> series;           // plotted against the left y axis
   std::vector<Series> series_y2;        // plotted against the right y axis (if any)
   int width_px = 1000, height_px = 600; // image size (SVG: same numbers, in user units)
+  bool log_y = false;                   // logarithmic left y axis (non-positive values: gaps)
+  double x_min = NAN, x_max = NAN;      // x range; NaN = the data's (or the map's) extent
+  std::vector<Label> labels;
+  ColorMap map;                         // optional; not combined with series_y2
 };
 
 /// Renders `plot` to `path` (.png or .svg). Replaces an existing file.

@@ -7,6 +7,10 @@
 //   /thermal/times_s           1-D double (n_snap)                          [if snapshots]
 //   /thermal/temp_C            3-D double (n_snap x n_z x n_r), row-major    [if snapshots]
 //   /analysis/summary/<name>   scalar double, attribute `units`
+//   /analysis/<map>/           one group per dynamics::Map2D, attributes `x`, `y` (names of the
+//                              axis datasets) and `description`; in it the axes <x> (n_x),
+//                              <y> (n_y), each layer (n_x x n_y, row-major) and the map's
+//                              scalars, all with `units`              [if maps]
 //   root attributes            `scenario`, `shudder_version`, `created_utc` (ISO 8601, UTC)
 // Strings are variable-length UTF-8 (h5py reads them as str). Groups track link creation
 // order, so the reader returns signals and scalars in the order they were written.
@@ -22,15 +26,16 @@
 namespace shudder::io {
 
 /// Writes `rec` and the scenario text. Rejects (InputError) signals of unequal length, empty,
-/// duplicate or '/'-containing names, and snapshots whose shape differs from each other or from
-/// the grid. An existing file at `path` is replaced atomically.
+/// duplicate or '/'-containing names, snapshots whose shape differs from each other or from
+/// the grid, and maps named "summary", with empty axes, no layers or layers not (n_x x n_y). An existing file at `path` is replaced atomically.
 void write_run_hdf5(const std::string& path, const dynamics::Recording& rec,
                     const std::string& scenario_text);
 
 /// Reads a file written by write_run_hdf5 (or any file with the same layout). Signals come in
 /// file order with `time_s` moved first; a missing `units` attribute reads as "". Throws
 /// InputError for a missing or non-HDF5 file, a file without /signals, a signal that is not
-/// 1-D, signals of unequal length, or inconsistent thermal datasets.
+/// 1-D, signals of unequal length, or inconsistent thermal or map datasets. Groups under
+/// /analysis without the map attributes are skipped.
 dynamics::Recording read_run_hdf5(const std::string& path);
 
 /// A root string attribute of a run file (`scenario`, `shudder_version`, `created_utc`); ""

@@ -1,5 +1,5 @@
-// Run output through HDF5: a small synthetic Recording written and read back must come back
-// bit-for-bit (doubles are stored as IEEE float64, no conversion); failed writes must leave
+// Run output through HDF5: a small synthetic Recording (signals, thermal snapshots, scalars and
+// a 2-D map) written and read back must come back bit-for-bit (doubles are stored as IEEE float64, no conversion); failed writes must leave
 // neither the target nor the temporary file; reading rejects what is not a run file; no HDF5
 // identifier leaks.
 #include <gmock/gmock.h>
@@ -54,6 +54,23 @@ Recording sample_recording() {
     rec.snapshots.push_back({0.5 * k, t});
   }
   rec.scalars = {{"torque_at_10s_Nm", "N m", 101.5}, {"peak_temp_C", "degC", 1.0 / 7.0}};
+  // A (3 x 2) map with two layers, entries distinct to catch transposition, a NaN hole.
+  shudder::dynamics::Map2D map;
+  map.name = "stability_map";
+  map.description = "test map";
+  map.x_name = "speeds_rpm";
+  map.x_units = "rpm";
+  map.x = {1.0, 2.0, 3.0};
+  map.y_name = "temps_C";
+  map.y_units = "degC";
+  map.y = {40.0, 1.0 / 3.0 + 50.0};
+  Eigen::MatrixXd margin(3, 2), freq(3, 2);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 2; ++j) margin(i, j) = 10.0 * i + j - 0.5, freq(i, j) = 378.0 + i + 0.1 * j;
+  margin(2, 1) = std::numeric_limits<double>::quiet_NaN();
+  map.layers = {{"margin_per_s", "1/s", margin}, {"frequency_Hz", "Hz", freq}};
+  map.scalars = {{"normal_force_N", "N", 15000.0}};
+  rec.maps.push_back(map);
   return rec;
 }
 
@@ -95,6 +112,36 @@ TEST_F(Hdf5Run, RoundTripIsExact) {
     EXPECT_EQ(back.scalars[k].value, rec.scalars[k].value);
   }
 
+  // Maps under /analysis/<name>: axes, layers (n_x x n_y, NaN kept) and scalars exact.
+  ASSERT_EQ(back.maps.size(), 1u);
+  const auto& m = back.maps[0];
+  const auto& om = rec.maps[0];
+  EXPECT_EQ(m.name, "stability_map");
+  EXPECT_EQ(m.description, om.description);
+  EXPECT_EQ(m.x_name, om.x_name);
+  EXPECT_EQ(m.x_units, om.x_units);
+  EXPECT_EQ(m.x, om.x);
+  EXPECT_EQ(m.y_name, om.y_name);
+  EXPECT_EQ(m.y_units, om.y_units);
+  EXPECT_EQ(m.y, om.y);
+  ASSERT_EQ(m.layers.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(m.layers[k].name, om.layers[k].name);
+    EXPECT_EQ(m.layers[k].units, om.layers[k].units);
+    ASSERT_EQ(m.layers[k].values.rows(), 3);
+    ASSERT_EQ(m.layers[k].values.cols(), 2);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 2; ++j) {
+        const double a = m.layers[k].values(i, j), b = om.layers[k].values(i, j);
+        if (std::isnan(b)) EXPECT_TRUE(std::isnan(a)) << k << " " << i << " " << j;
+        else EXPECT_EQ(a, b) << k << " " << i << " " << j;
+      }
+  }
+  ASSERT_NE(m.find_scalar("normal_force_N"), nullptr);
+  EXPECT_EQ(m.find_scalar("normal_force_N")->value, 15000.0);
+  EXPECT_EQ(m.find_scalar("normal_force_N")->units, "N");
+  EXPECT_EQ(back.find_map("stability_map"), &back.maps[0]);
+
   // Root attributes; no temporary left behind.
   EXPECT_EQ(shudder::io::read_run_attribute(path("run.h5"), "scenario"), scenario);
   EXPECT_EQ(shudder::io::read_run_attribute(path("run.h5"), "shudder_version"), SHUDDER_VERSION);
@@ -121,6 +168,7 @@ TEST_F(Hdf5Run, OmitsThermalAndSummaryWhenEmpty) {
   EXPECT_TRUE(back.grid_r_m.empty() && back.grid_z_m.empty());
   EXPECT_TRUE(back.snapshots.empty());
   EXPECT_TRUE(back.scalars.empty());
+  EXPECT_TRUE(back.maps.empty());
 }
 
 TEST_F(Hdf5Run, UnequalSignalLengthsLeaveNoFile) {
@@ -142,6 +190,22 @@ TEST_F(Hdf5Run, SnapshotShapeMustMatchGrid) {
   rec.grid_r_m.push_back(0.058);
   EXPECT_THAT([&] { shudder::io::write_run_hdf5(path("run.h5"), rec, ""); },
               testing::ThrowsMessage<InputError>(HasSubstr("does not match grid")));
+  EXPECT_FALSE(fs::exists(path("run.h5")));
+}
+
+TEST_F(Hdf5Run, MapLayersMustMatchTheGridAndNamesMustBeFree) {
+  Recording rec = sample_recording();
+  rec.maps[0].layers[1].values.resize(2, 3);  // transposed
+  EXPECT_THAT([&] { shudder::io::write_run_hdf5(path("run.h5"), rec, ""); },
+              testing::ThrowsMessage<InputError>(HasSubstr("layer is 2 x 3 but the grid is 3 (speeds_rpm) x 2")));
+  rec = sample_recording();
+  rec.maps[0].name = "summary";
+  EXPECT_THAT([&] { shudder::io::write_run_hdf5(path("run.h5"), rec, ""); },
+              testing::ThrowsMessage<InputError>(HasSubstr("taken by the summary scalars")));
+  rec = sample_recording();
+  rec.maps[0].layers[1].name = "temps_C";
+  EXPECT_THAT([&] { shudder::io::write_run_hdf5(path("run.h5"), rec, ""); },
+              testing::ThrowsMessage<InputError>(HasSubstr("duplicate dataset name 'temps_C'")));
   EXPECT_FALSE(fs::exists(path("run.h5")));
 }
 

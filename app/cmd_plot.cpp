@@ -1,0 +1,31 @@
+// `shudder plot FILE --what KIND -o OUT.png|svg`: dispatch to io/plots (which reads the file,
+// builds the plot and draws it through gnuplot).
+#include <iostream>
+
+#include "app/commands.hpp"
+#include "io/input_error.hpp"
+#include "io/plots.hpp"
+
+namespace shudder::app {
+
+int plot_command(const PlotOptions& opt) {
+  try {
+    const auto kind = io::parse_plot_kind(opt.what);
+    if (!kind)
+      throw io::InputError("--what", 0, "",
+                           "unknown plot '" + opt.what +
+                               "'; use one of torque, temperature, spectrum, spectrogram, "
+                               "stability_map, sweep");
+    io::plot_file(opt.file, *kind, opt.output);
+    std::cout << "Plot: " << opt.output << "\n";
+    return 0;
+  } catch (const io::InputError& e) {
+    std::cerr << "shudder: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "shudder: plot failed: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace shudder::app

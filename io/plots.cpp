@@ -1,0 +1,686 @@
+// Plot builders for `shudder plot` and the report directories; see plots.hpp and docs/plots.md.
+#include "io/plots.hpp"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+
+#include "analysis/shudder_detection.hpp"
+#include "analysis/spectrum.hpp"
+#include "io/atomic_file.hpp"
+#include "io/hdf5_run.hpp"
+#include "io/input_error.hpp"
+
+namespace shudder::io {
+
+namespace {
+
+namespace fs = std::filesystem;
+using dynamics::Recording;
+using dynamics::Signal;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string format(const char* fmt, double a) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, fmt, a);
+  return buf;
+}
+
+/// "°C" for the files' "degC", "N m" as is, ...: the unit as printed on an axis.
+std::string display_units(const std::string& units) { return units == "degC" ? "°C" : units; }
+
+const Signal& require_signal(const Recording& rec, const char* name, const std::string& source,
+                             const std::string& plot) {
+  const Signal* s = rec.find(name);
+  if (!s || s->values.empty())
+    throw InputError(source, 0, "",
+                     std::string("no /signals/") + name + ": the " + plot + " plot needs it");
+  return *s;
+}
+
+/// Uniform sample rate of time_s; InputError for fewer than `min_samples` samples.
+double sample_rate_Hz(const Signal& time, std::size_t min_samples, const std::string& source,
+                      const std::string& plot) {
+  const std::size_t n = time.values.size();
+  if (n < min_samples)
+    throw InputError(source, 0, "",
+                     "the record has " + std::to_string(n) + " samples; the " + plot +
+                         " plot needs at least " + std::to_string(min_samples));
+  const double span = time.values.back() - time.values.front();
+  if (!(span > 0)) throw InputError(source, 0, "", "time_s does not increase");
+  return static_cast<double>(n - 1) / span;
+}
+
+Series series_of(const Signal& x, const Signal& y, std::string label) {
+  Series s;
+  s.label = std::move(label);
+  s.x = x.values;
+  s.y = y.values;
+  return s;
+}
+
+bool has_finite(const Series& s) {
+  for (std::size_t i = 0; i < s.x.size(); ++i)
+    if (std::isfinite(s.x[i]) && std::isfinite(s.y[i])) return true;
+  return false;
+}
+
+/// The shudder detector on a recording: slip from slip_rpm (rig) or speed_rpm (prescribed
+/// slip: the speed is the slip); nothing if the record cannot be analysed.
+std::optional<analysis::ShudderResult> detect(const Recording& rec) {
+  const Signal* t = rec.find("time_s");
+  const Signal* torque = rec.find("torque_Nm");
+  const Signal* slip = rec.find("slip_rpm");
+  if (!slip) slip = rec.find("speed_rpm");
+  if (!t || !torque || !slip) return std::nullopt;
+  analysis::DetectionInput in;
+  in.time_s = t->values;
+  in.torque_Nm = torque->values;
+  in.slip_rpm = slip->values;
+  if (const Signal* s = rec.find("stuck")) in.stuck = s->values;
+  if (const Signal* s = rec.find("interface_mean_temp_C")) in.interface_temp_C = s->values;
+  if (const Signal* s = rec.find("normal_force_N")) in.normal_force_N = s->values;
+  try {
+    return analysis::detect_shudder(in);
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;
+  }
+}
+
+/// The frequency a spectral plot centres on: the detected shudder frequency, else the
+/// strongest peak the detector examined; NaN if neither.
+double focus_frequency_Hz(const std::optional<analysis::ShudderResult>& d) {
+  if (!d) return kNaN;
+  if (d->verdict != analysis::Verdict::kNone && std::isfinite(d->frequency_Hz) && d->frequency_Hz > 0)
+    return d->frequency_Hz;
+  if (std::isfinite(d->peak_frequency_Hz) && d->peak_frequency_Hz > 0) return d->peak_frequency_Hz;
+  return kNaN;
+}
+
+std::string verdict_text(analysis::Verdict v) {
+  switch (v) {
+    case analysis::Verdict::kVibration: return "friction-induced vibration";
+    case analysis::Verdict::kStickSlip: return "stick-slip";
+    case analysis::Verdict::kNone: break;
+  }
+  return "no shudder";
+}
+
+void write_text_file(const std::string& path, const std::string& text) {
+  const std::string tmp = temp_path_for(path);
+  {
+    std::ofstream out(tmp);
+    out << text;
+    if (!out.flush()) {
+      discard_temp_file(tmp);
+      throw InputError(path, 0, "", "cannot write the report summary; check the directory is writable");
+    }
+  }
+  commit_temp_file(tmp, path);
+}
+
+void make_report_dir(const std::string& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir))
+    throw InputError(dir, 0, "", "cannot create the report directory: " + ec.message());
+}
+
+}  // namespace
+
+const std::vector<std::string>& plot_kind_names() {
+  static const std::vector<std::string> names = {"torque",      "temperature",   "spectrum",
+                                                 "spectrogram", "stability_map", "sweep"};
+  return names;
+}
+
+std::optional<PlotKind> parse_plot_kind(std::string_view name) {
+  const auto& names = plot_kind_names();
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) return static_cast<PlotKind>(i);
+  return std::nullopt;
+}
+
+std::string scenario_name(const std::string& scenario_text, const std::string& fallback) {
+  try {
+    const toml::table t = toml::parse(scenario_text);
+    if (auto name = t["scenario"]["name"].value<std::string>(); name && !name->empty()) return *name;
+  } catch (const toml::parse_error&) {
+    // Not TOML (or none stored): the file name stands in.
+  }
+  return fallback;
+}
+
+// ---- time histories ----------------------------------------------------------------------
+
+Plot torque_plot(const Recording& rec, const std::string& name, const std::string& source) {
+  const Signal& t = require_signal(rec, "time_s", source, "torque");
+  const Signal& torque = require_signal(rec, "torque_Nm", source, "torque");
+  Plot p;
+  p.title = name + ": torque";
+  p.xlabel = "time [s]";
+  p.ylabel = "torque [N m]";
+  p.series.push_back(series_of(t, torque, "torque_Nm: measured torque (torque cell)"));
+  if (const Signal* clutch = rec.find("clutch_torque_Nm")) {
+    p.series.push_back(series_of(t, *clutch, "clutch_torque_Nm: friction torque of the clutch"));
+    p.series.back().dashed = true;
+    p.series.back().line_width = 1.5;
+  }
+  // The sliding speed explains the torque's shape (ramps, breakaway): right axis.
+  const Signal* speed = rec.find("slip_rpm");
+  if (!speed) speed = rec.find("speed_rpm");
+  if (speed) {
+    p.series_y2.push_back(series_of(t, *speed, speed->name + ": sliding speed (right axis)"));
+    p.series_y2.back().line_width = 1.0;
+    p.series_y2.back().rgb = "#7f7f7f";
+    p.y2label = "sliding speed [rpm]";
+  }
+  return p;
+}
+
+Plot temperature_plot(const Recording& rec, const std::string& name, const std::string& source) {
+  const Signal& t = require_signal(rec, "time_s", source, "temperature");
+  struct Channel { const char* signal; const char* label; };
+  static constexpr Channel kChannels[] = {
+      {"temp_C", "temp_C: separator thermocouple"},
+      {"ir_temp_C", "ir_temp_C: IR pyrometer"},
+      {"sump_temp_C", "sump_temp_C: oil sump"},
+      {"interface_max_temp_C", "interface_max_temp_C: hottest point of the friction interface"}};
+  Plot p;
+  p.title = name + ": temperatures";
+  p.xlabel = "time [s]";
+  p.ylabel = "temperature [°C]";
+  for (const auto& c : kChannels)
+    if (const Signal* s = rec.find(c.signal)) p.series.push_back(series_of(t, *s, c.label));
+  if (p.series.empty())
+    throw InputError(source, 0, "",
+                     "no temperature signals (temp_C, ir_temp_C, sump_temp_C, "
+                     "interface_max_temp_C): the temperature plot needs at least one");
+  return p;
+}
+
+// ---- spectra -----------------------------------------------------------------------------
+
+Plot spectrum_plot(const Recording& rec, const std::string& name, const std::string& source) {
+  const Signal& t = require_signal(rec, "time_s", source, "spectrum");
+  const Signal& torque = require_signal(rec, "torque_Nm", source, "spectrum");
+  const double fs = sample_rate_Hz(t, 64, source, "spectrum");
+
+  // Amplitude spectrum of the torque less its mean, Hann window over the whole record.
+  std::vector<double> x = torque.values;
+  const double mean = std::accumulate(x.begin(), x.end(), 0.0) / static_cast<double>(x.size());
+  for (double& v : x) v -= mean;
+  const analysis::SpectralAnalyzer spectra;
+  const analysis::Spectrum sp = spectra.amplitude_spectrum(x, fs, analysis::Window::kHann);
+
+  const auto det = detect(rec);
+  const double f_focus = focus_frequency_Hz(det);
+  // Up to the third harmonic of a detected shudder; else the detector's whole band.
+  const bool shudder = det && det->verdict != analysis::Verdict::kNone && std::isfinite(f_focus);
+  const double f_max = shudder ? std::min(0.5 * fs, 3.0 * f_focus) : std::min(0.5 * fs, 2000.0);
+
+  Plot p;
+  p.title = name + ": torque amplitude spectrum (Hann window, whole record " +
+            format("%.3g", t.values.back() - t.values.front()) + " s, bin " +
+            format("%.3g", sp.bin_width_Hz) + " Hz)";
+  p.xlabel = "frequency [Hz]";
+  p.ylabel = "torque amplitude [N m]";
+  p.log_y = true;
+  p.x_min = 0.0;
+  p.x_max = f_max;
+  Series s;
+  s.label = "torque_Nm less its mean";
+  for (std::size_t k = 0; k < sp.frequency_Hz.size() && sp.frequency_Hz[k] <= f_max; ++k) {
+    s.x.push_back(sp.frequency_Hz[k]);
+    s.y.push_back(sp.amplitude[k] > 0 ? sp.amplitude[k] : kNaN);  // log axis: no zeros
+  }
+  s.line_width = 1.5;
+  p.series.push_back(std::move(s));
+
+  // The detected peak, interpolated in the spectrum around the detector's frequency.
+  if (std::isfinite(f_focus) && f_focus < 0.5 * fs) {
+    try {
+      const analysis::Peak peak = analysis::find_peak(sp, 0.9 * f_focus, std::min(1.1 * f_focus, 0.5 * fs));
+      Series mark;
+      mark.label = shudder ? "detected shudder frequency" : "largest peak (no shudder detected)";
+      mark.x = {peak.frequency_Hz};
+      mark.y = {peak.amplitude};
+      mark.style = SeriesStyle::kPoints;
+      mark.point_type = shudder ? 7 : 6;
+      mark.point_size = 2.0;
+      mark.color = 1;
+      p.series.push_back(std::move(mark));
+      char text[160];
+      if (shudder)
+        std::snprintf(text, sizeof text, "%s at %.1f Hz; detector amplitude %.3g N m",
+                      verdict_text(det->verdict).c_str(), det->frequency_Hz, det->amplitude_Nm);
+      else
+        std::snprintf(text, sizeof text, "%.1f Hz: no shudder detected", peak.frequency_Hz);
+      p.labels.push_back({peak.frequency_Hz, peak.amplitude, text});
+    } catch (const std::invalid_argument&) {
+      // No bin in the band (record too short for that frequency): nothing to mark.
+    }
+  }
+  return p;
+}
+
+Plot spectrogram_plot(const Recording& rec, const std::string& name, const std::string& source) {
+  const Signal& t = require_signal(rec, "time_s", source, "spectrogram");
+  const Signal& torque = require_signal(rec, "torque_Nm", source, "spectrogram");
+  const double fs = sample_rate_Hz(t, 256, source, "spectrogram");
+  const std::size_t n = t.values.size();
+
+  // Centre frequency: the detected one, else the strongest Welch peak in 5 Hz .. 0.45 fs.
+  const auto det = detect(rec);
+  double f = focus_frequency_Hz(det);
+  if (!(f > 0 && f < 0.45 * fs)) {
+    const analysis::SpectralAnalyzer spectra;
+    analysis::WelchSettings w;
+    w.segment_length = 1;
+    while (w.segment_length * 2 <= n / 4) w.segment_length *= 2;
+    try {
+      const analysis::Psd psd = spectra.welch_psd(torque.values, fs, w);
+      f = analysis::peak_frequency_Hz(psd, analysis::Window::kHann, std::min(5.0, 0.1 * fs), 0.45 * fs);
+    } catch (const std::invalid_argument&) {
+      f = kNaN;
+    }
+    if (!(f > 0 && f < 0.5 * fs))
+      throw InputError(source, 0, "", "no spectral peak in the torque to centre a spectrogram on");
+  }
+
+  // Frames of ~16 periods (a power of two, at most a quarter of the record); ~8 frames per
+  // frame length, at most ~600 frames.
+  std::size_t len = 16;
+  while (static_cast<double>(len) < 16.0 * fs / f && len * 2 <= n / 4) len *= 2;
+  analysis::SpectrogramSettings cfg;
+  cfg.segment_length = len;
+  cfg.hop = std::max<std::size_t>({1, len / 8, (n - len) / 600});
+  const analysis::SpectralAnalyzer spectra;
+  const analysis::Spectrogram sg = spectra.spectrogram(torque.values, fs, cfg, t.values.front());
+
+  const double f_lo = 0.5 * f, f_hi = std::min(2.5 * f, 0.5 * fs);
+  std::vector<std::size_t> bins;
+  for (std::size_t k = 0; k < sg.frequency_Hz.size(); ++k)
+    if (sg.frequency_Hz[k] >= f_lo && sg.frequency_Hz[k] <= f_hi) bins.push_back(k);
+  if (bins.size() < 2 || sg.times_s.size() < 2)
+    throw InputError(source, 0, "",
+                     "the record (" + std::to_string(n) + " samples) is too short for a spectrogram around " +
+                         format("%.4g", f) + " Hz");
+
+  ColorMap map;
+  map.x = sg.times_s;
+  for (std::size_t k : bins) map.y.push_back(sg.frequency_Hz[k]);
+  double top = -INFINITY;
+  for (std::size_t i = 0; i < sg.times_s.size(); ++i)
+    for (std::size_t k : bins) {
+      const double power = sg.power(static_cast<long>(i), static_cast<long>(k));
+      const double db = 10.0 * std::log10(std::max(power, 1e-300));
+      map.values.push_back(db);
+      top = std::max(top, db);
+    }
+  map.min = top - 60.0;  // 60 dB of dynamic range: growth from the floor to the limit cycle
+  map.max = top;
+  map.label = "torque PSD [dB re 1 (N m)²/Hz]";
+
+  Plot p;
+  p.title = name + ": torque spectrogram (frames of " + format("%.3g", 1e3 * static_cast<double>(len) / fs) +
+            " ms, Hann)";
+  p.xlabel = "time [s] (frame centre)";
+  p.ylabel = "frequency [Hz]";
+  p.map = std::move(map);
+  const double t0 = p.map.x.front(), t1 = p.map.x.back();
+  if (f >= f_lo && f <= f_hi) {
+    // White on the map, so named by a label rather than in the (white) legend.
+    Series line;
+    line.x = {t0, t1};
+    line.y = {f, f};
+    line.dashed = true;
+    line.line_width = 1.5;
+    line.rgb = "#ffffff";
+    p.series.push_back(std::move(line));
+    const bool shudder = det && det->verdict != analysis::Verdict::kNone;
+    p.labels.push_back({t0, f, (shudder ? "dominant " : "strongest peak ") + format("%.1f", f) + " Hz"});
+  }
+  if (det && det->verdict != analysis::Verdict::kNone && std::isfinite(det->onset_time_s)) {
+    Series onset;
+    onset.label = "onset " + format("%.3g", det->onset_time_s) + " s (" + verdict_text(det->verdict) + ")";
+    onset.x = {det->onset_time_s, det->onset_time_s};
+    onset.y = {p.map.y.front(), p.map.y.back()};
+    onset.dashed = true;
+    onset.line_width = 2.0;
+    onset.rgb = "#ff7f0e";
+    p.series.push_back(std::move(onset));
+  }
+  return p;
+}
+
+// ---- stability map -----------------------------------------------------------------------
+
+Series contour_series(const std::vector<double>& x, const std::vector<double>& y,
+                      const Eigen::MatrixXd& v, double level, const std::string& label) {
+  if (v.rows() != static_cast<long>(x.size()) || v.cols() != static_cast<long>(y.size()))
+    throw std::invalid_argument("contour: values must be (n_x x n_y)");
+  Series s;
+  s.label = label;
+  const auto segment = [&s](double x0, double y0, double x1, double y1) {
+    s.x.insert(s.x.end(), {x0, x1, kNaN});
+    s.y.insert(s.y.end(), {y0, y1, kNaN});
+  };
+  for (long i = 0; i + 1 < v.rows(); ++i)
+    for (long j = 0; j + 1 < v.cols(); ++j) {
+      // Corners counter-clockwise: (i,j), (i+1,j), (i+1,j+1), (i,j+1); edge e joins e and e+1.
+      const double c[4] = {v(i, j) - level, v(i + 1, j) - level, v(i + 1, j + 1) - level,
+                           v(i, j + 1) - level};
+      if (!(std::isfinite(c[0]) && std::isfinite(c[1]) && std::isfinite(c[2]) && std::isfinite(c[3])))
+        continue;
+      const auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
+      const double px[4] = {x[ui], x[ui + 1], x[ui + 1], x[ui]};
+      const double py[4] = {y[uj], y[uj], y[uj + 1], y[uj + 1]};
+      double ex[4], ey[4];
+      bool cut[4];
+      int count = 0;
+      for (int e = 0; e < 4; ++e) {
+        const int f = (e + 1) % 4;
+        cut[e] = (c[e] > 0) != (c[f] > 0);
+        if (!cut[e]) continue;
+        const double w = c[e] / (c[e] - c[f]);
+        ex[e] = px[e] + w * (px[f] - px[e]);
+        ey[e] = py[e] + w * (py[f] - py[e]);
+        ++count;
+      }
+      if (count == 2) {
+        int a = -1, b = -1;
+        for (int e = 0; e < 4; ++e)
+          if (cut[e]) (a < 0 ? a : b) = e;
+        segment(ex[a], ey[a], ex[b], ey[b]);
+      } else if (count == 4) {
+        // Saddle: if the cell's mean sides with corners 0 and 2, they connect through the
+        // middle and the contour cuts off corners 1 and 3; otherwise corners 0 and 2.
+        const double centre = 0.25 * (c[0] + c[1] + c[2] + c[3]);
+        if ((centre > 0) == (c[0] > 0)) {
+          segment(ex[0], ey[0], ex[1], ey[1]);
+          segment(ex[2], ey[2], ex[3], ey[3]);
+        } else {
+          segment(ex[3], ey[3], ex[0], ey[0]);
+          segment(ex[1], ey[1], ex[2], ey[2]);
+        }
+      }
+    }
+  return s;
+}
+
+Plot stability_map_plot(const Recording& rec, const std::string& name, const std::string& source) {
+  const dynamics::Map2D* m = rec.find_map("stability_map");
+  if (!m)
+    throw InputError(source, 0, "",
+                     "no /analysis/stability_map: it is written for rig scenarios (shudder run on a "
+                     "scenario with type = \"rig\")");
+  const dynamics::Map2D::Layer* margin = m->find("margin_per_s");
+  if (!margin) throw InputError(source, 0, "", "/analysis/stability_map has no margin_per_s layer");
+  const auto axis = [](const std::string& var, const std::string& units, const char* speeds,
+                       const char* temps) {
+    const std::string what = var == "speeds_rpm" ? speeds : var == "temps_C" ? temps : var;
+    return what + " [" + display_units(units) + "]";
+  };
+
+  Plot p;
+  const auto* force = m->find_scalar("normal_force_N");
+  p.title = name + ": stability of steady sliding" +
+            (force ? " at " + format("%.4g", force->value / 1e3) + " kN" : std::string());
+  p.xlabel = axis(m->x_name, m->x_units, "slip speed", "interface temperature");
+  p.ylabel = axis(m->y_name, m->y_units, "slip speed", "interface temperature");
+  p.map.x = m->x;
+  p.map.y = m->y;
+  p.map.values.resize(m->x.size() * m->y.size());
+  for (std::size_t i = 0; i < m->x.size(); ++i)
+    for (std::size_t j = 0; j < m->y.size(); ++j)
+      p.map.values[i * m->y.size() + j] = margin->values(static_cast<long>(i), static_cast<long>(j));
+  p.map.diverging = true;
+  p.map.label = "margin [" + display_units(margin->units) + "] (> 0: grows; grey: no steady sliding)";
+
+  Series zero = contour_series(m->x, m->y, margin->values, 0.0, "margin = 0: stable | unstable boundary");
+  zero.rgb = "#000000";
+  zero.line_width = 2.5;
+  if (!zero.x.empty()) {
+    p.series.push_back(std::move(zero));
+  } else {
+    const double largest = margin->values.array().isNaN().select(-INFINITY, margin->values).maxCoeff();
+    p.title += largest > 0 ? ": unstable everywhere on the map" : ": stable everywhere on the map";
+  }
+
+  // The run's own path: slip vs mean interface temperature (thinned to <= 2000 points).
+  const Signal* slip = rec.find("slip_rpm");
+  if (!slip) slip = rec.find("speed_rpm");
+  const Signal* temp = rec.find("interface_mean_temp_C");
+  if (slip && temp && m->x_name == "speeds_rpm" && m->y_name == "temps_C") {
+    Series path;
+    path.label = "this run: " + slip->name + " vs interface_mean_temp_C";
+    const std::size_t stride = std::max<std::size_t>(1, slip->values.size() / 2000);
+    for (std::size_t k = 0; k < slip->values.size(); k += stride) {
+      path.x.push_back(std::abs(slip->values[k]));
+      path.y.push_back(temp->values[k]);
+    }
+    path.rgb = "#2ca02c";
+    path.line_width = 2.0;
+    p.series.push_back(std::move(path));
+  }
+  return p;
+}
+
+// ---- sweep -------------------------------------------------------------------------------
+
+Plot sweep_plot(const SweepTable& table, const std::string& name, const std::string& source) {
+  static const std::vector<std::string> kResults = {"predicted_stable",       "predicted_margin_per_s",
+                                                    "predicted_frequency_Hz", "simulated_frequency_Hz",
+                                                    "amplitude_Nm",           "onset_time_s"};
+  // Swept keys: the numeric columns before the results.
+  std::vector<const SweepColumn*> keys;
+  for (const auto& c : table.columns) {
+    if (std::find(kResults.begin(), kResults.end(), c.name) != kResults.end()) break;
+    keys.push_back(&c);
+  }
+  if (keys.empty()) throw InputError(source, 0, "", "/cases has no swept-key column before the results");
+  const SweepColumn& key = *keys.front();
+  const std::size_t n = key.values.size();
+  if (n == 0) throw InputError(source, 0, "", "/cases is empty: the sweep has no cases");
+  const auto column = [&](const std::string& c) -> std::vector<double> {
+    const SweepColumn* col = table.find(c);
+    if (!col) return std::vector<double>(n, kNaN);
+    if (col->values.size() != n)
+      throw InputError(source, 0, "", "/cases/" + c + " has " + std::to_string(col->values.size()) +
+                                          " rows, " + key.name + " has " + std::to_string(n));
+    return col->values;
+  };
+
+  // Cases in order of the key (a cartesian product repeats key values: points only then).
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return key.values[a] < key.values[b]; });
+  const bool lines = keys.size() == 1;
+  const auto sorted = [&](const std::vector<double>& v) {
+    std::vector<double> out;
+    for (std::size_t k : order) out.push_back(v[k]);
+    return out;
+  };
+  const std::vector<double> x = sorted(key.values);
+  const auto make = [&](const std::string& label, const std::vector<double>& y, int color, int pt) {
+    Series s;
+    s.label = label;
+    s.x = x;
+    s.y = sorted(y);
+    s.color = color;
+    s.point_type = pt;
+    s.style = lines ? SeriesStyle::kLinesPoints : SeriesStyle::kPoints;
+    s.point_size = 1.0;
+    return s;
+  };
+
+  Plot p;
+  p.title = name + ": sweep of " + key.name + " (" + std::to_string(n) + " cases" +
+            (keys.size() > 1 ? ", other swept keys pooled" : std::string()) + ")";
+  p.xlabel = key.name + (key.units.empty() ? std::string() : " [" + display_units(key.units) + "]");
+  p.ylabel = "frequency [Hz]";
+  p.y2label = "predicted margin [1/s] (> 0: unstable)";
+  // Markers on the first and last case stay clear of the borders.
+  const double pad = x.back() > x.front() ? 0.04 * (x.back() - x.front())
+                                          : 0.5 * std::max(1.0, std::abs(x.front()));
+  p.x_min = x.front() - pad;
+  p.x_max = x.back() + pad;
+  Series predicted = make("predicted frequency (linearised)", column("predicted_frequency_Hz"), 0, 7);
+  Series simulated = make("simulated frequency (detector)", column("simulated_frequency_Hz"), 1, 2);
+  simulated.style = SeriesStyle::kPoints;
+  simulated.point_size = 2.0;
+  simulated.rgb = "#000000";
+  for (auto* s : {&predicted, &simulated})
+    if (has_finite(*s)) p.series.push_back(std::move(*s));
+  if (p.series.empty()) {
+    // Nothing oscillates anywhere (e.g. a prescribed-slip sweep): show the amplitude instead.
+    p.ylabel = "amplitude [N m]";
+    p.series.push_back(make("simulated amplitude", column("amplitude_Nm"), 1, 7));
+  }
+
+  // Right axis: the predicted margin, with the simulated verdict as the marker on each case.
+  const std::vector<double> margin = column("predicted_margin_per_s");
+  Series m = make("predicted margin (right axis)", margin, 5, 1);
+  m.style = lines ? SeriesStyle::kLines : SeriesStyle::kPoints;  // pooled cases: no zigzag
+  m.dashed = true;
+  m.line_width = 1.5;
+  m.point_size = 2.5;
+  if (has_finite(m)) {
+    p.series_y2.push_back(std::move(m));
+    Series zero;
+    zero.label = "margin = 0";
+    zero.x = {p.x_min, p.x_max};
+    zero.y = {0.0, 0.0};
+    zero.rgb = "#7f7f7f";
+    zero.line_width = 1.0;
+    p.series_y2.push_back(std::move(zero));
+    struct Marker { const char* verdict; const char* label; int pt; const char* rgb; };
+    static constexpr Marker kMarkers[] = {
+        {"none", "simulated: no shudder", 6, "#2ca02c"},
+        {"vibration", "simulated: vibration", 7, "#d62728"},
+        {"stick_slip", "simulated: stick-slip", 9, "#9467bd"}};
+    for (const auto& mk : kMarkers) {
+      Series s;
+      s.label = mk.label;
+      for (std::size_t k : order)
+        if (k < table.text_column.size() && table.text_column[k] == mk.verdict && std::isfinite(margin[k])) {
+          s.x.push_back(key.values[k]);
+          s.y.push_back(margin[k]);
+        }
+      if (s.x.empty()) continue;
+      s.style = SeriesStyle::kPoints;
+      s.point_type = mk.pt;
+      s.point_size = 1.8;
+      s.rgb = mk.rgb;
+      p.series_y2.push_back(std::move(s));
+    }
+  }
+  return p;
+}
+
+// ---- files -------------------------------------------------------------------------------
+
+Plot run_plot(PlotKind kind, const Recording& rec, const std::string& name, const std::string& source) {
+  switch (kind) {
+    case PlotKind::kTorque: return torque_plot(rec, name, source);
+    case PlotKind::kTemperature: return temperature_plot(rec, name, source);
+    case PlotKind::kSpectrum: return spectrum_plot(rec, name, source);
+    case PlotKind::kSpectrogram: return spectrogram_plot(rec, name, source);
+    case PlotKind::kStabilityMap: return stability_map_plot(rec, name, source);
+    case PlotKind::kSweep: break;
+  }
+  throw std::invalid_argument("run_plot: a sweep plot is built from a sweep table");
+}
+
+void plot_file(const std::string& h5_path, PlotKind kind, const std::string& out_path) {
+  const std::string fallback = fs::path(h5_path).stem().string();
+  const std::string file = fs::path(h5_path).filename().string();
+  if (kind == PlotKind::kSweep) {
+    SweepTable table;
+    try {
+      table = read_sweep_table(h5_path);
+    } catch (const InputError&) {
+      // A readable run file gets a pointed message; anything else keeps the reader's own.
+      bool run = false;
+      try {
+        (void)read_run_hdf5(h5_path);
+        run = true;
+      } catch (const InputError&) {
+        run = false;
+      }
+      if (!run) throw;
+      throw InputError(h5_path, 0, "",
+                       "no /cases table: a run file; --what sweep needs a file written by `shudder sweep`");
+    }
+    const std::string name = scenario_name(read_run_attribute(h5_path, "scenario"), fallback);
+    write_plot(out_path, sweep_plot(table, name, h5_path));
+    return;
+  }
+  Recording rec;
+  try {
+    rec = read_run_hdf5(h5_path);
+  } catch (const InputError&) {
+    bool sweep = false;
+    try {
+      (void)read_sweep_table(h5_path);
+      sweep = true;
+    } catch (const InputError&) {
+      sweep = false;
+    }
+    if (!sweep) throw;
+    throw InputError(h5_path, 0, "",
+                     "no /signals: a sweep file; use --what sweep, or plot one case's run file");
+  }
+  const std::string name = scenario_name(read_run_attribute(h5_path, "scenario"), fallback);
+  write_plot(out_path, run_plot(kind, rec, name, h5_path));
+}
+
+Report write_run_report(const std::string& dir, const Recording& rec, const std::string& name,
+                        const std::string& summary, bool rig) {
+  make_report_dir(dir);
+  Report report;
+  const auto path = [&](const char* f) { return (fs::path(dir) / f).string(); };
+  write_text_file(path("summary.txt"), summary);
+  report.files.push_back(path("summary.txt"));
+  struct Item { PlotKind kind; const char* file; bool wanted; };
+  const Item items[] = {{PlotKind::kTorque, "torque.png", true},
+                        {PlotKind::kTemperature, "temperature.png", true},
+                        {PlotKind::kSpectrum, "spectrum.png", true},
+                        {PlotKind::kSpectrogram, "spectrogram.png", rig},
+                        {PlotKind::kStabilityMap, "stability_map.png", rig && rec.find_map("stability_map")}};
+  for (const auto& item : items) {
+    if (!item.wanted) continue;
+    Plot plot;
+    try {
+      plot = run_plot(item.kind, rec, name, "the run");
+    } catch (const InputError& e) {
+      report.skipped.push_back(std::string(item.file) + ": " + e.what());
+      continue;
+    }
+    write_plot(path(item.file), plot);
+    report.files.push_back(path(item.file));
+  }
+  return report;
+}
+
+Report write_sweep_report(const std::string& dir, const SweepTable& table, const std::string& name,
+                          const std::string& summary) {
+  make_report_dir(dir);
+  Report report;
+  report.files = {(fs::path(dir) / "summary.txt").string(), (fs::path(dir) / "sweep.png").string()};
+  write_text_file(report.files[0], summary);
+  write_plot(report.files[1], sweep_plot(table, name, "the sweep"));
+  return report;
+}
+
+}  // namespace shudder::io

@@ -1,0 +1,273 @@
+// `shudder plot` and the --report directories end to end, from runs made here: a short rig run
+// that shudders (the negative-slope case, 0.3 s), a short prescribed-slip run (Paper G Case 1,
+// 3 s) and a two-case sweep. Every --what draws a real PNG (signature bytes) and SVG through
+// gnuplot with the scenario's name in the title; plots the file cannot support exit 2 naming
+// what is missing; reports hold the summary and the key plots. The stability map stored by
+// `shudder run` is checked against the run itself: the run's operating point (30 rpm, 60 °C)
+// lies in its unstable region, at the bar's frequency.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+
+#include "io/hdf5_run.hpp"
+#include "io/plots.hpp"
+#include "tests/support/cli.hpp"
+
+using namespace shudder;
+using namespace shudder::test;
+using ::testing::HasSubstr;
+namespace fs = std::filesystem;
+
+namespace {
+
+bool have_gnuplot() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
+
+void replace(std::string& s, const std::string& from, const std::string& to) {
+  const auto pos = s.find(from);
+  ASSERT_NE(pos, std::string::npos) << from;
+  s.replace(pos, from.size(), to);
+}
+
+// The negative-slope rig case shortened to 0.3 s: the clutch-side mode grows at ~13 1/s from
+// the start, enough for the detector to call it a vibration.
+std::string short_rig_scenario() {
+  std::string s = slurp(source_path("scenarios/rig_shudder_negative_slope.toml"));
+  replace(s, "duration_s = 2.0", "duration_s = 0.3");
+  replace(s, "time_s = [0.0, 2.0]", "time_s = [0.0, 0.3]");
+  replace(s, "fluids/schematic_negative_slope.toml",
+          source_path("scenarios/fluids/schematic_negative_slope.toml"));
+  return s;
+}
+
+// Paper G Case 1 (prescribed slip) shortened to 3 s.
+std::string short_prescribed_scenario() {
+  std::string s = slurp(source_path("scenarios/paper_g_case1_10kN.toml"));
+  replace(s, "duration_s = 10.0", "duration_s = 3.0");
+  replace(s, "time_s = [0.0, 10.0]", "time_s = [0.0, 3.0]");
+  replace(s, "snapshot_times_s = [3.0, 6.0, 9.0]", "snapshot_times_s = [1.0]");
+  replace(s, "fluids/lsc_fluid_c.toml", source_path("scenarios/fluids/lsc_fluid_c.toml"));
+  return s;
+}
+
+void expect_png(const fs::path& p) {
+  ASSERT_TRUE(fs::exists(p)) << p;
+  const std::string bytes = slurp(p);
+  ASSERT_GT(bytes.size(), 1000u) << p;
+  EXPECT_EQ(bytes.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << p;
+}
+
+std::string expect_svg(const fs::path& p) {
+  EXPECT_TRUE(fs::exists(p)) << p;
+  const std::string text = slurp(p);
+  EXPECT_THAT(text, HasSubstr("<svg")) << p;
+  return text;
+}
+
+// A scratch directory `name` holding a fresh run of `scenario` as `h5` (one per test: CTest may
+// run tests in parallel processes).
+fs::path run_in(const std::string& name, const std::string& scenario, const std::string& h5) {
+  const auto d = scratch_dir(name);
+  write_file(d / "scenario.toml", scenario);
+  const auto r = run_cli("run scenario.toml -o " + h5, d);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return d;
+}
+
+}  // namespace
+
+TEST(CliPlot, RigRunStoresAStabilityMapThatPlacesTheRunInItsUnstableRegion) {
+  const auto dir = run_in("plot_map", short_rig_scenario(), "rig.h5");
+  const auto rec = io::read_run_hdf5((dir / "rig.h5").string());
+  const auto* m = rec.find_map("stability_map");
+  ASSERT_NE(m, nullptr);
+  // Grid: 60 slip speeds 1 .. 125 rpm, 50 temperatures start - 20 .. start + 80 = 40 .. 140 °C.
+  ASSERT_EQ(m->x.size(), 60u);
+  ASSERT_EQ(m->y.size(), 50u);
+  EXPECT_DOUBLE_EQ(m->x.front(), 1.0);
+  EXPECT_DOUBLE_EQ(m->x.back(), 125.0);
+  EXPECT_DOUBLE_EQ(m->y.front(), 40.0);
+  EXPECT_DOUBLE_EQ(m->y.back(), 140.0);
+  EXPECT_EQ(m->x_units, "rpm");
+  EXPECT_EQ(m->y_units, "degC");
+  ASSERT_NE(m->find_scalar("normal_force_N"), nullptr);
+  EXPECT_DOUBLE_EQ(m->find_scalar("normal_force_N")->value, 15000.0);
+  const auto* margin = m->find("margin_per_s");
+  const auto* freq = m->find("frequency_Hz");
+  ASSERT_NE(margin, nullptr);
+  ASSERT_NE(freq, nullptr);
+  // The grid point nearest the run's operating point (30 rpm, 60 °C): unstable (the fluid's
+  // slope, -1.5 N m s/rad, beats the bar's +0.95 N m s/rad, scenario comment) at the bar's
+  // 378 Hz.
+  long i = 0, j = 0;
+  for (long k = 0; k < 60; ++k)
+    if (std::abs(m->x[k] - 30.0) < std::abs(m->x[i] - 30.0)) i = k;
+  for (long k = 0; k < 50; ++k)
+    if (std::abs(m->y[k] - 60.0) < std::abs(m->y[j] - 60.0)) j = k;
+  EXPECT_GT(margin->values(i, j), 0.0);
+  EXPECT_NEAR(freq->values(i, j), 378.0, 0.01 * 378.0);
+}
+
+TEST(CliPlot, EveryRunPlotOfARigRunDrawsPngAndSvgTitledWithTheScenario) {
+  if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
+  const auto dir = run_in("plot_rig", short_rig_scenario(), "rig.h5");
+  for (const char* what : {"torque", "temperature", "spectrum", "spectrogram", "stability_map"}) {
+    for (const char* ext : {".png", ".svg"}) {
+      const std::string out = std::string(what) + ext;
+      const auto r = run_cli(std::string("plot rig.h5 --what ") + what + " -o " + out, dir);
+      ASSERT_EQ(r.exit_code, 0) << what << ext << "\n" << r.err;
+      EXPECT_THAT(r.out, HasSubstr("Plot: " + out));
+      if (std::string(ext) == ".png") {
+        expect_png(dir / out);
+      } else {
+        const std::string svg = expect_svg(dir / out);
+        EXPECT_THAT(svg, HasSubstr("rig_shudder_negative_slope: ")) << what;
+      }
+      EXPECT_FALSE(fs::exists(dir / (out + ".tmp")));
+    }
+  }
+  // The spectrum names what the detector found; the spectrogram its colour scale in dB.
+  EXPECT_THAT(slurp(dir / "spectrum.svg"), HasSubstr("friction-induced vibration at 37"));
+  EXPECT_THAT(slurp(dir / "spectrogram.svg"), HasSubstr("dB re 1 (N m)²/Hz"));
+  EXPECT_THAT(slurp(dir / "stability_map.svg"), HasSubstr("stable | unstable boundary"));
+}
+
+TEST(CliPlot, PrescribedSlipRunPlotsTimeHistoriesButHasNoStabilityMap) {
+  if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
+  const auto dir = run_in("plot_prescribed", short_prescribed_scenario(), "pg.h5");
+  for (const char* what : {"torque", "temperature", "spectrum", "spectrogram"}) {
+    const auto r = run_cli(std::string("plot pg.h5 --what ") + what + " -o " + what + ".png", dir);
+    ASSERT_EQ(r.exit_code, 0) << what << "\n" << r.err;
+    expect_png(dir / (std::string(what) + ".png"));
+  }
+  const auto r = run_cli("plot pg.h5 --what stability_map -o map.png", dir);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("pg.h5: no /analysis/stability_map: it is written for rig scenarios"));
+  EXPECT_FALSE(fs::exists(dir / "map.png"));
+  EXPECT_FALSE(fs::exists(dir / "map.png.tmp"));
+}
+
+TEST(CliPlot, SweepPlotDrawsPngAndSvgAndFileKindsAreNotMixedUp) {
+  if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
+  const auto dir = scratch_dir("plot_sweep");
+  write_file(dir / "s.toml", short_rig_scenario());
+  auto r = run_cli("sweep s.toml --set rig.torsion_bar.natural_frequency_Hz=200,300 --jobs 2 --quiet -o sw.h5",
+                   dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_cli("plot sw.h5 --what sweep -o sweep.png", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_png(dir / "sweep.png");
+  r = run_cli("plot sw.h5 --what sweep -o sweep.svg", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string svg = expect_svg(dir / "sweep.svg");
+  EXPECT_THAT(svg, HasSubstr("rig_shudder_negative_slope: sweep of "
+                             "rig.torsion_bar.natural_frequency_Hz (2 cases)"));
+  EXPECT_THAT(svg, HasSubstr("predicted frequency"));
+  EXPECT_THAT(svg, HasSubstr("simulated: vibration"));
+
+  // A sweep file has no run signals; a run file has no /cases table.
+  r = run_cli("plot sw.h5 --what torque -o t.png", dir);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("sw.h5: no /signals: a sweep file; use --what sweep"));
+  write_file(dir / "rig.toml", short_rig_scenario());
+  ASSERT_EQ(run_cli("run rig.toml -o rig.h5", dir).exit_code, 0);
+  r = run_cli("plot rig.h5 --what sweep -o s.png", dir);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("rig.h5: no /cases table: a run file"));
+  EXPECT_FALSE(fs::exists(dir / "t.png"));
+  EXPECT_FALSE(fs::exists(dir / "s.png"));
+}
+
+TEST(CliPlot, BadRequestsExitTwoNamingTheProblem) {
+  const auto dir = run_in("plot_bad", short_rig_scenario(), "rig.h5");
+  struct Case { std::string args, fragment; };
+  for (const auto& c : std::vector<Case>{
+           {"plot rig.h5 --what torqeu -o x.png", "--what"},
+           {"plot absent.h5 --what torque -o x.png", "absent.h5: cannot read run file: no such file"},
+           {"plot rig.h5 --what torque -o x.jpg", "unsupported plot format '.jpg'"},
+           {"plot rig.h5 --what torque -o no_dir/x.png", "cannot write plot"},
+           {"plot rig.h5 --what torque", "--output"}}) {
+    const auto r = run_cli(c.args, dir);
+    EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.err;
+    EXPECT_THAT(r.err, HasSubstr(c.fragment)) << c.args;
+  }
+  EXPECT_FALSE(fs::exists(dir / "x.png"));
+  EXPECT_FALSE(fs::exists(dir / "x.jpg"));
+}
+
+TEST(CliPlot, RunReportHoldsTheSummaryAndTheKeyPlots) {
+  if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
+  // Rig run: summary plus five plots.
+  const auto dir = scratch_dir("plot_report_rig");
+  write_file(dir / "rig.toml", short_rig_scenario());
+  auto r = run_cli("run rig.toml -o rig.h5 --report rep", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("Report: rep (6 files)"));
+  const std::string summary = slurp(dir / "rep" / "summary.txt");
+  EXPECT_THAT(summary, HasSubstr("Scenario  rig_shudder_negative_slope (rig)"));
+  EXPECT_THAT(summary, HasSubstr("Output: rig.h5"));
+  EXPECT_EQ(r.out.substr(0, summary.size()), summary) << "summary.txt is the printed summary";
+  for (const char* f :
+       {"torque.png", "temperature.png", "spectrum.png", "spectrogram.png", "stability_map.png"})
+    expect_png(dir / "rep" / f);
+
+  // Prescribed-slip run: no spectrogram, no stability map.
+  const auto pdir = scratch_dir("plot_report_prescribed");
+  write_file(pdir / "pg.toml", short_prescribed_scenario());
+  r = run_cli("run pg.toml -o pg.h5 --report rep", pdir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* f : {"summary.txt", "torque.png", "temperature.png", "spectrum.png"})
+    EXPECT_TRUE(fs::exists(pdir / "rep" / f)) << f;
+  EXPECT_FALSE(fs::exists(pdir / "rep" / "spectrogram.png"));
+  EXPECT_FALSE(fs::exists(pdir / "rep" / "stability_map.png"));
+}
+
+TEST(CliPlot, SweepReportHoldsTheSummaryAndTheSweepPlot) {
+  if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
+  const auto dir = scratch_dir("plot_report_sweep");
+  write_file(dir / "s.toml", short_rig_scenario());
+  const auto r = run_cli(
+      "sweep s.toml --set rig.torsion_bar.natural_frequency_Hz=200,300 --jobs 2 -o sw.h5 --report rep",
+      dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string summary = slurp(dir / "rep" / "summary.txt");
+  EXPECT_THAT(summary, HasSubstr("Sweep of rig_shudder_negative_slope: 2 cases"));
+  EXPECT_THAT(summary, HasSubstr("Simulated: 0 none, 2 vibration, 0 stick-slip"));
+  EXPECT_THAT(r.out, HasSubstr(summary));
+  expect_png(dir / "rep" / "sweep.png");
+}
+
+// The zero contour by marching squares, against closed forms.
+TEST(CliPlot, ContourOfALinearAndARadialFieldLiesOnTheExactCurve) {
+  std::vector<double> x, y;
+  for (int k = 0; k <= 40; ++k) x.push_back(-2.0 + 0.1 * k), y.push_back(-2.0 + 0.1 * k);
+  // v = x - 0.55: every contour point at x = 0.55 exactly (linear interpolation is exact).
+  Eigen::MatrixXd lin(41, 41), rad(41, 41);
+  for (int i = 0; i <= 40; ++i)
+    for (int j = 0; j <= 40; ++j) {
+      lin(i, j) = x[i] - 0.55;
+      rad(i, j) = x[i] * x[i] + y[j] * y[j] - 1.0;
+    }
+  const io::Series a = io::contour_series(x, y, lin, 0.0, "zero");
+  ASSERT_FALSE(a.x.empty());
+  std::size_t points = 0;
+  for (std::size_t k = 0; k < a.x.size(); ++k) {
+    if (std::isnan(a.x[k])) continue;  // breaks between segments
+    EXPECT_NEAR(a.x[k], 0.55, 1e-12);
+    ++points;
+  }
+  EXPECT_EQ(points, 2u * 40u);  // one segment per cell row the line crosses
+  // v = x² + y² - 1: contour points on the unit circle to the interpolation error of a
+  // quadratic over a 0.1 cell, h²/4 / (2 r) ~ 1.3e-3.
+  const io::Series c = io::contour_series(x, y, rad, 0.0, "circle");
+  for (std::size_t k = 0; k < c.x.size(); ++k) {
+    if (std::isnan(c.x[k])) continue;
+    EXPECT_NEAR(std::hypot(c.x[k], c.y[k]), 1.0, 2e-3);
+  }
+  // Nothing crosses 5 on the linear field; a NaN corner removes its cells.
+  EXPECT_TRUE(io::contour_series(x, y, lin, 5.0, "none").x.empty());
+  lin(25, 3) = std::numeric_limits<double>::quiet_NaN();  // x[25] = 0.5, next to the line
+  EXPECT_EQ(io::contour_series(x, y, lin, 0.0, "hole").x.size(), a.x.size() - 2 * 3);
+}
