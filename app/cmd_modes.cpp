@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "app/commands.hpp"
+#include "app/guarded.hpp"
 #include "io/input_error.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/lsctr_rig.hpp"
@@ -38,7 +39,7 @@ void print_modes(const dynamics::TorsionalNetwork& net, const dynamics::Modes& m
 }  // namespace
 
 int modes_command(const ModesOptions& opt) {
-  try {
+  return guarded(opt.scenario, "modal analysis", [&]() -> int {
     const io::Scenario sc = io::load_scenario(opt.scenario);
     for (const auto& w : sc.warnings) std::cerr << "shudder: warning: " << w << "\n";
     if (sc.type != "rig")
@@ -56,13 +57,7 @@ int modes_command(const ModesOptions& opt) {
     print_modes(net, net.modes({true}), "Clutch stuck:");
     std::printf("\nClutch-side mode (slipping): %.3f Hz\n", rig.clutch_side_frequency_Hz());
     return 0;
-  } catch (const io::InputError& e) {
-    std::cerr << "shudder: error: " << e.what() << "\n";
-    return 2;
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "shudder: error: " << opt.scenario << ": " << e.what() << "\n";
-    return 2;
-  }
+  });
 }
 
 }  // namespace shudder::app

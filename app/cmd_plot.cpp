@@ -3,13 +3,14 @@
 #include <iostream>
 
 #include "app/commands.hpp"
+#include "app/guarded.hpp"
 #include "io/input_error.hpp"
 #include "io/plots.hpp"
 
 namespace shudder::app {
 
 int plot_command(const PlotOptions& opt) {
-  try {
+  return guarded(opt.file, "plot", [&]() -> int {
     const auto kind = io::parse_plot_kind(opt.what);
     if (!kind)
       throw io::InputError("--what", 0, "",
@@ -19,13 +20,7 @@ int plot_command(const PlotOptions& opt) {
     io::plot_file(opt.file, *kind, opt.output);
     std::cout << "Plot: " << opt.output << "\n";
     return 0;
-  } catch (const io::InputError& e) {
-    std::cerr << "shudder: error: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "shudder: plot failed: " << e.what() << "\n";
-    return 1;
-  }
+  });
 }
 
 }  // namespace shudder::app

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "app/commands.hpp"
+#include "app/guarded.hpp"
 #include "app/summary.hpp"
 #include "io/hdf5_run.hpp"
 #include "io/input_error.hpp"
@@ -22,7 +23,7 @@
 namespace shudder::app {
 
 int run_command(const RunOptions& opt) {
-  try {
+  return guarded(opt.scenario, "simulation", [&]() -> int {
     const io::Scenario scenario = io::load_scenario(opt.scenario);
     for (const auto& w : scenario.warnings) std::cerr << "shudder: warning: " << w << "\n";
     const clutch::WetClutch clutch = scenario.make_clutch();
@@ -82,16 +83,7 @@ int run_command(const RunOptions& opt) {
     }
     if (opt.profile) std::cout << "Profile: simulation wall time " << wall_s * 1e3 << " ms\n";
     return 0;
-  } catch (const io::InputError& e) {
-    std::cerr << "shudder: error: " << e.what() << "\n";
-    return 2;
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "shudder: error: " << opt.scenario << ": " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "shudder: simulation failed: " << e.what() << "\n";
-    return 1;
-  }
+  });
 }
 
 }  // namespace shudder::app

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "app/guarded.hpp"
 #include "io/fluid_loader.hpp"
 #include "io/input_error.hpp"
 #include "io/scenario.hpp"
@@ -171,7 +172,7 @@ void print_stability(const rig_models::ScreeningReport& rep) {
 }  // namespace
 
 int screen_command(const ScreenOptions& opt) {
-  try {
+  return guarded(opt.fluid, "screening", [&]() -> int {
     // Inputs: fluid, options, optional rig scenario.
     if (!std::filesystem::is_regular_file(opt.fluid))
       throw io::InputError(opt.fluid, 0, "",
@@ -213,13 +214,7 @@ int screen_command(const ScreenOptions& opt) {
 
     if (!opt.json.empty()) io::write_screening_json(rep, opt.fluid, opt.json);
     return 0;
-  } catch (const io::InputError& e) {
-    std::cerr << "shudder: error: " << e.what() << "\n";
-    return 2;
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "shudder: error: " << opt.fluid << ": " << e.what() << "\n";
-    return 2;
-  }
+  });
 }
 
 }  // namespace shudder::app

@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "app/commands.hpp"
+#include "app/guarded.hpp"
 #include "io/hdf5_run.hpp"
 #include "io/hdf5_sweep.hpp"
 #include "io/input_error.hpp"
@@ -73,7 +74,7 @@ void progress(std::size_t done, std::size_t total, double elapsed_s) {
 }  // namespace
 
 int sweep_command(const SweepOptions& opt) {
-  try {
+  return guarded(opt.scenario, "sweep", [&]() -> int {
     const io::Scenario base = io::load_scenario(opt.scenario);
     for (const auto& w : base.warnings) std::cerr << "shudder: warning: " << w << "\n";
     if (opt.sets.empty()) throw io::InputError("--set", 0, "", "give at least one --set KEY=START:STOP:STEP");
@@ -197,16 +198,7 @@ int sweep_command(const SweepOptions& opt) {
       if (!opt.quiet) std::printf("Report: %s (summary.txt, sweep.png)\n", opt.report.c_str());
     }
     return 0;
-  } catch (const io::InputError& e) {
-    std::cerr << "shudder: error: " << e.what() << "\n";
-    return 2;
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "shudder: error: " << opt.scenario << ": " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "shudder: sweep failed: " << e.what() << "\n";
-    return 1;
-  }
+  });
 }
 
 }  // namespace shudder::app

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "app/guarded.hpp"
 #include "app/summary.hpp"
 #include "io/atomic_file.hpp"
 #include "io/gnuplot.hpp"
@@ -349,7 +350,7 @@ void write_doc(const fs::path& docs, const std::vector<Run>& runs, const std::ve
 }  // namespace
 
 int validate_command(const ValidateOptions& opt) {
-  try {
+  return guarded(opt.scenarios_dir, "validation", [&]() -> int {
     const fs::path docs = opt.docs_dir;
     std::error_code ec;
     fs::create_directories(docs, ec);
@@ -382,13 +383,7 @@ int validate_command(const ValidateOptions& opt) {
     if (opt.plots) std::cout << " and " << figs.size() << " plots";
     std::cout << "\n";
     return failed ? 1 : 0;
-  } catch (const io::InputError& e) {
-    std::cerr << "shudder: error: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "shudder: validation failed: " << e.what() << "\n";
-    return 1;
-  }
+  });
 }
 
 }  // namespace shudder::app
