@@ -1,5 +1,6 @@
 #include "analysis/shudder_detection.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -216,7 +217,7 @@ ShudderResult ShudderDetector::detect(const DetectionInput& in) const {
   r.threshold_Nm = std::max(cfg.min_amplitude_Nm, cfg.min_relative_amplitude * r.mean_torque_Nm);
   if (!(r.amplitude_Nm >= r.threshold_Nm)) {
     r.verdict = Verdict::kNone;
-    r.frequency_Hz = r.onset_time_s = r.growth_rate_per_s = kNaN;
+    r.frequency_Hz = r.onset_time_s = r.growth_rate_per_s = r.growth_acceleration_per_s2 = kNaN;
     r.at_onset = {kNaN, kNaN, kNaN, kNaN};
     return r;
   }
@@ -259,7 +260,7 @@ ShudderResult ShudderDetector::detect(const DetectionInput& in) const {
   }
   r.growth_observed = j_x < frames;
   r.onset_time_s = t0;
-  r.growth_rate_per_s = kNaN;
+  r.growth_rate_per_s = r.growth_acceleration_per_s2 = kNaN;
   if (r.growth_observed) {
     // Crossing, interpolated in dB between frame j_x and the next one (which is above L).
     const double w = std::clamp((level - b[j_x]) / (b[j_x + 1] - b[j_x]), 0.0, 1.0);
@@ -281,6 +282,31 @@ ShudderResult ShudderDetector::detect(const DetectionInput& in) const {
         const double intercept = (sb - slope_dB_per_s * st) / c;
         r.growth_rate_per_s = slope_dB_per_s * std::log(10.0) / 20.0;  // amplitude ∝ e^{σ t}
         r.onset_time_s = std::max(t0, (b0 - intercept) / slope_dB_per_s);
+      }
+      if (cfg.onset_definition == OnsetDefinition::kGrowthRateZero) {
+        // 8d: least-squares parabola b = c0 + c1 u + c2 u², u = t − t_mean (centred for
+        // conditioning), over the same frames; its vertex is where the growth rate is zero.
+        const double t_mean = st / c;
+        double s2 = 0, s3 = 0, s4 = 0, y0 = 0, y1 = 0, y2 = 0;
+        for (std::size_t j = j_x + 1; j < ja; ++j) {
+          const double u = spec.times_s[j] - t_mean, u2 = u * u;
+          s2 += u2;
+          s3 += u2 * u;
+          s4 += u2 * u2;
+          y0 += b[j];
+          y1 += u * b[j];
+          y2 += u2 * b[j];
+        }
+        // Normal equations [n 0 s2; 0 s2 s3; s2 s3 s4] (c0 c1 c2)ᵀ = (y0 y1 y2)ᵀ (Σu = 0).
+        Eigen::Matrix3d m;
+        m << c, 0.0, s2, 0.0, s2, s3, s2, s3, s4;
+        const Eigen::Vector3d coef = m.ldlt().solve(Eigen::Vector3d(y0, y1, y2));
+        const double c1 = coef(1), c2 = coef(2);
+        const double vertex = t_mean - c1 / (2.0 * c2);
+        if (c2 > 0.0 && std::isfinite(vertex) && vertex < spec.times_s[j_x + 1]) {
+          r.onset_time_s = std::max(t0, vertex);
+          r.growth_acceleration_per_s2 = 2.0 * c2 * std::log(10.0) / 20.0;
+        }
       }
     }
   }

@@ -51,6 +51,23 @@
 //      growth rate itself rises with time (a ramp into the unstable range), b(t) is convex,
 //      the fitted line is a secant and the onset found lies after the instant the growth rate
 //      crossed zero; growth_rate_per_s is then the mean σ over the fitted span.
+//      d. OnsetDefinition::kGrowthRateZero (for ramps: a slowly varying operating point) instead
+//         fits the same frames with a least-squares parabola b = b_1 + g_1 t + g_2 t². Its
+//         growth rate σ(t) = (g_1 + 2 g_2 t) ln10/20 is linear in time, and σ' = 2 g_2 ln10/20
+//         is reported as growth_acceleration_per_s2. If g_2 > 0 (the growth rate rises) and the
+//         vertex lies before the fitted frames, the onset is the vertex t = −g_1/(2 g_2) (not
+//         before t_0): the instant the growth rate crossed zero, i.e. where linear theory puts
+//         the onset. This comes from the free growth alone, not from where the growth
+//         emerges from the floor. That matters because the floor can be a forced response:
+//         on the rig, the small torque steps at each thermal step excite the bar mode. A forced
+//         floor rises as the damping falls toward zero, so the band power's minimum comes well
+//         before the onset. Otherwise (constant or falling growth rate, too few frames) the
+//         onset is that of 8c.
+//         The vertex is extrapolated back from the fitted 20 dB by σ/σ'. Its precision is set
+//         by how well those frames give the curvature. A random floor scatters the band power
+//         by ~√(P_floor/P): at 45 dB under the fitted frames the onset is good to ~10 % of the
+//         extrapolation, and at 25 dB it is lost (tests/analysis). A deterministic floor of a
+//         simulation is smoother. The system must be quasi-static: σ changes little over a frame.
 //   9. Operating point at onset: the means of slip (rpm, signed), interface temperature (°C)
 //      and normal force (N) over one period P centred at the onset time.
 // For `none`, frequency, onset, growth rate and operating point are NaN (peak_frequency_Hz
@@ -67,6 +84,12 @@
 namespace shudder::analysis {
 
 enum class Verdict { kNone, kVibration, kStickSlip };
+
+/// How the onset time is placed on the growth (definition 8 in the header comment).
+enum class OnsetDefinition {
+  kGrowthLine,      // 8c: the fitted exponential growth extrapolated down to the start level
+  kGrowthRateZero,  // 8d (ramps): where the growth rate, fitted as linear in time, crosses zero
+};
 
 /// "none", "vibration", "stick_slip" (the names written to outputs).
 std::string_view to_string(Verdict verdict);
@@ -108,6 +131,8 @@ struct DetectionSettings {
   // quarter frame (2 periods) per hop.
   double periods_per_frame = 8.0;
   double periods_per_block = 4.0;
+  // Onset definition 8c (constant operating point) or 8d (slow ramp into instability).
+  OnsetDefinition onset_definition = OnsetDefinition::kGrowthLine;
 };
 
 /// Plain-vector input. time_s, torque_Nm and slip_rpm are required (equal lengths, uniform
@@ -137,6 +162,8 @@ struct ShudderResult {
   double onset_time_s = 0.0;       // definition 8; NaN for none
   bool growth_observed = false;    // the band power rose from its starting level
   double growth_rate_per_s = 0.0;  // σ of the fitted growth (definition 8c); NaN if not fitted
+  // dσ/dt of the parabola of definition 8d, 1/s²; NaN unless that definition placed the onset.
+  double growth_acceleration_per_s2 = 0.0;
   OperatingPoint at_onset;         // definition 9; NaN fields for none
   double mean_torque_Nm = 0.0;     // mean |T| over the record
   double stick_cycle_fraction = 0.0;  // cycles of the oscillating part that reached zero slip

@@ -132,6 +132,49 @@ TEST(DetectionSynthetic, GrowingSaturatingSineOnSteadySlipIsVibrationWithItsFreq
   EXPECT_NEAR(r.oscillating_from_s, t_g + std::log(0.1 / eps) / sigma, 0.05);
 }
 
+// A ramp into instability: the growth rate rises linearly through zero at t_c, σ(t) = σ' (t − t_c),
+// so the amplitude is e(t) = g/√(1 + g²) with g = ε e^{σ' (t − t_c)²/2} after t_c. It is held at
+// ε before t_c, as a forced floor would hold it. Onset definition 8d (kGrowthRateZero) fits a
+// parabola to the band power (dB) of the free growth and takes its vertex, which is t_c by
+// construction. Definition 8c (the default) extrapolates a secant of the convex growth down to
+// the floor, so it lands well after t_c (0.82 s here). Tolerances:
+//   onset 8d: 50 ms, 9 % of the 0.55 s the vertex is extrapolated back from the fitted frames
+//     (20 dB of growth between 40 and 20 dB under the largest band power). The noise's cross
+//     term with the sine scatters the band power there by ~√(P_noise/P_sine), about 0.05 dB at
+//     this 45 dB signal-to-noise ratio, and that scatter moves the fitted curvature. Over 10
+//     noise seeds the onset was within 35 ms of t_c (13 ms rms); this seed is 7 ms off. With
+//     10 times the noise (25 dB) the scatter is ±0.4 s: 8d needs a floor far under the growth.
+//   σ': 5 % (10 seeds: within 3 %).
+TEST(DetectionSynthetic, RampIntoInstabilityOnsetIsWhereTheGrowthRateCrossesZero) {
+  const double fs = 10000.0, f = 311.7, A = 20.0, accel = 30.0, eps = 1e-4, t_c = 0.5, noise = 0.005;
+  Signals s = base(fs, 2.0);
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> g(0.0, noise);
+  for (std::size_t i = 0; i < s.t.size(); ++i) {
+    const double t = s.t[i];
+    const double gr = eps * std::exp(t < t_c ? 0.0 : 0.5 * accel * (t - t_c) * (t - t_c));
+    const double e = gr / std::sqrt(1.0 + gr * gr);
+    s.T[i] = 300.0 + A * e * std::sin(kTwoPi * f * t) + g(rng);
+    s.slip[i] = 10.0 + 10.0 * t;  // a speed ramp, 10 rpm/s
+  }
+  DetectionSettings ramp;
+  ramp.onset_definition = OnsetDefinition::kGrowthRateZero;
+  const ShudderResult r = detect_shudder(s.input(), ramp);
+  const ShudderResult line = detect_shudder(s.input());
+  record("ramp_onset", "8d onset %.4f s (t_c %.3f s), slip %.3f rpm, dsigma/dt %.3f 1/s2 (%+.2e); 8c onset %.4f s",
+         r.onset_time_s, t_c, r.at_onset.slip_rpm, r.growth_acceleration_per_s2,
+         r.growth_acceleration_per_s2 / accel - 1.0, line.onset_time_s);
+  ASSERT_EQ(r.verdict, Verdict::kVibration);
+  EXPECT_NEAR(r.onset_time_s, t_c, 0.05);
+  EXPECT_NEAR(r.growth_acceleration_per_s2 / accel, 1.0, 0.05);
+  EXPECT_NEAR(r.at_onset.slip_rpm, 10.0 + 10.0 * r.onset_time_s, 0.05);
+  // The default is unchanged by the new option and lands late on a ramp.
+  EXPECT_TRUE(std::isnan(line.growth_acceleration_per_s2));
+  EXPECT_GT(line.onset_time_s, t_c + 0.1);
+  EXPECT_EQ(line.frequency_Hz, r.frequency_Hz);
+  EXPECT_EQ(line.amplitude_Nm, r.amplitude_Nm);
+}
+
 // Sawtooth stick-slip at 213.7 Hz: the slip is exactly zero in the stuck 70 % of each period,
 // so every cycle reaches zero -> stick_slip. The one-period moving mean of a periodic signal
 // is its constant mean, so the residual's half peak-to-peak is (T_hi − T_lo)/2 to the
