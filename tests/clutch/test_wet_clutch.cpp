@@ -26,6 +26,7 @@
 #include "clutch/fluid.hpp"
 #include "clutch/friction_law.hpp"
 #include "clutch/wet_clutch.hpp"
+#include "io/fluid_loader.hpp"
 
 namespace {
 
@@ -236,3 +237,31 @@ TEST(WetClutch, RejectsBadParametersNamingTheQuantity) {
 }
 
 }  // namespace
+
+// The fast path of the rig dynamics: friction frozen per ring at held temperatures and load
+// (FrozenFriction, the Mäki blend rewritten as Σ a_j tanh(b_j v) + c v^0.1 + d with one pow per
+// call) must give the same ring torques as evaluating the law directly. Fluid C's matrix, a
+// non-uniform ring temperature profile crossing matrix rows, slips on both sides of the speed
+// clamps, viscous shear on. Tolerance 1e-12 relative: the two differ only in the order of
+// floating-point operations (v^0.1 as r^0.1·|Δω|^0.1).
+
+TEST(WetClutch, FrozenFrictionEqualsDirectEvaluation) {
+  WetClutchParams p;
+  p.start_temp_C = 60.0;
+  p.viscous_shear = true;
+  const WetClutch clutch(p, shudder::io::load_fluid(SHUDDER_SOURCE_DIR "/scenarios/fluids/lsc_fluid_c.toml"));
+  const int n = clutch.thermal().radial_cells();
+  Eigen::VectorXd temps(n);
+  for (int i = 0; i < n; ++i) temps[i] = 45.0 + 60.0 * i / (n - 1);  // 45–105 °C: several rows and the 90 °C edge
+  for (double force : {12000.0, 17500.0, 25300.0}) {
+    const auto frozen = clutch.freeze(temps, force);
+    for (double slip : {0.05, 0.2, 1.0, 5.0, 10.5, 14.0}) {  // rad/s: below 6 mm/s ... above 590 mm/s
+      Eigen::VectorXd direct, fast, heat;
+      clutch.ring_heat_W(slip, force, temps, heat);
+      direct = heat / slip;
+      clutch.ring_torque_Nm(frozen, slip, force, fast);
+      for (int i = 0; i < n; ++i)
+        EXPECT_NEAR(fast[i], direct[i], 1e-12 * std::abs(direct[i])) << "force " << force << " slip " << slip << " ring " << i;
+    }
+  }
+}
