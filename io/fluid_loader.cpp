@@ -21,18 +21,6 @@ constexpr double kDefaultMinSpeed_mm_s = 6.0;    // Paper G range rule
 constexpr double kDefaultMaxSpeed_mm_s = 590.0;
 constexpr const char* kCoefficientNames[4] = {"C1", "C2", "C3", "C4"};
 
-std::string describe_type(const toml::node& n) {
-  switch (n.type()) {
-    case toml::node_type::table: return "a table";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a floating-point number";
-    case toml::node_type::boolean: return "a boolean";
-    default: return "a date/time";
-  }
-}
-
 std::string num(double x) {
   std::ostringstream os;
   os.precision(10);
@@ -58,7 +46,7 @@ std::vector<clutch::MakiSet> read_sets(TomlTable& row, const toml::table& raw_ro
   if (!node) row.fail("sets", "missing; " + shape);
   row.mark_read("sets");
   const toml::array* sets = node->as_array();
-  if (!sets) row.fail("sets", "is " + describe_type(*node) + "; " + shape);
+  if (!sets) row.fail("sets", "is " + std::string(toml_type_name(*node)) + "; " + shape);
   if (sets->size() != loads_N.size())
     row.fail("sets", "has " + std::to_string(sets->size()) +
                          " sets; expected one per load (" + std::to_string(loads_N.size()) +
@@ -69,7 +57,7 @@ std::vector<clutch::MakiSet> read_sets(TomlTable& row, const toml::table& raw_ro
     const std::string which =
         "set " + std::to_string(j) + " (load " + num(loads_N[j]) + " N)";
     const toml::array* c = sets->get(j)->as_array();
-    if (!c) row.fail("sets", which + " is " + describe_type(*sets->get(j)) +
+    if (!c) row.fail("sets", which + " is " + std::string(toml_type_name(*sets->get(j))) +
                                  "; expected an array [C1, C2, C3, C4]");
     if (c->size() != 4)
       row.fail("sets", which + " has " + std::to_string(c->size()) +
@@ -83,7 +71,7 @@ std::vector<clutch::MakiSet> read_sets(TomlTable& row, const toml::table& raw_ro
       else if (auto i = e.as_integer())
         v[k] = static_cast<double>(i->get());
       else
-        row.fail("sets", elem + " is " + describe_type(e) + "; expected a finite number");
+        row.fail("sets", elem + " is " + std::string(toml_type_name(e)) + "; expected a finite number");
       if (!std::isfinite(v[k]))
         row.fail("sets", elem + " is not finite (nan/inf); expected a finite number");
     }

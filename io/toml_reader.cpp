@@ -70,8 +70,7 @@ bool TomlTable::is_array(const std::string& key) const {
 
 const toml::node* TomlTable::get(const std::string& key) const { return table_->get(key); }
 
-namespace {
-const char* type_name(const toml::node& n) {
+const char* toml_type_name(const toml::node& n) {
   switch (n.type()) {
     case toml::node_type::table: return "a table";
     case toml::node_type::array: return "an array";
@@ -82,7 +81,6 @@ const char* type_name(const toml::node& n) {
     default: return "a date/time";
   }
 }
-}  // namespace
 
 double TomlTable::number(const std::string& key, Range range) {
   const auto* n = get(key);
@@ -94,7 +92,7 @@ double TomlTable::number(const std::string& key, Range range) {
   else if (auto i = n->as_integer())
     x = static_cast<double>(i->get());
   else
-    fail(key, std::string("is ") + type_name(*n) + "; expected a number in " + range.describe());
+    fail(key, std::string("is ") + toml_type_name(*n) + "; expected a number in " + range.describe());
   if (!std::isfinite(x)) fail(key, "is not finite (nan/inf); expected a number in " + range.describe());
   if (!range.contains(x)) {
     std::ostringstream os;
@@ -116,7 +114,7 @@ long TomlTable::integer(const std::string& key, long min, long max) {
   if (!n) fail(key, "missing; " + allowed);
   read_.insert(key);
   const auto* i = n->as_integer();
-  if (!i) fail(key, std::string("is ") + type_name(*n) + "; " + allowed);
+  if (!i) fail(key, std::string("is ") + toml_type_name(*n) + "; " + allowed);
   const long x = static_cast<long>(i->get());
   if (x < min || x > max) fail(key, "value " + std::to_string(x) + " is out of range; " + allowed);
   return x;
@@ -131,7 +129,7 @@ bool TomlTable::boolean(const std::string& key) {
   if (!n) fail(key, "missing; expected true or false");
   read_.insert(key);
   const auto* b = n->as_boolean();
-  if (!b) fail(key, std::string("is ") + type_name(*n) + "; expected true or false");
+  if (!b) fail(key, std::string("is ") + toml_type_name(*n) + "; expected true or false");
   return b->get();
 }
 
@@ -144,7 +142,7 @@ std::string TomlTable::string(const std::string& key) {
   if (!n) fail(key, "missing; expected a string");
   read_.insert(key);
   const auto* s = n->as_string();
-  if (!s) fail(key, std::string("is ") + type_name(*n) + "; expected a string");
+  if (!s) fail(key, std::string("is ") + toml_type_name(*n) + "; expected a string");
   return s->get();
 }
 
@@ -170,7 +168,7 @@ std::vector<double> TomlTable::numbers(const std::string& key, Range range,
   if (!n) fail(key, "missing; " + allowed);
   read_.insert(key);
   const auto* arr = n->as_array();
-  if (!arr) fail(key, std::string("is ") + type_name(*n) + "; " + allowed);
+  if (!arr) fail(key, std::string("is ") + toml_type_name(*n) + "; " + allowed);
   std::vector<double> out;
   out.reserve(arr->size());
   for (std::size_t i = 0; i < arr->size(); ++i) {
@@ -181,7 +179,7 @@ std::vector<double> TomlTable::numbers(const std::string& key, Range range,
     else if (auto iv = e.as_integer())
       x = static_cast<double>(iv->get());
     else
-      fail(key, "element " + std::to_string(i) + " is " + type_name(e) + "; " + allowed);
+      fail(key, "element " + std::to_string(i) + " is " + toml_type_name(e) + "; " + allowed);
     if (!std::isfinite(x)) fail(key, "element " + std::to_string(i) + " is not finite; " + allowed);
     if (!range.contains(x)) {
       std::ostringstream os;
@@ -200,7 +198,7 @@ TomlTable TomlTable::table(const std::string& key) {
   if (!n) fail(key, "missing table [" + full_key(key) + "]");
   read_.insert(key);
   const auto* t = n->as_table();
-  if (!t) fail(key, std::string("is ") + type_name(*n) + "; expected a table");
+  if (!t) fail(key, std::string("is ") + toml_type_name(*n) + "; expected a table");
   return TomlTable(*t, file_, full_key(key));
 }
 
@@ -217,7 +215,7 @@ std::vector<TomlTable> TomlTable::table_array(const std::string& key) {
   if (!n) fail(key, "missing; expected an array of tables [[" + full_key(key) + "]]");
   read_.insert(key);
   const auto* arr = n->as_array();
-  if (!arr) fail(key, std::string("is ") + type_name(*n) + "; expected an array of tables");
+  if (!arr) fail(key, std::string("is ") + toml_type_name(*n) + "; expected an array of tables");
   std::vector<TomlTable> out;
   for (std::size_t i = 0; i < arr->size(); ++i) {
     const auto* t = arr->get(i)->as_table();

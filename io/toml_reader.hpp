@@ -30,6 +30,9 @@ struct Range {
   std::string describe() const;
 };
 
+/// "a table", "an array", "a string", ... for messages about a value of the wrong type.
+const char* toml_type_name(const toml::node& n);
+
 class TomlTable {
  public:
   TomlTable(const toml::table& table, std::string file, std::string path);

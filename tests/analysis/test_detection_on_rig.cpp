@@ -26,6 +26,7 @@
 #include "io/scenario.hpp"
 #include "rig_models/lsctr_rig.hpp"
 #include "tests/support/cli.hpp"
+#include "tests/support/recording.hpp"
 
 namespace {
 
@@ -50,18 +51,8 @@ Recording run(const shudder::io::Scenario& sc) {
   return shudder::rig_models::run_rig(sc.rig, clutch, sc.cycle, sc.rig_settings());
 }
 
-const std::vector<double>& signal(const Recording& rec, const std::string& name) {
-  const auto* s = rec.find(name);
-  EXPECT_NE(s, nullptr) << name;
-  static const std::vector<double> empty;
-  return s ? s->values : empty;
-}
-
-double scalar(const Recording& rec, const std::string& name) {
-  const auto* s = rec.find_scalar(name);
-  EXPECT_NE(s, nullptr) << name;
-  return s ? s->value : std::nan("");
-}
+using shudder::test::scalar;
+using shudder::test::signal;
 
 // Negative-slope fluid: vibration at the clutch-side frequency. Tolerances:
 //   * against the housing mode of the modal analysis (clutch slipping, undamped): 5 %, as the

@@ -24,33 +24,8 @@ std::string base_scenario() {
          "normal_force_N = 10400.0\n";
 }
 
-struct Outcome {
-  CliResult r;
-  bool output_exists;
-};
-
 Outcome run_bad(const std::string& name, const std::string& scenario_text) {
-  const auto dir = scratch_dir("bad_" + name);
-  write_file(dir / "s.toml", scenario_text);
-  Outcome o;
-  o.r = run_cli("run s.toml -o out.h5", dir);
-  o.output_exists = std::filesystem::exists(dir / "out.h5") ||
-                    std::filesystem::exists(dir / "out.h5.tmp");
-  return o;
-}
-
-std::string replace(std::string s, const std::string& from, const std::string& to) {
-  const auto pos = s.find(from);
-  EXPECT_NE(pos, std::string::npos) << "test setup: '" << from << "' not in the scenario";
-  return s.replace(pos, from.size(), to);
-}
-
-void expect_rejected(const Outcome& o, const std::vector<std::string>& fragments) {
-  EXPECT_EQ(o.r.exit_code, 2) << o.r.err;
-  EXPECT_FALSE(o.output_exists);
-  // One line: the message ends with the only newline.
-  EXPECT_EQ(std::count(o.r.err.begin(), o.r.err.end(), '\n'), 1) << o.r.err;
-  for (const auto& f : fragments) EXPECT_THAT(o.r.err, HasSubstr(f));
+  return run_scenario_in("bad_" + name, scenario_text);
 }
 
 }  // namespace

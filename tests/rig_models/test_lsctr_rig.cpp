@@ -28,6 +28,7 @@
 #include "io/scenario.hpp"
 #include "rig_models/lsctr_rig.hpp"
 #include "rig_models/prescribed_slip.hpp"
+#include "tests/support/recording.hpp"
 
 namespace {
 
@@ -46,18 +47,8 @@ Scenario scenario(const std::string& name) {
   return load_scenario(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/" + name);
 }
 
-const std::vector<double>& signal(const Recording& rec, const std::string& name) {
-  const auto* s = rec.find(name);
-  EXPECT_NE(s, nullptr) << name;
-  static const std::vector<double> empty;
-  return s ? s->values : empty;
-}
-
-double scalar(const Recording& rec, const std::string& name) {
-  const auto* s = rec.find_scalar(name);
-  EXPECT_NE(s, nullptr) << name;
-  return s ? s->value : std::nan("");
-}
+using shudder::test::scalar;
+using shudder::test::signal;
 
 // Records a measured number in the test's XML output (--gtest_output=xml), printf-formatted.
 template <typename... Args>

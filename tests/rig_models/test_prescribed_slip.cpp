@@ -18,6 +18,7 @@
 #include "io/fluid_loader.hpp"
 #include "rig_models/drive_cycle.hpp"
 #include "rig_models/prescribed_slip.hpp"
+#include "tests/support/recording.hpp"
 
 namespace {
 
@@ -55,18 +56,8 @@ PrescribedSlipSettings settings(double thermal_step_s, double sample_rate_Hz = 1
   return s;
 }
 
-const std::vector<double>& signal(const Recording& rec, const std::string& name) {
-  const auto* s = rec.find(name);
-  EXPECT_NE(s, nullptr) << name;
-  static const std::vector<double> empty;
-  return s ? s->values : empty;
-}
-
-double scalar(const Recording& rec, const std::string& name) {
-  const auto* s = rec.find_scalar(name);
-  EXPECT_NE(s, nullptr) << name;
-  return s ? s->value : std::nan("");
-}
+using shudder::test::scalar;
+using shudder::test::signal;
 
 // Trapezoid of clutch torque * slip speed over the samples, J.
 double trapezoid_work_J(const Recording& rec) {

@@ -1,7 +1,12 @@
 #pragma once
 // Helpers for end-to-end tests that run the `shudder` executable: a scratch directory per test
 // and a runner that captures exit code, stdout and stderr.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
 #include <sys/wait.h>
+
+#include <algorithm>
+#include <vector>
 
 #include <cstdlib>
 #include <filesystem>
@@ -50,6 +55,36 @@ inline void write_file(const std::filesystem::path& p, const std::string& text) 
 
 inline std::string source_path(const std::string& rel) {
   return std::string(SHUDDER_SOURCE_DIR) + "/" + rel;
+}
+
+/// `s` with the first `from` replaced by `to`; a missing `from` is a test-setup failure.
+inline std::string replace(std::string s, const std::string& from, const std::string& to) {
+  const auto pos = s.find(from);
+  EXPECT_NE(pos, std::string::npos) << "test setup: '" << from << "' not in the scenario";
+  return pos == std::string::npos ? s : s.replace(pos, from.size(), to);
+}
+
+struct Outcome {
+  CliResult r;
+  bool output_exists;  // out.h5 or its temporary exists after the run
+};
+
+/// Writes `scenario_text` to a fresh scratch dir `dir_name` and runs `shudder run s.toml -o out.h5`.
+inline Outcome run_scenario_in(const std::string& dir_name, const std::string& scenario_text) {
+  const auto dir = scratch_dir(dir_name);
+  write_file(dir / "s.toml", scenario_text);
+  Outcome o;
+  o.r = run_cli("run s.toml -o out.h5", dir);
+  o.output_exists = std::filesystem::exists(dir / "out.h5") || std::filesystem::exists(dir / "out.h5.tmp");
+  return o;
+}
+
+/// Bad input: exit 2, no output file, ONE stderr line containing every fragment.
+inline void expect_rejected(const Outcome& o, const std::vector<std::string>& fragments) {
+  EXPECT_EQ(o.r.exit_code, 2) << o.r.err;
+  EXPECT_FALSE(o.output_exists);
+  EXPECT_EQ(std::count(o.r.err.begin(), o.r.err.end(), '\n'), 1) << o.r.err;
+  for (const auto& f : fragments) EXPECT_THAT(o.r.err, ::testing::HasSubstr(f));
 }
 
 }  // namespace shudder::test
