@@ -1,0 +1,179 @@
+#pragma once
+// Discrepancy diagnosis: where a model and measured runs disagree, which switchable effect is
+// missing, its fitted parameters, and how much closer the model gets (FORMATS.md "Diagnosis
+// result"). Model-agnostic: the caller supplies a thread-safe Simulator that replays run k
+// with the baseline plus a list of added effects; this file does the statistics.
+//
+// Method (docs/diagnosis.md has the reasoning):
+//   noise      sigma of each signal from the data alone: the median absolute second difference
+//              of consecutive samples, sigma = 1.4826 * MAD(d2) / sqrt(6) (white noise gives
+//              Var(d2) = 6 sigma²; a smooth signal adds ~nothing at 100 Hz–1 kHz sampling).
+//   misfit     J = mean over compared signals of mean((r/σ)²) over a sample set, r = model −
+//              measured: torque and temp_C always, sump_temp_C and ir_temp_C when every run has
+//              them (the sump shows sump heating; the IR spot separates a lagging sensor from
+//              stored heat). A model that explains the data to the noise has J ≈ 1.
+//   hold-out   with several runs the last run is held out; with one run, alternate tenths of
+//              its duration. Candidates are fitted on the rest and scored on the hold-out.
+//   fitting    Eigen's Levenberg–Marquardt on log(parameter) (positivity, scale-free steps),
+//              forward-difference Jacobian, several starts per effect (the best start wins).
+//   selection  greedy: score = J_holdout + penalty·(parameters); the best candidate is added
+//              if it lowers the hold-out misfit by more than min_gain + penalty·k; stop when
+//              no candidate does, or when every signal is within noise_tolerance·σ.
+//   segments   the residual averaged over blocks (≈1/80 of a run); a block disagrees when its
+//              mean stands above 3 standard errors and above half a noise sigma; neighbouring
+//              blocks of one sign join into a segment.
+//   tracks     Pearson correlation of the block-mean residual with block means of features of
+//              the measured run (temperature rise and rate, sliding speed, direction of the
+//              speed change, dwell at low speed, normal force, time); the strongest is named.
+
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace shudder::analysis {
+
+/// One measured run as the diagnosis sees it (all columns the same length, time increasing).
+struct DiagnosisRun {
+  std::string name;  // e.g. the file name
+  std::vector<double> time_s, speed_rpm, normal_force_N, torque_Nm, temp_C;
+  std::vector<double> sump_temp_C, ir_temp_C;  // optional (empty); compared when every run has them
+};
+
+/// A switchable effect the diagnosis may add, with the parameters it fits (all > 0, fitted in
+/// log space inside [lower, upper]). An effect without parameters is just switched on.
+struct EffectCandidate {
+  std::string name;
+  std::string description;                    // one line: what the effect does (for the reason)
+  std::vector<std::string> parameter_names;   // scenario keys, e.g. "heat_capacity_J_per_K"
+  std::vector<std::vector<double>> starts;    // initial guesses (each of parameter_names' size)
+  std::vector<double> lower, upper;
+};
+
+/// An effect switched on with parameter values (in parameter_names order).
+struct EffectSetting {
+  std::string effect;
+  std::vector<double> values;
+};
+
+/// A model's prediction of one run at the run's sample times.
+struct Prediction {
+  std::vector<double> torque_Nm, temp_C, sump_temp_C, ir_temp_C;  // the last two when asked
+};
+
+/// Replays run `run` (index into the runs given to diagnose) with the baseline model plus
+/// `added`. Must be thread-safe. Throws std::exception if the model cannot be simulated with
+/// these parameters (the fit then treats them as infeasible).
+using Simulator =
+    std::function<Prediction(const std::vector<EffectSetting>& added, std::size_t run)>;
+
+struct DiagnosisOptions {
+  unsigned jobs = 1;                  // threads (candidates are fitted in parallel)
+  double noise_tolerance = 1.1;       // "within noise": every signal's RMS <= this × sigma
+  double min_gain = 0.05;             // hold-out misfit drop needed (noise variance units)
+  double penalty_per_parameter = 0.02;  // per fitted parameter, same units
+  int max_effects = 4;                // at most this many effects added
+  int max_samples_per_run = 1500;     // residuals use every k-th sample beyond this
+  int max_evaluations = 60;           // LM model evaluations per fit (each = all fit runs)
+  double min_noise_torque_Nm = 1e-3;  // floors for the noise estimate (noise-free data)
+  double min_noise_temp_C = 1e-3;
+  // Rig runs: compare torque by the mean and standard deviation over statistics_block_s blocks
+  // instead of sample by sample. A stick-slip cycle drifts in phase between model and rig
+  // (1 % force moves it by a fraction of a cycle within seconds), so a pointwise comparison
+  // measures phase, not physics; block statistics keep level and amplitude.
+  bool torque_block_statistics = false;
+  double statistics_block_s = 0.25;
+};
+
+/// How well one measured signal is explained. Pointwise channels: rms of model − measured
+/// over samples; block-statistics channels: rms over blocks of the differences of block mean
+/// and block standard deviation (the measured one with the noise removed in quadrature).
+/// misfit: the channel's share of J, ≈ 1 when explained to the noise.
+struct ChannelFit {
+  std::string signal;      // torque_Nm, temp_C, sump_temp_C, ir_temp_C
+  std::string comparison;  // "pointwise" or "block_statistics"
+  double noise = 0.0;      // estimated sigma of one sample, signal unit
+  double baseline_rms = 0.0, final_rms = 0.0;
+  double baseline_misfit = 0.0, final_misfit = 0.0;
+};
+
+/// RMS of model − measured over all samples of all runs (torque: block RMS when compared by
+/// block statistics, see ChannelFit).
+struct Misfit {
+  double torque_rms_Nm = 0.0;
+  double temp_rms_C = 0.0;
+};
+
+/// A stretch of one run where one signal's residual stands above the noise.
+struct Disagreement {
+  std::string run;
+  std::string signal;      // "torque_Nm" or "temp_C"
+  double t_start_s = 0.0, t_end_s = 0.0;
+  double mean_error = 0.0; // model − measured, the signal's unit
+  std::string tracks;      // feature the run's residual follows most closely
+  double correlation = 0.0;  // Pearson r of block-mean residual and that feature
+};
+
+/// A feature correlation of one run's residual (all features, for the report).
+struct Tracking {
+  std::string run, signal;
+  std::vector<std::pair<std::string, double>> correlations;  // feature -> r, strongest first
+};
+
+struct CandidateScore {
+  std::string effect;
+  std::vector<std::pair<std::string, double>> parameters;  // fitted on the fit set
+  double fit_misfit = 0.0;      // J on the fit set
+  double holdout_misfit = 0.0;  // J on the hold-out
+  double score = 0.0;           // holdout_misfit + penalty × parameters
+  double gain = 0.0;            // current hold-out J − holdout_misfit − penalty × parameters
+  double signature_correlation = 0.0;  // r(current residual, change this effect makes)
+  int evaluations = 0;          // model evaluations used by the fit
+  std::string failure;          // non-empty if every simulation failed
+};
+
+struct DiagnosisStep {
+  std::string effect;
+  std::vector<std::pair<std::string, double>> parameters;  // refitted on all runs
+  Misfit misfit;                  // all runs, after adding the effect (all-runs parameters)
+  Misfit holdout;                 // hold-out samples, fit-set parameters
+  double holdout_misfit_before = 0.0, holdout_misfit_after = 0.0;  // J
+  std::vector<CandidateScore> candidates;  // every candidate tried in this round, best first
+  std::string reason;             // plain words: why this effect
+};
+
+/// Measured and modelled signals of one run, for plots (at the residual samples).
+struct RunTraces {
+  std::string run;
+  std::vector<double> time_s;
+  std::vector<double> torque_measured, torque_baseline, torque_final;
+  std::vector<double> temp_measured, temp_baseline, temp_final;
+};
+
+struct DiagnosisResult {
+  std::vector<std::string> runs;
+  double noise_torque_Nm = 0.0, noise_temp_C = 0.0;  // estimated sigma
+  std::string holdout;            // what was held out, in words
+  Misfit baseline, final;
+  std::vector<ChannelFit> channels;  // every compared signal (torque and temp first)
+  double baseline_holdout_misfit = 0.0, final_holdout_misfit = 0.0;  // J
+  std::vector<Disagreement> disagreements;        // baseline model
+  std::vector<Disagreement> final_disagreements;  // final model
+  std::vector<Tracking> tracking;                 // baseline residual vs every feature
+  std::vector<DiagnosisStep> steps;
+  std::vector<std::string> missing_effects;       // added, most important first
+  std::vector<CandidateScore> last_round;         // the round that stopped the search
+  std::string conclusion;                         // one paragraph, plain words
+  std::vector<RunTraces> traces;
+  // Cost split: thread-seconds inside the Simulator vs. the rest of the fitting work.
+  double simulation_thread_s = 0.0, fitting_thread_s = 0.0, wall_s = 0.0;
+  long simulations = 0;
+};
+
+/// Throws std::invalid_argument if a run is too short to fit anything (fewer than 20 samples
+/// or an empty hold-out/fit split), if columns differ in length, or if no runs are given.
+DiagnosisResult diagnose(const std::vector<DiagnosisRun>& runs,
+                         const std::vector<EffectCandidate>& candidates,
+                         const Simulator& simulate, const DiagnosisOptions& options);
+
+}  // namespace shudder::analysis

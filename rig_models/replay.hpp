@@ -1,0 +1,75 @@
+#pragma once
+// Replaying measured runs on a model (the diagnosis' simulator, analysis/diagnosis.hpp).
+//
+// A ReplayModel is a scenario without its drive cycle: the clutch, fluid, rig and solver
+// settings, and the effect switches. replay() drives it with a measured run's inputs:
+//   * speed_rpm and normal_force_N, averaged over consecutive windows of input_window_s
+//     (0.05 s: removes the sensors' noise and, on the rig, the encoder's vibration, while a
+//     ramp's kink is rounded over only 0.05 s) and joined piecewise linearly at the window
+//     centres. On the rig the averaged speed is the motor's set point.
+//   * start temperatures: discs and inner boundary at the mean temp_C of the first 0.1 s (at
+//     least 5 samples); sump at the mean sump_temp_C there when measured, else the same.
+//   * metadata: oil_flow_ml_min sets the supply flow; temp_sensor "… r_mm=R z_mm=Z" places
+//     the thermocouple.
+// The model's own recording rate is kept and its torque_Nm and temp_C are interpolated
+// linearly to the measured times, as `shudder run --measurement` resamples its recording.
+//
+// The effect catalogue lists, per FORMATS.md effect, the parameters the diagnosis fits (names
+// as the scenario keys of docs/scenario_format.md), their bounds and starting guesses.
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "clutch/fluid.hpp"
+#include "clutch/wet_clutch.hpp"
+#include "rig_models/lsctr_rig.hpp"
+#include "rig_models/prescribed_slip.hpp"
+
+namespace shudder::rig_models {
+
+struct ReplayModel {
+  bool rig = false;  // the LSCTR rig; else prescribed slip
+  clutch::WetClutchParams clutch;
+  clutch::Fluid fluid;
+  PrescribedSlipSettings settings;  // solver steps, sampling; bearing drag for both models
+  RigParams rig_params;             // used when rig
+};
+
+struct ReplayInputs {
+  std::vector<double> time_s, speed_rpm, normal_force_N, temp_C;
+  std::vector<double> sump_temp_C;  // empty when not measured
+  std::optional<double> oil_flow_ml_min, thermocouple_r_mm, thermocouple_z_mm;
+  double input_window_s = 0.05;
+};
+
+struct ReplayOutput {
+  std::vector<double> torque_Nm, temp_C, sump_temp_C, ir_temp_C;  // at ReplayInputs::time_s
+};
+
+/// Throws std::invalid_argument if the model cannot be built or run on these inputs.
+ReplayOutput replay(const ReplayModel& model, const ReplayInputs& inputs);
+
+/// Parses "r_mm=48 z_mm=0.5" out of a temp_sensor metadata value (either may be absent).
+void parse_temp_sensor(const std::string& value, ReplayInputs& inputs);
+
+struct EffectParameterSpec {
+  std::string name;     // scenario key
+  double lower, upper;  // fit bounds (> 0)
+};
+
+struct EffectSpec {
+  std::string name;
+  std::string description;
+  std::vector<EffectParameterSpec> parameters;  // fitted when the effect is added
+  std::vector<std::vector<double>> starts;      // starting guesses for the fit
+};
+
+/// The catalogue entry of a FORMATS.md effect; std::invalid_argument listing the valid names.
+const EffectSpec& effect_spec(std::string_view name);
+bool effect_enabled(const ReplayModel& model, std::string_view name);
+/// Switches the effect on with parameter values in EffectSpec::parameters order.
+void enable_effect(ReplayModel& model, std::string_view name, const std::vector<double>& values);
+
+}  // namespace shudder::rig_models
