@@ -165,7 +165,8 @@ struct DiagnosisResult {
   std::vector<CandidateScore> last_round;         // the round that stopped the search
   std::string conclusion;                         // one paragraph, plain words
   std::vector<RunTraces> traces;
-  // Cost split: thread-seconds inside the Simulator vs. the rest of the fitting work.
+  // Cost split, CPU seconds over all threads: inside the Simulator vs. the rest (fitting,
+  // residuals, statistics); and the wall time.
   double simulation_thread_s = 0.0, fitting_thread_s = 0.0, wall_s = 0.0;
   long simulations = 0;
 };

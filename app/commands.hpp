@@ -59,4 +59,13 @@ struct ValidateOptions {
 };
 int validate_command(const ValidateOptions& options);
 
+struct DiagnoseOptions {
+  std::string model;              // scenario TOML: the baseline model
+  std::vector<std::string> runs;  // measured runs (CSV or HDF5)
+  std::string json;               // diagnosis JSON path; empty = none
+  std::string report;             // report directory; empty = none
+  unsigned jobs = 0;              // 0 = all cores
+};
+int diagnose_command(const DiagnoseOptions& options);
+
 }  // namespace shudder::app

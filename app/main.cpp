@@ -63,6 +63,17 @@ int main(int argc, char** argv) {
   val_cmd->add_option("--docs", validate.docs_dir, "Folder to write validation.md and PNGs into");
   val_cmd->add_flag("!--no-plots", validate.plots, "Skip the PNG plots (no gnuplot needed)");
 
+  DiagnoseOptions diagnose;
+  auto* diag_cmd = app.add_subcommand(
+      "diagnose", "Find where a model and measured runs disagree and which effect is missing");
+  diag_cmd->add_option("model", diagnose.model, "Scenario file (TOML): the baseline model")->required();
+  diag_cmd->add_option("runs", diagnose.runs, "Measured runs (CSV or HDF5, FORMATS.md)")->required();
+  diag_cmd->add_option("--json", diagnose.json, "Write the diagnosis as JSON (shudder-diagnosis/1)");
+  diag_cmd->add_option("--report", diagnose.report,
+                       "Also write a report directory: summary, candidate table, plots");
+  diag_cmd->add_option("--jobs", diagnose.jobs, "Parallel fits (default: all cores)")
+      ->check(CLI::Range(1u, 1024u));
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -76,5 +87,6 @@ int main(int argc, char** argv) {
   if (*sweep_cmd) return sweep_command(sweep);
   if (*screen_cmd) return screen_command(screen);
   if (*plot_cmd) return plot_command(plot);
+  if (*diag_cmd) return diagnose_command(diagnose);
   return 2;
 }

@@ -1,0 +1,88 @@
+#include "io/diagnosis_inputs.hpp"
+
+#include <cmath>
+#include <filesystem>
+
+#include "io/input_error.hpp"
+
+namespace shudder::io {
+
+rig_models::ReplayModel replay_model(const Scenario& s) {
+  rig_models::ReplayModel m;
+  m.rig = s.type == "rig";
+  m.clutch = s.clutch;
+  m.fluid = s.fluid;
+  m.settings = s.settings;
+  m.rig_params = s.rig;
+  return m;
+}
+
+DiagnosisData diagnosis_data(const std::vector<MeasuredRun>& runs) {
+  DiagnosisData d;
+  std::string rig_source;
+  for (const auto& run : runs) {
+    if (const auto rig = run.meta("rig"); rig && !rig->empty()) {
+      if (d.rig.empty()) {
+        d.rig = *rig;
+        rig_source = run.path;
+      } else if (*rig != d.rig) {
+        throw InputError(run.path, 0, "rig",
+                         "this run comes from rig '" + *rig + "' but " + rig_source + " from rig '" +
+                             d.rig + "'; diagnose runs of one rig at a time");
+      }
+    }
+    if (run.rows() < diagnosis_min_rows || run.duration_s() < diagnosis_min_duration_s)
+      throw InputError(run.path, 0, "",
+                       "the run has " + std::to_string(run.rows()) + " rows over " +
+                           std::to_string(run.duration_s()) + " s; the diagnosis needs at least " +
+                           std::to_string(diagnosis_min_rows) + " rows and " +
+                           std::to_string(diagnosis_min_duration_s) +
+                           " s to fit parameters and hold some data out");
+
+    analysis::DiagnosisRun dr;
+    dr.name = std::filesystem::path(run.path).filename().string();
+    dr.time_s = run.required("time_s");
+    dr.speed_rpm = run.required("speed_rpm");
+    dr.normal_force_N = run.required("normal_force_N");
+    dr.torque_Nm = run.required("torque_Nm");
+    dr.temp_C = run.required("temp_C");
+    if (const auto* c = run.column("sump_temp_C")) dr.sump_temp_C = *c;
+    if (const auto* c = run.column("ir_temp_C")) dr.ir_temp_C = *c;
+
+    rig_models::ReplayInputs in;
+    in.time_s = dr.time_s;
+    in.speed_rpm = dr.speed_rpm;
+    in.normal_force_N = dr.normal_force_N;
+    in.temp_C = dr.temp_C;
+    in.sump_temp_C = dr.sump_temp_C;
+    if (const auto flow = run.meta("oil_flow_ml_min")) {
+      char* end = nullptr;
+      const double v = std::strtod(flow->c_str(), &end);
+      if (end == flow->c_str() || *end != '\0' || !std::isfinite(v) || v < 0)
+        throw InputError(run.path, 0, "oil_flow_ml_min",
+                         "'" + *flow + "' is not a flow; give a number >= 0 (ml/min)");
+      in.oil_flow_ml_min = v;
+    }
+    if (const auto sensor = run.meta("temp_sensor")) {
+      try {
+        rig_models::parse_temp_sensor(*sensor, in);
+      } catch (const std::exception&) {
+        throw InputError(run.path, 0, "temp_sensor",
+                         "'" + *sensor + "' has an r_mm or z_mm that is not a number");
+      }
+      if (!in.thermocouple_r_mm && !in.thermocouple_z_mm)
+        d.warnings.push_back(run.path + ": temp_sensor '" + *sensor +
+                             "' names no position (r_mm=…, z_mm=…); the model's thermocouple is used");
+    }
+    // Names must tell runs apart in the result; fall back to the path when two share a name.
+    for (const auto& other : d.runs)
+      if (other.name == dr.name) dr.name = run.path;
+    d.runs.push_back(std::move(dr));
+    d.inputs.push_back(std::move(in));
+  }
+  if (!d.rig.empty() && d.rig != "lsctr")
+    d.warnings.push_back("the runs come from rig '" + d.rig + "'; the model is of the LSCTR");
+  return d;
+}
+
+}  // namespace shudder::io
