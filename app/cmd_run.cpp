@@ -1,5 +1,6 @@
-// `shudder run`: load a scenario, simulate, write HDF5 (and optionally a measured-run CSV),
-// print a readable summary; optionally a report directory (summary.txt and plots).
+// `shudder run`: load a scenario, simulate, write HDF5 (and optionally a measured run: CSV, or
+// its HDF5 form for a .h5/.hdf5 name), print a readable summary; optionally a report directory
+// (summary.txt and plots).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -59,7 +60,7 @@ int run_command(const RunOptions& opt) {
                     scenario.clutch.thermal.thermocouple_r_m * 1e3,
                     scenario.clutch.thermal.thermocouple_z_m * 1e3);
       m.temp_sensor = sensor;
-      io::write_measurement_csv(opt.measurement, rec, m);
+      io::write_measurement(opt.measurement, rec, m);
     }
 
     std::ostringstream summary;

@@ -1,7 +1,10 @@
-// Recording -> measured-run CSV (see measurement_csv.hpp). Numbers are formatted with
+// Recording -> measured run (see measurement_csv.hpp): built once in memory (resampling, noise),
+// then written as CSV here or as HDF5 by measured_run.cpp. Numbers are formatted with
 // std::to_chars, so the output does not depend on the C locale.
 #include "io/measurement_csv.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -9,6 +12,7 @@
 #include <limits>
 #include <numbers>
 #include <random>
+#include <string_view>
 #include <vector>
 
 #include "io/atomic_file.hpp"
@@ -152,10 +156,52 @@ const std::vector<double>& recorded_time(const std::string& path, const dynamics
   return t->values;
 }
 
+// Metadata lines, header, rows: time with the fewest decimals that keep it exact enough (see
+// time_decimals), every other value with 6 significant digits.
+void write_csv(const std::string& path, const MeasuredRun& run) {
+  const std::string tmp = temp_path_for(path);
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out)
+      throw InputError(path, 0, "",
+                       "cannot create '" + tmp + "'; check the directory exists and is writable");
+    for (const auto& [key, value] : run.metadata) out << "# " << key << ": " << value << '\n';
+    for (std::size_t c = 0; c < run.columns.size(); ++c)
+      out << (c == 0 ? "" : ",") << run.columns[c].name;
+    out << '\n';
+    const std::vector<double>& time = run.columns.front().values;
+    const int decimals = time_decimals(time);
+    std::string line;
+    for (std::size_t i = 0; i < time.size(); ++i) {
+      line = format(time[i], std::chars_format::fixed, decimals);
+      for (std::size_t c = 1; c < run.columns.size(); ++c)
+        (line += ',') += format(run.columns[c].values[i], std::chars_format::general, 6);
+      line += '\n';
+      out << line;
+    }
+    out.close();
+    if (out.fail()) {
+      discard_temp_file(tmp);
+      throw InputError(path, 0, "", "cannot write '" + tmp + "' (disk full?)");
+    }
+  }
+  commit_temp_file(tmp, path);
+}
+
+bool has_hdf5_extension(const std::string& path) {
+  const auto ends_with = [&](std::string_view ext) {
+    return path.size() > ext.size() &&
+           std::equal(ext.rbegin(), ext.rend(), path.rbegin(), [](char a, char b) {
+             return a == std::tolower(static_cast<unsigned char>(b));
+           });
+  };
+  return ends_with(".h5") || ends_with(".hdf5");
+}
+
 }  // namespace
 
-void write_measurement_csv(const std::string& path, const dynamics::Recording& rec,
-                           const MeasurementOptions& opt) {
+MeasuredRun make_measurement(const std::string& path, const dynamics::Recording& rec,
+                             const MeasurementOptions& opt) {
   check_options(path, opt);
   const std::vector<double>& t_rec = recorded_time(path, rec);
   std::vector<Column> cols = sensor_columns(path, rec, t_rec);
@@ -173,7 +219,7 @@ void write_measurement_csv(const std::string& path, const dynamics::Recording& r
       time[k] = std::min(t0 + static_cast<double>(k) / rate, t_end);
     for (auto& c : cols) c.values = interpolate(t_rec, c.values, time);
   }
-  if (time.size() < 10)
+  if (time.size() < measured_run_min_rows)
     throw InputError(path, 0, "sample_rate_Hz",
                      "only " + std::to_string(time.size()) +
                          " rows; the format needs at least 10: raise the rate or record longer");
@@ -188,40 +234,35 @@ void write_measurement_csv(const std::string& path, const dynamics::Recording& r
       }
   }
 
-  // Metadata, header, rows -> temporary file.
-  const std::string tmp = temp_path_for(path);
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out)
-      throw InputError(path, 0, "",
-                       "cannot create '" + tmp + "'; check the directory exists and is writable");
-    const auto g6 = [](double v) { return format(v, std::chars_format::general, 6); };
-    out << "# format: shudder-measurement/1\n";
-    if (!opt.rig.empty()) out << "# rig: " << opt.rig << '\n';
-    if (!opt.fluid.empty()) out << "# fluid: " << opt.fluid << '\n';
-    if (!opt.temp_sensor.empty()) out << "# temp_sensor: " << opt.temp_sensor << '\n';
-    out << "# oil_flow_ml_min: " << g6(opt.oil_flow_ml_min) << '\n';
-    out << "# sample_rate_Hz: " << g6(rate) << '\n';
-    out << "# noise: " << (opt.noise ? "on" : "off") << '\n';
-    if (opt.noise) out << "# seed: " << opt.seed << '\n';
-    out << "time_s";
-    for (const auto& c : cols) out << ',' << c.name;
-    out << '\n';
-    const int decimals = time_decimals(time);
-    std::string line;
-    for (std::size_t i = 0; i < time.size(); ++i) {
-      line = format(time[i], std::chars_format::fixed, decimals);
-      for (const auto& c : cols) (line += ',') += g6(c.values[i]);
-      line += '\n';
-      out << line;
-    }
-    out.close();
-    if (out.fail()) {
-      discard_temp_file(tmp);
-      throw InputError(path, 0, "", "cannot write '" + tmp + "' (disk full?)");
-    }
-  }
-  commit_temp_file(tmp, path);
+  MeasuredRun run;
+  run.path = path;
+  const auto g6 = [](double v) { return format(v, std::chars_format::general, 6); };
+  auto& meta = run.metadata;
+  meta.emplace_back("format", std::string(measured_run_format));
+  if (!opt.rig.empty()) meta.emplace_back("rig", opt.rig);
+  if (!opt.fluid.empty()) meta.emplace_back("fluid", opt.fluid);
+  if (!opt.temp_sensor.empty()) meta.emplace_back("temp_sensor", opt.temp_sensor);
+  meta.emplace_back("oil_flow_ml_min", g6(opt.oil_flow_ml_min));
+  meta.emplace_back("sample_rate_Hz", g6(rate));
+  meta.emplace_back("noise", opt.noise ? "on" : "off");
+  if (opt.noise) meta.emplace_back("seed", std::to_string(opt.seed));
+  run.columns.push_back({"time_s", measured_run_units("time_s"), std::move(time)});
+  for (auto& c : cols)
+    run.columns.push_back({c.name, measured_run_units(c.name), std::move(c.values)});
+  return run;
+}
+
+void write_measurement_csv(const std::string& path, const dynamics::Recording& rec,
+                           const MeasurementOptions& opt) {
+  write_csv(path, make_measurement(path, rec, opt));
+}
+
+void write_measurement(const std::string& path, const dynamics::Recording& rec,
+                       const MeasurementOptions& opt) {
+  if (has_hdf5_extension(path))
+    write_measured_run_hdf5(path, make_measurement(path, rec, opt));
+  else
+    write_measurement_csv(path, rec, opt);
 }
 
 }  // namespace shudder::io

@@ -1,6 +1,7 @@
 #pragma once
 // A simulated run written as a measured rig run (FORMATS.md "Measured rig run (CSV)"), so the
-// tools that read real LSCTR data can read simulations too, optionally with sensor noise.
+// tools that read real LSCTR data can read simulations too, optionally with sensor noise. The
+// same content can be written in the format's HDF5 form (io/measured_run.hpp).
 //
 // Columns: time_s, speed_rpm, normal_force_N, torque_Nm, temp_C (required; the recording must
 // have them), then sump_temp_C and ir_temp_C when the recording has them. Other signals are
@@ -23,6 +24,7 @@
 #include <string>
 
 #include "dynamics/recording.hpp"
+#include "io/measured_run.hpp"
 
 namespace shudder::io {
 
@@ -51,8 +53,19 @@ struct MeasurementOptions {
   double oil_flow_ml_min = 200;  // metadata `oil_flow_ml_min`, >= 0
 };
 
+/// What the writers below write, in memory: time_s then the sensor columns (units from
+/// measured_run_units), resampled and with noise added, at full precision; the metadata in file
+/// order. `path` is the output named in errors (and the run's `path`). Throws like the writers.
+MeasuredRun make_measurement(const std::string& path, const dynamics::Recording& rec,
+                             const MeasurementOptions& opt);
+
 /// Writes `rec` as a measured-run CSV at `path`; see the file comment.
 void write_measurement_csv(const std::string& path, const dynamics::Recording& rec,
                            const MeasurementOptions& opt);
+
+/// write_measurement_csv, or, when `path` ends in `.h5` or `.hdf5` (any case), the same run in
+/// the HDF5 form (write_measured_run_hdf5), its values at full precision instead of printed.
+void write_measurement(const std::string& path, const dynamics::Recording& rec,
+                       const MeasurementOptions& opt);
 
 }  // namespace shudder::io

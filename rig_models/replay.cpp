@@ -5,6 +5,8 @@
 #include <regex>
 #include <stdexcept>
 
+#include "clutch/effects.hpp"
+
 namespace shudder::rig_models {
 
 namespace {
@@ -200,6 +202,41 @@ void enable_effect(ReplayModel& m, std::string_view name, const std::vector<doub
     m.clutch.viscous_shear = true;
     m.clutch.viscous_gap_m = v[0] * 1e-6;
   } else if (name == "load_dependent_friction") m.clutch.load_dependent_friction = true;
+}
+
+analysis::Simulator replay_simulator(ReplayModel model, std::vector<ReplayInputs> inputs) {
+  return [model = std::move(model), inputs = std::move(inputs)](
+             const std::vector<analysis::EffectSetting>& added, std::size_t run) {
+    ReplayModel m = model;
+    for (const auto& e : added) enable_effect(m, e.effect, e.values);
+    ReplayOutput o = replay(m, inputs.at(run));
+    return analysis::Prediction{std::move(o.torque_Nm), std::move(o.temp_C), std::move(o.sump_temp_C),
+                                std::move(o.ir_temp_C)};
+  };
+}
+
+std::vector<analysis::EffectCandidate> replay_candidates(const ReplayModel& model,
+                                                         std::vector<std::string>* skipped) {
+  std::vector<analysis::EffectCandidate> out;
+  for (auto name : clutch::kEffectNames) {
+    if (effect_enabled(model, name)) continue;
+    if (name == "stick_time_static_friction" && !model.rig) {
+      if (skipped) skipped->push_back("stick_time_static_friction: the slip is imposed, nothing sticks");
+      continue;
+    }
+    const auto& spec = effect_spec(name);
+    analysis::EffectCandidate c;
+    c.name = spec.name;
+    c.description = spec.description;
+    c.starts = spec.starts;
+    for (const auto& p : spec.parameters) {
+      c.parameter_names.push_back(p.name);
+      c.lower.push_back(p.lower);
+      c.upper.push_back(p.upper);
+    }
+    out.push_back(std::move(c));
+  }
+  return out;
 }
 
 }  // namespace shudder::rig_models

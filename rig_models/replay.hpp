@@ -6,7 +6,10 @@
 //   * speed_rpm and normal_force_N, averaged over consecutive windows of input_window_s
 //     (0.05 s: removes the sensors' noise and, on the rig, the encoder's vibration, while a
 //     ramp's kink is rounded over only 0.05 s) and joined piecewise linearly at the window
-//     centres. On the rig the averaged speed is the motor's set point.
+//     centres. On the rig the averaged speed is the speed loop's set point. LIMIT: during
+//     stick-slip the drive sags below its set point (the loop cannot hold it under a rising
+//     load) and the measured-run format carries no set point, so a stick-slip run is replayed
+//     with a set point that sags too; docs/diagnosis.md shows what that costs.
 //   * start temperatures: discs and inner boundary at the mean temp_C of the first 0.1 s (at
 //     least 5 samples); sump at the mean sump_temp_C there when measured, else the same.
 //   * metadata: oil_flow_ml_min sets the supply flow; temp_sensor "… r_mm=R z_mm=Z" places
@@ -22,6 +25,7 @@
 #include <string_view>
 #include <vector>
 
+#include "analysis/diagnosis.hpp"
 #include "clutch/fluid.hpp"
 #include "clutch/wet_clutch.hpp"
 #include "rig_models/lsctr_rig.hpp"
@@ -71,5 +75,13 @@ const EffectSpec& effect_spec(std::string_view name);
 bool effect_enabled(const ReplayModel& model, std::string_view name);
 /// Switches the effect on with parameter values in EffectSpec::parameters order.
 void enable_effect(ReplayModel& model, std::string_view name, const std::vector<double>& values);
+
+/// The diagnosis' simulator: run k replays inputs[k] on `model` plus the added effects.
+analysis::Simulator replay_simulator(ReplayModel model, std::vector<ReplayInputs> inputs);
+
+/// Every FORMATS.md effect the model has off, as a diagnosis candidate. Effects that cannot act
+/// in this model (stick-time friction with imposed slip) are left out, with a note in `skipped`.
+std::vector<analysis::EffectCandidate> replay_candidates(const ReplayModel& model,
+                                                         std::vector<std::string>* skipped);
 
 }  // namespace shudder::rig_models

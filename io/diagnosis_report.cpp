@@ -1,0 +1,269 @@
+// Report directory of a diagnosis; see diagnosis_report.hpp and docs/diagnosis_format.md.
+#include "io/diagnosis_report.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "io/atomic_file.hpp"
+#include "io/gnuplot.hpp"
+#include "io/input_error.hpp"
+
+namespace shudder::io {
+
+namespace {
+
+namespace fs = std::filesystem;
+using analysis::CandidateScore;
+using analysis::RunTraces;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string fixed(double x, const char* fmt = "%.4g") {
+  if (!std::isfinite(x)) return "–";
+  char buf[48];
+  std::snprintf(buf, sizeof buf, fmt, x);
+  return buf;
+}
+
+/// A Markdown table cell: '|' would end the cell and a line break the row.
+std::string cell(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '|') out += "\\|";
+    else if (c == '\n' || c == '\r' || c == '\t') out += ' ';
+    else out += c;
+  }
+  return out;
+}
+
+std::string parameters_text(const std::vector<std::pair<std::string, double>>& p) {
+  if (p.empty()) return "(none)";
+  std::string s;
+  for (std::size_t i = 0; i < p.size(); ++i) s += (i ? ", " : "") + p[i].first + " = " + fixed(p[i].second);
+  return s;
+}
+
+void candidate_table(std::ostringstream& md, const std::vector<CandidateScore>& cands) {
+  if (cands.empty()) {
+    md << "(no candidates)\n\n";
+    return;
+  }
+  md << "| effect | parameters | fit misfit | hold-out misfit | score | gain | signature correlation "
+        "| evaluations | note |\n"
+     << "|---|---|---:|---:|---:|---:|---:|---:|---|\n";
+  for (const auto& c : cands)
+    md << "| " << cell(c.effect) << " | " << cell(parameters_text(c.parameters)) << " | "
+       << fixed(c.fit_misfit) << " | " << fixed(c.holdout_misfit) << " | " << fixed(c.score) << " | "
+       << fixed(c.gain, "%+.4g") << " | " << fixed(c.signature_correlation, "%+.3f") << " | "
+       << c.evaluations << " | " << cell(c.failure.empty() ? "" : "failed: " + c.failure) << " |\n";
+  md << "\n";
+}
+
+void write_text_file(const std::string& path, const std::string& text) {
+  const std::string tmp = temp_path_for(path);
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out << text;
+    out.close();
+    if (out.fail()) {
+      discard_temp_file(tmp);
+      throw InputError(path, 0, "", "cannot write the report file; check the directory is writable");
+    }
+  }
+  commit_temp_file(tmp, path);
+}
+
+bool gnuplot_on_path() {
+  const char* path = std::getenv("PATH");
+  std::istringstream dirs(path ? path : "");
+  std::string d;
+  while (std::getline(dirs, d, ':')) {
+    const std::string exe = (d.empty() ? std::string(".") : d) + "/gnuplot";
+    if (::access(exe.c_str(), X_OK) == 0) return true;
+  }
+  return false;
+}
+
+/// Run names go into gnuplot titles; control characters there would break the script line.
+std::string printable(const std::string& s) {
+  std::string out;
+  for (char c : s) out += static_cast<unsigned char>(c) < 0x20 ? ' ' : c;
+  return out;
+}
+
+Series line(const std::vector<double>& t, const std::vector<double>& y, std::string label,
+            const std::string& rgb, bool dashed, double width) {
+  Series s;
+  s.label = std::move(label);
+  s.x = t;
+  s.y = y;
+  s.rgb = rgb;
+  s.dashed = dashed;
+  s.line_width = width;
+  return s;
+}
+
+/// model − measured; NaN (a gap in the line) where either is missing or not finite.
+std::vector<double> residual(const std::vector<double>& model, const std::vector<double>& measured) {
+  std::vector<double> r(measured.size(), kNaN);
+  if (model.size() != measured.size()) return r;
+  for (std::size_t i = 0; i < r.size(); ++i)
+    if (std::isfinite(model[i]) && std::isfinite(measured[i])) r[i] = model[i] - measured[i];
+  return r;
+}
+
+// Measured black and thin (it carries the noise), baseline orange dashed, final blue solid.
+Plot signal_plot(const RunTraces& tr, const char* what, const char* ylabel, const std::vector<double>& measured,
+                 const std::vector<double>& baseline, const std::vector<double>& final) {
+  Plot p;
+  p.title = printable(tr.run) + ": " + what + ", measured vs model";
+  p.xlabel = "time [s]";
+  p.ylabel = ylabel;
+  const std::size_t n = tr.time_s.size();
+  if (measured.size() == n) p.series.push_back(line(tr.time_s, measured, "measured", "#000000", false, 1.0));
+  if (baseline.size() == n)
+    p.series.push_back(line(tr.time_s, baseline, "baseline model", "#ff7f0e", true, 2.0));
+  if (final.size() == n)
+    p.series.push_back(line(tr.time_s, final, "final model (effects added)", "#1f77b4", false, 2.0));
+  return p;
+}
+
+Plot residual_plot(const RunTraces& tr) {
+  Plot p;
+  p.title = printable(tr.run) + ": residual model − measured (dashed: baseline, solid: final)";
+  p.xlabel = "time [s]";
+  p.ylabel = "torque residual [N m]";
+  p.y2label = "temperature residual [°C]";
+  const std::size_t n = tr.time_s.size();
+  if (tr.torque_measured.size() == n) {
+    p.series.push_back(line(tr.time_s, residual(tr.torque_baseline, tr.torque_measured),
+                            "torque, baseline", "#1f77b4", true, 1.5));
+    p.series.push_back(line(tr.time_s, residual(tr.torque_final, tr.torque_measured),
+                            "torque, final", "#1f77b4", false, 2.0));
+  }
+  // The two axes scale independently, so their zeros sit at different heights: each gets its
+  // own thin zero line in its signal's colour.
+  const std::vector<double> ends = {tr.time_s.front(), tr.time_s.back()}, zeros = {0.0, 0.0};
+  if (!p.series.empty()) p.series.push_back(line(ends, zeros, "", "#1f77b4", false, 0.8));
+  if (tr.temp_measured.size() == n) {
+    p.series_y2.push_back(line(tr.time_s, residual(tr.temp_baseline, tr.temp_measured),
+                               "temp_C, baseline (right axis)", "#d62728", true, 1.5));
+    p.series_y2.push_back(line(tr.time_s, residual(tr.temp_final, tr.temp_measured),
+                               "temp_C, final (right axis)", "#d62728", false, 2.0));
+    p.series_y2.push_back(line(ends, zeros, "", "#d62728", false, 0.8));
+  }
+  // Only temperature columns: they go on the left axis (a plot needs left series).
+  if (p.series.empty()) {
+    p.series = std::move(p.series_y2);
+    p.series_y2.clear();
+    p.ylabel = p.y2label;
+  }
+  return p;
+}
+
+}  // namespace
+
+std::string diagnosis_run_stem(const std::string& run) {
+  std::string name = run.substr(run.find_last_of('/') == std::string::npos ? 0 : run.find_last_of('/') + 1);
+  if (const auto dot = name.find_last_of('.'); dot != std::string::npos && dot > 0) name.erase(dot);
+  for (char& c : name) {
+    const bool ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
+                    c == '_' || c == '.' || c == '-';
+    if (!ok) c = '_';
+  }
+  if (!name.empty() && name.front() == '.') name.front() = '_';
+  return name.empty() ? "run" : name;
+}
+
+std::string diagnosis_candidates_markdown(const analysis::DiagnosisResult& r) {
+  std::ostringstream md;
+  md << "# Diagnosis: candidate effects\n\n"
+     << "Misfit J in units of the noise variance (J ≈ 1: explained to the noise); residual = model − "
+        "measured. score = hold-out misfit + penalty × parameters; gain = current hold-out misfit − "
+        "score. Candidates best first.\n\n";
+  if (!r.holdout.empty()) md << "Hold-out: " << cell(r.holdout) << ".\n\n";
+  md << "Baseline hold-out misfit: " << fixed(r.baseline_holdout_misfit) << "; final: "
+     << fixed(r.final_holdout_misfit) << ".\n\n";
+  for (std::size_t k = 0; k < r.steps.size(); ++k) {
+    const auto& st = r.steps[k];
+    md << "## Step " << k + 1 << ": added " << st.effect << "\n\n";
+    md << "Parameters (refitted on all runs): " << parameters_text(st.parameters) << ". Hold-out misfit "
+       << fixed(st.holdout_misfit_before) << " → " << fixed(st.holdout_misfit_after)
+       << "; torque RMS " << fixed(st.misfit.torque_rms_Nm) << " N m, temp RMS "
+       << fixed(st.misfit.temp_rms_C) << " °C (all runs).\n\n";
+    if (!st.reason.empty()) md << "Why: " << cell(st.reason) << "\n\n";
+    candidate_table(md, st.candidates);
+  }
+  md << "## Last round (stopped the search)\n\n";
+  if (r.last_round.empty())
+    md << "No round without an addition (every signal within noise, or the effect limit reached).\n\n";
+  else
+    md << "No candidate lowered the hold-out misfit by enough to be added.\n\n";
+  candidate_table(md, r.last_round);
+  return md.str();
+}
+
+Report write_diagnosis_report(const std::string& dir, const analysis::DiagnosisResult& r,
+                              const std::string& summary_text) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir))
+    throw InputError(dir, 0, "", "cannot create the report directory: " + ec.message());
+  Report report;
+  const auto path = [&](const std::string& f) { return (fs::path(dir) / f).string(); };
+  write_text_file(path("summary.txt"), summary_text);
+  report.files.push_back(path("summary.txt"));
+  write_text_file(path("candidates.md"), diagnosis_candidates_markdown(r));
+  report.files.push_back(path("candidates.md"));
+
+  const bool gnuplot = gnuplot_on_path();
+  std::set<std::string> used;
+  for (const auto& tr : r.traces) {
+    std::string stem = diagnosis_run_stem(tr.run);
+    for (int k = 2; used.count(stem); ++k) stem = diagnosis_run_stem(tr.run) + "_" + std::to_string(k);
+    used.insert(stem);
+    const std::string files = stem + "_{torque,temp,residuals}.png";
+    if (!gnuplot) {
+      report.skipped.push_back(files + ": gnuplot not found; install gnuplot (Debian: gnuplot-nox)");
+      continue;
+    }
+    if (tr.time_s.empty()) {
+      report.skipped.push_back(files + ": the run '" + tr.run + "' has no trace samples");
+      continue;
+    }
+    const Plot plots[] = {
+        signal_plot(tr, "torque", "torque [N m]", tr.torque_measured, tr.torque_baseline, tr.torque_final),
+        signal_plot(tr, "temp_C", "temperature [°C]", tr.temp_measured, tr.temp_baseline, tr.temp_final),
+        residual_plot(tr)};
+    const char* suffixes[] = {"_torque.png", "_temp.png", "_residuals.png"};
+    for (std::size_t i = 0; i < 3; ++i) {
+      const std::string file = stem + suffixes[i];
+      if (plots[i].series.empty()) {
+        report.skipped.push_back(file + ": no column matches the run's " +
+                                 std::to_string(tr.time_s.size()) + " time samples");
+        continue;
+      }
+      try {
+        write_plot(path(file), plots[i]);
+      } catch (const InputError&) {
+        throw;  // the directory is unwritable: the caller's problem, as for the text files
+      } catch (const std::exception& e) {
+        report.skipped.push_back(file + ": " + e.what());
+        continue;
+      }
+      report.files.push_back(path(file));
+    }
+  }
+  return report;
+}
+
+}  // namespace shudder::io

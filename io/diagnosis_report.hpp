@@ -1,0 +1,39 @@
+#pragma once
+// Report directory of a discrepancy diagnosis (analysis/diagnosis.hpp; contents listed in
+// docs/diagnosis_format.md):
+//
+//   summary.txt               the text the caller printed
+//   candidates.md             per step the table of every candidate tried (fit and hold-out
+//                             misfit, score, gain, signature correlation), then the last round,
+//                             the one that stopped the search
+//   <stem>_torque.png         per run in r.traces: measured, baseline and final torque vs time
+//   <stem>_temp.png           the same for temp_C
+//   <stem>_residuals.png      residual model − measured before (baseline, dashed) and after
+//                             (final, solid): torque on the left axis, temp_C on the right
+//
+// Plots are drawn by io/gnuplot. Without gnuplot on PATH the PNGs are skipped and listed in
+// Report::skipped (the text files are the report's substance; a machine without gnuplot still
+// gets them). A run whose traces cannot be plotted (empty, columns of different lengths) or a
+// plot gnuplot fails on is skipped the same way; an unwritable directory is an InputError.
+
+#include <string>
+
+#include "analysis/diagnosis.hpp"
+#include "io/plots.hpp"
+
+namespace shudder::io {
+
+/// File-name stem for a run name: the part after the last '/', without its extension, every
+/// character outside [A-Za-z0-9_.-] replaced by '_', a leading '.' by '_' (no hidden files);
+/// "run" if nothing is left.
+std::string diagnosis_run_stem(const std::string& run);
+
+/// The text of candidates.md.
+std::string diagnosis_candidates_markdown(const analysis::DiagnosisResult& r);
+
+/// Creates `dir` and writes the files above into it (each through a temporary name and a
+/// rename). Two runs with the same stem get "_2", "_3", ... appended in the order of r.traces.
+Report write_diagnosis_report(const std::string& dir, const analysis::DiagnosisResult& r,
+                              const std::string& summary_text);
+
+}  // namespace shudder::io

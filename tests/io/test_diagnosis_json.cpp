@@ -1,0 +1,561 @@
+// Diagnosis result -> JSON (FORMATS.md "Diagnosis result") and report directory. The JSON text
+// is read back by a small strict RFC 8259 parser below (no JSON library in the dependencies),
+// so "valid JSON" is checked on the whole text, not on substrings. Checked: every required key
+// with its value; the optional fields; NaN/inf -> null; escaping of quotes, backslashes and
+// control characters; atomic write and InputError for an unwritable path; run-name stems; the
+// report's files (PNGs only where gnuplot is installed).
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "analysis/diagnosis.hpp"
+#include "io/diagnosis_json.hpp"
+#include "io/diagnosis_report.hpp"
+#include "io/input_error.hpp"
+
+namespace fs = std::filesystem;
+using shudder::analysis::CandidateScore;
+using shudder::analysis::DiagnosisResult;
+using shudder::analysis::DiagnosisStep;
+using shudder::io::diagnosis_json;
+using shudder::io::InputError;
+using testing::HasSubstr;
+
+namespace {
+
+// ---- a minimal strict JSON reader ----------------------------------------------------------
+
+struct Json {
+  enum class Type { kNull, kBool, kNumber, kString, kArray, kObject } type = Type::kNull;
+  bool boolean = false;
+  double number = 0.0;
+  std::string text;                                   // kString
+  std::vector<Json> items;                            // kArray
+  std::vector<std::pair<std::string, Json>> members;  // kObject, in text order
+
+  bool has(const std::string& k) const {
+    for (const auto& m : members)
+      if (m.first == k) return true;
+    return false;
+  }
+  const Json& operator[](const std::string& k) const {
+    if (type != Type::kObject) throw std::runtime_error("not an object looking up '" + k + "'");
+    for (const auto& m : members)
+      if (m.first == k) return m.second;
+    throw std::runtime_error("no key '" + k + "'");
+  }
+  const Json& operator[](std::size_t i) const {
+    if (type != Type::kArray || i >= items.size()) throw std::runtime_error("bad array index");
+    return items[i];
+  }
+  double num() const {
+    if (type != Type::kNumber) throw std::runtime_error("not a number");
+    return number;
+  }
+  const std::string& str() const {
+    if (type != Type::kString) throw std::runtime_error("not a string");
+    return text;
+  }
+  bool is_null() const { return type == Type::kNull; }
+};
+
+// Recursive descent over RFC 8259; throws std::runtime_error with the offset on anything else
+// (trailing commas, NaN, bare control characters, duplicate keys, trailing text).
+class Parser {
+ public:
+  explicit Parser(const std::string& s) : s_(s) {}
+  Json parse() {
+    Json v = value();
+    ws();
+    if (i_ != s_.size()) fail("text after the value");
+    return v;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& why) const {
+    throw std::runtime_error("JSON error at offset " + std::to_string(i_) + ": " + why);
+  }
+  void ws() {
+    while (i_ < s_.size() && (s_[i_] == ' ' || s_[i_] == '\n' || s_[i_] == '\r' || s_[i_] == '\t')) ++i_;
+  }
+  char peek() const { return i_ < s_.size() ? s_[i_] : '\0'; }
+  void expect(char c) {
+    if (peek() != c) fail(std::string("expected '") + c + "'");
+    ++i_;
+  }
+  bool literal(const char* word) {
+    const std::string w(word);
+    if (s_.compare(i_, w.size(), w) != 0) return false;
+    i_ += w.size();
+    return true;
+  }
+  Json value() {
+    ws();
+    Json v;
+    const char c = peek();
+    if (c == '{') {
+      v.type = Json::Type::kObject;
+      ++i_;
+      ws();
+      if (peek() == '}') return ++i_, v;
+      for (;;) {
+        ws();
+        std::string k = string();
+        if (v.has(k)) fail("duplicate key '" + k + "'");
+        ws();
+        expect(':');
+        v.members.emplace_back(std::move(k), value());
+        ws();
+        if (peek() == ',') { ++i_; continue; }
+        expect('}');
+        return v;
+      }
+    }
+    if (c == '[') {
+      v.type = Json::Type::kArray;
+      ++i_;
+      ws();
+      if (peek() == ']') return ++i_, v;
+      for (;;) {
+        v.items.push_back(value());
+        ws();
+        if (peek() == ',') { ++i_; continue; }
+        expect(']');
+        return v;
+      }
+    }
+    if (c == '"') {
+      v.type = Json::Type::kString;
+      v.text = string();
+      return v;
+    }
+    if (literal("null")) return v;
+    if (literal("true")) { v.type = Json::Type::kBool; v.boolean = true; return v; }
+    if (literal("false")) { v.type = Json::Type::kBool; return v; }
+    v.type = Json::Type::kNumber;
+    v.number = number();
+    return v;
+  }
+  static bool digit(char c) { return c >= '0' && c <= '9'; }
+  double number() {
+    const std::size_t start = i_;
+    if (peek() == '-') ++i_;
+    if (peek() == '0') ++i_;
+    else if (digit(peek())) while (digit(peek())) ++i_;
+    else fail("expected a value");
+    if (peek() == '.') {
+      ++i_;
+      if (!digit(peek())) fail("digit expected after '.'");
+      while (digit(peek())) ++i_;
+    }
+    if (peek() == 'e' || peek() == 'E') {
+      ++i_;
+      if (peek() == '+' || peek() == '-') ++i_;
+      if (!digit(peek())) fail("digit expected in the exponent");
+      while (digit(peek())) ++i_;
+    }
+    return std::strtod(s_.substr(start, i_ - start).c_str(), nullptr);
+  }
+  std::string string() {
+    expect('"');
+    std::string out;
+    for (;;) {
+      if (i_ >= s_.size()) fail("unterminated string");
+      const char c = s_[i_++];
+      if (c == '"') return out;
+      if (static_cast<unsigned char>(c) < 0x20) fail("unescaped control character in a string");
+      if (c != '\\') { out += c; continue; }
+      const char e = peek();
+      ++i_;
+      switch (e) {
+        case '"': out += '"'; break;
+        case '\\': out += '\\'; break;
+        case '/': out += '/'; break;
+        case 'b': out += '\b'; break;
+        case 'f': out += '\f'; break;
+        case 'n': out += '\n'; break;
+        case 'r': out += '\r'; break;
+        case 't': out += '\t'; break;
+        case 'u': {
+          if (i_ + 4 > s_.size()) fail("short \\u escape");
+          const unsigned long code = std::stoul(s_.substr(i_, 4), nullptr, 16);
+          i_ += 4;
+          if (code >= 0x80) fail("test parser handles only ASCII \\u escapes");
+          out += static_cast<char>(code);
+          break;
+        }
+        default: fail("bad escape");
+      }
+    }
+  }
+  const std::string& s_;
+  std::size_t i_ = 0;
+};
+
+Json parse(const std::string& text) { return Parser(text).parse(); }
+
+// ---- fixtures --------------------------------------------------------------------------------
+
+CandidateScore candidate(const std::string& effect, double holdout, double gain) {
+  CandidateScore c;
+  c.effect = effect;
+  c.parameters = {{"heat_capacity_J_per_K", 150.0}, {"conductance_W_per_K", 10.0}};
+  c.fit_misfit = 1.25;
+  c.holdout_misfit = holdout;
+  c.score = holdout + 0.04;
+  c.gain = gain;
+  c.signature_correlation = 0.93;
+  c.evaluations = 42;
+  return c;
+}
+
+std::vector<double> ramp(std::size_t n, double a, double b) {
+  std::vector<double> v(n);
+  for (std::size_t i = 0; i < n; ++i) v[i] = a + b * static_cast<double>(i);
+  return v;
+}
+
+DiagnosisResult sample_result() {
+  DiagnosisResult r;
+  r.runs = {"data/a.csv", "b.csv"};
+  r.noise_torque_Nm = 0.25;
+  r.noise_temp_C = 0.5;
+  r.holdout = "run b.csv held out";
+  r.baseline = {8.12, 6.3};
+  r.final = {1.21, 0.95};
+  r.channels = {{"torque_Nm", "block_statistics", 0.25, 8.12, 1.21, 1055.0, 23.4},
+                {"sump_temp_C", "pointwise", 0.1, 2.0, 0.09, 400.0, 0.81}};
+  r.baseline_holdout_misfit = 512.0;
+  r.final_holdout_misfit = 1.1;
+  r.disagreements = {{"data/a.csv", "torque_Nm", 4.1, 10.0, -7.2, "temperature_rise", 0.97},
+                     {"b.csv", "temp_C", 0.5, 3.25, 2.5, "time", 0.8}};
+  r.final_disagreements = {{"b.csv", "temp_C", 1.0, 1.5, 0.6, "sliding_speed", -0.4}};
+  r.tracking = {{"data/a.csv", "torque_Nm", {{"temperature_rise", 0.97}, {"time", 0.9}}}};
+  DiagnosisStep st;
+  st.effect = "temperature_dependent_friction";
+  st.parameters = {{"mu_temp_slope_per_K", 0.002}};
+  st.misfit = {1.21, 6.1};
+  st.holdout = {1.3, 6.2};
+  st.holdout_misfit_before = 512.0;
+  st.holdout_misfit_after = 80.5;
+  st.candidates = {candidate("temperature_dependent_friction", 80.5, 431.0),
+                   candidate("bearing_drag", 400.0, 112.0)};
+  st.candidates[1].failure = "";
+  st.reason = "the torque residual follows the temperature rise (r = 0.97)";
+  r.steps = {st};
+  r.missing_effects = {"temperature_dependent_friction"};
+  r.last_round = {candidate("sump_heating", 1.09, 0.001), candidate("viscous_shear", 1.2, -0.1)};
+  r.last_round[1].failure = "every simulation failed: step size too small";
+  r.conclusion = "Friction follows temperature.";
+  r.simulation_thread_s = 12.5;
+  r.fitting_thread_s = 0.75;
+  r.wall_s = 3.5;
+  r.simulations = 1234;
+  for (const auto& run : r.runs) {
+    shudder::analysis::RunTraces tr;
+    tr.run = run;
+    tr.time_s = ramp(50, 0.0, 0.1);
+    tr.torque_measured = ramp(50, 100.0, -0.5);
+    tr.torque_baseline = ramp(50, 100.0, 0.0);
+    tr.torque_final = ramp(50, 100.5, -0.5);
+    tr.temp_measured = ramp(50, 40.0, 0.4);
+    tr.temp_baseline = ramp(50, 40.0, 0.5);
+    tr.temp_final = ramp(50, 40.0, 0.41);
+    r.traces.push_back(tr);
+  }
+  return r;
+}
+
+bool gnuplot_installed() {
+  const char* path = std::getenv("PATH");
+  std::istringstream dirs(path ? path : "");
+  std::string d;
+  while (std::getline(dirs, d, ':'))
+    if (::access((d + "/gnuplot").c_str(), X_OK) == 0) return true;
+  return false;
+}
+
+class DiagnosisFiles : public testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("shudder_djson_" + std::to_string(::getpid()) + "_" +
+            testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  fs::path dir_;
+};
+
+std::string slurp(const std::string& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream os;
+  os << in.rdbuf();
+  return os.str();
+}
+
+// ---- tests -------------------------------------------------------------------------------
+
+TEST(DiagnosisJson, ParserRejectsInvalidText) {
+  // The checks below rely on the parser; make sure it is strict.
+  for (const char* bad : {"{\"a\": NaN}", "{\"a\": 1,}", "[1 2]", "{\"a\": \"x\ny\"}", "{} x",
+                          "{\"a\": 1, \"a\": 2}", "{\"a\": .5}", "{\"a\": inf}"})
+    EXPECT_THROW(parse(bad), std::runtime_error) << bad;
+  EXPECT_NO_THROW(parse("{\"a\": [1, -2.5e-3, null, true, \"q\\\"\\\\\"]}"));
+}
+
+TEST(DiagnosisJson, RequiredKeysHaveTheResultsValues) {
+  const DiagnosisResult r = sample_result();
+  const Json j = parse(diagnosis_json(r));
+  EXPECT_EQ(j["format"].str(), "shudder-diagnosis/1");
+  ASSERT_EQ(j["runs"].items.size(), 2u);
+  EXPECT_EQ(j["runs"][0].str(), "data/a.csv");
+  EXPECT_EQ(j["runs"][1].str(), "b.csv");
+  EXPECT_DOUBLE_EQ(j["baseline"]["torque_rms_Nm"].num(), 8.12);
+  EXPECT_DOUBLE_EQ(j["baseline"]["temp_rms_C"].num(), 6.3);
+
+  ASSERT_EQ(j["disagreements"].items.size(), 2u);
+  const Json& d = j["disagreements"][0];
+  EXPECT_EQ(d["run"].str(), "data/a.csv");
+  EXPECT_EQ(d["signal"].str(), "torque_Nm");
+  EXPECT_DOUBLE_EQ(d["t_start_s"].num(), 4.1);
+  EXPECT_DOUBLE_EQ(d["t_end_s"].num(), 10.0);
+  EXPECT_DOUBLE_EQ(d["mean_error"].num(), -7.2);
+  EXPECT_EQ(d["tracks"].str(), "temperature_rise");
+  EXPECT_DOUBLE_EQ(d["correlation"].num(), 0.97);
+  EXPECT_EQ(j["disagreements"][1]["signal"].str(), "temp_C");
+
+  ASSERT_EQ(j["steps"].items.size(), 1u);
+  const Json& s = j["steps"][0];
+  EXPECT_EQ(s["effect"].str(), "temperature_dependent_friction");
+  ASSERT_EQ(s["parameters"].members.size(), 1u);
+  EXPECT_DOUBLE_EQ(s["parameters"]["mu_temp_slope_per_K"].num(), 0.002);
+  EXPECT_DOUBLE_EQ(s["torque_rms_Nm"].num(), 1.21);
+  EXPECT_DOUBLE_EQ(s["temp_rms_C"].num(), 6.1);
+  EXPECT_DOUBLE_EQ(s["holdout_torque_rms_Nm"].num(), 1.3);
+
+  ASSERT_EQ(j["missing_effects"].items.size(), 1u);
+  EXPECT_EQ(j["missing_effects"][0].str(), "temperature_dependent_friction");
+  EXPECT_DOUBLE_EQ(j["final"]["torque_rms_Nm"].num(), 1.21);
+  EXPECT_DOUBLE_EQ(j["final"]["temp_rms_C"].num(), 0.95);
+
+  // Exact formatting of the contract's example values.
+  const std::string text = diagnosis_json(r);
+  EXPECT_THAT(text, HasSubstr("\"format\": \"shudder-diagnosis/1\""));
+  EXPECT_THAT(text, HasSubstr("\"baseline\": {\"torque_rms_Nm\": 8.12, \"temp_rms_C\": 6.3"));
+  EXPECT_THAT(text, HasSubstr("\"t_start_s\": 4.1, \"t_end_s\": 10, \"mean_error\": -7.2"));
+}
+
+TEST(DiagnosisJson, OptionalFieldsAreWritten) {
+  const Json j = parse(diagnosis_json(sample_result()));
+  EXPECT_DOUBLE_EQ(j["noise"]["torque_Nm"].num(), 0.25);
+  EXPECT_DOUBLE_EQ(j["noise"]["temp_C"].num(), 0.5);
+  EXPECT_EQ(j["holdout"].str(), "run b.csv held out");
+  EXPECT_DOUBLE_EQ(j["baseline"]["holdout_misfit"].num(), 512.0);
+  EXPECT_DOUBLE_EQ(j["final"]["holdout_misfit"].num(), 1.1);
+
+  const Json& s = j["steps"][0];
+  EXPECT_DOUBLE_EQ(s["holdout_temp_rms_C"].num(), 6.2);
+  EXPECT_DOUBLE_EQ(s["holdout_misfit_before"].num(), 512.0);
+  EXPECT_DOUBLE_EQ(s["holdout_misfit_after"].num(), 80.5);
+  EXPECT_THAT(s["reason"].str(), HasSubstr("temperature rise"));
+  ASSERT_EQ(s["candidates"].items.size(), 2u);
+  const Json& c = s["candidates"][0];
+  EXPECT_EQ(c["effect"].str(), "temperature_dependent_friction");
+  EXPECT_DOUBLE_EQ(c["parameters"]["heat_capacity_J_per_K"].num(), 150.0);
+  EXPECT_DOUBLE_EQ(c["parameters"]["conductance_W_per_K"].num(), 10.0);
+  EXPECT_EQ(c["parameters"].members[0].first, "heat_capacity_J_per_K");  // order kept
+  EXPECT_DOUBLE_EQ(c["fit_misfit"].num(), 1.25);
+  EXPECT_DOUBLE_EQ(c["holdout_misfit"].num(), 80.5);
+  EXPECT_DOUBLE_EQ(c["score"].num(), 80.54);
+  EXPECT_DOUBLE_EQ(c["gain"].num(), 431.0);
+  EXPECT_DOUBLE_EQ(c["signature_correlation"].num(), 0.93);
+  EXPECT_DOUBLE_EQ(c["evaluations"].num(), 42.0);
+  EXPECT_FALSE(c.has("failure"));  // only failed candidates carry it
+
+  ASSERT_EQ(j["last_round"].items.size(), 2u);
+  EXPECT_EQ(j["last_round"][0]["effect"].str(), "sump_heating");
+  EXPECT_FALSE(j["last_round"][0].has("failure"));
+  EXPECT_EQ(j["last_round"][1]["failure"].str(), "every simulation failed: step size too small");
+
+  ASSERT_EQ(j["channels"].items.size(), 2u);
+  const Json& ch = j["channels"][1];
+  EXPECT_EQ(ch["signal"].str(), "sump_temp_C");
+  EXPECT_EQ(ch["comparison"].str(), "pointwise");
+  EXPECT_DOUBLE_EQ(ch["noise"].num(), 0.1);
+  EXPECT_DOUBLE_EQ(ch["baseline_rms"].num(), 2.0);
+  EXPECT_DOUBLE_EQ(ch["final_rms"].num(), 0.09);
+  EXPECT_DOUBLE_EQ(ch["baseline_misfit"].num(), 400.0);
+  EXPECT_DOUBLE_EQ(ch["final_misfit"].num(), 0.81);
+  EXPECT_EQ(j["channels"][0]["comparison"].str(), "block_statistics");
+
+  ASSERT_EQ(j["final_disagreements"].items.size(), 1u);
+  EXPECT_EQ(j["final_disagreements"][0]["tracks"].str(), "sliding_speed");
+  EXPECT_DOUBLE_EQ(j["final_disagreements"][0]["correlation"].num(), -0.4);
+  ASSERT_EQ(j["tracking"].items.size(), 1u);
+  EXPECT_EQ(j["tracking"][0]["run"].str(), "data/a.csv");
+  EXPECT_EQ(j["tracking"][0]["signal"].str(), "torque_Nm");
+  EXPECT_DOUBLE_EQ(j["tracking"][0]["correlations"]["temperature_rise"].num(), 0.97);
+  EXPECT_DOUBLE_EQ(j["tracking"][0]["correlations"]["time"].num(), 0.9);
+  EXPECT_EQ(j["conclusion"].str(), "Friction follows temperature.");
+  EXPECT_DOUBLE_EQ(j["timing"]["simulation_thread_s"].num(), 12.5);
+  EXPECT_DOUBLE_EQ(j["timing"]["fitting_thread_s"].num(), 0.75);
+  EXPECT_DOUBLE_EQ(j["timing"]["wall_s"].num(), 3.5);
+  EXPECT_DOUBLE_EQ(j["timing"]["simulations"].num(), 1234.0);
+  EXPECT_THAT(diagnosis_json(sample_result()), HasSubstr("\"simulations\": 1234}"));
+}
+
+TEST(DiagnosisJson, EmptyResultIsValidWithEmptyArrays) {
+  const Json j = parse(diagnosis_json(DiagnosisResult{}));
+  for (const char* k : {"runs", "disagreements", "steps", "missing_effects", "last_round",
+                        "final_disagreements", "tracking", "channels"}) {
+    EXPECT_EQ(j[k].type, Json::Type::kArray) << k;
+    EXPECT_TRUE(j[k].items.empty()) << k;
+  }
+  EXPECT_DOUBLE_EQ(j["final"]["torque_rms_Nm"].num(), 0.0);
+}
+
+TEST(DiagnosisJson, NonFiniteNumbersAreNull) {
+  DiagnosisResult r = sample_result();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  r.baseline.torque_rms_Nm = nan;
+  r.final.temp_rms_C = inf;
+  r.final_holdout_misfit = -inf;
+  r.disagreements[0].correlation = nan;
+  r.steps[0].parameters[0].second = inf;
+  r.steps[0].holdout.torque_rms_Nm = nan;
+  r.last_round[1].holdout_misfit = nan;
+  r.tracking[0].correlations[1].second = nan;
+  r.wall_s = nan;
+  r.channels[0].final_misfit = nan;
+  const std::string text = diagnosis_json(r);
+  EXPECT_THAT(text, testing::Not(HasSubstr("nan")));
+  EXPECT_THAT(text, testing::Not(HasSubstr("inf")));
+  const Json j = parse(text);
+  EXPECT_TRUE(j["baseline"]["torque_rms_Nm"].is_null());
+  EXPECT_TRUE(j["final"]["temp_rms_C"].is_null());
+  EXPECT_TRUE(j["final"]["holdout_misfit"].is_null());
+  EXPECT_TRUE(j["disagreements"][0]["correlation"].is_null());
+  EXPECT_TRUE(j["steps"][0]["parameters"]["mu_temp_slope_per_K"].is_null());
+  EXPECT_TRUE(j["steps"][0]["holdout_torque_rms_Nm"].is_null());
+  EXPECT_TRUE(j["last_round"][1]["holdout_misfit"].is_null());
+  EXPECT_TRUE(j["tracking"][0]["correlations"]["time"].is_null());
+  EXPECT_TRUE(j["timing"]["wall_s"].is_null());
+  EXPECT_TRUE(j["channels"][0]["final_misfit"].is_null());
+  EXPECT_DOUBLE_EQ(j["final"]["torque_rms_Nm"].num(), 1.21);  // neighbours untouched
+}
+
+TEST(DiagnosisJson, EscapesQuotesBackslashesAndControlCharacters) {
+  DiagnosisResult r = sample_result();
+  const std::string odd = "C:\\runs\\\"hot\" run\t1\n.csv";
+  r.runs[0] = odd;
+  r.disagreements[0].run = odd;
+  r.steps[0].parameters[0].first = "key\"with\\quote";
+  r.conclusion = std::string("bell\x07 and unicode °C");
+  const std::string text = diagnosis_json(r);
+  EXPECT_THAT(text, HasSubstr(R"("C:\\runs\\\"hot\" run\t1\n.csv")"));
+  EXPECT_THAT(text, HasSubstr(R"("key\"with\\quote": 0.002)"));
+  EXPECT_THAT(text, HasSubstr(R"("bell\u0007 and unicode °C")"));
+  const Json j = parse(text);
+  EXPECT_EQ(j["runs"][0].str(), odd);
+  EXPECT_EQ(j["disagreements"][0]["run"].str(), odd);
+  EXPECT_DOUBLE_EQ(j["steps"][0]["parameters"]["key\"with\\quote"].num(), 0.002);
+  EXPECT_EQ(j["conclusion"].str(), r.conclusion);
+}
+
+TEST_F(DiagnosisFiles, WriteIsAtomicAndMatchesTheText) {
+  const DiagnosisResult r = sample_result();
+  const std::string out = path("diag.json");
+  { std::ofstream(out) << "old"; }
+  shudder::io::write_diagnosis_json(out, r);
+  EXPECT_EQ(slurp(out), diagnosis_json(r));
+  EXPECT_FALSE(fs::exists(out + ".tmp"));
+}
+
+TEST_F(DiagnosisFiles, UnwritablePathIsAnInputErrorNamingIt) {
+  const std::string out = path("no_such_dir/diag.json");
+  EXPECT_THAT([&] { shudder::io::write_diagnosis_json(out, sample_result()); },
+              testing::ThrowsMessage<InputError>(HasSubstr(out)));
+  EXPECT_FALSE(fs::exists(path("no_such_dir")));
+}
+
+TEST(DiagnosisReport, RunStemIsTheSanitizedFileStem) {
+  using shudder::io::diagnosis_run_stem;
+  EXPECT_EQ(diagnosis_run_stem("data/run_25kN.csv"), "run_25kN");
+  EXPECT_EQ(diagnosis_run_stem("/abs/dir/a.b-c.csv"), "a.b-c");
+  EXPECT_EQ(diagnosis_run_stem("hot \"run\" #2.csv"), "hot__run___2");
+  EXPECT_EQ(diagnosis_run_stem("noext"), "noext");
+  EXPECT_EQ(diagnosis_run_stem(".hidden"), "_hidden");
+  EXPECT_EQ(diagnosis_run_stem("dir/"), "run");
+  EXPECT_EQ(diagnosis_run_stem(""), "run");
+}
+
+TEST(DiagnosisReport, CandidatesMarkdownHasATablePerStepAndTheLastRound) {
+  DiagnosisResult r = sample_result();
+  r.last_round[0].failure = "a | b";
+  const std::string md = shudder::io::diagnosis_candidates_markdown(r);
+  EXPECT_THAT(md, HasSubstr("## Step 1: added temperature_dependent_friction"));
+  EXPECT_THAT(md, HasSubstr("| effect | parameters | fit misfit | hold-out misfit | score | gain | "
+                            "signature correlation |"));
+  EXPECT_THAT(md, HasSubstr("| bearing_drag | heat_capacity_J_per_K = 150, conductance_W_per_K = 10 "
+                            "| 1.25 | 400 | 400 | +112 | +0.930 | 42 |"));
+  EXPECT_THAT(md, HasSubstr("## Last round (stopped the search)"));
+  EXPECT_THAT(md, HasSubstr("| sump_heating |"));
+  EXPECT_THAT(md, HasSubstr("failed: a \\| b"));  // a '|' must not split the cell
+}
+
+TEST_F(DiagnosisFiles, ReportWritesTextFilesAndPlots) {
+  DiagnosisResult r = sample_result();
+  r.traces.push_back(r.traces[1]);  // same stem twice: the second gets "_2"
+  const std::string dir = path("report/sub");
+  const shudder::io::Report rep = shudder::io::write_diagnosis_report(dir, r, "summary text\n");
+  EXPECT_EQ(slurp(dir + "/summary.txt"), "summary text\n");
+  EXPECT_EQ(slurp(dir + "/candidates.md"), shudder::io::diagnosis_candidates_markdown(r));
+  for (const auto& f : fs::directory_iterator(dir))
+    EXPECT_NE(f.path().extension(), ".tmp") << f.path();
+  if (!gnuplot_installed()) {
+    EXPECT_EQ(rep.files.size(), 2u);
+    EXPECT_EQ(rep.skipped.size(), 3u);
+    GTEST_SKIP() << "gnuplot not installed: PNGs not checked";
+  }
+  EXPECT_TRUE(rep.skipped.empty()) << rep.skipped.front();
+  std::vector<std::string> expected = {dir + "/summary.txt", dir + "/candidates.md"};
+  for (const char* stem : {"a", "b", "b_2"})
+    for (const char* kind : {"_torque.png", "_temp.png", "_residuals.png"})
+      expected.push_back(dir + "/" + stem + kind);
+  EXPECT_EQ(rep.files, expected);
+  for (const auto& f : expected) {
+    ASSERT_TRUE(fs::exists(f)) << f;
+    if (fs::path(f).extension() == ".png") {
+      EXPECT_EQ(slurp(f).substr(1, 3), "PNG") << f;
+    }
+  }
+}
+
+TEST_F(DiagnosisFiles, ReportSkipsARunWithoutSamples) {
+  if (!gnuplot_installed()) GTEST_SKIP() << "gnuplot not installed";
+  DiagnosisResult r = sample_result();
+  r.traces.resize(1);
+  r.traces[0].time_s.clear();
+  const shudder::io::Report rep = shudder::io::write_diagnosis_report(path("rep"), r, "");
+  EXPECT_EQ(rep.files.size(), 2u);
+  ASSERT_EQ(rep.skipped.size(), 1u);
+  EXPECT_THAT(rep.skipped[0], HasSubstr("a_{torque,temp,residuals}.png"));
+}
+
+}  // namespace
