@@ -1,0 +1,155 @@
+// The diagnosis on data in which one effect is hidden (issue: "tests on data in which the effect
+// is hidden"). Measured runs are generated at test time by `shudder run --measurement --noise
+// --seed` from the probe scenario with the effect on (or, for effects on by default, in their
+// default state); the diagnosis model has the effect off. Two runs per case: A 12 kN from 75 °C
+// and B 24 kN from 85 °C, 100 Hz, sensor noise at the rig's stated accuracy (torque ±1.25 Nm,
+// thermocouple ±0.67 °C read as 2 sigma), fixed seeds.
+//
+// Magnitudes (docs/diagnosis.md): bearing mu 0.005 (the thesis' value), a 300 J/K, 20 W/K rig
+// mass, a 1 s sensor lag, a 0.5 µm viscous gap (1.2–2 Nm at 100 rpm), the calibrated oil flow.
+//
+// Pass criteria (from the issue): the named effect is the hidden one; torque and temperature
+// RMS gaps shrink at least 5× or end within 1.5× the noise; identifiable parameters within 20 %.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "analysis/diagnosis.hpp"
+#include "io/diagnosis_inputs.hpp"
+#include "io/measured_run.hpp"
+#include "io/scenario.hpp"
+#include "rig_models/replay.hpp"
+#include "tests/support/cli.hpp"
+
+namespace shudder {
+namespace {
+
+using test::replace;
+using test::run_cli;
+using test::scratch_dir;
+using test::slurp;
+using test::source_path;
+using test::write_file;
+
+std::string probe_text(const std::string& extra, double force_N, double temp_C) {
+  std::string s = slurp(source_path("scenarios/diagnosis_probe.toml"));
+  s = replace(s, "fluid = \"fluids/", "fluid = \"" + source_path("scenarios/fluids/"));
+  s = replace(s, "start_temp_C = 75.0", "start_temp_C = " + std::to_string(temp_C));
+  s = replace(s, "normal_force_N = 12000.0", "normal_force_N = " + std::to_string(force_N));
+  return s + "\n" + extra;
+}
+
+struct Case {
+  std::string name;
+  std::string hidden;   // [effects.*] tables of the generating "rig"
+  std::string model;    // [effects.*] tables of the diagnosis model
+  std::vector<std::string> expected;           // missing effects, in order
+  std::map<std::string, double> parameters;    // identifiable: name -> hidden value
+};
+
+void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
+
+analysis::DiagnosisResult diagnose_case(const Case& c) {
+  const auto dir = scratch_dir("diag_" + c.name);
+  std::vector<io::MeasuredRun> runs;
+  const struct { double force, temp; unsigned seed; } runs_spec[] = {{12000, 75, 11}, {24000, 85, 12}};
+  for (const auto& r : runs_spec) {
+    const std::string stem = "run_" + std::to_string(static_cast<int>(r.force / 1000)) + "kN";
+    write_file(dir / (stem + ".toml"), probe_text(c.hidden, r.force, r.temp));
+    const auto out = run_cli("run " + stem + ".toml -o " + stem + ".h5 --measurement " + stem +
+                                 ".csv --sample-rate 100 --noise --seed " + std::to_string(r.seed),
+                             dir);
+    EXPECT_EQ(out.exit_code, 0) << out.err;
+    runs.push_back(io::read_measured_run((dir / (stem + ".csv")).string()));
+  }
+  const auto scenario = io::load_scenario_text(probe_text(c.model, 12000, 75),
+                                               source_path("scenarios/diagnosis_probe.toml"));
+  auto data = io::diagnosis_data(runs);
+  const auto model = io::replay_model(scenario);
+  analysis::DiagnosisOptions o;
+  o.jobs = 1;  // ctest runs the cases in parallel
+  return analysis::diagnose(data.runs, rig_models::replay_candidates(model, nullptr),
+                            rig_models::replay_simulator(model, std::move(data.inputs)), o);
+}
+
+std::string describe(const analysis::DiagnosisResult& r) {
+  std::string s = r.conclusion + "\n";
+  for (const auto& st : r.steps) s += "  step " + st.effect + ": " + st.reason + "\n";
+  for (const auto& c : r.last_round)
+    s += "  last round " + c.effect + " holdout J " + std::to_string(c.holdout_misfit) + "\n";
+  return s;
+}
+
+void expect_gap_shrinks(const analysis::DiagnosisResult& r) {
+  // 5× shrink, or within 1.5× the estimated noise (a model as good as the data allows).
+  EXPECT_TRUE(r.final.torque_rms_Nm <= r.baseline.torque_rms_Nm / 5 ||
+              r.final.torque_rms_Nm <= 1.5 * r.noise_torque_Nm)
+      << "torque " << r.baseline.torque_rms_Nm << " -> " << r.final.torque_rms_Nm << " noise "
+      << r.noise_torque_Nm;
+  EXPECT_TRUE(r.final.temp_rms_C <= r.baseline.temp_rms_C / 5 || r.final.temp_rms_C <= 1.5 * r.noise_temp_C)
+      << "temp " << r.baseline.temp_rms_C << " -> " << r.final.temp_rms_C << " noise " << r.noise_temp_C;
+}
+
+void expect_parameters(const analysis::DiagnosisResult& r, const Case& c) {
+  for (const auto& [name, hidden] : c.parameters) {
+    bool found = false;
+    for (const auto& st : r.steps)
+      for (const auto& [k, v] : st.parameters)
+        if (k == name && !found) {
+          found = true;
+          // The issue's identifiability target: within 20 % of the hidden value.
+          EXPECT_NEAR(v / hidden, 1.0, 0.2) << name << " fitted " << v << ", hidden " << hidden;
+        }
+    EXPECT_TRUE(found) << name << " not fitted";
+  }
+}
+
+class HiddenEffect : public ::testing::TestWithParam<Case> {};
+
+TEST_P(HiddenEffect, IsNamedFittedAndClosesTheGap) {
+  const Case& c = GetParam();
+  const auto r = diagnose_case(c);
+  EXPECT_EQ(r.missing_effects, c.expected) << describe(r);
+  if (!c.expected.empty()) expect_gap_shrinks(r);
+  expect_parameters(r, c);
+}
+
+const std::string off(const std::string& effect) {
+  return "[effects." + effect + "]\nenabled = false\n";
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Diagnose, HiddenEffect,
+    ::testing::Values(
+        Case{"temperature_dependent_friction", "", off("temperature_dependent_friction"),
+             {"temperature_dependent_friction"}, {}},
+        Case{"interface_oil_cooling", "", off("interface_oil_cooling"), {"interface_oil_cooling"}, {{"e", 0.016}}},
+        Case{"sump_heating", "", off("sump_heating"), {"sump_heating"}, {}},
+        Case{"rig_heat_capacity",
+             "[effects.rig_heat_capacity]\nenabled = true\nheat_capacity_J_per_K = 300.0\nconductance_W_per_K = 20.0\n",
+             "", {"rig_heat_capacity"}, {{"heat_capacity_J_per_K", 300.0}, {"conductance_W_per_K", 20.0}}},
+        Case{"temperature_sensor_lag", "[effects.temperature_sensor_lag]\nenabled = true\ntime_constant_s = 1.0\n",
+             "", {"temperature_sensor_lag"}, {{"time_constant_s", 1.0}}},
+        Case{"bearing_drag", "[effects.bearing_drag]\nenabled = true\nequivalent_mu = 0.005\n", "",
+             {"bearing_drag"}, {{"equivalent_mu", 0.005}}},
+        Case{"viscous_shear", "[effects.viscous_shear]\nenabled = true\ngap_um = 0.5\n", "", {"viscous_shear"},
+             {{"gap_um", 0.5}}},
+        Case{"load_dependent_friction", "", off("load_dependent_friction"), {"load_dependent_friction"}, {}},
+        // Half and double the thesis' bearing drag.
+        Case{"bearing_drag_half", "[effects.bearing_drag]\nenabled = true\nequivalent_mu = 0.0025\n", "",
+             {"bearing_drag"}, {{"equivalent_mu", 0.0025}}},
+        Case{"bearing_drag_double", "[effects.bearing_drag]\nenabled = true\nequivalent_mu = 0.01\n", "",
+             {"bearing_drag"}, {{"equivalent_mu", 0.01}}},
+        // Two at once: the bearing drag (9-18 sigma of torque) outweighs the rig mass (3-6
+        // sigma of temperature), so it must come first.
+        Case{"two_effects",
+             "[effects.bearing_drag]\nenabled = true\nequivalent_mu = 0.01\n"
+             "[effects.rig_heat_capacity]\nenabled = true\nheat_capacity_J_per_K = 150.0\nconductance_W_per_K = 10.0\n",
+             "", {"bearing_drag", "rig_heat_capacity"}, {{"equivalent_mu", 0.01}}},
+        // Nothing hidden: the baseline is the truth, nothing may be named.
+        Case{"none", "", "", {}, {}}),
+    [](const ::testing::TestParamInfo<Case>& i) { return i.param.name; });
+
+}  // namespace
+}  // namespace shudder
