@@ -14,9 +14,11 @@
 // thesis' own case (interpolation, not extrapolation).
 //
 //   BM_Diagnose_Case2_AllOff   baseline with all nine [effects] off; stick-time friction cannot
-//                              act with imposed slip, so 8 candidates; the diagnosis must re-add
+//                              act with imposed slip, so 8 candidates; the diagnosis should re-add
 //                              temperature dependence, oil cooling, sump heating, load dependence
-//                              and the rig heat capacity (several rounds). The main figure.
+//                              and the rig heat capacity (several rounds). The main figure. It
+//                              names four and misses temperature dependence (docs/diagnosis.md,
+//                              "Limits").
 //   BM_Diagnose_Case2_Defaults the realistic case: Case 2 as shipped (its default effects on),
 //                              candidates = the effects it has off (stick-time skipped).
 //
@@ -169,7 +171,8 @@ void run_diagnosis(benchmark::State& state, const std::string& model_text, const
 }
 
 // Every effect off: the diagnosis has to rebuild the model. Arg = max_effects: 4 is the
-// default `shudder diagnose` uses (it has no option for it), 8 lets it add all five.
+// default `shudder diagnose` uses (it has no option for it); 8 lifts that limit, so a fifth
+// effect could be added.
 void BM_Diagnose_Case2_AllOff(benchmark::State& state) {
   std::string text = read_file(kCase2Path);
   for (auto name : clutch::kEffectNames)
