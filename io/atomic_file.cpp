@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 
 #include "io/input_error.hpp"
 
@@ -32,6 +33,22 @@ void commit_temp_file(const std::string& tmp, const std::string& path) {
   ::close(fd);
   if (synced != 0) fail("flush");
   if (std::rename(tmp.c_str(), path.c_str()) != 0) fail("rename");
+}
+
+void write_text_file_atomically(const std::string& path, const std::string& text) {
+  const std::string tmp = temp_path_for(path);
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out)
+      throw InputError(path, 0, "", "cannot create '" + tmp + "'; check the directory exists and is writable");
+    out << text;
+    out.close();
+    if (out.fail()) {
+      discard_temp_file(tmp);
+      throw InputError(path, 0, "", "cannot write '" + tmp + "' (disk full?)");
+    }
+  }
+  commit_temp_file(tmp, path);
 }
 
 }  // namespace shudder::io

@@ -18,4 +18,7 @@ void commit_temp_file(const std::string& tmp, const std::string& path);
 /// Removes `tmp` if it exists; never throws.
 void discard_temp_file(const std::string& tmp) noexcept;
 
+/// Writes `text` to `path` through the temporary name; InputError naming `path` on failure.
+void write_text_file_atomically(const std::string& path, const std::string& text);
+
 }  // namespace shudder::io

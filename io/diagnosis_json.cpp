@@ -164,20 +164,7 @@ std::string diagnosis_json(const analysis::DiagnosisResult& r) {
 }
 
 void write_diagnosis_json(const std::string& path, const analysis::DiagnosisResult& r) {
-  const std::string text = diagnosis_json(r);
-  const std::string tmp = temp_path_for(path);
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out)
-      throw InputError(path, 0, "", "cannot create '" + tmp + "'; check the directory exists and is writable");
-    out << text;
-    out.close();
-    if (out.fail()) {
-      discard_temp_file(tmp);
-      throw InputError(path, 0, "", "cannot write '" + tmp + "' (disk full?)");
-    }
-  }
-  commit_temp_file(tmp, path);
+  write_text_file_atomically(path, diagnosis_json(r));
 }
 
 }  // namespace shudder::io

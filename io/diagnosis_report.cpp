@@ -68,20 +68,6 @@ void candidate_table(std::ostringstream& md, const std::vector<CandidateScore>& 
   md << "\n";
 }
 
-void write_text_file(const std::string& path, const std::string& text) {
-  const std::string tmp = temp_path_for(path);
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.close();
-    if (out.fail()) {
-      discard_temp_file(tmp);
-      throw InputError(path, 0, "", "cannot write the report file; check the directory is writable");
-    }
-  }
-  commit_temp_file(tmp, path);
-}
-
 bool gnuplot_on_path() {
   const char* path = std::getenv("PATH");
   std::istringstream dirs(path ? path : "");
@@ -220,9 +206,9 @@ Report write_diagnosis_report(const std::string& dir, const analysis::DiagnosisR
     throw InputError(dir, 0, "", "cannot create the report directory: " + ec.message());
   Report report;
   const auto path = [&](const std::string& f) { return (fs::path(dir) / f).string(); };
-  write_text_file(path("summary.txt"), summary_text);
+  write_text_file_atomically(path("summary.txt"), summary_text);
   report.files.push_back(path("summary.txt"));
-  write_text_file(path("candidates.md"), diagnosis_candidates_markdown(r));
+  write_text_file_atomically(path("candidates.md"), diagnosis_candidates_markdown(r));
   report.files.push_back(path("candidates.md"));
 
   const bool gnuplot = gnuplot_on_path();

@@ -114,19 +114,6 @@ std::string verdict_text(analysis::Verdict v) {
   return "no shudder";
 }
 
-void write_text_file(const std::string& path, const std::string& text) {
-  const std::string tmp = temp_path_for(path);
-  {
-    std::ofstream out(tmp);
-    out << text;
-    if (!out.flush()) {
-      discard_temp_file(tmp);
-      throw InputError(path, 0, "", "cannot write the report summary; check the directory is writable");
-    }
-  }
-  commit_temp_file(tmp, path);
-}
-
 void make_report_dir(const std::string& dir) {
   std::error_code ec;
   fs::create_directories(dir, ec);
@@ -650,7 +637,7 @@ Report write_run_report(const std::string& dir, const Recording& rec, const std:
   make_report_dir(dir);
   Report report;
   const auto path = [&](const char* f) { return (fs::path(dir) / f).string(); };
-  write_text_file(path("summary.txt"), summary);
+  write_text_file_atomically(path("summary.txt"), summary);
   report.files.push_back(path("summary.txt"));
   struct Item { PlotKind kind; const char* file; bool wanted; };
   const Item items[] = {{PlotKind::kTorque, "torque.png", true},
@@ -678,7 +665,7 @@ Report write_sweep_report(const std::string& dir, const SweepTable& table, const
   make_report_dir(dir);
   Report report;
   report.files = {(fs::path(dir) / "summary.txt").string(), (fs::path(dir) / "sweep.png").string()};
-  write_text_file(report.files[0], summary);
+  write_text_file_atomically(report.files[0], summary);
   write_plot(report.files[1], sweep_plot(table, name, "the sweep"));
   return report;
 }

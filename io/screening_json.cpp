@@ -158,19 +158,7 @@ std::string screening_json(const rig_models::ScreeningReport& rep, const std::st
 
 void write_screening_json(const rig_models::ScreeningReport& report, const std::string& fluid_file,
                           const std::string& path) {
-  const std::string text = screening_json(report, fluid_file);
-  const std::string tmp = temp_path_for(path);
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError(path, 0, "", "cannot create '" + tmp + "'; check the directory exists and is writable");
-    out << text;
-    out.close();
-    if (out.fail()) {
-      discard_temp_file(tmp);
-      throw InputError(path, 0, "", "cannot write '" + tmp + "' (disk full?)");
-    }
-  }
-  commit_temp_file(tmp, path);
+  write_text_file_atomically(path, screening_json(report, fluid_file));
 }
 
 }  // namespace shudder::io
