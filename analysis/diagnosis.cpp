@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <ctime>
 #include <mutex>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -113,12 +114,15 @@ class Engine {
   };
   static const std::vector<double>& measured(const DiagnosisRun& r, Field f);
   static const std::vector<double>& predicted(const Prediction& p, Field f);
+  struct StatBlock;
+  static double hann(double t_s, const StatBlock& b);
   BlockStats stats(const std::vector<double>& x, std::size_t run, std::size_t block) const;
   std::pair<double, double> channel_sums(const Channel& c, const SampleSet& set, const Predictions& p,
                                          std::vector<double>* entries) const;
   void check_inputs() const;
   void choose_channels();
   void build_sample_sets(DiagnosisResult& r);
+  void estimate_block_jitter(const Channel& c);
   Predictions simulate(const Config& config, const std::vector<std::size_t>& which, unsigned jobs) const;
   double misfit(const SampleSet& set, const Predictions& p) const;
   Misfit rms(const SampleSet& set, const Predictions& p) const;
@@ -140,7 +144,15 @@ class Engine {
   const DiagnosisOptions& opt_;
   double sigma_torque_ = 0, sigma_temp_ = 0;
   std::vector<Channel> channels_;
-  std::vector<std::vector<std::pair<std::size_t, std::size_t>>> stat_blocks_;  // per run
+  // A statistics block: samples [first, end) weighted by a Hann window over [t0_s, t0_s + length_s].
+  struct StatBlock {
+    std::size_t first, end;
+    double t0_s, length_s;
+    double n_eff;  // (Σw)² / Σw²: the sample count whose plain mean has the same noise
+  };
+  std::vector<std::vector<StatBlock>> stat_blocks_;  // per run
+  // Per run: variance of the block mean and block spread beyond what sensor noise explains.
+  std::vector<BlockStats> block_jitter_var_;
   SampleSet all_, fit_, holdout_;
   mutable std::mutex timing_mutex_;
   mutable double sim_thread_s_ = 0;
@@ -164,6 +176,30 @@ void Engine::check_inputs() const {
         throw std::invalid_argument("candidate effect '" + candidates_[i].name + "' given twice");
 }
 
+// The block statistics of a steady signal scatter by the sensor noise alone (σ²/n); a cycle
+// that is not a whole number of times in a block adds a jitter that model and measurement
+// each have (hence the factor 2 where it is used). Its size is read off the measured
+// statistics with the same second-difference estimator as the sensor noise (trends and
+// single kinks drop out), less the noise part. Fewer than 5 blocks: no estimate, noise only.
+void Engine::estimate_block_jitter(const Channel& c) {
+  block_jitter_var_.assign(runs_.size(), {});
+  if (!c.blocks) return;
+  for (std::size_t k = 0; k < runs_.size(); ++k) {
+    const std::size_t nb = stat_blocks_[k].size();
+    if (nb < 5) continue;
+    std::vector<double> means, spreads;
+    double noise_var = 0;
+    for (std::size_t b = 0; b < nb; ++b) {
+      const BlockStats s = stats(measured(runs_[k], c.field), k, b);
+      means.push_back(s.mean);
+      spreads.push_back(s.std);
+      noise_var += c.sigma * c.sigma / stat_blocks_[k][b].n_eff / static_cast<double>(nb);
+    }
+    block_jitter_var_[k] = {std::max(0.0, std::pow(estimate_noise_sigma(means), 2) - noise_var),
+                            std::max(0.0, std::pow(estimate_noise_sigma(spreads), 2) - 0.5 * noise_var)};
+  }
+}
+
 void Engine::build_sample_sets(DiagnosisResult& r) {
   const std::size_t nr = runs_.size();
   for (SampleSet* set : {&all_, &fit_, &holdout_}) {
@@ -177,15 +213,29 @@ void Engine::build_sample_sets(DiagnosisResult& r) {
     const std::size_t stride =
         std::max<std::size_t>(1, (n + opt_.max_samples_per_run - 1) / std::max(1, opt_.max_samples_per_run));
     for (std::size_t i = 0; i < n; i += stride) all_.index[k].push_back(i);
-    // Statistics blocks of statistics_block_s (a short tail is dropped: too few samples).
-    for (std::size_t b = 0; b < n;) {
-      std::size_t e = b;
-      while (e < n && t[e] < t[b] + opt_.statistics_block_s) ++e;
-      if (e - b >= 10 && (e < n || t[n - 1] - t[b] >= 0.5 * opt_.statistics_block_s)) {
-        all_.blocks[k].push_back(stat_blocks_[k].size());
-        stat_blocks_[k].emplace_back(b, e);
+    // Statistics blocks: Hann windows of statistics_block_s every half length, the last one
+    // ending at the run's end; a run shorter than one block is one block.
+    const double length = std::min(opt_.statistics_block_s, t.back() - t.front());
+    std::vector<double> starts;
+    for (double t0 = t.front(); t0 + length <= t.back() + 1e-9 * length; t0 += 0.5 * length)
+      starts.push_back(t0);
+    if (starts.empty() || starts.back() + length < t.back() - 0.25 * length)
+      starts.push_back(t.back() - length);
+    for (double t0 : starts) {
+      StatBlock blk{0, 0, t0, length, 0.0};
+      blk.first = static_cast<std::size_t>(std::lower_bound(t.begin(), t.end(), t0) - t.begin());
+      blk.end = static_cast<std::size_t>(std::upper_bound(t.begin(), t.end(), t0 + length) - t.begin());
+      double sw = 0, sw2 = 0;
+      for (std::size_t i = blk.first; i < blk.end; ++i) {
+        const double w = hann(t[i], blk);
+        sw += w;
+        sw2 += w * w;
       }
-      b = e;
+      blk.n_eff = sw2 > 0 ? sw * sw / sw2 : 0.0;
+      if (blk.end - blk.first >= 10 && blk.n_eff > 0) {
+        all_.blocks[k].push_back(stat_blocks_[k].size());
+        stat_blocks_[k].push_back(blk);
+      }
     }
   }
   if (nr > 1) {
@@ -206,8 +256,8 @@ void Engine::build_sample_sets(DiagnosisResult& r) {
   };
   for (std::size_t i : all_.index[0]) (odd(t[i]) ? holdout_ : fit_).index[0].push_back(i);
   for (std::size_t b : all_.blocks[0]) {
-    const auto [first, end] = stat_blocks_[0][b];
-    (odd(0.5 * (t[first] + t[end - 1])) ? holdout_ : fit_).blocks[0].push_back(b);
+    const StatBlock& blk = stat_blocks_[0][b];
+    (odd(blk.t0_s + 0.5 * blk.length_s) ? holdout_ : fit_).blocks[0].push_back(b);
   }
   const bool blocks_needed = opt_.torque_block_statistics;
   if (fit_.size() < 10 || holdout_.size() < 10 ||
@@ -261,14 +311,25 @@ const std::vector<double>& Engine::predicted(const Prediction& p, Field f) {
   return p.torque_Nm;
 }
 
+// A Hann window keeps a cycle that does not fit a whole number of times into the block out of
+// its mean and spread (leakage falls as 1/(cycles per block)³ instead of 1/cycles).
+double Engine::hann(double t_s, const StatBlock& b) {
+  const double s = std::sin(std::numbers::pi * (t_s - b.t0_s) / b.length_s);
+  return s * s;
+}
+
 Engine::BlockStats Engine::stats(const std::vector<double>& x, std::size_t run, std::size_t block) const {
-  const auto [b, e] = stat_blocks_[run][block];
-  const double n = static_cast<double>(e - b);
-  double sum = 0, sq = 0;
-  for (std::size_t i = b; i < e; ++i) sum += x[i];
-  const double mean = sum / n;
-  for (std::size_t i = b; i < e; ++i) sq += (x[i] - mean) * (x[i] - mean);
-  return {mean, std::sqrt(sq / n)};
+  const StatBlock& blk = stat_blocks_[run][block];
+  const auto& t = runs_[run].time_s;
+  double sw = 0, sum = 0, sq = 0;
+  for (std::size_t i = blk.first; i < blk.end; ++i) {
+    const double w = hann(t[i], blk);
+    sw += w;
+    sum += w * x[i];
+  }
+  const double mean = sum / sw;
+  for (std::size_t i = blk.first; i < blk.end; ++i) sq += hann(t[i], blk) * (x[i] - mean) * (x[i] - mean);
+  return {mean, std::sqrt(sq / sw)};
 }
 
 // Sum of squared residuals in noise units, and of squared residuals in signal units, of one
@@ -290,12 +351,14 @@ std::pair<double, double> Engine::channel_sums(const Channel& c, const SampleSet
       continue;
     }
     for (std::size_t b : set.blocks[k]) {
-      const double n = static_cast<double>(stat_blocks_[k][b].second - stat_blocks_[k][b].first);
+      const double n = stat_blocks_[k][b].n_eff;
       const BlockStats sm = stats(m, k, b), sq = stats(q, k, b);
       // The measured spread holds the sensor noise; remove it in quadrature.
       const double meas_std = std::sqrt(std::max(0.0, sm.std * sm.std - c.sigma * c.sigma));
-      put(sq.mean - sm.mean, (sq.mean - sm.mean) / (c.sigma / std::sqrt(n)));
-      put(sq.std - meas_std, (sq.std - meas_std) / (c.sigma / std::sqrt(2.0 * n)));
+      const double var = c.sigma * c.sigma / n;
+      const BlockStats& jitter = block_jitter_var_[k];
+      put(sq.mean - sm.mean, (sq.mean - sm.mean) / std::sqrt(var + 2.0 * jitter.mean));
+      put(sq.std - meas_std, (sq.std - meas_std) / std::sqrt(0.5 * var + 2.0 * jitter.std));
     }
   }
   return {sn, su};
@@ -607,6 +670,7 @@ DiagnosisResult Engine::run() {
   r.noise_torque_Nm = sigma_torque_;
   r.noise_temp_C = sigma_temp_;
   build_sample_sets(r);
+  estimate_block_jitter(channels_.front());
 
   Config fold, full;
   const Predictions baseline = simulate({}, all_.runs(), opt_.jobs);

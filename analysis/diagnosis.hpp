@@ -77,12 +77,16 @@ struct DiagnosisOptions {
   int max_evaluations = 60;           // LM model evaluations per fit (each = all fit runs)
   double min_noise_torque_Nm = 1e-3;  // floors for the noise estimate (noise-free data)
   double min_noise_temp_C = 1e-3;
-  // Rig runs: compare torque by the mean and standard deviation over statistics_block_s blocks
-  // instead of sample by sample. A stick-slip cycle drifts in phase between model and rig
-  // (1 % force moves it by a fraction of a cycle within seconds), so a pointwise comparison
-  // measures phase, not physics; block statistics keep level and amplitude.
+  // Rig runs: compare torque by its mean and standard deviation over Hann-weighted blocks of
+  // statistics_block_s (every half block) instead of sample by sample. A stick-slip cycle drifts
+  // in phase between model and rig (1 % force moves it by a fraction of a cycle within
+  // seconds), so a pointwise comparison measures phase, not physics; block statistics keep
+  // level and amplitude. 1 s holds 3 stick-slip cycles at the rig's 0.5 rpm on the soft bar and
+  // still follows thermal drifts of seconds; the Hann weight keeps the partial cycle out.
+  // Error scale: the sensor noise over the block plus the block-to-block jitter the measured
+  // statistics show beyond it, counted for model and measurement both.
   bool torque_block_statistics = false;
-  double statistics_block_s = 0.25;
+  double statistics_block_s = 1.0;
 };
 
 /// How well one measured signal is explained. Pointwise channels: rms of model − measured

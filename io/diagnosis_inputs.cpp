@@ -54,6 +54,7 @@ DiagnosisData diagnosis_data(const std::vector<MeasuredRun>& runs) {
     in.speed_rpm = dr.speed_rpm;
     in.normal_force_N = dr.normal_force_N;
     in.temp_C = dr.temp_C;
+    in.torque_Nm = dr.torque_Nm;
     in.sump_temp_C = dr.sump_temp_C;
     if (const auto flow = run.meta("oil_flow_ml_min")) {
       char* end = nullptr;

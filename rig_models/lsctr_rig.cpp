@@ -33,6 +33,12 @@ void require(bool ok, const char* what) {
 
 }  // namespace
 
+SpeedLoopGains speed_loop_gains(const RigParams& p) {
+  const double wc = kTwoPi * p.speed_loop_bandwidth_Hz;
+  const double kp = p.drive_inertia_kg_m2 * wc;
+  return {kp, kp * wc / 4.0};
+}
+
 LsctrRig::LsctrRig(const RigParams& params, const clutch::WetClutch& clutch, const DriveCycle& cycle)
     : p_(params) {
   require(p_.drive_inertia_kg_m2 > 0, "rig drive inertia must be > 0 kg m^2");
@@ -44,9 +50,9 @@ LsctrRig::LsctrRig(const RigParams& params, const clutch::WetClutch& clutch, con
   require(p_.motor_torque_limit_Nm > 0, "motor torque limit must be > 0 N m");
   law_ = std::make_shared<ClutchContactLaw>(clutch, cycle.normal_force_N, p_.bearing_drag, p_.stick_time);
 
-  const double wc = kTwoPi * p_.speed_loop_bandwidth_Hz;
-  kp_ = p_.drive_inertia_kg_m2 * wc;
-  ki_ = kp_ * wc / 4.0;
+  const SpeedLoopGains gains = speed_loop_gains(p_);
+  kp_ = gains.kp_Nms_per_rad;
+  ki_ = gains.ki_Nm_per_rad;
   const PiecewiseLinear speed = cycle.slip_speed_rpm;
   const auto build = [&](double k_bar) {
     dynamics::TorsionalNetwork n;

@@ -58,6 +58,13 @@ struct RigSettings {
   std::vector<double> snapshot_times_s;
 };
 
+/// The speed loop's PI gains, tuned from the drive inertia and the loop bandwidth ω_c = 2π f_bw:
+/// kp = J ω_c, ki = kp ω_c / 4 (PI zero at a quarter of the bandwidth; estimate, see header).
+struct SpeedLoopGains {
+  double kp_Nms_per_rad, ki_Nm_per_rad;
+};
+SpeedLoopGains speed_loop_gains(const RigParams& params);
+
 /// The rig's network and its derived parameters. Node 0 drive, node 1 housing; contact 0 clutch.
 class LsctrRig {
  public:

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "clutch/effects.hpp"
+#include "rig_models/speed_setpoint.hpp"
 
 namespace shudder::rig_models {
 
@@ -99,6 +100,9 @@ ReplayOutput replay(const ReplayModel& model, const ReplayInputs& in) {
     rs.sample_rate_Hz = model.settings.sample_rate_Hz;
     RigParams rp = model.rig_params;
     rp.bearing_drag = model.settings.bearing_drag;
+    if (in.torque_Nm.size() == t.size())
+      cycle.slip_speed_rpm = window_means(
+          t, estimate_speed_setpoint(t, in.speed_rpm, in.torque_Nm, rp), t0, in.input_window_s);
     rec = run_rig(rp, clutch, cycle, rs);
   } else {
     PrescribedSlipSettings ps = model.settings;

@@ -6,10 +6,9 @@
 //   * speed_rpm and normal_force_N, averaged over consecutive windows of input_window_s
 //     (0.05 s: removes the sensors' noise and, on the rig, the encoder's vibration, while a
 //     ramp's kink is rounded over only 0.05 s) and joined piecewise linearly at the window
-//     centres. On the rig the averaged speed is the speed loop's set point. LIMIT: during
-//     stick-slip the drive sags below its set point (the loop cannot hold it under a rising
-//     load) and the measured-run format carries no set point, so a stick-slip run is replayed
-//     with a set point that sags too; docs/diagnosis.md shows what that costs.
+//     centres. On the rig the speed is the loop's set point, recovered from the drive speed and
+//     torque cell by inverting the loop (rig_models/speed_setpoint.hpp): under a rising
+//     load, and in stick-slip, the drive lags its set point.
 //   * start temperatures: discs and inner boundary at the mean temp_C of the first 0.1 s (at
 //     least 5 samples); sump at the mean sump_temp_C there when measured, else the same.
 //   * metadata: oil_flow_ml_min sets the supply flow; temp_sensor "… r_mm=R z_mm=Z" places
@@ -43,6 +42,7 @@ struct ReplayModel {
 
 struct ReplayInputs {
   std::vector<double> time_s, speed_rpm, normal_force_N, temp_C;
+  std::vector<double> torque_Nm;    // the rig's set-point estimate needs it (empty: set point = speed)
   std::vector<double> sump_temp_C;  // empty when not measured
   std::optional<double> oil_flow_ml_min, thermocouple_r_mm, thermocouple_z_mm;
   double input_window_s = 0.05;
