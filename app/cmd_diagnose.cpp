@@ -111,6 +111,7 @@ int diagnose_command(const DiagnoseOptions& opt) {
     analysis::DiagnosisOptions o;
     o.jobs = opt.jobs ? opt.jobs : std::max(1u, std::thread::hardware_concurrency());
     o.torque_block_statistics = model.rig;
+    o.max_effects = opt.max_effects;
     const auto result = analysis::diagnose(
         data.runs, candidates, rig_models::replay_simulator(model, std::move(data.inputs)), o);
 

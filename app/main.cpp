@@ -73,6 +73,8 @@ int main(int argc, char** argv) {
                        "Also write a report directory: summary, candidate table, plots");
   diag_cmd->add_option("--jobs", diagnose.jobs, "Parallel fits (default: all cores)")
       ->check(CLI::Range(1u, 1024u));
+  diag_cmd->add_option("--max-effects", diagnose.max_effects, "Add at most this many effects (default 4)")
+      ->check(CLI::Range(0, 9));
 
   try {
     app.parse(argc, argv);

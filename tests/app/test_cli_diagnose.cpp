@@ -50,6 +50,19 @@ TEST(CliDiagnose, WritesJsonReportAndSummary) {
   EXPECT_TRUE(std::filesystem::exists(dir / "rep" / "candidates.md"));
 }
 
+TEST(CliDiagnose, MaxEffectsLimitsTheSearch) {
+  // Bearing drag is hidden and clearly missing; with --max-effects 0 nothing may be added and
+  // the summary must say why the search stopped.
+  const auto dir = scratch_dir("cli_diagnose_max_effects");
+  generate(dir, "a", 1);
+  write_file(dir / "model.toml", probe());
+  const auto r = run_cli("diagnose model.toml a.csv --max-effects 0 --jobs 1", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("Missing effects: none"));
+  EXPECT_THAT(r.out, HasSubstr("the limit of 0 added effects was reached"));
+  EXPECT_EQ(run_cli("diagnose model.toml a.csv --max-effects -1", dir).exit_code, 2);
+}
+
 void expect_rejected(const test::CliResult& r, const std::vector<std::string>& fragments) {
   EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
