@@ -97,8 +97,9 @@ class Engine {
  private:
   struct Outcome {
     CandidateScore score;
-    std::vector<double> values;
-    Predictions predictions;  // fit and hold-out runs at the fitted values
+    std::vector<double> values;  // the candidate's parameters
+    Config config;               // the effects added so far, refitted with it, plus it
+    Predictions predictions;     // fit and hold-out runs at the fitted values
     bool ok = false;
   };
 
@@ -125,6 +126,7 @@ class Engine {
   void estimate_block_jitter(const Channel& c);
   Predictions simulate(const Config& config, const std::vector<std::size_t>& which, unsigned jobs) const;
   double misfit(const SampleSet& set, const Predictions& p) const;
+  double channel_weight(const Channel& c) const;
   Misfit rms(const SampleSet& set, const Predictions& p) const;
   bool residual_vector(const SampleSet& set, const Predictions& p, Eigen::VectorXd& out) const;
   std::size_t residual_count(const SampleSet& set) const;
@@ -369,9 +371,17 @@ double Engine::misfit(const SampleSet& set, const Predictions& p) const {
   for (const auto& c : channels_) {
     std::vector<double> e;
     const double sn = channel_sums(c, set, p, &e).first;
-    if (!e.empty()) j += sn / static_cast<double>(e.size());
+    if (!e.empty()) j += channel_weight(c) * sn / static_cast<double>(e.size());
   }
-  return j / static_cast<double>(channels_.size());
+  return j;
+}
+
+// Torque is the one mechanical signal; temp_C, sump_temp_C and ir_temp_C all watch the thermal
+// state. Each side gets half of J, so an effect that only moves the torque (load dependence,
+// bearing drag) is not outvoted by three thermometers that it leaves unchanged.
+double Engine::channel_weight(const Channel& c) const {
+  if (c.field == Field::kTorque) return 0.5;
+  return 0.5 / static_cast<double>(channels_.size() - 1);
 }
 
 Misfit Engine::rms(const SampleSet& set, const Predictions& p) const {
@@ -394,7 +404,7 @@ bool Engine::residual_vector(const SampleSet& set, const Predictions& p, Eigen::
   for (const auto& c : channels_) {
     std::vector<double> e;
     channel_sums(c, set, p, &e);
-    const double w = 1.0 / std::sqrt(static_cast<double>(channels_.size() * std::max<std::size_t>(1, e.size())));
+    const double w = std::sqrt(channel_weight(c) / static_cast<double>(std::max<std::size_t>(1, e.size())));
     for (double x : e) all.push_back(w * x);
   }
   out = Eigen::Map<const Eigen::VectorXd>(all.data(), static_cast<Eigen::Index>(all.size()));
@@ -456,21 +466,38 @@ Engine::Outcome Engine::fit_candidate(const EffectCandidate& c, const Config& fo
   const std::size_t k = c.parameter_names.size();
   const auto fit_runs = fit_.runs();
   const auto both_runs = union_runs(fit_, holdout_);
-  const auto with = [&](const std::vector<double>& v) {
-    Config cfg = fold;
-    cfg.push_back({c.name, v});
-    return cfg;
+  // The candidate is fitted together with the parameters of every effect added before it, so
+  // an earlier effect that stood in for this one (a heat sink imitating oil cooling) can give
+  // its share back instead of blocking it.
+  Config cfg = fold;
+  cfg.push_back({c.name, c.starts.empty() ? std::vector<double>{} : c.starts.front()});
+  std::vector<std::pair<std::size_t, std::size_t>> slots;  // (effect, parameter) of cfg
+  LogParameterProblem problem;
+  for (std::size_t e = 0; e < cfg.size(); ++e) {
+    const auto& ce = e + 1 == cfg.size() ? c : candidate(cfg[e].effect);
+    for (std::size_t j = 0; j < ce.parameter_names.size(); ++j) {
+      slots.emplace_back(e, j);
+      problem.lower.push_back(ce.lower[j]);
+      problem.upper.push_back(ce.upper[j]);
+    }
+  }
+  const auto config_of = [&](const std::vector<double>& v) {
+    Config out = cfg;
+    for (std::size_t s = 0; s < slots.size(); ++s) out[slots[s].first].values[slots[s].second] = v[s];
+    return out;
   };
+  std::vector<double> earlier;
+  for (const auto& e : fold) earlier.insert(earlier.end(), e.values.begin(), e.values.end());
   try {
-    if (k > 0) {
-      LogParameterProblem problem;
+    if (!slots.empty()) {
+      for (const auto& start : k > 0 ? c.starts : std::vector<std::vector<double>>{{}}) {
+        problem.starts.push_back(earlier);
+        problem.starts.back().insert(problem.starts.back().end(), start.begin(), start.end());
+      }
       problem.residuals = static_cast<int>(residual_count(fit_));
-      problem.lower = c.lower;
-      problem.upper = c.upper;
-      problem.starts = c.starts;
       problem.max_evaluations = opt_.max_evaluations;
       problem.evaluate = [&](const std::vector<double>& v, Eigen::VectorXd& r) {
-        return residual_vector(fit_, simulate(with(v), fit_runs, 1), r);
+        return residual_vector(fit_, simulate(config_of(v), fit_runs, 1), r);
       };
       const LogParameterFit fit = fit_log_parameters(problem);
       o.score.evaluations = fit.evaluations;
@@ -478,9 +505,11 @@ Engine::Outcome Engine::fit_candidate(const EffectCandidate& c, const Config& fo
         o.score.failure = "no parameter values could be simulated";
         return o;
       }
-      o.values = fit.values;
+      cfg = config_of(fit.values);
     }
-    o.predictions = simulate(with(o.values), both_runs, 1);
+    o.config = cfg;
+    o.values = cfg.back().values;
+    o.predictions = simulate(cfg, both_runs, 1);
     ++o.score.evaluations;
   } catch (const std::exception& e) {
     o.score.failure = e.what();
@@ -734,7 +763,7 @@ DiagnosisResult Engine::run() {
     step.holdout_misfit_after = best.score.holdout_misfit;
     step.holdout = rms(holdout_, best.predictions);
     const Predictions before = full_pred;
-    fold.push_back({best.score.effect, best.values});
+    fold = best.config;
     for (std::size_t kk = 0; kk < runs_.size(); ++kk)
       if (best.predictions[kk]) fold_pred[kk] = best.predictions[kk];
     full = refit_all(full, fold, full_pred);

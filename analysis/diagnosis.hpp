@@ -8,17 +8,20 @@
 //   noise      sigma of each signal from the data alone: the median absolute second difference
 //              of consecutive samples, sigma = 1.4826 * MAD(d2) / sqrt(6) (white noise gives
 //              Var(d2) = 6 sigma²; a smooth signal adds ~nothing at 100 Hz–1 kHz sampling).
-//   misfit     J = mean over compared signals of mean((r/σ)²) over a sample set, r = model −
-//              measured: torque and temp_C always, sump_temp_C and ir_temp_C when every run has
-//              them (the sump shows sump heating; the IR spot separates a lagging sensor from
-//              stored heat). A model that explains the data to the noise has J ≈ 1.
+//   misfit     J = ½ J_torque + ½ mean of J_c over the temperature signals c, J_c = mean((r/σ)²)
+//              over a sample set, r = model − measured: temp_C always, sump_temp_C and ir_temp_C
+//              when every run has them (the sump shows sump heating; the IR spot separates a
+//              lagging sensor from stored heat). Mechanics and heat weigh half each, so three
+//              thermometers do not outvote the one torque cell. J ≈ 1 at the noise.
 //   hold-out   with several runs the last run is held out; with one run, alternate tenths of
 //              its duration. Candidates are fitted on the rest and scored on the hold-out.
 //   fitting    Eigen's Levenberg–Marquardt on log(parameter) (positivity, scale-free steps),
 //              forward-difference Jacobian, several starts per effect (the best start wins).
-//   selection  greedy: score = J_holdout + penalty·(parameters); the best candidate is added
-//              if it lowers the hold-out misfit by more than min_gain + penalty·k; stop when
-//              no candidate does, or when every signal is within noise_tolerance·σ.
+//   selection  greedy: each candidate is fitted together with the effects added before it
+//              (so an earlier stand-in can give way); score = J_holdout + penalty·(parameters);
+//              the best candidate is added if it lowers the hold-out misfit by more than
+//              min_gain + penalty·k; stop when no candidate does, or when every signal is within
+//              noise_tolerance·σ.
 //   segments   the residual averaged over blocks (≈1/80 of a run); a block disagrees when its
 //              mean stands above 3 standard errors and above half a noise sigma; neighbouring
 //              blocks of one sign join into a segment.
