@@ -1,12 +1,11 @@
-// Run output <-> HDF5 (layout in hdf5_run.hpp). HDF5 C API with RAII handles; the library's
-// automatic error printing is switched off while we work and its innermost error message is
-// attached to the InputError instead.
+// Run output <-> HDF5 (layout in hdf5_run.hpp). HDF5 C API through hdf5_util's RAII handles;
+// the library's automatic error printing is switched off while we work and its innermost error
+// message is attached to the InputError instead.
 #include "io/hdf5_run.hpp"
 
 #include <hdf5.h>
 
 #include <algorithm>
-#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <mutex>
@@ -16,95 +15,21 @@
 #include <utility>
 
 #include "io/atomic_file.hpp"
+#include "io/hdf5_util.hpp"
 #include "io/input_error.hpp"
 
 namespace shudder::io {
+
+using namespace hdf5;
+
 namespace {
 
 using dynamics::Recording;
 
-// An HDF5 failure inside this file; converted to InputError (with the path) at the public edge.
-struct Failure : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-// Owns one hid_t and closes it with the matching H5?close.
-class Handle {
- public:
-  using Closer = herr_t (*)(hid_t);
-  Handle(hid_t id, Closer close) : id_(id), close_(close) {}
-  Handle(Handle&& o) noexcept : id_(std::exchange(o.id_, H5I_INVALID_HID)), close_(o.close_) {}
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  Handle& operator=(Handle&&) = delete;
-  ~Handle() {
-    if (id_ >= 0) close_(id_);
-  }
-  operator hid_t() const { return id_; }  // NOLINT: implicit, so handles pass straight to H5*
-  /// Closes now and reports failure (closing a file flushes it: errors matter there).
-  herr_t close() { return id_ >= 0 ? close_(std::exchange(id_, H5I_INVALID_HID)) : 0; }
-
- private:
-  hid_t id_;
-  Closer close_;
-};
-
-// Switches HDF5's automatic error printing off for its lifetime, restoring it afterwards.
-class QuietHdf5 {
- public:
-  QuietHdf5() {
-    H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  QuietHdf5(const QuietHdf5&) = delete;
-  QuietHdf5& operator=(const QuietHdf5&) = delete;
-  ~QuietHdf5() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
-
- private:
-  H5E_auto2_t func_ = nullptr;
-  void* data_ = nullptr;
-};
-
-// The most specific message on HDF5's error stack (then cleared), e.g. "unable to open file".
-std::string hdf5_reason() {
-  std::string reason;
-  H5Ewalk2(
-      H5E_DEFAULT, H5E_WALK_UPWARD,
-      [](unsigned n, const H5E_error2_t* e, void* out) -> herr_t {
-        if (n == 0 && e->desc) *static_cast<std::string*>(out) = e->desc;
-        return 0;
-      },
-      &reason);
-  H5Eclear2(H5E_DEFAULT);
-  return reason.empty() ? std::string() : " (HDF5: " + reason + ")";
-}
-
-Handle own(hid_t id, Handle::Closer close, const std::string& what) {
-  if (id < 0) throw Failure("cannot " + what + hdf5_reason());
-  return Handle(id, close);
-}
-
-void ok(herr_t status, const std::string& what) {
-  if (status < 0) throw Failure("cannot " + what + hdf5_reason());
-}
+// This file's own failures share the helpers' type: one catch converts both to InputError.
+using Failure = hdf5::Error;
 
 // ---- writing -------------------------------------------------------------------------------
-
-Handle vlen_string_type() {
-  Handle type = own(H5Tcopy(H5T_C_S1), H5Tclose, "create string type");
-  ok(H5Tset_size(type, H5T_VARIABLE), "size string type");
-  ok(H5Tset_cset(type, H5T_CSET_UTF8), "set string encoding");
-  return type;
-}
-
-void write_string_attr(hid_t obj, const std::string& name, const std::string& value) {
-  const Handle type = vlen_string_type();
-  const Handle space = own(H5Screate(H5S_SCALAR), H5Sclose, "create dataspace");
-  const Handle attr = own(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT),
-                          H5Aclose, "create attribute '" + name + "'");
-  const char* text = value.c_str();
-  ok(H5Awrite(attr, type, &text), "write attribute '" + name + "'");
-}
 
 // A group whose links remember creation order, so readers can return them in write order.
 Handle make_group(hid_t parent, const std::string& name) {
@@ -277,29 +202,6 @@ bool has_link(hid_t parent, const std::string& name) {
   return exists > 0;
 }
 
-// Link names in creation order when the group tracks it, else in name order.
-std::vector<std::string> link_names(hid_t group) {
-  H5G_info_t info;
-  ok(H5Gget_info(group, &info), "read group info");
-  H5_index_t index = H5_INDEX_NAME;
-  {
-    const Handle gcpl = own(H5Gget_create_plist(group), H5Pclose, "read group properties");
-    unsigned flags = 0;
-    ok(H5Pget_link_creation_order(gcpl, &flags), "read creation order");
-    if (flags & H5P_CRT_ORDER_INDEXED) index = H5_INDEX_CRT_ORDER;
-  }
-  std::vector<std::string> names;
-  for (hsize_t i = 0; i < info.nlinks; ++i) {
-    const ssize_t len =
-        H5Lget_name_by_idx(group, ".", index, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
-    if (len < 0) throw Failure("cannot read link name" + hdf5_reason());
-    std::vector<char> buf(static_cast<std::size_t>(len) + 1, '\0');
-    H5Lget_name_by_idx(group, ".", index, H5_ITER_INC, i, buf.data(), buf.size(), H5P_DEFAULT);
-    names.emplace_back(buf.data(), static_cast<std::size_t>(len));
-  }
-  return names;
-}
-
 std::optional<std::string> read_string_attr(hid_t obj, const std::string& name) {
   const htri_t exists = H5Aexists(obj, name.c_str());
   ok(exists, "look up attribute '" + name + "'");
@@ -309,19 +211,7 @@ std::optional<std::string> read_string_attr(hid_t obj, const std::string& name) 
   const Handle file_type = own(H5Aget_type(attr), H5Tclose, "read type of '" + name + "'");
   if (H5Tget_class(file_type) != H5T_STRING)
     throw Failure("attribute '" + name + "' is not a string");
-  if (H5Tis_variable_str(file_type) > 0) {
-    const Handle mem_type = vlen_string_type();
-    char* text = nullptr;
-    ok(H5Aread(attr, mem_type, &text), "read attribute '" + name + "'");
-    std::string value = text ? text : "";
-    H5free_memory(text);
-    return value;
-  }
-  // Fixed-length string (as written by some other tools).
-  const std::size_t size = H5Tget_size(file_type);
-  std::vector<char> buf(size + 1, '\0');
-  ok(H5Aread(attr, file_type, buf.data()), "read attribute '" + name + "'");
-  return std::string(buf.data(), strnlen(buf.data(), size));
+  return read_string_value(attr, file_type, name);
 }
 
 struct Array {
@@ -474,13 +364,6 @@ Handle open_for_reading(const std::string& path) {
 }
 
 }  // namespace
-
-// Debian's libhdf5 is built without thread safety and sweeps write from worker threads: every
-// entry point serialises on this mutex.
-std::mutex& hdf5_mutex() {
-  static std::mutex m;
-  return m;
-}
 
 void write_run_hdf5(const std::string& path, const Recording& rec,
                     const std::string& scenario_text) {

@@ -6,8 +6,8 @@
 //   /case_NNNNN/signals/<name>   the case's recorded signals (a chosen subset)
 //   /case_NNNNN attribute `scenario`: the case's scenario text
 //   root attributes `scenario` (the base scenario), `shudder_version`, `created_utc`
-// Written to a temporary name and renamed when complete. Implemented in hdf5_run.cpp (shared
-// HDF5 helpers and the library-wide HDF5 mutex).
+// Written to a temporary name and renamed when complete. Implemented in hdf5_run.cpp, on the
+// helpers and the library-wide HDF5 mutex of hdf5_util.hpp.
 
 #include <string>
 #include <utility>

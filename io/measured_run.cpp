@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
@@ -19,13 +18,12 @@
 #include <utility>
 
 #include "io/atomic_file.hpp"
+#include "io/hdf5_util.hpp"
 #include "io/input_error.hpp"
 
 namespace shudder::io {
 
-// Defined in hdf5_run.cpp: the libhdf5 we link is not thread-safe, and every HDF5 entry point of
-// this library must serialise on the same mutex.
-std::mutex& hdf5_mutex();
+using namespace hdf5;
 
 // ---- MeasuredRun ----------------------------------------------------------------------------
 
@@ -325,72 +323,10 @@ class CsvReader {
   Layout layout_;
 };
 
-// ---- HDF5 helpers (same conventions as hdf5_run.cpp) ----------------------------------------
+// ---- HDF5 checks ----------------------------------------------------------------------------
 
-// An HDF5 library failure; converted to InputError (with the path) at the public edge.
-struct Failure : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-// Owns one hid_t and closes it with the matching H5?close.
-class Handle {
- public:
-  using Closer = herr_t (*)(hid_t);
-  Handle(hid_t id, Closer close) : id_(id), close_(close) {}
-  Handle(Handle&& o) noexcept : id_(std::exchange(o.id_, H5I_INVALID_HID)), close_(o.close_) {}
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  Handle& operator=(Handle&&) = delete;
-  ~Handle() {
-    if (id_ >= 0) close_(id_);
-  }
-  operator hid_t() const { return id_; }  // NOLINT: implicit, so handles pass straight to H5*
-  /// Closes now and reports failure (closing a file flushes it: errors matter there).
-  herr_t close() { return id_ >= 0 ? close_(std::exchange(id_, H5I_INVALID_HID)) : 0; }
-
- private:
-  hid_t id_;
-  Closer close_;
-};
-
-// Switches HDF5's automatic error printing off for its lifetime, restoring it afterwards.
-class QuietHdf5 {
- public:
-  QuietHdf5() {
-    H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  QuietHdf5(const QuietHdf5&) = delete;
-  QuietHdf5& operator=(const QuietHdf5&) = delete;
-  ~QuietHdf5() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
-
- private:
-  H5E_auto2_t func_ = nullptr;
-  void* data_ = nullptr;
-};
-
-// The most specific message on HDF5's error stack (then cleared).
-std::string hdf5_reason() {
-  std::string reason;
-  H5Ewalk2(
-      H5E_DEFAULT, H5E_WALK_UPWARD,
-      [](unsigned n, const H5E_error2_t* e, void* out) -> herr_t {
-        if (n == 0 && e->desc) *static_cast<std::string*>(out) = e->desc;
-        return 0;
-      },
-      &reason);
-  H5Eclear2(H5E_DEFAULT);
-  return reason.empty() ? std::string() : " (HDF5: " + reason + ")";
-}
-
-Handle own(hid_t id, Handle::Closer close, const std::string& what) {
-  if (id < 0) throw Failure("cannot " + what + hdf5_reason());
-  return Handle(id, close);
-}
-
-void ok(herr_t status, const std::string& what) {
-  if (status < 0) throw Failure("cannot " + what + hdf5_reason());
-}
+// This file's own failures share the helpers' type: one catch converts both to InputError.
+using Failure = hdf5::Error;
 
 constexpr const char* group_name = "measurement";
 const std::string group_path = "/measurement";
@@ -433,29 +369,6 @@ void check_hdf5_content(const std::string& path, const MeasuredRun& run,
 
 // ---- HDF5 reading ---------------------------------------------------------------------------
 
-// Names in creation order when `obj` tracks it (our writer), else in name order (e.g. h5py).
-std::vector<std::string> link_names(hid_t group) {
-  H5G_info_t info;
-  ok(H5Gget_info(group, &info), "read group info");
-  H5_index_t index = H5_INDEX_NAME;
-  {
-    const Handle gcpl = own(H5Gget_create_plist(group), H5Pclose, "read group properties");
-    unsigned flags = 0;
-    ok(H5Pget_link_creation_order(gcpl, &flags), "read creation order");
-    if (flags & H5P_CRT_ORDER_INDEXED) index = H5_INDEX_CRT_ORDER;
-  }
-  std::vector<std::string> names;
-  for (hsize_t i = 0; i < info.nlinks; ++i) {
-    const ssize_t len =
-        H5Lget_name_by_idx(group, ".", index, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
-    if (len < 0) throw Failure("cannot read link name" + hdf5_reason());
-    std::vector<char> buf(static_cast<std::size_t>(len) + 1, '\0');
-    H5Lget_name_by_idx(group, ".", index, H5_ITER_INC, i, buf.data(), buf.size(), H5P_DEFAULT);
-    names.emplace_back(buf.data(), static_cast<std::size_t>(len));
-  }
-  return names;
-}
-
 std::vector<std::string> attribute_names(hid_t group) {
   H5_index_t index = H5_INDEX_NAME;
   {
@@ -477,13 +390,6 @@ std::vector<std::string> attribute_names(hid_t group) {
   return names;
 }
 
-Handle vlen_string_type() {
-  Handle type = own(H5Tcopy(H5T_C_S1), H5Tclose, "create string type");
-  ok(H5Tset_size(type, H5T_VARIABLE), "size string type");
-  ok(H5Tset_cset(type, H5T_CSET_UTF8), "set string encoding");
-  return type;
-}
-
 // A scalar string attribute; nullopt when it is something else (a number, an array).
 std::optional<std::string> read_string_attr(hid_t obj, const std::string& name) {
   const Handle attr =
@@ -494,19 +400,7 @@ std::optional<std::string> read_string_attr(hid_t obj, const std::string& name) 
     const Handle space = own(H5Aget_space(attr), H5Sclose, "read shape of '" + name + "'");
     if (H5Sget_simple_extent_npoints(space) != 1) return std::nullopt;
   }
-  if (H5Tis_variable_str(file_type) > 0) {
-    const Handle mem_type = vlen_string_type();
-    char* text = nullptr;
-    ok(H5Aread(attr, mem_type, &text), "read attribute '" + name + "'");
-    std::string value = text ? text : "";
-    H5free_memory(text);
-    return value;
-  }
-  // Fixed-length string (as written by some other tools).
-  const std::size_t size = H5Tget_size(file_type);
-  std::vector<char> buf(size + 1, '\0');
-  ok(H5Aread(attr, file_type, buf.data()), "read attribute '" + name + "'");
-  return std::string(buf.data(), strnlen(buf.data(), size));
+  return read_string_value(attr, file_type, name);
 }
 
 MeasuredRun read_hdf5(const std::string& path, hid_t file) {
@@ -575,15 +469,6 @@ MeasuredRun read_hdf5(const std::string& path, hid_t file) {
 }
 
 // ---- HDF5 writing ---------------------------------------------------------------------------
-
-void write_string_attr(hid_t obj, const std::string& name, const std::string& value) {
-  const Handle type = vlen_string_type();
-  const Handle space = own(H5Screate(H5S_SCALAR), H5Sclose, "create dataspace");
-  const Handle attr = own(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT),
-                          H5Aclose, "create attribute '" + name + "'");
-  const char* text = value.c_str();
-  ok(H5Awrite(attr, type, &text), "write attribute '" + name + "'");
-}
 
 void write_file(const std::string& file_name, const MeasuredRun& run,
                 const std::vector<std::pair<std::string, double>>& number_attributes) {
