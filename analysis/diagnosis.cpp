@@ -777,6 +777,12 @@ DiagnosisResult Engine::run() {
   }
 
   r.final = rms(all_, full_pred);
+  for (const auto& e : full) {
+    FittedEffect f{e.effect, {}};
+    const auto& c = candidate(e.effect);
+    for (std::size_t j = 0; j < e.values.size(); ++j) f.parameters.emplace_back(c.parameter_names[j], e.values[j]);
+    r.final_effects.push_back(std::move(f));
+  }
   for (const auto& c : channels_) {
     ChannelFit f;
     f.signal = c.name;

@@ -59,6 +59,11 @@ struct EffectSetting {
   std::vector<double> values;
 };
 
+struct FittedEffect {
+  std::string effect;
+  std::vector<std::pair<std::string, double>> parameters;  // scenario key, value
+};
+
 /// A model's prediction of one run at the run's sample times.
 struct Prediction {
   std::vector<double> torque_Nm, temp_C, sump_temp_C, ir_temp_C;  // the last two when asked
@@ -75,7 +80,7 @@ struct DiagnosisOptions {
   double noise_tolerance = 1.1;       // "within noise": every signal's RMS <= this × sigma
   double min_gain = 0.05;             // hold-out misfit drop needed (noise variance units)
   double penalty_per_parameter = 0.02;  // per fitted parameter, same units
-  int max_effects = 4;                // at most this many effects added
+  int max_effects = 9;                // at most this many effects added (9: every FORMATS effect)
   int max_samples_per_run = 1500;     // residuals use every k-th sample beyond this
   int max_evaluations = 60;           // LM model evaluations per fit (each = all fit runs)
   double min_noise_torque_Nm = 1e-3;  // floors for the noise estimate (noise-free data)
@@ -169,6 +174,9 @@ struct DiagnosisResult {
   std::vector<Tracking> tracking;                 // baseline residual vs every feature
   std::vector<DiagnosisStep> steps;
   std::vector<std::string> missing_effects;       // added, most important first
+  // The added effects with their parameters after the last joint refit on all runs (a step's
+  // parameters are those when it was added; later effects may have moved them).
+  std::vector<FittedEffect> final_effects;
   std::vector<CandidateScore> last_round;         // the round that stopped the search
   std::string conclusion;                         // one paragraph, plain words
   std::vector<RunTraces> traces;

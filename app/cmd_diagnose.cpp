@@ -82,6 +82,12 @@ std::string summary(const io::Scenario& s, const analysis::DiagnosisResult& r,
   os << "Missing effects: ";
   for (std::size_t i = 0; i < r.missing_effects.size(); ++i) os << (i ? ", " : "") << r.missing_effects[i];
   os << (r.missing_effects.empty() ? "none" : "") << "\n";
+  if (!r.final_effects.empty()) {
+    os << "Final model, refitted on all runs:";
+    for (const auto& f : r.final_effects)
+      os << "\n  " << f.effect << (f.parameters.empty() ? "" : "  " + parameters(f.parameters));
+    os << "\n";
+  }
   os << "Final: torque RMS " << num(r.final.torque_rms_Nm) << " Nm, temp RMS " << num(r.final.temp_rms_C) << " C";
   for (const auto& c : r.channels)
     if (c.signal != "torque_Nm" && c.signal != "temp_C")

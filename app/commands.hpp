@@ -65,7 +65,7 @@ struct DiagnoseOptions {
   std::string json;               // diagnosis JSON path; empty = none
   std::string report;             // report directory; empty = none
   unsigned jobs = 0;              // 0 = all cores
-  int max_effects = 4;            // effects added at most
+  int max_effects = 9;            // effects added at most (9 = every effect)
 };
 int diagnose_command(const DiagnoseOptions& options);
 

@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
                        "Also write a report directory: summary, candidate table, plots");
   diag_cmd->add_option("--jobs", diagnose.jobs, "Parallel fits (default: all cores)")
       ->check(CLI::Range(1u, 1024u));
-  diag_cmd->add_option("--max-effects", diagnose.max_effects, "Add at most this many effects (default 4)")
+  diag_cmd->add_option("--max-effects", diagnose.max_effects, "Add at most this many effects (default 9: no limit)")
       ->check(CLI::Range(0, 9));
 
   try {

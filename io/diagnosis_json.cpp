@@ -132,6 +132,10 @@ std::string step(const DiagnosisStep& st) {
   return os.str();
 }
 
+std::string fitted_effect(const analysis::FittedEffect& f) {
+  return Object().str("effect", f.effect).raw("parameters", object_of(f.parameters)).text();
+}
+
 }  // namespace
 
 std::string diagnosis_json(const analysis::DiagnosisResult& r) {
@@ -148,6 +152,7 @@ std::string diagnosis_json(const analysis::DiagnosisResult& r) {
       .raw("missing_effects", strings(r.missing_effects))
       .raw("last_round", list(r.last_round, "    ", candidate))
       .raw("final", misfit(r.final, r.final_holdout_misfit))
+      .raw("final_effects", list(r.final_effects, "    ", fitted_effect))
       .raw("channels", list(r.channels, "    ", channel))
       .raw("final_disagreements", list(r.final_disagreements, "    ", disagreement))
       .str("conclusion", r.conclusion)

@@ -43,9 +43,11 @@ TEST(CliDiagnose, WritesJsonReportAndSummary) {
   const std::string json = slurp(dir / "d.json");
   for (const char* key : {"\"format\": \"shudder-diagnosis/1\"", "\"runs\"", "\"baseline\"", "\"disagreements\"",
                           "\"steps\"", "\"missing_effects\"", "\"final\"", "\"torque_rms_Nm\"", "\"temp_rms_C\"",
-                          "\"holdout_torque_rms_Nm\"", "\"tracks\"", "\"correlation\""})
+                          "\"holdout_torque_rms_Nm\"", "\"tracks\"", "\"correlation\"", "\"final_effects\""})
     EXPECT_THAT(json, HasSubstr(key));
   EXPECT_THAT(json, HasSubstr("\"missing_effects\": [\"bearing_drag\"]"));
+  EXPECT_THAT(json, HasSubstr("{\"effect\": \"bearing_drag\", \"parameters\": {\"equivalent_mu\": 0.00"));
+  EXPECT_THAT(r.out, HasSubstr("Final model, refitted on all runs:\n  bearing_drag  equivalent_mu = 0.00"));
   EXPECT_TRUE(std::filesystem::exists(dir / "rep" / "summary.txt"));
   EXPECT_TRUE(std::filesystem::exists(dir / "rep" / "candidates.md"));
 }
