@@ -737,6 +737,11 @@ DiagnosisResult Engine::run() {
       stop = "every candidate effect has been added";
       break;
     }
+    // Longest fits first (most parameters: most evaluations), so that no long fit starts last
+    // and leaves the other threads idle at the end of the round.
+    std::stable_sort(open.begin(), open.end(), [](const EffectCandidate* a, const EffectCandidate* b) {
+      return a->parameter_names.size() > b->parameter_names.size();
+    });
     std::vector<Outcome> outcomes(open.size());
     parallel_for(open.size(), opt_.jobs,
                  [&](std::size_t i) { outcomes[i] = fit_candidate(*open[i], fold, fold_pred); });
