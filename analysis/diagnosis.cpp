@@ -131,6 +131,17 @@ class Engine {
   bool residual_vector(const SampleSet& set, const Predictions& p, Eigen::VectorXd& out) const;
   std::size_t residual_count(const SampleSet& set) const;
   double channel_misfit(const Channel& c, const SampleSet& set, const Predictions& p) const;
+  // The fitted parameters of a configuration as one vector, with their bounds, for the solver.
+  struct FlatConfig {
+    Config config;
+    std::vector<std::pair<std::size_t, std::size_t>> slots;  // (effect, parameter) of config
+    std::vector<double> values, lower, upper;
+    Config with(const std::vector<double>& v) const;
+  };
+  FlatConfig flatten(const Config& config) const;
+  /// Least squares on `set` from the starts; nullopt when no start could be simulated.
+  std::optional<Config> fit_config(const FlatConfig& flat, std::vector<std::vector<double>> starts,
+                                   const SampleSet& set, unsigned jobs, int& evaluations) const;
   Outcome fit_candidate(const EffectCandidate& c, const Config& fold, const Predictions& current) const;
   Config refit_all(const Config& full, const Config& fold_added, Predictions& out) const;
   double signature_correlation(const Predictions& current, const Predictions& candidate) const;
@@ -459,57 +470,70 @@ std::vector<std::size_t> union_runs(const SampleSet& a, const SampleSet& b) {
   return r;
 }
 
+Engine::FlatConfig Engine::flatten(const Config& config) const {
+  FlatConfig f{config, {}, {}, {}, {}};
+  for (std::size_t e = 0; e < config.size(); ++e) {
+    const auto& c = candidate(config[e].effect);
+    for (std::size_t j = 0; j < config[e].values.size(); ++j) {
+      f.slots.emplace_back(e, j);
+      f.values.push_back(config[e].values[j]);
+      f.lower.push_back(c.lower[j]);
+      f.upper.push_back(c.upper[j]);
+    }
+  }
+  return f;
+}
+
+Config Engine::FlatConfig::with(const std::vector<double>& v) const {
+  Config out = config;
+  for (std::size_t s = 0; s < slots.size(); ++s) out[slots[s].first].values[slots[s].second] = v[s];
+  return out;
+}
+
+std::optional<Config> Engine::fit_config(const FlatConfig& flat, std::vector<std::vector<double>> starts,
+                                         const SampleSet& set, unsigned jobs, int& evaluations) const {
+  if (flat.slots.empty()) return flat.config;
+  LogParameterProblem problem;
+  problem.lower = flat.lower;
+  problem.upper = flat.upper;
+  problem.starts = std::move(starts);
+  problem.residuals = static_cast<int>(residual_count(set));
+  problem.max_evaluations = opt_.max_evaluations;
+  const auto runs = set.runs();
+  problem.evaluate = [&](const std::vector<double>& v, Eigen::VectorXd& r) {
+    return residual_vector(set, simulate(flat.with(v), runs, jobs), r);
+  };
+  const LogParameterFit fit = fit_log_parameters(problem);
+  evaluations += fit.evaluations;
+  if (!fit.feasible) return std::nullopt;
+  return flat.with(fit.values);
+}
+
 Engine::Outcome Engine::fit_candidate(const EffectCandidate& c, const Config& fold,
                                       const Predictions& current) const {
   Outcome o;
   o.score.effect = c.name;
   const std::size_t k = c.parameter_names.size();
-  const auto fit_runs = fit_.runs();
-  const auto both_runs = union_runs(fit_, holdout_);
   // The candidate is fitted together with the parameters of every effect added before it, so
   // an earlier effect that stood in for this one (a heat sink imitating oil cooling) can give
-  // its share back instead of blocking it.
+  // its share back instead of blocking it. Its starts follow the earlier effects' values.
   Config cfg = fold;
-  cfg.push_back({c.name, c.starts.empty() ? std::vector<double>{} : c.starts.front()});
-  std::vector<std::pair<std::size_t, std::size_t>> slots;  // (effect, parameter) of cfg
-  LogParameterProblem problem;
-  for (std::size_t e = 0; e < cfg.size(); ++e) {
-    const auto& ce = e + 1 == cfg.size() ? c : candidate(cfg[e].effect);
-    for (std::size_t j = 0; j < ce.parameter_names.size(); ++j) {
-      slots.emplace_back(e, j);
-      problem.lower.push_back(ce.lower[j]);
-      problem.upper.push_back(ce.upper[j]);
-    }
+  cfg.push_back({c.name, k > 0 ? c.starts.front() : std::vector<double>{}});
+  const FlatConfig flat = flatten(cfg);
+  std::vector<std::vector<double>> starts;
+  for (const auto& start : k > 0 ? c.starts : std::vector<std::vector<double>>{{}}) {
+    starts.emplace_back(flat.values.begin(), flat.values.end() - static_cast<std::ptrdiff_t>(k));
+    starts.back().insert(starts.back().end(), start.begin(), start.end());
   }
-  const auto config_of = [&](const std::vector<double>& v) {
-    Config out = cfg;
-    for (std::size_t s = 0; s < slots.size(); ++s) out[slots[s].first].values[slots[s].second] = v[s];
-    return out;
-  };
-  std::vector<double> earlier;
-  for (const auto& e : fold) earlier.insert(earlier.end(), e.values.begin(), e.values.end());
   try {
-    if (!slots.empty()) {
-      for (const auto& start : k > 0 ? c.starts : std::vector<std::vector<double>>{{}}) {
-        problem.starts.push_back(earlier);
-        problem.starts.back().insert(problem.starts.back().end(), start.begin(), start.end());
-      }
-      problem.residuals = static_cast<int>(residual_count(fit_));
-      problem.max_evaluations = opt_.max_evaluations;
-      problem.evaluate = [&](const std::vector<double>& v, Eigen::VectorXd& r) {
-        return residual_vector(fit_, simulate(config_of(v), fit_runs, 1), r);
-      };
-      const LogParameterFit fit = fit_log_parameters(problem);
-      o.score.evaluations = fit.evaluations;
-      if (!fit.feasible) {
-        o.score.failure = "no parameter values could be simulated";
-        return o;
-      }
-      cfg = config_of(fit.values);
+    const auto fitted = fit_config(flat, std::move(starts), fit_, 1, o.score.evaluations);
+    if (!fitted) {
+      o.score.failure = "no parameter values could be simulated";
+      return o;
     }
-    o.config = cfg;
-    o.values = cfg.back().values;
-    o.predictions = simulate(cfg, both_runs, 1);
+    o.config = *fitted;
+    o.values = o.config.back().values;
+    o.predictions = simulate(o.config, union_runs(fit_, holdout_), 1);
     ++o.score.evaluations;
   } catch (const std::exception& e) {
     o.score.failure = e.what();
@@ -529,34 +553,10 @@ Config Engine::refit_all(const Config& full, const Config& fold_added, Predictio
   // Joint refit of every added effect's parameters on all runs, from the current values.
   Config start = full;
   start.push_back(fold_added.back());
-  std::vector<std::pair<std::size_t, std::size_t>> slots;  // (effect, parameter)
-  LogParameterProblem problem;
-  std::vector<double> first;
-  for (std::size_t e = 0; e < start.size(); ++e) {
-    const auto& c = candidate(start[e].effect);
-    for (std::size_t j = 0; j < start[e].values.size(); ++j) {
-      slots.emplace_back(e, j);
-      first.push_back(start[e].values[j]);
-      problem.lower.push_back(c.lower[j]);
-      problem.upper.push_back(c.upper[j]);
-    }
-  }
-  const auto config_of = [&](const std::vector<double>& v) {
-    Config cfg = start;
-    for (std::size_t s = 0; s < slots.size(); ++s) cfg[slots[s].first].values[slots[s].second] = v[s];
-    return cfg;
-  };
+  const FlatConfig flat = flatten(start);
+  int evaluations = 0;
+  if (auto fitted = fit_config(flat, {flat.values}, all_, opt_.jobs, evaluations)) start = std::move(*fitted);
   const auto all_runs = all_.runs();
-  if (!slots.empty()) {
-    problem.residuals = static_cast<int>(residual_count(all_));
-    problem.starts = {first};
-    problem.max_evaluations = opt_.max_evaluations;
-    problem.evaluate = [&](const std::vector<double>& v, Eigen::VectorXd& r) {
-      return residual_vector(all_, simulate(config_of(v), all_runs, opt_.jobs), r);
-    };
-    const LogParameterFit fit = fit_log_parameters(problem);
-    if (fit.feasible) start = config_of(fit.values);
-  }
   out = simulate(start, all_runs, opt_.jobs);
   return start;
 }
