@@ -794,11 +794,10 @@ DiagnosisResult Engine::run() {
     f.comparison = c.blocks ? "block_statistics" : "pointwise";
     f.noise = c.sigma;
     std::vector<double> e;
-    const double count = [&] {
-      channel_sums(c, all_, baseline, &e);
-      return static_cast<double>(e.size()) / (c.blocks ? 2.0 : 1.0);
-    }();
-    f.baseline_rms = std::sqrt(channel_sums(c, all_, baseline, nullptr).second / count);
+    const double baseline_sq = channel_sums(c, all_, baseline, &e).second;
+    // Block channels put two entries (mean, spread) per block: rms per block of both.
+    const double count = static_cast<double>(e.size()) / (c.blocks ? 2.0 : 1.0);
+    f.baseline_rms = std::sqrt(baseline_sq / count);
     f.final_rms = std::sqrt(channel_sums(c, all_, full_pred, nullptr).second / count);
     f.baseline_misfit = channel_misfit(c, all_, baseline);
     f.final_misfit = channel_misfit(c, all_, full_pred);
