@@ -54,10 +54,13 @@ void TorsionalNetwork::validate() const {
   for (const auto& s : shafts_) {
     check_node(s.a, "shaft '" + s.name + "'", false);
     check_node(s.b, "shaft '" + s.name + "'", true);
-    if (!positive(s.stiffness_Nm_per_rad))
-      throw std::invalid_argument("shaft '" + s.name + "' stiffness must be > 0 N m/rad");
+    if (!non_negative(s.stiffness_Nm_per_rad))
+      throw std::invalid_argument("shaft '" + s.name + "' stiffness must be >= 0 N m/rad");
     if (!non_negative(s.damping_Nms_per_rad))
       throw std::invalid_argument("shaft '" + s.name + "' damping must be >= 0 N m s/rad");
+    // A pure damper (k = 0, e.g. a tyre's slip) is a shaft; neither is nothing.
+    if (!(s.stiffness_Nm_per_rad > 0 || s.damping_Nms_per_rad > 0))
+      throw std::invalid_argument("shaft '" + s.name + "' needs a stiffness or a damping > 0");
   }
   for (const auto& g : gears_) {
     check_node(g.a, "gear '" + g.name + "'", false);

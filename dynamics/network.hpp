@@ -8,7 +8,8 @@
 //     J_i dω_i/dt = Σ shaft, source, motor and slipping-contact torques on i  − (Gᵀ μ)_i
 //     G dω/dt     = b(t)                       (active kinematic constraints)
 //
-// Shaft k between a and b:  T = k_s (θ_a − θ_b) + c_s (ω_a − ω_b), acting −T on a, +T on b.
+// Shaft k between a and b:  T = k_s (θ_a − θ_b) + c_s (ω_a − ω_b), acting −T on a, +T on b
+//                           (k_s >= 0, c_s >= 0, not both 0: k_s = 0 is a pure damper).
 // Gear (a, b, ratio):       ω_a = ratio · ω_b  (constraint row e_a − ratio e_b).
 // Speed source on i:        ω_i = ω_ref(t)      (constraint row e_i, b = dω_ref/dt).
 // Stuck contact (a, b):     ω_a = ω_b           (constraint row e_a − e_b); its torque −μ.

@@ -17,6 +17,12 @@ void ClutchContactLaw::set_ring_temperatures(const Eigen::VectorXd& ring_temp_C)
   cached_slip_ = -1.0;
 }
 
+void ClutchContactLaw::set_normal_force(PiecewiseLinear normal_force_N) {
+  force_N_ = std::move(normal_force_N);
+  frozen_valid_ = false;
+  cached_slip_ = -1.0;
+}
+
 void ClutchContactLaw::update(double abs_slip, double t) const {
   if (frozen_valid_ && abs_slip == cached_slip_ && t == cached_t_) return;
   const double force = force_N_(t);

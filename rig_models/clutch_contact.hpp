@@ -34,6 +34,8 @@ class ClutchContactLaw final : public dynamics::ContactLaw {
                    BearingDrag drag, StickTimeFriction stick_time);
 
   void set_ring_temperatures(const Eigen::VectorXd& ring_temp_C);
+  /// Replaces the clamp force (a coupling whose force comes from a slow hydraulic state).
+  void set_normal_force(PiecewiseLinear normal_force_N);
   const Eigen::VectorXd& ring_temperatures() const { return ring_temp_C_; }
 
   double kinetic_torque_Nm(double abs_slip_rad_s, double t_s) const override;

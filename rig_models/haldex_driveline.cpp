@@ -1,0 +1,231 @@
+#include "rig_models/haldex_driveline.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace shudder::rig_models {
+
+namespace {
+
+constexpr double kRadPerSPerRpm = 2.0 * std::numbers::pi / 60.0;
+
+void require_positive(double v, const char* what) {
+  if (!std::isfinite(v) || !(v > 0))
+    throw std::invalid_argument(std::string("driveline: ") + what + " must be a finite value > 0");
+}
+
+double pack_torque_per_newton(const DrivelineParams& p, const clutch::WetClutch& clutch) {
+  return clutch.params().sliding_interfaces * p.nominal_friction * clutch.mean_radius_m();
+}
+
+}  // namespace
+
+HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::WetClutch& clutch,
+                                 const DrivelineInputs& inputs)
+    : p_(params), hydraulics_(params.hydraulics, pack_torque_per_newton(params, clutch)) {
+  for (const auto& [v, what] : std::initializer_list<std::pair<double, const char*>>{
+           {p_.engine_inertia_kg_m2, "engine_inertia_kg_m2"}, {p_.gear_ratio, "gear_ratio"},
+           {p_.final_drive_ratio, "final_drive_ratio"}, {p_.front_diff_inertia_kg_m2, "front_diff_inertia_kg_m2"},
+           {p_.halfshaft_stiffness_Nm_per_rad, "halfshaft_stiffness_Nm_per_rad"},
+           {p_.wheel_inertia_kg_m2, "wheel_inertia_kg_m2"}, {p_.tyre_stiffness_Nm_per_rad, "tyre_stiffness_Nm_per_rad"},
+           {p_.tyre_slip_stiffness_N, "tyre_slip_stiffness_N"}, {p_.tyre_reference_speed_m_s, "tyre_reference_speed_m_s"},
+           {p_.vehicle_mass_kg, "vehicle_mass_kg"}, {p_.wheel_radius_m, "wheel_radius_m"}, {p_.ptu_ratio, "ptu_ratio"},
+           {p_.ptu_inertia_kg_m2, "ptu_inertia_kg_m2"}, {p_.propshaft_stiffness_Nm_per_rad, "propshaft_stiffness_Nm_per_rad"},
+           {p_.coupling_half_inertia_kg_m2, "coupling_half_inertia_kg_m2"}, {p_.rear_diff_ratio, "rear_diff_ratio"},
+           {p_.rear_diff_inertia_kg_m2, "rear_diff_inertia_kg_m2"}, {p_.turn_ratio, "turn_ratio"},
+           {p_.nominal_friction, "nominal_friction"}, {p_.belt_share, "belt_share"}})
+    require_positive(v, what);
+  if (!(p_.belt_share < 1)) throw std::invalid_argument("driveline: belt_share must be in (0, 1)");
+  for (const auto& [v, what] : std::initializer_list<std::pair<double, const char*>>{
+           {p_.halfshaft_damping_Nms_per_rad, "halfshaft_damping_Nms_per_rad"},
+           {p_.propshaft_damping_Nms_per_rad, "propshaft_damping_Nms_per_rad"}})
+    if (!std::isfinite(v) || v < 0) throw std::invalid_argument(std::string("driveline: ") + what + " must be >= 0");
+
+  const double f0 = hydraulics_.clamp_force_N(0.0);
+  law_ = std::make_shared<ClutchContactLaw>(clutch, PiecewiseLinear({0.0}, {f0}), BearingDrag{}, StickTimeFriction{});
+
+  const double r = p_.wheel_radius_m;
+  const double tyre_damping = p_.tyre_slip_stiffness_N * r * r / p_.tyre_reference_speed_m_s;
+  using dynamics::Gear;
+  using dynamics::Inertia;
+  using dynamics::Shaft;
+  auto& n = net_;
+  n.add_inertia(Inertia{"engine", p_.engine_inertia_kg_m2});
+  n.add_inertia(Inertia{"front_diff", p_.front_diff_inertia_kg_m2});
+  const double rim = 2 * p_.wheel_inertia_kg_m2 * (1 - p_.belt_share), belt = 2 * p_.wheel_inertia_kg_m2 * p_.belt_share;
+  n.add_inertia(Inertia{"front_wheels", rim});
+  n.add_inertia(Inertia{"front_belts", belt});
+  // The front tyres' road contact carries no mass of its own; a small inertia keeps the node
+  // a node (the gear to the vehicle reflects it: 1e-6 of the vehicle's).
+  n.add_inertia(Inertia{"front_road", 1e-6 * p_.vehicle_mass_kg * r * r});
+  n.add_inertia(Inertia{"vehicle", p_.vehicle_mass_kg * r * r});
+  n.add_inertia(Inertia{"ptu", p_.ptu_inertia_kg_m2});
+  n.add_inertia(Inertia{"coupling_in", p_.coupling_half_inertia_kg_m2});
+  n.add_inertia(Inertia{"coupling_out", p_.coupling_half_inertia_kg_m2});
+  n.add_inertia(Inertia{"rear_diff", p_.rear_diff_inertia_kg_m2});
+  n.add_inertia(Inertia{"rear_wheels", rim});
+  n.add_inertia(Inertia{"rear_belts", belt});
+
+  n.add_shaft(Shaft{"front_halfshafts", kFrontDiff, kFrontWheels, 2 * p_.halfshaft_stiffness_Nm_per_rad,
+                    2 * p_.halfshaft_damping_Nms_per_rad});
+  n.add_shaft(Shaft{"front_tyre_carcass", kFrontWheels, kFrontBelts, 2 * p_.tyre_stiffness_Nm_per_rad, 0.0});
+  n.add_shaft(Shaft{"front_tyre_slip", kFrontBelts, kFrontRoad, 0.0, 2 * tyre_damping});
+  n.add_shaft(Shaft{"propshaft", kPtu, kCouplingIn, p_.propshaft_stiffness_Nm_per_rad, p_.propshaft_damping_Nms_per_rad});
+  n.add_shaft(Shaft{"rear_halfshafts", kRearDiff, kRearWheels, 2 * p_.halfshaft_stiffness_Nm_per_rad,
+                    2 * p_.halfshaft_damping_Nms_per_rad});
+  n.add_shaft(Shaft{"rear_tyre_carcass", kRearWheels, kRearBelts, 2 * p_.tyre_stiffness_Nm_per_rad, 0.0});
+  n.add_shaft(Shaft{"rear_tyre_slip", kRearBelts, kVehicle, 0.0, 2 * tyre_damping});
+
+  n.add_gear(Gear{"gearbox_and_final_drive", kEngine, kFrontDiff, p_.gear_ratio * p_.final_drive_ratio});
+  n.add_gear(Gear{"turn", kFrontRoad, kVehicle, p_.turn_ratio});
+  n.add_gear(Gear{"power_take_off", kPtu, kFrontDiff, p_.ptu_ratio});
+  n.add_gear(Gear{"rear_differential", kCouplingOut, kRearDiff, p_.rear_diff_ratio});
+
+  n.add_contact(dynamics::FrictionContact{"haldex_coupling", kCouplingIn, kCouplingOut, law_});
+  const PiecewiseLinear engine = inputs.engine_torque_Nm;
+  n.add_torque_source(dynamics::TorqueSource{"engine", kEngine, [engine](double t) { return engine(t); }});
+  n.validate();
+}
+
+Eigen::VectorXd HaldexDriveline::rolling_speed_ratios() const {
+  // Rolling without tyre slip or twist: the front axle follows the front road (ρ ω_v), the rear
+  // axle the vehicle; the coupling's two sides then differ by i_ptu (ρ − 1) ω_v.
+  Eigen::VectorXd s(kNodes);
+  s[kVehicle] = 1.0;
+  s[kFrontRoad] = p_.turn_ratio;
+  s[kFrontBelts] = s[kFrontWheels] = s[kFrontDiff] = p_.turn_ratio;
+  s[kEngine] = p_.gear_ratio * p_.final_drive_ratio * s[kFrontDiff];
+  s[kPtu] = s[kCouplingIn] = p_.ptu_ratio * s[kFrontDiff];
+  s[kRearBelts] = s[kRearWheels] = s[kRearDiff] = 1.0;
+  s[kCouplingOut] = p_.rear_diff_ratio * s[kRearDiff];
+  return s;
+}
+
+dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::WetClutch& clutch,
+                                  const DrivelineInputs& inputs, const DrivelineSettings& cfg) {
+  if (!(cfg.duration_s > 0) || !(cfg.slow_step_s > 0) || !(cfg.sample_rate_Hz > 0))
+    throw std::invalid_argument("driveline: duration, slow step and sample rate must be > 0");
+  if (!std::isfinite(inputs.start_speed_km_h) || inputs.start_speed_km_h < 0)
+    throw std::invalid_argument("driveline: start speed must be a finite value >= 0 km/h");
+  HaldexDriveline dl(params, clutch, inputs);
+  using D = HaldexDriveline;
+  ClutchContactLaw& law = dl.coupling_law();
+  const auto& th = clutch.thermal();
+  clutch::ThermalState ts = clutch.initial_state();
+  law.set_ring_temperatures(th.interface_temps_C(ts));
+
+  dynamics::Simulation sim(dl.network(), params.integrator);
+  const double w_vehicle = inputs.start_speed_km_h / 3.6 / params.wheel_radius_m;
+  sim.initialize(0.0, Eigen::VectorXd::Zero(D::kNodes), dl.rolling_speed_ratios() * w_vehicle, Eigen::VectorXd());
+
+  dynamics::Recording rec;
+  for (const auto& [name, units] : std::vector<std::pair<const char*, const char*>>{
+           {"time_s", "s"}, {"engine_speed_rpm", "rpm"}, {"vehicle_speed_km_h", "km/h"},
+           {"front_wheel_speed_rpm", "rpm"}, {"rear_wheel_speed_rpm", "rpm"}, {"coupling_slip_rpm", "rpm"},
+           {"coupling_torque_Nm", "N m"}, {"front_axle_torque_Nm", "N m"}, {"rear_axle_torque_Nm", "N m"},
+           {"engine_torque_Nm", "N m"}, {"stuck", "1"}, {"pressure_bar", "bar"}, {"clamp_force_N", "N"},
+           {"interface_mean_temp_C", "degC"}, {"interface_max_temp_C", "degC"}})
+    rec.add_signal(name, units);
+  enum { kT, kEngineW, kV, kFrontW, kRearW, kSlip, kCouplingT, kFrontT, kRearT, kEngineT, kStuck, kP, kF,
+         kIfMean, kIfMax };
+  double pressure_bar = 0.0;
+  const auto push_mechanical = [&](const dynamics::Sample& s) {
+    auto& sig = rec.signals;
+    sig[kT].values.push_back(s.t_s);
+    sig[kEngineW].values.push_back(s.omega_rad_s[D::kEngine] / kRadPerSPerRpm);
+    sig[kV].values.push_back(s.omega_rad_s[D::kVehicle] * params.wheel_radius_m * 3.6);
+    sig[kFrontW].values.push_back(s.omega_rad_s[D::kFrontWheels] / kRadPerSPerRpm);
+    sig[kRearW].values.push_back(s.omega_rad_s[D::kRearWheels] / kRadPerSPerRpm);
+    sig[kSlip].values.push_back(s.contact_slip_rad_s[D::kCoupling] / kRadPerSPerRpm);
+    sig[kCouplingT].values.push_back(s.contact_torque_Nm[D::kCoupling]);
+    sig[kFrontT].values.push_back(s.shaft_torque_Nm[D::kFrontHalfshafts]);
+    sig[kRearT].values.push_back(s.shaft_torque_Nm[D::kRearHalfshafts]);
+    sig[kEngineT].values.push_back(inputs.engine_torque_Nm(s.t_s));
+    sig[kStuck].values.push_back(s.modes[D::kCoupling] == dynamics::ContactMode::kStuck);
+    sig[kP].values.push_back(pressure_bar);
+    sig[kF].values.push_back(dl.hydraulics().clamp_force_N(pressure_bar));
+  };
+  const auto push_thermal = [&](double mean_a, double max_a, double mean_b, double max_b, double ta, double tb,
+                                std::size_t from) {
+    auto& sig = rec.signals;
+    for (std::size_t k = from; k < sig[kT].values.size(); ++k) {
+      const double w = tb > ta ? (sig[kT].values[k] - ta) / (tb - ta) : 1.0;
+      sig[kIfMean].values.push_back((1 - w) * mean_a + w * mean_b);
+      sig[kIfMax].values.push_back((1 - w) * max_a + w * max_b);
+    }
+  };
+
+  std::vector<double> sample_times;
+  const long n_samples = static_cast<long>(std::floor(cfg.duration_s * cfg.sample_rate_Hz + 1e-9));
+  for (long k = 1; k <= n_samples; ++k) sample_times.push_back(static_cast<double>(k) / cfg.sample_rate_Hz);
+  double mean_before = th.mean_interface_temp_C(ts), max_before = th.interface_temps_C(ts).maxCoeff();
+  push_mechanical(sim.sample());
+  push_thermal(mean_before, max_before, mean_before, max_before, 0.0, 0.0, 0);
+
+  const int nr = th.radial_cells();
+  const double n_if = clutch.params().sliding_interfaces;
+  Eigen::VectorXd heat_before = Eigen::VectorXd::Zero(nr), heat_now(nr);
+  double peak_C = max_before;
+  while (sim.time_s() < cfg.duration_s - 1e-12) {
+    const double ta = sim.time_s();
+    double tb = std::min(ta + cfg.slow_step_s, cfg.duration_s);
+    if (cfg.duration_s - tb < 1e-9 * cfg.slow_step_s) tb = cfg.duration_s;
+    const std::size_t first_new = rec.signals[kT].values.size();
+    const auto sa = sim.sample();
+    sim.advance(tb, sample_times, push_mechanical);
+    const auto sb = sim.sample();
+    const double dt = tb - ta;
+    for (int i = 0; i < nr; ++i) heat_now[i] = sim.channel_heat_J(D::kCoupling, i);
+    const double twist_a = sa.theta_rad[D::kCouplingIn] - sa.theta_rad[D::kCouplingOut];
+    const double twist_b = sb.theta_rad[D::kCouplingIn] - sb.theta_rad[D::kCouplingOut];
+    th.step(ts, dt, (heat_now - heat_before) / dt, (twist_b - twist_a) / dt);
+    ts.time_s = tb;
+    heat_before = heat_now;
+    // The pump strokes with the relative rotation; |Δθ| over the step is its integral of |Δω|
+    // unless the slip reversed within 10 ms.
+    pressure_bar = dl.hydraulics().step_pressure_bar(pressure_bar, std::abs(twist_b - twist_a), dt,
+                                                     inputs.valve_pressure_bar(tb));
+    law.set_normal_force(PiecewiseLinear({0.0}, {dl.hydraulics().clamp_force_N(pressure_bar)}));
+    law.set_ring_temperatures(th.interface_temps_C(ts));
+    sim.restart();
+    const double mean_after = th.mean_interface_temp_C(ts), max_after = th.interface_temps_C(ts).maxCoeff();
+    peak_C = std::max(peak_C, max_after);
+    push_thermal(mean_before, max_before, mean_after, max_after, ta, tb, first_new);
+    mean_before = mean_after;
+    max_before = max_after;
+  }
+
+  const auto me = sim.energy();
+  const auto& cnt = sim.counters();
+  // The driveline's lowest oscillating mode with the coupling locked, from the damped
+  // eigenvalues (the tyres' slip is a damper: the undamped modes would leave the car loose).
+  const auto modes_locked = dl.network().modes({true});
+  double shuffle_Hz = 0, shuffle_zeta = 0;
+  for (Eigen::Index j = 0; j < modes_locked.damped_eigenvalues.size(); ++j) {
+    const auto lambda = modes_locked.damped_eigenvalues[j];
+    if (std::abs(lambda.imag()) > 1e-6) {
+      shuffle_Hz = std::abs(lambda.imag()) / (2.0 * std::numbers::pi);
+      shuffle_zeta = -lambda.real() / std::abs(lambda);
+      break;
+    }
+  }
+  rec.scalars = {
+      {"heat_generated_J", "J", n_if * ts.energy.generated_J},
+      {"peak_interface_temp_C", "degC", peak_C},
+      {"friction_work_J", "J", me.friction_heat_J},
+      {"mechanical_energy_relative_error", "1",
+       me.source_work_J != 0 ? std::abs(me.imbalance_J()) / std::abs(me.source_work_J) : 0.0},
+      {"shuffle_frequency_Hz", "Hz", shuffle_Hz},
+      {"shuffle_damping_ratio", "1", shuffle_zeta},
+      {"piston_area_m2", "m^2", dl.hydraulics().piston_area_m2()},
+      {"integrator_steps", "1", static_cast<double>(cnt.steps)},
+      {"stick_events", "1", static_cast<double>(cnt.stick_events)},
+      {"breakaway_events", "1", static_cast<double>(cnt.breakaway_events)},
+  };
+  return rec;
+}
+
+}  // namespace shudder::rig_models
