@@ -104,6 +104,9 @@ std::string summary(const io::Scenario& s, const analysis::DiagnosisResult& r,
 int diagnose_command(const DiagnoseOptions& opt) {
   return guarded(opt.model, "diagnosis", [&]() -> int {
     const io::Scenario scenario = io::load_scenario(opt.model);
+    if (scenario.type == "driveline")
+      throw io::InputError(opt.model, 0, "scenario.type",
+                           "measured runs are rig runs; diagnose needs a prescribed_slip or rig model");
     for (const auto& w : scenario.warnings) std::cerr << "shudder: warning: " << w << "\n";
     scenario.make_clutch();  // fails early, naming the scenario, if the clutch is inconsistent
     std::vector<io::MeasuredRun> runs;

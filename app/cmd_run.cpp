@@ -17,6 +17,7 @@
 #include "io/measurement_csv.hpp"
 #include "io/plots.hpp"
 #include "io/scenario.hpp"
+#include "rig_models/haldex_driveline.hpp"
 #include "rig_models/lsctr_rig.hpp"
 #include "rig_models/prescribed_slip.hpp"
 #include "rig_models/run_stability_map.hpp"
@@ -29,11 +30,15 @@ int run_command(const RunOptions& opt) {
     for (const auto& w : scenario.warnings) std::cerr << "shudder: warning: " << w << "\n";
     const clutch::WetClutch clutch = scenario.make_clutch();
 
+    if (scenario.type == "driveline" && !opt.measurement.empty())
+      throw io::InputError(opt.scenario, 0, "--measurement",
+                           "a measured run is a rig log; give a prescribed_slip or rig scenario");
     const auto t0 = std::chrono::steady_clock::now();
     dynamics::Recording rec =
-        scenario.type == "rig"
-            ? rig_models::run_rig(scenario.rig, clutch, scenario.cycle, scenario.rig_settings())
-            : rig_models::run_prescribed_slip(clutch, scenario.cycle, scenario.settings);
+        scenario.type == "rig"         ? rig_models::run_rig(scenario.rig, clutch, scenario.cycle, scenario.rig_settings())
+        : scenario.type == "driveline" ? rig_models::run_driveline(scenario.driveline, clutch, scenario.manoeuvre,
+                                                                   scenario.driveline_settings())
+                                       : rig_models::run_prescribed_slip(clutch, scenario.cycle, scenario.settings);
     const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     // Rig runs carry their stability map (/analysis/stability_map) for `shudder plot`; a map
     // that cannot be made (e.g. a cycle that never loads the clutch) costs the run nothing.

@@ -76,6 +76,10 @@ void progress(std::size_t done, std::size_t total, double elapsed_s) {
 int sweep_command(const SweepOptions& opt) {
   return guarded(opt.scenario, "sweep", [&]() -> int {
     const io::Scenario base = io::load_scenario(opt.scenario);
+    if (base.type == "driveline")
+      throw io::InputError(opt.scenario, 0, "scenario.type",
+                           "sweeps judge rig and prescribed_slip cases (stability, shudder); a driveline "
+                           "scenario runs with `shudder run`");
     for (const auto& w : base.warnings) std::cerr << "shudder: warning: " << w << "\n";
     if (opt.sets.empty()) throw io::InputError("--set", 0, "", "give at least one --set KEY=START:STOP:STEP");
     std::vector<io::SweepAxis> axes;

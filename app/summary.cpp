@@ -29,6 +29,38 @@ double scalar(const dynamics::Recording& rec, const char* name) {
 }
 }  // namespace
 
+namespace {
+
+// A driveline run: the car, the coupling and its hydraulics at key times.
+void print_driveline_summary(std::ostream& os, const io::Scenario& sc, const dynamics::Recording& rec) {
+  const double end = sc.settings.duration_s;
+  char line[512];
+  std::set<double> times{0.0, end};
+  for (double t : sc.manoeuvre.engine_torque_Nm.times_s()) if (t > 0 && t < end) times.insert(t);
+  for (int k = 1; k < 5; ++k) times.insert(end * k / 5.0);
+  os << "   t [s]  car [km/h]  engine [rpm]  engine [Nm]  coupling slip [rpm]  coupling [Nm]  rear axle [Nm]"
+        "  pressure [bar]  interface max [C]\n";
+  for (double t : times) {
+    std::snprintf(line, sizeof line, "%8.2f  %10.2f  %12.1f  %11.1f  %19.3f  %13.1f  %14.1f  %14.2f  %17.2f\n", t,
+                  signal_at(rec, "vehicle_speed_km_h", t), signal_at(rec, "engine_speed_rpm", t),
+                  signal_at(rec, "engine_torque_Nm", t), signal_at(rec, "coupling_slip_rpm", t),
+                  signal_at(rec, "coupling_torque_Nm", t), signal_at(rec, "rear_axle_torque_Nm", t),
+                  signal_at(rec, "pressure_bar", t), signal_at(rec, "interface_max_temp_C", t));
+    os << line;
+  }
+  std::snprintf(line, sizeof line,
+                "\nCoupling: heat %.1f J, peak interface %.2f C; %.0f stick and %.0f breakaway events\n"
+                "Driveline: locked shuffle mode %.2f Hz (damping ratio %.3f); mechanical energy error "
+                "%.2e (relative); %.0f integrator steps\n",
+                scalar(rec, "heat_generated_J"), scalar(rec, "peak_interface_temp_C"), scalar(rec, "stick_events"),
+                scalar(rec, "breakaway_events"), scalar(rec, "shuffle_frequency_Hz"),
+                scalar(rec, "shuffle_damping_ratio"), scalar(rec, "mechanical_energy_relative_error"),
+                scalar(rec, "integrator_steps"));
+  os << line;
+}
+
+}  // namespace
+
 void print_run_summary(std::ostream& os, const io::Scenario& sc, const dynamics::Recording& rec) {
   const double end = sc.settings.duration_s;
   char line[512];
@@ -38,6 +70,10 @@ void print_run_summary(std::ostream& os, const io::Scenario& sc, const dynamics:
   os << "Effects on:";
   for (const auto& e : sc.enabled_effects) os << " " << e;
   os << "\n\n";
+  if (sc.type == "driveline") {
+    print_driveline_summary(os, sc, rec);
+    return;
+  }
 
   // Key times: every drive breakpoint inside the run, five even splits, and the end.
   std::set<double> times{0.0, end};

@@ -149,6 +149,54 @@ void read_rig(TomlTable& root, Scenario& s) {
     }
 }
 
+// type = "driveline": the car of rig_models/haldex_driveline.hpp (every key optional, defaults
+// there) and the manoeuvre it drives.
+void read_driveline(TomlTable& root, Scenario& s) {
+  auto& p = s.driveline;
+  if (root.has("drive"))
+    root.fail("drive", "[drive] belongs to prescribed_slip and rig scenarios; a driveline scenario is "
+                       "driven by [manoeuvre] (time_s, engine_torque_Nm, valve_pressure_bar)");
+  if (auto d = root.optional_table("driveline")) {
+    const auto positive = [&](const char* key, double& v) { v = d->number_or(key, v, Range::positive()); };
+    positive("engine_inertia_kg_m2", p.engine_inertia_kg_m2);
+    positive("gear_ratio", p.gear_ratio);
+    positive("final_drive_ratio", p.final_drive_ratio);
+    positive("ptu_ratio", p.ptu_ratio);
+    positive("rear_diff_ratio", p.rear_diff_ratio);
+    positive("halfshaft_stiffness_Nm_per_rad", p.halfshaft_stiffness_Nm_per_rad);
+    positive("propshaft_stiffness_Nm_per_rad", p.propshaft_stiffness_Nm_per_rad);
+    positive("wheel_inertia_kg_m2", p.wheel_inertia_kg_m2);
+    positive("tyre_stiffness_Nm_per_rad", p.tyre_stiffness_Nm_per_rad);
+    positive("tyre_slip_stiffness_N", p.tyre_slip_stiffness_N);
+    positive("tyre_reference_speed_m_s", p.tyre_reference_speed_m_s);
+    positive("vehicle_mass_kg", p.vehicle_mass_kg);
+    positive("wheel_radius_m", p.wheel_radius_m);
+    positive("coupling_half_inertia_kg_m2", p.coupling_half_inertia_kg_m2);
+    p.nominal_friction = d->number_or("nominal_friction", p.nominal_friction, Range::closed(0.01, 1.0));
+    // Straight (1) to beyond full lock (1.1); a turn ratio below 1 would be the rear axle
+    // running ahead, which a car in a turn does not do.
+    p.turn_ratio = d->number_or("turn_ratio", p.turn_ratio, Range::closed(1.0, 1.2));
+    if (auto h = d->optional_table("hydraulics")) {
+      auto& hp = p.hydraulics;
+      hp.relief_pressure_bar = h->number_or("relief_pressure_bar", hp.relief_pressure_bar, Range::closed(1.0, 200.0));
+      hp.leak_time_constant_s = h->number_or("leak_time_constant_s", hp.leak_time_constant_s, Range::positive());
+      hp.torque_per_bar_Nm = h->number_or("torque_per_bar_Nm", hp.torque_per_bar_Nm, Range::positive());
+      hp.preload_torque_Nm = h->number_or("preload_torque_Nm", hp.preload_torque_Nm, Range::non_negative());
+      h->finish();
+    }
+    d->finish();
+  }
+  auto m = root.table("manoeuvre");
+  const auto times = m.numbers("time_s", Range::non_negative(), 1);
+  for (std::size_t i = 1; i < times.size(); ++i)
+    if (times[i] <= times[i - 1]) m.fail("time_s", "must be strictly increasing");
+  s.manoeuvre.engine_torque_Nm = read_schedule(m, "engine_torque_Nm", times, Range::closed(-1000.0, 1000.0));
+  if (m.has("valve_pressure_bar"))
+    s.manoeuvre.valve_pressure_bar = read_schedule(m, "valve_pressure_bar", times, Range::closed(0.0, 200.0));
+  s.manoeuvre.start_speed_km_h = m.number_or("start_speed_km_h", 0.0, Range::closed(0.0, 300.0));
+  m.finish();
+}
+
 void read_effects(TomlTable& root, Scenario& s) {
   auto& p = s.clutch;
   auto& th = p.thermal;
@@ -209,6 +257,9 @@ void read_effects(TomlTable& root, Scenario& s) {
     stick.max_increase = t.number_or("max_increase", stick.max_increase, Range::closed(0.0, 5.0));
     stick.time_constant_s = t.number_or("time_constant_s", stick.time_constant_s, Range::positive());
   });
+  if (drag.enabled && s.type == "driveline")
+    s.warnings.push_back("effect bearing_drag has no effect in a driveline scenario (it is the rig's "
+                         "torque-cell bearing)");
   if (stick.enabled && s.type == "prescribed_slip")
     s.warnings.push_back("effect stick_time_static_friction has no effect in a prescribed_slip "
                          "scenario (the slip is imposed, nothing sticks)");
@@ -250,25 +301,32 @@ Scenario load_scenario_text(const std::string& text, const std::string& path) {
 
   auto head = root.table("scenario");
   s.name = head.string_or("name", fs::path(path).stem().string());
-  s.type = head.choice_or("type", "prescribed_slip", {"prescribed_slip", "rig"});
+  s.type = head.choice_or("type", "prescribed_slip", {"prescribed_slip", "rig", "driveline"});
   s.description = head.string_or("description", "");
   s.settings.duration_s = head.number("duration_s", Range::closed(1e-3, 1e5));
   head.finish();
 
   read_clutch(root, s);
-  read_drive(root, s);
+  if (s.type == "driveline") {
+    read_driveline(root, s);
+    s.settings.sample_rate_Hz = 1000.0;
+  } else {
+    read_drive(root, s);
+  }
+  if (s.type != "driveline" && root.has("driveline"))
+    root.fail("driveline", "[driveline] belongs to type = \"driveline\" scenarios");
   if (s.type == "rig") {
     read_rig(root, s);
     s.settings.sample_rate_Hz = 1000.0;  // rig default: the thesis' typical 100 S/s–1 kS/s
   } else {
     root.mark_read("rig");
-    if (root.has("rig")) s.warnings.push_back("[rig] is ignored by a prescribed_slip scenario");
+    if (root.has("rig")) s.warnings.push_back("[rig] is ignored by a " + s.type + " scenario");
   }
 
   if (auto solver = root.optional_table("solver")) {
     s.clutch.thermal.radial_cells = static_cast<int>(solver->integer_or("radial_cells", s.clutch.thermal.radial_cells, 2, 2000));
     s.settings.thermal_step_s = solver->number_or("thermal_step_ms", s.settings.thermal_step_s * 1e3, Range::closed(1e-3, 1e4)) * 1e-3;
-    auto& integ = s.rig.integrator;
+    auto& integ = s.type == "driveline" ? s.driveline.integrator : s.rig.integrator;
     integ.abs_tol = solver->number_or("abs_tol", integ.abs_tol, Range::closed(1e-15, 1e-2));
     integ.rel_tol = solver->number_or("rel_tol", integ.rel_tol, Range::closed(1e-15, 1e-2));
     integ.max_step_s = solver->number_or("max_step_ms", integ.max_step_s * 1e3, Range::closed(1e-6, 1e3)) * 1e-3;
@@ -284,6 +342,7 @@ Scenario load_scenario_text(const std::string& text, const std::string& path) {
   }
   read_effects(root, s);
   s.rig.bearing_drag = s.settings.bearing_drag;
+  s.driveline.stick_time = s.rig.stick_time;
   root.finish();
 
   const auto& th = s.clutch.thermal;
@@ -308,6 +367,14 @@ rig_models::RigSettings Scenario::rig_settings() const {
   r.sample_rate_Hz = settings.sample_rate_Hz;
   r.snapshot_times_s = settings.snapshot_times_s;
   return r;
+}
+
+rig_models::DrivelineSettings Scenario::driveline_settings() const {
+  rig_models::DrivelineSettings d;
+  d.duration_s = settings.duration_s;
+  d.slow_step_s = settings.thermal_step_s;
+  d.sample_rate_Hz = settings.sample_rate_Hz;
+  return d;
 }
 
 clutch::WetClutch Scenario::make_clutch() const {

@@ -10,6 +10,7 @@
 #include "clutch/fluid.hpp"
 #include "clutch/wet_clutch.hpp"
 #include "rig_models/drive_cycle.hpp"
+#include "rig_models/haldex_driveline.hpp"
 #include "rig_models/lsctr_rig.hpp"
 #include "rig_models/prescribed_slip.hpp"
 
@@ -19,7 +20,7 @@ struct Scenario {
   std::string path;         // as given
   std::string text;         // the file's text (stored in outputs)
   std::string name;
-  std::string type;         // "prescribed_slip" or "rig"
+  std::string type;         // "prescribed_slip", "rig" or "driveline"
   std::string description;
   std::string fluid_path;   // resolved relative to the scenario file
   clutch::Fluid fluid;
@@ -27,12 +28,15 @@ struct Scenario {
   rig_models::DriveCycle cycle;
   rig_models::PrescribedSlipSettings settings;  // duration, steps, sampling, bearing drag
   rig_models::RigParams rig;                    // type "rig" only
+  rig_models::DrivelineParams driveline;        // type "driveline" only
+  rig_models::DrivelineInputs manoeuvre;        // type "driveline" only
   std::vector<std::string> enabled_effects;  // names from clutch::kEffectNames
   std::vector<std::string> warnings;         // accepted but worth telling the user
 
   /// Builds the clutch; throws InputError if the parameters are inconsistent.
   clutch::WetClutch make_clutch() const;
   rig_models::RigSettings rig_settings() const;
+  rig_models::DrivelineSettings driveline_settings() const;
 };
 
 Scenario load_scenario(const std::string& path);

@@ -45,7 +45,7 @@ HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::We
     if (!std::isfinite(v) || v < 0) throw std::invalid_argument(std::string("driveline: ") + what + " must be >= 0");
 
   const double f0 = hydraulics_.clamp_force_N(0.0);
-  law_ = std::make_shared<ClutchContactLaw>(clutch, PiecewiseLinear({0.0}, {f0}), BearingDrag{}, StickTimeFriction{});
+  law_ = std::make_shared<ClutchContactLaw>(clutch, PiecewiseLinear({0.0}, {f0}), BearingDrag{}, p_.stick_time);
 
   const double r = p_.wheel_radius_m;
   const double tyre_damping = p_.tyre_slip_stiffness_N * r * r / p_.tyre_reference_speed_m_s;

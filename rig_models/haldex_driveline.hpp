@@ -65,6 +65,7 @@ struct DrivelineParams {
   double turn_ratio = 1.0;                  // ρ, see header
   double nominal_friction = 0.12;           // μ_nom for the piston area (estimate: wet clutch)
   HaldexHydraulicsParams hydraulics;
+  StickTimeFriction stick_time;             // the `stick_time_static_friction` effect
   // Tolerances as for the rig: speeds of ~1–100 rad/s, twists of ~1e-2 rad.
   dynamics::IntegratorSettings integrator{1e-6, 1e-6, 1e-3, 1e-6, 1e-10};
 };
