@@ -11,6 +11,7 @@ namespace shudder {
 namespace {
 
 using ::testing::HasSubstr;
+using test::expect_rejected;
 using test::replace;
 using test::run_cli;
 using test::scratch_dir;
@@ -63,12 +64,6 @@ TEST(CliDiagnose, MaxEffectsLimitsTheSearch) {
   EXPECT_THAT(r.out, HasSubstr("Missing effects: none"));
   EXPECT_THAT(r.out, HasSubstr("the limit of 0 added effects was reached"));
   EXPECT_EQ(run_cli("diagnose model.toml a.csv --max-effects -1", dir).exit_code, 2);
-}
-
-void expect_rejected(const test::CliResult& r, const std::vector<std::string>& fragments) {
-  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  for (const auto& f : fragments) EXPECT_THAT(r.err, HasSubstr(f));
 }
 
 TEST(CliDiagnose, RejectsAMeasuredRunThatBreaksTheFormat) {

@@ -12,6 +12,7 @@ namespace shudder {
 namespace {
 
 using ::testing::HasSubstr;
+using test::expect_rejected;
 using test::replace;
 using test::run_cli;
 using test::scratch_dir;
@@ -42,22 +43,14 @@ TEST(CliDriveline, RunsTheTightTurnAndWritesItsSignals) {
   EXPECT_GT(test::signal(rec, "coupling_torque_Nm").back(), test::signal(rec, "coupling_torque_Nm").front());
 }
 
-void expect_rejected(const test::CliResult& r, const std::vector<std::string>& fragments) {
-  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  for (const auto& f : fragments) EXPECT_THAT(r.err, HasSubstr(f));
-}
-
 TEST(CliDriveline, RejectsATurnRatioBelowOne) {
-  const auto dir = scratch_dir("cli_driveline_turn");
-  write_file(dir / "turn.toml", replace(tight_turn(), "turn_ratio = 1.04", "turn_ratio = 0.9"));
-  expect_rejected(run_cli("run turn.toml", dir), {"turn.toml", "turn_ratio"});
+  expect_rejected(test::run_scenario_in("cli_driveline_turn", replace(tight_turn(), "turn_ratio = 1.04", "turn_ratio = 0.9")),
+                  {"s.toml", "turn_ratio", "[1, 1.2]"});
 }
 
 TEST(CliDriveline, RejectsARigDriveCycle) {
-  const auto dir = scratch_dir("cli_driveline_drive");
-  write_file(dir / "turn.toml", tight_turn("\n[drive]\ntime_s = [0.0]\nspeed_rpm = 1.0\nnormal_force_N = 1000.0\n"));
-  expect_rejected(run_cli("run turn.toml", dir), {"turn.toml", "drive", "[manoeuvre]"});
+  expect_rejected(test::run_scenario_in("cli_driveline_drive", tight_turn("\n[drive]\ntime_s = [0.0]\nspeed_rpm = 1.0\nnormal_force_N = 1000.0\n")),
+                  {"s.toml", "drive", "[manoeuvre]"});
 }
 
 TEST(CliDriveline, RefusesToWriteAMeasuredRun) {

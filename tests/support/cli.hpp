@@ -79,12 +79,17 @@ inline Outcome run_scenario_in(const std::string& dir_name, const std::string& s
   return o;
 }
 
-/// Bad input: exit 2, no output file, ONE stderr line containing every fragment.
+/// Bad input: exit 2 and ONE stderr line containing every fragment.
+inline void expect_rejected(const CliResult& r, const std::vector<std::string>& fragments) {
+  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  for (const auto& f : fragments) EXPECT_THAT(r.err, ::testing::HasSubstr(f));
+}
+
+/// Bad input to `shudder run`: as above, and no output file.
 inline void expect_rejected(const Outcome& o, const std::vector<std::string>& fragments) {
-  EXPECT_EQ(o.r.exit_code, 2) << o.r.err;
+  expect_rejected(o.r, fragments);
   EXPECT_FALSE(o.output_exists);
-  EXPECT_EQ(std::count(o.r.err.begin(), o.r.err.end(), '\n'), 1) << o.r.err;
-  for (const auto& f : fragments) EXPECT_THAT(o.r.err, ::testing::HasSubstr(f));
 }
 
 }  // namespace shudder::test
