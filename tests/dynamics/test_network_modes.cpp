@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <memory>
 #include <numbers>
 #include <vector>
@@ -246,3 +247,33 @@ TEST(DynamicsNetworkModes, StuckContactMergesItsNodes) {
 }
 
 }  // namespace
+
+// ---------------------------------------------------------------------------------------------
+//   ground |--[c]-- [ J ]      a pure damper (k = 0; e.g. a tyre's slip), c = 4 N m s/rad
+//   J ω' = −c ω  →  ω(t) = ω0 e^(−c t / J);  modes(): one rigid-body mode (0 Hz), damped
+//   eigenvalue −c/J.  A shaft with neither stiffness nor damping is refused.
+// ---------------------------------------------------------------------------------------------
+TEST(DynamicsNetworkModes, PureDamperDecaysExponentially) {
+  constexpr double c = 4.0;
+  TorsionalNetwork net;
+  const int m = net.add_inertia({"mass", kJ});
+  net.add_shaft({"damper", m, kGround, 0.0, c});
+  net.validate();
+  const Modes modes = net.modes();
+  ASSERT_EQ(modes.frequencies_Hz.size(), 1);
+  EXPECT_NEAR(modes.frequencies_Hz[0], 0.0, 1e-9);
+  bool found = false;
+  for (Eigen::Index j = 0; j < modes.damped_eigenvalues.size(); ++j)
+    found = found || std::abs(modes.damped_eigenvalues[j] - std::complex<double>(-c / kJ, 0.0)) < 1e-9 * c / kJ;
+  EXPECT_TRUE(found) << "no eigenvalue at -c/J = " << -c / kJ;
+
+  Simulation sim(net, tight());
+  sim.initialize(0.0, Eigen::VectorXd::Zero(1), Eigen::VectorXd::Constant(1, 10.0), Eigen::VectorXd());
+  sim.advance(0.02);
+  EXPECT_NEAR(sim.sample().omega_rad_s[0], 10.0 * std::exp(-c * 0.02 / kJ), 1e-6 * 10.0);
+
+  TorsionalNetwork nothing;
+  const int n = nothing.add_inertia({"mass", kJ});
+  nothing.add_shaft({"void", n, kGround, 0.0, 0.0});
+  EXPECT_THROW(nothing.validate(), std::invalid_argument);
+}
