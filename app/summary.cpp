@@ -48,6 +48,16 @@ void print_driveline_summary(std::ostream& os, const io::Scenario& sc, const dyn
                   signal_at(rec, "pressure_bar", t), signal_at(rec, "interface_max_temp_C", t));
     os << line;
   }
+  const char* verdicts[] = {"none", "vibration", "stick_slip"};
+  const double code = scalar(rec, "coupling_verdict_code");
+  const bool oscillates = code == 1 || code == 2;
+  std::snprintf(line, sizeof line, "\nCoupling judder: %s", oscillates ? verdicts[static_cast<int>(code)] : "none");
+  os << line;
+  if (oscillates) {
+    std::snprintf(line, sizeof line, " at %.2f Hz, amplitude %.1f N m (FFT of the coupling torque)",
+                  scalar(rec, "coupling_oscillation_frequency_Hz"), scalar(rec, "coupling_oscillation_amplitude_Nm"));
+    os << line;
+  }
   std::snprintf(line, sizeof line,
                 "\nCoupling: heat %.1f J, peak interface %.2f C; %.0f stick and %.0f breakaway events\n"
                 "Driveline: locked shuffle mode %.2f Hz (damping ratio %.3f); mechanical energy error "

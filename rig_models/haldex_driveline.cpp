@@ -1,7 +1,10 @@
 #include "rig_models/haldex_driveline.hpp"
 
+#include "analysis/shudder_detection.hpp"
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -19,6 +22,28 @@ void require_positive(double v, const char* what) {
 
 double pack_torque_per_newton(const DrivelineParams& p, const clutch::WetClutch& clutch) {
   return clutch.params().sliding_interfaces * p.nominal_friction * clutch.mean_radius_m();
+}
+
+// Half peak-to-peak of x minus its centred one-period moving mean, over the last
+// max(2 periods, a tenth) of the record (uniform sampling).
+double final_oscillation_amplitude_Nm(const std::vector<double>& t, const std::vector<double>& x, double period_s) {
+  const std::size_t n = t.size();
+  if (n < 4) return 0.0;
+  const double dt = (t.back() - t.front()) / static_cast<double>(n - 1);
+  const std::size_t half = std::max<std::size_t>(1, static_cast<std::size_t>(0.5 * period_s / dt));
+  const double span_s = std::max(2.0 * period_s, 0.1 * (t.back() - t.front()));
+  const std::size_t from = n - std::min(n, static_cast<std::size_t>(span_s / dt) + half);
+  double lo = 0, hi = 0;
+  bool any = false;
+  for (std::size_t i = std::max(from, half); i + half < n; ++i) {
+    double mean = 0;
+    for (std::size_t j = i - half; j <= i + half; ++j) mean += x[j];
+    const double r = x[i] - mean / static_cast<double>(2 * half + 1);
+    lo = any ? std::min(lo, r) : r;
+    hi = any ? std::max(hi, r) : r;
+    any = true;
+  }
+  return any ? 0.5 * (hi - lo) : 0.0;
 }
 
 }  // namespace
@@ -212,12 +237,42 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
       break;
     }
   }
+  // Judder or stick-slip of the coupling, judged on its torque and slip as on the rig
+  // (analysis/shudder_detection.hpp), from 2 Hz: the driveline's modes start at a few Hz.
+  analysis::DetectionSettings ds;
+  ds.min_frequency_Hz = 2.0;
+  const auto& sig = rec.signals;
+  analysis::ShudderResult judder;
+  try {
+    judder = analysis::detect_shudder(analysis::DetectionInput{sig[kT].values, sig[kCouplingT].values,
+                                                               sig[kSlip].values, sig[kStuck].values,
+                                                               sig[kIfMean].values, sig[kF].values},
+                                      ds);
+  } catch (const std::invalid_argument&) {
+    judder.verdict = analysis::Verdict::kNone;  // too short a record to judge (< 64 samples)
+    judder.frequency_Hz = judder.amplitude_Nm = std::numeric_limits<double>::quiet_NaN();
+  }
+  // A ringing that dies out is the driveline answering the manoeuvre (a torque step rings the
+  // shuffle mode), not judder: an oscillation counts only if it still has half its amplitude
+  // over the record's last two periods (or last tenth, if longer).
+  if (judder.verdict != analysis::Verdict::kNone && std::isfinite(judder.frequency_Hz) && judder.frequency_Hz > 0) {
+    const double end_amplitude = final_oscillation_amplitude_Nm(sig[kT].values, sig[kCouplingT].values,
+                                                                1.0 / judder.frequency_Hz);
+    if (end_amplitude < 0.5 * judder.amplitude_Nm) judder.verdict = analysis::Verdict::kNone;
+  }
   rec.scalars = {
+      {"coupling_verdict_code", "1", static_cast<double>(judder.verdict)},
+      {"coupling_oscillation_frequency_Hz", "Hz", judder.frequency_Hz},
+      {"coupling_oscillation_amplitude_Nm", "N m", judder.amplitude_Nm},
       {"heat_generated_J", "J", n_if * ts.energy.generated_J},
       {"peak_interface_temp_C", "degC", peak_C},
       {"friction_work_J", "J", me.friction_heat_J},
+      // Relative to the largest energy in play: a coasting car (no engine work) is judged
+      // against the kinetic energy it started with or the energy its tyres and coupling took.
       {"mechanical_energy_relative_error", "1",
-       me.source_work_J != 0 ? std::abs(me.imbalance_J()) / std::abs(me.source_work_J) : 0.0},
+       std::abs(me.imbalance_J()) /
+           std::max({std::abs(me.source_work_J), me.initial_kinetic_J + me.initial_elastic_J,
+                     me.friction_heat_J + me.damper_loss_J, 1e-300})},
       {"shuffle_frequency_Hz", "Hz", shuffle_Hz},
       {"shuffle_damping_ratio", "1", shuffle_zeta},
       {"piston_area_m2", "m^2", dl.hydraulics().piston_area_m2()},
