@@ -51,9 +51,9 @@ int main(int argc, char** argv) {
   PlotOptions plot;
   auto* plot_cmd = app.add_subcommand("plot", "Plot a run or sweep file (PNG or SVG, via gnuplot)");
   plot_cmd->add_option("file", plot.file, "Run or sweep HDF5 file")->required();
-  plot_cmd->add_option("--what", plot.what, "torque|temperature|spectrum|spectrogram|stability_map|sweep")
+  plot_cmd->add_option("--what", plot.what, "torque|temperature|spectrum|spectrogram|stability_map|sweep|coupling")
       ->required()
-      ->check(CLI::IsMember({"torque", "temperature", "spectrum", "spectrogram", "stability_map", "sweep"}));
+      ->check(CLI::IsMember({"torque", "temperature", "spectrum", "spectrogram", "stability_map", "sweep", "coupling"}));
   plot_cmd->add_option("-o,--output", plot.output, "Image to write (.png or .svg)")->required();
 
   ValidateOptions validate;

@@ -125,7 +125,7 @@ void make_report_dir(const std::string& dir) {
 
 const std::vector<std::string>& plot_kind_names() {
   static const std::vector<std::string> names = {"torque",      "temperature",   "spectrum",
-                                                 "spectrogram", "stability_map", "sweep"};
+                                                 "spectrogram", "stability_map", "sweep", "coupling"};
   return names;
 }
 
@@ -169,6 +169,28 @@ Plot torque_plot(const Recording& rec, const std::string& name, const std::strin
     p.series_y2.back().line_width = 1.0;
     p.series_y2.back().rgb = "#7f7f7f";
     p.y2label = "sliding speed [rpm]";
+  }
+  return p;
+}
+
+// A driveline run: what the Haldex coupling carries and why (its slip pumps the pressure).
+Plot coupling_plot(const Recording& rec, const std::string& name, const std::string& source) {
+  const Signal& t = require_signal(rec, "time_s", source, "coupling");
+  const Signal& torque = require_signal(rec, "coupling_torque_Nm", source, "coupling");
+  Plot p;
+  p.title = name + ": Haldex coupling";
+  p.xlabel = "time [s]";
+  p.ylabel = "torque [N m]";
+  p.series.push_back(series_of(t, torque, "coupling_torque_Nm: torque through the coupling"));
+  if (const Signal* rear = rec.find("rear_axle_torque_Nm")) {
+    p.series.push_back(series_of(t, *rear, "rear_axle_torque_Nm: rear half-shafts"));
+    p.series.back().dashed = true;
+  }
+  if (const Signal* slip = rec.find("coupling_slip_rpm")) {
+    p.series_y2.push_back(series_of(t, *slip, "coupling_slip_rpm: slip (right axis)"));
+    p.series_y2.back().line_width = 1.0;
+    p.series_y2.back().rgb = "#7f7f7f";
+    p.y2label = "coupling slip [rpm]";
   }
   return p;
 }
@@ -584,6 +606,7 @@ Plot run_plot(PlotKind kind, const Recording& rec, const std::string& name, cons
     case PlotKind::kSpectrum: return spectrum_plot(rec, name, source);
     case PlotKind::kSpectrogram: return spectrogram_plot(rec, name, source);
     case PlotKind::kStabilityMap: return stability_map_plot(rec, name, source);
+    case PlotKind::kCoupling: return coupling_plot(rec, name, source);
     case PlotKind::kSweep: break;
   }
   throw std::invalid_argument("run_plot: a sweep plot is built from a sweep table");
@@ -640,9 +663,12 @@ Report write_run_report(const std::string& dir, const Recording& rec, const std:
   write_text_file_atomically(path("summary.txt"), summary);
   report.files.push_back(path("summary.txt"));
   struct Item { PlotKind kind; const char* file; bool wanted; };
-  const Item items[] = {{PlotKind::kTorque, "torque.png", true},
+  // A driveline run has no torque cell: its coupling takes the torque plot's place.
+  const bool driveline = rec.find("coupling_torque_Nm") != nullptr;
+  const Item items[] = {{PlotKind::kTorque, "torque.png", !driveline},
+                        {PlotKind::kCoupling, "coupling.png", driveline},
                         {PlotKind::kTemperature, "temperature.png", true},
-                        {PlotKind::kSpectrum, "spectrum.png", true},
+                        {PlotKind::kSpectrum, "spectrum.png", !driveline},
                         {PlotKind::kSpectrogram, "spectrogram.png", rig},
                         {PlotKind::kStabilityMap, "stability_map.png", rig && rec.find_map("stability_map")}};
   for (const auto& item : items) {

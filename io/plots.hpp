@@ -29,7 +29,7 @@
 
 namespace shudder::io {
 
-enum class PlotKind { kTorque, kTemperature, kSpectrum, kSpectrogram, kStabilityMap, kSweep };
+enum class PlotKind { kTorque, kTemperature, kSpectrum, kSpectrogram, kStabilityMap, kSweep, kCoupling };
 
 /// The names accepted by --what, in PlotKind order.
 const std::vector<std::string>& plot_kind_names();

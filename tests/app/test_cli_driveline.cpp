@@ -28,11 +28,14 @@ std::string tight_turn(const std::string& extra = "") {
 TEST(CliDriveline, RunsTheTightTurnAndWritesItsSignals) {
   const auto dir = scratch_dir("cli_driveline_ok");
   write_file(dir / "turn.toml", tight_turn());
-  const auto r = run_cli("run turn.toml -o turn.h5", dir);
+  const auto r = run_cli("run turn.toml -o turn.h5 --report rep", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("(driveline)"));
   EXPECT_THAT(r.out, HasSubstr("coupling slip [rpm]"));
   EXPECT_THAT(r.out, HasSubstr("locked shuffle mode"));
+  EXPECT_THAT(r.out, HasSubstr("Coupling judder: none"));  // fluid C slides smoothly
+  EXPECT_TRUE(std::filesystem::exists(dir / "rep" / "coupling.png"));
+  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;  // no rig plot attempted
   const auto rec = io::read_run_hdf5((dir / "turn.h5").string());
   // At the start the car rolls at 5 km/h and the axles differ by the turn: the coupling slips at
   // i_ptu (ρ − 1) ω_front_diff = 2.6 × 0.04 × (5/3.6/0.32 rad/s) = 4.31 rpm.
