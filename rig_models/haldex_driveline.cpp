@@ -1,13 +1,13 @@
 #include "rig_models/haldex_driveline.hpp"
 
-#include "analysis/shudder_detection.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <string>
+
+#include "analysis/shudder_detection.hpp"
 
 namespace shudder::rig_models {
 

@@ -108,7 +108,10 @@ class HaldexDriveline {
 };
 
 /// Simulates the driveline with the coupling's thermal model and hydraulics (multi-rate) and
-/// records speeds, torques, pressure and temperatures.
+/// records speeds, torques, pressure and temperatures; judges the coupling's judder from its
+/// torque and slip (analysis/shudder_detection.hpp, from 2 Hz), counting only an oscillation
+/// that still has half its amplitude at the end of the record (a torque step's ringing of the
+/// shuffle mode dies out and is not judder).
 dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::WetClutch& clutch,
                                   const DrivelineInputs& inputs, const DrivelineSettings& settings);
 
