@@ -27,9 +27,6 @@ double scalar(const dynamics::Recording& rec, const char* name) {
   const auto* s = rec.find_scalar(name);
   return s ? s->value : std::numeric_limits<double>::quiet_NaN();
 }
-}  // namespace
-
-namespace {
 
 // A driveline run: the car, the coupling and its hydraulics at key times.
 void print_driveline_summary(std::ostream& os, const io::Scenario& sc, const dynamics::Recording& rec) {

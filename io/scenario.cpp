@@ -173,8 +173,8 @@ void read_driveline(TomlTable& root, Scenario& s) {
     positive("wheel_radius_m", p.wheel_radius_m);
     positive("coupling_half_inertia_kg_m2", p.coupling_half_inertia_kg_m2);
     p.nominal_friction = d->number_or("nominal_friction", p.nominal_friction, Range::closed(0.01, 1.0));
-    // Straight (1) to beyond full lock (1.1); a turn ratio below 1 would be the rear axle
-    // running ahead, which a car in a turn does not do.
+    // Straight (1) to well past full lock (≈ 1.05); below 1 the rear axle would run ahead,
+    // which a car in a turn does not do.
     p.turn_ratio = d->number_or("turn_ratio", p.turn_ratio, Range::closed(1.0, 1.2));
     if (auto h = d->optional_table("hydraulics")) {
       auto& hp = p.hydraulics;
