@@ -14,7 +14,6 @@
 #include <stdexcept>
 #include <utility>
 
-#include "io/atomic_file.hpp"
 #include "io/hdf5_util.hpp"
 #include "io/input_error.hpp"
 
@@ -368,21 +367,7 @@ Handle open_for_reading(const std::string& path) {
 void write_run_hdf5(const std::string& path, const Recording& rec,
                     const std::string& scenario_text) {
   validate(path, rec);
-  const std::lock_guard lock(hdf5_mutex());
-  const QuietHdf5 quiet;
-  const std::string tmp = temp_path_for(path);
-  try {
-    write_file(tmp, rec, scenario_text);
-  } catch (const Failure& e) {
-    discard_temp_file(tmp);
-    throw InputError(path, 0, "",
-                     std::string("cannot write run file: ") + e.what() +
-                         "; check the directory exists and is writable");
-  } catch (...) {
-    discard_temp_file(tmp);
-    throw;
-  }
-  commit_temp_file(tmp, path);
+  write_file_atomically(path, "run file", [&](const std::string& tmp) { write_file(tmp, rec, scenario_text); });
 }
 
 Recording read_run_hdf5(const std::string& path) {
@@ -478,20 +463,7 @@ void write_sweep_hdf5(const std::string& path, const SweepOutput& sweep) {
     if (c.values.size() != n)
       throw InputError(path, 0, "", "sweep column '" + c.name + "' has " + std::to_string(c.values.size()) +
                                         " rows, expected " + std::to_string(n));
-  const std::lock_guard lock(hdf5_mutex());
-  const QuietHdf5 quiet;
-  const std::string tmp = temp_path_for(path);
-  try {
-    write_sweep_file(tmp, sweep);
-  } catch (const Failure& e) {
-    discard_temp_file(tmp);
-    throw InputError(path, 0, "", std::string("cannot write sweep file: ") + e.what() +
-                                      "; check the directory exists and is writable");
-  } catch (...) {
-    discard_temp_file(tmp);
-    throw;
-  }
-  commit_temp_file(tmp, path);
+  write_file_atomically(path, "sweep file", [&](const std::string& tmp) { write_sweep_file(tmp, sweep); });
 }
 
 }  // namespace shudder::io

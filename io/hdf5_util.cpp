@@ -1,5 +1,8 @@
 #include "io/hdf5_util.hpp"
 
+#include "io/atomic_file.hpp"
+#include "io/input_error.hpp"
+
 #include <cstring>
 
 namespace shudder::io::hdf5 {
@@ -82,6 +85,24 @@ std::string read_string_value(hid_t attr, hid_t file_type, const std::string& na
   std::vector<char> buf(size + 1, '\0');
   ok(H5Aread(attr, file_type, buf.data()), "read attribute '" + name + "'");
   return std::string(buf.data(), strnlen(buf.data(), size));
+}
+
+void write_file_atomically(const std::string& path, const std::string& what,
+                           const std::function<void(const std::string& tmp)>& write) {
+  const std::lock_guard lock(hdf5_mutex());
+  const QuietHdf5 quiet;
+  const std::string tmp = temp_path_for(path);
+  try {
+    write(tmp);
+  } catch (const Error& e) {
+    discard_temp_file(tmp);
+    throw InputError(path, 0, "",
+                     "cannot write " + what + ": " + e.what() + "; check the directory exists and is writable");
+  } catch (...) {
+    discard_temp_file(tmp);
+    throw;
+  }
+  commit_temp_file(tmp, path);
 }
 
 }  // namespace shudder::io::hdf5

@@ -6,6 +6,7 @@
 
 #include <hdf5.h>
 
+#include <functional>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -84,5 +85,12 @@ void write_string_attr(hid_t obj, const std::string& name, const std::string& va
 /// The value of the open scalar string attribute `attr` whose type is `file_type`, variable-
 /// or fixed-length (other tools write the latter); `name` is for messages.
 std::string read_string_value(hid_t attr, hid_t file_type, const std::string& name);
+
+/// Builds an HDF5 file with `write(tmp)` under a temporary name, holding the mutex with HDF5's
+/// own error printing off, and renames it to `path` when complete (no half-written file). An
+/// Error from `write` becomes the InputError "cannot write <what>: <reason>; check the directory
+/// exists and is writable"; anything else passes through; either way the temporary is removed.
+void write_file_atomically(const std::string& path, const std::string& what,
+                           const std::function<void(const std::string& tmp)>& write);
 
 }  // namespace shudder::io::hdf5

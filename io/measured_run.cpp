@@ -17,7 +17,6 @@
 #include <stdexcept>
 #include <utility>
 
-#include "io/atomic_file.hpp"
 #include "io/hdf5_util.hpp"
 #include "io/input_error.hpp"
 
@@ -570,21 +569,7 @@ MeasuredRun read_measured_run_hdf5(const std::string& path) {
 namespace {
 void write_atomically(const std::string& path, const MeasuredRun& run,
                       const std::vector<std::pair<std::string, double>>& number_attributes) {
-  const std::lock_guard lock(hdf5_mutex());
-  const QuietHdf5 quiet;
-  const std::string tmp = temp_path_for(path);
-  try {
-    write_file(tmp, run, number_attributes);
-  } catch (const Failure& e) {
-    discard_temp_file(tmp);
-    throw InputError(path, 0, "",
-                     std::string("cannot write measured run: ") + e.what() +
-                         "; check the directory exists and is writable");
-  } catch (...) {
-    discard_temp_file(tmp);
-    throw;
-  }
-  commit_temp_file(tmp, path);
+  write_file_atomically(path, "measured run", [&](const std::string& tmp) { write_file(tmp, run, number_attributes); });
 }
 }  // namespace
 
