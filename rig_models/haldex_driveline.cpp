@@ -8,6 +8,7 @@
 #include <string>
 
 #include "analysis/shudder_detection.hpp"
+#include "rig_models/multirate_clutch.hpp"
 
 namespace shudder::rig_models {
 
@@ -173,56 +174,41 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
     sig[kP].values.push_back(pressure_bar);
     sig[kF].values.push_back(dl.hydraulics().clamp_force_N(pressure_bar));
   };
-  const auto push_thermal = [&](double mean_a, double max_a, double mean_b, double max_b, double ta, double tb,
-                                std::size_t from) {
+  // Thermal channels: linear between the fields before and after the slow step, for every
+  // sample the step added.
+  const auto push_thermal = [&](double mean_a, double max_a, double mean_b, double max_b, double ta, double tb) {
     auto& sig = rec.signals;
-    for (std::size_t k = from; k < sig[kT].values.size(); ++k) {
+    for (std::size_t k = sig[kIfMean].values.size(); k < sig[kT].values.size(); ++k) {
       const double w = tb > ta ? (sig[kT].values[k] - ta) / (tb - ta) : 1.0;
       sig[kIfMean].values.push_back((1 - w) * mean_a + w * mean_b);
       sig[kIfMax].values.push_back((1 - w) * max_a + w * max_b);
     }
   };
 
-  std::vector<double> sample_times;
-  const long n_samples = static_cast<long>(std::floor(cfg.duration_s * cfg.sample_rate_Hz + 1e-9));
-  for (long k = 1; k <= n_samples; ++k) sample_times.push_back(static_cast<double>(k) / cfg.sample_rate_Hz);
   double mean_before = th.mean_interface_temp_C(ts), max_before = th.interface_temps_C(ts).maxCoeff();
   push_mechanical(sim.sample());
-  push_thermal(mean_before, max_before, mean_before, max_before, 0.0, 0.0, 0);
-
-  const int nr = th.radial_cells();
-  const double n_if = clutch.params().sliding_interfaces;
-  Eigen::VectorXd heat_before = Eigen::VectorXd::Zero(nr), heat_now(nr);
+  push_thermal(mean_before, max_before, mean_before, max_before, 0.0, 0.0);
   double peak_C = max_before;
-  while (sim.time_s() < cfg.duration_s - 1e-12) {
-    const double ta = sim.time_s();
-    double tb = std::min(ta + cfg.slow_step_s, cfg.duration_s);
-    if (cfg.duration_s - tb < 1e-9 * cfg.slow_step_s) tb = cfg.duration_s;
-    const std::size_t first_new = rec.signals[kT].values.size();
-    const auto sa = sim.sample();
-    sim.advance(tb, sample_times, push_mechanical);
-    const auto sb = sim.sample();
-    const double dt = tb - ta;
-    for (int i = 0; i < nr; ++i) heat_now[i] = sim.channel_heat_J(D::kCoupling, i);
-    const double twist_a = sa.theta_rad[D::kCouplingIn] - sa.theta_rad[D::kCouplingOut];
-    const double twist_b = sb.theta_rad[D::kCouplingIn] - sb.theta_rad[D::kCouplingOut];
-    th.step(ts, dt, (heat_now - heat_before) / dt, (twist_b - twist_a) / dt);
-    ts.time_s = tb;
-    heat_before = heat_now;
-    // The pump strokes with the relative rotation; |Δθ| over the step is its integral of |Δω|
-    // unless the slip reversed within 10 ms.
-    pressure_bar = dl.hydraulics().step_pressure_bar(pressure_bar, std::abs(twist_b - twist_a), dt,
-                                                     inputs.valve_pressure_bar(tb));
-    law.set_normal_force(PiecewiseLinear({0.0}, {dl.hydraulics().clamp_force_N(pressure_bar)}));
-    law.set_ring_temperatures(th.interface_temps_C(ts));
-    sim.restart();
-    const double mean_after = th.mean_interface_temp_C(ts), max_after = th.interface_temps_C(ts).maxCoeff();
-    peak_C = std::max(peak_C, max_after);
-    push_thermal(mean_before, max_before, mean_after, max_after, ta, tb, first_new);
-    mean_before = mean_after;
-    max_before = max_after;
-  }
+  run_multirate(sim, law, clutch, ts, D::kCoupling, cfg.duration_s, cfg.slow_step_s, cfg.sample_rate_Hz,
+                push_mechanical, [&](const SlowStep& step) {
+                  // The pump strokes with the relative rotation; |Δθ| over the step is its
+                  // integral of |Δω| unless the slip reversed within the step.
+                  const auto twist = [](const dynamics::Sample& s) {
+                    return s.theta_rad[D::kCouplingIn] - s.theta_rad[D::kCouplingOut];
+                  };
+                  pressure_bar = dl.hydraulics().step_pressure_bar(
+                      pressure_bar, std::abs(twist(step.after) - twist(step.before)), step.tb_s - step.ta_s,
+                      inputs.valve_pressure_bar(step.tb_s));
+                  law.set_normal_force(PiecewiseLinear({0.0}, {dl.hydraulics().clamp_force_N(pressure_bar)}));
+                  const double mean_after = th.mean_interface_temp_C(ts);
+                  const double max_after = th.interface_temps_C(ts).maxCoeff();
+                  peak_C = std::max(peak_C, max_after);
+                  push_thermal(mean_before, max_before, mean_after, max_after, step.ta_s, step.tb_s);
+                  mean_before = mean_after;
+                  max_before = max_after;
+                });
 
+  const double n_if = clutch.params().sliding_interfaces;
   const auto me = sim.energy();
   const auto& cnt = sim.counters();
   // The driveline's lowest oscillating mode with the coupling locked, from the damped

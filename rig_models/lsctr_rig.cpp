@@ -5,6 +5,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "rig_models/multirate_clutch.hpp"
+
 namespace shudder::rig_models {
 
 namespace {
@@ -148,9 +150,11 @@ dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& cl
     const Eigen::VectorXd ring = th.interface_temps_C(s);
     return Temps{s.sensor_temp_C, th.ir_C(s), s.sump_temp_C, th.mean_interface_temp_C(s), ring.maxCoeff()};
   };
-  const auto push_thermal = [&](const Temps& a, const Temps& b, double ta, double tb, std::size_t from) {
+  // Thermal channels: linear between the fields before and after the slow step, for every
+  // sample the step added.
+  const auto push_thermal = [&](const Temps& a, const Temps& b, double ta, double tb) {
     auto& sig = rec.signals;
-    for (std::size_t k = from; k < sig[kT].values.size(); ++k) {
+    for (std::size_t k = sig[kTc].values.size(); k < sig[kT].values.size(); ++k) {
       const double w = tb > ta ? (sig[kT].values[k] - ta) / (tb - ta) : 1.0;
       const auto mix = [w](double x, double y) { return (1 - w) * x + w * y; };
       sig[kTc].values.push_back(mix(a.tc, b.tc));
@@ -161,48 +165,28 @@ dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& cl
     }
   };
 
-  std::vector<double> sample_times;
-  const long n_samples = static_cast<long>(std::floor(cfg.duration_s * cfg.sample_rate_Hz + 1e-9));
-  for (long k = 1; k <= n_samples; ++k) sample_times.push_back(static_cast<double>(k) / cfg.sample_rate_Hz);
   Temps before = temps(ts);
   double peak_interface_C = before.max;
   push_mechanical(sim.sample());
-  push_thermal(before, before, 0.0, 0.0, 0);
+  push_thermal(before, before, 0.0, 0.0);
 
   std::vector<double> snaps = cfg.snapshot_times_s;
   std::sort(snaps.begin(), snaps.end());
   std::size_t next_snap = 0;
-  const int nr = th.radial_cells();
-  Eigen::VectorXd heat_before = Eigen::VectorXd::Zero(nr), heat_now(nr);
-  while (sim.time_s() < cfg.duration_s - 1e-12) {
-    const double ta = sim.time_s();
-    double tb = std::min(ta + cfg.thermal_step_s, cfg.duration_s);
-    // Land exactly on the end: summed steps fall short of it by round-off (1000 x 10 ms gives
-    // 9.99999999999983 s), which would end the loop before the last sample time.
-    if (cfg.duration_s - tb < 1e-9 * cfg.thermal_step_s) tb = cfg.duration_s;
-    const std::size_t first_new = rec.signals[kT].values.size();
-    const auto sa = sim.sample();
-    sim.advance(tb, sample_times, push_mechanical);
-    const auto sb = sim.sample();
-    // Exact energy per ring over the step, and the mean slip for the oil flow.
-    for (int i = 0; i < nr; ++i) heat_now[i] = sim.channel_heat_J(LsctrRig::kClutch, i);
-    const double dt = tb - ta;
-    const double mean_slip = ((sb.theta_rad[0] - sb.theta_rad[1]) - (sa.theta_rad[0] - sa.theta_rad[1])) / dt;
-    th.step(ts, dt, (heat_now - heat_before) / dt, mean_slip);
-    ts.time_s = tb;
-    heat_before = heat_now;
-    law.set_ring_temperatures(th.interface_temps_C(ts));
-    sim.restart();
-    const Temps after = temps(ts);
-    peak_interface_C = std::max(peak_interface_C, after.max);
-    push_thermal(before, after, ta, tb, first_new);
-    before = after;
-    while (next_snap < snaps.size() && snaps[next_snap] <= tb + 0.5 * dt) {
-      rec.snapshots.push_back({tb, th.field_C(ts)});
-      ++next_snap;
-    }
-  }
+  run_multirate(sim, law, clutch, ts, LsctrRig::kClutch, cfg.duration_s, cfg.thermal_step_s, cfg.sample_rate_Hz,
+                push_mechanical, [&](const SlowStep& step) {
+                  const Temps after = temps(ts);
+                  peak_interface_C = std::max(peak_interface_C, after.max);
+                  push_thermal(before, after, step.ta_s, step.tb_s);
+                  before = after;
+                  const double dt = step.tb_s - step.ta_s;
+                  while (next_snap < snaps.size() && snaps[next_snap] <= step.tb_s + 0.5 * dt) {
+                    rec.snapshots.push_back({step.tb_s, th.field_C(ts)});
+                    ++next_snap;
+                  }
+                });
 
+  const int nr = th.radial_cells();
   for (int i = 0; i < nr; ++i) rec.grid_r_m.push_back(th.ring_radius_m()[i]);
   for (int j = 0; j < th.nodes_per_ring(); ++j) rec.grid_z_m.push_back(th.node_z_m()[j]);
   const auto& e = ts.energy;

@@ -1,0 +1,44 @@
+#include "rig_models/multirate_clutch.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace shudder::rig_models {
+
+void run_multirate(dynamics::Simulation& sim, ClutchContactLaw& law, const clutch::WetClutch& clutch,
+                   clutch::ThermalState& ts, int contact, double duration_s, double slow_step_s,
+                   double sample_rate_Hz, const std::function<void(const dynamics::Sample&)>& on_sample,
+                   const std::function<void(const SlowStep&)>& after_step) {
+  std::vector<double> sample_times;
+  const long n_samples = static_cast<long>(std::floor(duration_s * sample_rate_Hz + 1e-9));
+  for (long k = 1; k <= n_samples; ++k) sample_times.push_back(static_cast<double>(k) / sample_rate_Hz);
+
+  const auto& th = clutch.thermal();
+  const auto& c = sim.network().contacts()[static_cast<std::size_t>(contact)];
+  const int nr = th.radial_cells();
+  Eigen::VectorXd heat_before(nr), heat_now(nr);
+  for (int i = 0; i < nr; ++i) heat_before[i] = sim.channel_heat_J(contact, i);
+  while (sim.time_s() < duration_s - 1e-12) {
+    const double ta = sim.time_s();
+    double tb = std::min(ta + slow_step_s, duration_s);
+    if (duration_s - tb < 1e-9 * slow_step_s) tb = duration_s;
+    const auto sa = sim.sample();
+    sim.advance(tb, sample_times, on_sample);
+    const auto sb = sim.sample();
+    const double dt = tb - ta;
+    for (int i = 0; i < nr; ++i) heat_now[i] = sim.channel_heat_J(contact, i);
+    const auto twist = [&](const dynamics::Sample& s) {
+      const auto angle = [&](int node) { return node == dynamics::kGround ? 0.0 : s.theta_rad[node]; };
+      return angle(c.a) - angle(c.b);
+    };
+    const double mean_slip = (twist(sb) - twist(sa)) / dt;
+    th.step(ts, dt, (heat_now - heat_before) / dt, mean_slip);
+    ts.time_s = tb;
+    heat_before = heat_now;
+    law.set_ring_temperatures(th.interface_temps_C(ts));
+    after_step(SlowStep{ta, tb, sa, sb});
+    sim.restart();
+  }
+}
+
+}  // namespace shudder::rig_models

@@ -1,0 +1,33 @@
+#pragma once
+// The multi-rate coupling of DESIGN.md for a torsional network with one wet-clutch contact (the
+// rig's clutch, the Haldex coupling): the torsional states are integrated adaptively to the end
+// of each slow step, sampled on the way; then the clutch's thermal model is advanced over the
+// step with the exact friction energy per ring the integrator accumulated, and the mean slip
+// (relative rotation / step) for the oil flow; the law gets the new ring temperatures, the
+// caller may update other held inputs (a clamp force), and the stepper restarts.
+// Slow steps end exactly on the duration: summed steps fall short of it by round-off
+// (1000 × 10 ms gives 9.99999999999983 s), which would lose the last sample.
+
+#include <functional>
+
+#include "clutch/wet_clutch.hpp"
+#include "dynamics/simulation.hpp"
+#include "rig_models/clutch_contact.hpp"
+
+namespace shudder::rig_models {
+
+struct SlowStep {
+  double ta_s, tb_s;
+  const dynamics::Sample& before;  // at ta_s
+  const dynamics::Sample& after;   // at tb_s, before the restart
+};
+
+/// Runs `sim` from its current time to `duration_s`; `on_sample` gets every sample at
+/// `sample_rate_Hz` (k / rate, k >= 1), `after_step` each completed slow step after the thermal
+/// update of `ts` and the law's temperatures.
+void run_multirate(dynamics::Simulation& sim, ClutchContactLaw& law, const clutch::WetClutch& clutch,
+                   clutch::ThermalState& ts, int contact, double duration_s, double slow_step_s,
+                   double sample_rate_Hz, const std::function<void(const dynamics::Sample&)>& on_sample,
+                   const std::function<void(const SlowStep&)>& after_step);
+
+}  // namespace shudder::rig_models
