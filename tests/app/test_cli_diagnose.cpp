@@ -20,8 +20,7 @@ using test::source_path;
 using test::write_file;
 
 std::string probe(const std::string& extra = "") {
-  std::string s = slurp(source_path("scenarios/diagnosis_probe.toml"));
-  return replace(s, "fluid = \"fluids/", "fluid = \"" + source_path("scenarios/fluids/")) + "\n" + extra;
+  return test::shipped_scenario_text("diagnosis_probe.toml") + "\n" + extra;
 }
 
 // A measured run of the probe (bearing drag hidden), written by `shudder run --measurement`.

@@ -21,8 +21,7 @@ using test::source_path;
 using test::write_file;
 
 std::string tight_turn(const std::string& extra = "") {
-  const std::string s = slurp(source_path("scenarios/driveline_tight_turn.toml"));
-  return replace(s, "fluid = \"fluids/", "fluid = \"" + source_path("scenarios/fluids/")) + extra;
+  return test::shipped_scenario_text("driveline_tight_turn.toml") + extra;
 }
 
 TEST(CliDriveline, RunsTheTightTurnAndWritesItsSignals) {

@@ -34,8 +34,7 @@ using test::source_path;
 using test::write_file;
 
 std::string probe_text(const std::string& extra, double force_N, double temp_C) {
-  std::string s = slurp(source_path("scenarios/diagnosis_probe.toml"));
-  s = replace(s, "fluid = \"fluids/", "fluid = \"" + source_path("scenarios/fluids/"));
+  std::string s = test::shipped_scenario_text("diagnosis_probe.toml");
   s = replace(s, "start_temp_C = 75.0", "start_temp_C = " + std::to_string(temp_C));
   s = replace(s, "normal_force_N = 12000.0", "normal_force_N = " + std::to_string(force_N));
   return s + "\n" + extra;
@@ -159,8 +158,7 @@ INSTANTIATE_TEST_SUITE_P(
 // (breakaway 15 % up after a long stick; the scenario default), τ 0.05 s (Gao et al. report
 // static friction growing within tens of ms of contact; estimate). Both are identifiable here.
 std::string stick_probe_text(const std::string& extra, double speed_rpm) {
-  std::string s = slurp(source_path("scenarios/rig_stick_time_probe.toml"));
-  s = replace(s, "fluid = \"fluids/", "fluid = \"" + source_path("scenarios/fluids/"));
+  std::string s = test::shipped_scenario_text("rig_stick_time_probe.toml");
   s = replace(s, "speed_rpm = [0.5, 0.5]", "speed_rpm = [" + std::to_string(speed_rpm) + ", " + std::to_string(speed_rpm) + "]");
   return s + "\n" + extra;
 }

@@ -64,6 +64,13 @@ inline std::string replace(std::string s, const std::string& from, const std::st
   return pos == std::string::npos ? s : s.replace(pos, from.size(), to);
 }
 
+/// A shipped scenario's text (`rel` under scenarios/) with its fluid path made absolute, so a
+/// copy runs from a scratch directory.
+inline std::string shipped_scenario_text(const std::string& rel) {
+  return replace(slurp(source_path("scenarios/" + rel)), "fluid = \"fluids/",
+                 "fluid = \"" + source_path("scenarios/fluids/"));
+}
+
 struct Outcome {
   CliResult r;
   bool output_exists;  // out.h5 or its temporary exists after the run
