@@ -97,8 +97,7 @@ class Engine {
  private:
   struct Outcome {
     CandidateScore score;
-    std::vector<double> values;  // the candidate's parameters
-    Config config;               // the effects added so far, refitted with it, plus it
+    Config config;               // the effects added so far, refitted with it, plus it (last)
     Predictions predictions;     // fit and hold-out runs at the fitted values
     bool ok = false;
   };
@@ -532,14 +531,14 @@ Engine::Outcome Engine::fit_candidate(const EffectCandidate& c, const Config& fo
       return o;
     }
     o.config = *fitted;
-    o.values = o.config.back().values;
     o.predictions = simulate(o.config, union_runs(fit_, holdout_), 1);
     ++o.score.evaluations;
   } catch (const std::exception& e) {
     o.score.failure = e.what();
     return o;
   }
-  for (std::size_t j = 0; j < k; ++j) o.score.parameters.emplace_back(c.parameter_names[j], o.values[j]);
+  for (std::size_t j = 0; j < k; ++j)
+    o.score.parameters.emplace_back(c.parameter_names[j], o.config.back().values[j]);
   o.score.fit_misfit = misfit(fit_, o.predictions);
   o.score.holdout_misfit = misfit(holdout_, o.predictions);
   o.score.score = o.score.holdout_misfit + opt_.penalty_per_parameter * static_cast<double>(k);
@@ -752,7 +751,7 @@ DiagnosisResult Engine::run() {
     std::vector<CandidateScore> scores;
     for (const auto& o : outcomes) scores.push_back(o.score);
     const Outcome& best = outcomes.front();
-    const double k = static_cast<double>(best.values.size());
+    const double k = static_cast<double>(best.score.parameters.size());
     if (!best.ok || best.score.gain < opt_.min_gain) {
       r.last_round = scores;
       stop = best.ok ? "no candidate lowers the held-out misfit by more than " +
