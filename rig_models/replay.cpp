@@ -88,7 +88,13 @@ ReplayOutput replay(const ReplayModel& model, const ReplayInputs& in) {
   const clutch::WetClutch clutch(cp, model.fluid);
 
   DriveCycle cycle;
-  cycle.slip_speed_rpm = window_means(t, in.speed_rpm, t0, in.input_window_s);
+  // On the rig the measured speed is the drive's; its loop's set point is what drives the model.
+  const bool setpoint = model.rig && in.torque_Nm.size() == t.size();
+  RigParams rp = model.rig_params;
+  rp.bearing_drag = model.settings.bearing_drag;
+  cycle.slip_speed_rpm = window_means(
+      t, setpoint ? estimate_speed_setpoint(t, in.speed_rpm, in.torque_Nm, rp) : in.speed_rpm, t0,
+      in.input_window_s);
   cycle.normal_force_N = window_means(t, in.normal_force_N, t0, in.input_window_s);
 
   dynamics::Recording rec;
@@ -98,11 +104,6 @@ ReplayOutput replay(const ReplayModel& model, const ReplayInputs& in) {
     rs.duration_s = duration;
     rs.thermal_step_s = model.settings.thermal_step_s;
     rs.sample_rate_Hz = model.settings.sample_rate_Hz;
-    RigParams rp = model.rig_params;
-    rp.bearing_drag = model.settings.bearing_drag;
-    if (in.torque_Nm.size() == t.size())
-      cycle.slip_speed_rpm = window_means(
-          t, estimate_speed_setpoint(t, in.speed_rpm, in.torque_Nm, rp), t0, in.input_window_s);
     rec = run_rig(rp, clutch, cycle, rs);
   } else {
     PrescribedSlipSettings ps = model.settings;
