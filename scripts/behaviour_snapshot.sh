@@ -30,6 +30,12 @@ done
 "$shudder" sweep scenarios/sweep_torsion_bar.toml --set rig.torsion_bar.natural_frequency_Hz=100:500:100 \
   --jobs 2 --quiet -o "$out/sweep.h5" > /dev/null
 
+# Validation document (no plots: gnuplot output is not what is compared).
+mkdir -p "$out/validate"
+"$shudder" validate --scenarios scenarios --docs "$out/validate" --no-plots > "$out/validate.txt" 2>&1 || true
+sed -i '/; wrote /d' "$out/validate.txt"
+mv "$out/validate/validation.md" "$out/validation.md" && rmdir "$out/validate"
+
 # Diagnosis worked examples (docs/diagnosis.md sections 1 and 3).
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
