@@ -160,8 +160,13 @@ TEST(EffectRegistry, IsWellFormed) {
       }
     }
   }
-  EXPECT_EQ(rig_models::effect_names_list().substr(0, effect_registry().front().name.size() + 2),
-            effect_registry().front().name + ", ");
+  std::string joined;
+  for (const auto& e : effect_registry()) {
+    EXPECT_EQ(rig_models::find_effect(e.name), &e);
+    joined += (joined.empty() ? "" : ", ") + e.name;
+  }
+  EXPECT_EQ(rig_models::effect_names_list(), joined);
+  EXPECT_EQ(rig_models::find_effect("magic_cooling"), nullptr);
 }
 
 TEST(EffectRegistry, DocsTablesEqualTheRegistry) {
