@@ -17,6 +17,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "clutch/wet_clutch.hpp"
@@ -49,7 +50,8 @@ struct EffectTarget {
 template <class Value>
 struct EffectMember {
   template <class Locate>
-  EffectMember(Locate)  // implicit: registry entries read as data
+    requires std::is_empty_v<Locate>  // stateless: rebuilt inside the two function pointers
+  EffectMember(Locate)                // implicit: registry entries read as data
       : get([](EffectTarget& t) -> Value& { return Locate{}(t); }),
         get_const([](const ConstEffectTarget& t) -> const Value& { return Locate{}(t); }) {}
 
