@@ -30,6 +30,7 @@
 //              speed change, dwell at low speed, normal force, time); the strongest is named.
 
 #include <functional>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -80,7 +81,9 @@ struct DiagnosisOptions {
   double noise_tolerance = 1.1;       // "within noise": every signal's RMS <= this × sigma
   double min_gain = 0.05;             // hold-out misfit drop needed (noise variance units)
   double penalty_per_parameter = 0.02;  // per fitted parameter, same units
-  int max_effects = 9;                // at most this many effects added (9: every FORMATS effect)
+  // At most this many effects added; the default is no limit (`shudder diagnose` passes the
+  // registry's effect count, rig_models/effect_registry.hpp, which is also no limit).
+  int max_effects = std::numeric_limits<int>::max();
   int max_samples_per_run = 1500;     // residuals use every k-th sample beyond this
   int max_evaluations = 60;           // LM model evaluations per fit (each = all fit runs)
   double min_noise_torque_Nm = 1e-3;  // floors for the noise estimate (noise-free data)

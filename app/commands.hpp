@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "rig_models/effect_registry.hpp"
+
 namespace shudder::app {
 
 struct RunOptions {
@@ -65,7 +67,7 @@ struct DiagnoseOptions {
   std::string json;               // diagnosis JSON path; empty = none
   std::string report;             // report directory; empty = none
   unsigned jobs = 0;              // 0 = all cores
-  int max_effects = 9;            // effects added at most (9 = every effect)
+  int max_effects = static_cast<int>(rig_models::effect_registry().size());  // added at most (default: all)
 };
 int diagnose_command(const DiagnoseOptions& options);
 

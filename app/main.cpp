@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+#include <string>
 
 #include "app/commands.hpp"
 
@@ -73,8 +74,10 @@ int main(int argc, char** argv) {
                        "Also write a report directory: summary, candidate table, plots");
   diag_cmd->add_option("--jobs", diagnose.jobs, "Parallel fits (default: all cores)")
       ->check(CLI::Range(1u, 1024u));
-  diag_cmd->add_option("--max-effects", diagnose.max_effects, "Add at most this many effects (default 9: no limit)")
-      ->check(CLI::Range(0, 9));
+  const int effect_count = static_cast<int>(shudder::rig_models::effect_registry().size());
+  diag_cmd->add_option("--max-effects", diagnose.max_effects,
+                       "Add at most this many effects (default " + std::to_string(effect_count) + ": no limit)")
+      ->check(CLI::Range(0, effect_count));
 
   try {
     app.parse(argc, argv);

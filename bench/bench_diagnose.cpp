@@ -17,7 +17,8 @@
 //                              act with imposed slip, so 8 candidates; the diagnosis should re-add
 //                              temperature dependence, oil cooling, sump heating, load dependence
 //                              and the rig heat capacity (five rounds). The main figure.
-//                              Arg = max_effects: 9 (the default: no limit in practice) and 4
+//                              Arg = max_effects: the registry's effect count (the CLI default:
+//                              no limit) and 4
 //                              (a search cut short).
 //   BM_Diagnose_Case2_Defaults the realistic case: Case 2 as shipped (its default effects on),
 //                              candidates = the effects it has off (stick-time skipped).
@@ -40,11 +41,11 @@
 #include <unistd.h>
 
 #include "analysis/diagnosis.hpp"
-#include "clutch/effects.hpp"
 #include "io/diagnosis_inputs.hpp"
 #include "io/measured_run.hpp"
 #include "io/measurement_csv.hpp"
 #include "io/scenario.hpp"
+#include "rig_models/effect_registry.hpp"
 #include "rig_models/prescribed_slip.hpp"
 #include "rig_models/replay.hpp"
 
@@ -180,8 +181,8 @@ void run_diagnosis(benchmark::State& state, const std::string& model_text, const
 // (`shudder diagnose --max-effects`).
 void BM_Diagnose_Case2_AllOff(benchmark::State& state) {
   std::string text = read_file(kCase2Path);
-  for (auto name : clutch::kEffectNames)
-    text += "\n[effects." + std::string(name) + "]\nenabled = false\n";
+  for (const auto& effect : rig_models::effect_registry())
+    text += "\n[effects." + effect.name + "]\nenabled = false\n";
   const int max_effects = static_cast<int>(state.range(0));
   run_diagnosis(state, text, "Diagnose_Case2_AllOff/" + std::to_string(max_effects), max_effects);
 }
@@ -193,5 +194,7 @@ void BM_Diagnose_Case2_Defaults(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_Diagnose_Case2_AllOff)->Arg(9)->Arg(4)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+BENCHMARK(BM_Diagnose_Case2_AllOff)
+    ->Arg(static_cast<int>(rig_models::effect_registry().size()))
+    ->Arg(4)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_Diagnose_Case2_Defaults)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();

@@ -1,12 +1,13 @@
 #include "io/scenario.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
-#include "clutch/effects.hpp"
 #include "io/fluid_loader.hpp"
 #include "io/toml_reader.hpp"
+#include "rig_models/effect_registry.hpp"
 
 namespace shudder::io {
 
@@ -197,72 +198,46 @@ void read_driveline(TomlTable& root, Scenario& s) {
   m.finish();
 }
 
+// The scenario's structs that effects write into (the registry's EffectTarget).
+rig_models::EffectTarget effect_target(Scenario& s) { return {s.clutch, s.settings.bearing_drag, s.rig.stick_time}; }
+
+ModelKind model_kind(const Scenario& s) {
+  if (s.type == "rig") return ModelKind::kRig;
+  if (s.type == "driveline") return ModelKind::kDriveline;
+  return ModelKind::kPrescribedSlip;
+}
+
+Range toml_range(const rig_models::ValueRange& r) { return {r.min, r.max, r.min_exclusive, r.max_exclusive}; }
+
+// `[effects.NAME]` per the registry: `enabled`, then each parameter (read in the key's unit,
+// stored in SI), then each choice; an enabled effect inert in this kind of scenario is a warning.
 void read_effects(TomlTable& root, Scenario& s) {
-  auto& p = s.clutch;
-  auto& th = p.thermal;
-  auto& drag = s.settings.bearing_drag;
   auto effects = root.optional_table("effects");
   if (!effects) return;
-  for (const auto& name : effects->subtable_keys()) {
-    bool known = false;
-    for (auto n : clutch::kEffectNames) known = known || n == name;
-    if (!known) {
-      std::string list;
-      for (auto n : clutch::kEffectNames) list += (list.empty() ? "" : ", ") + std::string(n);
-      effects->fail(name, "unknown effect; valid effects are: " + list);
+  for (const auto& name : effects->subtable_keys())
+    if (!rig_models::find_effect(name))
+      effects->fail(name, "unknown effect; valid effects are: " + rig_models::effect_names_list());
+  auto target = effect_target(s);
+  for (const auto& effect : rig_models::effect_registry()) {
+    auto t = effects->optional_table(effect.name);
+    if (!t) continue;
+    effect.enabled(target) = t->boolean("enabled");
+    for (const auto& p : effect.parameters) {
+      double& member = p.member(target);
+      member = t->number_or(p.key, member * p.scale.to_key, toml_range(p.range)) * p.scale.to_si;
     }
-  }
-  const auto section = [&](const char* name, bool& enabled, auto&& read_params) {
-    auto t = effects->optional_table(name);
-    if (!t) return;
-    enabled = t->boolean("enabled");
-    read_params(*t);
+    for (const auto& c : effect.choices) {
+      const std::string chosen = t->choice_or(c.key, c.options.at(c.get(target)), c.options);
+      c.set(target, static_cast<std::size_t>(std::find(c.options.begin(), c.options.end(), chosen) -
+                                              c.options.begin()));
+    }
     t->finish();
-  };
-  section("temperature_dependent_friction", p.temperature_dependent_friction, [](TomlTable&) {});
-  section("interface_oil_cooling", th.interface_oil_cooling, [&](TomlTable& t) {
-    auto& f = th.oil_flow;
-    f.a = t.number_or("a", f.a);
-    f.b = t.number_or("b", f.b, Range::closed(-5.0, 5.0));
-    f.c = t.number_or("c", f.c);
-    f.d = t.number_or("d", f.d, Range::closed(-5.0, 5.0));
-    f.e = t.number_or("e", f.e);
-    const std::string form = t.choice_or(
-        "film_advection",
-        f.form == clutch::FilmAdvectionForm::kPaperGLiteral ? "paper_g_literal" : "film_energy_balance",
-        {"paper_g_literal", "film_energy_balance"});
-    f.form = form == "paper_g_literal" ? clutch::FilmAdvectionForm::kPaperGLiteral
-                                       : clutch::FilmAdvectionForm::kFilmEnergyBalance;
-  });
-  section("sump_heating", th.sump_heating, [](TomlTable&) {});
-  section("rig_heat_capacity", th.rig_heat_capacity, [&](TomlTable& t) {
-    th.rig_heat_capacity_J_per_K = t.number_or("heat_capacity_J_per_K", th.rig_heat_capacity_J_per_K, Range::positive());
-    th.rig_conductance_W_per_K = t.number_or("conductance_W_per_K", th.rig_conductance_W_per_K, Range::non_negative());
-  });
-  section("temperature_sensor_lag", th.temperature_sensor_lag, [&](TomlTable& t) {
-    th.sensor_time_constant_s = t.number_or("time_constant_s", th.sensor_time_constant_s, Range::positive());
-  });
-  section("viscous_shear", p.viscous_shear, [&](TomlTable& t) {
-    p.viscous_gap_m = t.number_or("gap_um", p.viscous_gap_m * 1e6, Range::positive()) * 1e-6;
-  });
-  section("load_dependent_friction", p.load_dependent_friction, [&](TomlTable& t) {
-    p.reference_load_N = t.number_or("reference_load_N", p.reference_load_N, Range::closed(1.0, kMaxForce_N));
-  });
-  section("bearing_drag", drag.enabled, [&](TomlTable& t) {
-    drag.equivalent_mu = t.number_or("equivalent_mu", drag.equivalent_mu, Range::closed(0.0, 0.1));
-    drag.radius_m = t.number_or("radius_mm", drag.radius_m * 1e3, Range::positive()) * 1e-3;
-  });
-  auto& stick = s.rig.stick_time;
-  section("stick_time_static_friction", stick.enabled, [&](TomlTable& t) {
-    stick.max_increase = t.number_or("max_increase", stick.max_increase, Range::closed(0.0, 5.0));
-    stick.time_constant_s = t.number_or("time_constant_s", stick.time_constant_s, Range::positive());
-  });
-  if (drag.enabled && s.type == "driveline")
-    s.warnings.push_back("effect bearing_drag has no effect in a driveline scenario (it is the rig's "
-                         "torque-cell bearing)");
-  if (stick.enabled && s.type == "prescribed_slip")
-    s.warnings.push_back("effect stick_time_static_friction has no effect in a prescribed_slip "
-                         "scenario (the slip is imposed, nothing sticks)");
+  }
+  const ModelKind kind = model_kind(s);
+  for (const auto& effect : rig_models::effect_registry())
+    if (const auto why = rig_models::inert_reason(effect, kind); why && effect.enabled(target))
+      s.warnings.push_back("effect " + effect.name + " has no effect in a " +
+                           std::string(model_kind_name(kind)) + " scenario (" + std::string(*why) + ")");
   effects->finish();
 }
 
@@ -345,18 +320,9 @@ Scenario load_scenario_text(const std::string& text, const std::string& path) {
   s.driveline.stick_time = s.rig.stick_time;
   root.finish();
 
-  const auto& th = s.clutch.thermal;
-  const auto& p = s.clutch;
-  const auto on = [&](const char* n, bool b) { if (b) s.enabled_effects.emplace_back(n); };
-  on("temperature_dependent_friction", p.temperature_dependent_friction);
-  on("interface_oil_cooling", th.interface_oil_cooling);
-  on("sump_heating", th.sump_heating);
-  on("rig_heat_capacity", th.rig_heat_capacity);
-  on("temperature_sensor_lag", th.temperature_sensor_lag);
-  on("bearing_drag", s.settings.bearing_drag.enabled);
-  on("stick_time_static_friction", s.rig.stick_time.enabled);
-  on("viscous_shear", p.viscous_shear);
-  on("load_dependent_friction", p.load_dependent_friction);
+  const auto target = effect_target(s);
+  for (const auto& effect : rig_models::effect_registry())
+    if (effect.enabled(target)) s.enabled_effects.push_back(effect.name);
   return s;
 }
 

@@ -30,7 +30,7 @@ struct Scenario {
   rig_models::RigParams rig;                    // type "rig" only
   rig_models::DrivelineParams driveline;        // type "driveline" only
   rig_models::DrivelineInputs manoeuvre;        // type "driveline" only
-  std::vector<std::string> enabled_effects;  // names from clutch::kEffectNames
+  std::vector<std::string> enabled_effects;  // registry names (rig_models/effect_registry.hpp)
   std::vector<std::string> warnings;         // accepted but worth telling the user
 
   /// Builds the clutch; throws InputError if the parameters are inconsistent.

@@ -5,7 +5,6 @@
 #include <regex>
 #include <stdexcept>
 
-#include "clutch/effects.hpp"
 #include "rig_models/speed_setpoint.hpp"
 
 namespace shudder::rig_models {
@@ -122,91 +121,39 @@ ReplayOutput replay(const ReplayModel& model, const ReplayInputs& in) {
   return out;
 }
 
-// ---- effect catalogue -------------------------------------------------------------------
+// ---- effects (from the registry) -------------------------------------------------------
 
 namespace {
 
-// Bounds are wide physical limits, not priors; starts span the plausible range so the
-// least-squares fit begins in the right basin (a heat capacity of 30 kJ/K would let a missing
-// oil flow pass for stored heat, hence the upper bound of 5 kJ/K: the whole rig side of the
-// clutch, ~10 kg of steel).
-const std::vector<EffectSpec>& catalogue() {
-  static const std::vector<EffectSpec> k = {
-      {"temperature_dependent_friction", "friction follows the interface temperature", {}, {}},
-      {"interface_oil_cooling", "oil through the interface carries heat away (Paper G eq. 12)",
-       {{"e", 1e-5, 1.0}}, {{0.016}, {0.004}, {0.064}}},
-      {"sump_heating", "the sump warms with the heat carried out (Paper G eq. 7)", {}, {}},
-      {"rig_heat_capacity", "rig parts beyond the discs store heat and give it back",
-       {{"heat_capacity_J_per_K", 1.0, 5000.0}, {"conductance_W_per_K", 0.01, 1000.0}},
-       {{150.0, 10.0}, {600.0, 30.0}, {50.0, 3.0}}},
-      {"temperature_sensor_lag", "the temperature sensor lags the disc",
-       {{"time_constant_s", 1e-3, 100.0}}, {{0.3}, {1.0}, {3.0}}},
-      {"bearing_drag", "the torque cell also carries bearing friction",
-       {{"equivalent_mu", 1e-6, 0.1}}, {{0.001}, {0.005}, {0.02}}},
-      {"stick_time_static_friction", "breakaway friction grows with the time stuck",
-       {{"max_increase", 1e-3, 5.0}, {"time_constant_s", 1e-3, 100.0}},
-       {{0.15, 0.05}, {0.15, 0.5}, {0.4, 0.1}}},
-      {"viscous_shear", "a viscous torque of the oil film, proportional to viscosity and speed",
-       {{"gap_um", 0.01, 1e4}}, {{0.3}, {1.0}, {3.0}}},
-      {"load_dependent_friction", "friction depends on the normal force", {}, {}},
-  };
-  return k;
+const EffectDefinition& known_effect(std::string_view name) {
+  if (const auto* e = find_effect(name)) return *e;
+  throw std::invalid_argument("unknown effect '" + std::string(name) + "'; valid effects are: " +
+                              effect_names_list());
 }
+
+ModelKind model_kind(const ReplayModel& m) { return m.rig ? ModelKind::kRig : ModelKind::kPrescribedSlip; }
 
 }  // namespace
 
-const EffectSpec& effect_spec(std::string_view name) {
-  for (const auto& e : catalogue())
-    if (e.name == name) return e;
-  std::string list;
-  for (const auto& e : catalogue()) list += (list.empty() ? "" : ", ") + e.name;
-  throw std::invalid_argument("unknown effect '" + std::string(name) + "'; valid effects are: " + list);
+EffectTarget effect_target(ReplayModel& m) { return {m.clutch, m.settings.bearing_drag, m.rig_params.stick_time}; }
+
+ConstEffectTarget effect_target(const ReplayModel& m) {
+  return {m.clutch, m.settings.bearing_drag, m.rig_params.stick_time};
 }
 
 bool effect_enabled(const ReplayModel& m, std::string_view name) {
-  const auto& th = m.clutch.thermal;
-  if (name == "temperature_dependent_friction") return m.clutch.temperature_dependent_friction;
-  if (name == "interface_oil_cooling") return th.interface_oil_cooling;
-  if (name == "sump_heating") return th.sump_heating;
-  if (name == "rig_heat_capacity") return th.rig_heat_capacity;
-  if (name == "temperature_sensor_lag") return th.temperature_sensor_lag;
-  if (name == "bearing_drag") return m.settings.bearing_drag.enabled;
-  if (name == "stick_time_static_friction") return m.rig_params.stick_time.enabled;
-  if (name == "viscous_shear") return m.clutch.viscous_shear;
-  if (name == "load_dependent_friction") return m.clutch.load_dependent_friction;
-  effect_spec(name);  // throws with the valid names
-  return false;
+  return known_effect(name).enabled(effect_target(m));
 }
 
 void enable_effect(ReplayModel& m, std::string_view name, const std::vector<double>& v) {
-  const auto& spec = effect_spec(name);
-  if (v.size() != spec.parameters.size())
-    throw std::invalid_argument("effect " + spec.name + " takes " + std::to_string(spec.parameters.size()) +
+  const auto& effect = known_effect(name);
+  const auto fitted = fitted_parameters(effect);
+  if (v.size() != fitted.size())
+    throw std::invalid_argument("effect " + effect.name + " takes " + std::to_string(fitted.size()) +
                                 " parameters, got " + std::to_string(v.size()));
-  auto& th = m.clutch.thermal;
-  if (name == "temperature_dependent_friction") m.clutch.temperature_dependent_friction = true;
-  else if (name == "interface_oil_cooling") {
-    th.interface_oil_cooling = true;
-    th.oil_flow.e = v[0];
-  } else if (name == "sump_heating") th.sump_heating = true;
-  else if (name == "rig_heat_capacity") {
-    th.rig_heat_capacity = true;
-    th.rig_heat_capacity_J_per_K = v[0];
-    th.rig_conductance_W_per_K = v[1];
-  } else if (name == "temperature_sensor_lag") {
-    th.temperature_sensor_lag = true;
-    th.sensor_time_constant_s = v[0];
-  } else if (name == "bearing_drag") {
-    m.settings.bearing_drag.enabled = true;
-    m.settings.bearing_drag.equivalent_mu = v[0];
-  } else if (name == "stick_time_static_friction") {
-    m.rig_params.stick_time.enabled = true;
-    m.rig_params.stick_time.max_increase = v[0];
-    m.rig_params.stick_time.time_constant_s = v[1];
-  } else if (name == "viscous_shear") {
-    m.clutch.viscous_shear = true;
-    m.clutch.viscous_gap_m = v[0] * 1e-6;
-  } else if (name == "load_dependent_friction") m.clutch.load_dependent_friction = true;
+  auto target = effect_target(m);
+  effect.enabled(target) = true;
+  for (std::size_t i = 0; i < fitted.size(); ++i) fitted[i]->member(target) = v[i] * fitted[i]->scale.to_si;
 }
 
 analysis::Simulator replay_simulator(ReplayModel model, std::vector<ReplayInputs> inputs) {
@@ -222,22 +169,29 @@ analysis::Simulator replay_simulator(ReplayModel model, std::vector<ReplayInputs
 
 std::vector<analysis::EffectCandidate> replay_candidates(const ReplayModel& model,
                                                          std::vector<std::string>* skipped) {
+  const auto target = effect_target(model);
   std::vector<analysis::EffectCandidate> out;
-  for (auto name : clutch::kEffectNames) {
-    if (effect_enabled(model, name)) continue;
-    if (name == "stick_time_static_friction" && !model.rig) {
-      if (skipped) skipped->push_back("stick_time_static_friction: the slip is imposed, nothing sticks");
+  for (const auto& effect : effect_registry()) {
+    if (effect.enabled(target)) continue;
+    if (const auto why = inert_reason(effect, model_kind(model))) {
+      if (skipped) skipped->push_back(effect.name + ": " + std::string(*why));
       continue;
     }
-    const auto& spec = effect_spec(name);
     analysis::EffectCandidate c;
-    c.name = spec.name;
-    c.description = spec.description;
-    c.starts = spec.starts;
-    for (const auto& p : spec.parameters) {
-      c.parameter_names.push_back(p.name);
-      c.lower.push_back(p.lower);
-      c.upper.push_back(p.upper);
+    c.name = effect.name;
+    c.description = effect.description;
+    const auto fitted = fitted_parameters(effect);
+    for (const auto* p : fitted) {
+      c.parameter_names.push_back(p->key);
+      c.lower.push_back(p->fit->lower);
+      c.upper.push_back(p->fit->upper);
+    }
+    // Start j of the effect is the j-th start of each fitted parameter.
+    const std::size_t starts = fitted.empty() ? 0 : fitted.front()->fit->starts.size();
+    for (std::size_t j = 0; j < starts; ++j) {
+      std::vector<double> start;
+      for (const auto* p : fitted) start.push_back(p->fit->starts.at(j));
+      c.starts.push_back(std::move(start));
     }
     out.push_back(std::move(c));
   }

@@ -16,8 +16,8 @@
 // The model's own recording rate is kept and its torque_Nm and temp_C are interpolated
 // linearly to the measured times, as `shudder run --measurement` resamples its recording.
 //
-// The effect catalogue lists, per FORMATS.md effect, the parameters the diagnosis fits (names
-// as the scenario keys of docs/scenario_format.md), their bounds and starting guesses.
+// The effects the diagnosis can add, their fitted parameters, bounds and starting guesses come
+// from the effect registry (rig_models/effect_registry.hpp).
 
 #include <optional>
 #include <string>
@@ -27,6 +27,7 @@
 #include "analysis/diagnosis.hpp"
 #include "clutch/fluid.hpp"
 #include "clutch/wet_clutch.hpp"
+#include "rig_models/effect_registry.hpp"
 #include "rig_models/lsctr_rig.hpp"
 #include "rig_models/prescribed_slip.hpp"
 
@@ -58,29 +59,21 @@ ReplayOutput replay(const ReplayModel& model, const ReplayInputs& inputs);
 /// Parses "r_mm=48 z_mm=0.5" out of a temp_sensor metadata value (either may be absent).
 void parse_temp_sensor(const std::string& value, ReplayInputs& inputs);
 
-struct EffectParameterSpec {
-  std::string name;     // scenario key
-  double lower, upper;  // fit bounds (> 0)
-};
+/// The structs a model's effects write into (rig_models/effect_registry.hpp).
+EffectTarget effect_target(ReplayModel& model);
+ConstEffectTarget effect_target(const ReplayModel& model);
 
-struct EffectSpec {
-  std::string name;
-  std::string description;
-  std::vector<EffectParameterSpec> parameters;  // fitted when the effect is added
-  std::vector<std::vector<double>> starts;      // starting guesses for the fit
-};
-
-/// The catalogue entry of a FORMATS.md effect; std::invalid_argument listing the valid names.
-const EffectSpec& effect_spec(std::string_view name);
+/// Whether the registry effect `name` is on; std::invalid_argument listing the valid names.
 bool effect_enabled(const ReplayModel& model, std::string_view name);
-/// Switches the effect on with parameter values in EffectSpec::parameters order.
+/// Switches the effect on with values (in its keys' units) of its fitted parameters, in
+/// registry order; std::invalid_argument for an unknown name or a wrong number of values.
 void enable_effect(ReplayModel& model, std::string_view name, const std::vector<double>& values);
 
 /// The diagnosis' simulator: run k replays inputs[k] on `model` plus the added effects.
 analysis::Simulator replay_simulator(ReplayModel model, std::vector<ReplayInputs> inputs);
 
-/// Every FORMATS.md effect the model has off, as a diagnosis candidate. Effects that cannot act
-/// in this model (stick-time friction with imposed slip) are left out, with a note in `skipped`.
+/// Every registry effect the model has off, as a diagnosis candidate. Effects inert in this
+/// model's kind (stick-time friction with imposed slip) are left out, with a note in `skipped`.
 std::vector<analysis::EffectCandidate> replay_candidates(const ReplayModel& model,
                                                          std::vector<std::string>* skipped);
 
