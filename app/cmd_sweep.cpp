@@ -13,16 +13,18 @@
 #include <iostream>
 #include <mutex>
 #include <thread>
+#include <variant>
 
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
+#include "core/overloaded.hpp"
 #include "io/hdf5_run.hpp"
 #include "io/hdf5_sweep.hpp"
 #include "io/input_error.hpp"
 #include "io/plots.hpp"
 #include "io/scenario.hpp"
 #include "io/sweep_spec.hpp"
-#include "rig_models/case_evaluation.hpp"
+#include "rig_models/model.hpp"
 
 namespace shudder::app {
 
@@ -40,14 +42,22 @@ double verdict_code(const std::string& v) {
   return 0;
 }
 
+[[noreturn]] void refuse_driveline(const std::string& path) {
+  throw io::InputError(path, 0, "scenario.type",
+                       "sweeps judge rig and prescribed_slip cases (stability, shudder); a driveline "
+                       "scenario runs with `shudder run`");
+}
+
 // Runs one case and writes its part file (recording + outcome as summary scalars).
 void run_case(const std::string& text, const std::string& path, const std::string& part) {
   const io::Scenario sc = io::load_scenario_text(text, path);
   const clutch::WetClutch clutch = sc.make_clutch();
   dynamics::Recording rec;
-  const rig_models::CaseOutcome o =
-      sc.type == "rig" ? rig_models::evaluate_rig_case(sc.rig, clutch, sc.cycle, sc.rig_settings(), rec)
-                       : rig_models::evaluate_prescribed_case(clutch, sc.cycle, sc.settings, rec);
+  const rig_models::CaseOutcome o = std::visit(
+      overloaded{[&](const rig_models::PrescribedSlipModel& m) { return rig_models::evaluate_case(m, clutch, rec); },
+                 [&](const rig_models::RigModel& m) { return rig_models::evaluate_case(m, clutch, rec); },
+                 [&](const rig_models::DrivelineModel&) -> rig_models::CaseOutcome { refuse_driveline(path); }},
+      sc.model);
   dynamics::Recording kept;
   for (const char* name : kKeptSignals)
     if (const auto* s = rec.find(name)) kept.signals.push_back(*s);
@@ -76,10 +86,9 @@ void progress(std::size_t done, std::size_t total, double elapsed_s) {
 int sweep_command(const SweepOptions& opt) {
   return guarded(opt.scenario, "sweep", [&]() -> int {
     const io::Scenario base = io::load_scenario(opt.scenario);
-    if (base.type == "driveline")
-      throw io::InputError(opt.scenario, 0, "scenario.type",
-                           "sweeps judge rig and prescribed_slip cases (stability, shudder); a driveline "
-                           "scenario runs with `shudder run`");
+    std::visit(overloaded{[](const rig_models::PrescribedSlipModel&) {}, [](const rig_models::RigModel&) {},
+                          [&](const rig_models::DrivelineModel&) { refuse_driveline(opt.scenario); }},
+               base.model);
     for (const auto& w : base.warnings) std::cerr << "shudder: warning: " << w << "\n";
     if (opt.sets.empty()) throw io::InputError("--set", 0, "", "give at least one --set KEY=START:STOP:STEP");
     std::vector<io::SweepAxis> axes;

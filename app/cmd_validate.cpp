@@ -12,16 +12,19 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
 #include "app/summary.hpp"
+#include "core/overloaded.hpp"
+#include "core/units.hpp"
 #include "io/atomic_file.hpp"
 #include "io/gnuplot.hpp"
 #include "io/input_error.hpp"
 #include "io/scenario.hpp"
-#include "rig_models/prescribed_slip.hpp"
+#include "rig_models/model.hpp"
 
 namespace shudder::app {
 namespace {
@@ -45,8 +48,15 @@ enum { k10kN, k25kN, kNoOil, kConstT, kPaperB, kCase2 };
 
 struct Run {
   io::Scenario sc;
+  rig_models::PrescribedSlipModel model;  // Paper G's runs are prescribed slip
   dynamics::Recording rec;
 };
+
+[[noreturn]] void refuse_kind(const std::string& path, ModelKind kind) {
+  throw io::InputError(path, 0, "scenario.type",
+                       std::string("is ").append(model_kind_name(kind)).append(
+                           "; validation compares prescribed_slip runs with the papers"));
+}
 
 struct Row {
   std::string case_label, quantity, target, result, pass;  // pass: "yes", "NO" or "–" (info)
@@ -157,7 +167,7 @@ void write_oil_flow(std::ostream& md, const std::vector<Run>& runs) {
     const std::string cells =
         th.interface_oil_cooling
             ? fmt("%g | %g | %g | %g | %g | `%s` | %g", f.a, f.b, f.c, f.d, f.e,
-                  form_name(f.form).c_str(), th.supply_flow_m3_s * 6e7)
+                  form_name(f.form).c_str(), units::m3_s_to_ml_min(th.supply_flow_m3_s))
             : std::string("– | – | – | – | – | off (`interface_oil_cooling` disabled) | –");
     auto it = groups.begin();
     while (it != groups.end() && it->first != cells) ++it;
@@ -177,7 +187,7 @@ void write_oil_flow(std::ostream& md, const std::vector<Run>& runs) {
 
 void write_case2(std::ostream& md, const Run& run) {
   std::set<double> times;
-  const auto bp = run.sc.cycle.slip_speed_rpm.times_s();
+  const auto bp = run.model.cycle.slip_speed_rpm.times_s();
   for (std::size_t i = 0; i < bp.size(); ++i) {
     times.insert(bp[i]);
     if (i + 1 < bp.size()) times.insert(0.5 * (bp[i] + bp[i + 1]));
@@ -190,7 +200,7 @@ void write_case2(std::ostream& md, const Run& run) {
      << "| t [s] | speed [rpm] | torque [Nm] | thermocouple [°C] | IR [°C] | sump [°C] |\n"
      << "|---:|---:|---:|---:|---:|---:|\n";
   for (double t : times) {
-    if (t > run.sc.settings.duration_s) continue;
+    if (t > run.model.settings.duration_s) continue;
     md << fmt("| %.1f | %.1f | %.2f | %.2f | %.2f | %.2f |\n", t,
               signal_at(run.rec, "speed_rpm", t), signal_at(run.rec, "torque_Nm", t),
               signal_at(run.rec, "temp_C", t), signal_at(run.rec, "ir_temp_C", t),
@@ -275,7 +285,7 @@ std::vector<Figure> write_plots(const fs::path& docs, const std::vector<Run>& ru
   }
   {  // Case 2 against slip speed: up-ramp vs down-ramp.
     const auto& r = runs[kCase2].rec;
-    const auto bp = runs[kCase2].sc.cycle.slip_speed_rpm.times_s();  // 0, 5, 15, 17, 27, 30
+    const auto bp = runs[kCase2].model.cycle.slip_speed_rpm.times_s();  // 0, 5, 15, 17, 27, 30
     io::Plot p;
     p.title = "Case 2, 14.8 kN: up-ramp vs down-ramp";
     p.xlabel = "slip speed [rpm]";
@@ -362,7 +372,16 @@ int validate_command(const ValidateOptions& opt) {
       Run r;
       r.sc = io::load_scenario((fs::path(opt.scenarios_dir) / (std::string(c.name) + ".toml")).string());
       for (const auto& w : r.sc.warnings) std::cerr << "shudder: warning: " << w << "\n";
-      r.rec = rig_models::run_prescribed_slip(r.sc.make_clutch(), r.sc.cycle, r.sc.settings);
+      r.model = std::visit(
+          overloaded{[](const rig_models::PrescribedSlipModel& m) { return m; },
+                     [&](const rig_models::RigModel& m) -> rig_models::PrescribedSlipModel {
+                       refuse_kind(r.sc.path, rig_models::kind(m));
+                     },
+                     [&](const rig_models::DrivelineModel& m) -> rig_models::PrescribedSlipModel {
+                       refuse_kind(r.sc.path, rig_models::kind(m));
+                     }},
+          r.sc.model);
+      r.rec = rig_models::simulate(r.model, r.sc.make_clutch());
       runs.push_back(std::move(r));
     }
     const std::vector<Row> rows = evaluate(runs);

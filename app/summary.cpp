@@ -5,6 +5,10 @@
 #include <cstdio>
 #include <limits>
 #include <set>
+#include <string>
+#include <variant>
+
+#include "core/overloaded.hpp"
 
 namespace shudder::app {
 
@@ -29,11 +33,11 @@ double scalar(const dynamics::Recording& rec, const char* name) {
 }
 
 // A driveline run: the car, the coupling and its hydraulics at key times.
-void print_driveline_summary(std::ostream& os, const io::Scenario& sc, const dynamics::Recording& rec) {
-  const double end = sc.settings.duration_s;
+void print_section(std::ostream& os, const rig_models::DrivelineModel& model, const dynamics::Recording& rec) {
+  const double end = model.settings.duration_s;
   char line[512];
   std::set<double> times{0.0, end};
-  for (double t : sc.manoeuvre.engine_torque_Nm.times_s()) if (t > 0 && t < end) times.insert(t);
+  for (double t : model.manoeuvre.engine_torque_Nm.times_s()) if (t > 0 && t < end) times.insert(t);
   for (int k = 1; k < 5; ++k) times.insert(end * k / 5.0);
   os << "   t [s]  car [km/h]  engine [rpm]  engine [Nm]  coupling slip [rpm]  coupling [Nm]  rear axle [Nm]"
         "  pressure [bar]  interface max [C]\n";
@@ -66,25 +70,13 @@ void print_driveline_summary(std::ostream& os, const io::Scenario& sc, const dyn
   os << line;
 }
 
-}  // namespace
-
-void print_run_summary(std::ostream& os, const io::Scenario& sc, const dynamics::Recording& rec) {
-  const double end = sc.settings.duration_s;
+// The rig and prescribed slip: the drive cycle's key times, temperatures and the heat account.
+void print_drive_cycle_section(std::ostream& os, const rig_models::DriveCycle& cycle, double end,
+                               const dynamics::Recording& rec) {
   char line[512];
-  std::snprintf(line, sizeof line, "Scenario  %s (%s), fluid %s, %.3g s simulated\n",
-                sc.name.c_str(), sc.type.c_str(), sc.fluid.name.c_str(), end);
-  os << line;
-  os << "Effects on:";
-  for (const auto& e : sc.enabled_effects) os << " " << e;
-  os << "\n\n";
-  if (sc.type == "driveline") {
-    print_driveline_summary(os, sc, rec);
-    return;
-  }
-
   // Key times: every drive breakpoint inside the run, five even splits, and the end.
   std::set<double> times{0.0, end};
-  for (double t : sc.cycle.slip_speed_rpm.times_s()) if (t > 0 && t < end) times.insert(t);
+  for (double t : cycle.slip_speed_rpm.times_s()) if (t > 0 && t < end) times.insert(t);
   for (int k = 1; k < 5; ++k) times.insert(end * k / 5.0);
   os << "   t [s]  speed [rpm]  force [kN]  torque [Nm]  thermocouple [C]  IR [C]  sump [C]\n";
   for (double t : times) {
@@ -108,7 +100,15 @@ void print_run_summary(std::ostream& os, const io::Scenario& sc, const dynamics:
                 scalar(rec, "heat_to_sump_J"), scalar(rec, "heat_to_rig_J"),
                 scalar(rec, "energy_balance_relative_error"));
   os << line;
-  if (sc.type != "rig") return;
+}
+
+void print_section(std::ostream& os, const rig_models::PrescribedSlipModel& model, const dynamics::Recording& rec) {
+  print_drive_cycle_section(os, model.cycle, model.settings.duration_s, rec);
+}
+
+void print_section(std::ostream& os, const rig_models::RigModel& model, const dynamics::Recording& rec) {
+  print_drive_cycle_section(os, model.cycle, model.settings.duration_s, rec);
+  char line[512];
   std::snprintf(line, sizeof line,
                 "Rig: torsion bar %.4g N m/rad, clutch-side mode %.2f Hz; mechanical energy error "
                 "%.2e (relative)\n"
@@ -119,6 +119,23 @@ void print_run_summary(std::ostream& os, const io::Scenario& sc, const dynamics:
                 scalar(rec, "rhs_evaluations"), scalar(rec, "stick_events"),
                 scalar(rec, "breakaway_events"), scalar(rec, "reversal_events"));
   os << line;
+}
+
+}  // namespace
+
+void print_run_summary(std::ostream& os, const io::Scenario& sc, const dynamics::Recording& rec) {
+  const double end = rig_models::duration_s(sc.model);
+  char line[512];
+  std::snprintf(line, sizeof line, "Scenario  %s (%s), fluid %s, %.3g s simulated\n",
+                sc.name.c_str(), std::string(model_kind_name(sc.kind())).c_str(), sc.fluid.name.c_str(), end);
+  os << line;
+  os << "Effects on:";
+  for (const auto& e : sc.enabled_effects) os << " " << e;
+  os << "\n\n";
+  std::visit(overloaded{[&](const rig_models::PrescribedSlipModel& m) { print_section(os, m, rec); },
+                        [&](const rig_models::RigModel& m) { print_section(os, m, rec); },
+                        [&](const rig_models::DrivelineModel& m) { print_section(os, m, rec); }},
+             sc.model);
 }
 
 }  // namespace shudder::app

@@ -1,11 +1,13 @@
 // Benchmark of the stability map (issue 4, target <= 1 s on one core): 100 slip speeds
 // (20–120 rpm) x 100 interface temperatures (20–120 °C) at 15 kN on the rig with the 378 Hz bar
 // and fluid C (scenarios/rig_case1_25kN_378Hz.toml). Counter: map points per second.
+#include <variant>
 #include <benchmark/benchmark.h>
 
 #include <vector>
 
 #include "io/scenario.hpp"
+#include "rig_models/model.hpp"
 #include "rig_models/rig_stability.hpp"
 
 using namespace shudder;
@@ -23,7 +25,7 @@ void BM_StabilityMap100x100_FluidC_378Hz(benchmark::State& state) {
   const auto clutch = sc.make_clutch();
   const auto speeds = linspace(20.0, 120.0, 100), temps = linspace(20.0, 120.0, 100);
   for (auto _ : state) {
-    auto map = rig_models::stability_map(sc.rig, clutch, 15000.0, speeds, temps);
+    auto map = rig_models::stability_map(std::get<rig_models::RigModel>(sc.model).params, clutch, 15000.0, speeds, temps);
     benchmark::DoNotOptimize(map);
   }
   state.counters["points_per_s"] =

@@ -2,18 +2,39 @@
 
 #include <cmath>
 #include <filesystem>
+#include <variant>
 
+#include "core/overloaded.hpp"
 #include "io/input_error.hpp"
 
 namespace shudder::io {
 
 rig_models::ReplayModel replay_model(const Scenario& s) {
   rig_models::ReplayModel m;
-  m.rig = s.type == "rig";
   m.clutch = s.clutch;
   m.fluid = s.fluid;
-  m.settings = s.settings;
-  m.rig_params = s.rig;
+  std::visit(overloaded{[&](const rig_models::PrescribedSlipModel& ps) {
+                          m.rig = false;
+                          m.settings = ps.settings;
+                          // No rig to replay on; its stick-time friction still tells the
+                          // candidate list whether that effect is on.
+                          m.rig_params.stick_time = s.stick_time;
+                        },
+                        [&](const rig_models::RigModel& rig) {
+                          m.rig = true;
+                          m.settings.duration_s = rig.settings.duration_s;
+                          m.settings.thermal_step_s = rig.settings.thermal_step_s;
+                          m.settings.sample_rate_Hz = rig.settings.sample_rate_Hz;
+                          m.settings.snapshot_times_s = rig.settings.snapshot_times_s;
+                          m.settings.bearing_drag = rig.params.bearing_drag;
+                          m.rig_params = rig.params;
+                        },
+                        [&](const rig_models::DrivelineModel&) {
+                          throw InputError(s.path, 0, "scenario.type",
+                                           "measured runs are rig runs; diagnose needs a prescribed_slip or "
+                                           "rig model");
+                        }},
+             s.model);
   return m;
 }
 
