@@ -4,13 +4,13 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
-#include <numbers>
 #include <string>
 #include <variant>
 
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
 #include "core/overloaded.hpp"
+#include "core/units.hpp"
 #include "io/input_error.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/lsctr_rig.hpp"
@@ -35,7 +35,7 @@ void print_modes(const dynamics::TorsionalNetwork& net, const dynamics::Modes& m
     if (std::abs(l.imag()) < 1e-6 * std::max(1.0, std::abs(l))) l.imag(0.0);  // real (a double root splits by ~sqrt(eps))
     if (l.imag() < 0) continue;
     std::printf("  %12.4f  %14.4f   %14.3f   %13.5f\n", l.real(), l.imag(),
-                l.imag() / (2 * std::numbers::pi), -l.real() / std::abs(l));
+                l.imag() / units::kTwoPi, -l.real() / std::abs(l));
   }
 }
 

@@ -12,12 +12,15 @@
 #include <filesystem>
 #include <iostream>
 #include <mutex>
+#include <string_view>
 #include <thread>
 #include <variant>
 
+#include "analysis/shudder_detection.hpp"
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
 #include "core/overloaded.hpp"
+#include "dynamics/signal_names.hpp"
 #include "io/hdf5_run.hpp"
 #include "io/hdf5_sweep.hpp"
 #include "io/input_error.hpp"
@@ -33,14 +36,10 @@ namespace {
 namespace fs = std::filesystem;
 
 // Signals kept per case in the sweep file (the full record stays in the part while running).
-constexpr const char* kKeptSignals[] = {"time_s", "speed_rpm", "slip_rpm", "torque_Nm", "temp_C"};
-const char* kVerdicts[] = {"none", "vibration", "stick_slip"};
-
-double verdict_code(const std::string& v) {
-  for (int i = 0; i < 3; ++i)
-    if (v == kVerdicts[i]) return i;
-  return 0;
-}
+namespace sn = dynamics::signal_names;
+constexpr std::string_view kKeptSignals[] = {sn::kTime, sn::kSpeed, sn::kSlip, sn::kTorque, sn::kTemp};
+// The verdict as the number the part files store (analysis::kVerdicts' order).
+double verdict_code(const std::string& v) { return static_cast<double>(analysis::verdict_from_string(v)); }
 
 [[noreturn]] void refuse_driveline(const std::string& path) {
   throw io::InputError(path, 0, "scenario.type",
@@ -59,7 +58,7 @@ void run_case(const std::string& text, const std::string& path, const std::strin
                  [&](const rig_models::DrivelineModel&) -> rig_models::CaseOutcome { refuse_driveline(path); }},
       sc.model);
   dynamics::Recording kept;
-  for (const char* name : kKeptSignals)
+  for (const std::string_view name : kKeptSignals)
     if (const auto* s = rec.find(name)) kept.signals.push_back(*s);
   kept.scalars = {{"predicted_stable", "1", o.predicted_stable ? 1.0 : 0.0},
                   {"predicted_margin_per_s", "1/s", o.predicted_margin_per_s},
@@ -173,7 +172,8 @@ int sweep_command(const SweepOptions& opt) {
       dynamics::Recording part = io::read_run_hdf5(part_paths[k]);
       for (std::size_t a = 0; a < axes.size(); ++a) out.columns[a].values.push_back(rows[k][a]);
       for (int r = 0; r < 6; ++r) out.columns[axes.size() + r].values.push_back(part.find_scalar(results[r])->value);
-      out.text_column.push_back(kVerdicts[static_cast<int>(part.find_scalar("simulated_verdict_code")->value)]);
+      out.text_column.emplace_back(analysis::to_string(
+          analysis::kVerdicts.at(static_cast<std::size_t>(part.find_scalar("simulated_verdict_code")->value))));
       out.case_scenarios.push_back(texts[k]);
       part.scalars.clear();
       out.case_recordings.push_back(std::move(part));

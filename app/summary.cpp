@@ -8,12 +8,14 @@
 #include <string>
 #include <variant>
 
+#include "analysis/shudder_detection.hpp"
 #include "core/overloaded.hpp"
+#include "dynamics/signal_names.hpp"
 
 namespace shudder::app {
 
-double signal_at(const dynamics::Recording& rec, const char* name, double t) {
-  const auto* time = rec.find("time_s");
+double signal_at(const dynamics::Recording& rec, std::string_view name, double t) {
+  const auto* time = rec.find(dynamics::signal_names::kTime);
   const auto* sig = rec.find(name);
   if (!time || !sig || time->values.empty()) return std::numeric_limits<double>::quiet_NaN();
   const auto& ts = time->values;
@@ -27,6 +29,9 @@ double signal_at(const dynamics::Recording& rec, const char* name, double t) {
 }
 
 namespace {
+
+namespace sn = dynamics::signal_names;
+
 double scalar(const dynamics::Recording& rec, const char* name) {
   const auto* s = rec.find_scalar(name);
   return s ? s->value : std::numeric_limits<double>::quiet_NaN();
@@ -43,16 +48,17 @@ void print_section(std::ostream& os, const rig_models::DrivelineModel& model, co
         "  pressure [bar]  interface max [C]\n";
   for (double t : times) {
     std::snprintf(line, sizeof line, "%8.2f  %10.2f  %12.1f  %11.1f  %19.3f  %13.1f  %14.1f  %14.2f  %17.2f\n", t,
-                  signal_at(rec, "vehicle_speed_km_h", t), signal_at(rec, "engine_speed_rpm", t),
-                  signal_at(rec, "engine_torque_Nm", t), signal_at(rec, "coupling_slip_rpm", t),
-                  signal_at(rec, "coupling_torque_Nm", t), signal_at(rec, "rear_axle_torque_Nm", t),
-                  signal_at(rec, "pressure_bar", t), signal_at(rec, "interface_max_temp_C", t));
+                  signal_at(rec, sn::kVehicleSpeed, t), signal_at(rec, sn::kEngineSpeed, t),
+                  signal_at(rec, sn::kEngineTorque, t), signal_at(rec, sn::kCouplingSlip, t),
+                  signal_at(rec, sn::kCouplingTorque, t), signal_at(rec, sn::kRearAxleTorque, t),
+                  signal_at(rec, sn::kPressure, t), signal_at(rec, sn::kInterfaceMaxTemp, t));
     os << line;
   }
-  const char* verdicts[] = {"none", "vibration", "stick_slip"};
   const double code = scalar(rec, "coupling_verdict_code");
   const bool oscillates = code == 1 || code == 2;
-  std::snprintf(line, sizeof line, "\nCoupling judder: %s", oscillates ? verdicts[static_cast<int>(code)] : "none");
+  const std::string verdict(
+      analysis::to_string(oscillates ? analysis::kVerdicts[static_cast<std::size_t>(code)] : analysis::Verdict::kNone));
+  std::snprintf(line, sizeof line, "\nCoupling judder: %s", verdict.c_str());
   os << line;
   if (oscillates) {
     std::snprintf(line, sizeof line, " at %.2f Hz, amplitude %.1f N m (FFT of the coupling torque)",
@@ -81,16 +87,16 @@ void print_drive_cycle_section(std::ostream& os, const rig_models::DriveCycle& c
   os << "   t [s]  speed [rpm]  force [kN]  torque [Nm]  thermocouple [C]  IR [C]  sump [C]\n";
   for (double t : times) {
     std::snprintf(line, sizeof line, "%8.2f  %11.2f  %10.2f  %11.2f  %16.2f  %7.2f  %8.2f\n", t,
-                  signal_at(rec, "speed_rpm", t), signal_at(rec, "normal_force_N", t) / 1e3,
-                  signal_at(rec, "torque_Nm", t), signal_at(rec, "temp_C", t),
-                  signal_at(rec, "ir_temp_C", t), signal_at(rec, "sump_temp_C", t));
+                  signal_at(rec, sn::kSpeed, t), signal_at(rec, sn::kNormalForce, t) / 1e3,
+                  signal_at(rec, sn::kTorque, t), signal_at(rec, sn::kTemp, t),
+                  signal_at(rec, sn::kIrTemp, t), signal_at(rec, sn::kSumpTemp, t));
     os << line;
   }
   std::snprintf(line, sizeof line,
                 "\nFinal temperatures: thermocouple %.2f C, IR %.2f C, interface max %.2f C, "
                 "sump %.2f C (peak interface %.2f C)\n",
-                signal_at(rec, "temp_C", end), signal_at(rec, "ir_temp_C", end),
-                signal_at(rec, "interface_max_temp_C", end), signal_at(rec, "sump_temp_C", end),
+                signal_at(rec, sn::kTemp, end), signal_at(rec, sn::kIrTemp, end),
+                signal_at(rec, sn::kInterfaceMaxTemp, end), signal_at(rec, sn::kSumpTemp, end),
                 scalar(rec, "peak_interface_temp_C"));
   os << line;
   std::snprintf(line, sizeof line,

@@ -5,6 +5,7 @@
 #include <variant>
 
 #include "core/overloaded.hpp"
+#include "dynamics/signal_names.hpp"
 #include "io/input_error.hpp"
 
 namespace shudder::io {
@@ -62,13 +63,14 @@ DiagnosisData diagnosis_data(const std::vector<MeasuredRun>& runs) {
 
     analysis::DiagnosisRun dr;
     dr.name = std::filesystem::path(run.path).filename().string();
-    dr.time_s = run.required("time_s");
-    dr.speed_rpm = run.required("speed_rpm");
-    dr.normal_force_N = run.required("normal_force_N");
-    dr.torque_Nm = run.required("torque_Nm");
-    dr.temp_C = run.required("temp_C");
-    if (const auto* c = run.column("sump_temp_C")) dr.sump_temp_C = *c;
-    if (const auto* c = run.column("ir_temp_C")) dr.ir_temp_C = *c;
+    namespace sn = dynamics::signal_names;
+    dr.time_s = run.required(sn::kTime);
+    dr.speed_rpm = run.required(sn::kSpeed);
+    dr.normal_force_N = run.required(sn::kNormalForce);
+    dr.torque_Nm = run.required(sn::kTorque);
+    dr.temp_C = run.required(sn::kTemp);
+    if (const auto* c = run.column(sn::kSumpTemp)) dr.sump_temp_C = *c;
+    if (const auto* c = run.column(sn::kIrTemp)) dr.ir_temp_C = *c;
 
     rig_models::ReplayInputs in;
     in.time_s = dr.time_s;

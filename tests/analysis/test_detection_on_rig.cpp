@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "core/units.hpp"
 #include "tests/support/models.hpp"
 #include "analysis/shudder_detection.hpp"
 #include "clutch/wet_clutch.hpp"
@@ -109,7 +110,7 @@ TEST(DetectionOnRig, NegativeSlopeFluidIsVibrationAtTheClutchSideFrequency) {
   const auto clutch = sc.make_clutch();
   shudder::rig_models::LsctrRig rig(shudder::test::rig_model(sc).params, clutch, shudder::test::rig_model(sc).cycle);
   rig.clutch_law().set_ring_temperatures(clutch.thermal().interface_temps_C(clutch.initial_state()));
-  const double slope_Nms = rig.clutch_law().kinetic_torque_slope_Nms(30.0 * 2.0 * std::numbers::pi / 60.0, 0.0);
+  const double slope_Nms = rig.clutch_law().kinetic_torque_slope_Nms(shudder::units::rpm_to_rad_s(30.0), 0.0);
   const double sigma_pred = -(rig.bar_damping_Nms_per_rad() + slope_Nms) / (2.0 * shudder::test::rig_model(sc).params.housing_inertia_kg_m2);
   record("negative_slope_growth", "growth rate %.3f 1/s, linearised %.3f 1/s (c_bar %.3f, dT/dw %.3f N m s/rad)",
          r.growth_rate_per_s, sigma_pred, rig.bar_damping_Nms_per_rad(), slope_Nms);

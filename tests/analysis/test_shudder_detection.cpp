@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "core/units.hpp"
 #include "analysis/shudder_detection.hpp"
 #include "dynamics/recording.hpp"
 
@@ -25,7 +26,7 @@ using namespace shudder::analysis;
 using shudder::dynamics::Recording;
 using ::testing::HasSubstr;
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
+using shudder::units::kTwoPi;
 
 template <typename... Args>
 void record(const std::string& key, const char* format, Args... args) {

@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/units.hpp"
 #include "analysis/spectrum.hpp"
 
 namespace {
@@ -25,7 +26,7 @@ namespace {
 using namespace shudder::analysis;
 using ::testing::HasSubstr;
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
+using shudder::units::kTwoPi;
 
 template <typename... Args>
 void record(const std::string& key, const char* format, Args... args) {

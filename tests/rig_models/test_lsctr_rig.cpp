@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "core/units.hpp"
 #include "tests/support/models.hpp"
 #include "clutch/wet_clutch.hpp"
 #include "dynamics/recording.hpp"
@@ -42,7 +43,7 @@ using shudder::rig_models::LsctrRig;
 using shudder::rig_models::run_prescribed_slip;
 using shudder::rig_models::run_rig;
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
+using shudder::units::kTwoPi;
 
 Scenario scenario(const std::string& name) {
   return load_scenario(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/" + name);
@@ -252,7 +253,7 @@ TEST(RigQuasiStatic, Case1TorqueCellEqualsPrescribedSlipTorque) {
   const Scenario rig_sc = scenario("rig_case1_25kN_378Hz.toml");
   const WetClutch rig_clutch = rig_sc.make_clutch();
   const LsctrRig loop(shudder::test::rig_model(rig_sc).params, rig_clutch, shudder::test::rig_model(rig_sc).cycle);
-  const auto lag = [&](std::size_t i) { return (1.0 + 9.9 * t_r[i] - w_r[i]) * kTwoPi / 60.0; };
+  const auto lag = [&](std::size_t i) { return shudder::units::rpm_to_rad_s(1.0 + 9.9 * t_r[i] - w_r[i]); };
   const auto rate = [&](const auto& f, std::size_t i) {
     return (f(i + 5) - f(i - 5)) / (t_r[i + 5] - t_r[i - 5]);
   };
@@ -478,7 +479,7 @@ TEST(RigStickSlip, SlipReturnsToZeroEveryCycleStuckIsExactAndTheJumpIsTwiceTheFr
   const double T_s = law.static_capacity_Nm(t_mid, 0.0);
   const double T_k = law.kinetic_torque_Nm(0.0, t_mid);
   const double expected = 2.0 * (T_s - T_k);
-  const double e_v = 2.0 * (law.kinetic_torque_Nm(v_peak_rpm * kTwoPi / 60.0, t_mid) - T_k) / expected;
+  const double e_v = 2.0 * (law.kinetic_torque_Nm(shudder::units::rpm_to_rad_s(v_peak_rpm), t_mid) - T_k) / expected;
   const double e_z = 0.5 * (1.0 - std::exp(-std::numbers::pi * shudder::test::rig_model(sc).params.bar_damping_ratio));
   const double e_i = 0.03;
   EXPECT_NEAR(T_s / T_k, 1.3, 1e-9);  // the fluid's breakaway ratio, one load, one temperature

@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "core/units.hpp"
 #include "tests/support/models.hpp"
 #include "clutch/wet_clutch.hpp"
 #include "io/scenario.hpp"
@@ -51,8 +52,8 @@ using shudder::rig_models::rig_stability;
 using shudder::rig_models::stability_map;
 using shudder::rig_models::StabilityPoint;
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-constexpr double kRadPerSPerRpm = kTwoPi / 60.0;
+using shudder::units::kRadPerSPerRpm;
+using shudder::units::kTwoPi;
 
 Scenario scenario(const std::string& name) {
   return load_scenario(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/" + name);

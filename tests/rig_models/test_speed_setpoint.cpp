@@ -12,6 +12,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/units.hpp"
 #include "tests/support/models.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/lsctr_rig.hpp"
@@ -21,7 +22,6 @@
 namespace shudder::rig_models {
 namespace {
 
-constexpr double kRpmPerRadS = 60.0 / (2.0 * std::numbers::pi);
 
 TEST(SpeedSetpoint, SteadySlidingGivesTheDriveSpeed) {
   const RigParams rig;  // steady start
@@ -33,7 +33,7 @@ TEST(SpeedSetpoint, LoadRampAddsTheLoopsLag) {
   const RigParams rig;
   const SpeedLoopGains g = speed_loop_gains(rig);
   const double rate_Nm_s = 95.0, set_rpm = 0.5;  // the stuck phase of the 0.5 rpm probe
-  const double lag_rpm = rate_Nm_s / g.ki_Nm_per_rad * kRpmPerRadS;
+  const double lag_rpm = units::rad_s_to_rpm(rate_Nm_s / g.ki_Nm_per_rad);
   std::vector<double> t, w, torque;
   for (int k = 0; k < 2000; ++k) {
     t.push_back(0.001 * k);
