@@ -89,8 +89,8 @@ void read_clutch(TomlTable& root, Draft& s) {
         oil->number_or("specific_heat_J_per_kgK", th.oil_specific_heat_J_per_kgK, Range::positive());
     th.film_thickness_m = oil->number_or("film_thickness_um", th.film_thickness_m * 1e6, Range::positive()) * 1e-6;
     th.sump_volume_m3 = oil->number_or("sump_volume_ml", th.sump_volume_m3 * 1e6, Range::positive()) * 1e-6;
-    th.supply_flow_m3_s = units::ml_min_to_m3_s(oil->number_or("supply_flow_ml_min", units::m3_s_to_ml_min(th.supply_flow_m3_s),
-                                                               Range::closed(0.0, 1000.0)));  // rig pump: 0–1000 ml/min
+    th.supply_flow_m3_s = units::ml_min_to_m3_s(oil->number_or(  // rig pump: 0–1000 ml/min
+        "supply_flow_ml_min", units::m3_s_to_ml_min(th.supply_flow_m3_s), Range::closed(0.0, 1000.0)));
     oil->finish();
   }
   if (auto tc = c.optional_table("thermocouple")) {

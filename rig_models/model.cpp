@@ -5,7 +5,10 @@
 namespace shudder::rig_models {
 
 ModelKind kind(const Model& model) {
-  return std::visit([](const auto& m) { return kind(m); }, model);
+  return std::visit(overloaded{[](const PrescribedSlipModel& m) { return kind(m); },
+                               [](const RigModel& m) { return kind(m); },
+                               [](const DrivelineModel& m) { return kind(m); }},
+                    model);
 }
 
 double duration_s(const Model& model) {
