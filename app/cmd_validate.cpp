@@ -3,12 +3,12 @@
 // <docs>/validation.md plus PNG plots (io/gnuplot). The document is date-free, so rerunning
 // on the same build gives identical files. Exit: 0 all targets pass, 1 a target fails (the
 // document is still written) or the run failed, 2 bad input.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <algorithm>
 #include <set>
 #include <stdexcept>
 #include <string>

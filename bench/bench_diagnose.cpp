@@ -27,7 +27,6 @@
 // simulations, effects_found; the label lists the effects named. The steps are printed to
 // stderr.
 //   ./build-bench/bench/shudder_bench --benchmark_filter=Diagnose
-#include <variant>
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
@@ -36,6 +35,7 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <unistd.h>

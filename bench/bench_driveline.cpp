@@ -3,13 +3,14 @@
 // manoeuvre with the stick-slip fluid (the coupling sticks and breaks away ~40 times). Counters:
 // integrator steps and stick events; the wall time per 5 s manoeuvre is the figure.
 //   ./build/bench/shudder_bench --benchmark_filter=Driveline
-#include <variant>
 #include <benchmark/benchmark.h>
+
+#include <variant>
 
 #include "io/fluid_loader.hpp"
 #include "io/scenario.hpp"
-#include "rig_models/model.hpp"
 #include "rig_models/haldex_driveline.hpp"
+#include "rig_models/model.hpp"
 
 using namespace shudder;
 

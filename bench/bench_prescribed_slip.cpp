@@ -3,8 +3,9 @@
 // default grid and at a grid twice as fine in r, z and t as counters, so the run shows the grid
 // is converged (issue: within 0.5 %).
 //   ./build/bench/shudder_bench --benchmark_counters_tabular=true
-#include <variant>
 #include <benchmark/benchmark.h>
+
+#include <variant>
 
 #include "io/scenario.hpp"
 #include "rig_models/model.hpp"

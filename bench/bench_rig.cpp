@@ -2,13 +2,14 @@
 // 378 Hz bar and the thermal model, with fluid C (no shudder; target <= 0.5 s on one core) and
 // with the schematic negative-slope fluid (shudders; target <= 3 s). Counters report integrator
 // steps, right-hand-side evaluations and stick/slip events.
-#include <variant>
 #include <benchmark/benchmark.h>
+
+#include <variant>
 
 #include "io/fluid_loader.hpp"
 #include "io/scenario.hpp"
-#include "rig_models/model.hpp"
 #include "rig_models/lsctr_rig.hpp"
+#include "rig_models/model.hpp"
 
 using namespace shudder;
 

@@ -14,9 +14,9 @@
 #include <numbers>
 #include <string>
 
-#include "core/units.hpp"
 #include "analysis/anti_shudder_indices.hpp"
 #include "clutch/linear_friction.hpp"
+#include "core/units.hpp"
 #include "io/fluid_loader.hpp"
 
 namespace {

@@ -19,15 +19,15 @@
 #include <string>
 #include <vector>
 
-#include "core/units.hpp"
-#include "tests/support/models.hpp"
 #include "analysis/shudder_detection.hpp"
 #include "clutch/wet_clutch.hpp"
+#include "core/units.hpp"
 #include "dynamics/recording.hpp"
 #include "io/hdf5_run.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/lsctr_rig.hpp"
 #include "tests/support/cli.hpp"
+#include "tests/support/models.hpp"
 #include "tests/support/recording.hpp"
 
 namespace {

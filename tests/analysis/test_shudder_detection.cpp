@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "core/units.hpp"
 #include "analysis/shudder_detection.hpp"
+#include "core/units.hpp"
 #include "dynamics/recording.hpp"
 
 namespace {

@@ -18,8 +18,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/units.hpp"
 #include "analysis/spectrum.hpp"
+#include "core/units.hpp"
 
 namespace {
 

@@ -18,8 +18,8 @@
 #include <numbers>
 #include <vector>
 
-#include "core/units.hpp"
 #include "analysis/stability.hpp"
+#include "core/units.hpp"
 #include "dynamics/network.hpp"
 #include "tests/dynamics/test_laws.hpp"
 

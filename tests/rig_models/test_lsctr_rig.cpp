@@ -23,13 +23,13 @@
 #include <string>
 #include <vector>
 
-#include "core/units.hpp"
-#include "tests/support/models.hpp"
 #include "clutch/wet_clutch.hpp"
+#include "core/units.hpp"
 #include "dynamics/recording.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/lsctr_rig.hpp"
 #include "rig_models/prescribed_slip.hpp"
+#include "tests/support/models.hpp"
 #include "tests/support/recording.hpp"
 
 namespace {

@@ -60,7 +60,6 @@
 #include <string>
 #include <vector>
 
-#include "tests/support/models.hpp"
 #include "analysis/shudder_detection.hpp"
 #include "clutch/wet_clutch.hpp"
 #include "dynamics/recording.hpp"
@@ -69,6 +68,7 @@
 #include "rig_models/lsctr_rig.hpp"
 #include "rig_models/rig_stability.hpp"
 #include "tests/support/cli.hpp"
+#include "tests/support/models.hpp"
 
 namespace {
 

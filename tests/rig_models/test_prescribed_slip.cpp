@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "core/units.hpp"
 #include "clutch/wet_clutch.hpp"
+#include "core/units.hpp"
 #include "io/fluid_loader.hpp"
 #include "rig_models/drive_cycle.hpp"
 #include "rig_models/prescribed_slip.hpp"

@@ -31,12 +31,12 @@
 #include <string>
 #include <vector>
 
-#include "core/units.hpp"
-#include "tests/support/models.hpp"
 #include "clutch/wet_clutch.hpp"
+#include "core/units.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/lsctr_rig.hpp"
 #include "rig_models/rig_stability.hpp"
+#include "tests/support/models.hpp"
 
 namespace {
 

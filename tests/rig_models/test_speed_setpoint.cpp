@@ -13,10 +13,10 @@
 #include <numbers>
 
 #include "core/units.hpp"
-#include "tests/support/models.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/lsctr_rig.hpp"
 #include "rig_models/speed_setpoint.hpp"
+#include "tests/support/models.hpp"
 #include "tests/support/recording.hpp"
 
 namespace shudder::rig_models {
