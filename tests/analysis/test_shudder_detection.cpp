@@ -265,4 +265,16 @@ TEST(DetectionInputs, MissingShortOrNonUniformSignalsAreRejectedByName) {
               ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("min_frequency_Hz")));
 }
 
+// The verdict names are the ones written to outputs (sweep /cases, the driveline summary): one
+// table, read both ways, in code order (a verdict is stored as its index in kVerdicts).
+TEST(VerdictNames, AreTheOutputNamesInCodeOrderAndReadBack) {
+  const char* expected[] = {"none", "vibration", "stick_slip"};
+  for (std::size_t i = 0; i < kVerdicts.size(); ++i) {
+    EXPECT_EQ(static_cast<std::size_t>(kVerdicts[i]), i);
+    EXPECT_EQ(to_string(kVerdicts[i]), expected[i]);
+    EXPECT_EQ(verdict_from_string(expected[i]), kVerdicts[i]);
+  }
+  EXPECT_EQ(verdict_from_string("stick-slip"), Verdict::kNone);  // display text is not a name
+}
+
 }  // namespace
