@@ -6,6 +6,9 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+
+#include "dynamics/signal_names.hpp"
 
 namespace shudder::analysis {
 
@@ -116,6 +119,12 @@ std::string_view to_string(Verdict v) {
     case Verdict::kStickSlip: return "stick_slip";
   }
   return "none";
+}
+
+Verdict verdict_from_string(std::string_view name) {
+  for (const Verdict v : kVerdicts)
+    if (to_string(v) == name) return v;
+  return Verdict::kNone;
 }
 
 ShudderDetector::ShudderDetector(const DetectionSettings& s) : settings_(s) {
@@ -323,23 +332,24 @@ ShudderResult ShudderDetector::detect(const DetectionInput& in) const {
 }
 
 ShudderResult ShudderDetector::detect(const dynamics::Recording& rec) const {
-  const auto required = [&](const char* name) {
+  const auto required = [&](std::string_view name) {
     const auto* s = rec.find(name);
-    require(s != nullptr, std::string("shudder detection needs the signal '") + name +
+    require(s != nullptr, "shudder detection needs the signal '" + std::string(name) +
                               "' in the recording (a rig or prescribed-slip run records it)");
     return std::span<const double>(s->values);
   };
-  const auto optional = [&](const char* name) {
+  const auto optional = [&](std::string_view name) {
     const auto* s = rec.find(name);
     return s ? std::span<const double>(s->values) : std::span<const double>();
   };
+  namespace sn = dynamics::signal_names;
   DetectionInput in;
-  in.time_s = required("time_s");
-  in.torque_Nm = required("torque_Nm");
-  in.slip_rpm = required("slip_rpm");
-  in.stuck = optional("stuck");
-  in.interface_temp_C = optional("interface_mean_temp_C");
-  in.normal_force_N = optional("normal_force_N");
+  in.time_s = required(sn::kTime);
+  in.torque_Nm = required(sn::kTorque);
+  in.slip_rpm = required(sn::kSlip);
+  in.stuck = optional(sn::kStuck);
+  in.interface_temp_C = optional(sn::kInterfaceMeanTemp);
+  in.normal_force_N = optional(sn::kNormalForce);
   return detect(in);
 }
 

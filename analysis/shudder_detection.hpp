@@ -73,6 +73,7 @@
 // For `none`, frequency, onset, growth rate and operating point are NaN (peak_frequency_Hz
 // still reports the strongest peak examined, amplitude_Nm the measured residual).
 
+#include <array>
 #include <cstddef>
 #include <span>
 #include <string_view>
@@ -85,6 +86,9 @@ namespace shudder::analysis {
 
 enum class Verdict { kNone, kVibration, kStickSlip };
 
+/// Every verdict, in code order (the integer a verdict is stored as: 0, 1, 2).
+inline constexpr std::array<Verdict, 3> kVerdicts = {Verdict::kNone, Verdict::kVibration, Verdict::kStickSlip};
+
 /// How the onset time is placed on the growth (definition 8 in the header comment).
 enum class OnsetDefinition {
   kGrowthLine,      // 8c: the fitted exponential growth extrapolated down to the start level
@@ -93,6 +97,8 @@ enum class OnsetDefinition {
 
 /// "none", "vibration", "stick_slip" (the names written to outputs).
 std::string_view to_string(Verdict verdict);
+/// The verdict of a name to_string gives; kNone for any other text.
+Verdict verdict_from_string(std::string_view name);
 
 struct DetectionSettings {
   // Band searched. 5 Hz: the driveline's lowest shudder modes (~5–50 Hz, DESIGN.md); the

@@ -5,15 +5,16 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <stdexcept>
 #include <string>
+
+#include "core/units.hpp"
 
 namespace shudder::analysis {
 
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
+using units::kTwoPi;
 
 // FFTW's planner (plan creation and destruction) is not thread-safe; execution is.
 std::mutex& planner_mutex() {

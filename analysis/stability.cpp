@@ -3,15 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <stdexcept>
 #include <string>
+
+#include "core/units.hpp"
 
 namespace shudder::analysis {
 
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
+using units::kTwoPi;
 // A mode is a rigid-body one if its undamped frequency is below this fraction of the highest:
 // the generalised eigenvalues ω² carry round-off ~1e-16 · ω²_max, i.e. ~1e-8 · ω_max.
 constexpr double kRigidFrequencyFraction = 1e-6;

@@ -5,10 +5,12 @@
 #include <iostream>
 #include <sstream>
 #include <thread>
+#include <variant>
 
 #include "analysis/diagnosis.hpp"
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
+#include "core/overloaded.hpp"
 #include "io/diagnosis_inputs.hpp"
 #include "io/diagnosis_json.hpp"
 #include "io/diagnosis_report.hpp"
@@ -48,7 +50,7 @@ void print_candidates(std::ostream& os, const std::vector<analysis::CandidateSco
 std::string summary(const io::Scenario& s, const analysis::DiagnosisResult& r,
                     const std::vector<std::string>& skipped) {
   std::ostringstream os;
-  os << "Diagnosis of " << r.runs.size() << " run(s) against " << s.path << " (" << s.type << ")\n";
+  os << "Diagnosis of " << r.runs.size() << " run(s) against " << s.path << " (" << model_kind_name(s.kind()) << ")\n";
   os << "  baseline effects on: ";
   for (std::size_t i = 0; i < s.enabled_effects.size(); ++i) os << (i ? ", " : "") << s.enabled_effects[i];
   os << (s.enabled_effects.empty() ? "none" : "") << "\n";
@@ -104,9 +106,13 @@ std::string summary(const io::Scenario& s, const analysis::DiagnosisResult& r,
 int diagnose_command(const DiagnoseOptions& opt) {
   return guarded(opt.model, "diagnosis", [&]() -> int {
     const io::Scenario scenario = io::load_scenario(opt.model);
-    if (scenario.type == "driveline")
-      throw io::InputError(opt.model, 0, "scenario.type",
-                           "measured runs are rig runs; diagnose needs a prescribed_slip or rig model");
+    std::visit(overloaded{[](const rig_models::PrescribedSlipModel&) {}, [](const rig_models::RigModel&) {},
+                          [&](const rig_models::DrivelineModel&) {
+                            throw io::InputError(opt.model, 0, "scenario.type",
+                                                 "measured runs are rig runs; diagnose needs a prescribed_slip "
+                                                 "or rig model");
+                          }},
+               scenario.model);
     for (const auto& w : scenario.warnings) std::cerr << "shudder: warning: " << w << "\n";
     scenario.make_clutch();  // fails early, naming the scenario, if the clutch is inconsistent
     std::vector<io::MeasuredRun> runs;

@@ -4,10 +4,13 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
-#include <numbers>
+#include <string>
+#include <variant>
 
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
+#include "core/overloaded.hpp"
+#include "core/units.hpp"
 #include "io/input_error.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/lsctr_rig.hpp"
@@ -32,8 +35,22 @@ void print_modes(const dynamics::TorsionalNetwork& net, const dynamics::Modes& m
     if (std::abs(l.imag()) < 1e-6 * std::max(1.0, std::abs(l))) l.imag(0.0);  // real (a double root splits by ~sqrt(eps))
     if (l.imag() < 0) continue;
     std::printf("  %12.4f  %14.4f   %14.3f   %13.5f\n", l.real(), l.imag(),
-                l.imag() / (2 * std::numbers::pi), -l.real() / std::abs(l));
+                l.imag() / units::kTwoPi, -l.real() / std::abs(l));
   }
+}
+
+void print_rig_modes(const io::Scenario& sc, const rig_models::RigModel& model) {
+  const clutch::WetClutch clutch = sc.make_clutch();
+  const rig_models::LsctrRig rig(model.params, clutch, model.cycle);
+  const auto& net = rig.network();
+  std::printf("Scenario %s: torsion bar %.6g N m/rad (c = %.4g N m s/rad), speed loop Kp %.4g N m s/rad, "
+              "Ki %.4g N m/rad\n\n",
+              sc.name.c_str(), rig.bar_stiffness_Nm_per_rad(), rig.bar_damping_Nms_per_rad(),
+              rig.motor_kp(), rig.motor_ki());
+  print_modes(net, net.modes({false}), "Clutch slipping:");
+  std::printf("\n");
+  print_modes(net, net.modes({true}), "Clutch stuck:");
+  std::printf("\nClutch-side mode (slipping): %.3f Hz\n", rig.clutch_side_frequency_Hz());
 }
 
 }  // namespace
@@ -42,20 +59,15 @@ int modes_command(const ModesOptions& opt) {
   return guarded(opt.scenario, "modal analysis", [&]() -> int {
     const io::Scenario sc = io::load_scenario(opt.scenario);
     for (const auto& w : sc.warnings) std::cerr << "shudder: warning: " << w << "\n";
-    if (sc.type != "rig")
+    const auto no_network = [&](ModelKind kind) {
       throw io::InputError(opt.scenario, 0, "scenario.type",
-                           "\"" + sc.type + "\" has no torsional network; modes needs type = \"rig\"");
-    const clutch::WetClutch clutch = sc.make_clutch();
-    const rig_models::LsctrRig rig(sc.rig, clutch, sc.cycle);
-    const auto& net = rig.network();
-    std::printf("Scenario %s: torsion bar %.6g N m/rad (c = %.4g N m s/rad), speed loop Kp %.4g N m s/rad, "
-                "Ki %.4g N m/rad\n\n",
-                sc.name.c_str(), rig.bar_stiffness_Nm_per_rad(), rig.bar_damping_Nms_per_rad(),
-                rig.motor_kp(), rig.motor_ki());
-    print_modes(net, net.modes({false}), "Clutch slipping:");
-    std::printf("\n");
-    print_modes(net, net.modes({true}), "Clutch stuck:");
-    std::printf("\nClutch-side mode (slipping): %.3f Hz\n", rig.clutch_side_frequency_Hz());
+                           std::string("\"").append(model_kind_name(kind)).append(
+                               "\" has no torsional network; modes needs type = \"rig\""));
+    };
+    std::visit(overloaded{[&](const rig_models::PrescribedSlipModel& m) { no_network(rig_models::kind(m)); },
+                          [&](const rig_models::RigModel& m) { print_rig_modes(sc, m); },
+                          [&](const rig_models::DrivelineModel& m) { no_network(rig_models::kind(m)); }},
+               sc.model);
     return 0;
   });
 }

@@ -8,18 +8,19 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <variant>
 
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
 #include "app/summary.hpp"
+#include "core/overloaded.hpp"
+#include "core/units.hpp"
 #include "io/hdf5_run.hpp"
 #include "io/input_error.hpp"
 #include "io/measurement_csv.hpp"
 #include "io/plots.hpp"
 #include "io/scenario.hpp"
-#include "rig_models/haldex_driveline.hpp"
-#include "rig_models/lsctr_rig.hpp"
-#include "rig_models/prescribed_slip.hpp"
+#include "rig_models/model.hpp"
 #include "rig_models/run_stability_map.hpp"
 
 namespace shudder::app {
@@ -30,26 +31,31 @@ int run_command(const RunOptions& opt) {
     for (const auto& w : scenario.warnings) std::cerr << "shudder: warning: " << w << "\n";
     const clutch::WetClutch clutch = scenario.make_clutch();
 
-    if (scenario.type == "driveline" && !opt.measurement.empty())
-      throw io::InputError(opt.scenario, 0, "--measurement",
-                           "a measured run is a rig log; give a prescribed_slip or rig scenario");
     const auto t0 = std::chrono::steady_clock::now();
-    dynamics::Recording rec =
-        scenario.type == "rig"         ? rig_models::run_rig(scenario.rig, clutch, scenario.cycle, scenario.rig_settings())
-        : scenario.type == "driveline" ? rig_models::run_driveline(scenario.driveline, clutch, scenario.manoeuvre,
-                                                                   scenario.driveline_settings())
-                                       : rig_models::run_prescribed_slip(clutch, scenario.cycle, scenario.settings);
+    dynamics::Recording rec = std::visit(
+        overloaded{[&](const rig_models::PrescribedSlipModel& m) { return rig_models::simulate(m, clutch); },
+                   [&](const rig_models::RigModel& m) { return rig_models::simulate(m, clutch); },
+                   [&](const rig_models::DrivelineModel& m) {
+                     if (!opt.measurement.empty())
+                       throw io::InputError(opt.scenario, 0, "--measurement",
+                                            "a measured run is a rig log; give a prescribed_slip or rig scenario");
+                     return rig_models::simulate(m, clutch);
+                   }},
+        scenario.model);
     const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     // Rig runs carry their stability map (/analysis/stability_map) for `shudder plot`; a map
     // that cannot be made (e.g. a cycle that never loads the clutch) costs the run nothing.
-    if (scenario.type == "rig") {
-      try {
-        rec.maps.push_back(rig_models::run_stability_map(scenario.rig, clutch, scenario.cycle,
-                                                         scenario.clutch.start_temp_C));
-      } catch (const std::invalid_argument& e) {
-        std::cerr << "shudder: warning: no stability map stored: " << e.what() << "\n";
-      }
-    }
+    std::visit(overloaded{[](const rig_models::PrescribedSlipModel&) {},
+                          [&](const rig_models::RigModel& m) {
+                            try {
+                              rec.maps.push_back(rig_models::run_stability_map(m.params, clutch, m.cycle,
+                                                                               scenario.clutch.start_temp_C));
+                            } catch (const std::invalid_argument& e) {
+                              std::cerr << "shudder: warning: no stability map stored: " << e.what() << "\n";
+                            }
+                          },
+                          [](const rig_models::DrivelineModel&) {}},
+               scenario.model);
 
     const std::string out = opt.output.empty() ? scenario.name + ".h5" : opt.output;
     io::write_run_hdf5(out, rec, scenario.text);
@@ -59,7 +65,7 @@ int run_command(const RunOptions& opt) {
       m.noise = opt.noise;
       m.seed = opt.seed;
       m.fluid = scenario.fluid.name;
-      m.oil_flow_ml_min = scenario.clutch.thermal.supply_flow_m3_s * 6e7;
+      m.oil_flow_ml_min = units::m3_s_to_ml_min(scenario.clutch.thermal.supply_flow_m3_s);
       char sensor[96];
       std::snprintf(sensor, sizeof sensor, "separator_thermocouple r_mm=%g z_mm=%g",
                     scenario.clutch.thermal.thermocouple_r_m * 1e3,
@@ -77,7 +83,8 @@ int run_command(const RunOptions& opt) {
     if (!opt.report.empty()) {
       try {
         const io::Report report =
-            io::write_run_report(opt.report, rec, scenario.name, summary.str(), scenario.type == "rig");
+            io::write_run_report(opt.report, rec, scenario.name, summary.str(),
+                                 scenario.kind() == ModelKind::kRig);
         std::cout << "Report: " << opt.report << " (" << report.files.size() << " files)\n";
         for (const auto& s : report.skipped) std::cerr << "shudder: warning: report: " << s << "\n";
       } catch (const io::InputError&) {

@@ -12,17 +12,22 @@
 #include <filesystem>
 #include <iostream>
 #include <mutex>
+#include <string_view>
 #include <thread>
+#include <variant>
 
+#include "analysis/shudder_detection.hpp"
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
+#include "core/overloaded.hpp"
+#include "dynamics/signal_names.hpp"
 #include "io/hdf5_run.hpp"
 #include "io/hdf5_sweep.hpp"
 #include "io/input_error.hpp"
 #include "io/plots.hpp"
 #include "io/scenario.hpp"
 #include "io/sweep_spec.hpp"
-#include "rig_models/case_evaluation.hpp"
+#include "rig_models/model.hpp"
 
 namespace shudder::app {
 
@@ -31,13 +36,15 @@ namespace {
 namespace fs = std::filesystem;
 
 // Signals kept per case in the sweep file (the full record stays in the part while running).
-constexpr const char* kKeptSignals[] = {"time_s", "speed_rpm", "slip_rpm", "torque_Nm", "temp_C"};
-const char* kVerdicts[] = {"none", "vibration", "stick_slip"};
+namespace sn = dynamics::signal_names;
+constexpr std::string_view kKeptSignals[] = {sn::kTime, sn::kSpeed, sn::kSlip, sn::kTorque, sn::kTemp};
+// The verdict as the number the part files store (analysis::kVerdicts' order).
+double verdict_code(const std::string& v) { return static_cast<double>(analysis::verdict_from_string(v)); }
 
-double verdict_code(const std::string& v) {
-  for (int i = 0; i < 3; ++i)
-    if (v == kVerdicts[i]) return i;
-  return 0;
+[[noreturn]] void refuse_driveline(const std::string& path) {
+  throw io::InputError(path, 0, "scenario.type",
+                       "sweeps judge rig and prescribed_slip cases (stability, shudder); a driveline "
+                       "scenario runs with `shudder run`");
 }
 
 // Runs one case and writes its part file (recording + outcome as summary scalars).
@@ -45,11 +52,13 @@ void run_case(const std::string& text, const std::string& path, const std::strin
   const io::Scenario sc = io::load_scenario_text(text, path);
   const clutch::WetClutch clutch = sc.make_clutch();
   dynamics::Recording rec;
-  const rig_models::CaseOutcome o =
-      sc.type == "rig" ? rig_models::evaluate_rig_case(sc.rig, clutch, sc.cycle, sc.rig_settings(), rec)
-                       : rig_models::evaluate_prescribed_case(clutch, sc.cycle, sc.settings, rec);
+  const rig_models::CaseOutcome o = std::visit(
+      overloaded{[&](const rig_models::PrescribedSlipModel& m) { return rig_models::evaluate_case(m, clutch, rec); },
+                 [&](const rig_models::RigModel& m) { return rig_models::evaluate_case(m, clutch, rec); },
+                 [&](const rig_models::DrivelineModel&) -> rig_models::CaseOutcome { refuse_driveline(path); }},
+      sc.model);
   dynamics::Recording kept;
-  for (const char* name : kKeptSignals)
+  for (const std::string_view name : kKeptSignals)
     if (const auto* s = rec.find(name)) kept.signals.push_back(*s);
   kept.scalars = {{"predicted_stable", "1", o.predicted_stable ? 1.0 : 0.0},
                   {"predicted_margin_per_s", "1/s", o.predicted_margin_per_s},
@@ -76,10 +85,9 @@ void progress(std::size_t done, std::size_t total, double elapsed_s) {
 int sweep_command(const SweepOptions& opt) {
   return guarded(opt.scenario, "sweep", [&]() -> int {
     const io::Scenario base = io::load_scenario(opt.scenario);
-    if (base.type == "driveline")
-      throw io::InputError(opt.scenario, 0, "scenario.type",
-                           "sweeps judge rig and prescribed_slip cases (stability, shudder); a driveline "
-                           "scenario runs with `shudder run`");
+    std::visit(overloaded{[](const rig_models::PrescribedSlipModel&) {}, [](const rig_models::RigModel&) {},
+                          [&](const rig_models::DrivelineModel&) { refuse_driveline(opt.scenario); }},
+               base.model);
     for (const auto& w : base.warnings) std::cerr << "shudder: warning: " << w << "\n";
     if (opt.sets.empty()) throw io::InputError("--set", 0, "", "give at least one --set KEY=START:STOP:STEP");
     std::vector<io::SweepAxis> axes;
@@ -164,7 +172,8 @@ int sweep_command(const SweepOptions& opt) {
       dynamics::Recording part = io::read_run_hdf5(part_paths[k]);
       for (std::size_t a = 0; a < axes.size(); ++a) out.columns[a].values.push_back(rows[k][a]);
       for (int r = 0; r < 6; ++r) out.columns[axes.size() + r].values.push_back(part.find_scalar(results[r])->value);
-      out.text_column.push_back(kVerdicts[static_cast<int>(part.find_scalar("simulated_verdict_code")->value)]);
+      out.text_column.emplace_back(analysis::to_string(
+          analysis::kVerdicts.at(static_cast<std::size_t>(part.find_scalar("simulated_verdict_code")->value))));
       out.case_scenarios.push_back(texts[k]);
       part.scalars.clear();
       out.case_recordings.push_back(std::move(part));

@@ -4,27 +4,30 @@
 // <docs>/validation.md plus PNG plots (io/gnuplot). The document is date-free, so rerunning
 // on the same build gives identical files. Exit: 0 all targets pass, 1 a target fails (the
 // document is still written) or the run failed, 2 bad input.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <algorithm>
 #include <set>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <variant>
 #include <vector>
 
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
 #include "app/summary.hpp"
+#include "core/overloaded.hpp"
+#include "core/units.hpp"
 #include "io/atomic_file.hpp"
 #include "io/gnuplot.hpp"
 #include "io/input_error.hpp"
 #include "io/scenario.hpp"
 #include "io/validation_targets.hpp"
-#include "rig_models/prescribed_slip.hpp"
+#include "rig_models/model.hpp"
 
 namespace shudder::app {
 namespace {
@@ -34,8 +37,15 @@ namespace fs = std::filesystem;
 struct Run {
   std::string label;  // the case's label (validation.toml)
   io::Scenario sc;
+  rig_models::PrescribedSlipModel model;  // Paper G's runs are prescribed slip
   dynamics::Recording rec;
 };
+
+[[noreturn]] void refuse_kind(const std::string& path, ModelKind kind) {
+  throw io::InputError(path, 0, "scenario.type",
+                       std::string("is ").append(model_kind_name(kind)).append(
+                           "; validation compares prescribed_slip runs with the papers"));
+}
 
 struct Row {
   std::string case_label, quantity, target, result, pass;  // pass: "yes", "NO" or "–" (info)
@@ -165,7 +175,7 @@ void write_oil_flow(std::ostream& md, const std::vector<Run>& runs) {
     const std::string cells =
         th.interface_oil_cooling
             ? fmt("%g | %g | %g | %g | %g | `%s` | %g", f.a, f.b, f.c, f.d, f.e,
-                  form_name(f.form).c_str(), th.supply_flow_m3_s * 6e7)
+                  form_name(f.form).c_str(), units::m3_s_to_ml_min(th.supply_flow_m3_s))
             : std::string("– | – | – | – | – | off (`interface_oil_cooling` disabled) | –");
     auto it = groups.begin();
     while (it != groups.end() && it->first != cells) ++it;
@@ -185,7 +195,7 @@ void write_oil_flow(std::ostream& md, const std::vector<Run>& runs) {
 
 void write_case2(std::ostream& md, const Run& run) {
   std::set<double> times;
-  const auto bp = run.sc.cycle.slip_speed_rpm.times_s();
+  const auto bp = run.model.cycle.slip_speed_rpm.times_s();
   for (std::size_t i = 0; i < bp.size(); ++i) {
     times.insert(bp[i]);
     if (i + 1 < bp.size()) times.insert(0.5 * (bp[i] + bp[i + 1]));
@@ -198,7 +208,7 @@ void write_case2(std::ostream& md, const Run& run) {
      << "| t [s] | speed [rpm] | torque [Nm] | thermocouple [°C] | IR [°C] | sump [°C] |\n"
      << "|---:|---:|---:|---:|---:|---:|\n";
   for (double t : times) {
-    if (t > run.sc.settings.duration_s) continue;
+    if (t > run.model.settings.duration_s) continue;
     md << fmt("| %.1f | %.1f | %.2f | %.2f | %.2f | %.2f |\n", t,
               signal_at(run.rec, "speed_rpm", t), signal_at(run.rec, "torque_Nm", t),
               signal_at(run.rec, "temp_C", t), signal_at(run.rec, "ir_temp_C", t),
@@ -282,7 +292,7 @@ std::vector<Figure> write_plots(const fs::path& docs, const io::ValidationSpec& 
   {  // The ramp case against slip speed: up-ramp vs down-ramp.
     const Run& ramp = runs[spec.ramp_case];
     const auto& r = ramp.rec;
-    const auto bp = ramp.sc.cycle.slip_speed_rpm.times_s();  // Case 2: 0, 5, 15, 17, 27, 30
+    const auto bp = ramp.model.cycle.slip_speed_rpm.times_s();  // Case 2: 0, 5, 15, 17, 27, 30
     io::Plot p;
     p.title = ramp.label + ": up-ramp vs down-ramp";
     p.xlabel = "slip speed [rpm]";
@@ -371,7 +381,16 @@ int validate_command(const ValidateOptions& opt) {
       r.label = c.label;
       r.sc = io::load_scenario((fs::path(opt.scenarios_dir) / (c.scenario + ".toml")).string());
       for (const auto& w : r.sc.warnings) std::cerr << "shudder: warning: " << w << "\n";
-      r.rec = rig_models::run_prescribed_slip(r.sc.make_clutch(), r.sc.cycle, r.sc.settings);
+      r.model = std::visit(
+          overloaded{[](const rig_models::PrescribedSlipModel& m) { return m; },
+                     [&](const rig_models::RigModel& m) -> rig_models::PrescribedSlipModel {
+                       refuse_kind(r.sc.path, rig_models::kind(m));
+                     },
+                     [&](const rig_models::DrivelineModel& m) -> rig_models::PrescribedSlipModel {
+                       refuse_kind(r.sc.path, rig_models::kind(m));
+                     }},
+          r.sc.model);
+      r.rec = rig_models::simulate(r.model, r.sc.make_clutch());
       runs.push_back(std::move(r));
     }
     const std::vector<Row> rows = evaluate(spec, runs);

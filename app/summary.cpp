@@ -5,11 +5,17 @@
 #include <cstdio>
 #include <limits>
 #include <set>
+#include <string>
+#include <variant>
+
+#include "analysis/shudder_detection.hpp"
+#include "core/overloaded.hpp"
+#include "dynamics/signal_names.hpp"
 
 namespace shudder::app {
 
-double signal_at(const dynamics::Recording& rec, const char* name, double t) {
-  const auto* time = rec.find("time_s");
+double signal_at(const dynamics::Recording& rec, std::string_view name, double t) {
+  const auto* time = rec.find(dynamics::signal_names::kTime);
   const auto* sig = rec.find(name);
   if (!time || !sig || time->values.empty()) return std::numeric_limits<double>::quiet_NaN();
   const auto& ts = time->values;
@@ -23,32 +29,36 @@ double signal_at(const dynamics::Recording& rec, const char* name, double t) {
 }
 
 namespace {
+
+namespace sn = dynamics::signal_names;
+
 double scalar(const dynamics::Recording& rec, const char* name) {
   const auto* s = rec.find_scalar(name);
   return s ? s->value : std::numeric_limits<double>::quiet_NaN();
 }
 
 // A driveline run: the car, the coupling and its hydraulics at key times.
-void print_driveline_summary(std::ostream& os, const io::Scenario& sc, const dynamics::Recording& rec) {
-  const double end = sc.settings.duration_s;
+void print_section(std::ostream& os, const rig_models::DrivelineModel& model, const dynamics::Recording& rec) {
+  const double end = model.settings.duration_s;
   char line[512];
   std::set<double> times{0.0, end};
-  for (double t : sc.manoeuvre.engine_torque_Nm.times_s()) if (t > 0 && t < end) times.insert(t);
+  for (double t : model.manoeuvre.engine_torque_Nm.times_s()) if (t > 0 && t < end) times.insert(t);
   for (int k = 1; k < 5; ++k) times.insert(end * k / 5.0);
   os << "   t [s]  car [km/h]  engine [rpm]  engine [Nm]  coupling slip [rpm]  coupling [Nm]  rear axle [Nm]"
         "  pressure [bar]  interface max [C]\n";
   for (double t : times) {
     std::snprintf(line, sizeof line, "%8.2f  %10.2f  %12.1f  %11.1f  %19.3f  %13.1f  %14.1f  %14.2f  %17.2f\n", t,
-                  signal_at(rec, "vehicle_speed_km_h", t), signal_at(rec, "engine_speed_rpm", t),
-                  signal_at(rec, "engine_torque_Nm", t), signal_at(rec, "coupling_slip_rpm", t),
-                  signal_at(rec, "coupling_torque_Nm", t), signal_at(rec, "rear_axle_torque_Nm", t),
-                  signal_at(rec, "pressure_bar", t), signal_at(rec, "interface_max_temp_C", t));
+                  signal_at(rec, sn::kVehicleSpeed, t), signal_at(rec, sn::kEngineSpeed, t),
+                  signal_at(rec, sn::kEngineTorque, t), signal_at(rec, sn::kCouplingSlip, t),
+                  signal_at(rec, sn::kCouplingTorque, t), signal_at(rec, sn::kRearAxleTorque, t),
+                  signal_at(rec, sn::kPressure, t), signal_at(rec, sn::kInterfaceMaxTemp, t));
     os << line;
   }
-  const char* verdicts[] = {"none", "vibration", "stick_slip"};
   const double code = scalar(rec, "coupling_verdict_code");
   const bool oscillates = code == 1 || code == 2;
-  std::snprintf(line, sizeof line, "\nCoupling judder: %s", oscillates ? verdicts[static_cast<int>(code)] : "none");
+  const std::string verdict(
+      analysis::to_string(oscillates ? analysis::kVerdicts[static_cast<std::size_t>(code)] : analysis::Verdict::kNone));
+  std::snprintf(line, sizeof line, "\nCoupling judder: %s", verdict.c_str());
   os << line;
   if (oscillates) {
     std::snprintf(line, sizeof line, " at %.2f Hz, amplitude %.1f N m (FFT of the coupling torque)",
@@ -66,39 +76,27 @@ void print_driveline_summary(std::ostream& os, const io::Scenario& sc, const dyn
   os << line;
 }
 
-}  // namespace
-
-void print_run_summary(std::ostream& os, const io::Scenario& sc, const dynamics::Recording& rec) {
-  const double end = sc.settings.duration_s;
+// The rig and prescribed slip: the drive cycle's key times, temperatures and the heat account.
+void print_drive_cycle_section(std::ostream& os, const rig_models::DriveCycle& cycle, double end,
+                               const dynamics::Recording& rec) {
   char line[512];
-  std::snprintf(line, sizeof line, "Scenario  %s (%s), fluid %s, %.3g s simulated\n",
-                sc.name.c_str(), sc.type.c_str(), sc.fluid.name.c_str(), end);
-  os << line;
-  os << "Effects on:";
-  for (const auto& e : sc.enabled_effects) os << " " << e;
-  os << "\n\n";
-  if (sc.type == "driveline") {
-    print_driveline_summary(os, sc, rec);
-    return;
-  }
-
   // Key times: every drive breakpoint inside the run, five even splits, and the end.
   std::set<double> times{0.0, end};
-  for (double t : sc.cycle.slip_speed_rpm.times_s()) if (t > 0 && t < end) times.insert(t);
+  for (double t : cycle.slip_speed_rpm.times_s()) if (t > 0 && t < end) times.insert(t);
   for (int k = 1; k < 5; ++k) times.insert(end * k / 5.0);
   os << "   t [s]  speed [rpm]  force [kN]  torque [Nm]  thermocouple [C]  IR [C]  sump [C]\n";
   for (double t : times) {
     std::snprintf(line, sizeof line, "%8.2f  %11.2f  %10.2f  %11.2f  %16.2f  %7.2f  %8.2f\n", t,
-                  signal_at(rec, "speed_rpm", t), signal_at(rec, "normal_force_N", t) / 1e3,
-                  signal_at(rec, "torque_Nm", t), signal_at(rec, "temp_C", t),
-                  signal_at(rec, "ir_temp_C", t), signal_at(rec, "sump_temp_C", t));
+                  signal_at(rec, sn::kSpeed, t), signal_at(rec, sn::kNormalForce, t) / 1e3,
+                  signal_at(rec, sn::kTorque, t), signal_at(rec, sn::kTemp, t),
+                  signal_at(rec, sn::kIrTemp, t), signal_at(rec, sn::kSumpTemp, t));
     os << line;
   }
   std::snprintf(line, sizeof line,
                 "\nFinal temperatures: thermocouple %.2f C, IR %.2f C, interface max %.2f C, "
                 "sump %.2f C (peak interface %.2f C)\n",
-                signal_at(rec, "temp_C", end), signal_at(rec, "ir_temp_C", end),
-                signal_at(rec, "interface_max_temp_C", end), signal_at(rec, "sump_temp_C", end),
+                signal_at(rec, sn::kTemp, end), signal_at(rec, sn::kIrTemp, end),
+                signal_at(rec, sn::kInterfaceMaxTemp, end), signal_at(rec, sn::kSumpTemp, end),
                 scalar(rec, "peak_interface_temp_C"));
   os << line;
   std::snprintf(line, sizeof line,
@@ -108,7 +106,15 @@ void print_run_summary(std::ostream& os, const io::Scenario& sc, const dynamics:
                 scalar(rec, "heat_to_sump_J"), scalar(rec, "heat_to_rig_J"),
                 scalar(rec, "energy_balance_relative_error"));
   os << line;
-  if (sc.type != "rig") return;
+}
+
+void print_section(std::ostream& os, const rig_models::PrescribedSlipModel& model, const dynamics::Recording& rec) {
+  print_drive_cycle_section(os, model.cycle, model.settings.duration_s, rec);
+}
+
+void print_section(std::ostream& os, const rig_models::RigModel& model, const dynamics::Recording& rec) {
+  print_drive_cycle_section(os, model.cycle, model.settings.duration_s, rec);
+  char line[512];
   std::snprintf(line, sizeof line,
                 "Rig: torsion bar %.4g N m/rad, clutch-side mode %.2f Hz; mechanical energy error "
                 "%.2e (relative)\n"
@@ -119,6 +125,23 @@ void print_run_summary(std::ostream& os, const io::Scenario& sc, const dynamics:
                 scalar(rec, "rhs_evaluations"), scalar(rec, "stick_events"),
                 scalar(rec, "breakaway_events"), scalar(rec, "reversal_events"));
   os << line;
+}
+
+}  // namespace
+
+void print_run_summary(std::ostream& os, const io::Scenario& sc, const dynamics::Recording& rec) {
+  const double end = rig_models::duration_s(sc.model);
+  char line[512];
+  std::snprintf(line, sizeof line, "Scenario  %s (%s), fluid %s, %.3g s simulated\n",
+                sc.name.c_str(), std::string(model_kind_name(sc.kind())).c_str(), sc.fluid.name.c_str(), end);
+  os << line;
+  os << "Effects on:";
+  for (const auto& e : sc.enabled_effects) os << " " << e;
+  os << "\n\n";
+  std::visit(overloaded{[&](const rig_models::PrescribedSlipModel& m) { print_section(os, m, rec); },
+                        [&](const rig_models::RigModel& m) { print_section(os, m, rec); },
+                        [&](const rig_models::DrivelineModel& m) { print_section(os, m, rec); }},
+             sc.model);
 }
 
 }  // namespace shudder::app

@@ -3,6 +3,7 @@
 // temperatures, and the energy account.
 
 #include <ostream>
+#include <string_view>
 
 #include "dynamics/recording.hpp"
 #include "io/scenario.hpp"
@@ -10,7 +11,7 @@
 namespace shudder::app {
 
 /// Value of signal `name` at time t (linear interpolation), NaN if absent.
-double signal_at(const dynamics::Recording& rec, const char* name, double t_s);
+double signal_at(const dynamics::Recording& rec, std::string_view name, double t_s);
 
 void print_run_summary(std::ostream& os, const io::Scenario& scenario,
                        const dynamics::Recording& rec);

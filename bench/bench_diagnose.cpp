@@ -36,16 +36,19 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <unistd.h>
 
 #include "analysis/diagnosis.hpp"
+#include "core/units.hpp"
 #include "io/diagnosis_inputs.hpp"
 #include "io/measured_run.hpp"
 #include "io/measurement_csv.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/effect_registry.hpp"
+#include "rig_models/model.hpp"
 #include "rig_models/prescribed_slip.hpp"
 #include "rig_models/replay.hpp"
 
@@ -90,14 +93,14 @@ const Case2Runs& case2_runs() {
       const auto sc = io::load_scenario_text(
           io::set_scenario_key(text, kCase2Path, "drive.normal_force_N", l.force_N), kCase2Path);
       const auto clutch = sc.make_clutch();
-      const auto rec = rig_models::run_prescribed_slip(clutch, sc.cycle, sc.settings);
+      const auto rec = rig_models::simulate(std::get<rig_models::PrescribedSlipModel>(sc.model), clutch);
       // As `shudder run --measurement x.csv --sample-rate 100 --noise --seed N` writes it.
       io::MeasurementOptions m;
       m.sample_rate_Hz = 100.0;
       m.noise = true;
       m.seed = l.seed;
       m.fluid = sc.fluid.name;
-      m.oil_flow_ml_min = sc.clutch.thermal.supply_flow_m3_s * 6e7;
+      m.oil_flow_ml_min = units::m3_s_to_ml_min(sc.clutch.thermal.supply_flow_m3_s);
       char sensor[96];
       std::snprintf(sensor, sizeof sensor, "separator_thermocouple r_mm=%g z_mm=%g",
                     sc.clutch.thermal.thermocouple_r_m * 1e3, sc.clutch.thermal.thermocouple_z_m * 1e3);

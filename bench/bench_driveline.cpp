@@ -5,9 +5,12 @@
 //   ./build/bench/shudder_bench --benchmark_filter=Driveline
 #include <benchmark/benchmark.h>
 
+#include <variant>
+
 #include "io/fluid_loader.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/haldex_driveline.hpp"
+#include "rig_models/model.hpp"
 
 using namespace shudder;
 
@@ -19,7 +22,7 @@ void run_tight_turn(benchmark::State& state, const char* fluid) {
   const auto clutch = sc.make_clutch();
   dynamics::Recording rec;
   for (auto _ : state) {
-    rec = rig_models::run_driveline(sc.driveline, clutch, sc.manoeuvre, sc.driveline_settings());
+    rec = rig_models::simulate(std::get<rig_models::DrivelineModel>(sc.model), clutch);
     benchmark::DoNotOptimize(rec);
   }
   for (const char* name : {"integrator_steps", "stick_events"}) state.counters[name] = rec.find_scalar(name)->value;

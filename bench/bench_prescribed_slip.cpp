@@ -5,7 +5,10 @@
 //   ./build/bench/shudder_bench --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 
+#include <variant>
+
 #include "io/scenario.hpp"
+#include "rig_models/model.hpp"
 #include "rig_models/prescribed_slip.hpp"
 
 using namespace shudder;
@@ -19,7 +22,8 @@ io::Scenario case1_25kN(int refine) {
   th.separator.cells *= refine;
   th.lining.cells *= refine;
   th.core.cells *= refine;
-  sc.settings.thermal_step_s /= refine;
+  auto& model = std::get<rig_models::PrescribedSlipModel>(sc.model);
+  model.settings.thermal_step_s /= refine;
   return sc;
 }
 
@@ -30,15 +34,16 @@ double last(const dynamics::Recording& rec, const char* name) {
 void BM_Case1_25kN(benchmark::State& state) {
   const auto sc = case1_25kN(static_cast<int>(state.range(0)));
   const auto clutch = sc.make_clutch();
+  const auto& model = std::get<rig_models::PrescribedSlipModel>(sc.model);
   dynamics::Recording rec;
   for (auto _ : state) {
-    rec = rig_models::run_prescribed_slip(clutch, sc.cycle, sc.settings);
+    rec = rig_models::simulate(model, clutch);
     benchmark::DoNotOptimize(rec);
   }
   state.counters["torque_10s_Nm"] = last(rec, "torque_Nm");
   state.counters["thermocouple_10s_C"] = last(rec, "temp_C");
   state.counters["radial_cells"] = sc.clutch.thermal.radial_cells;
-  state.counters["thermal_step_ms"] = sc.settings.thermal_step_s * 1e3;
+  state.counters["thermal_step_ms"] = model.settings.thermal_step_s * 1e3;
 }
 
 }  // namespace

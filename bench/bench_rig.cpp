@@ -4,9 +4,12 @@
 // steps, right-hand-side evaluations and stick/slip events.
 #include <benchmark/benchmark.h>
 
+#include <variant>
+
 #include "io/fluid_loader.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/lsctr_rig.hpp"
+#include "rig_models/model.hpp"
 
 using namespace shudder;
 
@@ -18,7 +21,7 @@ void run_case2(benchmark::State& state, const char* fluid) {
   const auto clutch = sc.make_clutch();
   dynamics::Recording rec;
   for (auto _ : state) {
-    rec = rig_models::run_rig(sc.rig, clutch, sc.cycle, sc.rig_settings());
+    rec = rig_models::simulate(std::get<rig_models::RigModel>(sc.model), clutch);
     benchmark::DoNotOptimize(rec);
   }
   for (const char* name : {"integrator_steps", "rhs_evaluations", "stick_events", "breakaway_events"})

@@ -6,11 +6,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/units.hpp"
+
 namespace shudder::clutch {
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 void require_positive(double x, const std::string& what) {
   if (!std::isfinite(x) || !(x > 0.0))
@@ -85,7 +85,7 @@ void ThermalModel::build_grid() {
   for (int i = 0; i < nr_; ++i) {
     const double lo = p_.inner_radius_m + i * dr;
     r_[i] = lo + 0.5 * dr;
-    area_[i] = kPi * ((lo + dr) * (lo + dr) - lo * lo);
+    area_[i] = std::numbers::pi * ((lo + dr) * (lo + dr) - lo * lo);
   }
 
   // Axial nodes: per node its thickness, conductivity and rho*cp (film: zero thickness).
@@ -141,14 +141,14 @@ void ThermalModel::build_grid() {
       }
       if (is_film(jj)) continue;  // radial conduction in the oil film is neglected (Paper G)
       // Radial conduction to the next ring, and Dirichlet faces at R_in / R_out.
-      if (i + 1 < nr_) couple(a, node(i + 1, jj), 2.0 * kPi * (lo + dr) * dz[jj] * k[jj] / dr);
-      if (i == 0) g_inner_[a] = 2.0 * kPi * p_.inner_radius_m * dz[jj] * k[jj] / (0.5 * dr);
-      if (i == nr_ - 1) g_outer_[a] = 2.0 * kPi * p_.outer_radius_m * dz[jj] * k[jj] / (0.5 * dr);
+      if (i + 1 < nr_) couple(a, node(i + 1, jj), units::kTwoPi * (lo + dr) * dz[jj] * k[jj] / dr);
+      if (i == 0) g_inner_[a] = units::kTwoPi * p_.inner_radius_m * dz[jj] * k[jj] / (0.5 * dr);
+      if (i == nr_ - 1) g_outer_[a] = units::kTwoPi * p_.outer_radius_m * dz[jj] * k[jj] / (0.5 * dr);
       cond.emplace_back(a, a, g_inner_[a] + g_outer_[a]);
     }
     // Rig heat path from the separator's back face (z = 0), shared in proportion to area.
     if (p_.rig_heat_capacity && p_.rig_conductance_W_per_K > 0.0) {
-      const double g_face = p_.rig_conductance_W_per_K * area_[i] / (kPi * (
+      const double g_face = p_.rig_conductance_W_per_K * area_[i] / (std::numbers::pi * (
           p_.outer_radius_m * p_.outer_radius_m - p_.inner_radius_m * p_.inner_radius_m));
       const double g_half = area_[i] * p_.separator.conductivity_W_per_mK / (0.5 * dz[0]);
       g_rig_[i] = 1.0 / (1.0 / g_face + 1.0 / g_half);

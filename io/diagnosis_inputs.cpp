@@ -2,18 +2,40 @@
 
 #include <cmath>
 #include <filesystem>
+#include <variant>
 
+#include "core/overloaded.hpp"
+#include "dynamics/signal_names.hpp"
 #include "io/input_error.hpp"
 
 namespace shudder::io {
 
 rig_models::ReplayModel replay_model(const Scenario& s) {
   rig_models::ReplayModel m;
-  m.rig = s.type == "rig";
   m.clutch = s.clutch;
   m.fluid = s.fluid;
-  m.settings = s.settings;
-  m.rig_params = s.rig;
+  std::visit(overloaded{[&](const rig_models::PrescribedSlipModel& ps) {
+                          m.rig = false;
+                          m.settings = ps.settings;
+                          // No rig to replay on; its stick-time friction still tells the
+                          // candidate list whether that effect is on.
+                          m.rig_params.stick_time = s.stick_time;
+                        },
+                        [&](const rig_models::RigModel& rig) {
+                          m.rig = true;
+                          m.settings.duration_s = rig.settings.duration_s;
+                          m.settings.thermal_step_s = rig.settings.thermal_step_s;
+                          m.settings.sample_rate_Hz = rig.settings.sample_rate_Hz;
+                          m.settings.snapshot_times_s = rig.settings.snapshot_times_s;
+                          m.settings.bearing_drag = rig.params.bearing_drag;
+                          m.rig_params = rig.params;
+                        },
+                        [&](const rig_models::DrivelineModel&) {
+                          throw InputError(s.path, 0, "scenario.type",
+                                           "measured runs are rig runs; diagnose needs a prescribed_slip or "
+                                           "rig model");
+                        }},
+             s.model);
   return m;
 }
 
@@ -41,13 +63,14 @@ DiagnosisData diagnosis_data(const std::vector<MeasuredRun>& runs) {
 
     analysis::DiagnosisRun dr;
     dr.name = std::filesystem::path(run.path).filename().string();
-    dr.time_s = run.required("time_s");
-    dr.speed_rpm = run.required("speed_rpm");
-    dr.normal_force_N = run.required("normal_force_N");
-    dr.torque_Nm = run.required("torque_Nm");
-    dr.temp_C = run.required("temp_C");
-    if (const auto* c = run.column("sump_temp_C")) dr.sump_temp_C = *c;
-    if (const auto* c = run.column("ir_temp_C")) dr.ir_temp_C = *c;
+    namespace sn = dynamics::signal_names;
+    dr.time_s = run.required(sn::kTime);
+    dr.speed_rpm = run.required(sn::kSpeed);
+    dr.normal_force_N = run.required(sn::kNormalForce);
+    dr.torque_Nm = run.required(sn::kTorque);
+    dr.temp_C = run.required(sn::kTemp);
+    if (const auto* c = run.column(sn::kSumpTemp)) dr.sump_temp_C = *c;
+    if (const auto* c = run.column(sn::kIrTemp)) dr.ir_temp_C = *c;
 
     rig_models::ReplayInputs in;
     in.time_s = dr.time_s;

@@ -15,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "dynamics/signal_names.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 
@@ -23,7 +24,7 @@ namespace {
 
 // One output column: its recorded values and the noise it gets.
 struct Column {
-  const char* name;
+  std::string_view name;  // dynamics/signal_names.hpp
   double sigma;       // noise standard deviation, column unit
   bool non_negative;  // clip noisy values at 0 (normal force)
   std::vector<double> values;
@@ -113,18 +114,19 @@ std::vector<Column> sensor_columns(const std::string& path, const dynamics::Reco
                                    const std::vector<double>& time) {
   using A = SensorAccuracy;
   constexpr double k = A::sigma_per_accuracy;
-  std::vector<Column> cols = {{"speed_rpm", k * A::speed_rpm, false, {}},
-                              {"normal_force_N", k * A::normal_force_N, true, {}},
-                              {"torque_Nm", k * A::torque_Nm, false, {}},
-                              {"temp_C", k * A::thermocouple_C, false, {}},
-                              {"sump_temp_C", k * A::thermocouple_C, false, {}},
-                              {"ir_temp_C", k * A::ir_C, false, {}}};
+  namespace sn = dynamics::signal_names;
+  std::vector<Column> cols = {{sn::kSpeed, k * A::speed_rpm, false, {}},
+                              {sn::kNormalForce, k * A::normal_force_N, true, {}},
+                              {sn::kTorque, k * A::torque_Nm, false, {}},
+                              {sn::kTemp, k * A::thermocouple_C, false, {}},
+                              {sn::kSumpTemp, k * A::thermocouple_C, false, {}},
+                              {sn::kIrTemp, k * A::ir_C, false, {}}};
   constexpr std::size_t n_required = 4;
   std::vector<Column> present;
   for (std::size_t c = 0; c < cols.size(); ++c) {
     const dynamics::Signal* s = rec.find(cols[c].name);
     if (!s && c < n_required)
-      throw InputError(path, 0, cols[c].name,
+      throw InputError(path, 0, std::string(cols[c].name),
                        "recording has no such signal; a measured run needs time_s, speed_rpm, "
                        "normal_force_N, torque_Nm and temp_C");
     if (!s) continue;
@@ -145,7 +147,7 @@ std::vector<Column> sensor_columns(const std::string& path, const dynamics::Reco
 }
 
 const std::vector<double>& recorded_time(const std::string& path, const dynamics::Recording& rec) {
-  const dynamics::Signal* t = rec.find("time_s");
+  const dynamics::Signal* t = rec.find(dynamics::signal_names::kTime);
   if (!t) throw InputError(path, 0, "time_s", "recording has no time_s signal");
   if (t->values.size() < 2)
     throw InputError(path, 0, "time_s", "recording has fewer than 2 samples");
@@ -246,9 +248,10 @@ MeasuredRun make_measurement(const std::string& path, const dynamics::Recording&
   meta.emplace_back("sample_rate_Hz", g6(rate));
   meta.emplace_back("noise", opt.noise ? "on" : "off");
   if (opt.noise) meta.emplace_back("seed", std::to_string(opt.seed));
-  run.columns.push_back({"time_s", measured_run_units("time_s"), std::move(time)});
+  run.columns.push_back({std::string(dynamics::signal_names::kTime), measured_run_units(dynamics::signal_names::kTime),
+                         std::move(time)});
   for (auto& c : cols)
-    run.columns.push_back({c.name, measured_run_units(c.name), std::move(c.values)});
+    run.columns.push_back({std::string(c.name), measured_run_units(c.name), std::move(c.values)});
   return run;
 }
 

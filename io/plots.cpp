@@ -573,16 +573,16 @@ Plot sweep_plot(const SweepTable& table, const std::string& name, const std::str
     zero.rgb = "#7f7f7f";
     zero.line_width = 1.0;
     p.series_y2.push_back(std::move(zero));
-    struct Marker { const char* verdict; const char* label; int pt; const char* rgb; };
+    struct Marker { analysis::Verdict verdict; const char* label; int pt; const char* rgb; };
     static constexpr Marker kMarkers[] = {
-        {"none", "simulated: no shudder", 6, "#2ca02c"},
-        {"vibration", "simulated: vibration", 7, "#d62728"},
-        {"stick_slip", "simulated: stick-slip", 9, "#9467bd"}};
+        {analysis::Verdict::kNone, "simulated: no shudder", 6, "#2ca02c"},
+        {analysis::Verdict::kVibration, "simulated: vibration", 7, "#d62728"},
+        {analysis::Verdict::kStickSlip, "simulated: stick-slip", 9, "#9467bd"}};
     for (const auto& mk : kMarkers) {
       Series s;
       s.label = mk.label;
       for (std::size_t k : order)
-        if (k < table.text_column.size() && table.text_column[k] == mk.verdict && std::isfinite(margin[k])) {
+        if (k < table.text_column.size() && table.text_column[k] == analysis::to_string(mk.verdict) && std::isfinite(margin[k])) {
           s.x.push_back(key.values[k]);
           s.y.push_back(margin[k]);
         }

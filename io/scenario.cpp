@@ -4,7 +4,9 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
+#include "core/units.hpp"
 #include "io/fluid_loader.hpp"
 #include "io/toml_reader.hpp"
 #include "rig_models/effect_registry.hpp"
@@ -18,6 +20,30 @@ namespace fs = std::filesystem;
 constexpr double kMaxForce_N = 30000.0;     // rig cylinder maximum (thesis Method)
 constexpr double kMaxSlip_rpm = 1000.0;     // beyond any LSC use; friction data end at 100 rpm
 const Range kTemp_C = Range::closed(-60.0, 250.0);  // friction matrix spans -40..200 °C
+
+// The scenario as read, before it becomes a typed model: every kind's pieces side by side, so
+// that the readers below (and the effects' reader) fill them in the file's order. `type` is the
+// file's string, `kind` the same mapped once; load_scenario_text builds the model of that kind.
+struct Draft {
+  std::string path;
+  std::string type;
+  ModelKind kind = ModelKind::kPrescribedSlip;
+  std::string fluid_path;
+  clutch::Fluid fluid;
+  clutch::WetClutchParams clutch;
+  rig_models::DriveCycle cycle;                 // prescribed_slip and rig
+  rig_models::PrescribedSlipSettings settings;  // duration, steps, sampling, bearing drag
+  rig_models::RigParams rig;                    // rig (stick-time friction: every kind)
+  rig_models::DrivelineParams driveline;        // driveline
+  rig_models::DrivelineInputs manoeuvre;        // driveline
+  std::vector<std::string> warnings;
+};
+
+ModelKind kind_of_type(const std::string& type) {
+  for (ModelKind k : kModelKinds)
+    if (model_kind_name(k) == type) return k;
+  throw std::logic_error("scenario type '" + type + "' passed the reader's choice but names no model kind");
+}
 
 std::string read_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -40,7 +66,7 @@ void read_layer(TomlTable& parent, const std::string& key, clutch::Layer& layer)
   t->finish();
 }
 
-void read_clutch(TomlTable& root, Scenario& s) {
+void read_clutch(TomlTable& root, Draft& s) {
   auto c = root.table("clutch");
   auto& p = s.clutch;
   auto& th = p.thermal;
@@ -64,8 +90,8 @@ void read_clutch(TomlTable& root, Scenario& s) {
         oil->number_or("specific_heat_J_per_kgK", th.oil_specific_heat_J_per_kgK, Range::positive());
     th.film_thickness_m = oil->number_or("film_thickness_um", th.film_thickness_m * 1e6, Range::positive()) * 1e-6;
     th.sump_volume_m3 = oil->number_or("sump_volume_ml", th.sump_volume_m3 * 1e6, Range::positive()) * 1e-6;
-    th.supply_flow_m3_s = oil->number_or("supply_flow_ml_min", th.supply_flow_m3_s * 6e7,
-                                         Range::closed(0.0, 1000.0)) / 6e7;  // rig pump: 0–1000 ml/min
+    th.supply_flow_m3_s = units::ml_min_to_m3_s(oil->number_or(  // rig pump: 0–1000 ml/min
+        "supply_flow_ml_min", units::m3_s_to_ml_min(th.supply_flow_m3_s), Range::closed(0.0, 1000.0)));
     oil->finish();
   }
   if (auto tc = c.optional_table("thermocouple")) {
@@ -94,7 +120,7 @@ rig_models::PiecewiseLinear read_schedule(TomlTable& drive, const std::string& k
   return {times, values};
 }
 
-void read_drive(TomlTable& root, Scenario& s) {
+void read_drive(TomlTable& root, Draft& s) {
   auto d = root.table("drive");
   const auto times = d.numbers("time_s", Range::non_negative(), 1);
   for (std::size_t i = 1; i < times.size(); ++i)
@@ -104,7 +130,7 @@ void read_drive(TomlTable& root, Scenario& s) {
   d.finish();
 }
 
-void read_rig(TomlTable& root, Scenario& s) {
+void read_rig(TomlTable& root, Draft& s) {
   auto& r = s.rig;
   // Speeds the motor can hold (thesis: 0.5–125 rpm).
   auto drive_speeds = s.cycle.slip_speed_rpm.values();
@@ -152,7 +178,7 @@ void read_rig(TomlTable& root, Scenario& s) {
 
 // type = "driveline": the car of rig_models/haldex_driveline.hpp (every key optional, defaults
 // there) and the manoeuvre it drives.
-void read_driveline(TomlTable& root, Scenario& s) {
+void read_driveline(TomlTable& root, Draft& s) {
   auto& p = s.driveline;
   if (root.has("drive"))
     root.fail("drive", "[drive] belongs to prescribed_slip and rig scenarios; a driveline scenario is "
@@ -199,19 +225,13 @@ void read_driveline(TomlTable& root, Scenario& s) {
 }
 
 // The scenario's structs that effects write into (the registry's EffectTarget).
-rig_models::EffectTarget effect_target(Scenario& s) { return {s.clutch, s.settings.bearing_drag, s.rig.stick_time}; }
-
-ModelKind model_kind(const Scenario& s) {
-  if (s.type == "rig") return ModelKind::kRig;
-  if (s.type == "driveline") return ModelKind::kDriveline;
-  return ModelKind::kPrescribedSlip;
-}
+rig_models::EffectTarget effect_target(Draft& s) { return {s.clutch, s.settings.bearing_drag, s.rig.stick_time}; }
 
 Range toml_range(const rig_models::ValueRange& r) { return {r.min, r.max, r.min_exclusive, r.max_exclusive}; }
 
 // `[effects.NAME]` per the registry: `enabled`, then each parameter (read in the key's unit,
 // stored in SI), then each choice; an enabled effect inert in this kind of scenario is a warning.
-void read_effects(TomlTable& root, Scenario& s) {
+void read_effects(TomlTable& root, Draft& s) {
   auto effects = root.optional_table("effects");
   if (!effects) return;
   for (const auto& name : effects->subtable_keys())
@@ -233,7 +253,7 @@ void read_effects(TomlTable& root, Scenario& s) {
     }
     t->finish();
   }
-  const ModelKind kind = model_kind(s);
+  const ModelKind kind = s.kind;
   for (const auto& effect : rig_models::effect_registry())
     if (const auto why = rig_models::inert_reason(effect, kind); why && effect.enabled(target))
       s.warnings.push_back("effect " + effect.name + " has no effect in a " +
@@ -267,30 +287,62 @@ std::string set_scenario_key(const std::string& text, const std::string& path,
 
 Scenario load_scenario(const std::string& path) { return load_scenario_text(read_text(path), path); }
 
+namespace {
+
+// The typed model of the draft's kind, with the effects that live outside the clutch applied
+// (bearing drag: prescribed slip and rig; stick-time friction: rig and driveline).
+rig_models::Model make_model(const Draft& d) {
+  switch (d.kind) {
+    case ModelKind::kPrescribedSlip: return rig_models::PrescribedSlipModel{d.cycle, d.settings};
+    case ModelKind::kRig: {
+      rig_models::RigModel m{d.rig, d.cycle, {}};
+      m.params.bearing_drag = d.settings.bearing_drag;
+      m.settings.duration_s = d.settings.duration_s;
+      m.settings.thermal_step_s = d.settings.thermal_step_s;
+      m.settings.sample_rate_Hz = d.settings.sample_rate_Hz;
+      m.settings.snapshot_times_s = d.settings.snapshot_times_s;
+      return m;
+    }
+    case ModelKind::kDriveline: {
+      rig_models::DrivelineModel m{d.driveline, d.manoeuvre, {}};
+      m.params.stick_time = d.rig.stick_time;
+      m.settings.duration_s = d.settings.duration_s;
+      m.settings.slow_step_s = d.settings.thermal_step_s;
+      m.settings.sample_rate_Hz = d.settings.sample_rate_Hz;
+      return m;
+    }
+  }
+  throw std::logic_error("unknown model kind");
+}
+
+}  // namespace
+
 Scenario load_scenario_text(const std::string& text, const std::string& path) {
-  Scenario s;
-  s.path = path;
-  s.text = text;
+  Scenario sc;
+  Draft s;
+  s.path = sc.path = path;
+  sc.text = text;
   const toml::table doc = TomlTable::parse_text(text, path);
   TomlTable root(doc, path, "");
 
   auto head = root.table("scenario");
-  s.name = head.string_or("name", fs::path(path).stem().string());
+  sc.name = head.string_or("name", fs::path(path).stem().string());
   s.type = head.choice_or("type", "prescribed_slip", {"prescribed_slip", "rig", "driveline"});
-  s.description = head.string_or("description", "");
+  s.kind = kind_of_type(s.type);
+  sc.description = head.string_or("description", "");
   s.settings.duration_s = head.number("duration_s", Range::closed(1e-3, 1e5));
   head.finish();
 
   read_clutch(root, s);
-  if (s.type == "driveline") {
+  if (s.kind == ModelKind::kDriveline) {
     read_driveline(root, s);
     s.settings.sample_rate_Hz = 1000.0;
   } else {
     read_drive(root, s);
   }
-  if (s.type != "driveline" && root.has("driveline"))
+  if (s.kind != ModelKind::kDriveline && root.has("driveline"))
     root.fail("driveline", "[driveline] belongs to type = \"driveline\" scenarios");
-  if (s.type == "rig") {
+  if (s.kind == ModelKind::kRig) {
     read_rig(root, s);
     s.settings.sample_rate_Hz = 1000.0;  // rig default: the thesis' typical 100 S/s–1 kS/s
   } else {
@@ -301,7 +353,7 @@ Scenario load_scenario_text(const std::string& text, const std::string& path) {
   if (auto solver = root.optional_table("solver")) {
     s.clutch.thermal.radial_cells = static_cast<int>(solver->integer_or("radial_cells", s.clutch.thermal.radial_cells, 2, 2000));
     s.settings.thermal_step_s = solver->number_or("thermal_step_ms", s.settings.thermal_step_s * 1e3, Range::closed(1e-3, 1e4)) * 1e-3;
-    auto& integ = s.type == "driveline" ? s.driveline.integrator : s.rig.integrator;
+    auto& integ = s.kind == ModelKind::kDriveline ? s.driveline.integrator : s.rig.integrator;
     integ.abs_tol = solver->number_or("abs_tol", integ.abs_tol, Range::closed(1e-15, 1e-2));
     integ.rel_tol = solver->number_or("rel_tol", integ.rel_tol, Range::closed(1e-15, 1e-2));
     integ.max_step_s = solver->number_or("max_step_ms", integ.max_step_s * 1e3, Range::closed(1e-6, 1e3)) * 1e-3;
@@ -316,31 +368,19 @@ Scenario load_scenario_text(const std::string& text, const std::string& path) {
     out->finish();
   }
   read_effects(root, s);
-  s.rig.bearing_drag = s.settings.bearing_drag;
-  s.driveline.stick_time = s.rig.stick_time;
   root.finish();
 
   const auto target = effect_target(s);
   for (const auto& effect : rig_models::effect_registry())
-    if (effect.enabled(target)) s.enabled_effects.push_back(effect.name);
-  return s;
-}
+    if (effect.enabled(target)) sc.enabled_effects.push_back(effect.name);
 
-rig_models::RigSettings Scenario::rig_settings() const {
-  rig_models::RigSettings r;
-  r.duration_s = settings.duration_s;
-  r.thermal_step_s = settings.thermal_step_s;
-  r.sample_rate_Hz = settings.sample_rate_Hz;
-  r.snapshot_times_s = settings.snapshot_times_s;
-  return r;
-}
-
-rig_models::DrivelineSettings Scenario::driveline_settings() const {
-  rig_models::DrivelineSettings d;
-  d.duration_s = settings.duration_s;
-  d.slow_step_s = settings.thermal_step_s;
-  d.sample_rate_Hz = settings.sample_rate_Hz;
-  return d;
+  sc.fluid_path = s.fluid_path;
+  sc.fluid = s.fluid;
+  sc.clutch = s.clutch;
+  sc.stick_time = s.rig.stick_time;
+  sc.warnings = s.warnings;
+  sc.model = make_model(s);
+  return sc;
 }
 
 clutch::WetClutch Scenario::make_clutch() const {

@@ -9,34 +9,34 @@
 
 #include "clutch/fluid.hpp"
 #include "clutch/wet_clutch.hpp"
-#include "rig_models/drive_cycle.hpp"
-#include "rig_models/haldex_driveline.hpp"
-#include "rig_models/lsctr_rig.hpp"
-#include "rig_models/prescribed_slip.hpp"
+#include "core/model_kind.hpp"
+#include "rig_models/model.hpp"
 
 namespace shudder::io {
 
+/// A loaded scenario: what every kind shares (the file, the clutch and its fluid, the effects)
+/// and the typed model of its kind (rig_models/model.hpp). The file's `type` string is mapped
+/// to the kind once, by the loader; everything else dispatches on `model`.
 struct Scenario {
   std::string path;         // as given
   std::string text;         // the file's text (stored in outputs)
   std::string name;
-  std::string type;         // "prescribed_slip", "rig" or "driveline"
   std::string description;
   std::string fluid_path;   // resolved relative to the scenario file
   clutch::Fluid fluid;
-  clutch::WetClutchParams clutch;
-  rig_models::DriveCycle cycle;
-  rig_models::PrescribedSlipSettings settings;  // duration, steps, sampling, bearing drag
-  rig_models::RigParams rig;                    // type "rig" only
-  rig_models::DrivelineParams driveline;        // type "driveline" only
-  rig_models::DrivelineInputs manoeuvre;        // type "driveline" only
+  clutch::WetClutchParams clutch;  // every kind; clutch effects applied
+  rig_models::Model model;         // the kind and what it needs (rig and driveline params,
+                                   // drive cycle or manoeuvre, settings); effects applied
+  // [effects.stick_time_static_friction] as read. Applied to the rig and driveline models; kept
+  // here because a prescribed_slip model has no use for it but the diagnosis must still know
+  // whether it is switched on (io/diagnosis_inputs.cpp).
+  rig_models::StickTimeFriction stick_time;
   std::vector<std::string> enabled_effects;  // registry names (rig_models/effect_registry.hpp)
   std::vector<std::string> warnings;         // accepted but worth telling the user
 
+  ModelKind kind() const { return rig_models::kind(model); }
   /// Builds the clutch; throws InputError if the parameters are inconsistent.
   clutch::WetClutch make_clutch() const;
-  rig_models::RigSettings rig_settings() const;
-  rig_models::DrivelineSettings driveline_settings() const;
 };
 
 Scenario load_scenario(const std::string& path);

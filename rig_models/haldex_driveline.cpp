@@ -3,18 +3,19 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <stdexcept>
 #include <string>
 
 #include "analysis/shudder_detection.hpp"
+#include "core/units.hpp"
+#include "dynamics/signal_names.hpp"
+#include "rig_models/channel_recorder.hpp"
+#include "rig_models/energy_scalars.hpp"
 #include "rig_models/multirate_clutch.hpp"
 
 namespace shudder::rig_models {
 
 namespace {
-
-constexpr double kRadPerSPerRpm = 2.0 * std::numbers::pi / 60.0;
 
 void require_positive(double v, const char* what) {
   if (!std::isfinite(v) || !(v > 0))
@@ -147,50 +148,49 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
   const double w_vehicle = inputs.start_speed_km_h / 3.6 / params.wheel_radius_m;
   sim.initialize(0.0, Eigen::VectorXd::Zero(D::kNodes), dl.rolling_speed_ratios() * w_vehicle, Eigen::VectorXd());
 
-  dynamics::Recording rec;
-  for (const auto& [name, units] : std::vector<std::pair<const char*, const char*>>{
-           {"time_s", "s"}, {"engine_speed_rpm", "rpm"}, {"vehicle_speed_km_h", "km/h"},
-           {"front_wheel_speed_rpm", "rpm"}, {"rear_wheel_speed_rpm", "rpm"}, {"coupling_slip_rpm", "rpm"},
-           {"coupling_torque_Nm", "N m"}, {"front_axle_torque_Nm", "N m"}, {"rear_axle_torque_Nm", "N m"},
-           {"engine_torque_Nm", "N m"}, {"stuck", "1"}, {"pressure_bar", "bar"}, {"clamp_force_N", "N"},
-           {"interface_mean_temp_C", "degC"}, {"interface_max_temp_C", "degC"}})
-    rec.add_signal(name, units);
-  enum { kT, kEngineW, kV, kFrontW, kRearW, kSlip, kCouplingT, kFrontT, kRearT, kEngineT, kStuck, kP, kF,
-         kIfMean, kIfMax };
+  // Channels: mechanical ones and the held pressure at every sample, the coupling's interface
+  // temperatures from the thermal state, interpolated across each slow step.
+  namespace sn = dynamics::signal_names;
+  using Recorder = ChannelRecorder<dynamics::Sample, clutch::ThermalState>;
+  using dynamics::Sample;
+  using clutch::ThermalState;
   double pressure_bar = 0.0;
-  const auto push_mechanical = [&](const dynamics::Sample& s) {
-    auto& sig = rec.signals;
-    sig[kT].values.push_back(s.t_s);
-    sig[kEngineW].values.push_back(s.omega_rad_s[D::kEngine] / kRadPerSPerRpm);
-    sig[kV].values.push_back(s.omega_rad_s[D::kVehicle] * params.wheel_radius_m * 3.6);
-    sig[kFrontW].values.push_back(s.omega_rad_s[D::kFrontWheels] / kRadPerSPerRpm);
-    sig[kRearW].values.push_back(s.omega_rad_s[D::kRearWheels] / kRadPerSPerRpm);
-    sig[kSlip].values.push_back(s.contact_slip_rad_s[D::kCoupling] / kRadPerSPerRpm);
-    sig[kCouplingT].values.push_back(s.contact_torque_Nm[D::kCoupling]);
-    sig[kFrontT].values.push_back(s.shaft_torque_Nm[D::kFrontHalfshafts]);
-    sig[kRearT].values.push_back(s.shaft_torque_Nm[D::kRearHalfshafts]);
-    sig[kEngineT].values.push_back(inputs.engine_torque_Nm(s.t_s));
-    sig[kStuck].values.push_back(s.modes[D::kCoupling] == dynamics::ContactMode::kStuck);
-    sig[kP].values.push_back(pressure_bar);
-    sig[kF].values.push_back(dl.hydraulics().clamp_force_N(pressure_bar));
-  };
-  // Thermal channels: linear between the fields before and after the slow step, for every
-  // sample the step added.
-  const auto push_thermal = [&](double mean_a, double max_a, double mean_b, double max_b, double ta, double tb) {
-    auto& sig = rec.signals;
-    for (std::size_t k = sig[kIfMean].values.size(); k < sig[kT].values.size(); ++k) {
-      const double w = tb > ta ? (sig[kT].values[k] - ta) / (tb - ta) : 1.0;
-      sig[kIfMean].values.push_back((1 - w) * mean_a + w * mean_b);
-      sig[kIfMax].values.push_back((1 - w) * max_a + w * max_b);
-    }
-  };
+  dynamics::Recording rec;
+  Recorder recorder(rec, {
+      Recorder::sampled(sn::kTime, "s", [](const Sample& s) { return s.t_s; }),
+      Recorder::sampled(sn::kEngineSpeed, "rpm",
+                        [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kEngine]); }),
+      Recorder::sampled(sn::kVehicleSpeed, "km/h",
+                        [&](const Sample& s) { return s.omega_rad_s[D::kVehicle] * params.wheel_radius_m * 3.6; }),
+      Recorder::sampled(sn::kFrontWheelSpeed, "rpm",
+                        [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kFrontWheels]); }),
+      Recorder::sampled(sn::kRearWheelSpeed, "rpm",
+                        [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kRearWheels]); }),
+      Recorder::sampled(sn::kCouplingSlip, "rpm",
+                        [](const Sample& s) { return units::rad_s_to_rpm(s.contact_slip_rad_s[D::kCoupling]); }),
+      Recorder::sampled(sn::kCouplingTorque, "N m", [](const Sample& s) { return s.contact_torque_Nm[D::kCoupling]; }),
+      Recorder::sampled(sn::kFrontAxleTorque, "N m",
+                        [](const Sample& s) { return s.shaft_torque_Nm[D::kFrontHalfshafts]; }),
+      Recorder::sampled(sn::kRearAxleTorque, "N m", [](const Sample& s) { return s.shaft_torque_Nm[D::kRearHalfshafts]; }),
+      Recorder::sampled(sn::kEngineTorque, "N m", [&](const Sample& s) { return inputs.engine_torque_Nm(s.t_s); }),
+      Recorder::sampled(sn::kStuck, "1",
+                        [](const Sample& s) {
+                          return static_cast<double>(s.modes[D::kCoupling] == dynamics::ContactMode::kStuck);
+                        }),
+      Recorder::sampled(sn::kPressure, "bar", [&](const Sample&) { return pressure_bar; }),
+      Recorder::sampled(sn::kClampForce, "N",
+                        [&](const Sample&) { return dl.hydraulics().clamp_force_N(pressure_bar); }),
+      Recorder::interpolated(sn::kInterfaceMeanTemp, "degC",
+                             [&](const ThermalState& state) { return th.mean_interface_temp_C(state); }),
+      Recorder::interpolated(sn::kInterfaceMaxTemp, "degC",
+                             [&](const ThermalState& state) { return th.interface_temps_C(state).maxCoeff(); }),
+  });
 
-  double mean_before = th.mean_interface_temp_C(ts), max_before = th.interface_temps_C(ts).maxCoeff();
-  push_mechanical(sim.sample());
-  push_thermal(mean_before, max_before, mean_before, max_before, 0.0, 0.0);
-  double peak_C = max_before;
+  recorder.sample(sim.sample());
+  recorder.start(ts);
+  double peak_C = th.interface_temps_C(ts).maxCoeff();
   run_multirate(sim, law, clutch, ts, D::kCoupling, cfg.duration_s, cfg.slow_step_s, cfg.sample_rate_Hz,
-                push_mechanical, [&](const SlowStep& step) {
+                [&](const dynamics::Sample& s) { recorder.sample(s); }, [&](const SlowStep& step) {
                   // The pump strokes with the relative rotation; |Δθ| over the step is its
                   // integral of |Δω| unless the slip reversed within the step.
                   const auto twist = [](const dynamics::Sample& s) {
@@ -200,12 +200,8 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
                       pressure_bar, std::abs(twist(step.after) - twist(step.before)), step.tb_s - step.ta_s,
                       inputs.valve_pressure_bar(step.tb_s));
                   law.set_normal_force(PiecewiseLinear({0.0}, {dl.hydraulics().clamp_force_N(pressure_bar)}));
-                  const double mean_after = th.mean_interface_temp_C(ts);
-                  const double max_after = th.interface_temps_C(ts).maxCoeff();
-                  peak_C = std::max(peak_C, max_after);
-                  push_thermal(mean_before, max_before, mean_after, max_after, step.ta_s, step.tb_s);
-                  mean_before = mean_after;
-                  max_before = max_after;
+                  peak_C = std::max(peak_C, th.interface_temps_C(ts).maxCoeff());
+                  recorder.step(ts, step.ta_s, step.tb_s);
                 });
 
   const double n_if = clutch.params().sliding_interfaces;
@@ -218,7 +214,7 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
   for (Eigen::Index j = 0; j < modes_locked.damped_eigenvalues.size(); ++j) {
     const auto lambda = modes_locked.damped_eigenvalues[j];
     if (std::abs(lambda.imag()) > 1e-6) {
-      shuffle_Hz = std::abs(lambda.imag()) / (2.0 * std::numbers::pi);
+      shuffle_Hz = std::abs(lambda.imag()) / units::kTwoPi;
       shuffle_zeta = -lambda.real() / std::abs(lambda);
       break;
     }
@@ -227,13 +223,15 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
   // (analysis/shudder_detection.hpp), from 2 Hz: the driveline's modes start at a few Hz.
   analysis::DetectionSettings ds;
   ds.min_frequency_Hz = 2.0;
-  const auto& sig = rec.signals;
+  const auto& time = rec.find(sn::kTime)->values;
+  const auto& coupling_torque = rec.find(sn::kCouplingTorque)->values;
   analysis::ShudderResult judder;
   try {
-    judder = analysis::detect_shudder(analysis::DetectionInput{sig[kT].values, sig[kCouplingT].values,
-                                                               sig[kSlip].values, sig[kStuck].values,
-                                                               sig[kIfMean].values, sig[kF].values},
-                                      ds);
+    judder = analysis::detect_shudder(
+        analysis::DetectionInput{time, coupling_torque, rec.find(sn::kCouplingSlip)->values,
+                                 rec.find(sn::kStuck)->values, rec.find(sn::kInterfaceMeanTemp)->values,
+                                 rec.find(sn::kClampForce)->values},
+        ds);
   } catch (const std::invalid_argument&) {
     judder.verdict = analysis::Verdict::kNone;  // too short a record to judge (< 64 samples)
     judder.frequency_Hz = judder.amplitude_Nm = std::numeric_limits<double>::quiet_NaN();
@@ -242,8 +240,7 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
   // shuffle mode), not judder: an oscillation counts only if it still has half its amplitude
   // over the record's last two periods (or last tenth, if longer).
   if (judder.verdict != analysis::Verdict::kNone && std::isfinite(judder.frequency_Hz) && judder.frequency_Hz > 0) {
-    const double end_amplitude = final_oscillation_amplitude_Nm(sig[kT].values, sig[kCouplingT].values,
-                                                                1.0 / judder.frequency_Hz);
+    const double end_amplitude = final_oscillation_amplitude_Nm(time, coupling_torque, 1.0 / judder.frequency_Hz);
     if (end_amplitude < 0.5 * judder.amplitude_Nm) judder.verdict = analysis::Verdict::kNone;
   }
   rec.scalars = {
@@ -253,12 +250,8 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
       {"heat_generated_J", "J", n_if * ts.energy.generated_J},
       {"peak_interface_temp_C", "degC", peak_C},
       {"friction_work_J", "J", me.friction_heat_J},
-      // Relative to the largest energy in play: a coasting car (no engine work) is judged
-      // against the kinetic energy it started with or the energy its tyres and coupling took.
       {"mechanical_energy_relative_error", "1",
-       std::abs(me.imbalance_J()) /
-           std::max({std::abs(me.source_work_J), me.initial_kinetic_J + me.initial_elastic_J,
-                     me.friction_heat_J + me.damper_loss_J, 1e-300})},
+       mechanical_energy_relative_error(me, MechanicalEnergyScale::kLargestEnergyInPlay)},
       {"shuffle_frequency_Hz", "Hz", shuffle_Hz},
       {"shuffle_damping_ratio", "1", shuffle_zeta},
       {"piston_area_m2", "m^2", dl.hydraulics().piston_area_m2()},

@@ -2,17 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
+#include "core/units.hpp"
+#include "dynamics/signal_names.hpp"
+#include "rig_models/channel_recorder.hpp"
+#include "rig_models/energy_scalars.hpp"
 #include "rig_models/multirate_clutch.hpp"
 
 namespace shudder::rig_models {
 
 namespace {
-
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-constexpr double kRadPerSPerRpm = kTwoPi / 60.0;
 
 // Index of the mode in which the housing moves most relative to the drive.
 Eigen::Index clutch_side_mode(const dynamics::Modes& m) {
@@ -36,7 +36,7 @@ void require(bool ok, const char* what) {
 }  // namespace
 
 SpeedLoopGains speed_loop_gains(const RigParams& p) {
-  const double wc = kTwoPi * p.speed_loop_bandwidth_Hz;
+  const double wc = units::kTwoPi * p.speed_loop_bandwidth_Hz;
   const double kp = p.drive_inertia_kg_m2 * wc;
   return {kp, kp * wc / 4.0};
 }
@@ -60,7 +60,7 @@ LsctrRig::LsctrRig(const RigParams& params, const clutch::WetClutch& clutch, con
     dynamics::TorsionalNetwork n;
     n.add_inertia({"drive", p_.drive_inertia_kg_m2});
     n.add_inertia({"housing", p_.housing_inertia_kg_m2});
-    n.add_motor({"motor", kDrive, [speed](double t) { return speed(t) * kRadPerSPerRpm; }, kp_, ki_,
+    n.add_motor({"motor", kDrive, [speed](double t) { return units::rpm_to_rad_s(speed(t)); }, kp_, ki_,
                  p_.motor_torque_limit_Nm});
     n.add_contact({"clutch", kDrive, kHousing, law_});
     c_bar_ = 2.0 * p_.bar_damping_ratio * std::sqrt(k_bar * p_.housing_inertia_kg_m2);
@@ -78,7 +78,7 @@ LsctrRig::LsctrRig(const RigParams& params, const clutch::WetClutch& clutch, con
   // loop converges in one pass while the housing is decoupled by the slipping clutch, and keeps
   // the frequency right if elements are added around it).
   const double target = p_.bar_natural_frequency_Hz;
-  k_bar_ = p_.housing_inertia_kg_m2 * std::pow(kTwoPi * target, 2);
+  k_bar_ = p_.housing_inertia_kg_m2 * std::pow(units::kTwoPi * target, 2);
   for (int iter = 0; iter < 8; ++iter) {
     net_ = build(k_bar_);
     const auto m = net_.modes();
@@ -109,7 +109,7 @@ dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& cl
   Eigen::VectorXd theta = Eigen::VectorXd::Zero(2), omega = Eigen::VectorXd::Zero(2),
                   integral = Eigen::VectorXd::Zero(1);
   if (!params.start_at_rest) {
-    const double w0 = cycle.slip_speed_rpm(0.0) * kRadPerSPerRpm;
+    const double w0 = units::rpm_to_rad_s(cycle.slip_speed_rpm(0.0));
     const double t0_Nm = law.kinetic_torque_Nm(std::abs(w0), 0.0) * (w0 >= 0 ? 1.0 : -1.0);
     theta[LsctrRig::kHousing] = t0_Nm / rig.bar_stiffness_Nm_per_rad();
     omega[LsctrRig::kDrive] = w0;
@@ -117,68 +117,57 @@ dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& cl
   }
   sim.initialize(0.0, theta, omega, integral);
 
-  // Channels: mechanical ones come from dynamics samples, thermal ones are filled after each
-  // thermal step by linear interpolation between the field before and after it.
-  dynamics::Recording rec;
-  for (const auto& [name, units] : std::vector<std::pair<const char*, const char*>>{
-           {"time_s", "s"}, {"speed_rpm", "rpm"}, {"normal_force_N", "N"}, {"torque_Nm", "N m"},
-           {"temp_C", "degC"}, {"ir_temp_C", "degC"}, {"sump_temp_C", "degC"},
-           {"slip_rpm", "rpm"}, {"clutch_torque_Nm", "N m"}, {"motor_torque_Nm", "N m"},
-           {"housing_speed_rpm", "rpm"}, {"stuck", "1"}, {"interface_mean_temp_C", "degC"},
-           {"interface_max_temp_C", "degC"}, {"friction_coefficient", "1"}})
-    rec.add_signal(name, units);
-  enum { kT, kSpeed, kForce, kTorque, kTc, kIr, kSump, kSlip, kClutchT, kMotorT, kHousingW, kStuck,
-         kIfMean, kIfMax, kMu };
+  // Channels: mechanical ones come from dynamics samples, thermal ones from the thermal state,
+  // interpolated across each thermal step (channel_recorder.hpp).
+  namespace sn = dynamics::signal_names;
+  using Recorder = ChannelRecorder<dynamics::Sample, clutch::ThermalState>;
+  using dynamics::Sample;
+  using clutch::ThermalState;
   const double n_if = clutch.params().sliding_interfaces;
   const double r_eff = clutch.mean_radius_m();
-  const auto push_mechanical = [&](const dynamics::Sample& s) {
-    const double force = cycle.normal_force_N(s.t_s);
-    auto& sig = rec.signals;
-    sig[kT].values.push_back(s.t_s);
-    sig[kSpeed].values.push_back(s.omega_rad_s[LsctrRig::kDrive] / kRadPerSPerRpm);
-    sig[kForce].values.push_back(force);
-    sig[kTorque].values.push_back(s.shaft_torque_Nm[LsctrRig::kBar]);
-    sig[kSlip].values.push_back(s.contact_slip_rad_s[LsctrRig::kClutch] / kRadPerSPerRpm);
-    sig[kClutchT].values.push_back(s.contact_torque_Nm[LsctrRig::kClutch]);
-    sig[kMotorT].values.push_back(s.motor_torque_Nm[0]);
-    sig[kHousingW].values.push_back(s.omega_rad_s[LsctrRig::kHousing] / kRadPerSPerRpm);
-    sig[kStuck].values.push_back(s.modes[LsctrRig::kClutch] == dynamics::ContactMode::kStuck);
-    sig[kMu].values.push_back(force > 0 ? std::abs(s.contact_torque_Nm[LsctrRig::kClutch]) / (n_if * force * r_eff) : 0.0);
-  };
-  struct Temps { double tc, ir, sump, mean, max; };
-  const auto temps = [&](const clutch::ThermalState& s) {
-    const Eigen::VectorXd ring = th.interface_temps_C(s);
-    return Temps{s.sensor_temp_C, th.ir_C(s), s.sump_temp_C, th.mean_interface_temp_C(s), ring.maxCoeff()};
-  };
-  // Thermal channels: linear between the fields before and after the slow step, for every
-  // sample the step added.
-  const auto push_thermal = [&](const Temps& a, const Temps& b, double ta, double tb) {
-    auto& sig = rec.signals;
-    for (std::size_t k = sig[kTc].values.size(); k < sig[kT].values.size(); ++k) {
-      const double w = tb > ta ? (sig[kT].values[k] - ta) / (tb - ta) : 1.0;
-      const auto mix = [w](double x, double y) { return (1 - w) * x + w * y; };
-      sig[kTc].values.push_back(mix(a.tc, b.tc));
-      sig[kIr].values.push_back(mix(a.ir, b.ir));
-      sig[kSump].values.push_back(mix(a.sump, b.sump));
-      sig[kIfMean].values.push_back(mix(a.mean, b.mean));
-      sig[kIfMax].values.push_back(mix(a.max, b.max));
-    }
-  };
+  dynamics::Recording rec;
+  Recorder recorder(rec, {
+      Recorder::sampled(sn::kTime, "s", [](const Sample& s) { return s.t_s; }),
+      Recorder::sampled(sn::kSpeed, "rpm",
+                        [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[LsctrRig::kDrive]); }),
+      Recorder::sampled(sn::kNormalForce, "N", [&](const Sample& s) { return cycle.normal_force_N(s.t_s); }),
+      Recorder::sampled(sn::kTorque, "N m", [](const Sample& s) { return s.shaft_torque_Nm[LsctrRig::kBar]; }),
+      Recorder::interpolated(sn::kTemp, "degC", [](const ThermalState& state) { return state.sensor_temp_C; }),
+      Recorder::interpolated(sn::kIrTemp, "degC", [&](const ThermalState& state) { return th.ir_C(state); }),
+      Recorder::interpolated(sn::kSumpTemp, "degC", [](const ThermalState& state) { return state.sump_temp_C; }),
+      Recorder::sampled(sn::kSlip, "rpm",
+                        [](const Sample& s) { return units::rad_s_to_rpm(s.contact_slip_rad_s[LsctrRig::kClutch]); }),
+      Recorder::sampled(sn::kClutchTorque, "N m", [](const Sample& s) { return s.contact_torque_Nm[LsctrRig::kClutch]; }),
+      Recorder::sampled(sn::kMotorTorque, "N m", [](const Sample& s) { return s.motor_torque_Nm[0]; }),
+      Recorder::sampled(sn::kHousingSpeed, "rpm",
+                        [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[LsctrRig::kHousing]); }),
+      Recorder::sampled(sn::kStuck, "1",
+                        [](const Sample& s) {
+                          return static_cast<double>(s.modes[LsctrRig::kClutch] == dynamics::ContactMode::kStuck);
+                        }),
+      Recorder::interpolated(sn::kInterfaceMeanTemp, "degC",
+                             [&](const ThermalState& state) { return th.mean_interface_temp_C(state); }),
+      Recorder::interpolated(sn::kInterfaceMaxTemp, "degC",
+                             [&](const ThermalState& state) { return th.interface_temps_C(state).maxCoeff(); }),
+      Recorder::sampled(sn::kFrictionCoefficient, "1",
+                        [&](const Sample& s) {
+                          const double force = cycle.normal_force_N(s.t_s);
+                          return force > 0 ? std::abs(s.contact_torque_Nm[LsctrRig::kClutch]) / (n_if * force * r_eff)
+                                           : 0.0;
+                        }),
+  });
 
-  Temps before = temps(ts);
-  double peak_interface_C = before.max;
-  push_mechanical(sim.sample());
-  push_thermal(before, before, 0.0, 0.0);
+  double peak_interface_C = th.interface_temps_C(ts).maxCoeff();
+  recorder.sample(sim.sample());
+  recorder.start(ts);
 
   std::vector<double> snaps = cfg.snapshot_times_s;
   std::sort(snaps.begin(), snaps.end());
   std::size_t next_snap = 0;
   run_multirate(sim, law, clutch, ts, LsctrRig::kClutch, cfg.duration_s, cfg.thermal_step_s, cfg.sample_rate_Hz,
-                push_mechanical, [&](const SlowStep& step) {
-                  const Temps after = temps(ts);
-                  peak_interface_C = std::max(peak_interface_C, after.max);
-                  push_thermal(before, after, step.ta_s, step.tb_s);
-                  before = after;
+                [&](const dynamics::Sample& s) { recorder.sample(s); }, [&](const SlowStep& step) {
+                  peak_interface_C = std::max(peak_interface_C, th.interface_temps_C(ts).maxCoeff());
+                  recorder.step(ts, step.ta_s, step.tb_s);
                   const double dt = step.tb_s - step.ta_s;
                   while (next_snap < snaps.size() && snaps[next_snap] <= step.tb_s + 0.5 * dt) {
                     rec.snapshots.push_back({step.tb_s, th.field_C(ts)});
@@ -189,16 +178,12 @@ dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& cl
   const int nr = th.radial_cells();
   for (int i = 0; i < nr; ++i) rec.grid_r_m.push_back(th.ring_radius_m()[i]);
   for (int j = 0; j < th.nodes_per_ring(); ++j) rec.grid_z_m.push_back(th.node_z_m()[j]);
-  const auto& e = ts.energy;
   const auto me = sim.energy();
   const auto& cnt = sim.counters();
-  rec.scalars = {
-      {"heat_generated_J", "J", n_if * e.generated_J},
-      {"heat_stored_in_discs_J", "J", n_if * (th.stored_energy_J(ts) - e.initial_stored_J)},
-      {"heat_to_sump_J", "J", n_if * e.to_sump_J},
-      {"heat_to_rig_J", "J", n_if * e.to_rig_J},
-      {"energy_balance_relative_error", "1", e.generated_J > 0 ? std::abs(th.energy_imbalance_J(ts)) / e.generated_J : 0.0},
-      {"mechanical_energy_relative_error", "1", me.source_work_J != 0 ? std::abs(me.imbalance_J()) / std::abs(me.source_work_J) : 0.0},
+  rec.scalars = heat_account_scalars(clutch, ts);
+  const std::vector<dynamics::Scalar> more = {
+      {"mechanical_energy_relative_error", "1",
+       mechanical_energy_relative_error(me, MechanicalEnergyScale::kSourceWork)},
       {"friction_work_J", "J", me.friction_heat_J},
       {"peak_interface_temp_C", "degC", peak_interface_C},
       {"final_max_temp_C", "degC", th.max_temp_C(ts)},
@@ -211,6 +196,7 @@ dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& cl
       {"breakaway_events", "1", static_cast<double>(cnt.breakaway_events)},
       {"reversal_events", "1", static_cast<double>(cnt.reversal_events)},
   };
+  rec.scalars.insert(rec.scalars.end(), more.begin(), more.end());
   return rec;
 }
 

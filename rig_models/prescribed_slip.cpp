@@ -2,18 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
+#include <string_view>
+
+#include "core/units.hpp"
+#include "dynamics/signal_names.hpp"
+#include "rig_models/channel_recorder.hpp"
+#include "rig_models/energy_scalars.hpp"
 
 namespace shudder::rig_models {
 
 namespace {
 
-constexpr double kRadPerSPerRpm = 2.0 * std::numbers::pi / 60.0;
-
 // Everything recorded at one instant; samples between thermal steps interpolate two of these.
 struct Probe {
-  double time_s, slip_rpm, force_N, torque_Nm, clutch_torque_Nm, tc_C, ir_C, sump_C,
+  double slip_rpm, force_N, torque_Nm, clutch_torque_Nm, tc_C, ir_C, sump_C,
       interface_mean_C, interface_max_C, field_max_C, mean_mu, heat_W, flow_ml_min, rig_C;
 };
 
@@ -21,7 +24,7 @@ Probe measure(const clutch::WetClutch& clutch, const clutch::ThermalState& s,
               const DriveCycle& cycle, const BearingDrag& drag, double t) {
   const auto& th = clutch.thermal();
   const double slip_rpm = cycle.slip_speed_rpm(t);
-  const double slip = slip_rpm * kRadPerSPerRpm;
+  const double slip = units::rpm_to_rad_s(slip_rpm);
   const double force = cycle.normal_force_N(t);
   const Eigen::VectorXd ring_T = th.interface_temps_C(s);
   const double m = clutch.torque_Nm(slip, force, ring_T);
@@ -30,8 +33,7 @@ Probe measure(const clutch::WetClutch& clutch, const clutch::ThermalState& s,
   clutch.ring_heat_W(slip, force, ring_T, heat);
   const double n = clutch.params().sliding_interfaces;
   const double denom = n * force * clutch.mean_radius_m();
-  return Probe{t,
-               slip_rpm,
+  return Probe{slip_rpm,
                force,
                m + drag_Nm,
                m,
@@ -43,7 +45,7 @@ Probe measure(const clutch::WetClutch& clutch, const clutch::ThermalState& s,
                th.max_temp_C(s),
                denom > 0.0 ? std::abs(m) / denom : 0.0,
                n * heat.sum(),
-               th.interface_flow_m3_s(slip, th.mean_interface_temp_C(s)) * 6e7,
+               units::m3_s_to_ml_min(th.interface_flow_m3_s(slip, th.mean_interface_temp_C(s))),
                s.rig_temp_C};
 }
 
@@ -56,38 +58,37 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
   if (!(cfg.sample_rate_Hz > 0.0)) throw std::invalid_argument("sample rate must be > 0");
   const auto& th = clutch.thermal();
 
+  // Every channel but the time is evaluated at the thermal steps' ends (a Probe) and
+  // interpolated to the samples in between (channel_recorder.hpp).
+  namespace sn = dynamics::signal_names;
+  using Recorder = ChannelRecorder<double, Probe>;
+  const auto probed = [](std::string_view name, std::string_view units, double Probe::*field) {
+    return Recorder::interpolated(name, units, [field](const Probe& p) { return p.*field; });
+  };
   dynamics::Recording rec;
-  struct Channel { const char* name; const char* units; double Probe::*field; };
-  static constexpr Channel kChannels[] = {
-      {"time_s", "s", &Probe::time_s},
-      {"speed_rpm", "rpm", &Probe::slip_rpm},
-      {"normal_force_N", "N", &Probe::force_N},
-      {"torque_Nm", "N m", &Probe::torque_Nm},
-      {"temp_C", "degC", &Probe::tc_C},
-      {"ir_temp_C", "degC", &Probe::ir_C},
-      {"sump_temp_C", "degC", &Probe::sump_C},
-      {"clutch_torque_Nm", "N m", &Probe::clutch_torque_Nm},
-      {"interface_mean_temp_C", "degC", &Probe::interface_mean_C},
-      {"interface_max_temp_C", "degC", &Probe::interface_max_C},
-      {"max_temp_C", "degC", &Probe::field_max_C},
-      {"friction_coefficient", "1", &Probe::mean_mu},
-      {"heat_power_W", "W", &Probe::heat_W},
-      {"interface_oil_flow_ml_min", "ml/min", &Probe::flow_ml_min},
-      {"rig_temp_C", "degC", &Probe::rig_C},
-  };
-  for (const auto& c : kChannels) rec.add_signal(c.name, c.units);
-  const auto record = [&](const Probe& a, const Probe& b, double t) {
-    const double w = b.time_s > a.time_s ? (t - a.time_s) / (b.time_s - a.time_s) : 1.0;
-    for (std::size_t k = 0; k < std::size(kChannels); ++k)
-      rec.signals[k].values.push_back((1 - w) * a.*kChannels[k].field + w * b.*kChannels[k].field);
-    rec.signals[0].values.back() = t;
-  };
+  Recorder recorder(rec, {
+      Recorder::sampled(sn::kTime, "s", [](double t_s) { return t_s; }),
+      probed(sn::kSpeed, "rpm", &Probe::slip_rpm),
+      probed(sn::kNormalForce, "N", &Probe::force_N),
+      probed(sn::kTorque, "N m", &Probe::torque_Nm),
+      probed(sn::kTemp, "degC", &Probe::tc_C),
+      probed(sn::kIrTemp, "degC", &Probe::ir_C),
+      probed(sn::kSumpTemp, "degC", &Probe::sump_C),
+      probed(sn::kClutchTorque, "N m", &Probe::clutch_torque_Nm),
+      probed(sn::kInterfaceMeanTemp, "degC", &Probe::interface_mean_C),
+      probed(sn::kInterfaceMaxTemp, "degC", &Probe::interface_max_C),
+      probed(sn::kMaxTemp, "degC", &Probe::field_max_C),
+      probed(sn::kFrictionCoefficient, "1", &Probe::mean_mu),
+      probed(sn::kHeatPower, "W", &Probe::heat_W),
+      probed(sn::kInterfaceOilFlow, "ml/min", &Probe::flow_ml_min),
+      probed(sn::kRigTemp, "degC", &Probe::rig_C),
+  });
 
   clutch::ThermalState state = clutch.initial_state();
   const long n_samples = static_cast<long>(std::floor(cfg.duration_s * cfg.sample_rate_Hz + 1e-9)) + 1;
   long next_sample = 0;
-  Probe before = measure(clutch, state, cycle, cfg.bearing_drag, 0.0);
-  record(before, before, 0.0);
+  recorder.sample(0.0);
+  recorder.start(measure(clutch, state, cycle, cfg.bearing_drag, 0.0));
   next_sample = 1;
 
   std::vector<double> snaps = cfg.snapshot_times_s;
@@ -101,7 +102,6 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
   };
   take_snapshots(0.0, cfg.thermal_step_s);
 
-  const double n_if = clutch.params().sliding_interfaces;
   Eigen::VectorXd h0, hm, h1;
   double peak_interface_C = th.interface_temps_C(state).maxCoeff();
   while (state.time_s < cfg.duration_s - 1e-12) {
@@ -111,23 +111,23 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
     // Ring heat over the step with temperatures held at t0 (Simpson's rule).
     const Eigen::VectorXd ring_T = th.interface_temps_C(state);
     const auto heat_at = [&](double t, Eigen::VectorXd& h) {
-      clutch.ring_heat_W(cycle.slip_speed_rpm(t) * kRadPerSPerRpm, cycle.normal_force_N(t), ring_T, h);
+      clutch.ring_heat_W(units::rpm_to_rad_s(cycle.slip_speed_rpm(t)), cycle.normal_force_N(t), ring_T, h);
     };
     heat_at(t0, h0);
     heat_at(tm, hm);
     heat_at(t1, h1);
     const Eigen::VectorXd mean_heat = (h0 + 4.0 * hm + h1) / 6.0;
-    th.step(state, dt, mean_heat, cycle.slip_speed_rpm(tm) * kRadPerSPerRpm);
+    th.step(state, dt, mean_heat, units::rpm_to_rad_s(cycle.slip_speed_rpm(tm)));
     state.time_s = t1;  // exact end time, free of accumulated round-off
 
     const Probe after = measure(clutch, state, cycle, cfg.bearing_drag, t1);
     while (next_sample < n_samples) {
       const double ts = static_cast<double>(next_sample) / cfg.sample_rate_Hz;
       if (ts > t1 + 1e-12) break;
-      record(before, after, ts);
+      recorder.sample(ts);
       ++next_sample;
     }
-    before = after;
+    recorder.step(after, t0, t1);
     peak_interface_C = std::max(peak_interface_C, after.interface_max_C);
     take_snapshots(t1, dt);
   }
@@ -137,19 +137,10 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
   for (int j = 0; j < th.nodes_per_ring(); ++j) rec.grid_z_m.push_back(th.node_z_m()[j]);
 
   // Summary scalars: energy in the whole clutch (all interfaces).
-  const auto& e = state.energy;
-  const double stored = th.stored_energy_J(state) - e.initial_stored_J;
-  const double imbalance = th.energy_imbalance_J(state);
-  rec.scalars = {
-      {"heat_generated_J", "J", n_if * e.generated_J},
-      {"heat_stored_in_discs_J", "J", n_if * stored},
-      {"heat_to_sump_J", "J", n_if * e.to_sump_J},
-      {"heat_to_rig_J", "J", n_if * e.to_rig_J},
-      {"energy_balance_relative_error", "1", e.generated_J > 0 ? std::abs(imbalance) / e.generated_J : 0.0},
-      {"peak_interface_temp_C", "degC", peak_interface_C},
-      {"final_max_temp_C", "degC", th.max_temp_C(state)},
-      {"thermal_steps", "1", std::ceil(cfg.duration_s / cfg.thermal_step_s - 1e-9)},
-  };
+  rec.scalars = heat_account_scalars(clutch, state);
+  rec.scalars.push_back({"peak_interface_temp_C", "degC", peak_interface_C});
+  rec.scalars.push_back({"final_max_temp_C", "degC", th.max_temp_C(state)});
+  rec.scalars.push_back({"thermal_steps", "1", std::ceil(cfg.duration_s / cfg.thermal_step_s - 1e-9)});
   return rec;
 }
 

@@ -4,7 +4,11 @@
 #include <cmath>
 #include <regex>
 #include <stdexcept>
+#include <string>
+#include <string_view>
 
+#include "core/units.hpp"
+#include "dynamics/signal_names.hpp"
 #include "rig_models/speed_setpoint.hpp"
 
 namespace shudder::rig_models {
@@ -58,9 +62,9 @@ std::vector<double> interpolate(const std::vector<double>& t, const std::vector<
   return out;
 }
 
-const std::vector<double>& signal(const dynamics::Recording& rec, const char* name) {
+const std::vector<double>& signal(const dynamics::Recording& rec, std::string_view name) {
   const auto* s = rec.find(name);
-  if (!s) throw std::logic_error(std::string("replay: the model did not record ") + name);
+  if (!s) throw std::logic_error("replay: the model did not record " + std::string(name));
   return s->values;
 }
 
@@ -81,7 +85,7 @@ ReplayOutput replay(const ReplayModel& model, const ReplayInputs& in) {
   clutch::WetClutchParams cp = model.clutch;
   cp.start_temp_C = start_mean(t, in.temp_C);
   cp.sump_start_temp_C = in.sump_temp_C.size() == t.size() ? start_mean(t, in.sump_temp_C) : cp.start_temp_C;
-  if (in.oil_flow_ml_min) cp.thermal.supply_flow_m3_s = *in.oil_flow_ml_min / 6e7;
+  if (in.oil_flow_ml_min) cp.thermal.supply_flow_m3_s = units::ml_min_to_m3_s(*in.oil_flow_ml_min);
   if (in.thermocouple_r_mm) cp.thermal.thermocouple_r_m = *in.thermocouple_r_mm * 1e-3;
   if (in.thermocouple_z_mm) cp.thermal.thermocouple_z_m = *in.thermocouple_z_mm * 1e-3;
   const clutch::WetClutch clutch(cp, model.fluid);
@@ -112,12 +116,13 @@ ReplayOutput replay(const ReplayModel& model, const ReplayInputs& in) {
   }
   std::vector<double> tq(t.size());
   for (std::size_t i = 0; i < t.size(); ++i) tq[i] = t[i] - t0;
-  const auto& time = signal(rec, "time_s");
+  namespace sn = dynamics::signal_names;
+  const auto& time = signal(rec, sn::kTime);
   ReplayOutput out;
-  out.torque_Nm = interpolate(time, signal(rec, "torque_Nm"), tq);
-  out.temp_C = interpolate(time, signal(rec, "temp_C"), tq);
-  out.sump_temp_C = interpolate(time, signal(rec, "sump_temp_C"), tq);
-  out.ir_temp_C = interpolate(time, signal(rec, "ir_temp_C"), tq);
+  out.torque_Nm = interpolate(time, signal(rec, sn::kTorque), tq);
+  out.temp_C = interpolate(time, signal(rec, sn::kTemp), tq);
+  out.sump_temp_C = interpolate(time, signal(rec, sn::kSumpTemp), tq);
+  out.ir_temp_C = interpolate(time, signal(rec, sn::kIrTemp), tq);
   return out;
 }
 

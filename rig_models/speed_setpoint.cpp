@@ -1,8 +1,9 @@
 #include "rig_models/speed_setpoint.hpp"
 
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
+
+#include "core/units.hpp"
 
 namespace shudder::rig_models {
 
@@ -17,11 +18,10 @@ std::vector<double> estimate_speed_setpoint(const std::vector<double>& t,
       throw std::invalid_argument("estimate_speed_setpoint: time must increase strictly");
   if (n < 2) return w_rpm;
 
-  constexpr double kRadPerSPerRpm = 2.0 * std::numbers::pi / 60.0;
   const SpeedLoopGains g = speed_loop_gains(rig);
   const double tau_s = g.kp_Nms_per_rad / g.ki_Nm_per_rad;
   const double j = rig.drive_inertia_kg_m2;
-  const auto w = [&](std::size_t k) { return w_rpm[k] * kRadPerSPerRpm; };
+  const auto w = [&](std::size_t k) { return units::rpm_to_rad_s(w_rpm[k]); };
   // Input of the derivative-free filter τ v' + v = q.
   const auto q = [&](std::size_t k) { return torque_Nm[k] - j / tau_s * w(k); };
 
@@ -38,7 +38,7 @@ std::vector<double> estimate_speed_setpoint(const std::vector<double>& t,
     const double dw_dt = (w(b) - w(a)) / (t[b] - t[a]);
     const double y = v + j / tau_s * w(k);
     const double e_rad_s = (j * dw_dt + torque_Nm[k] - y) / g.kp_Nms_per_rad;
-    setpoint[k] = w_rpm[k] + e_rad_s / kRadPerSPerRpm;
+    setpoint[k] = w_rpm[k] + units::rad_s_to_rpm(e_rad_s);
   }
   return setpoint;
 }

@@ -16,6 +16,7 @@
 
 #include "analysis/anti_shudder_indices.hpp"
 #include "clutch/linear_friction.hpp"
+#include "core/units.hpp"
 #include "io/fluid_loader.hpp"
 
 namespace {
@@ -29,7 +30,7 @@ std::string fluid_path(const std::string& file) {
   return std::string(SHUDDER_SOURCE_DIR "/scenarios/fluids/") + file;
 }
 
-const double kRpm = 2.0 * std::numbers::pi / 60.0 * 46.0;  // mm/s per rpm
+const double kRpm = shudder::units::kRadPerSPerRpm * 46.0;  // mm/s per rpm
 
 TEST(Indices, RpmConversionAtTheRigRadius) {
   EXPECT_NEAR(rpm_to_mm_s(1.0), 4.817109, 1e-6);  // PHYSICS §4: 1 rpm = 4.82 mm/s

@@ -21,11 +21,13 @@
 
 #include "analysis/shudder_detection.hpp"
 #include "clutch/wet_clutch.hpp"
+#include "core/units.hpp"
 #include "dynamics/recording.hpp"
 #include "io/hdf5_run.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/lsctr_rig.hpp"
 #include "tests/support/cli.hpp"
+#include "tests/support/models.hpp"
 #include "tests/support/recording.hpp"
 
 namespace {
@@ -48,7 +50,7 @@ shudder::io::Scenario scenario(const std::string& name) {
 
 Recording run(const shudder::io::Scenario& sc) {
   const auto clutch = sc.make_clutch();
-  return shudder::rig_models::run_rig(sc.rig, clutch, sc.cycle, sc.rig_settings());
+  return shudder::rig_models::run_rig(shudder::test::rig_model(sc).params, clutch, shudder::test::rig_model(sc).cycle, shudder::test::rig_model(sc).settings);
 }
 
 using shudder::test::scalar;
@@ -106,10 +108,10 @@ TEST(DetectionOnRig, NegativeSlopeFluidIsVibrationAtTheClutchSideFrequency) {
   // smaller), the interface warms by ~1 K over the fitted span, and the fit ends where the
   // slip swings by ~±2 rpm about 30 rpm: each ≤ 3 %, the tolerance (measured 0.1 %).
   const auto clutch = sc.make_clutch();
-  shudder::rig_models::LsctrRig rig(sc.rig, clutch, sc.cycle);
+  shudder::rig_models::LsctrRig rig(shudder::test::rig_model(sc).params, clutch, shudder::test::rig_model(sc).cycle);
   rig.clutch_law().set_ring_temperatures(clutch.thermal().interface_temps_C(clutch.initial_state()));
-  const double slope_Nms = rig.clutch_law().kinetic_torque_slope_Nms(30.0 * 2.0 * std::numbers::pi / 60.0, 0.0);
-  const double sigma_pred = -(rig.bar_damping_Nms_per_rad() + slope_Nms) / (2.0 * sc.rig.housing_inertia_kg_m2);
+  const double slope_Nms = rig.clutch_law().kinetic_torque_slope_Nms(shudder::units::rpm_to_rad_s(30.0), 0.0);
+  const double sigma_pred = -(rig.bar_damping_Nms_per_rad() + slope_Nms) / (2.0 * shudder::test::rig_model(sc).params.housing_inertia_kg_m2);
   record("negative_slope_growth", "growth rate %.3f 1/s, linearised %.3f 1/s (c_bar %.3f, dT/dw %.3f N m s/rad)",
          r.growth_rate_per_s, sigma_pred, rig.bar_damping_Nms_per_rad(), slope_Nms);
   EXPECT_TRUE(r.growth_observed);

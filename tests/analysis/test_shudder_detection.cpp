@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "analysis/shudder_detection.hpp"
+#include "core/units.hpp"
 #include "dynamics/recording.hpp"
 
 namespace {
@@ -25,7 +26,7 @@ using namespace shudder::analysis;
 using shudder::dynamics::Recording;
 using ::testing::HasSubstr;
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
+using shudder::units::kTwoPi;
 
 template <typename... Args>
 void record(const std::string& key, const char* format, Args... args) {
@@ -262,6 +263,18 @@ TEST(DetectionInputs, MissingShortOrNonUniformSignalsAreRejectedByName) {
   bad.min_frequency_Hz = 0.0;
   EXPECT_THAT([&] { ShudderDetector d(bad); },
               ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("min_frequency_Hz")));
+}
+
+// The verdict names are the ones written to outputs (sweep /cases, the driveline summary): one
+// table, read both ways, in code order (a verdict is stored as its index in kVerdicts).
+TEST(VerdictNames, AreTheOutputNamesInCodeOrderAndReadBack) {
+  const char* expected[] = {"none", "vibration", "stick_slip"};
+  for (std::size_t i = 0; i < kVerdicts.size(); ++i) {
+    EXPECT_EQ(static_cast<std::size_t>(kVerdicts[i]), i);
+    EXPECT_EQ(to_string(kVerdicts[i]), expected[i]);
+    EXPECT_EQ(verdict_from_string(expected[i]), kVerdicts[i]);
+  }
+  EXPECT_EQ(verdict_from_string("stick-slip"), Verdict::kNone);  // display text is not a name
 }
 
 }  // namespace

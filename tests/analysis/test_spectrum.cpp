@@ -19,13 +19,14 @@
 #include <vector>
 
 #include "analysis/spectrum.hpp"
+#include "core/units.hpp"
 
 namespace {
 
 using namespace shudder::analysis;
 using ::testing::HasSubstr;
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
+using shudder::units::kTwoPi;
 
 template <typename... Args>
 void record(const std::string& key, const char* format, Args... args) {

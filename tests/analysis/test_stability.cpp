@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "analysis/stability.hpp"
+#include "core/units.hpp"
 #include "dynamics/network.hpp"
 #include "tests/dynamics/test_laws.hpp"
 
@@ -31,7 +32,7 @@ using shudder::dynamics::kGround;
 using shudder::dynamics::TorsionalNetwork;
 using shudder::dynamics::testing::LinearSlopeLaw;
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
+using shudder::units::kTwoPi;
 
 // A constant-speed driver (its inertia is irrelevant: the source fixes its speed).
 int add_driver(TorsionalNetwork& net, double speed_rad_s) {

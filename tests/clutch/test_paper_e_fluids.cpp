@@ -16,6 +16,7 @@
 #include <numbers>
 #include <string>
 
+#include "core/units.hpp"
 #include "io/fluid_loader.hpp"
 
 namespace {
@@ -34,7 +35,7 @@ constexpr TableFour kFluids[] = {
 };
 
 // 1 and 50 rpm at the 46 mm mean radius, as the files convert them.
-const double kV1 = 1.0 * 2.0 * std::numbers::pi / 60.0 * 46.0;
+const double kV1 = shudder::units::kRadPerSPerRpm * 46.0;
 const double kV50 = 50.0 * kV1;
 
 TEST(PaperEFluids, MatchTableFourOneDegreeBelowItsLabel) {

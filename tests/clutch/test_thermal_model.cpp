@@ -33,7 +33,6 @@ using shudder::clutch::ThermalState;
 using ::testing::HasSubstr;
 using ::testing::ThrowsMessage;
 
-constexpr double kPi = std::numbers::pi;
 
 // Paper G geometry and materials, every effect off; each test switches on what it needs.
 ThermalParams bare_params() {
@@ -112,7 +111,7 @@ TEST(ThermalModel, PlaneSourceInSteelRisesAsSqrtTimeLikeASemiInfiniteSolid) {
     const int steps = static_cast<int>(std::lround(t_check / dt));
     for (; steps_done < steps; ++steps_done) model.step(s, dt, heat, 0.0);
     const double rise = model.interface_temps_C(s)[kMid] - T0;
-    const double exact = q * std::sqrt(t_check / (kPi * k * rho * cp));
+    const double exact = q * std::sqrt(t_check / (std::numbers::pi * k * rho * cp));
     const double tol = dt / t_check + dz * dz / (8.0 * alpha * t_check);
     EXPECT_NEAR(rise / exact, 1.0, tol) << "t = " << t_check << " s, rise " << rise << " K";
     // And the middle ring is untouched by the radial boundaries (see the header): its

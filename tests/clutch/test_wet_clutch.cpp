@@ -38,7 +38,6 @@ using shudder::clutch::WetClutchParams;
 using ::testing::HasSubstr;
 using ::testing::ThrowsMessage;
 
-constexpr double kPi = std::numbers::pi;
 
 // mu = mu0 + dmu_dT * T + dmu_dF * F: constant, linear in temperature or linear in load.
 class AffineFriction final : public FrictionLaw {
@@ -75,11 +74,11 @@ struct Annulus {
   explicit Annulus(const WetClutchParams& p)
       : ri(p.thermal.inner_radius_m), ro(p.thermal.outer_radius_m),
         dr((ro - ri) / p.thermal.radial_cells) {}
-  double area() const { return kPi * (ro * ro - ri * ri); }
-  double r2_integral() const { return 2.0 / 3.0 * kPi * (ro * ro * ro - ri * ri * ri); }
-  double r2_midpoint_error() const { return kPi / 6.0 * dr * dr * (ro - ri); }
-  double r3_integral() const { return kPi / 2.0 * (std::pow(ro, 4) - std::pow(ri, 4)); }
-  double r3_midpoint_error() const { return kPi / 4.0 * dr * dr * (ro * ro - ri * ri); }
+  double area() const { return std::numbers::pi * (ro * ro - ri * ri); }
+  double r2_integral() const { return 2.0 / 3.0 * std::numbers::pi * (ro * ro * ro - ri * ri * ri); }
+  double r2_midpoint_error() const { return std::numbers::pi / 6.0 * dr * dr * (ro - ri); }
+  double r3_integral() const { return std::numbers::pi / 2.0 * (std::pow(ro, 4) - std::pow(ri, 4)); }
+  double r3_midpoint_error() const { return std::numbers::pi / 4.0 * dr * dr * (ro * ro - ri * ri); }
 };
 
 // Sums are exact up to a few ulp per ring: relative 1e-12 wherever an identity is checked.

@@ -14,6 +14,7 @@
 #include <numbers>
 #include <vector>
 
+#include "core/units.hpp"
 #include "dynamics/network.hpp"
 #include "dynamics/simulation.hpp"
 #include "tests/dynamics/test_laws.hpp"
@@ -22,7 +23,6 @@ namespace {
 
 using namespace shudder::dynamics;
 using shudder::dynamics::testing::CoulombLaw;
-constexpr double kPi = std::numbers::pi;
 
 IntegratorSettings tight() {
   IntegratorSettings s;
@@ -57,7 +57,7 @@ TEST(DynamicsNetworkModes, SingleInertiaFrequencyIsSqrtKOverJ) {
   const auto net = single_oscillator(0.0);
   const Modes modes = net.modes();
   ASSERT_EQ(modes.frequencies_Hz.size(), 1);
-  EXPECT_NEAR(modes.frequencies_Hz[0] / (std::sqrt(kK / kJ) / (2 * kPi)), 1.0, 1e-9);
+  EXPECT_NEAR(modes.frequencies_Hz[0] / (std::sqrt(kK / kJ) / shudder::units::kTwoPi), 1.0, 1e-9);
   EXPECT_DOUBLE_EQ(modes.shapes(0, 0), 1.0);  // normalised to max |entry| = 1
   // Undamped: eigenvalues ±i ω_n, zero real part (only rounding).
   ASSERT_EQ(modes.damped_eigenvalues.size(), 2);
@@ -107,14 +107,14 @@ TEST(DynamicsNetworkModes, DampedEigenvalueRealPartIsMinusCOver2J) {
   // Sorted by |imag|, then positive imaginary part first.
   EXPECT_GT(modes.damped_eigenvalues[0].imag(), 0.0);
   // The undamped frequency ignores c.
-  EXPECT_NEAR(modes.frequencies_Hz[0] / (std::sqrt(kK / kJ) / (2 * kPi)), 1.0, 1e-9);
+  EXPECT_NEAR(modes.frequencies_Hz[0] / (std::sqrt(kK / kJ) / shudder::units::kTwoPi), 1.0, 1e-9);
 }
 
 TEST(DynamicsNetworkModes, SimulatedEnvelopeDecaysAtSigma) {
   const double c = 1.0, theta0 = 0.01;
   const auto net = single_oscillator(c);
   const double sigma = c / (2 * kJ), wd = std::sqrt(kK / kJ - sigma * sigma);
-  const double td = 2 * kPi / wd;
+  const double td = shudder::units::kTwoPi / wd;
   Simulation sim(net, tight());
   sim.initialize(0.0, Eigen::VectorXd::Constant(1, theta0), Eigen::VectorXd::Zero(1));
   std::vector<double> times = grid(0.0, 5e-4, 300);
@@ -158,7 +158,7 @@ TEST(DynamicsNetworkModes, TwoDofFrequenciesAreTheCharacteristicRoots) {
   ASSERT_EQ(modes.frequencies_Hz.size(), 2);
   const double lambda[2] = {small, big};
   for (int m = 0; m < 2; ++m) {
-    EXPECT_NEAR(modes.frequencies_Hz[m] / (std::sqrt(lambda[m]) / (2 * kPi)), 1.0, 1e-9);
+    EXPECT_NEAR(modes.frequencies_Hz[m] / (std::sqrt(lambda[m]) / shudder::units::kTwoPi), 1.0, 1e-9);
     const double ratio = k2 / (k2 - j2 * lambda[m]);
     EXPECT_NEAR(modes.shapes(1, m) / modes.shapes(0, m), ratio, 1e-9 * std::abs(ratio));
   }
@@ -199,7 +199,7 @@ TEST(DynamicsNetworkModes, GearedInertiaHasTheReflectedFrequency) {
   ASSERT_EQ(g.frequencies_Hz.size(), 1);  // the gear removes one degree of freedom
   ASSERT_EQ(r.frequencies_Hz.size(), 1);
   EXPECT_NEAR(g.frequencies_Hz[0] / r.frequencies_Hz[0], 1.0, 1e-9);
-  EXPECT_NEAR(g.frequencies_Hz[0] / (std::sqrt(k_eff / j_eff) / (2 * kPi)), 1.0, 1e-9);
+  EXPECT_NEAR(g.frequencies_Hz[0] / (std::sqrt(k_eff / j_eff) / shudder::units::kTwoPi), 1.0, 1e-9);
   // Shape: node amplitudes in the gear ratio, θ1 = i θ2, largest (θ1) normalised to 1.
   EXPECT_NEAR(g.shapes(0, 0), 1.0, 1e-12);
   EXPECT_NEAR(g.shapes(1, 0), 1.0 / kRatio, 1e-12);
@@ -238,12 +238,12 @@ TEST(DynamicsNetworkModes, StuckContactMergesItsNodes) {
   net.add_contact({"c", a, b, std::make_shared<CoulombLaw>(1.0, 2.0)});
   const Modes stuck = net.modes({true});
   ASSERT_EQ(stuck.frequencies_Hz.size(), 1);
-  EXPECT_NEAR(stuck.frequencies_Hz[0] / (std::sqrt(k / (j1 + j2)) / (2 * kPi)), 1.0, 1e-9);
+  EXPECT_NEAR(stuck.frequencies_Hz[0] / (std::sqrt(k / (j1 + j2)) / shudder::units::kTwoPi), 1.0, 1e-9);
   const Modes slipping = net.modes({false});
   ASSERT_EQ(slipping.frequencies_Hz.size(), 2);
   // Rigid-body mode: ω² is zero up to rounding of k/J (~1e-12 of 2e4 1/s²), so f ≲ 1e-6 Hz.
   EXPECT_NEAR(slipping.frequencies_Hz[0], 0.0, 1e-5);
-  EXPECT_NEAR(slipping.frequencies_Hz[1] / (std::sqrt(k / j2) / (2 * kPi)), 1.0, 1e-9);
+  EXPECT_NEAR(slipping.frequencies_Hz[1] / (std::sqrt(k / j2) / shudder::units::kTwoPi), 1.0, 1e-9);
 }
 
 }  // namespace

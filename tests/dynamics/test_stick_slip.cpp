@@ -23,7 +23,6 @@ namespace {
 
 using namespace shudder::dynamics;
 using shudder::dynamics::testing::CoulombLaw;
-constexpr double kPi = std::numbers::pi;
 
 IntegratorSettings tight(double max_step_s = 1e-4) {
   IntegratorSettings s;
@@ -74,7 +73,7 @@ struct Belt {
 };
 
 double omega_n() { return std::sqrt(kK / kJm); }
-double t_slip() { return (kPi + 2 * std::atan(kV * kK / (omega_n() * (kTs - kTk)))) / omega_n(); }
+double t_slip() { return (std::numbers::pi + 2 * std::atan(kV * kK / (omega_n() * (kTs - kTk)))) / omega_n(); }
 double t_stick() { return 2 * (kTs - kTk) / (kK * kV); }
 double theta_r() { return (2 * kTk - kTs) / kK; }
 
@@ -240,7 +239,7 @@ TEST(DynamicsStickSlip, CapacityGrowingWithStickTimeDelaysBreakaway) {
 
   const double tau_b = (kTs - kK * theta_r()) / (kK * kV - beta);
   const double x0 = (kTs + beta * tau_b - kTk) / kK;
-  const double slip = (kPi + 2 * std::atan(kV / (omega_n() * x0))) / omega_n();
+  const double slip = (std::numbers::pi + 2 * std::atan(kV / (omega_n() * x0))) / omega_n();
   const double theta_r2 = kTk / kK - x0;
   const double tau_b2 = (kTs - kK * theta_r2) / (kK * kV - beta);
   EXPECT_NEAR(tau_b, 0.025, 1e-15);

@@ -24,10 +24,12 @@
 #include <vector>
 
 #include "clutch/wet_clutch.hpp"
+#include "core/units.hpp"
 #include "dynamics/recording.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/lsctr_rig.hpp"
 #include "rig_models/prescribed_slip.hpp"
+#include "tests/support/models.hpp"
 #include "tests/support/recording.hpp"
 
 namespace {
@@ -41,7 +43,7 @@ using shudder::rig_models::LsctrRig;
 using shudder::rig_models::run_prescribed_slip;
 using shudder::rig_models::run_rig;
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
+using shudder::units::kTwoPi;
 
 Scenario scenario(const std::string& name) {
   return load_scenario(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/" + name);
@@ -60,7 +62,7 @@ void record(const std::string& key, const char* format, Args... args) {
 
 Recording run(const Scenario& sc) {
   const WetClutch clutch = sc.make_clutch();
-  return run_rig(sc.rig, clutch, sc.cycle, sc.rig_settings());
+  return run_rig(shudder::test::rig_model(sc).params, clutch, shudder::test::rig_model(sc).cycle, shudder::test::rig_model(sc).settings);
 }
 
 // Rig Case 1 at the scenario's 10 ms thermal step, shared by two tests (0.15 s per run).
@@ -131,9 +133,9 @@ TEST(RigBar, StiffnessDerivedFromTargetFrequencyMatchesClutchSideModeAndClosedFo
   const WetClutch clutch = sc.make_clutch();
   for (const double target_Hz : {100.0, 175.0, 378.0, 500.0}) {
     SCOPED_TRACE(target_Hz);
-    auto params = sc.rig;
+    auto params = shudder::test::rig_model(sc).params;
     params.bar_natural_frequency_Hz = target_Hz;
-    const LsctrRig rig(params, clutch, sc.cycle);
+    const LsctrRig rig(params, clutch, shudder::test::rig_model(sc).cycle);
     const Modes m = rig.network().modes();
     const Eigen::Index j = housing_mode(m);
     const double f = m.frequencies_Hz[j];
@@ -164,9 +166,9 @@ TEST(RigBar, StiffnessDerivedFromTargetFrequencyMatchesClutchSideModeAndClosedFo
 TEST(RigBar, GivenStiffnessIsUsedAsIs) {
   const Scenario sc = scenario("rig_case1_25kN_378Hz.toml");
   const WetClutch clutch = sc.make_clutch();
-  auto params = sc.rig;
+  auto params = shudder::test::rig_model(sc).params;
   params.bar_stiffness_Nm_per_rad = 5.0e4;
-  const LsctrRig rig(params, clutch, sc.cycle);
+  const LsctrRig rig(params, clutch, shudder::test::rig_model(sc).cycle);
   EXPECT_EQ(rig.bar_stiffness_Nm_per_rad(), 5.0e4);
   const double f_closed = std::sqrt(5.0e4 / params.housing_inertia_kg_m2) / kTwoPi;  // 251.6 Hz
   EXPECT_NEAR(rig.clutch_side_frequency_Hz() / f_closed, 1.0, 1e-9);
@@ -200,7 +202,7 @@ TEST(RigQuasiStatic, Case1TorqueCellEqualsPrescribedSlipTorque) {
   const Recording& rig = rig_case1();
   const Scenario ps_sc = scenario("paper_g_case1_25kN.toml");
   const WetClutch ps_clutch = ps_sc.make_clutch();
-  const Recording ps = run_prescribed_slip(ps_clutch, ps_sc.cycle, ps_sc.settings);
+  const Recording ps = run_prescribed_slip(ps_clutch, shudder::test::prescribed_model(ps_sc).cycle, shudder::test::prescribed_model(ps_sc).settings);
 
   const auto& t_r = signal(rig, "time_s");
   const auto& T_r = signal(rig, "torque_Nm");
@@ -250,8 +252,8 @@ TEST(RigQuasiStatic, Case1TorqueCellEqualsPrescribedSlipTorque) {
   // each 10 ms thermal update (ring temperatures are held within a step); measured 1 %.
   const Scenario rig_sc = scenario("rig_case1_25kN_378Hz.toml");
   const WetClutch rig_clutch = rig_sc.make_clutch();
-  const LsctrRig loop(rig_sc.rig, rig_clutch, rig_sc.cycle);
-  const auto lag = [&](std::size_t i) { return (1.0 + 9.9 * t_r[i] - w_r[i]) * kTwoPi / 60.0; };
+  const LsctrRig loop(shudder::test::rig_model(rig_sc).params, rig_clutch, shudder::test::rig_model(rig_sc).cycle);
+  const auto lag = [&](std::size_t i) { return shudder::units::rpm_to_rad_s(1.0 + 9.9 * t_r[i] - w_r[i]); };
   const auto rate = [&](const auto& f, std::size_t i) {
     return (f(i + 5) - f(i - 5)) / (t_r[i + 5] - t_r[i - 5]);
   };
@@ -352,11 +354,11 @@ TEST(RigShudder, NegativeSlopeFluidOscillatesAtTheClutchSideDampedFrequencyAndFo
   const double bars_Hz[2] = {378.0, 175.0};
   for (int b = 0; b < 2; ++b) {
     SCOPED_TRACE(bars_Hz[b]);
-    sc.rig.bar_natural_frequency_Hz = bars_Hz[b];
+    shudder::test::rig_model(sc).params.bar_natural_frequency_Hz = bars_Hz[b];
     const WetClutch clutch = sc.make_clutch();
-    const LsctrRig rig(sc.rig, clutch, sc.cycle);
+    const LsctrRig rig(shudder::test::rig_model(sc).params, clutch, shudder::test::rig_model(sc).cycle);
     const double f_damped = housing_eigenvalue(rig.network().modes()).imag() / kTwoPi;
-    const Recording rec = run_rig(sc.rig, clutch, sc.cycle, sc.rig_settings());
+    const Recording rec = run_rig(shudder::test::rig_model(sc).params, clutch, shudder::test::rig_model(sc).cycle, shudder::test::rig_model(sc).settings);
     const auto& t = signal(rec, "time_s");
     const auto& wh = signal(rec, "housing_speed_rpm");
     const auto& slip = signal(rec, "slip_rpm");
@@ -414,9 +416,9 @@ TEST(RigShudder, NegativeSlopeFluidOscillatesAtTheClutchSideDampedFrequencyAndFo
 TEST(RigStickSlip, SlipReturnsToZeroEveryCycleStuckIsExactAndTheJumpIsTwiceTheFrictionDrop) {
   const Scenario sc = scenario("rig_stick_slip.toml");
   const WetClutch clutch = sc.make_clutch();
-  auto settings = sc.rig_settings();
+  auto settings = shudder::test::rig_model(sc).settings;
   settings.sample_rate_Hz = 200e3;
-  const Recording rec = run_rig(sc.rig, clutch, sc.cycle, settings);
+  const Recording rec = run_rig(shudder::test::rig_model(sc).params, clutch, shudder::test::rig_model(sc).cycle, settings);
   const auto& t = signal(rec, "time_s");
   const auto& T = signal(rec, "torque_Nm");
   const auto& slip = signal(rec, "slip_rpm");
@@ -471,14 +473,14 @@ TEST(RigStickSlip, SlipReturnsToZeroEveryCycleStuckIsExactAndTheJumpIsTwiceTheFr
   ASSERT_GT(jumps.size(), 100u);
   EXPECT_LT(temp.back() - temp.front(), 0.5);  // the held state stays the start state
 
-  LsctrRig rig(sc.rig, clutch, sc.cycle);
+  LsctrRig rig(shudder::test::rig_model(sc).params, clutch, shudder::test::rig_model(sc).cycle);
   const auto& law = rig.clutch_law();
   const double t_mid = 0.5;  // constant force: any time
   const double T_s = law.static_capacity_Nm(t_mid, 0.0);
   const double T_k = law.kinetic_torque_Nm(0.0, t_mid);
   const double expected = 2.0 * (T_s - T_k);
-  const double e_v = 2.0 * (law.kinetic_torque_Nm(v_peak_rpm * kTwoPi / 60.0, t_mid) - T_k) / expected;
-  const double e_z = 0.5 * (1.0 - std::exp(-std::numbers::pi * sc.rig.bar_damping_ratio));
+  const double e_v = 2.0 * (law.kinetic_torque_Nm(shudder::units::rpm_to_rad_s(v_peak_rpm), t_mid) - T_k) / expected;
+  const double e_z = 0.5 * (1.0 - std::exp(-std::numbers::pi * shudder::test::rig_model(sc).params.bar_damping_ratio));
   const double e_i = 0.03;
   EXPECT_NEAR(T_s / T_k, 1.3, 1e-9);  // the fluid's breakaway ratio, one load, one temperature
   EXPECT_LT(e_v, 0.08);               // the budget's first item as estimated
@@ -516,8 +518,8 @@ TEST(RigStickSlip, SlipReturnsToZeroEveryCycleStuckIsExactAndTheJumpIsTwiceTheFr
 TEST(RigThermalCoupling, HalvingTheThermalStepChangesEndTorqueAndTemperatureByLessThanHalfAPercent) {
   const Recording& coarse = rig_case1();
   Scenario sc = scenario("rig_case1_25kN_378Hz.toml");
-  ASSERT_DOUBLE_EQ(sc.settings.thermal_step_s, 0.01);
-  sc.settings.thermal_step_s = 0.005;
+  ASSERT_DOUBLE_EQ(shudder::test::rig_model(sc).settings.thermal_step_s, 0.01);
+  shudder::test::rig_model(sc).settings.thermal_step_s = 0.005;
   const Recording fine = run(sc);
   for (const char* name : {"torque_Nm", "temp_C"}) {
     const double a = signal(coarse, name).back(), b = signal(fine, name).back();

@@ -68,6 +68,7 @@
 #include "rig_models/lsctr_rig.hpp"
 #include "rig_models/rig_stability.hpp"
 #include "tests/support/cli.hpp"
+#include "tests/support/models.hpp"
 
 namespace {
 
@@ -104,8 +105,8 @@ class RampPrediction {
  public:
   RampPrediction(const Scenario& sc, const shudder::clutch::WetClutch& clutch, const Recording& rec)
       : sc_(sc), clutch_(clutch), rec_(rec) {
-    const auto& ts = sc.cycle.slip_speed_rpm.times_s();
-    const auto& vs = sc.cycle.slip_speed_rpm.values();
+    const auto& ts = shudder::test::rig_model(sc).cycle.slip_speed_rpm.times_s();
+    const auto& vs = shudder::test::rig_model(sc).cycle.slip_speed_rpm.values();
     if (ts.size() != 2 || !(vs[1] > vs[0])) throw std::invalid_argument("expected one rising speed ramp");
     t0_ = ts[0];
     v0_ = vs[0];
@@ -114,13 +115,13 @@ class RampPrediction {
   }
 
   double time_at(double v) const { return t0_ + (v - v0_) / rate_; }
-  double speed_at(double t) const { return sc_.cycle.slip_speed_rpm(t); }
+  double speed_at(double t) const { return shudder::test::rig_model(sc_).cycle.slip_speed_rpm(t); }
   double temp_at_speed(double v) const { return at_time(rec_, "interface_mean_temp_C", time_at(v)); }
 
   // The oscillatory mode at speed v of the ramp; the temperature is the run's, or `temp_C`.
   shudder::rig_models::StabilityPoint point(double v, double temp_C = std::nan("")) const {
     const double T = std::isnan(temp_C) ? temp_at_speed(v) : temp_C;
-    return shudder::rig_models::rig_stability(sc_.rig, clutch_, sc_.cycle.normal_force_N(time_at(v)), v, T);
+    return shudder::rig_models::rig_stability(shudder::test::rig_model(sc_).params, clutch_, shudder::test::rig_model(sc_).cycle.normal_force_N(time_at(v)), v, T);
   }
   double margin(double v, double temp_C = std::nan("")) const { return point(v, temp_C).oscillatory_margin_per_s; }
 
@@ -172,9 +173,9 @@ struct CaseResult {
 // Runs one fluid's ramp on one bar and checks the targets.
 CaseResult compare(const std::string& scenario_name, double bar_Hz) {
   Scenario sc = scenario(scenario_name);
-  sc.rig.bar_natural_frequency_Hz = bar_Hz;
+  shudder::test::rig_model(sc).params.bar_natural_frequency_Hz = bar_Hz;
   const auto clutch = sc.make_clutch();
-  const Recording rec = shudder::rig_models::run_rig(sc.rig, clutch, sc.cycle, sc.rig_settings());
+  const Recording rec = shudder::rig_models::run_rig(shudder::test::rig_model(sc).params, clutch, shudder::test::rig_model(sc).cycle, shudder::test::rig_model(sc).settings);
 
   DetectionSettings settings;
   settings.onset_definition = OnsetDefinition::kGrowthRateZero;
@@ -266,11 +267,11 @@ TEST(PredictionVsSimulation, SweepTorsionBarHasBothVerdictsSplitWhereCriticalBar
   using namespace shudder::test;
   const Scenario sc = scenario("sweep_torsion_bar.toml");
   const auto clutch = sc.make_clutch();
-  const double force = sc.cycle.normal_force_N(0.0), speed = sc.cycle.slip_speed_rpm(0.0);
-  const auto crit = shudder::rig_models::critical_bar(sc.rig, clutch, force, speed, sc.clutch.start_temp_C);
+  const double force = shudder::test::rig_model(sc).cycle.normal_force_N(0.0), speed = shudder::test::rig_model(sc).cycle.slip_speed_rpm(0.0);
+  const auto crit = shudder::rig_models::critical_bar(shudder::test::rig_model(sc).params, clutch, force, speed, sc.clutch.start_temp_C);
   EXPECT_NEAR(crit.frequency_Hz, 355.2, 0.1);  // as documented in the scenario's header
   // Soft side unstable, stiff side stable.
-  auto soft = sc.rig, stiff = sc.rig;
+  auto soft = shudder::test::rig_model(sc).params, stiff = shudder::test::rig_model(sc).params;
   soft.bar_natural_frequency_Hz = 100.0;
   stiff.bar_natural_frequency_Hz = 500.0;
   EXPECT_GT(shudder::rig_models::rig_stability(soft, clutch, force, speed, sc.clutch.start_temp_C).margin_per_s, 0.0);

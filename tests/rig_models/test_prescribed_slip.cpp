@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "clutch/wet_clutch.hpp"
+#include "core/units.hpp"
 #include "io/fluid_loader.hpp"
 #include "rig_models/drive_cycle.hpp"
 #include "rig_models/prescribed_slip.hpp"
@@ -33,7 +34,7 @@ using shudder::rig_models::run_prescribed_slip;
 using ::testing::HasSubstr;
 using ::testing::ThrowsMessage;
 
-constexpr double kRadPerSPerRpm = 2.0 * std::numbers::pi / 60.0;
+using shudder::units::kRadPerSPerRpm;
 constexpr double kForce = 25300.0;
 
 WetClutch case1_clutch(bool temperature_dependent_friction = true) {

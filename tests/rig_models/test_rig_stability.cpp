@@ -32,9 +32,11 @@
 #include <vector>
 
 #include "clutch/wet_clutch.hpp"
+#include "core/units.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/lsctr_rig.hpp"
 #include "rig_models/rig_stability.hpp"
+#include "tests/support/models.hpp"
 
 namespace {
 
@@ -50,8 +52,8 @@ using shudder::rig_models::rig_stability;
 using shudder::rig_models::stability_map;
 using shudder::rig_models::StabilityPoint;
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-constexpr double kRadPerSPerRpm = kTwoPi / 60.0;
+using shudder::units::kRadPerSPerRpm;
+using shudder::units::kTwoPi;
 
 Scenario scenario(const std::string& name) {
   return load_scenario(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/" + name);
@@ -71,7 +73,7 @@ struct Point {
 };
 Point point(const Scenario& sc, const WetClutch& clutch, double force_N, double slip_rpm, double temp_C) {
   const DriveCycle cycle{PiecewiseLinear({0.0}, {slip_rpm}), PiecewiseLinear({0.0}, {force_N})};
-  LsctrRig rig(sc.rig, clutch, cycle);
+  LsctrRig rig(shudder::test::rig_model(sc).params, clutch, cycle);
   rig.clutch_law().set_ring_temperatures(Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), temp_C));
   const double s = rig.clutch_law().kinetic_torque_slope_Nms(slip_rpm * kRadPerSPerRpm, 0.0);
   return {std::move(rig), s};
@@ -93,7 +95,7 @@ TEST(RigStability, FluidCAt77CIsStableFrom20To100Rpm) {
   double worst = -INFINITY;
   for (double rpm = 20.0; rpm <= 100.0 + 1e-9; rpm += 5.0) {
     SCOPED_TRACE(rpm);
-    const StabilityPoint p = rig_stability(sc.rig, clutch, 15000.0, rpm, 77.0);
+    const StabilityPoint p = rig_stability(shudder::test::rig_model(sc).params, clutch, 15000.0, rpm, 77.0);
     EXPECT_TRUE(p.stable);
     EXPECT_LT(p.margin_per_s, 0.0);
     worst = std::max(worst, p.margin_per_s);
@@ -129,10 +131,10 @@ TEST(RigStability, NegativeSlopeFluidAt30RpmIsUnstableAtTheBarFrequency) {
   const Scenario sc = scenario("rig_shudder_negative_slope.toml");
   const WetClutch clutch = sc.make_clutch();
   Point pt = point(sc, clutch, 15000.0, 30.0, 60.0);
-  const StabilityPoint p = rig_stability(sc.rig, clutch, 15000.0, 30.0, 60.0);
+  const StabilityPoint p = rig_stability(shudder::test::rig_model(sc).params, clutch, 15000.0, 30.0, 60.0);
 
   const double s = pt.slope_Nms, c = pt.rig.bar_damping_Nms_per_rad();
-  const double Jh = sc.rig.housing_inertia_kg_m2, k = pt.rig.bar_stiffness_Nm_per_rad();
+  const double Jh = shudder::test::rig_model(sc).params.housing_inertia_kg_m2, k = pt.rig.bar_stiffness_Nm_per_rad();
   const double wh = std::sqrt(k / Jh);
   const std::complex<double> zd = drive_impedance(pt.rig, s, wh);
   const std::complex<double> shift = s * s / (2.0 * Jh * zd);
@@ -160,18 +162,18 @@ TEST(RigStability, CriticalBarDampingRatioMatchesClosedForm) {
   const Scenario sc = scenario("rig_shudder_negative_slope.toml");
   const WetClutch clutch = sc.make_clutch();
   Point pt = point(sc, clutch, 15000.0, 30.0, 60.0);
-  const double s = pt.slope_Nms, Jh = sc.rig.housing_inertia_kg_m2, k = pt.rig.bar_stiffness_Nm_per_rad();
+  const double s = pt.slope_Nms, Jh = shudder::test::rig_model(sc).params.housing_inertia_kg_m2, k = pt.rig.bar_stiffness_Nm_per_rad();
   const double wh = std::sqrt(k / Jh);
   const std::complex<double> zd = drive_impedance(pt.rig, s, wh);
   const double closed = -s / (2.0 * std::sqrt(k * Jh));
   const double corrected = closed + s * s * zd.real() / std::norm(zd) / (2.0 * std::sqrt(k * Jh));
 
-  const double zeta = critical_bar_damping_ratio(sc.rig, clutch, 15000.0, 30.0, 60.0);
+  const double zeta = critical_bar_damping_ratio(shudder::test::rig_model(sc).params, clutch, 15000.0, 30.0, 60.0);
   record("critical_damping_ratio", "%.9e (closed %.9e, corrected %.9e)", zeta, closed, corrected);
   EXPECT_NEAR(zeta, closed, 1e-6);
   EXPECT_NEAR(zeta, corrected, 1e-9);
   // Either side of it the verdict flips.
-  auto params = sc.rig;
+  auto params = shudder::test::rig_model(sc).params;
   params.bar_damping_ratio = zeta * (1.0 + 1e-6);
   EXPECT_TRUE(rig_stability(params, clutch, 15000.0, 30.0, 60.0).stable);
   params.bar_damping_ratio = zeta * (1.0 - 1e-6);
@@ -179,8 +181,8 @@ TEST(RigStability, CriticalBarDampingRatioMatchesClosedForm) {
   // Stable without damping at fluid C's point; no damping ratio up to 1 saves a point whose
   // damping the bracket cannot reach (2 ζ √(k J_h) <= 2·0.01·47.5 < −s).
   const Scenario c_sc = scenario("rig_case1_25kN_378Hz.toml");
-  EXPECT_EQ(critical_bar_damping_ratio(c_sc.rig, c_sc.make_clutch(), 15000.0, 50.0, 77.0), 0.0);
-  EXPECT_TRUE(std::isinf(critical_bar_damping_ratio(sc.rig, clutch, 15000.0, 30.0, 60.0, 0.01)));
+  EXPECT_EQ(critical_bar_damping_ratio(shudder::test::rig_model(c_sc).params, c_sc.make_clutch(), 15000.0, 50.0, 77.0), 0.0);
+  EXPECT_TRUE(std::isinf(critical_bar_damping_ratio(shudder::test::rig_model(sc).params, clutch, 15000.0, 30.0, 60.0, 0.01)));
 }
 
 // Critical bar frequency at ζ = 1 %: σ_h ≈ −ζ ω − s/(2 J_h) = 0 at ω = −s/(2 ζ J_h); stiffer bars
@@ -191,23 +193,23 @@ TEST(RigStability, CriticalBarFrequencyMatchesClosedForm) {
   const Scenario sc = scenario("rig_shudder_negative_slope.toml");
   const WetClutch clutch = sc.make_clutch();
   Point pt = point(sc, clutch, 15000.0, 30.0, 60.0);
-  const double s = pt.slope_Nms, Jh = sc.rig.housing_inertia_kg_m2, zeta = sc.rig.bar_damping_ratio;
+  const double s = pt.slope_Nms, Jh = shudder::test::rig_model(sc).params.housing_inertia_kg_m2, zeta = shudder::test::rig_model(sc).params.bar_damping_ratio;
   const double w_closed = -s / (2.0 * zeta * Jh);
   const std::complex<double> zd = drive_impedance(pt.rig, s, w_closed);
   const double w_corrected = -(s - s * s * zd.real() / std::norm(zd)) / (2.0 * zeta * Jh);
 
-  const auto bar = critical_bar(sc.rig, clutch, 15000.0, 30.0, 60.0);
+  const auto bar = critical_bar(shudder::test::rig_model(sc).params, clutch, 15000.0, 30.0, 60.0);
   record("critical_bar", "%.6f Hz, %.6e N m/rad (closed %.6f Hz, corrected %.6f Hz)", bar.frequency_Hz,
          bar.stiffness_Nm_per_rad, w_closed / kTwoPi, w_corrected / kTwoPi);
   EXPECT_NEAR(bar.frequency_Hz / (w_closed / kTwoPi), 1.0, 2e-4);
   EXPECT_NEAR(bar.frequency_Hz / (w_corrected / kTwoPi), 1.0, 1e-7);
   EXPECT_NEAR(bar.stiffness_Nm_per_rad / (Jh * std::pow(kTwoPi * bar.frequency_Hz, 2)), 1.0, 1e-9);
   // The 378 Hz bar is below it (unstable, test above); a bar 10 % stiffer in frequency is stable.
-  auto params = sc.rig;
+  auto params = shudder::test::rig_model(sc).params;
   params.bar_natural_frequency_Hz = 1.1 * bar.frequency_Hz;
   EXPECT_TRUE(rig_stability(params, clutch, 15000.0, 30.0, 60.0).stable);
   // No sign change in the bracket: NaN.
-  EXPECT_TRUE(std::isnan(critical_bar(sc.rig, clutch, 15000.0, 30.0, 60.0, 1000.0, 2000.0).frequency_Hz));
+  EXPECT_TRUE(std::isnan(critical_bar(shudder::test::rig_model(sc).params, clutch, 15000.0, 30.0, 60.0, 1000.0, 2000.0).frequency_Hz));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -227,14 +229,14 @@ TEST(RigStability, MapMatchesPointsAndOnsetSpeedMatchesClosedForm) {
   const double on_rpm = w_on / kRadPerSPerRpm;
   const std::vector<double> speeds{3.0, 30.0, 0.99 * on_rpm, 1.01 * on_rpm, 80.0};
   const std::vector<double> temps{40.0, 60.0, 90.0};
-  const auto map = stability_map(sc.rig, clutch, force, speeds, temps);
+  const auto map = stability_map(shudder::test::rig_model(sc).params, clutch, force, speeds, temps);
   record("onset", "closed form %.4f rpm", on_rpm);
   ASSERT_EQ(map.margin_per_s.rows(), 5);
   ASSERT_EQ(map.margin_per_s.cols(), 3);
   for (std::size_t j = 0; j < temps.size(); ++j) {
     for (std::size_t i = 0; i < speeds.size(); ++i) {
       SCOPED_TRACE(::testing::Message() << speeds[i] << " rpm, " << temps[j] << " degC");
-      const StabilityPoint p = rig_stability(sc.rig, clutch, force, speeds[i], temps[j]);
+      const StabilityPoint p = rig_stability(shudder::test::rig_model(sc).params, clutch, force, speeds[i], temps[j]);
       const auto ii = static_cast<Eigen::Index>(i), jj = static_cast<Eigen::Index>(j);
       EXPECT_NEAR(map.margin_per_s(ii, jj), p.margin_per_s, 1e-9);
       EXPECT_NEAR(map.frequency_Hz(ii, jj), p.frequency_Hz, 1e-9);
@@ -246,13 +248,13 @@ TEST(RigStability, MapMatchesPointsAndOnsetSpeedMatchesClosedForm) {
       // Z_h' = J_h − k/λ₀² (file comment). |Δλ| is up to 7 1/s here (3 rpm); what first order
       // leaves, ~|Δλ|²/|λ₀|, is below 1e-2 |Δλ|.
       Point pt_ij = point(sc, clutch, force, speeds[i], temps[j]);
-      const double Jh = sc.rig.housing_inertia_kg_m2, k = pt_ij.rig.bar_stiffness_Nm_per_rad();
+      const double Jh = shudder::test::rig_model(sc).params.housing_inertia_kg_m2, k = pt_ij.rig.bar_stiffness_Nm_per_rad();
       const double sv = pt_ij.slope_Nms;
       const double sigma = -(pt_ij.rig.bar_damping_Nms_per_rad() + sv) / (2.0 * Jh);
       const std::complex<double> l0(sigma, std::sqrt(k / Jh - sigma * sigma));
       const std::complex<double> zd(pt_ij.rig.motor_kp() + sv, 0.0);
       const std::complex<double> z_drive =
-          sc.rig.drive_inertia_kg_m2 * l0 + zd + pt_ij.rig.motor_ki() / l0;
+          shudder::test::rig_model(sc).params.drive_inertia_kg_m2 * l0 + zd + pt_ij.rig.motor_ki() / l0;
       const std::complex<double> dl = sv * sv / ((Jh - k / (l0 * l0)) * z_drive);
       EXPECT_NEAR(map.oscillatory_frequency_Hz(ii, jj), l0.imag() / kTwoPi, std::abs(dl) / kTwoPi);
       EXPECT_NEAR(map.oscillatory_margin_per_s(ii, jj), sigma, std::abs(dl));
@@ -268,9 +270,9 @@ TEST(RigStability, MapMatchesPointsAndOnsetSpeedMatchesClosedForm) {
 TEST(RigStability, SaturatedMotorIsAnErrorForAPointAndNaNInAMap) {
   const Scenario sc = scenario("rig_shudder_negative_slope.toml");
   const WetClutch clutch = sc.make_clutch();
-  EXPECT_THAT([&] { rig_stability(sc.rig, clutch, 2.0e5, 30.0, 60.0); },
+  EXPECT_THAT([&] { rig_stability(shudder::test::rig_model(sc).params, clutch, 2.0e5, 30.0, 60.0); },
               ::testing::ThrowsMessage<std::invalid_argument>(::testing::HasSubstr("exceeds the motor's limit")));
-  const auto map = stability_map(sc.rig, clutch, 2.0e5, {30.0}, {60.0});
+  const auto map = stability_map(shudder::test::rig_model(sc).params, clutch, 2.0e5, {30.0}, {60.0});
   EXPECT_TRUE(std::isnan(map.margin_per_s(0, 0)));
   EXPECT_TRUE(std::isnan(map.frequency_Hz(0, 0)));
 }
@@ -278,11 +280,11 @@ TEST(RigStability, SaturatedMotorIsAnErrorForAPointAndNaNInAMap) {
 TEST(RigStability, BadInputNamesTheQuantity) {
   const Scenario sc = scenario("rig_shudder_negative_slope.toml");
   const WetClutch clutch = sc.make_clutch();
-  EXPECT_THAT([&] { rig_stability(sc.rig, clutch, 0.0, 30.0, 60.0); },
+  EXPECT_THAT([&] { rig_stability(shudder::test::rig_model(sc).params, clutch, 0.0, 30.0, 60.0); },
               ::testing::ThrowsMessage<std::invalid_argument>(::testing::HasSubstr("normal force must be finite and > 0 N")));
-  EXPECT_THAT([&] { stability_map(sc.rig, clutch, 15000.0, {30.0}, {NAN}); },
+  EXPECT_THAT([&] { stability_map(shudder::test::rig_model(sc).params, clutch, 15000.0, {30.0}, {NAN}); },
               ::testing::ThrowsMessage<std::invalid_argument>(::testing::HasSubstr("interface temperature must be finite")));
-  EXPECT_THAT([&] { critical_bar(sc.rig, clutch, 15000.0, 30.0, 60.0, 500.0, 100.0); },
+  EXPECT_THAT([&] { critical_bar(shudder::test::rig_model(sc).params, clutch, 15000.0, 30.0, 60.0, 500.0, 100.0); },
               ::testing::ThrowsMessage<std::invalid_argument>(::testing::HasSubstr("0 < lo_Hz < hi_Hz")));
 }
 

@@ -12,15 +12,16 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/units.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/lsctr_rig.hpp"
 #include "rig_models/speed_setpoint.hpp"
+#include "tests/support/models.hpp"
 #include "tests/support/recording.hpp"
 
 namespace shudder::rig_models {
 namespace {
 
-constexpr double kRpmPerRadS = 60.0 / (2.0 * std::numbers::pi);
 
 TEST(SpeedSetpoint, SteadySlidingGivesTheDriveSpeed) {
   const RigParams rig;  // steady start
@@ -32,7 +33,7 @@ TEST(SpeedSetpoint, LoadRampAddsTheLoopsLag) {
   const RigParams rig;
   const SpeedLoopGains g = speed_loop_gains(rig);
   const double rate_Nm_s = 95.0, set_rpm = 0.5;  // the stuck phase of the 0.5 rpm probe
-  const double lag_rpm = rate_Nm_s / g.ki_Nm_per_rad * kRpmPerRadS;
+  const double lag_rpm = units::rad_s_to_rpm(rate_Nm_s / g.ki_Nm_per_rad);
   std::vector<double> t, w, torque;
   for (int k = 0; k < 2000; ++k) {
     t.push_back(0.001 * k);
@@ -75,14 +76,14 @@ PiecewiseLinear window_means(const std::vector<double>& t, const std::vector<dou
 
 TEST(SpeedSetpoint, RecoversTheSetPointOfAStickSlipRun) {
   io::Scenario sc = io::load_scenario(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/rig_stick_time_probe.toml");
-  sc.rig.stick_time.enabled = true;
-  sc.rig.stick_time.max_increase = 0.15;
-  sc.rig.stick_time.time_constant_s = 0.05;
-  const auto rec = run_rig(sc.rig, sc.make_clutch(), sc.cycle, sc.rig_settings());
+  shudder::test::rig_model(sc).params.stick_time.enabled = true;
+  shudder::test::rig_model(sc).params.stick_time.max_increase = 0.15;
+  shudder::test::rig_model(sc).params.stick_time.time_constant_s = 0.05;
+  const auto rec = run_rig(shudder::test::rig_model(sc).params, sc.make_clutch(), shudder::test::rig_model(sc).cycle, shudder::test::rig_model(sc).settings);
   const auto& t = test::signal(rec, "time_s");
   const auto& drive = test::signal(rec, "speed_rpm");
   const auto speed = window_means(t, drive);
-  const auto sp = window_means(t, estimate_speed_setpoint(t, drive, test::signal(rec, "torque_Nm"), sc.rig));
+  const auto sp = window_means(t, estimate_speed_setpoint(t, drive, test::signal(rec, "torque_Nm"), shudder::test::rig_model(sc).params));
   double worst_drive = 0, worst_estimate = 0, mean = 0;
   int n = 0;
   for (std::size_t k = 0; k < sp.values().size(); ++k) {

@@ -1,0 +1,74 @@
+// Loading a scenario yields the typed model of its `type`: one minimal scenario per ModelKind
+// loads into the variant alternative of that kind, with its kind-specific inputs in place.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <string>
+#include <variant>
+
+#include "core/model_kind.hpp"
+#include "core/overloaded.hpp"
+#include "io/scenario.hpp"
+#include "rig_models/model.hpp"
+
+namespace shudder {
+namespace {
+
+// Placed beside the shipped scenarios so that the fluid path resolves as theirs do.
+const std::string kPath = std::string(SHUDDER_SOURCE_DIR) + "/scenarios/minimal.toml";
+
+std::string minimal_text(ModelKind kind) {
+  std::string text = "[scenario]\ntype = \"" + std::string(model_kind_name(kind)) +
+                     "\"\nduration_s = 0.5\n\n[clutch]\nfluid = \"fluids/lsc_fluid_c.toml\"\nstart_temp_C = 40.0\n\n";
+  if (kind == ModelKind::kDriveline)
+    text += "[manoeuvre]\ntime_s = [0.0, 0.5]\nengine_torque_Nm = [0.0, 30.0]\n";
+  else
+    text += "[drive]\ntime_s = [0.0, 0.5]\nspeed_rpm = [20.0, 40.0]\nnormal_force_N = 15000.0\n";
+  return text;
+}
+
+TEST(ScenarioModel, EveryKindLoadsIntoItsOwnAlternative) {
+  for (const ModelKind kind : kModelKinds) {
+    const io::Scenario sc = io::load_scenario_text(minimal_text(kind), kPath);
+    EXPECT_EQ(sc.kind(), kind) << model_kind_name(kind);
+    EXPECT_EQ(rig_models::kind(sc.model), kind) << model_kind_name(kind);
+    EXPECT_EQ(sc.model.index(), static_cast<std::size_t>(kind)) << model_kind_name(kind);
+    EXPECT_DOUBLE_EQ(rig_models::duration_s(sc.model), 0.5) << model_kind_name(kind);
+  }
+}
+
+// Each alternative holds its own inputs: the drive cycle's second speed, the manoeuvre's torque.
+TEST(ScenarioModel, KindSpecificInputsReachTheModel) {
+  for (const ModelKind kind : kModelKinds) {
+    const io::Scenario sc = io::load_scenario_text(minimal_text(kind), kPath);
+    std::visit(overloaded{[](const rig_models::PrescribedSlipModel& m) {
+                            EXPECT_DOUBLE_EQ(m.cycle.slip_speed_rpm(0.5), 40.0);
+                          },
+                          [](const rig_models::RigModel& m) {
+                            EXPECT_DOUBLE_EQ(m.cycle.slip_speed_rpm(0.5), 40.0);
+                            EXPECT_DOUBLE_EQ(m.settings.sample_rate_Hz, 1000.0);  // the rig's default
+                          },
+                          [](const rig_models::DrivelineModel& m) {
+                            EXPECT_DOUBLE_EQ(m.manoeuvre.engine_torque_Nm(0.5), 30.0);
+                          }},
+               sc.model);
+  }
+}
+
+// The effects outside the clutch are applied to the kinds they act on when the model is built.
+TEST(ScenarioModel, BearingDragAndStickTimeReachTheKindsTheyActOn) {
+  const std::string effects =
+      "\n[effects.bearing_drag]\nenabled = true\n[effects.stick_time_static_friction]\nenabled = true\n";
+  const io::Scenario rig = io::load_scenario_text(minimal_text(ModelKind::kRig) + effects, kPath);
+  EXPECT_TRUE(std::get<rig_models::RigModel>(rig.model).params.bearing_drag.enabled);
+  EXPECT_TRUE(std::get<rig_models::RigModel>(rig.model).params.stick_time.enabled);
+  const io::Scenario ps = io::load_scenario_text(minimal_text(ModelKind::kPrescribedSlip) + effects, kPath);
+  EXPECT_TRUE(std::get<rig_models::PrescribedSlipModel>(ps.model).settings.bearing_drag.enabled);
+  EXPECT_TRUE(ps.stick_time.enabled);
+  const std::string stick = "\n[effects.stick_time_static_friction]\nenabled = true\n";
+  const io::Scenario dl = io::load_scenario_text(minimal_text(ModelKind::kDriveline) + stick, kPath);
+  EXPECT_TRUE(std::get<rig_models::DrivelineModel>(dl.model).params.stick_time.enabled);
+}
+
+}  // namespace
+}  // namespace shudder
