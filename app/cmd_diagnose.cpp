@@ -11,6 +11,7 @@
 #include "app/guarded.hpp"
 #include "io/diagnosis_inputs.hpp"
 #include "io/diagnosis_json.hpp"
+#include "io/diagnosis_narrative.hpp"
 #include "io/diagnosis_report.hpp"
 #include "io/measured_run.hpp"
 #include "io/scenario.hpp"
@@ -73,7 +74,7 @@ std::string summary(const io::Scenario& s, const analysis::DiagnosisResult& r,
     print_candidates(os, st.candidates);
     os << "  -> added " << st.effect << " (" << parameters(st.parameters) << "): torque RMS "
        << num(st.misfit.torque_rms_Nm) << " Nm, temp RMS " << num(st.misfit.temp_rms_C) << " C\n";
-    os << "     why: " << st.reason << "\n";
+    os << "     why: " << io::step_reason(st) << "\n";
   }
   if (!r.last_round.empty()) {
     os << "Last round (nothing added):\n";
@@ -92,7 +93,7 @@ std::string summary(const io::Scenario& s, const analysis::DiagnosisResult& r,
   for (const auto& c : r.channels)
     if (c.signal != "torque_Nm" && c.signal != "temp_C")
       os << ", " << c.signal << " RMS " << num(c.baseline_rms) << " -> " << num(c.final_rms);
-  os << "\n" << r.conclusion << "\n";
+  os << "\n" << io::diagnosis_conclusion(r) << "\n";
   os << "Time: " << num(r.wall_s) << " s wall; " << r.simulations << " simulations took "
      << num(r.simulation_thread_s) << " thread-s, the fitting around them " << num(r.fitting_thread_s)
      << " thread-s\n";

@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "io/atomic_file.hpp"
+#include "io/diagnosis_narrative.hpp"
 #include "io/gnuplot.hpp"
 #include "io/input_error.hpp"
 
@@ -186,7 +187,7 @@ std::string diagnosis_candidates_markdown(const analysis::DiagnosisResult& r) {
        << fixed(st.holdout_misfit_before) << " → " << fixed(st.holdout_misfit_after)
        << "; torque RMS " << fixed(st.misfit.torque_rms_Nm) << " N m, temp RMS "
        << fixed(st.misfit.temp_rms_C) << " °C (all runs).\n\n";
-    if (!st.reason.empty()) md << "Why: " << cell(st.reason) << "\n\n";
+    md << "Why: " << cell(step_reason(st)) << "\n\n";
     candidate_table(md, st.candidates);
   }
   md << "## Last round (stopped the search)\n\n";
