@@ -9,7 +9,7 @@
 namespace shudder::analysis {
 
 Predictions CandidateFitter::predict(const Config& config, const std::vector<std::size_t>& which,
-                             unsigned jobs) const {
+                                     unsigned jobs) const {
   Predictions out(runs_.size());
   parallel_for(which.size(), jobs, [&](std::size_t i) {
     const std::size_t k = which[i];
@@ -46,7 +46,7 @@ Config CandidateFitter::FlatConfig::with(const std::vector<double>& v) const {
 }
 
 std::optional<Config> CandidateFitter::fit_config(const FlatConfig& flat, std::vector<std::vector<double>> starts,
-                                         const SampleSet& set, unsigned jobs, int& evaluations) const {
+                                                  const SampleSet& set, unsigned jobs, int& evaluations) const {
   if (flat.slots.empty()) return flat.config;
   LogParameterProblem problem;
   problem.lower = flat.lower;
@@ -65,7 +65,7 @@ std::optional<Config> CandidateFitter::fit_config(const FlatConfig& flat, std::v
 }
 
 CandidateOutcome CandidateFitter::fit_candidate(const EffectCandidate& c, const Config& fold,
-                                      const Predictions& current) const {
+                                                const Predictions& current) const {
   CandidateOutcome o;
   o.score.effect = c.name;
   const std::size_t k = c.parameter_names.size();

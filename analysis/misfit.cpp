@@ -172,7 +172,7 @@ MisfitModel::BlockStats MisfitModel::stats(const std::vector<double>& x, std::si
 // Sum of squared residuals in noise units, and of squared residuals in signal units, of one
 // channel over a set; the normalised entries are appended to `entries` when given.
 std::pair<double, double> MisfitModel::channel_sums(const Channel& c, const SampleSet& set,
-                                               const Predictions& p, std::vector<double>* entries) const {
+                                                    const Predictions& p, std::vector<double>* entries) const {
   double sn = 0, su = 0;
   const auto put = [&](double unit, double normalised) {
     su += unit * unit;
