@@ -42,7 +42,7 @@ DiagnosisResult run_diagnosis(const std::vector<DiagnosisRun>& runs, const std::
   const MisfitModel misfit(runs, opt);
   r.noise_torque_Nm = misfit.channels()[0].sigma;
   r.noise_temp_C = misfit.channels()[1].sigma;
-  r.holdout = misfit.holdout_description();
+  r.holdout = misfit.holdout_split();
   const CandidateFitter fitter(runs, candidates, simulate, misfit, opt);
 
   const Predictions baseline = fitter.predict({}, misfit.all().runs(), opt.jobs);

@@ -182,10 +182,18 @@ struct RunTraces {
   std::vector<double> temp_measured, temp_baseline, temp_final;
 };
 
+/// Which samples were held out to score the candidates (io/diagnosis_narrative.hpp puts it in
+/// words).
+struct HoldoutSplit {
+  enum class Kind { kNone, kLastRun, kOddTenths };
+  Kind kind = Kind::kNone;
+  std::string run;  // kLastRun: the held-out run's name
+};
+
 struct DiagnosisResult {
   std::vector<std::string> runs;
   double noise_torque_Nm = 0.0, noise_temp_C = 0.0;  // estimated sigma
-  std::string holdout;            // what was held out, in words
+  HoldoutSplit holdout;
   Misfit baseline, final;
   std::vector<ChannelFit> channels;  // every compared signal (torque and temp first)
   double baseline_holdout_misfit = 0.0, final_holdout_misfit = 0.0;  // J

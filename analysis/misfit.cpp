@@ -106,7 +106,7 @@ void MisfitModel::build_sample_sets() {
     }
     holdout_.index[nr - 1] = all_.index[nr - 1];
     holdout_.blocks[nr - 1] = all_.blocks[nr - 1];
-    holdout_text_ = "run '" + runs_.back().name + "' (fits use the other runs)";
+    split_ = {HoldoutSplit::Kind::kLastRun, runs_.back().name};
     return;
   }
   // One run: alternate tenths of its duration; hold out the odd ones.
@@ -125,7 +125,7 @@ void MisfitModel::build_sample_sets() {
       (blocks_needed && (fit_.blocks[0].empty() || holdout_.blocks[0].empty())))
     throw std::invalid_argument("run '" + runs_[0].name +
                                 "' is too short to split into fitted and held-out time (needs 20 samples)");
-  holdout_text_ = "odd tenths of the run's time (fits use the even tenths)";
+  split_ = {HoldoutSplit::Kind::kOddTenths, {}};
 }
 
 const std::vector<double>& measured(const DiagnosisRun& r, Signal f) {

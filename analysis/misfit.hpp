@@ -58,8 +58,7 @@ class MisfitModel {
   const SampleSet& all() const { return all_; }
   const SampleSet& fit() const { return fit_; }
   const SampleSet& holdout() const { return holdout_; }
-  /// What was held out, in words (FORMATS.md "holdout").
-  const std::string& holdout_description() const { return holdout_text_; }
+  const HoldoutSplit& holdout_split() const { return split_; }
 
   /// J over a set.
   double misfit(const SampleSet& set, const Predictions& p) const;
@@ -99,7 +98,7 @@ class MisfitModel {
   // Per run: variance of the block mean and block spread beyond what sensor noise explains.
   std::vector<BlockStats> block_jitter_var_;
   SampleSet all_, fit_, holdout_;
-  std::string holdout_text_;
+  HoldoutSplit split_;
 };
 
 }  // namespace shudder::analysis

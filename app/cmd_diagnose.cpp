@@ -54,7 +54,7 @@ std::string summary(const io::Scenario& s, const analysis::DiagnosisResult& r,
   for (std::size_t i = 0; i < s.enabled_effects.size(); ++i) os << (i ? ", " : "") << s.enabled_effects[i];
   os << (s.enabled_effects.empty() ? "none" : "") << "\n";
   for (const auto& k : skipped) os << "  not a candidate: " << k << "\n";
-  os << "  hold-out: " << r.holdout << "\n";
+  os << "  hold-out: " << io::holdout_text(r.holdout) << "\n";
   os << "Noise estimated from the data: torque " << num(r.noise_torque_Nm) << " Nm, temp "
      << num(r.noise_temp_C) << " C\n";
   os << "Baseline: torque RMS " << num(r.baseline.torque_rms_Nm) << " Nm, temp RMS "

@@ -145,7 +145,7 @@ std::string diagnosis_json(const analysis::DiagnosisResult& r) {
       .str("shudder_version", SHUDDER_VERSION)
       .raw("runs", strings(r.runs))
       .raw("noise", Object().num("torque_Nm", r.noise_torque_Nm).num("temp_C", r.noise_temp_C).text())
-      .str("holdout", r.holdout)
+      .str("holdout", holdout_text(r.holdout))
       .raw("baseline", misfit(r.baseline, r.baseline_holdout_misfit))
       .raw("disagreements", list(r.disagreements, "    ", disagreement))
       .raw("tracking", list(r.tracking, "    ", tracking))

@@ -17,6 +17,16 @@ std::string fmt(double v, const char* f = "%.3g") {
 
 }  // namespace
 
+std::string holdout_text(const analysis::HoldoutSplit& split) {
+  using Kind = analysis::HoldoutSplit::Kind;
+  switch (split.kind) {
+    case Kind::kNone: return {};
+    case Kind::kLastRun: return "run '" + split.run + "' (fits use the other runs)";
+    case Kind::kOddTenths: return "odd tenths of the run's time (fits use the even tenths)";
+  }
+  return {};
+}
+
 std::string stop_reason_text(const analysis::StopReason& stop) {
   using Kind = analysis::StopReason::Kind;
   switch (stop.kind) {

@@ -9,6 +9,8 @@
 
 namespace shudder::io {
 
+/// What was held out, e.g. "run 'b.csv' (fits use the other runs)"; empty for kNone.
+std::string holdout_text(const analysis::HoldoutSplit& split);
 /// Why the search stopped, e.g. "every signal is within 1.1 x its noise (rms / noise: ...)".
 std::string stop_reason_text(const analysis::StopReason& stop);
 /// Why a step's effect was added: what the residual tracked before it, its signature, its

@@ -177,7 +177,8 @@ std::string diagnosis_candidates_markdown(const analysis::DiagnosisResult& r) {
      << "Misfit J in units of the noise variance (J ≈ 1: explained to the noise); residual = model − "
         "measured. score = hold-out misfit + penalty × parameters; gain = current hold-out misfit − "
         "score. Candidates best first.\n\n";
-  if (!r.holdout.empty()) md << "Hold-out: " << cell(r.holdout) << ".\n\n";
+  const std::string holdout = holdout_text(r.holdout);
+  if (!holdout.empty()) md << "Hold-out: " << cell(holdout) << ".\n\n";
   md << "Baseline hold-out misfit: " << fixed(r.baseline_holdout_misfit) << "; final: "
      << fixed(r.final_holdout_misfit) << ".\n\n";
   for (std::size_t k = 0; k < r.steps.size(); ++k) {

@@ -234,7 +234,7 @@ DiagnosisResult sample_result() {
   r.runs = {"data/a.csv", "b.csv"};
   r.noise_torque_Nm = 0.25;
   r.noise_temp_C = 0.5;
-  r.holdout = "run b.csv held out";
+  r.holdout = {shudder::analysis::HoldoutSplit::Kind::kLastRun, "b.csv"};
   r.baseline = {8.12, 6.3};
   r.final = {1.21, 0.95};
   r.channels = {{"torque_Nm", "block_statistics", 0.25, 8.12, 1.21, 1055.0, 23.4},
@@ -390,7 +390,7 @@ TEST(DiagnosisJson, OptionalFieldsAreWritten) {
   const Json j = parse(diagnosis_json(sample_result()));
   EXPECT_DOUBLE_EQ(j["noise"]["torque_Nm"].num(), 0.25);
   EXPECT_DOUBLE_EQ(j["noise"]["temp_C"].num(), 0.5);
-  EXPECT_EQ(j["holdout"].str(), "run b.csv held out");
+  EXPECT_EQ(j["holdout"].str(), "run 'b.csv' (fits use the other runs)");
   EXPECT_DOUBLE_EQ(j["baseline"]["holdout_misfit"].num(), 512.0);
   EXPECT_DOUBLE_EQ(j["final"]["holdout_misfit"].num(), 1.1);
 
