@@ -66,7 +66,7 @@ LsctrRig::LsctrRig(const RigParams& params, const clutch::WetClutch& clutch, con
   if (p_.bar_stiffness_Nm_per_rad > 0) {
     k_bar_ = k_network_ = p_.bar_stiffness_Nm_per_rad;
     c_bar_ = damping(k_bar_);
-    build(k_bar_, c_bar_, law).validate();
+    build(k_bar_, c_bar_, law);  // validates the network
     return;
   }
   // Start from the isolated housing on the bar, then correct on the full modal analysis (the
