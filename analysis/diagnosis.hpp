@@ -28,6 +28,11 @@
 //   tracks     Pearson correlation of the block-mean residual with block means of features of
 //              the measured run (temperature rise and rate, sliding speed, direction of the
 //              speed change, dwell at low speed, normal force, time); the strongest is named.
+//
+// Units: noise analysis/noise_estimate; misfit, channels and sample sets analysis/misfit;
+// fitting one candidate analysis/candidate_fit; the greedy search analysis/effect_selection;
+// segments and tracks analysis/residual_tracking; threads core/parallel_for.hpp. The result
+// holds numbers and structs; the sentences are io/diagnosis_narrative's.
 
 #include <functional>
 #include <limits>
@@ -149,12 +154,27 @@ struct CandidateScore {
 
 struct DiagnosisStep {
   std::string effect;
+  std::string description;        // the candidate's one-line description
   std::vector<std::pair<std::string, double>> parameters;  // refitted on all runs
   Misfit misfit;                  // all runs, after adding the effect (all-runs parameters)
   Misfit holdout;                 // hold-out samples, fit-set parameters
   double holdout_misfit_before = 0.0, holdout_misfit_after = 0.0;  // J
   std::vector<CandidateScore> candidates;  // every candidate tried in this round, best first
-  std::string reason;             // plain words: why this effect
+  // Features the torque and temp_C residuals followed before this effect (pooled over the
+  // runs, strongest first): the evidence the report's "why" sentence names.
+  std::vector<std::pair<std::string, double>> torque_tracking_before, temp_tracking_before;
+};
+
+/// Why the greedy search stopped (io/diagnosis_narrative.hpp puts it in words).
+struct StopReason {
+  enum class Kind { kWithinNoise, kEffectLimit, kAllAdded, kNoGain, kNoFit };
+  Kind kind = Kind::kAllAdded;
+  double noise_tolerance = 0.0;  // kWithinNoise: the tolerance, and per channel rms / noise
+  std::vector<std::pair<std::string, double>> rms_over_noise;
+  int max_effects = 0;           // kEffectLimit
+  double needed_gain = 0.0;      // kNoGain: the gain the best candidate needed, its name, its gain
+  std::string best_effect;
+  double best_gain = 0.0;
 };
 
 /// Measured and modelled signals of one run, for plots (at the residual samples).
@@ -165,10 +185,18 @@ struct RunTraces {
   std::vector<double> temp_measured, temp_baseline, temp_final;
 };
 
+/// Which samples were held out to score the candidates (io/diagnosis_narrative.hpp puts it in
+/// words).
+struct HoldoutSplit {
+  enum class Kind { kNone, kLastRun, kOddTenths };
+  Kind kind = Kind::kNone;
+  std::string run;  // kLastRun: the held-out run's name
+};
+
 struct DiagnosisResult {
   std::vector<std::string> runs;
   double noise_torque_Nm = 0.0, noise_temp_C = 0.0;  // estimated sigma
-  std::string holdout;            // what was held out, in words
+  HoldoutSplit holdout;
   Misfit baseline, final;
   std::vector<ChannelFit> channels;  // every compared signal (torque and temp first)
   double baseline_holdout_misfit = 0.0, final_holdout_misfit = 0.0;  // J
@@ -181,10 +209,11 @@ struct DiagnosisResult {
   // parameters are those when it was added; later effects may have moved them).
   std::vector<FittedEffect> final_effects;
   std::vector<CandidateScore> last_round;         // the round that stopped the search
-  std::string conclusion;                         // one paragraph, plain words
+  StopReason stop;
   std::vector<RunTraces> traces;
   // Cost split, CPU seconds over all threads: inside the Simulator vs. the rest (fitting,
-  // residuals, statistics); and the wall time.
+  // residuals, statistics); and the wall time. Measured by diagnose() around the method (the
+  // Simulator is wrapped to time each call on its thread).
   double simulation_thread_s = 0.0, fitting_thread_s = 0.0, wall_s = 0.0;
   long simulations = 0;
 };

@@ -3,9 +3,7 @@
 // the noise level of a signal, block means, the segments where the residual stands above the
 // noise, and which feature of the measured run the residual follows.
 //
-//   noise     sigma = 1.4826 · MAD(d2) / sqrt(6), d2_i = x_{i+1} − 2 x_i + x_{i−1}. For white
-//             noise Var(d2) = (1 + 4 + 1) sigma² and 1.4826 · MAD is sigma for a Gaussian; the
-//             median makes rare steps (stick-slip jumps, a ramp's kink) irrelevant.
+//   noise     analysis/noise_estimate.hpp.
 //   blocks    consecutive samples of ≈ 1/80 of the run (0.05–1 s, at least 5 samples).
 //   segment   blocks whose mean residual m satisfies |m| > max(3 sigma/sqrt(n), sigma/2) — three
 //             standard errors (not chance) and half a noise sigma (worth telling) — joined
@@ -21,9 +19,9 @@
 #include <utility>
 #include <vector>
 
-namespace shudder::analysis {
+#include "analysis/noise_estimate.hpp"
 
-double estimate_noise_sigma(const std::vector<double>& x);
+namespace shudder::analysis {
 
 /// Contiguous sample ranges [begin, end) of a run, covering it in time order.
 std::vector<std::pair<std::size_t, std::size_t>> residual_blocks(const std::vector<double>& time_s);

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <mutex>
 #include <string_view>
@@ -20,6 +21,7 @@
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
 #include "core/overloaded.hpp"
+#include "core/parallel_for.hpp"
 #include "dynamics/signal_names.hpp"
 #include "io/hdf5_run.hpp"
 #include "io/hdf5_sweep.hpp"
@@ -129,34 +131,26 @@ int sweep_command(const SweepOptions& opt) {
     // Worker pool.
     const unsigned jobs = std::max(1u, opt.jobs ? opt.jobs : std::thread::hardware_concurrency());
     const bool show = isatty(STDERR_FILENO) && !opt.quiet;
-    std::atomic<std::size_t> next{0}, done{0};
+    std::atomic<std::size_t> done{0};
     std::mutex error_mutex;
     std::string first_error;
     const auto t0 = std::chrono::steady_clock::now();
-    const auto worker = [&] {
-      for (std::size_t i; (i = next++) < todo.size();) {
-        const std::size_t k = todo[i];
-        try {
-          run_case(texts[k], opt.scenario, part_paths[k]);
-        } catch (const std::exception& e) {
-          const std::lock_guard lock(error_mutex);
-          if (first_error.empty()) first_error = "case " + std::to_string(k) + ": " + e.what();
-        }
-        ++done;
-      }
-    };
-    std::vector<std::thread> pool;
-    for (unsigned j = 0; j < std::min<std::size_t>(jobs, std::max<std::size_t>(todo.size(), 1)); ++j) pool.emplace_back(worker);
-    while (show && done < todo.size()) {
-      progress(done, todo.size(), std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-      std::this_thread::sleep_for(std::chrono::milliseconds(200));
-    }
-    for (auto& t : pool) t.join();
-    const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (show) {
-      progress(done, todo.size(), wall_s);
-      std::fprintf(stderr, "\n");
-    }
+    const auto elapsed_s = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+    parallel_for(
+        todo.size(), jobs,
+        [&](std::size_t i) {
+          const std::size_t k = todo[i];
+          try {
+            run_case(texts[k], opt.scenario, part_paths[k]);
+          } catch (const std::exception& e) {
+            const std::lock_guard lock(error_mutex);
+            if (first_error.empty()) first_error = "case " + std::to_string(k) + ": " + e.what();
+          }
+          ++done;
+        },
+        show ? std::function<void()>([&] { progress(done, todo.size(), elapsed_s()); }) : std::function<void()>());
+    const double wall_s = elapsed_s();
+    if (show) std::fprintf(stderr, "\n");
     if (!first_error.empty())
       throw std::runtime_error(first_error + " (finished cases are kept in " + parts.string() + "; rerun to resume)");
 

@@ -37,17 +37,10 @@ std::pair<int, double> locate(const Eigen::VectorXd& pos, double x) {
 
 }  // namespace
 
-struct ThermalModel::Workspace {
-  Eigen::SparseMatrix<double> system;  // capacity/dt + conduction + rho*cp*Q * advection
-  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
-  double factored_dt = -1.0;
-  double factored_flow_W_per_K = -1.0;
-  Eigen::VectorXd rhs;
-};
-
-ThermalModel::~ThermalModel() = default;
-ThermalModel::ThermalModel(ThermalModel&&) noexcept = default;
-ThermalModel& ThermalModel::operator=(ThermalModel&&) noexcept = default;
+ThermalWorkspace::ThermalWorkspace(const ThermalModel& model) : system_(model.conduction_) {
+  lu_.analyzePattern(system_);
+  rhs_.resize(model.nr_ * model.nz_);
+}
 
 ThermalModel::ThermalModel(ThermalParams params) : p_(std::move(params)) {
   require_positive(p_.inner_radius_m, "inner radius");
@@ -177,11 +170,6 @@ void ThermalModel::build_grid() {
   conduction_ = assemble(cond);
   advection_ = assemble(adv);
   identity_ = assemble(cap);
-
-  ws_ = std::make_unique<Workspace>();
-  ws_->system = conduction_;
-  ws_->lu.analyzePattern(ws_->system);
-  ws_->rhs.resize(n);
 }
 
 ThermalState ThermalModel::initial_state(double start_temp_C, double inner_temp_C,
@@ -205,40 +193,39 @@ double ThermalModel::sump_heat_capacity_J_per_K() const {
   return p_.oil_density_kg_m3 * p_.oil_specific_heat_J_per_kgK * p_.sump_volume_m3;
 }
 
-void ThermalModel::step(ThermalState& s, double dt, const Eigen::VectorXd& ring_heat_W,
-                        double slip_rad_s) const {
+void ThermalModel::step(ThermalState& s, ThermalWorkspace& w, double dt,
+                        const Eigen::VectorXd& ring_heat_W, double slip_rad_s) const {
   if (!(dt > 0.0)) throw std::invalid_argument("thermal step must be > 0");
-  Workspace& w = *ws_;
   const int n = nr_ * nz_;
   const double flow_W_per_K = p_.oil_density_kg_m3 * p_.oil_specific_heat_J_per_kgK *
                               interface_flow_m3_s(slip_rad_s, mean_interface_temp_C(s));
 
   // Re-factorise only when the matrix changed (step size or oil flow).
-  if (dt != w.factored_dt || flow_W_per_K != w.factored_flow_W_per_K) {
-    double* m = w.system.valuePtr();
+  if (dt != w.factored_dt_ || flow_W_per_K != w.factored_flow_W_per_K_) {
+    double* m = w.system_.valuePtr();
     const double* c = conduction_.valuePtr();
     const double* a = advection_.valuePtr();
     const double* cap = identity_.valuePtr();
-    for (Eigen::Index e = 0; e < w.system.nonZeros(); ++e)
+    for (Eigen::Index e = 0; e < w.system_.nonZeros(); ++e)
       m[e] = cap[e] / dt + c[e] + flow_W_per_K * a[e];
-    w.lu.factorize(w.system);
-    if (w.lu.info() != Eigen::Success)
+    w.lu_.factorize(w.system_);
+    if (w.lu_.info() != Eigen::Success)
       throw std::runtime_error("thermal solve: factorisation failed at t = " +
                                std::to_string(s.time_s) + " s");
-    w.factored_dt = dt;
-    w.factored_flow_W_per_K = flow_W_per_K;
+    w.factored_dt_ = dt;
+    w.factored_flow_W_per_K_ = flow_W_per_K;
   }
 
   // Right-hand side: storage, boundary temperatures, heat input, oil inlet, rig mass.
-  w.rhs = capacity_J_per_K_.cwiseProduct(s.temp_C) / dt + g_inner_ * s.inner_temp_C +
+  w.rhs_ = capacity_J_per_K_.cwiseProduct(s.temp_C) / dt + g_inner_ * s.inner_temp_C +
           g_outer_ * s.sump_temp_C;
   for (int i = 0; i < nr_; ++i) {
-    w.rhs[node(i, film_j_)] += ring_heat_W[i];
-    w.rhs[node(i, 0)] += g_rig_[i] * s.rig_temp_C;
+    w.rhs_[node(i, film_j_)] += ring_heat_W[i];
+    w.rhs_[node(i, 0)] += g_rig_[i] * s.rig_temp_C;
   }
-  w.rhs[node(0, film_j_)] += flow_W_per_K * adv_weight_[0] * s.inner_temp_C;
+  w.rhs_[node(0, film_j_)] += flow_W_per_K * adv_weight_[0] * s.inner_temp_C;
 
-  const Eigen::VectorXd next = w.lu.solve(w.rhs);
+  const Eigen::VectorXd next = w.lu_.solve(w.rhs_);
   for (int a = 0; a < n; ++a)
     if (!std::isfinite(next[a]))
       throw std::runtime_error("thermal solve produced a non-finite temperature at t = " +

@@ -28,7 +28,6 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
-#include <memory>
 #include <vector>
 
 #include "clutch/oil_flow.hpp"
@@ -98,21 +97,37 @@ struct ThermalState {
   EnergyLedger energy;
 };
 
+class ThermalModel;
+
+/// The solver's scratch for one run (not physics state): the system matrix, its sparse LU and
+/// the right-hand side. Owned by whoever steps the model (one per run, or per thread); the LU is
+/// re-factorised only when the step size or the oil flow changed since the last step.
+class ThermalWorkspace {
+ public:
+  /// Sized and analysed for `model`'s grid; use it only with that model.
+  explicit ThermalWorkspace(const ThermalModel& model);
+
+ private:
+  friend class ThermalModel;
+  Eigen::SparseMatrix<double> system_;  // capacity/dt + conduction + rho*cp*Q * advection
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;
+  double factored_dt_ = -1.0;
+  double factored_flow_W_per_K_ = -1.0;
+  Eigen::VectorXd rhs_;
+};
+
 class ThermalModel {
  public:
   /// Validates and builds the grid; throws std::invalid_argument naming the bad parameter.
   explicit ThermalModel(ThermalParams params);
-  ~ThermalModel();
-  ThermalModel(ThermalModel&&) noexcept;
-  ThermalModel& operator=(ThermalModel&&) noexcept;
 
   ThermalState initial_state(double start_temp_C, double inner_temp_C, double sump_temp_C) const;
 
   /// Advances by dt. ring_heat_W (n_r): mean heat power delivered to each ring's film over the
   /// step (energy = ring_heat_W * dt exactly); slip_rad_s sets the interface oil flow.
-  /// Not thread-safe (reuses a factorisation): one model per simulation thread.
-  void step(ThermalState& state, double dt_s, const Eigen::VectorXd& ring_heat_W,
-            double slip_rad_s) const;
+  /// `workspace` (made for this model) carries the factorisation from step to step.
+  void step(ThermalState& state, ThermalWorkspace& workspace, double dt_s,
+            const Eigen::VectorXd& ring_heat_W, double slip_rad_s) const;
 
   int radial_cells() const { return nr_; }
   int nodes_per_ring() const { return nz_; }
@@ -150,8 +165,7 @@ class ThermalModel {
   Eigen::SparseMatrix<double> conduction_;  // (n_nodes^2) Laplacian incl. boundary terms
   Eigen::SparseMatrix<double> advection_;   // same pattern, per unit rho*cp*Q
   Eigen::SparseMatrix<double> identity_;    // same pattern, capacity on the diagonal
-  struct Workspace;
-  std::unique_ptr<Workspace> ws_;           // factorisation cache (not physics state)
+  friend class ThermalWorkspace;
 };
 
 }  // namespace shudder::clutch

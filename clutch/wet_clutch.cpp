@@ -29,12 +29,10 @@ double WetClutch::mean_radius_m() const {
 void WetClutch::ring_mu(double slip_rad_s, double force_N, const Eigen::VectorXd& ring_temp_C,
                         Eigen::VectorXd& mu) const {
   const auto& r = thermal_.ring_radius_m();
-  const double load = p_.load_dependent_friction ? force_N : p_.reference_load_N;
+  const double load = friction_load_N(force_N);
   mu.resize(r.size());
-  for (Eigen::Index i = 0; i < r.size(); ++i) {
-    const double temp = p_.temperature_dependent_friction ? ring_temp_C[i] : p_.start_temp_C;
-    mu[i] = fluid_.friction->mu(r[i] * std::abs(slip_rad_s) * 1e3, temp, load);
-  }
+  for (Eigen::Index i = 0; i < r.size(); ++i)
+    mu[i] = fluid_.friction->mu(r[i] * std::abs(slip_rad_s) * 1e3, friction_temp_C(ring_temp_C[i]), load);
 }
 
 void WetClutch::ring_torque_Nm(double slip_rad_s, double force_N,
@@ -75,8 +73,8 @@ FrozenFriction WetClutch::freeze(const Eigen::VectorXd& ring_temp_C, double forc
   f.radius_pow = (r * 1e3).array().pow(0.1);
   f.curves.resize(static_cast<std::size_t>(r.size()));
   for (Eigen::Index i = 0; i < r.size(); ++i) {
-    const double temp = p_.temperature_dependent_friction ? ring_temp_C[i] : p_.start_temp_C;
-    if (!fluid_.friction->speed_curve(temp, f.load_N, f.curves[static_cast<std::size_t>(i)])) {
+    if (!fluid_.friction->speed_curve(friction_temp_C(ring_temp_C[i]), f.load_N,
+                                      f.curves[static_cast<std::size_t>(i)])) {
       f.curves.clear();
       break;
     }

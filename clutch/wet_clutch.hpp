@@ -75,9 +75,14 @@ class WetClutch {
   /// Freezes the friction of every ring at the given temperatures and force.
   FrozenFriction freeze(const Eigen::VectorXd& ring_temp_C, double force_N) const;
   /// Load at which mu is evaluated for a clamp force (the reference load when
-  /// load_dependent_friction is off).
+  /// load_dependent_friction is off). The one place that switch is read.
   double friction_load_N(double force_N) const {
     return p_.load_dependent_friction ? force_N : p_.reference_load_N;
+  }
+  /// Temperature at which a ring's mu is evaluated (the clutch start temperature when
+  /// temperature_dependent_friction is off). The one place that switch is read.
+  double friction_temp_C(double ring_temp_C) const {
+    return p_.temperature_dependent_friction ? ring_temp_C : p_.start_temp_C;
   }
   /// Torque per ring of ONE interface (n_r), N m, at |slip| with a frozen state.
   void ring_torque_Nm(const FrozenFriction& frozen, double abs_slip_rad_s, double force_N,

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "io/atomic_file.hpp"
+#include "io/diagnosis_narrative.hpp"
 #include "io/input_error.hpp"
 #include "io/screening_json.hpp"
 
@@ -124,7 +125,7 @@ std::string step(const DiagnosisStep& st) {
       .num("holdout_torque_rms_Nm", st.holdout.torque_rms_Nm)
       .num("holdout_temp_rms_C", st.holdout.temp_rms_C)
       .num("holdout_misfit_before", st.holdout_misfit_before)
-      .num("holdout_misfit_after", st.holdout_misfit_after).str("reason", st.reason)
+      .num("holdout_misfit_after", st.holdout_misfit_after).str("reason", step_reason(st))
       .raw("candidates", list(st.candidates, "        ", candidate));
   const std::string t = o.text();
   std::ostringstream os;
@@ -144,7 +145,7 @@ std::string diagnosis_json(const analysis::DiagnosisResult& r) {
       .str("shudder_version", SHUDDER_VERSION)
       .raw("runs", strings(r.runs))
       .raw("noise", Object().num("torque_Nm", r.noise_torque_Nm).num("temp_C", r.noise_temp_C).text())
-      .str("holdout", r.holdout)
+      .str("holdout", holdout_text(r.holdout))
       .raw("baseline", misfit(r.baseline, r.baseline_holdout_misfit))
       .raw("disagreements", list(r.disagreements, "    ", disagreement))
       .raw("tracking", list(r.tracking, "    ", tracking))
@@ -155,7 +156,7 @@ std::string diagnosis_json(const analysis::DiagnosisResult& r) {
       .raw("final_effects", list(r.final_effects, "    ", fitted_effect))
       .raw("channels", list(r.channels, "    ", channel))
       .raw("final_disagreements", list(r.final_disagreements, "    ", disagreement))
-      .str("conclusion", r.conclusion)
+      .str("conclusion", diagnosis_conclusion(r))
       .raw("timing", Object()
                          .num("simulation_thread_s", r.simulation_thread_s)
                          .num("fitting_thread_s", r.fitting_thread_s)

@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "io/atomic_file.hpp"
+#include "io/diagnosis_narrative.hpp"
 #include "io/gnuplot.hpp"
 #include "io/input_error.hpp"
 
@@ -176,7 +177,8 @@ std::string diagnosis_candidates_markdown(const analysis::DiagnosisResult& r) {
      << "Misfit J in units of the noise variance (J ≈ 1: explained to the noise); residual = model − "
         "measured. score = hold-out misfit + penalty × parameters; gain = current hold-out misfit − "
         "score. Candidates best first.\n\n";
-  if (!r.holdout.empty()) md << "Hold-out: " << cell(r.holdout) << ".\n\n";
+  const std::string holdout = holdout_text(r.holdout);
+  if (!holdout.empty()) md << "Hold-out: " << cell(holdout) << ".\n\n";
   md << "Baseline hold-out misfit: " << fixed(r.baseline_holdout_misfit) << "; final: "
      << fixed(r.final_holdout_misfit) << ".\n\n";
   for (std::size_t k = 0; k < r.steps.size(); ++k) {
@@ -186,7 +188,7 @@ std::string diagnosis_candidates_markdown(const analysis::DiagnosisResult& r) {
        << fixed(st.holdout_misfit_before) << " → " << fixed(st.holdout_misfit_after)
        << "; torque RMS " << fixed(st.misfit.torque_rms_Nm) << " N m, temp RMS "
        << fixed(st.misfit.temp_rms_C) << " °C (all runs).\n\n";
-    if (!st.reason.empty()) md << "Why: " << cell(st.reason) << "\n\n";
+    md << "Why: " << cell(step_reason(st)) << "\n\n";
     candidate_table(md, st.candidates);
   }
   md << "## Last round (stopped the search)\n\n";

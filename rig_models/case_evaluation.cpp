@@ -40,17 +40,17 @@ CaseOutcome evaluate_rig_case(const RigParams& params, const clutch::WetClutch& 
 
   // Prediction: linearise about steady sliding at the operating points the run passes through
   // (reference slip, mean interface temperature, force), every interval_s; keep the worst.
-  LsctrRig rig(params, clutch, cycle);
+  const LsctrRig rig(params, clutch, cycle);
   const auto* time = rec.find("time_s");
   const auto* temp = rec.find("interface_mean_temp_C");
   double worst = -std::numeric_limits<double>::infinity();
   for (double t = 0.0; t <= settings.duration_s + 1e-12; t += interval_s) {
     const double slip = cycle.slip_speed_rpm(t);
-    rig.clutch_law().set_ring_temperatures(
-        Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), at(*time, *temp, t)));
+    const ClutchHeldInputs held{Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), at(*time, *temp, t)),
+                                cycle.normal_force_N};
     analysis::StabilityPoint p;
     try {
-      p = rig_stability(rig, slip, t);
+      p = rig_stability(rig, held, slip, t);
     } catch (const std::invalid_argument&) {
       continue;  // steady sliding impossible (motor saturated): no linearisation there
     }

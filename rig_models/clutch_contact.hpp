@@ -8,12 +8,18 @@
 //   heat channels: the rings of ONE interface's thermal grid, q_i = |Δω| r_i p mu_k A_i (+ the
 //   viscous shear heat when that effect is on); bearing drag heats no disc.
 //
-// Ring temperatures T_i are HELD between thermal steps (DESIGN.md multi-rate coupling): the rig
-// simulation calls set_ring_temperatures() after each thermal step and restarts the stepper.
+// Model and run are kept apart (as a System and its Context):
+//   ClutchContact     the const model: the clutch, bearing drag and stick-time growth.
+//   ClutchContext     what a run changes: the HELD inputs (ring temperatures T_i, clamp force
+//                     F(t)) and the frozen-friction cache built from them. Owned by the run.
+//   ClutchContactLaw  a ClutchContact bound to one ClutchContext: what the integrator calls.
+// Ring temperatures are held between thermal steps (DESIGN.md multi-rate coupling): the run sets
+// new ones into its context after each thermal step and restarts the stepper.
 // The stick-time growth law (saturating, Δ_s and τ_s) is an estimate after Paper A's review
 // (static friction grows with time at rest, Gao et al.); defaults in StickTimeFriction.
 
 #include <Eigen/Dense>
+#include <memory>
 
 #include "clutch/wet_clutch.hpp"
 #include "dynamics/contact_law.hpp"
@@ -28,39 +34,84 @@ struct StickTimeFriction {
   double time_constant_s = 1.0;  // τ_s (estimate)
 };
 
-class ClutchContactLaw final : public dynamics::ContactLaw {
+/// The inputs a run holds between slow steps: an operating point of the contact.
+struct ClutchHeldInputs {
+  Eigen::VectorXd ring_temp_C;     // (n_r) interface temperature of each ring
+  PiecewiseLinear normal_force_N;  // clamp force over time
+};
+
+/// A run's state of one clutch contact: its held inputs and the cache derived from them.
+/// Setting an input drops the cache.
+class ClutchContext {
  public:
-  ClutchContactLaw(const clutch::WetClutch& clutch, PiecewiseLinear normal_force_N,
-                   BearingDrag drag, StickTimeFriction stick_time);
+  explicit ClutchContext(ClutchHeldInputs held) : held_(std::move(held)) {}
 
   void set_ring_temperatures(const Eigen::VectorXd& ring_temp_C);
   /// Replaces the clamp force (a coupling whose force comes from a slow hydraulic state).
   void set_normal_force(PiecewiseLinear normal_force_N);
-  const Eigen::VectorXd& ring_temperatures() const { return ring_temp_C_; }
-
-  double kinetic_torque_Nm(double abs_slip_rad_s, double t_s) const override;
-  double static_capacity_Nm(double t_s, double stick_time_s) const override;
-  double kinetic_torque_slope_Nms(double abs_slip_rad_s, double t_s) const override;
-  int heat_channels() const override { return clutch_.thermal().radial_cells(); }
-  void channel_heat_W(double abs_slip_rad_s, double t_s, double* out) const override;
-
-  double drag_torque_Nm(double t_s) const;
+  const ClutchHeldInputs& held() const { return held_; }
 
  private:
-  const clutch::WetClutch& clutch_;
-  PiecewiseLinear force_N_;
-  BearingDrag drag_;
-  StickTimeFriction stick_;
+  friend class ClutchContact;
+  ClutchHeldInputs held_;
   // Ring torques at the last (|Δω|, t) asked: the integrator asks for the torque and then the
   // channel heats at the same arguments. Frozen friction is rebuilt with new temperatures or
   // when the friction load moved by more than 1e-4 relative (a force ramp; mu changes by
   // < 1e-6 over such a step).
-  void update(double abs_slip_rad_s, double t_s) const;
-  Eigen::VectorXd ring_temp_C_;            // (n_r) held interface temperatures
-  mutable clutch::FrozenFriction frozen_;
-  mutable bool frozen_valid_ = false;
-  mutable double cached_slip_ = -1.0, cached_t_ = 0.0;
-  mutable Eigen::VectorXd ring_torque_;    // (n_r) per interface at the cached arguments
+  clutch::FrozenFriction frozen_;
+  bool frozen_valid_ = false;
+  double cached_slip_ = -1.0, cached_t_ = 0.0;
+  Eigen::VectorXd ring_torque_;  // (n_r) per interface at the cached arguments
+};
+
+/// The contact's model: every evaluation reads the held inputs from a context.
+class ClutchContact {
+ public:
+  ClutchContact(const clutch::WetClutch& clutch, BearingDrag drag, StickTimeFriction stick_time)
+      : clutch_(&clutch), drag_(drag), stick_(stick_time) {}
+
+  /// Held inputs with every ring at the clutch's start temperature.
+  ClutchHeldInputs start_inputs(PiecewiseLinear normal_force_N) const;
+
+  double kinetic_torque_Nm(ClutchContext& c, double abs_slip_rad_s, double t_s) const;
+  double static_capacity_Nm(const ClutchContext& c, double t_s, double stick_time_s) const;
+  double kinetic_torque_slope_Nms(ClutchContext& c, double abs_slip_rad_s, double t_s) const;
+  int heat_channels() const { return clutch_->thermal().radial_cells(); }
+  void channel_heat_W(ClutchContext& c, double abs_slip_rad_s, double t_s, double* out) const;
+  double drag_torque_Nm(const ClutchContext& c, double t_s) const;
+
+ private:
+  void update(ClutchContext& c, double abs_slip_rad_s, double t_s) const;
+  const clutch::WetClutch* clutch_;
+  BearingDrag drag_;
+  StickTimeFriction stick_;
+};
+
+/// A ClutchContact bound to a run's context (shared with the run, which updates it between
+/// slow steps): the law the torsional network's contact calls with (|Δω|, t).
+class ClutchContactLaw final : public dynamics::ContactLaw {
+ public:
+  ClutchContactLaw(ClutchContact model, std::shared_ptr<ClutchContext> context)
+      : model_(model), context_(std::move(context)) {}
+
+  double kinetic_torque_Nm(double abs_slip_rad_s, double t_s) const override {
+    return model_.kinetic_torque_Nm(*context_, abs_slip_rad_s, t_s);
+  }
+  double static_capacity_Nm(double t_s, double stick_time_s) const override {
+    return model_.static_capacity_Nm(*context_, t_s, stick_time_s);
+  }
+  double kinetic_torque_slope_Nms(double abs_slip_rad_s, double t_s) const override {
+    return model_.kinetic_torque_slope_Nms(*context_, abs_slip_rad_s, t_s);
+  }
+  int heat_channels() const override { return model_.heat_channels(); }
+  void channel_heat_W(double abs_slip_rad_s, double t_s, double* out) const override {
+    model_.channel_heat_W(*context_, abs_slip_rad_s, t_s, out);
+  }
+  double drag_torque_Nm(double t_s) const { return model_.drag_torque_Nm(*context_, t_s); }
+
+ private:
+  ClutchContact model_;
+  std::shared_ptr<ClutchContext> context_;
 };
 
 }  // namespace shudder::rig_models

@@ -52,7 +52,10 @@ double final_oscillation_amplitude_Nm(const std::vector<double>& t, const std::v
 
 HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::WetClutch& clutch,
                                  const DrivelineInputs& inputs)
-    : p_(params), hydraulics_(params.hydraulics, pack_torque_per_newton(params, clutch)) {
+    : p_(params),
+      hydraulics_(params.hydraulics, pack_torque_per_newton(params, clutch)),
+      contact_(clutch, BearingDrag{}, params.stick_time),
+      engine_torque_Nm_(inputs.engine_torque_Nm) {
   for (const auto& [v, what] : std::initializer_list<std::pair<double, const char*>>{
            {p_.engine_inertia_kg_m2, "engine_inertia_kg_m2"}, {p_.gear_ratio, "gear_ratio"},
            {p_.final_drive_ratio, "final_drive_ratio"}, {p_.front_diff_inertia_kg_m2, "front_diff_inertia_kg_m2"},
@@ -71,15 +74,29 @@ HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::We
            {p_.propshaft_damping_Nms_per_rad, "propshaft_damping_Nms_per_rad"}})
     if (!std::isfinite(v) || v < 0) throw std::invalid_argument(std::string("driveline: ") + what + " must be >= 0");
 
-  const double f0 = hydraulics_.clamp_force_N(0.0);
-  law_ = std::make_shared<ClutchContactLaw>(clutch, PiecewiseLinear({0.0}, {f0}), BearingDrag{}, p_.stick_time);
+  // Builds the network once to validate it; runs build their own around their context.
+  build(std::make_shared<ClutchContactLaw>(contact_, std::make_shared<ClutchContext>(start_inputs())));
+}
 
+ClutchHeldInputs HaldexDriveline::start_inputs() const {
+  return contact_.start_inputs(PiecewiseLinear({0.0}, {hydraulics_.clamp_force_N(0.0)}));
+}
+
+dynamics::TorsionalNetwork HaldexDriveline::network(std::shared_ptr<ClutchContext> coupling_context) const {
+  return build(std::make_shared<ClutchContactLaw>(contact_, std::move(coupling_context)));
+}
+
+dynamics::TorsionalNetwork HaldexDriveline::network() const {
+  return network(std::make_shared<ClutchContext>(start_inputs()));
+}
+
+dynamics::TorsionalNetwork HaldexDriveline::build(std::shared_ptr<const dynamics::ContactLaw> law) const {
   const double r = p_.wheel_radius_m;
   const double tyre_damping = p_.tyre_slip_stiffness_N * r * r / p_.tyre_reference_speed_m_s;
   using dynamics::Gear;
   using dynamics::Inertia;
   using dynamics::Shaft;
-  auto& n = net_;
+  dynamics::TorsionalNetwork n;
   n.add_inertia(Inertia{"engine", p_.engine_inertia_kg_m2});
   n.add_inertia(Inertia{"front_diff", p_.front_diff_inertia_kg_m2});
   const double rim = 2 * p_.wheel_inertia_kg_m2 * (1 - p_.belt_share), belt = 2 * p_.wheel_inertia_kg_m2 * p_.belt_share;
@@ -111,10 +128,11 @@ HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::We
   n.add_gear(Gear{"power_take_off", kPtu, kFrontDiff, p_.ptu_ratio});
   n.add_gear(Gear{"rear_differential", kCouplingOut, kRearDiff, p_.rear_diff_ratio});
 
-  n.add_contact(dynamics::FrictionContact{"haldex_coupling", kCouplingIn, kCouplingOut, law_});
-  const PiecewiseLinear engine = inputs.engine_torque_Nm;
+  n.add_contact(dynamics::FrictionContact{"haldex_coupling", kCouplingIn, kCouplingOut, std::move(law)});
+  const PiecewiseLinear engine = engine_torque_Nm_;
   n.add_torque_source(dynamics::TorqueSource{"engine", kEngine, [engine](double t) { return engine(t); }});
   n.validate();
+  return n;
 }
 
 Eigen::VectorXd HaldexDriveline::rolling_speed_ratios() const {
@@ -137,14 +155,15 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
     throw std::invalid_argument("driveline: duration, slow step and sample rate must be > 0");
   if (!std::isfinite(inputs.start_speed_km_h) || inputs.start_speed_km_h < 0)
     throw std::invalid_argument("driveline: start speed must be a finite value >= 0 km/h");
-  HaldexDriveline dl(params, clutch, inputs);
+  const HaldexDriveline dl(params, clutch, inputs);
   using D = HaldexDriveline;
-  ClutchContactLaw& law = dl.coupling_law();
   const auto& th = clutch.thermal();
   clutch::ThermalState ts = clutch.initial_state();
-  law.set_ring_temperatures(th.interface_temps_C(ts));
+  const auto coupling_context = std::make_shared<ClutchContext>(dl.start_inputs());
+  coupling_context->set_ring_temperatures(th.interface_temps_C(ts));
+  const dynamics::TorsionalNetwork network = dl.network(coupling_context);
 
-  dynamics::Simulation sim(dl.network(), params.integrator);
+  dynamics::Simulation sim(network, params.integrator);
   const double w_vehicle = inputs.start_speed_km_h / 3.6 / params.wheel_radius_m;
   sim.initialize(0.0, Eigen::VectorXd::Zero(D::kNodes), dl.rolling_speed_ratios() * w_vehicle, Eigen::VectorXd());
 
@@ -189,7 +208,7 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
   recorder.sample(sim.sample());
   recorder.start(ts);
   double peak_C = th.interface_temps_C(ts).maxCoeff();
-  run_multirate(sim, law, clutch, ts, D::kCoupling, cfg.duration_s, cfg.slow_step_s, cfg.sample_rate_Hz,
+  run_multirate(sim, *coupling_context, clutch, ts, D::kCoupling, cfg.duration_s, cfg.slow_step_s, cfg.sample_rate_Hz,
                 [&](const dynamics::Sample& s) { recorder.sample(s); }, [&](const SlowStep& step) {
                   // The pump strokes with the relative rotation; |Δθ| over the step is its
                   // integral of |Δω| unless the slip reversed within the step.
@@ -199,7 +218,7 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
                   pressure_bar = dl.hydraulics().step_pressure_bar(
                       pressure_bar, std::abs(twist(step.after) - twist(step.before)), step.tb_s - step.ta_s,
                       inputs.valve_pressure_bar(step.tb_s));
-                  law.set_normal_force(PiecewiseLinear({0.0}, {dl.hydraulics().clamp_force_N(pressure_bar)}));
+                  coupling_context->set_normal_force(PiecewiseLinear({0.0}, {dl.hydraulics().clamp_force_N(pressure_bar)}));
                   peak_C = std::max(peak_C, th.interface_temps_C(ts).maxCoeff());
                   recorder.step(ts, step.ta_s, step.tb_s);
                 });

@@ -82,13 +82,19 @@ struct DrivelineSettings {
   double sample_rate_Hz = 1000.0;
 };
 
+/// A const model: the coupling's held inputs (ring temperatures, clamp force) live in a
+/// ClutchContext owned by the run, to which the network's coupling law is bound.
 class HaldexDriveline {
  public:
   /// Throws std::invalid_argument for invalid parameters.
   HaldexDriveline(const DrivelineParams& params, const clutch::WetClutch& clutch, const DrivelineInputs& inputs);
 
-  const dynamics::TorsionalNetwork& network() const { return net_; }
-  ClutchContactLaw& coupling_law() { return *law_; }
+  /// Every ring at the clutch's start temperature, the clamp force of the unpressurised pump.
+  ClutchHeldInputs start_inputs() const;
+  /// The network with the coupling's law bound to `coupling_context` (the run's held inputs).
+  dynamics::TorsionalNetwork network(std::shared_ptr<ClutchContext> coupling_context) const;
+  /// The network bound to a fresh context at start_inputs() (for inspection and modes).
+  dynamics::TorsionalNetwork network() const;
   const HaldexHydraulics& hydraulics() const { return hydraulics_; }
   const DrivelineParams& params() const { return p_; }
   /// Speed of every node per unit vehicle speed (rad/s per rad/s) when all rolls together.
@@ -101,10 +107,11 @@ class HaldexDriveline {
   static constexpr int kCoupling = 0;
 
  private:
+  dynamics::TorsionalNetwork build(std::shared_ptr<const dynamics::ContactLaw> coupling_law) const;
   DrivelineParams p_;
   HaldexHydraulics hydraulics_;
-  std::shared_ptr<ClutchContactLaw> law_;
-  dynamics::TorsionalNetwork net_;
+  ClutchContact contact_;
+  PiecewiseLinear engine_torque_Nm_;
 };
 
 /// Simulates the driveline with the coupling's thermal model and hydraulics (multi-rate) and

@@ -42,7 +42,10 @@ SpeedLoopGains speed_loop_gains(const RigParams& p) {
 }
 
 LsctrRig::LsctrRig(const RigParams& params, const clutch::WetClutch& clutch, const DriveCycle& cycle)
-    : p_(params) {
+    : p_(params),
+      contact_(clutch, params.bearing_drag, params.stick_time),
+      speed_rpm_(cycle.slip_speed_rpm),
+      force_N_(cycle.normal_force_N) {
   require(p_.drive_inertia_kg_m2 > 0, "rig drive inertia must be > 0 kg m^2");
   require(p_.housing_inertia_kg_m2 > 0, "rig housing inertia must be > 0 kg m^2");
   require(p_.bar_stiffness_Nm_per_rad > 0 || p_.bar_natural_frequency_Hz > 0,
@@ -50,28 +53,20 @@ LsctrRig::LsctrRig(const RigParams& params, const clutch::WetClutch& clutch, con
   require(p_.bar_damping_ratio >= 0, "torsion bar damping ratio must be >= 0");
   require(p_.speed_loop_bandwidth_Hz > 0, "speed loop bandwidth must be > 0 Hz");
   require(p_.motor_torque_limit_Nm > 0, "motor torque limit must be > 0 N m");
-  law_ = std::make_shared<ClutchContactLaw>(clutch, cycle.normal_force_N, p_.bearing_drag, p_.stick_time);
 
   const SpeedLoopGains gains = speed_loop_gains(p_);
   kp_ = gains.kp_Nms_per_rad;
   ki_ = gains.ki_Nm_per_rad;
-  const PiecewiseLinear speed = cycle.slip_speed_rpm;
-  const auto build = [&](double k_bar) {
-    dynamics::TorsionalNetwork n;
-    n.add_inertia({"drive", p_.drive_inertia_kg_m2});
-    n.add_inertia({"housing", p_.housing_inertia_kg_m2});
-    n.add_motor({"motor", kDrive, [speed](double t) { return units::rpm_to_rad_s(speed(t)); }, kp_, ki_,
-                 p_.motor_torque_limit_Nm});
-    n.add_contact({"clutch", kDrive, kHousing, law_});
-    c_bar_ = 2.0 * p_.bar_damping_ratio * std::sqrt(k_bar * p_.housing_inertia_kg_m2);
-    n.add_shaft({"torsion_bar", kHousing, dynamics::kGround, k_bar, c_bar_});
-    n.validate();
-    return n;
+  // The tuning's modal analysis does not evaluate the clutch law; any context serves.
+  const auto law = std::make_shared<ClutchContactLaw>(contact_, std::make_shared<ClutchContext>(start_inputs()));
+  const auto damping = [&](double k_bar) {
+    return 2.0 * p_.bar_damping_ratio * std::sqrt(k_bar * p_.housing_inertia_kg_m2);
   };
 
   if (p_.bar_stiffness_Nm_per_rad > 0) {
-    k_bar_ = p_.bar_stiffness_Nm_per_rad;
-    net_ = build(k_bar_);
+    k_bar_ = k_network_ = p_.bar_stiffness_Nm_per_rad;
+    c_bar_ = damping(k_bar_);
+    build(k_bar_, c_bar_, law);  // validates the network
     return;
   }
   // Start from the isolated housing on the bar, then correct on the full modal analysis (the
@@ -80,16 +75,47 @@ LsctrRig::LsctrRig(const RigParams& params, const clutch::WetClutch& clutch, con
   const double target = p_.bar_natural_frequency_Hz;
   k_bar_ = p_.housing_inertia_kg_m2 * std::pow(units::kTwoPi * target, 2);
   for (int iter = 0; iter < 8; ++iter) {
-    net_ = build(k_bar_);
-    const auto m = net_.modes();
+    k_network_ = k_bar_;
+    c_bar_ = damping(k_bar_);
+    const auto m = build(k_bar_, c_bar_, law).modes();
     const double f = m.frequencies_Hz[clutch_side_mode(m)];
+    clutch_side_Hz_ = f;
     if (std::abs(f / target - 1.0) < 1e-10) break;
     k_bar_ *= std::pow(target / f, 2);
   }
 }
 
+dynamics::TorsionalNetwork LsctrRig::build(double k_bar, double c_bar,
+                                           std::shared_ptr<const dynamics::ContactLaw> law) const {
+  const PiecewiseLinear speed = speed_rpm_;
+  dynamics::TorsionalNetwork n;
+  n.add_inertia({"drive", p_.drive_inertia_kg_m2});
+  n.add_inertia({"housing", p_.housing_inertia_kg_m2});
+  n.add_motor({"motor", kDrive, [speed](double t) { return units::rpm_to_rad_s(speed(t)); }, kp_, ki_,
+               p_.motor_torque_limit_Nm});
+  n.add_contact({"clutch", kDrive, kHousing, std::move(law)});
+  n.add_shaft({"torsion_bar", kHousing, dynamics::kGround, k_bar, c_bar});
+  n.validate();
+  return n;
+}
+
+dynamics::TorsionalNetwork LsctrRig::network(std::shared_ptr<ClutchContext> clutch_context) const {
+  return build(k_network_, c_bar_, std::make_shared<ClutchContactLaw>(contact_, std::move(clutch_context)));
+}
+
+dynamics::TorsionalNetwork LsctrRig::network(std::shared_ptr<ClutchContext> clutch_context,
+                                             double bar_damping_ratio) const {
+  const double c_bar = 2.0 * bar_damping_ratio * std::sqrt(k_network_ * p_.housing_inertia_kg_m2);
+  return build(k_network_, c_bar, std::make_shared<ClutchContactLaw>(contact_, std::move(clutch_context)));
+}
+
+dynamics::TorsionalNetwork LsctrRig::network() const {
+  return network(std::make_shared<ClutchContext>(start_inputs()));
+}
+
 double LsctrRig::clutch_side_frequency_Hz() const {
-  const auto m = net_.modes();
+  if (clutch_side_Hz_ >= 0) return clutch_side_Hz_;
+  const auto m = network().modes();
   return m.frequencies_Hz[clutch_side_mode(m)];
 }
 
@@ -97,20 +123,21 @@ dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& cl
                             const DriveCycle& cycle, const RigSettings& cfg) {
   if (!(cfg.duration_s > 0) || !(cfg.thermal_step_s > 0) || !(cfg.sample_rate_Hz > 0))
     throw std::invalid_argument("duration, thermal step and sample rate must be > 0");
-  LsctrRig rig(params, clutch, cycle);
-  ClutchContactLaw& law = rig.clutch_law();
+  const LsctrRig rig(params, clutch, cycle);
   const auto& th = clutch.thermal();
   clutch::ThermalState ts = clutch.initial_state();
-  law.set_ring_temperatures(th.interface_temps_C(ts));
+  const auto clutch_context = std::make_shared<ClutchContext>(ClutchHeldInputs{th.interface_temps_C(ts), cycle.normal_force_N});
+  const auto& law = rig.clutch_contact();
+  const dynamics::TorsionalNetwork network = rig.network(clutch_context);
 
   // Start in steady sliding (the bar already carries the friction torque and the speed loop's
   // integrator supplies it, so the record starts without a spurious transient), or at rest.
-  dynamics::Simulation sim(rig.network(), params.integrator);
+  dynamics::Simulation sim(network, params.integrator);
   Eigen::VectorXd theta = Eigen::VectorXd::Zero(2), omega = Eigen::VectorXd::Zero(2),
                   integral = Eigen::VectorXd::Zero(1);
   if (!params.start_at_rest) {
     const double w0 = units::rpm_to_rad_s(cycle.slip_speed_rpm(0.0));
-    const double t0_Nm = law.kinetic_torque_Nm(std::abs(w0), 0.0) * (w0 >= 0 ? 1.0 : -1.0);
+    const double t0_Nm = law.kinetic_torque_Nm(*clutch_context, std::abs(w0), 0.0) * (w0 >= 0 ? 1.0 : -1.0);
     theta[LsctrRig::kHousing] = t0_Nm / rig.bar_stiffness_Nm_per_rad();
     omega[LsctrRig::kDrive] = w0;
     integral[0] = t0_Nm / rig.motor_ki();
@@ -164,7 +191,7 @@ dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& cl
   std::vector<double> snaps = cfg.snapshot_times_s;
   std::sort(snaps.begin(), snaps.end());
   std::size_t next_snap = 0;
-  run_multirate(sim, law, clutch, ts, LsctrRig::kClutch, cfg.duration_s, cfg.thermal_step_s, cfg.sample_rate_Hz,
+  run_multirate(sim, *clutch_context, clutch, ts, LsctrRig::kClutch, cfg.duration_s, cfg.thermal_step_s, cfg.sample_rate_Hz,
                 [&](const dynamics::Sample& s) { recorder.sample(s); }, [&](const SlowStep& step) {
                   peak_interface_C = std::max(peak_interface_C, th.interface_temps_C(ts).maxCoeff());
                   recorder.step(ts, step.ta_s, step.tb_s);

@@ -66,13 +66,24 @@ struct SpeedLoopGains {
 SpeedLoopGains speed_loop_gains(const RigParams& params);
 
 /// The rig's network and its derived parameters. Node 0 drive, node 1 housing; contact 0 clutch.
+/// A const model: the clutch's held inputs (ring temperatures, clamp force) live in a
+/// ClutchContext owned by the run or the analysis, to which the network's clutch law is bound.
 class LsctrRig {
  public:
   /// Throws std::invalid_argument for invalid parameters.
   LsctrRig(const RigParams& params, const clutch::WetClutch& clutch, const DriveCycle& cycle);
 
-  const dynamics::TorsionalNetwork& network() const { return net_; }
-  ClutchContactLaw& clutch_law() { return *law_; }
+  const ClutchContact& clutch_contact() const { return contact_; }
+  /// Every ring at the clutch's start temperature, the cycle's clamp force.
+  ClutchHeldInputs start_inputs() const { return contact_.start_inputs(force_N_); }
+  /// The network with its clutch law bound to `clutch_context`.
+  dynamics::TorsionalNetwork network(std::shared_ptr<ClutchContext> clutch_context) const;
+  /// The same with the bar's damping ratio replaced (its stiffness held).
+  dynamics::TorsionalNetwork network(std::shared_ptr<ClutchContext> clutch_context,
+                                     double bar_damping_ratio) const;
+  /// The network bound to a fresh context at start_inputs() (modal analysis does not evaluate
+  /// the law; nothing is shared with other callers).
+  dynamics::TorsionalNetwork network() const;
   const RigParams& params() const { return p_; }
   double bar_stiffness_Nm_per_rad() const { return k_bar_; }
   double bar_damping_Nms_per_rad() const { return c_bar_; }
@@ -84,10 +95,16 @@ class LsctrRig {
   static constexpr int kDrive = 0, kHousing = 1, kClutch = 0, kBar = 0;
 
  private:
+  dynamics::TorsionalNetwork build(double k_bar, double c_bar,
+                                   std::shared_ptr<const dynamics::ContactLaw> law) const;
   RigParams p_;
-  std::shared_ptr<ClutchContactLaw> law_;
-  dynamics::TorsionalNetwork net_;
+  ClutchContact contact_;
+  PiecewiseLinear speed_rpm_, force_N_;
   double k_bar_ = 0, c_bar_ = 0, kp_ = 0, ki_ = 0;
+  // Stiffness the network is built with: k_bar_ itself unless the tuning loop ran out of
+  // iterations (then k_bar_ holds the next correction, as it always has).
+  double k_network_ = 0;
+  double clutch_side_Hz_ = -1.0;  // from the tuning's modal analysis; < 0: not computed
 };
 
 /// Simulates the rig on the cycle with the clutch's thermal model (multi-rate coupling) and

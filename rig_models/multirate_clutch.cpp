@@ -5,7 +5,7 @@
 
 namespace shudder::rig_models {
 
-void run_multirate(dynamics::Simulation& sim, ClutchContactLaw& law, const clutch::WetClutch& clutch,
+void run_multirate(dynamics::Simulation& sim, ClutchContext& context, const clutch::WetClutch& clutch,
                    clutch::ThermalState& ts, int contact, double duration_s, double slow_step_s,
                    double sample_rate_Hz, const std::function<void(const dynamics::Sample&)>& on_sample,
                    const std::function<void(const SlowStep&)>& after_step) {
@@ -14,6 +14,7 @@ void run_multirate(dynamics::Simulation& sim, ClutchContactLaw& law, const clutc
   for (long k = 1; k <= n_samples; ++k) sample_times.push_back(static_cast<double>(k) / sample_rate_Hz);
 
   const auto& th = clutch.thermal();
+  clutch::ThermalWorkspace workspace(th);
   const auto& c = sim.network().contacts()[static_cast<std::size_t>(contact)];
   const int nr = th.radial_cells();
   Eigen::VectorXd heat_before(nr), heat_now(nr);
@@ -32,10 +33,10 @@ void run_multirate(dynamics::Simulation& sim, ClutchContactLaw& law, const clutc
       return angle(c.a) - angle(c.b);
     };
     const double mean_slip = (twist(sb) - twist(sa)) / dt;
-    th.step(ts, dt, (heat_now - heat_before) / dt, mean_slip);
+    th.step(ts, workspace, dt, (heat_now - heat_before) / dt, mean_slip);
     ts.time_s = tb;
     heat_before = heat_now;
-    law.set_ring_temperatures(th.interface_temps_C(ts));
+    context.set_ring_temperatures(th.interface_temps_C(ts));
     after_step(SlowStep{ta, tb, sa, sb});
     sim.restart();
   }

@@ -3,8 +3,10 @@
 // rig's clutch, the Haldex coupling): the torsional states are integrated adaptively to the end
 // of each slow step, sampled on the way; then the clutch's thermal model is advanced over the
 // step with the exact friction energy per ring the integrator accumulated, and the mean slip
-// (relative rotation / step) for the oil flow; the law gets the new ring temperatures, the
-// caller may update other held inputs (a clamp force), and the stepper restarts.
+// (relative rotation / step) for the oil flow; the run's clutch context (the held inputs the
+// contact law reads) gets the new ring temperatures, the caller may update other held inputs
+// (a clamp force), and the stepper restarts. The thermal solver's workspace lives here, one
+// per run.
 // Slow steps end exactly on the duration: summed steps fall short of it by round-off
 // (1000 × 10 ms gives 9.99999999999983 s), which would lose the last sample.
 
@@ -24,8 +26,9 @@ struct SlowStep {
 
 /// Runs `sim` from its current time to `duration_s`; `on_sample` gets every sample at
 /// `sample_rate_Hz` (k / rate, k >= 1), `after_step` each completed slow step after the thermal
-/// update of `ts` and the law's temperatures.
-void run_multirate(dynamics::Simulation& sim, ClutchContactLaw& law, const clutch::WetClutch& clutch,
+/// update of `ts` and of the ring temperatures held in `context` (the context the network's
+/// clutch law is bound to).
+void run_multirate(dynamics::Simulation& sim, ClutchContext& context, const clutch::WetClutch& clutch,
                    clutch::ThermalState& ts, int contact, double duration_s, double slow_step_s,
                    double sample_rate_Hz, const std::function<void(const dynamics::Sample&)>& on_sample,
                    const std::function<void(const SlowStep&)>& after_step);

@@ -85,6 +85,7 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
   });
 
   clutch::ThermalState state = clutch.initial_state();
+  clutch::ThermalWorkspace workspace(th);
   const long n_samples = static_cast<long>(std::floor(cfg.duration_s * cfg.sample_rate_Hz + 1e-9)) + 1;
   long next_sample = 0;
   recorder.sample(0.0);
@@ -117,7 +118,7 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
     heat_at(tm, hm);
     heat_at(t1, h1);
     const Eigen::VectorXd mean_heat = (h0 + 4.0 * hm + h1) / 6.0;
-    th.step(state, dt, mean_heat, units::rpm_to_rad_s(cycle.slip_speed_rpm(tm)));
+    th.step(state, workspace, dt, mean_heat, units::rpm_to_rad_s(cycle.slip_speed_rpm(tm)));
     state.time_s = t1;  // exact end time, free of accumulated round-off
 
     const Probe after = measure(clutch, state, cycle, cfg.bearing_drag, t1);

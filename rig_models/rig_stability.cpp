@@ -2,15 +2,15 @@
 
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <stdexcept>
 #include <string>
+
+#include "core/units.hpp"
 
 namespace shudder::rig_models {
 
 namespace {
 
-constexpr double kRadPerSPerRpm = 2.0 * std::numbers::pi / 60.0;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 void check_operating_point(double force_N, double slip_rpm, double temp_C) {
@@ -27,50 +27,53 @@ DriveCycle steady_cycle(double force_N, double slip_rpm) {
   return {PiecewiseLinear({0.0}, {slip_rpm}), PiecewiseLinear({0.0}, {force_N})};
 }
 
-void set_uniform_temperature(LsctrRig& rig, const clutch::WetClutch& clutch, double temp_C) {
-  rig.clutch_law().set_ring_temperatures(Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), temp_C));
+// Every ring at temp_C, the force of `rig`'s cycle.
+ClutchHeldInputs uniform_inputs(const LsctrRig& rig, const clutch::WetClutch& clutch, double temp_C) {
+  ClutchHeldInputs in = rig.start_inputs();
+  in.ring_temp_C = Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), temp_C);
+  return in;
 }
 
 // Steady clutch torque above the motor's limit: the speed loop cannot hold the slip.
-bool motor_saturates(LsctrRig& rig, double slip_rad_s, double t_s) {
+bool motor_saturates(const LsctrRig& rig, ClutchContext& clutch, double slip_rad_s, double t_s) {
   if (slip_rad_s == 0.0) return false;  // stuck: the torque is whatever the bar carries
-  return rig.clutch_law().kinetic_torque_Nm(std::abs(slip_rad_s), t_s) > rig.params().motor_torque_limit_Nm;
+  return rig.clutch_contact().kinetic_torque_Nm(clutch, std::abs(slip_rad_s), t_s) > rig.params().motor_torque_limit_Nm;
 }
 
-StabilityPoint linearise_rig(LsctrRig& rig, double slip_rad_s, double t_s) {
+StabilityPoint linearise_rig(const dynamics::TorsionalNetwork& network, double slip_rad_s, double t_s) {
   analysis::SteadySliding steady;
   steady.slip_rad_s = {slip_rad_s};
   steady.t_s = t_s;
-  return analysis::linearise(rig.network(), steady);
+  return analysis::linearise(network, steady);
 }
 
-// Margin at one operating point with the given rig parameters.
-double margin_with(const RigParams& params, const clutch::WetClutch& clutch, double force_N,
-                   double slip_rpm, double temp_C) {
-  LsctrRig rig(params, clutch, steady_cycle(force_N, slip_rpm));
-  set_uniform_temperature(rig, clutch, temp_C);
-  return rig_stability(rig, slip_rpm).margin_per_s;
+// The stability of `network` (the rig's, its clutch law bound to `clutch`) at one slip.
+StabilityPoint stability_at(const LsctrRig& rig, ClutchContext& clutch, const dynamics::TorsionalNetwork& network,
+                            double slip_rpm, double t_s = 0.0) {
+  const double slip = units::rpm_to_rad_s(slip_rpm);
+  if (motor_saturates(rig, clutch, slip, t_s))
+    throw std::invalid_argument(
+        "stability: the clutch torque " +
+        std::to_string(rig.clutch_contact().kinetic_torque_Nm(clutch, std::abs(slip), t_s)) + " N m at " +
+        std::to_string(slip_rpm) + " rpm exceeds the motor's limit of " +
+        std::to_string(rig.params().motor_torque_limit_Nm) +
+        " N m, so there is no steady sliding to linearise about; lower the normal force");
+  return linearise_rig(network, slip, t_s);
 }
 
 }  // namespace
 
-StabilityPoint rig_stability(LsctrRig& rig, double slip_rpm, double t_s) {
-  const double slip = slip_rpm * kRadPerSPerRpm;
-  if (motor_saturates(rig, slip, t_s))
-    throw std::invalid_argument(
-        "stability: the clutch torque " + std::to_string(rig.clutch_law().kinetic_torque_Nm(std::abs(slip), t_s)) +
-        " N m at " + std::to_string(slip_rpm) + " rpm exceeds the motor's limit of " +
-        std::to_string(rig.params().motor_torque_limit_Nm) +
-        " N m, so there is no steady sliding to linearise about; lower the normal force");
-  return linearise_rig(rig, slip, t_s);
+StabilityPoint rig_stability(const LsctrRig& rig, const ClutchHeldInputs& clutch_inputs, double slip_rpm,
+                             double t_s) {
+  const auto context = std::make_shared<ClutchContext>(clutch_inputs);
+  return stability_at(rig, *context, rig.network(context), slip_rpm, t_s);
 }
 
 StabilityPoint rig_stability(const RigParams& params, const clutch::WetClutch& clutch, double force_N,
                              double slip_rpm, double interface_temp_C) {
   check_operating_point(force_N, slip_rpm, interface_temp_C);
-  LsctrRig rig(params, clutch, steady_cycle(force_N, slip_rpm));
-  set_uniform_temperature(rig, clutch, interface_temp_C);
-  return rig_stability(rig, slip_rpm);
+  const LsctrRig rig(params, clutch, steady_cycle(force_N, slip_rpm));
+  return rig_stability(rig, uniform_inputs(rig, clutch, interface_temp_C), slip_rpm);
 }
 
 StabilityMap stability_map(const RigParams& params, const clutch::WetClutch& clutch, double force_N,
@@ -91,18 +94,21 @@ StabilityMap stability_map(const RigParams& params, const clutch::WetClutch& clu
   map.oscillatory_frequency_Hz.resize(ns, nt);
 
   // One rig: the speed reference only feeds the motor's steady state, not its linear loop.
-  LsctrRig rig(params, clutch, steady_cycle(force_N, speeds_rpm.empty() ? 0.0 : speeds_rpm.front()));
+  const LsctrRig rig(params, clutch, steady_cycle(force_N, speeds_rpm.empty() ? 0.0 : speeds_rpm.front()));
+  const auto context = std::make_shared<ClutchContext>(rig.start_inputs());
+  const dynamics::TorsionalNetwork network = rig.network(context);
   // Temperatures outside: setting them rebuilds the law's frozen friction once per column.
   for (Eigen::Index j = 0; j < nt; ++j) {
-    set_uniform_temperature(rig, clutch, temps_C[static_cast<std::size_t>(j)]);
+    context->set_ring_temperatures(
+        Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), temps_C[static_cast<std::size_t>(j)]));
     for (Eigen::Index i = 0; i < ns; ++i) {
-      const double slip = speeds_rpm[static_cast<std::size_t>(i)] * kRadPerSPerRpm;
-      if (motor_saturates(rig, slip, 0.0)) {
+      const double slip = units::rpm_to_rad_s(speeds_rpm[static_cast<std::size_t>(i)]);
+      if (motor_saturates(rig, *context, slip, 0.0)) {
         map.margin_per_s(i, j) = map.frequency_Hz(i, j) = kNaN;
         map.oscillatory_margin_per_s(i, j) = map.oscillatory_frequency_Hz(i, j) = kNaN;
         continue;
       }
-      const StabilityPoint p = linearise_rig(rig, slip, 0.0);
+      const StabilityPoint p = linearise_rig(network, slip, 0.0);
       map.margin_per_s(i, j) = p.margin_per_s;
       map.frequency_Hz(i, j) = p.frequency_Hz;
       map.oscillatory_margin_per_s(i, j) = p.oscillatory_margin_per_s;
@@ -121,9 +127,10 @@ double critical_bar_damping_ratio(const RigParams& params, const clutch::WetClut
   // Hold the bar's stiffness at that of the given parameters while the damping changes.
   RigParams p = params;
   p.bar_stiffness_Nm_per_rad = LsctrRig(params, clutch, steady_cycle(force_N, slip_rpm)).bar_stiffness_Nm_per_rad();
+  const LsctrRig rig(p, clutch, steady_cycle(force_N, slip_rpm));
+  const auto context = std::make_shared<ClutchContext>(uniform_inputs(rig, clutch, interface_temp_C));
   const auto margin = [&](double zeta) {
-    p.bar_damping_ratio = zeta;
-    return margin_with(p, clutch, force_N, slip_rpm, interface_temp_C);
+    return stability_at(rig, *context, rig.network(context, zeta), slip_rpm).margin_per_s;
   };
   if (margin(0.0) <= 0.0) return 0.0;
   if (margin(max_ratio) > 0.0) return std::numeric_limits<double>::infinity();
@@ -144,9 +151,13 @@ CriticalBar critical_bar(const RigParams& params, const clutch::WetClutch& clutc
   // The bar is given by its frequency (stiffness derived from the modal analysis).
   RigParams p = params;
   p.bar_stiffness_Nm_per_rad = 0.0;
+  const DriveCycle cycle = steady_cycle(force_N, slip_rpm);
+  std::shared_ptr<ClutchContext> context;  // the operating point, made with the first rig
   const auto unstable = [&](double f) {
     p.bar_natural_frequency_Hz = f;
-    return margin_with(p, clutch, force_N, slip_rpm, interface_temp_C) > 0.0;
+    const LsctrRig rig(p, clutch, cycle);
+    if (!context) context = std::make_shared<ClutchContext>(uniform_inputs(rig, clutch, interface_temp_C));
+    return stability_at(rig, *context, rig.network(context), slip_rpm).margin_per_s > 0.0;
   };
   const bool lo_unstable = unstable(lo_Hz);
   if (unstable(hi_Hz) == lo_unstable) return {kNaN, kNaN};

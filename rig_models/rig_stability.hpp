@@ -29,13 +29,14 @@ namespace shudder::rig_models {
 
 using analysis::StabilityPoint;
 
-/// Linearises the rig as built (its clutch law at its current ring temperatures) about steady
-/// sliding at `slip_rpm` (0: clutch stuck), the laws evaluated at `t_s`. Throws
-/// std::invalid_argument if the steady clutch torque exceeds the motor's torque limit.
-StabilityPoint rig_stability(LsctrRig& rig, double slip_rpm, double t_s = 0.0);
+/// Linearises `rig` about steady sliding at `slip_rpm` (0: clutch stuck) with the clutch at the
+/// operating point `clutch_inputs` (ring temperatures, clamp force), the laws evaluated at `t_s`.
+/// Throws std::invalid_argument if the steady clutch torque exceeds the motor's torque limit.
+StabilityPoint rig_stability(const LsctrRig& rig, const ClutchHeldInputs& clutch_inputs, double slip_rpm,
+                             double t_s = 0.0);
 
-/// Builds the rig with a constant-force, constant-speed cycle, sets every ring of the clutch
-/// to `interface_temp_C` and linearises at `slip_rpm`. Throws std::invalid_argument for a force
+/// Builds the rig with a constant-force, constant-speed cycle and linearises at `slip_rpm` with
+/// every ring of the clutch at `interface_temp_C`. Throws std::invalid_argument for a force
 /// <= 0, non-finite inputs, invalid rig parameters or a saturated motor.
 StabilityPoint rig_stability(const RigParams& params, const clutch::WetClutch& clutch, double force_N,
                              double slip_rpm, double interface_temp_C);
@@ -60,7 +61,7 @@ StabilityMap stability_map(const RigParams& params, const clutch::WetClutch& clu
 
 /// Smallest bar damping ratio ζ that makes the operating point stable (margin <= 0), by
 /// bisection on the margin over ζ in [0, max_ratio] to 1e-12 absolute: the bar stiffness is
-/// held (that of `params`), c_bar = 2 ζ √(k_bar J_h). Returns 0 if the point is stable without
+/// held (that of `params`), c_bar = 2 ζ √(k_bar J_h); one rig, only its bar damper changes. Returns 0 if the point is stable without
 /// bar damping and +infinity if it is still unstable at max_ratio (e.g. the drive loop itself
 /// is unstable). Decoupled estimate: ζ_crit ≈ −s / (2 √(k_bar J_h)).
 double critical_bar_damping_ratio(const RigParams& params, const clutch::WetClutch& clutch,
@@ -77,7 +78,9 @@ struct CriticalBar {
 /// [lo_Hz, hi_Hz] (default 20–5000 Hz: the rig's bars are 175 and 378 Hz) to 1e-10 relative.
 /// With c_bar = 2 ζ √(k J_h) the housing mode's σ ≈ −ζ ω_bar − s/(2 J_h) falls with the bar
 /// frequency, so stiffer bars are the stable side: onset at ω ≈ −s/(2 ζ J_h). Returns NaN in
-/// both fields if the margin has the same sign at both ends of the bracket.
+/// both fields if the margin has the same sign at both ends of the bracket. Each step builds
+/// the rig anew (its bar stiffness comes from the modal tuning); the clutch's operating point
+/// is shared by all of them.
 CriticalBar critical_bar(const RigParams& params, const clutch::WetClutch& clutch, double force_N,
                          double slip_rpm, double interface_temp_C, double lo_Hz = 20.0,
                          double hi_Hz = 5000.0);

@@ -108,10 +108,11 @@ TEST(DetectionOnRig, NegativeSlopeFluidIsVibrationAtTheClutchSideFrequency) {
   // smaller), the interface warms by ~1 K over the fitted span, and the fit ends where the
   // slip swings by ~±2 rpm about 30 rpm: each ≤ 3 %, the tolerance (measured 0.1 %).
   const auto clutch = sc.make_clutch();
-  shudder::rig_models::LsctrRig rig(shudder::test::rig_model(sc).params, clutch, shudder::test::rig_model(sc).cycle);
-  rig.clutch_law().set_ring_temperatures(clutch.thermal().interface_temps_C(clutch.initial_state()));
-  const double slope_Nms = rig.clutch_law().kinetic_torque_slope_Nms(shudder::units::rpm_to_rad_s(30.0), 0.0);
-  const double sigma_pred = -(rig.bar_damping_Nms_per_rad() + slope_Nms) / (2.0 * shudder::test::rig_model(sc).params.housing_inertia_kg_m2);
+  const auto rig_model = shudder::test::rig_model(sc);
+  const shudder::rig_models::LsctrRig rig(rig_model.params, clutch, rig_model.cycle);
+  shudder::rig_models::ClutchContext start({clutch.thermal().interface_temps_C(clutch.initial_state()), rig_model.cycle.normal_force_N});
+  const double slope_Nms = rig.clutch_contact().kinetic_torque_slope_Nms(start, shudder::units::rpm_to_rad_s(30.0), 0.0);
+  const double sigma_pred = -(rig.bar_damping_Nms_per_rad() + slope_Nms) / (2.0 * rig_model.params.housing_inertia_kg_m2);
   record("negative_slope_growth", "growth rate %.3f 1/s, linearised %.3f 1/s (c_bar %.3f, dT/dw %.3f N m s/rad)",
          r.growth_rate_per_s, sigma_pred, rig.bar_damping_Nms_per_rad(), slope_Nms);
   EXPECT_TRUE(r.growth_observed);

@@ -29,6 +29,7 @@ using shudder::clutch::OilFlowLaw;
 using shudder::clutch::ThermalModel;
 using shudder::clutch::ThermalParams;
 using shudder::clutch::ThermalState;
+using shudder::clutch::ThermalWorkspace;
 
 using ::testing::HasSubstr;
 using ::testing::ThrowsMessage;
@@ -92,6 +93,7 @@ TEST(ThermalModel, PlaneSourceInSteelRisesAsSqrtTimeLikeASemiInfiniteSolid) {
   // steel at 0.05 s: a 1e-6 effect.
   p.film_thickness_m = 1e-9;
   const ThermalModel model(p);
+  ThermalWorkspace ws(model);
   ThermalState s = model.initial_state(T0, T0, T0);
   const Eigen::VectorXd heat = q * model.ring_area_m2();
   constexpr int kMid = 2;
@@ -109,7 +111,7 @@ TEST(ThermalModel, PlaneSourceInSteelRisesAsSqrtTimeLikeASemiInfiniteSolid) {
   int steps_done = 0;
   for (const double t_check : {0.05, 0.1, 0.2}) {
     const int steps = static_cast<int>(std::lround(t_check / dt));
-    for (; steps_done < steps; ++steps_done) model.step(s, dt, heat, 0.0);
+    for (; steps_done < steps; ++steps_done) model.step(s, ws, dt, heat, 0.0);
     const double rise = model.interface_temps_C(s)[kMid] - T0;
     const double exact = q * std::sqrt(t_check / (std::numbers::pi * k * rho * cp));
     const double tol = dt / t_check + dz * dz / (8.0 * alpha * t_check);
@@ -149,9 +151,10 @@ RadialResult steady_radial_error(int radial_cells, double T_in, double T_out) {
   ThermalParams p = bare_params();
   p.radial_cells = radial_cells;
   const ThermalModel model(p);
+  ThermalWorkspace ws(model);
   ThermalState s = model.initial_state(T_in, T_in, T_out);
   const Eigen::VectorXd no_heat = Eigen::VectorXd::Zero(radial_cells);
-  for (int k = 0; k < 4; ++k) model.step(s, 1e6, no_heat, 0.0);
+  for (int k = 0; k < 4; ++k) model.step(s, ws, 1e6, no_heat, 0.0);
   const Eigen::MatrixXd field = model.field_C(s);  // (nodes_per_ring x n_r)
   const double ln_ratio = std::log(p.outer_radius_m / p.inner_radius_m);
   double max_err = 0.0;
@@ -257,10 +260,11 @@ constexpr double kCompositeEnd = 1.5;   // s: 30 tau_1, BE residual (1 + dt/tau_
 constexpr double kCompositeDt = 0.01;
 
 ThermalState run_composite(const ThermalModel& model) {
+  ThermalWorkspace ws(model);
   ThermalState s = model.initial_state(kCompositeT0, kCompositeT0, kCompositeT0);
   const Eigen::VectorXd heat = kCompositeFlux * model.ring_area_m2();
   const int steps = static_cast<int>(std::lround(kCompositeEnd / kCompositeDt));
-  for (int n = 0; n < steps; ++n) model.step(s, kCompositeDt, heat, 0.0);
+  for (int n = 0; n < steps; ++n) model.step(s, ws, kCompositeDt, heat, 0.0);
   return s;
 }
 
@@ -351,10 +355,11 @@ Eigen::VectorXd transient_field(double dt) {
   p.sump_heating = true;
   p.rig_heat_capacity = true;
   const ThermalModel model(p);
+  ThermalWorkspace ws(model);
   ThermalState s = model.initial_state(60.0, 60.0, 60.0);
   const Eigen::VectorXd heat = 5e4 * model.ring_area_m2();
   const int steps = static_cast<int>(std::lround(1.0 / dt));
-  for (int n = 0; n < steps; ++n) model.step(s, dt, heat, 5.0);
+  for (int n = 0; n < steps; ++n) model.step(s, ws, dt, heat, 5.0);
   return s.temp_C;
 }
 
@@ -396,6 +401,7 @@ AllEffectsRun run_all_effects(FilmAdvectionForm form) {
   p.temperature_sensor_lag = true;
   p.oil_flow = OilFlowLaw{.a = 0.02, .b = 0.5, .c = 2e-5, .d = 1.0, .e = 0.005, .form = form};
   const ThermalModel model(p);
+  ThermalWorkspace ws(model);
   AllEffectsRun run{model.initial_state(50.0, 50.0, 50.0), {}, 0.0, 0.0};
   run.end = run.start;
   std::mt19937 rng(20240611);
@@ -404,7 +410,7 @@ AllEffectsRun run_all_effects(FilmAdvectionForm form) {
   for (int n = 0; n < 600; ++n) {
     for (int i = 0; i < heat.size(); ++i) heat[i] = ring_heat(rng);
     const double slip = 20.0 * std::sin(0.7 * run.end.time_s) + 3.0 * (n % 7);
-    model.step(run.end, step(rng), heat, slip);
+    model.step(run.end, ws, step(rng), heat, slip);
   }
   run.sump_capacity_J_per_K = model.sump_heat_capacity_J_per_K();
   run.probe_C = model.thermocouple_C(run.end);
@@ -451,9 +457,10 @@ TEST(ThermalModel, SwitchedOffSumpAndRigStayAtTheirStartTemperatures) {
   p.sump_heating = false;
   p.rig_heat_capacity = false;
   const ThermalModel model(p);
+  ThermalWorkspace ws(model);
   ThermalState s = model.initial_state(60.0, 60.0, 50.0);
   const Eigen::VectorXd heat = 5e4 * model.ring_area_m2();
-  for (int n = 0; n < 50; ++n) model.step(s, 0.02, heat, 5.0);
+  for (int n = 0; n < 50; ++n) model.step(s, ws, 0.02, heat, 5.0);
   EXPECT_GT(s.energy.to_sump_J, 0.0);  // heat did go to the sump
   EXPECT_EQ(s.sump_temp_C, 50.0);      // ... which is infinite without sump_heating
   EXPECT_EQ(s.energy.to_rig_J, 0.0);   // no rig path at all
@@ -472,6 +479,7 @@ TEST(ThermalModel, SensorLagDecaysExponentiallyAfterAProbeStep) {
   p.temperature_sensor_lag = true;
   p.sensor_time_constant_s = tau;
   const ThermalModel model(p);
+  ThermalWorkspace ws(model);
   for (const double dt : {0.05, 0.3}) {
     ThermalState s = model.initial_state(T0, T0, T0);
     ASSERT_DOUBLE_EQ(s.sensor_temp_C, T0);
@@ -480,7 +488,7 @@ TEST(ThermalModel, SensorLagDecaysExponentiallyAfterAProbeStep) {
     s.sump_temp_C = T1;
     const Eigen::VectorXd no_heat = Eigen::VectorXd::Zero(model.radial_cells());
     for (int n = 1; n <= 10; ++n) {
-      model.step(s, dt, no_heat, 0.0);
+      model.step(s, ws, dt, no_heat, 0.0);
       ASSERT_NEAR(model.thermocouple_C(s), T1, 1e-10);  // constant up to LU round-off on 80 °C
       EXPECT_NEAR(s.sensor_temp_C - T1, (T0 - T1) * std::exp(-n * dt / tau), 1e-12 * (T1 - T0))
           << "dt " << dt << ", step " << n;
@@ -531,12 +539,13 @@ TEST(ThermalModel, LiteralFilmFormRemovesRSquaredOverHTimesMoreHeatPerTemperatur
     p.oil_flow = OilFlowLaw{.a = 0.0, .b = 1.0, .c = 0.0, .d = 1.0, .e = 0.5, .form = form};
     for (Layer* l : {&p.separator, &p.lining, &p.core}) l->conductivity_W_per_mK = 1e-9;
     const ThermalModel model(p);
+    ThermalWorkspace ws(model);
     ThermalState s = model.initial_state(T_in, T_in, T_in);
     Eigen::VectorXd heat(model.radial_cells());
     for (int i = 0; i < heat.size(); ++i) heat[i] = 5.0 + 0.5 * i;
-    model.step(s, 1e4, heat, 0.0);
+    model.step(s, ws, 1e4, heat, 0.0);
     const double to_sump_before = s.energy.to_sump_J;
-    model.step(s, 1e4, heat, 0.0);
+    model.step(s, ws, 1e4, heat, 0.0);
     // Steady: the second step's heat all leaves with the oil.
     EXPECT_NEAR((s.energy.to_sump_J - to_sump_before) / (heat.sum() * 1e4), 1.0, 1e-6);
 
@@ -576,9 +585,10 @@ TEST(ThermalModel, RejectsBadParametersNamingTheQuantity) {
   EXPECT_THAT([&] { ThermalModel m(p); },
               ThrowsMessage<std::invalid_argument>(HasSubstr("outer radius must exceed inner radius")));
   const ThermalModel model{ThermalParams{}};
+  ThermalWorkspace ws(model);
   ThermalState s = model.initial_state(20.0, 20.0, 20.0);
   const Eigen::VectorXd heat = Eigen::VectorXd::Zero(model.radial_cells());
-  EXPECT_THAT([&] { model.step(s, 0.0, heat, 0.0); },
+  EXPECT_THAT([&] { model.step(s, ws, 0.0, heat, 0.0); },
               ThrowsMessage<std::invalid_argument>(HasSubstr("thermal step must be > 0")));
 }
 

@@ -473,13 +473,14 @@ TEST(RigStickSlip, SlipReturnsToZeroEveryCycleStuckIsExactAndTheJumpIsTwiceTheFr
   ASSERT_GT(jumps.size(), 100u);
   EXPECT_LT(temp.back() - temp.front(), 0.5);  // the held state stays the start state
 
-  LsctrRig rig(shudder::test::rig_model(sc).params, clutch, shudder::test::rig_model(sc).cycle);
-  const auto& law = rig.clutch_law();
+  const LsctrRig rig(shudder::test::rig_model(sc).params, clutch, shudder::test::rig_model(sc).cycle);
+  const auto& law = rig.clutch_contact();
+  shudder::rig_models::ClutchContext start(rig.start_inputs());
   const double t_mid = 0.5;  // constant force: any time
-  const double T_s = law.static_capacity_Nm(t_mid, 0.0);
-  const double T_k = law.kinetic_torque_Nm(0.0, t_mid);
+  const double T_s = law.static_capacity_Nm(start, t_mid, 0.0);
+  const double T_k = law.kinetic_torque_Nm(start, 0.0, t_mid);
   const double expected = 2.0 * (T_s - T_k);
-  const double e_v = 2.0 * (law.kinetic_torque_Nm(shudder::units::rpm_to_rad_s(v_peak_rpm), t_mid) - T_k) / expected;
+  const double e_v = 2.0 * (law.kinetic_torque_Nm(start, shudder::units::rpm_to_rad_s(v_peak_rpm), t_mid) - T_k) / expected;
   const double e_z = 0.5 * (1.0 - std::exp(-std::numbers::pi * shudder::test::rig_model(sc).params.bar_damping_ratio));
   const double e_i = 0.03;
   EXPECT_NEAR(T_s / T_k, 1.3, 1e-9);  // the fluid's breakaway ratio, one load, one temperature

@@ -69,14 +69,17 @@ void record(const std::string& key, const char* format, Args... args) {
 // The rig at one operating point, with the clutch's rings at one temperature.
 struct Point {
   LsctrRig rig;
+  shudder::rig_models::ClutchHeldInputs clutch_inputs;  // the operating point's held inputs
   double slope_Nms;  // dM/d|Δω| of the clutch at the point
 };
 Point point(const Scenario& sc, const WetClutch& clutch, double force_N, double slip_rpm, double temp_C) {
   const DriveCycle cycle{PiecewiseLinear({0.0}, {slip_rpm}), PiecewiseLinear({0.0}, {force_N})};
   LsctrRig rig(shudder::test::rig_model(sc).params, clutch, cycle);
-  rig.clutch_law().set_ring_temperatures(Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), temp_C));
-  const double s = rig.clutch_law().kinetic_torque_slope_Nms(slip_rpm * kRadPerSPerRpm, 0.0);
-  return {std::move(rig), s};
+  const shudder::rig_models::ClutchHeldInputs held{
+      Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), temp_C), cycle.normal_force_N};
+  shudder::rig_models::ClutchContext context(held);
+  const double s = rig.clutch_contact().kinetic_torque_slope_Nms(context, slip_rpm * kRadPerSPerRpm, 0.0);
+  return {std::move(rig), held, s};
 }
 
 // Drive impedance at the housing's frequency (see the file comment).
@@ -149,7 +152,7 @@ TEST(RigStability, NegativeSlopeFluidAt30RpmIsUnstableAtTheBarFrequency) {
   EXPECT_NEAR(p.margin_per_s, decoupled, std::abs(shift));
   EXPECT_NEAR(p.margin_per_s, decoupled + shift.real(), 1e-3 * std::abs(shift));
   // The same point through the rig already built.
-  EXPECT_NEAR(rig_stability(pt.rig, 30.0).margin_per_s, p.margin_per_s, 1e-12 * wh);
+  EXPECT_NEAR(rig_stability(pt.rig, pt.clutch_inputs, 30.0).margin_per_s, p.margin_per_s, 1e-12 * wh);
 }
 
 // ---------------------------------------------------------------------------------------------

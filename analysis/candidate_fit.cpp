@@ -1,0 +1,150 @@
+#include "analysis/candidate_fit.hpp"
+
+#include <stdexcept>
+
+#include "analysis/log_parameter_fit.hpp"
+#include "analysis/residual_analysis.hpp"
+#include "core/parallel_for.hpp"
+
+namespace shudder::analysis {
+
+Predictions CandidateFitter::predict(const Config& config, const std::vector<std::size_t>& which,
+                                     unsigned jobs) const {
+  Predictions out(runs_.size());
+  parallel_for(which.size(), jobs, [&](std::size_t i) {
+    const std::size_t k = which[i];
+    Prediction p = sim_(config, k);
+    const std::size_t n = runs_[k].time_s.size();
+    bool ok = true;
+    for (const auto& c : misfit_.channels()) ok = ok && predicted(p, c.signal).size() == n;
+    if (!ok)
+      throw std::runtime_error("the simulator returned a prediction of the wrong length for run '" +
+                               runs_[k].name + "'");
+    out[k] = std::move(p);
+  });
+  return out;
+}
+
+CandidateFitter::FlatConfig CandidateFitter::flatten(const Config& config) const {
+  FlatConfig f{config, {}, {}, {}, {}};
+  for (std::size_t e = 0; e < config.size(); ++e) {
+    const auto& c = candidate(config[e].effect);
+    for (std::size_t j = 0; j < config[e].values.size(); ++j) {
+      f.slots.emplace_back(e, j);
+      f.values.push_back(config[e].values[j]);
+      f.lower.push_back(c.lower[j]);
+      f.upper.push_back(c.upper[j]);
+    }
+  }
+  return f;
+}
+
+Config CandidateFitter::FlatConfig::with(const std::vector<double>& v) const {
+  Config out = config;
+  for (std::size_t s = 0; s < slots.size(); ++s) out[slots[s].first].values[slots[s].second] = v[s];
+  return out;
+}
+
+std::optional<Config> CandidateFitter::fit_config(const FlatConfig& flat, std::vector<std::vector<double>> starts,
+                                                  const SampleSet& set, unsigned jobs, int& evaluations) const {
+  if (flat.slots.empty()) return flat.config;
+  LogParameterProblem problem;
+  problem.lower = flat.lower;
+  problem.upper = flat.upper;
+  problem.starts = std::move(starts);
+  problem.residuals = static_cast<int>(misfit_.residual_count(set));
+  problem.max_evaluations = opt_.max_evaluations;
+  const auto runs = set.runs();
+  problem.evaluate = [&](const std::vector<double>& v, Eigen::VectorXd& r) {
+    return misfit_.residual_vector(set, predict(flat.with(v), runs, jobs), r);
+  };
+  const LogParameterFit fit = fit_log_parameters(problem);
+  evaluations += fit.evaluations;
+  if (!fit.feasible) return std::nullopt;
+  return flat.with(fit.values);
+}
+
+CandidateOutcome CandidateFitter::fit_candidate(const EffectCandidate& c, const Config& fold,
+                                                const Predictions& current) const {
+  CandidateOutcome o;
+  o.score.effect = c.name;
+  const std::size_t k = c.parameter_names.size();
+  // The candidate is fitted together with the parameters of every effect added before it, so
+  // an earlier effect that stood in for this one (a heat sink imitating oil cooling) can give
+  // its share back instead of blocking it. Its starts follow the earlier effects' values.
+  Config cfg = fold;
+  cfg.push_back({c.name, k > 0 ? c.starts.front() : std::vector<double>{}});
+  const FlatConfig flat = flatten(cfg);
+  std::vector<std::vector<double>> starts;
+  for (const auto& start : k > 0 ? c.starts : std::vector<std::vector<double>>{{}}) {
+    starts.emplace_back(flat.values.begin(), flat.values.end() - static_cast<std::ptrdiff_t>(k));
+    starts.back().insert(starts.back().end(), start.begin(), start.end());
+  }
+  try {
+    const auto fitted = fit_config(flat, std::move(starts), misfit_.fit(), 1, o.score.evaluations);
+    if (!fitted) {
+      o.score.failure = "no parameter values could be simulated";
+      return o;
+    }
+    o.config = *fitted;
+    o.predictions = predict(o.config, union_runs(misfit_.fit(), misfit_.holdout()), 1);
+    ++o.score.evaluations;
+  } catch (const std::exception& e) {
+    o.score.failure = e.what();
+    return o;
+  }
+  for (std::size_t j = 0; j < k; ++j)
+    o.score.parameters.emplace_back(c.parameter_names[j], o.config.back().values[j]);
+  o.score.fit_misfit = misfit_.misfit(misfit_.fit(), o.predictions);
+  o.score.holdout_misfit = misfit_.misfit(misfit_.holdout(), o.predictions);
+  o.score.score = o.score.holdout_misfit + opt_.penalty_per_parameter * static_cast<double>(k);
+  o.score.gain = misfit_.misfit(misfit_.holdout(), current) - o.score.score;
+  o.score.signature_correlation = signature_correlation(current, o.predictions);
+  o.ok = true;
+  return o;
+}
+
+Config CandidateFitter::refit_all(const Config& full, const Config& fold_added, Predictions& out) const {
+  // Joint refit of every added effect's parameters on all runs, from the current values.
+  Config start = full;
+  start.push_back(fold_added.back());
+  const FlatConfig flat = flatten(start);
+  int evaluations = 0;
+  if (auto fitted = fit_config(flat, {flat.values}, misfit_.all(), opt_.jobs, evaluations)) start = std::move(*fitted);
+  const auto all_runs = misfit_.all().runs();
+  out = predict(start, all_runs, opt_.jobs);
+  return start;
+}
+
+double CandidateFitter::signature_correlation(const Predictions& current, const Predictions& cand) const {
+  // Does the change the effect makes look like the residual it should remove? Block means of
+  // (candidate − current) against (measured − current), both signals in noise units.
+  std::vector<double> change, target;
+  for (std::size_t k = 0; k < runs_.size(); ++k) {
+    if (!current[k] || !cand[k]) continue;
+    const auto& m = runs_[k];
+    const auto blocks = residual_blocks(m.time_s);
+    const auto add = [&](const std::vector<double>& meas, const std::vector<double>& cur,
+                         const std::vector<double>& next, double sigma) {
+      std::vector<double> d(meas.size()), t(meas.size());
+      for (std::size_t i = 0; i < meas.size(); ++i) {
+        d[i] = (next[i] - cur[i]) / sigma;
+        t[i] = (meas[i] - cur[i]) / sigma;
+      }
+      const auto bd = block_means(d, blocks), bt = block_means(t, blocks);
+      change.insert(change.end(), bd.begin(), bd.end());
+      target.insert(target.end(), bt.begin(), bt.end());
+    };
+    add(m.torque_Nm, current[k]->torque_Nm, cand[k]->torque_Nm, misfit_.channels()[0].sigma);
+    add(m.temp_C, current[k]->temp_C, cand[k]->temp_C, misfit_.channels()[1].sigma);
+  }
+  return pearson(change, target);
+}
+
+const EffectCandidate& CandidateFitter::candidate(const std::string& name) const {
+  for (const auto& c : candidates_)
+    if (c.name == name) return c;
+  throw std::logic_error("unknown candidate " + name);
+}
+
+}  // namespace shudder::analysis

@@ -1,0 +1,66 @@
+#pragma once
+// Fitting one candidate effect (analysis/diagnosis.hpp, "fitting"): the candidate's log
+// parameters together with those of every effect added before it, by Levenberg–Marquardt over
+// several starts (analysis/log_parameter_fit.hpp) on the fit set, then scored on the hold-out:
+//
+//   score = J_holdout + penalty · (its parameters)
+//   gain  = J_holdout(current model) − score
+//   signature r = Pearson r of block means of (candidate − current) and (measured − current),
+//                 torque and temp_C in noise units: does the change look like the residual?
+
+#include <string>
+#include <vector>
+
+#include "analysis/diagnosis.hpp"
+#include "analysis/misfit.hpp"
+
+namespace shudder::analysis {
+
+/// The effects added to the baseline, each with its parameter values.
+using Config = std::vector<EffectSetting>;
+
+struct CandidateOutcome {
+  CandidateScore score;
+  Config config;            // the effects added so far, refitted with it, plus it (last)
+  Predictions predictions;  // fit and hold-out runs at the fitted values
+  bool ok = false;
+};
+
+class CandidateFitter {
+ public:
+  CandidateFitter(const std::vector<DiagnosisRun>& runs, const std::vector<EffectCandidate>& candidates,
+                  const Simulator& simulate, const MisfitModel& misfit, const DiagnosisOptions& options)
+      : runs_(runs), candidates_(candidates), sim_(simulate), misfit_(misfit), opt_(options) {}
+
+  /// Predictions of the runs `which` with `config`, simulated on `jobs` threads. Throws
+  /// std::runtime_error if the simulator returns a prediction of the wrong length.
+  Predictions predict(const Config& config, const std::vector<std::size_t>& which, unsigned jobs) const;
+  /// Fits `c` on top of `fold` (the effects added so far) and scores it against `current`.
+  CandidateOutcome fit_candidate(const EffectCandidate& c, const Config& fold, const Predictions& current) const;
+  /// Jointly refits `full` plus the newest effect of `fold_added` on all runs from their current
+  /// values; `out` gets the predictions of all runs.
+  Config refit_all(const Config& full, const Config& fold_added, Predictions& out) const;
+  const EffectCandidate& candidate(const std::string& name) const;
+
+ private:
+  // The fitted parameters of a configuration as one vector, with their bounds, for the solver.
+  struct FlatConfig {
+    Config config;
+    std::vector<std::pair<std::size_t, std::size_t>> slots;  // (effect, parameter) of config
+    std::vector<double> values, lower, upper;
+    Config with(const std::vector<double>& v) const;
+  };
+  FlatConfig flatten(const Config& config) const;
+  /// Least squares on `set` from the starts; nullopt when no start could be simulated.
+  std::optional<Config> fit_config(const FlatConfig& flat, std::vector<std::vector<double>> starts,
+                                   const SampleSet& set, unsigned jobs, int& evaluations) const;
+  double signature_correlation(const Predictions& current, const Predictions& candidate) const;
+
+  const std::vector<DiagnosisRun>& runs_;
+  const std::vector<EffectCandidate>& candidates_;
+  const Simulator& sim_;
+  const MisfitModel& misfit_;
+  const DiagnosisOptions& opt_;
+};
+
+}  // namespace shudder::analysis

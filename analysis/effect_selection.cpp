@@ -1,0 +1,102 @@
+#include "analysis/effect_selection.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "analysis/residual_tracking.hpp"
+#include "core/parallel_for.hpp"
+
+namespace shudder::analysis {
+
+Selection select_effects(const std::vector<DiagnosisRun>& runs, const std::vector<EffectCandidate>& candidates,
+                         const CandidateFitter& fitter, const MisfitModel& misfit,
+                         const DiagnosisOptions& opt, const Predictions& baseline) {
+  Selection sel;
+  Config fold;
+  Config& full = sel.full;
+  Predictions& fold_pred = sel.fold_predictions;
+  Predictions& full_pred = sel.full_predictions;
+  fold_pred = baseline;
+  full_pred = baseline;
+  StopReason& stop = sel.stop;
+  for (int round = 0;; ++round) {
+    bool within = true;
+    std::vector<std::pair<std::string, double>> levels;
+    for (const auto& c : misfit.channels()) {
+      const double j = misfit.channel_misfit(c, misfit.all(), full_pred);
+      within = within && j <= opt.noise_tolerance * opt.noise_tolerance;
+      levels.emplace_back(c.name, std::sqrt(j));
+    }
+    if (within) {
+      stop.kind = StopReason::Kind::kWithinNoise;
+      stop.noise_tolerance = opt.noise_tolerance;
+      stop.rms_over_noise = levels;
+      break;
+    }
+    if (round >= opt.max_effects) {
+      stop.kind = StopReason::Kind::kEffectLimit;
+      stop.max_effects = opt.max_effects;
+      break;
+    }
+    std::vector<const EffectCandidate*> open;
+    for (const auto& c : candidates) {
+      bool added = false;
+      for (const auto& s : fold) added = added || s.effect == c.name;
+      if (!added) open.push_back(&c);
+    }
+    if (open.empty()) {
+      stop.kind = StopReason::Kind::kAllAdded;
+      break;
+    }
+    // Longest fits first (most parameters: most evaluations), so that no long fit starts last
+    // and leaves the other threads idle at the end of the round.
+    std::stable_sort(open.begin(), open.end(), [](const EffectCandidate* a, const EffectCandidate* b) {
+      return a->parameter_names.size() > b->parameter_names.size();
+    });
+    std::vector<CandidateOutcome> outcomes(open.size());
+    parallel_for(open.size(), opt.jobs,
+                 [&](std::size_t i) { outcomes[i] = fitter.fit_candidate(*open[i], fold, fold_pred); });
+    std::stable_sort(outcomes.begin(), outcomes.end(), [](const CandidateOutcome& a, const CandidateOutcome& b) {
+      if (a.ok != b.ok) return a.ok;
+      return a.score.score < b.score.score;
+    });
+    std::vector<CandidateScore> scores;
+    for (const auto& o : outcomes) scores.push_back(o.score);
+    const CandidateOutcome& best = outcomes.front();
+    const double k = static_cast<double>(best.score.parameters.size());
+    if (!best.ok || best.score.gain < opt.min_gain) {
+      sel.last_round = scores;
+      if (best.ok) {
+        stop.kind = StopReason::Kind::kNoGain;
+        stop.needed_gain = opt.min_gain + opt.penalty_per_parameter * k;
+        stop.best_effect = best.score.effect;
+        stop.best_gain = best.score.gain;
+      } else {
+        stop.kind = StopReason::Kind::kNoFit;
+      }
+      break;
+    }
+    DiagnosisStep step;
+    step.effect = best.score.effect;
+    step.candidates = scores;
+    step.holdout_misfit_before = misfit.misfit(misfit.holdout(), fold_pred);
+    step.holdout_misfit_after = best.score.holdout_misfit;
+    step.holdout = misfit.rms(misfit.holdout(), best.predictions);
+    const Predictions before = full_pred;
+    fold = best.config;
+    for (std::size_t kk = 0; kk < runs.size(); ++kk)
+      if (best.predictions[kk]) fold_pred[kk] = best.predictions[kk];
+    full = fitter.refit_all(full, fold, full_pred);
+    const auto& c = fitter.candidate(step.effect);
+    for (std::size_t j = 0; j < c.parameter_names.size(); ++j)
+      step.parameters.emplace_back(c.parameter_names[j], full.back().values[j]);
+    step.misfit = misfit.rms(misfit.all(), full_pred);
+    step.description = c.description;
+    step.torque_tracking_before = pooled_tracking(runs, before, true);
+    step.temp_tracking_before = pooled_tracking(runs, before, false);
+    sel.steps.push_back(std::move(step));
+  }
+  return sel;
+}
+
+}  // namespace shudder::analysis

@@ -1,0 +1,94 @@
+#include "io/diagnosis_narrative.hpp"
+
+#include <cstdio>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+namespace shudder::io {
+
+namespace {
+
+std::string fmt(double v, const char* f = "%.3g") {
+  char b[64];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
+}  // namespace
+
+std::string holdout_text(const analysis::HoldoutSplit& split) {
+  using Kind = analysis::HoldoutSplit::Kind;
+  switch (split.kind) {
+    case Kind::kNone: return {};
+    case Kind::kLastRun: return "run '" + split.run + "' (fits use the other runs)";
+    case Kind::kOddTenths: return "odd tenths of the run's time (fits use the even tenths)";
+  }
+  return {};
+}
+
+std::string stop_reason_text(const analysis::StopReason& stop) {
+  using Kind = analysis::StopReason::Kind;
+  switch (stop.kind) {
+    case Kind::kWithinNoise: {
+      std::string levels;
+      for (const auto& [name, ratio] : stop.rms_over_noise)
+        levels += (levels.empty() ? "" : ", ") + name + " " + fmt(ratio, "%.2f");
+      return "every signal is within " + fmt(stop.noise_tolerance, "%.2g") + " x its noise (rms / noise: " +
+             levels + ")";
+    }
+    case Kind::kEffectLimit:
+      return "the limit of " + std::to_string(stop.max_effects) + " added effects was reached";
+    case Kind::kAllAdded: return "every candidate effect has been added";
+    case Kind::kNoGain:
+      return "no candidate lowers the held-out misfit by more than " + fmt(stop.needed_gain) + " (best: " +
+             stop.best_effect + ", gain " + fmt(stop.best_gain) + ")";
+    case Kind::kNoFit: return "no candidate could be fitted";
+  }
+  return {};
+}
+
+std::string step_reason(const analysis::DiagnosisStep& step) {
+  std::ostringstream os;
+  os << step.effect;
+  if (!step.description.empty()) os << " (" << step.description << ")";
+  os << ": ";
+  const auto tr = [](const std::vector<std::pair<std::string, double>>& r) {
+    return r.empty() ? std::string("nothing") : r.front().first + " (" + fmt(r.front().second, "%.2f") + ")";
+  };
+  os << "before it, the torque error tracked " << tr(step.torque_tracking_before) << " and the temperature error "
+     << tr(step.temp_tracking_before) << ". The change this effect makes matches that residual (signature r = "
+     << fmt(step.candidates.empty() ? 0.0 : step.candidates.front().signature_correlation, "%.2f") << ")";
+  if (!step.parameters.empty()) {
+    os << " with ";
+    for (std::size_t j = 0; j < step.parameters.size(); ++j)
+      os << (j ? ", " : "") << step.parameters[j].first << " = " << fmt(step.parameters[j].second, "%.4g");
+  }
+  os << ", and it lowers the held-out misfit from " << fmt(step.holdout_misfit_before) << " to "
+     << fmt(step.holdout_misfit_after) << " (1 = noise level)";
+  if (step.candidates.size() > 1) {
+    const auto& next = step.candidates[1];
+    os << "; the next best, " << next.effect << ", reached " << fmt(next.holdout_misfit);
+  }
+  os << ".";
+  return os.str();
+}
+
+std::string diagnosis_conclusion(const analysis::DiagnosisResult& r) {
+  const std::string stop = stop_reason_text(r.stop);
+  std::ostringstream concl;
+  if (r.missing_effects.empty()) {
+    concl << "Nothing is missing that the candidates could explain: " << stop << ".";
+  } else {
+    concl << "Missing: ";
+    for (std::size_t i = 0; i < r.missing_effects.size(); ++i)
+      concl << (i ? ", then " : "") << r.missing_effects[i];
+    concl << ". Torque RMS " << fmt(r.baseline.torque_rms_Nm) << " -> " << fmt(r.final.torque_rms_Nm)
+          << " Nm, temperature RMS " << fmt(r.baseline.temp_rms_C) << " -> " << fmt(r.final.temp_rms_C)
+          << " C (noise " << fmt(r.noise_torque_Nm) << " Nm, " << fmt(r.noise_temp_C)
+          << " C). The search stopped because " << stop << ".";
+  }
+  return concl.str();
+}
+
+}  // namespace shudder::io

@@ -1,0 +1,22 @@
+#pragma once
+// The diagnosis in plain words (the sentences of FORMATS.md "Diagnosis result": a step's
+// "reason", the "conclusion"), written from the numbers analysis/diagnosis.hpp returns. Used by
+// the JSON writer, the Markdown report and the terminal summary, so all say the same.
+
+#include <string>
+
+#include "analysis/diagnosis.hpp"
+
+namespace shudder::io {
+
+/// What was held out, e.g. "run 'b.csv' (fits use the other runs)"; empty for kNone.
+std::string holdout_text(const analysis::HoldoutSplit& split);
+/// Why the search stopped, e.g. "every signal is within 1.1 x its noise (rms / noise: ...)".
+std::string stop_reason_text(const analysis::StopReason& stop);
+/// Why a step's effect was added: what the residual tracked before it, its signature, its
+/// parameters and the hold-out misfit it reached, against the next best candidate.
+std::string step_reason(const analysis::DiagnosisStep& step);
+/// One paragraph: what is missing, the RMS before and after against the noise, why it stopped.
+std::string diagnosis_conclusion(const analysis::DiagnosisResult& result);
+
+}  // namespace shudder::io

@@ -1,0 +1,145 @@
+// The diagnosis' parts on problems with known answers (fast: each well under a second):
+//   noise estimate   analysis/noise_estimate against white noise of known sigma;
+//   log-parameter fit analysis/log_parameter_fit recovering the parameters of a closed form;
+//   diagnose         with the linear fake model of tests/support/linear_diagnosis.hpp.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "analysis/diagnosis.hpp"
+#include "analysis/log_parameter_fit.hpp"
+#include "analysis/noise_estimate.hpp"
+#include "tests/support/linear_diagnosis.hpp"
+
+namespace {
+
+using shudder::analysis::DiagnosisOptions;
+using shudder::analysis::DiagnosisRun;
+using shudder::analysis::EffectSetting;
+using shudder::analysis::estimate_noise_sigma;
+
+std::vector<double> white_noise(std::size_t n, double sigma, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> d(0.0, sigma);
+  std::vector<double> x(n);
+  for (double& v : x) v = d(rng);
+  return x;
+}
+
+// Sampling error of the estimator: 1.4826·MAD has a relative standard error of ≈ 1.17/√n for
+// Gaussian data (MAD's 37 % efficiency); the second differences are correlated (lag 1: −2/3,
+// lag 2: 1/6), which at most doubles that. n = 20000: ≈ 1.7 % at 2 standard errors of the
+// doubled value, so 4 % relative is > 4 standard errors yet tight enough to catch a wrong
+// constant (a missing √6 is a factor 2.4, a plain MAD of x a bias of ~0).
+constexpr std::size_t kNoiseSamples = 20000;
+constexpr double kNoiseRelTol = 0.04;
+
+TEST(NoiseEstimate, RecoversTheSigmaOfSeededWhiteNoise) {
+  for (const unsigned seed : {1u, 2u, 3u}) {
+    const double sigma = 0.3;
+    EXPECT_NEAR(estimate_noise_sigma(white_noise(kNoiseSamples, sigma, seed)) / sigma, 1.0, kNoiseRelTol)
+        << "seed " << seed;
+  }
+}
+
+TEST(NoiseEstimate, ASmoothSignalAddsAlmostNothing) {
+  // 1 Hz sine of amplitude 10 at 1 kHz: its second difference is at most (2π f)² A dt² =
+  // 3.9e-4, so alone it reads as < 3.9e-4 / √6 · 1.4826 ≈ 2.4e-4; with noise of 0.3 on top the
+  // estimate moves by far less than the sampling tolerance.
+  const double dt = 1e-3, amplitude = 10.0, f = 1.0;
+  std::vector<double> smooth(kNoiseSamples);
+  for (std::size_t i = 0; i < smooth.size(); ++i)
+    smooth[i] = amplitude * std::sin(2.0 * std::numbers::pi * f * dt * static_cast<double>(i));
+  const double bound = std::pow(2.0 * std::numbers::pi * f, 2) * amplitude * dt * dt * 1.4826 / std::sqrt(6.0);
+  EXPECT_LT(estimate_noise_sigma(smooth), bound);
+  const auto noise = white_noise(kNoiseSamples, 0.3, 4);
+  std::vector<double> both(kNoiseSamples);
+  for (std::size_t i = 0; i < both.size(); ++i) both[i] = smooth[i] + noise[i];
+  EXPECT_NEAR(estimate_noise_sigma(both) / estimate_noise_sigma(noise), 1.0, 1e-2);
+}
+
+TEST(NoiseEstimate, PoolingWeighsEachRunBySampleCountAndKeepsTheFloor) {
+  const auto a = white_noise(3000, 0.2, 5), b = white_noise(1000, 0.6, 6);
+  const double sa = estimate_noise_sigma(a), sb = estimate_noise_sigma(b);
+  const double expected = std::sqrt((3000.0 * sa * sa + 1000.0 * sb * sb) / 4000.0);
+  EXPECT_NEAR(shudder::analysis::pooled_noise_sigma({&a, &b}, 0.0), expected, 1e-14 * expected);
+  const std::vector<double> flat(100, 1.0);
+  EXPECT_EQ(shudder::analysis::pooled_noise_sigma({&flat}, 1e-3), 1e-3);
+}
+
+TEST(LogParameterFit, RecoversTheParametersOfADecay) {
+  // y(t) = A exp(−t / τ) on 50 points, no noise: the least-squares minimum is the truth with
+  // zero cost. LM stops on MINPACK's relative tolerances (~1e-8 of the cost), so the values
+  // are recovered to ≪ 1e-4 relative, the tolerance.
+  const double A = 3.0, tau = 0.7;
+  std::vector<double> t, y;
+  for (int i = 0; i < 50; ++i) {
+    t.push_back(0.05 * i);
+    y.push_back(A * std::exp(-t.back() / tau));
+  }
+  shudder::analysis::LogParameterProblem problem;
+  problem.residuals = static_cast<int>(t.size());
+  problem.lower = {1e-3, 1e-3};
+  problem.upper = {1e3, 1e3};
+  problem.starts = {{10.0, 0.1}, {1.0, 1.0}};
+  problem.max_evaluations = 400;
+  problem.evaluate = [&](const std::vector<double>& v, Eigen::VectorXd& r) {
+    r.resize(static_cast<Eigen::Index>(t.size()));
+    for (std::size_t i = 0; i < t.size(); ++i) r[static_cast<Eigen::Index>(i)] = v[0] * std::exp(-t[i] / v[1]) - y[i];
+    return true;
+  };
+  const auto fit = shudder::analysis::fit_log_parameters(problem);
+  ASSERT_TRUE(fit.feasible);
+  EXPECT_NEAR(fit.values[0] / A, 1.0, 1e-4);
+  EXPECT_NEAR(fit.values[1] / tau, 1.0, 1e-4);
+  EXPECT_LT(fit.cost, 1e-10);
+  EXPECT_LE(fit.evaluations, problem.max_evaluations);
+}
+
+TEST(LogParameterFit, AModelThatCannotBeEvaluatedIsInfeasible) {
+  shudder::analysis::LogParameterProblem problem;
+  problem.residuals = 3;
+  problem.lower = {0.1};
+  problem.upper = {10.0};
+  problem.starts = {{1.0}};
+  problem.evaluate = [](const std::vector<double>&, Eigen::VectorXd&) { return false; };
+  EXPECT_FALSE(shudder::analysis::fit_log_parameters(problem).feasible);
+}
+
+shudder::analysis::DiagnosisResult diagnose_linear(const std::vector<EffectSetting>& truth) {
+  const std::vector<DiagnosisRun> runs{shudder::test::linear_measured_run(truth)};
+  const auto simulate = [&](const std::vector<EffectSetting>& added, std::size_t k) {
+    return shudder::test::linear_prediction(runs[k], added);
+  };
+  return shudder::analysis::diagnose(runs, shudder::test::linear_candidates(), simulate, DiagnosisOptions{});
+}
+
+TEST(DiagnoseLinear, NamesTheMissingEffectAndFitsItsParameter) {
+  const double slope = 0.3;  // N m per rpm
+  const auto r = diagnose_linear({{"torque_slope", {slope}}});
+  ASSERT_EQ(r.missing_effects, std::vector<std::string>{"torque_slope"});
+  ASSERT_EQ(r.final_effects.size(), 1u);
+  // Linear least squares on 1001 samples with σ = 0.05 N m and speeds up to 100 rpm: the
+  // standard error of the slope is σ / √Σv² ≈ 0.05 / 1.8e3 ≈ 3e-5 N m/rpm (1e-4 relative); the
+  // tolerance, 1e-3 relative, is 10 of them and leaves room for LM's stopping rule.
+  EXPECT_NEAR(r.final_effects[0].parameters.at(0).second / slope, 1.0, 1e-3);
+  // The noise was estimated from the data (4 % as in NoiseEstimate), and the final model
+  // explains the run to it.
+  EXPECT_NEAR(r.noise_torque_Nm / shudder::test::kLinearNoiseTorqueNm, 1.0, 0.1);
+  EXPECT_EQ(r.stop.kind, shudder::analysis::StopReason::Kind::kWithinNoise);
+  EXPECT_LT(r.final.torque_rms_Nm, 1.1 * r.noise_torque_Nm);
+  EXPECT_GT(r.baseline.torque_rms_Nm, 100 * r.noise_torque_Nm);
+}
+
+TEST(DiagnoseLinear, NamesNothingWhenTheDataEqualTheBaseline) {
+  const auto r = diagnose_linear({});
+  EXPECT_TRUE(r.missing_effects.empty());
+  EXPECT_TRUE(r.final_effects.empty());
+  EXPECT_EQ(r.stop.kind, shudder::analysis::StopReason::Kind::kWithinNoise);
+  EXPECT_EQ(r.simulations, 1);  // the baseline only: nothing to fit
+}
+
+}  // namespace
