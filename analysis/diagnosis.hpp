@@ -32,7 +32,7 @@
 // Units: noise analysis/noise_estimate; misfit, channels and sample sets analysis/misfit;
 // fitting one candidate analysis/candidate_fit; the greedy search analysis/effect_selection;
 // segments and tracks analysis/residual_tracking; threads core/parallel_for.hpp. The result
-// holds numbers and structs; the sentences are io/diagnosis_narrative's.
+// holds numbers and structs; the sentences are report/diagnosis_narrative's.
 
 #include <functional>
 #include <limits>
@@ -165,7 +165,7 @@ struct DiagnosisStep {
   std::vector<std::pair<std::string, double>> torque_tracking_before, temp_tracking_before;
 };
 
-/// Why the greedy search stopped (io/diagnosis_narrative.hpp puts it in words).
+/// Why the greedy search stopped (report/diagnosis_narrative.hpp puts it in words).
 struct StopReason {
   enum class Kind { kWithinNoise, kEffectLimit, kAllAdded, kNoGain, kNoFit };
   Kind kind = Kind::kAllAdded;
@@ -185,7 +185,7 @@ struct RunTraces {
   std::vector<double> temp_measured, temp_baseline, temp_final;
 };
 
-/// Which samples were held out to score the candidates (io/diagnosis_narrative.hpp puts it in
+/// Which samples were held out to score the candidates (report/diagnosis_narrative.hpp puts it in
 /// words).
 struct HoldoutSplit {
   enum class Kind { kNone, kLastRun, kOddTenths };

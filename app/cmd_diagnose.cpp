@@ -13,8 +13,8 @@
 #include "core/overloaded.hpp"
 #include "io/diagnosis_inputs.hpp"
 #include "io/diagnosis_json.hpp"
-#include "io/diagnosis_narrative.hpp"
-#include "io/diagnosis_report.hpp"
+#include "report/diagnosis_narrative.hpp"
+#include "report/diagnosis_report.hpp"
 #include "io/measured_run.hpp"
 #include "io/scenario.hpp"
 
@@ -56,7 +56,7 @@ std::string summary(const io::Scenario& s, const analysis::DiagnosisResult& r,
   for (std::size_t i = 0; i < s.enabled_effects.size(); ++i) os << (i ? ", " : "") << s.enabled_effects[i];
   os << (s.enabled_effects.empty() ? "none" : "") << "\n";
   for (const auto& k : skipped) os << "  not a candidate: " << k << "\n";
-  os << "  hold-out: " << io::holdout_text(r.holdout) << "\n";
+  os << "  hold-out: " << report::holdout_text(r.holdout) << "\n";
   os << "Noise estimated from the data: torque " << num(r.noise_torque_Nm) << " Nm, temp "
      << num(r.noise_temp_C) << " C\n";
   os << "Baseline: torque RMS " << num(r.baseline.torque_rms_Nm) << " Nm, temp RMS "
@@ -76,7 +76,7 @@ std::string summary(const io::Scenario& s, const analysis::DiagnosisResult& r,
     print_candidates(os, st.candidates);
     os << "  -> added " << st.effect << " (" << parameters(st.parameters) << "): torque RMS "
        << num(st.misfit.torque_rms_Nm) << " Nm, temp RMS " << num(st.misfit.temp_rms_C) << " C\n";
-    os << "     why: " << io::step_reason(st) << "\n";
+    os << "     why: " << report::step_reason(st) << "\n";
   }
   if (!r.last_round.empty()) {
     os << "Last round (nothing added):\n";
@@ -95,7 +95,7 @@ std::string summary(const io::Scenario& s, const analysis::DiagnosisResult& r,
   for (const auto& c : r.channels)
     if (c.signal != "torque_Nm" && c.signal != "temp_C")
       os << ", " << c.signal << " RMS " << num(c.baseline_rms) << " -> " << num(c.final_rms);
-  os << "\n" << io::diagnosis_conclusion(r) << "\n";
+  os << "\n" << report::diagnosis_conclusion(r) << "\n";
   os << "Time: " << num(r.wall_s) << " s wall; " << r.simulations << " simulations took "
      << num(r.simulation_thread_s) << " thread-s, the fitting around them " << num(r.fitting_thread_s)
      << " thread-s\n";
@@ -134,11 +134,11 @@ int diagnose_command(const DiagnoseOptions& opt) {
     const std::string text = summary(scenario, result, skipped);
     std::cout << text;
     if (!opt.json.empty()) {
-      io::write_diagnosis_json(opt.json, result);
+      io::write_diagnosis_json(opt.json, result, report::diagnosis_sentences(result));
       std::cout << "JSON: " << opt.json << "\n";
     }
     if (!opt.report.empty()) {
-      const io::Report report = io::write_diagnosis_report(opt.report, result, text);
+      const report::Report report = report::write_diagnosis_report(opt.report, result, text);
       std::cout << "Report: " << opt.report << " (" << report.files.size() << " files)\n";
       for (const auto& s : report.skipped) std::cerr << "shudder: warning: report: " << s << "\n";
     }

@@ -1,23 +1,23 @@
-// `shudder plot FILE --what KIND -o OUT.png|svg`: dispatch to io/plots (which reads the file,
+// `shudder plot FILE --what KIND -o OUT.png|svg`: dispatch to report/plots (which reads the file,
 // builds the plot and draws it through gnuplot).
 #include <iostream>
 
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
 #include "io/input_error.hpp"
-#include "io/plots.hpp"
+#include "report/plots.hpp"
 
 namespace shudder::app {
 
 int plot_command(const PlotOptions& opt) {
   return guarded(opt.file, "plot", [&]() -> int {
-    const auto kind = io::parse_plot_kind(opt.what);
+    const auto kind = report::parse_plot_kind(opt.what);
     if (!kind)
       throw io::InputError("--what", 0, "",
                            "unknown plot '" + opt.what +
                                "'; use one of torque, temperature, spectrum, spectrogram, "
                                "stability_map, sweep");
-    io::plot_file(opt.file, *kind, opt.output);
+    report::plot_file(opt.file, *kind, opt.output);
     std::cout << "Plot: " << opt.output << "\n";
     return 0;
   });

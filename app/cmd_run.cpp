@@ -12,13 +12,13 @@
 
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
-#include "app/summary.hpp"
+#include "report/run_summary.hpp"
 #include "core/overloaded.hpp"
 #include "core/units.hpp"
 #include "io/hdf5_run.hpp"
 #include "io/input_error.hpp"
 #include "io/measurement_csv.hpp"
-#include "io/plots.hpp"
+#include "report/plots.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/model.hpp"
 #include "rig_models/run_stability_map.hpp"
@@ -75,15 +75,15 @@ int run_command(const RunOptions& opt) {
     }
 
     std::ostringstream summary;
-    print_run_summary(summary, scenario, rec);
+    report::print_run_summary(summary, scenario, rec);
     summary << "Output: " << out;
     if (!opt.measurement.empty()) summary << ", " << opt.measurement;
     summary << "\n";
     std::cout << summary.str();
     if (!opt.report.empty()) {
       try {
-        const io::Report report =
-            io::write_run_report(opt.report, rec, scenario.name, summary.str(),
+        const report::Report report =
+            report::write_run_report(opt.report, rec, scenario.name, summary.str(),
                                  scenario.kind() == ModelKind::kRig);
         std::cout << "Report: " << opt.report << " (" << report.files.size() << " files)\n";
         for (const auto& s : report.skipped) std::cerr << "shudder: warning: report: " << s << "\n";

@@ -26,7 +26,7 @@
 #include "io/hdf5_run.hpp"
 #include "io/hdf5_sweep.hpp"
 #include "io/input_error.hpp"
-#include "io/plots.hpp"
+#include "report/plots.hpp"
 #include "io/scenario.hpp"
 #include "io/sweep_spec.hpp"
 #include "rig_models/model.hpp"
@@ -195,7 +195,7 @@ int sweep_command(const SweepOptions& opt) {
       table.text_column_name = out.text_column_name;
       table.text_column = out.text_column;
       try {
-        io::write_sweep_report(opt.report, table, base.name, summary);
+        report::write_sweep_report(opt.report, table, base.name, summary);
       } catch (const io::InputError&) {
         throw;
       } catch (const std::exception& e) {

@@ -1,7 +1,7 @@
 // `shudder validate`: runs the Paper G / Paper B calibration cases (PHYSICS.md §5), checks
 // each against its targets (data: <scenarios>/validation.toml, io/validation_targets.hpp),
 // prints the table and regenerates
-// <docs>/validation.md plus PNG plots (io/gnuplot). The document is date-free, so rerunning
+// <docs>/validation.md plus PNG plots (report/gnuplot). The document is date-free, so rerunning
 // on the same build gives identical files. Exit: 0 all targets pass, 1 a target fails (the
 // document is still written) or the run failed, 2 bad input.
 #include <algorithm>
@@ -19,11 +19,11 @@
 
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
-#include "app/summary.hpp"
+#include "report/run_summary.hpp"
 #include "core/overloaded.hpp"
 #include "core/units.hpp"
 #include "io/atomic_file.hpp"
-#include "io/gnuplot.hpp"
+#include "report/gnuplot.hpp"
 #include "io/input_error.hpp"
 #include "io/scenario.hpp"
 #include "io/validation_targets.hpp"
@@ -66,7 +66,7 @@ double mean_over(const dynamics::Recording& rec, const char* name, double t0, do
   const int n = static_cast<int>(std::lround((t1 - t0) / 0.01));
   double sum = 0.0;
   for (int k = 0; k <= n; ++k)
-    sum += (k == 0 || k == n ? 0.5 : 1.0) * signal_at(rec, name, t0 + (t1 - t0) * k / n);
+    sum += (k == 0 || k == n ? 0.5 : 1.0) * report::signal_at(rec, name, t0 + (t1 - t0) * k / n);
   return sum / n;
 }
 
@@ -98,7 +98,7 @@ std::vector<Row> evaluate(const io::ValidationSpec& spec, const std::vector<Run>
     std::string result;
     switch (g.kind) {
       case io::TargetKind::kValue:
-        v = signal_at(rec, sig, g.time_s);
+        v = report::signal_at(rec, sig, g.time_s);
         result = fmt("%.2f %s", v, u);
         break;
       case io::TargetKind::kMean:
@@ -106,15 +106,15 @@ std::vector<Row> evaluate(const io::ValidationSpec& spec, const std::vector<Run>
         result = fmt("%.2f %s", v, u);
         break;
       case io::TargetKind::kRise: {
-        const double a = signal_at(rec, sig, g.from_s), b = signal_at(rec, sig, g.to_s);
+        const double a = report::signal_at(rec, sig, g.from_s), b = report::signal_at(rec, sig, g.to_s);
         v = b - a;
         result = fmt("%.2f %s (%.2f → %.2f %s)", v, u, a, b, u);
         break;
       }
       case io::TargetKind::kPercentBelow:
       case io::TargetKind::kPercentAbove: {
-        const double x = signal_at(rec, sig, g.time_s);
-        const double ref = signal_at(runs[*g.reference_index].rec, sig, g.time_s);
+        const double x = report::signal_at(rec, sig, g.time_s);
+        const double ref = report::signal_at(runs[*g.reference_index].rec, sig, g.time_s);
         const bool below = g.kind == io::TargetKind::kPercentBelow;
         v = below ? 100 * (1 - x / ref) : 100 * (x / ref - 1);
         result = fmt("%.2f %% %s (%.2f vs %.2f %s)", v, below ? "below" : "above", x, ref, u);
@@ -210,9 +210,9 @@ void write_case2(std::ostream& md, const Run& run) {
   for (double t : times) {
     if (t > run.model.settings.duration_s) continue;
     md << fmt("| %.1f | %.1f | %.2f | %.2f | %.2f | %.2f |\n", t,
-              signal_at(run.rec, "speed_rpm", t), signal_at(run.rec, "torque_Nm", t),
-              signal_at(run.rec, "temp_C", t), signal_at(run.rec, "ir_temp_C", t),
-              signal_at(run.rec, "sump_temp_C", t));
+              report::signal_at(run.rec, "speed_rpm", t), report::signal_at(run.rec, "torque_Nm", t),
+              report::signal_at(run.rec, "temp_C", t), report::signal_at(run.rec, "ir_temp_C", t),
+              report::signal_at(run.rec, "sump_temp_C", t));
   }
   md << "\n";
 }
@@ -236,10 +236,10 @@ void write_energy(std::ostream& md, const std::vector<Run>& runs) {
 // ---- plots -------------------------------------------------------------------------------
 
 /// Signal `name` against `x_name` over samples with t0 <= time <= t1.
-io::Series series(const dynamics::Recording& rec, const char* name, std::string label,
+report::Series series(const dynamics::Recording& rec, const char* name, std::string label,
                   int color, bool dashed = false, const char* x_name = "time_s",
                   double t0 = -1e300, double t1 = 1e300) {
-  io::Series s{std::move(label), {}, {}, color, dashed};
+  report::Series s{std::move(label), {}, {}, color, dashed};
   const auto* t = rec.find("time_s");
   const auto* x = rec.find(x_name);
   const auto* y = rec.find(name);
@@ -261,7 +261,7 @@ std::vector<Figure> write_plots(const fs::path& docs, const io::ValidationSpec& 
   std::vector<Figure> figs;
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const auto& r = runs[i].rec;
-    io::Plot p;
+    report::Plot p;
     p.title = runs[i].label + " (" + runs[i].sc.name + ")";
     p.xlabel = "time [s]";
     p.ylabel = "torque [Nm]";
@@ -271,11 +271,11 @@ std::vector<Figure> write_plots(const fs::path& docs, const io::ValidationSpec& 
                    series(r, "ir_temp_C", "IR ir_temp_C [°C] (right axis)", 2, true)};
     if (i == spec.ramp_case) p.series_y2.push_back(series(r, "sump_temp_C", "sump [°C] (right axis)", 7));
     const std::string file = "validation_" + runs[i].sc.name + ".png";
-    io::write_plot((docs / file).string(), p);
+    report::write_plot((docs / file).string(), p);
     figs.push_back({file, runs[i].label + ": torque and temperatures"});
   }
   if (!spec.comparison.empty()) {  // e.g. Paper G Fig. 14: one load with and without effects.
-    io::Plot p;
+    report::Plot p;
     p.title = spec.comparison_title;
     p.xlabel = "time [s]";
     p.ylabel = "torque [Nm] (solid)";
@@ -286,14 +286,14 @@ std::vector<Figure> write_plots(const fs::path& docs, const io::ValidationSpec& 
       p.series.push_back(series(runs[index].rec, "torque_Nm", "torque, " + what, color));
       p.series_y2.push_back(series(runs[index].rec, "temp_C", "thermocouple, " + what, color, true));
     }
-    io::write_plot((docs / spec.comparison_file).string(), p);
+    report::write_plot((docs / spec.comparison_file).string(), p);
     figs.push_back({spec.comparison_file, spec.comparison_heading});
   }
   {  // The ramp case against slip speed: up-ramp vs down-ramp.
     const Run& ramp = runs[spec.ramp_case];
     const auto& r = ramp.rec;
     const auto bp = ramp.model.cycle.slip_speed_rpm.times_s();  // Case 2: 0, 5, 15, 17, 27, 30
-    io::Plot p;
+    report::Plot p;
     p.title = ramp.label + ": up-ramp vs down-ramp";
     p.xlabel = "slip speed [rpm]";
     p.ylabel = "torque [Nm] (solid)";
@@ -305,7 +305,7 @@ std::vector<Figure> write_plots(const fs::path& docs, const io::ValidationSpec& 
                          false, "speed_rpm", bp[3], bp[4])};
       p.series_y2 = {series(r, "temp_C", "thermocouple, up-ramp", 0, true, "speed_rpm", bp[1], bp[2]),
                      series(r, "temp_C", "thermocouple, down-ramp", 1, true, "speed_rpm", bp[3], bp[4])};
-      io::write_plot((docs / spec.ramp_plot_file).string(), p);
+      report::write_plot((docs / spec.ramp_plot_file).string(), p);
       figs.push_back({spec.ramp_plot_file, ramp.label + ": torque and thermocouple against slip speed"});
     }
   }

@@ -44,7 +44,7 @@
 #include "analysis/diagnosis.hpp"
 #include "core/units.hpp"
 #include "io/diagnosis_inputs.hpp"
-#include "io/diagnosis_narrative.hpp"
+#include "report/diagnosis_narrative.hpp"
 #include "io/measured_run.hpp"
 #include "io/measurement_csv.hpp"
 #include "io/scenario.hpp"
@@ -178,7 +178,7 @@ void run_diagnosis(benchmark::State& state, const std::string& model_text, const
     for (const auto& [k, v] : f.parameters) std::cerr << " " << k << "=" << v;
     std::cerr << ";";
   }
-  std::cerr << "\n  " << shudder::io::diagnosis_conclusion(r) << "\n";
+  std::cerr << "\n  " << shudder::report::diagnosis_conclusion(r) << "\n";
 }
 
 // Every effect off: the diagnosis has to rebuild the model. Arg = max_effects

@@ -5,11 +5,11 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
 #include "io/atomic_file.hpp"
-#include "io/diagnosis_narrative.hpp"
 #include "io/input_error.hpp"
 #include "io/screening_json.hpp"
 
@@ -118,14 +118,14 @@ std::string candidate(const CandidateScore& c) {
 }
 
 // Steps are large: one member per line, the candidates one per line below.
-std::string step(const DiagnosisStep& st) {
+std::string step(const DiagnosisStep& st, const std::string& reason) {
   Object o(",\n      ");
   o.str("effect", st.effect).raw("parameters", object_of(st.parameters))
       .num("torque_rms_Nm", st.misfit.torque_rms_Nm).num("temp_rms_C", st.misfit.temp_rms_C)
       .num("holdout_torque_rms_Nm", st.holdout.torque_rms_Nm)
       .num("holdout_temp_rms_C", st.holdout.temp_rms_C)
       .num("holdout_misfit_before", st.holdout_misfit_before)
-      .num("holdout_misfit_after", st.holdout_misfit_after).str("reason", step_reason(st))
+      .num("holdout_misfit_after", st.holdout_misfit_after).str("reason", reason)
       .raw("candidates", list(st.candidates, "        ", candidate));
   const std::string t = o.text();
   std::ostringstream os;
@@ -139,24 +139,28 @@ std::string fitted_effect(const analysis::FittedEffect& f) {
 
 }  // namespace
 
-std::string diagnosis_json(const analysis::DiagnosisResult& r) {
+std::string diagnosis_json(const analysis::DiagnosisResult& r, const DiagnosisSentences& words) {
+  if (words.step_reasons.size() != r.steps.size())
+    throw std::logic_error("diagnosis_json: one reason per step is needed");
+  std::vector<std::string> steps;
+  for (std::size_t i = 0; i < r.steps.size(); ++i) steps.push_back(step(r.steps[i], words.step_reasons[i]));
   Object o(",\n  ");
   o.str("format", "shudder-diagnosis/1")
       .str("shudder_version", SHUDDER_VERSION)
       .raw("runs", strings(r.runs))
       .raw("noise", Object().num("torque_Nm", r.noise_torque_Nm).num("temp_C", r.noise_temp_C).text())
-      .str("holdout", holdout_text(r.holdout))
+      .str("holdout", words.holdout)
       .raw("baseline", misfit(r.baseline, r.baseline_holdout_misfit))
       .raw("disagreements", list(r.disagreements, "    ", disagreement))
       .raw("tracking", list(r.tracking, "    ", tracking))
-      .raw("steps", list(r.steps, "    ", step))
+      .raw("steps", list(steps, "    ", [](const std::string& text) { return text; }))
       .raw("missing_effects", strings(r.missing_effects))
       .raw("last_round", list(r.last_round, "    ", candidate))
       .raw("final", misfit(r.final, r.final_holdout_misfit))
       .raw("final_effects", list(r.final_effects, "    ", fitted_effect))
       .raw("channels", list(r.channels, "    ", channel))
       .raw("final_disagreements", list(r.final_disagreements, "    ", disagreement))
-      .str("conclusion", diagnosis_conclusion(r))
+      .str("conclusion", words.conclusion)
       .raw("timing", Object()
                          .num("simulation_thread_s", r.simulation_thread_s)
                          .num("fitting_thread_s", r.fitting_thread_s)
@@ -169,8 +173,9 @@ std::string diagnosis_json(const analysis::DiagnosisResult& r) {
   return os.str();
 }
 
-void write_diagnosis_json(const std::string& path, const analysis::DiagnosisResult& r) {
-  write_text_file_atomically(path, diagnosis_json(r));
+void write_diagnosis_json(const std::string& path, const analysis::DiagnosisResult& r,
+                          const DiagnosisSentences& words) {
+  write_text_file_atomically(path, diagnosis_json(r, words));
 }
 
 }  // namespace shudder::io

@@ -13,7 +13,7 @@
 #include <filesystem>
 
 #include "io/hdf5_run.hpp"
-#include "io/plots.hpp"
+#include "report/plots.hpp"
 #include "tests/support/cli.hpp"
 
 using namespace shudder;
@@ -250,7 +250,7 @@ TEST(CliPlot, ContourOfALinearAndARadialFieldLiesOnTheExactCurve) {
       lin(i, j) = x[i] - 0.55;
       rad(i, j) = x[i] * x[i] + y[j] * y[j] - 1.0;
     }
-  const io::Series a = io::contour_series(x, y, lin, 0.0, "zero");
+  const report::Series a = report::contour_series(x, y, lin, 0.0, "zero");
   ASSERT_FALSE(a.x.empty());
   std::size_t points = 0;
   for (std::size_t k = 0; k < a.x.size(); ++k) {
@@ -261,13 +261,13 @@ TEST(CliPlot, ContourOfALinearAndARadialFieldLiesOnTheExactCurve) {
   EXPECT_EQ(points, 2u * 40u);  // one segment per cell row the line crosses
   // v = x² + y² - 1: contour points on the unit circle to the interpolation error of a
   // quadratic over a 0.1 cell, h²/4 / (2 r) ~ 1.3e-3.
-  const io::Series c = io::contour_series(x, y, rad, 0.0, "circle");
+  const report::Series c = report::contour_series(x, y, rad, 0.0, "circle");
   for (std::size_t k = 0; k < c.x.size(); ++k) {
     if (std::isnan(c.x[k])) continue;
     EXPECT_NEAR(std::hypot(c.x[k], c.y[k]), 1.0, 2e-3);
   }
   // Nothing crosses 5 on the linear field; a NaN corner removes its cells.
-  EXPECT_TRUE(io::contour_series(x, y, lin, 5.0, "none").x.empty());
+  EXPECT_TRUE(report::contour_series(x, y, lin, 5.0, "none").x.empty());
   lin(25, 3) = std::numeric_limits<double>::quiet_NaN();  // x[25] = 0.5, next to the line
-  EXPECT_EQ(io::contour_series(x, y, lin, 0.0, "hole").x.size(), a.x.size() - 2 * 3);
+  EXPECT_EQ(report::contour_series(x, y, lin, 0.0, "hole").x.size(), a.x.size() - 2 * 3);
 }

@@ -18,7 +18,7 @@
 
 #include "analysis/diagnosis.hpp"
 #include "io/diagnosis_inputs.hpp"
-#include "io/diagnosis_narrative.hpp"
+#include "report/diagnosis_narrative.hpp"
 #include "io/measured_run.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/replay.hpp"
@@ -75,8 +75,8 @@ analysis::DiagnosisResult diagnose_case(const Case& c) {
 }
 
 std::string describe(const analysis::DiagnosisResult& r) {
-  std::string s = shudder::io::diagnosis_conclusion(r) + "\n";
-  for (const auto& st : r.steps) s += "  step " + st.effect + ": " + shudder::io::step_reason(st) + "\n";
+  std::string s = shudder::report::diagnosis_conclusion(r) + "\n";
+  for (const auto& st : r.steps) s += "  step " + st.effect + ": " + shudder::report::step_reason(st) + "\n";
   for (const auto& c : r.last_round)
     s += "  last round " + c.effect + " holdout J " + std::to_string(c.holdout_misfit) + "\n";
   return s;

@@ -1,4 +1,4 @@
-// `shudder validate` and its plot driver (io/gnuplot): the CLI writes a date-free
+// `shudder validate` and its plot driver (report/gnuplot): the CLI writes a date-free
 // validation.md whose targets all pass and which reruns reproduce byte for byte; bad folders
 // exit 2; write_plot renders PNG and SVG through gnuplot, reproducibly, and reports a missing
 // gnuplot, a bad extension or inconsistent series clearly. Plot tests skip without gnuplot.
@@ -15,7 +15,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "io/gnuplot.hpp"
+#include "report/gnuplot.hpp"
 #include "io/input_error.hpp"
 
 namespace {
@@ -50,14 +50,14 @@ int run_cli(const std::string& args) {
 
 bool have_gnuplot() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
 
-shudder::io::Plot sample_plot() {
-  shudder::io::Plot p;
+shudder::report::Plot sample_plot() {
+  shudder::report::Plot p;
   p.title = "test 'quoted' title_with_underscores";
   p.xlabel = "time [s]";
   p.ylabel = "torque [Nm]";
   p.y2label = "temperature [°C]";
-  shudder::io::Series torque{"torque [Nm]", {}, {}};
-  shudder::io::Series temp{"temp [°C]", {}, {}};
+  shudder::report::Series torque{"torque [Nm]", {}, {}};
+  shudder::report::Series temp{"temp [°C]", {}, {}};
   for (int i = 0; i <= 50; ++i) {
     torque.x.push_back(0.1 * i);
     torque.y.push_back(40 + 0.1 * i * i);
@@ -95,9 +95,9 @@ TEST(WritePlot, RendersPngAndSvgReproducibly) {
   if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
   TempDir dir;
   const auto p = sample_plot();
-  shudder::io::write_plot((dir.path / "a.png").string(), p);
-  shudder::io::write_plot((dir.path / "b.png").string(), p);
-  shudder::io::write_plot((dir.path / "a.svg").string(), p);
+  shudder::report::write_plot((dir.path / "a.png").string(), p);
+  shudder::report::write_plot((dir.path / "b.png").string(), p);
+  shudder::report::write_plot((dir.path / "a.svg").string(), p);
   const std::string png = slurp(dir.path / "a.png");
   ASSERT_GT(png.size(), 8u);
   EXPECT_EQ(png.substr(1, 3), "PNG");
@@ -109,11 +109,11 @@ TEST(WritePlot, RendersPngAndSvgReproducibly) {
 TEST(WritePlot, RejectsBadRequests) {
   TempDir dir;
   auto p = sample_plot();
-  EXPECT_THROW(shudder::io::write_plot((dir.path / "a.jpg").string(), p),
+  EXPECT_THROW(shudder::report::write_plot((dir.path / "a.jpg").string(), p),
                shudder::io::InputError);
   p.series[0].y.pop_back();
-  EXPECT_THROW(shudder::io::write_plot((dir.path / "a.png").string(), p), std::invalid_argument);
-  EXPECT_THROW(shudder::io::write_plot((dir.path / "no_dir" / "a.png").string(), sample_plot()),
+  EXPECT_THROW(shudder::report::write_plot((dir.path / "a.png").string(), p), std::invalid_argument);
+  EXPECT_THROW(shudder::report::write_plot((dir.path / "no_dir" / "a.png").string(), sample_plot()),
                shudder::io::InputError);
 }
 
@@ -123,7 +123,7 @@ TEST(WritePlot, MissingGnuplotIsAClearError) {
   const std::string saved = old ? old : "";
   ::setenv("PATH", dir.path.c_str(), 1);
   try {
-    shudder::io::write_plot((dir.path / "a.png").string(), sample_plot());
+    shudder::report::write_plot((dir.path / "a.png").string(), sample_plot());
     ADD_FAILURE() << "expected an error";
   } catch (const std::runtime_error& e) {
     EXPECT_THAT(e.what(), HasSubstr("gnuplot"));

@@ -23,19 +23,24 @@
 
 #include "analysis/diagnosis.hpp"
 #include "io/diagnosis_json.hpp"
-#include "io/diagnosis_report.hpp"
 #include "io/input_error.hpp"
+#include "report/diagnosis_narrative.hpp"
+#include "report/diagnosis_report.hpp"
 #include "tests/support/linear_diagnosis.hpp"
 
 namespace fs = std::filesystem;
 using shudder::analysis::CandidateScore;
 using shudder::analysis::DiagnosisResult;
 using shudder::analysis::DiagnosisStep;
-using shudder::io::diagnosis_json;
 using shudder::io::InputError;
 using testing::HasSubstr;
 
 namespace {
+
+// The file as `shudder diagnose --json` writes it: the result with the narrative's sentences.
+std::string diagnosis_json(const DiagnosisResult& r) {
+  return shudder::io::diagnosis_json(r, shudder::report::diagnosis_sentences(r));
+}
 
 // ---- a minimal strict JSON reader ----------------------------------------------------------
 
@@ -437,7 +442,7 @@ TEST(DiagnosisJson, OptionalFieldsAreWritten) {
   EXPECT_EQ(j["tracking"][0]["signal"].str(), "torque_Nm");
   EXPECT_DOUBLE_EQ(j["tracking"][0]["correlations"]["temperature_rise"].num(), 0.97);
   EXPECT_DOUBLE_EQ(j["tracking"][0]["correlations"]["time"].num(), 0.9);
-  // The sentences are written from the numbers (io/diagnosis_narrative): "%.3g" values, the
+  // The sentences are written from the numbers (report/diagnosis_narrative): "%.3g" values, the
   // step's evidence, the stop reason.
   EXPECT_EQ(j["conclusion"].str(),
             "Missing: temperature_dependent_friction. Torque RMS 8.12 -> 1.21 Nm, temperature RMS 6.3 -> "
@@ -519,20 +524,20 @@ TEST_F(DiagnosisFiles, WriteIsAtomicAndMatchesTheText) {
   const DiagnosisResult r = sample_result();
   const std::string out = path("diag.json");
   { std::ofstream(out) << "old"; }
-  shudder::io::write_diagnosis_json(out, r);
+  shudder::io::write_diagnosis_json(out, r, shudder::report::diagnosis_sentences(r));
   EXPECT_EQ(slurp(out), diagnosis_json(r));
   EXPECT_FALSE(fs::exists(out + ".tmp"));
 }
 
 TEST_F(DiagnosisFiles, UnwritablePathIsAnInputErrorNamingIt) {
   const std::string out = path("no_such_dir/diag.json");
-  EXPECT_THAT([&] { shudder::io::write_diagnosis_json(out, sample_result()); },
+  EXPECT_THAT([&] { shudder::io::write_diagnosis_json(out, sample_result(), shudder::report::diagnosis_sentences(sample_result())); },
               testing::ThrowsMessage<InputError>(HasSubstr(out)));
   EXPECT_FALSE(fs::exists(path("no_such_dir")));
 }
 
 TEST(DiagnosisReport, RunStemIsTheSanitizedFileStem) {
-  using shudder::io::diagnosis_run_stem;
+  using shudder::report::diagnosis_run_stem;
   EXPECT_EQ(diagnosis_run_stem("data/run_25kN.csv"), "run_25kN");
   EXPECT_EQ(diagnosis_run_stem("/abs/dir/a.b-c.csv"), "a.b-c");
   EXPECT_EQ(diagnosis_run_stem("hot \"run\" #2.csv"), "hot__run___2");
@@ -545,7 +550,7 @@ TEST(DiagnosisReport, RunStemIsTheSanitizedFileStem) {
 TEST(DiagnosisReport, CandidatesMarkdownHasATablePerStepAndTheLastRound) {
   DiagnosisResult r = sample_result();
   r.last_round[0].failure = "a | b";
-  const std::string md = shudder::io::diagnosis_candidates_markdown(r);
+  const std::string md = shudder::report::diagnosis_candidates_markdown(r);
   EXPECT_THAT(md, HasSubstr("## Step 1: added temperature_dependent_friction"));
   EXPECT_THAT(md, HasSubstr("| effect | parameters | fit misfit | hold-out misfit | score | gain | "
                             "signature correlation |"));
@@ -560,9 +565,9 @@ TEST_F(DiagnosisFiles, ReportWritesTextFilesAndPlots) {
   DiagnosisResult r = sample_result();
   r.traces.push_back(r.traces[1]);  // same stem twice: the second gets "_2"
   const std::string dir = path("report/sub");
-  const shudder::io::Report rep = shudder::io::write_diagnosis_report(dir, r, "summary text\n");
+  const shudder::report::Report rep = shudder::report::write_diagnosis_report(dir, r, "summary text\n");
   EXPECT_EQ(slurp(dir + "/summary.txt"), "summary text\n");
-  EXPECT_EQ(slurp(dir + "/candidates.md"), shudder::io::diagnosis_candidates_markdown(r));
+  EXPECT_EQ(slurp(dir + "/candidates.md"), shudder::report::diagnosis_candidates_markdown(r));
   for (const auto& f : fs::directory_iterator(dir))
     EXPECT_NE(f.path().extension(), ".tmp") << f.path();
   if (!gnuplot_installed()) {
@@ -589,10 +594,25 @@ TEST_F(DiagnosisFiles, ReportSkipsARunWithoutSamples) {
   DiagnosisResult r = sample_result();
   r.traces.resize(1);
   r.traces[0].time_s.clear();
-  const shudder::io::Report rep = shudder::io::write_diagnosis_report(path("rep"), r, "");
+  const shudder::report::Report rep = shudder::report::write_diagnosis_report(path("rep"), r, "");
   EXPECT_EQ(rep.files.size(), 2u);
   ASSERT_EQ(rep.skipped.size(), 1u);
   EXPECT_THAT(rep.skipped[0], HasSubstr("a_{torque,temp,residuals}.png"));
+}
+
+}  // namespace
+
+namespace {
+
+// The writer places the narrative's sentences; a reason missing for a step is a caller's bug
+// that must not produce a file whose steps and reasons disagree.
+TEST(DiagnosisJson, AReasonPerStepIsRequired) {
+  DiagnosisResult r;
+  r.steps.resize(2);
+  shudder::io::DiagnosisSentences words{"held", {"only one"}, "done"};
+  EXPECT_THROW(shudder::io::diagnosis_json(r, words), std::logic_error);
+  words.step_reasons.push_back("second");
+  EXPECT_THAT(shudder::io::diagnosis_json(r, words), HasSubstr("\"reason\": \"second\""));
 }
 
 }  // namespace

@@ -1,11 +1,11 @@
-#include "io/diagnosis_narrative.hpp"
+#include "report/diagnosis_narrative.hpp"
 
 #include <cstdio>
 #include <sstream>
 #include <utility>
 #include <vector>
 
-namespace shudder::io {
+namespace shudder::report {
 
 namespace {
 
@@ -91,4 +91,10 @@ std::string diagnosis_conclusion(const analysis::DiagnosisResult& r) {
   return concl.str();
 }
 
-}  // namespace shudder::io
+io::DiagnosisSentences diagnosis_sentences(const analysis::DiagnosisResult& r) {
+  io::DiagnosisSentences words{holdout_text(r.holdout), {}, diagnosis_conclusion(r)};
+  for (const auto& st : r.steps) words.step_reasons.push_back(step_reason(st));
+  return words;
+}
+
+}  // namespace shudder::report

@@ -6,8 +6,9 @@
 #include <string>
 
 #include "analysis/diagnosis.hpp"
+#include "io/diagnosis_json.hpp"
 
-namespace shudder::io {
+namespace shudder::report {
 
 /// What was held out, e.g. "run 'b.csv' (fits use the other runs)"; empty for kNone.
 std::string holdout_text(const analysis::HoldoutSplit& split);
@@ -18,5 +19,7 @@ std::string stop_reason_text(const analysis::StopReason& stop);
 std::string step_reason(const analysis::DiagnosisStep& step);
 /// One paragraph: what is missing, the RMS before and after against the noise, why it stopped.
 std::string diagnosis_conclusion(const analysis::DiagnosisResult& result);
+/// All of the above for the JSON file.
+io::DiagnosisSentences diagnosis_sentences(const analysis::DiagnosisResult& result);
 
-}  // namespace shudder::io
+}  // namespace shudder::report

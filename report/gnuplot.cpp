@@ -1,5 +1,5 @@
 // gnuplot driver; see gnuplot.hpp. POSIX (mkdtemp, posix_spawnp, waitpid).
-#include "io/gnuplot.hpp"
+#include "report/gnuplot.hpp"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -23,7 +23,7 @@
 
 extern char** environ;
 
-namespace shudder::io {
+namespace shudder::report {
 namespace {
 
 namespace fs = std::filesystem;
@@ -347,7 +347,7 @@ void write_plot(const std::string& path, const Plot& plot) {
   const std::string ext = fs::path(path).extension().string();
   const bool svg = ext == ".svg";
   if (!svg && ext != ".png")
-    throw InputError(path, 0, "", "unsupported plot format '" + ext + "'; use .png or .svg");
+    throw io::InputError(path, 0, "", "unsupported plot format '" + ext + "'; use .png or .svg");
   if (plot.series.empty() && plot.map.empty())
     throw std::invalid_argument("plot '" + plot.title + "' has no series");
   if (!plot.map.empty()) {
@@ -361,10 +361,10 @@ void write_plot(const std::string& path, const Plot& plot) {
   for (const auto& s : plot.series_y2) check_series(s);
 
   // Claim the temporary output ourselves first: an unwritable destination is the user's
-  // problem (InputError), not gnuplot's.
-  const std::string tmp = temp_path_for(path);
+  // problem (io::InputError), not gnuplot's.
+  const std::string tmp = io::temp_path_for(path);
   if (!std::ofstream(tmp))
-    throw InputError(path, 0, "", std::string("cannot write plot: ") + std::strerror(errno) +
+    throw io::InputError(path, 0, "", std::string("cannot write plot: ") + std::strerror(errno) +
                                       "; check the directory exists and is writable");
   try {
     TempDir dir;
@@ -383,10 +383,10 @@ void write_plot(const std::string& path, const Plot& plot) {
       throw std::runtime_error("gnuplot failed (exit status " + std::to_string(status) +
                                ") writing " + path + ": " + read_tail(log, 600));
   } catch (...) {
-    discard_temp_file(tmp);
+    io::discard_temp_file(tmp);
     throw;
   }
-  commit_temp_file(tmp, path);
+  io::commit_temp_file(tmp, path);
 }
 
-}  // namespace shudder::io
+}  // namespace shudder::report

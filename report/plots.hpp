@@ -1,6 +1,6 @@
 #pragma once
 // The plots of `shudder plot` and of the report directories of `shudder run` / `sweep`
-// (docs/plots.md), built from what a run or sweep file holds and drawn by io/gnuplot:
+// (docs/plots.md), built from what a run or sweep file holds and drawn by report/gnuplot:
 //
 //   torque         torque_Nm (and clutch_torque_Nm) vs time, sliding speed on the right axis
 //   temperature    temp_C, ir_temp_C, sump_temp_C, interface_max_temp_C vs time
@@ -24,10 +24,10 @@
 #include <vector>
 
 #include "dynamics/recording.hpp"
-#include "io/gnuplot.hpp"
+#include "report/gnuplot.hpp"
 #include "io/hdf5_sweep.hpp"
 
-namespace shudder::io {
+namespace shudder::report {
 
 enum class PlotKind { kTorque, kTemperature, kSpectrum, kSpectrogram, kStabilityMap, kSweep, kCoupling };
 
@@ -48,7 +48,7 @@ Plot spectrogram_plot(const dynamics::Recording& rec, const std::string& name,
                       const std::string& source);
 Plot stability_map_plot(const dynamics::Recording& rec, const std::string& name,
                         const std::string& source);
-Plot sweep_plot(const SweepTable& table, const std::string& name, const std::string& source);
+Plot sweep_plot(const io::SweepTable& table, const std::string& name, const std::string& source);
 
 /// The plot of `kind` for a run recording (every kind but kSweep).
 Plot run_plot(PlotKind kind, const dynamics::Recording& rec, const std::string& name,
@@ -62,7 +62,7 @@ Series contour_series(const std::vector<double>& x, const std::vector<double>& y
                       const Eigen::MatrixXd& values, double level, const std::string& label);
 
 /// Reads the run or sweep file `h5_path` and writes the plot of `kind` to `out_path` (.png or
-/// .svg). InputError when the file is unreadable or lacks what the plot needs.
+/// .svg). io::InputError when the file is unreadable or lacks what the plot needs.
 void plot_file(const std::string& h5_path, PlotKind kind, const std::string& out_path);
 
 struct Report {
@@ -78,7 +78,7 @@ Report write_run_report(const std::string& dir, const dynamics::Recording& rec,
                         const std::string& name, const std::string& summary, bool rig);
 
 /// Report directory of a sweep: `dir`/summary.txt and sweep.png.
-Report write_sweep_report(const std::string& dir, const SweepTable& table, const std::string& name,
+Report write_sweep_report(const std::string& dir, const io::SweepTable& table, const std::string& name,
                           const std::string& summary);
 
-}  // namespace shudder::io
+}  // namespace shudder::report

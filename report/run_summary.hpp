@@ -8,7 +8,7 @@
 #include "dynamics/recording.hpp"
 #include "io/scenario.hpp"
 
-namespace shudder::app {
+namespace shudder::report {
 
 /// Value of signal `name` at time t (linear interpolation), NaN if absent.
 double signal_at(const dynamics::Recording& rec, std::string_view name, double t_s);
@@ -16,4 +16,4 @@ double signal_at(const dynamics::Recording& rec, std::string_view name, double t
 void print_run_summary(std::ostream& os, const io::Scenario& scenario,
                        const dynamics::Recording& rec);
 
-}  // namespace shudder::app
+}  // namespace shudder::report

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-namespace shudder::io {
+namespace shudder::report {
 
 enum class SeriesStyle { kLines, kPoints, kLinesPoints };
 
@@ -70,4 +70,4 @@ struct Plot {
 /// Renders `plot` to `path` (.png or .svg). Replaces an existing file.
 void write_plot(const std::string& path, const Plot& plot);
 
-}  // namespace shudder::io
+}  // namespace shudder::report

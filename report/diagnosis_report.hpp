@@ -11,17 +11,17 @@
 //   <stem>_residuals.png      residual model − measured before (baseline, dashed) and after
 //                             (final, solid): torque on the left axis, temp_C on the right
 //
-// Plots are drawn by io/gnuplot. Without gnuplot on PATH the PNGs are skipped and listed in
+// Plots are drawn by report/gnuplot. Without gnuplot on PATH the PNGs are skipped and listed in
 // Report::skipped (the text files are the report's substance; a machine without gnuplot still
 // gets them). A run whose traces cannot be plotted (empty, columns of different lengths) or a
-// plot gnuplot fails on is skipped the same way; an unwritable directory is an InputError.
+// plot gnuplot fails on is skipped the same way; an unwritable directory is an io::InputError.
 
 #include <string>
 
 #include "analysis/diagnosis.hpp"
-#include "io/plots.hpp"
+#include "report/plots.hpp"
 
-namespace shudder::io {
+namespace shudder::report {
 
 /// File-name stem for a run name: the part after the last '/', without its extension, every
 /// character outside [A-Za-z0-9_.-] replaced by '_', a leading '.' by '_' (no hidden files);
@@ -36,4 +36,4 @@ std::string diagnosis_candidates_markdown(const analysis::DiagnosisResult& r);
 Report write_diagnosis_report(const std::string& dir, const analysis::DiagnosisResult& r,
                               const std::string& summary_text);
 
-}  // namespace shudder::io
+}  // namespace shudder::report

@@ -1,5 +1,5 @@
 // Report directory of a diagnosis; see diagnosis_report.hpp and docs/diagnosis_format.md.
-#include "io/diagnosis_report.hpp"
+#include "report/diagnosis_report.hpp"
 
 #include <unistd.h>
 
@@ -14,11 +14,11 @@
 #include <stdexcept>
 
 #include "io/atomic_file.hpp"
-#include "io/diagnosis_narrative.hpp"
-#include "io/gnuplot.hpp"
+#include "report/diagnosis_narrative.hpp"
+#include "report/gnuplot.hpp"
 #include "io/input_error.hpp"
 
-namespace shudder::io {
+namespace shudder::report {
 
 namespace {
 
@@ -205,12 +205,12 @@ Report write_diagnosis_report(const std::string& dir, const analysis::DiagnosisR
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec || !fs::is_directory(dir))
-    throw InputError(dir, 0, "", "cannot create the report directory: " + ec.message());
+    throw io::InputError(dir, 0, "", "cannot create the report directory: " + ec.message());
   Report report;
   const auto path = [&](const std::string& f) { return (fs::path(dir) / f).string(); };
-  write_text_file_atomically(path("summary.txt"), summary_text);
+  io::write_text_file_atomically(path("summary.txt"), summary_text);
   report.files.push_back(path("summary.txt"));
-  write_text_file_atomically(path("candidates.md"), diagnosis_candidates_markdown(r));
+  io::write_text_file_atomically(path("candidates.md"), diagnosis_candidates_markdown(r));
   report.files.push_back(path("candidates.md"));
 
   const bool gnuplot = gnuplot_on_path();
@@ -242,7 +242,7 @@ Report write_diagnosis_report(const std::string& dir, const analysis::DiagnosisR
       }
       try {
         write_plot(path(file), plots[i]);
-      } catch (const InputError&) {
+      } catch (const io::InputError&) {
         throw;  // the directory is unwritable: the caller's problem, as for the text files
       } catch (const std::exception& e) {
         report.skipped.push_back(file + ": " + e.what());
@@ -254,4 +254,4 @@ Report write_diagnosis_report(const std::string& dir, const analysis::DiagnosisR
   return report;
 }
 
-}  // namespace shudder::io
+}  // namespace shudder::report

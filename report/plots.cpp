@@ -1,5 +1,5 @@
 // Plot builders for `shudder plot` and the report directories; see plots.hpp and docs/plots.md.
-#include "io/plots.hpp"
+#include "report/plots.hpp"
 
 #include <toml++/toml.h>
 
@@ -18,7 +18,7 @@
 #include "io/hdf5_run.hpp"
 #include "io/input_error.hpp"
 
-namespace shudder::io {
+namespace shudder::report {
 
 namespace {
 
@@ -41,21 +41,21 @@ const Signal& require_signal(const Recording& rec, const char* name, const std::
                              const std::string& plot) {
   const Signal* s = rec.find(name);
   if (!s || s->values.empty())
-    throw InputError(source, 0, "",
+    throw io::InputError(source, 0, "",
                      std::string("no /signals/") + name + ": the " + plot + " plot needs it");
   return *s;
 }
 
-/// Uniform sample rate of time_s; InputError for fewer than `min_samples` samples.
+/// Uniform sample rate of time_s; io::InputError for fewer than `min_samples` samples.
 double sample_rate_Hz(const Signal& time, std::size_t min_samples, const std::string& source,
                       const std::string& plot) {
   const std::size_t n = time.values.size();
   if (n < min_samples)
-    throw InputError(source, 0, "",
+    throw io::InputError(source, 0, "",
                      "the record has " + std::to_string(n) + " samples; the " + plot +
                          " plot needs at least " + std::to_string(min_samples));
   const double span = time.values.back() - time.values.front();
-  if (!(span > 0)) throw InputError(source, 0, "", "time_s does not increase");
+  if (!(span > 0)) throw io::InputError(source, 0, "", "time_s does not increase");
   return static_cast<double>(n - 1) / span;
 }
 
@@ -118,7 +118,7 @@ void make_report_dir(const std::string& dir) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec || !fs::is_directory(dir))
-    throw InputError(dir, 0, "", "cannot create the report directory: " + ec.message());
+    throw io::InputError(dir, 0, "", "cannot create the report directory: " + ec.message());
 }
 
 }  // namespace
@@ -210,7 +210,7 @@ Plot temperature_plot(const Recording& rec, const std::string& name, const std::
   for (const auto& c : kChannels)
     if (const Signal* s = rec.find(c.signal)) p.series.push_back(series_of(t, *s, c.label));
   if (p.series.empty())
-    throw InputError(source, 0, "",
+    throw io::InputError(source, 0, "",
                      "no temperature signals (temp_C, ir_temp_C, sump_temp_C, "
                      "interface_max_temp_C): the temperature plot needs at least one");
   return p;
@@ -302,7 +302,7 @@ Plot spectrogram_plot(const Recording& rec, const std::string& name, const std::
       f = kNaN;
     }
     if (!(f > 0 && f < 0.5 * fs))
-      throw InputError(source, 0, "", "no spectral peak in the torque to centre a spectrogram on");
+      throw io::InputError(source, 0, "", "no spectral peak in the torque to centre a spectrogram on");
   }
 
   // Frames of ~16 periods (a power of two, at most a quarter of the record); ~8 frames per
@@ -320,7 +320,7 @@ Plot spectrogram_plot(const Recording& rec, const std::string& name, const std::
   for (std::size_t k = 0; k < sg.frequency_Hz.size(); ++k)
     if (sg.frequency_Hz[k] >= f_lo && sg.frequency_Hz[k] <= f_hi) bins.push_back(k);
   if (bins.size() < 2 || sg.times_s.size() < 2)
-    throw InputError(source, 0, "",
+    throw io::InputError(source, 0, "",
                      "the record (" + std::to_string(n) + " samples) is too short for a spectrogram around " +
                          format("%.4g", f) + " Hz");
 
@@ -429,11 +429,11 @@ Series contour_series(const std::vector<double>& x, const std::vector<double>& y
 Plot stability_map_plot(const Recording& rec, const std::string& name, const std::string& source) {
   const dynamics::Map2D* m = rec.find_map("stability_map");
   if (!m)
-    throw InputError(source, 0, "",
+    throw io::InputError(source, 0, "",
                      "no /analysis/stability_map: it is written for rig scenarios (shudder run on a "
                      "scenario with type = \"rig\")");
   const dynamics::Map2D::Layer* margin = m->find("margin_per_s");
-  if (!margin) throw InputError(source, 0, "", "/analysis/stability_map has no margin_per_s layer");
+  if (!margin) throw io::InputError(source, 0, "", "/analysis/stability_map has no margin_per_s layer");
   const auto axis = [](const std::string& var, const std::string& units, const char* speeds,
                        const char* temps) {
     const std::string what = var == "speeds_rpm" ? speeds : var == "temps_C" ? temps : var;
@@ -486,25 +486,25 @@ Plot stability_map_plot(const Recording& rec, const std::string& name, const std
 
 // ---- sweep -------------------------------------------------------------------------------
 
-Plot sweep_plot(const SweepTable& table, const std::string& name, const std::string& source) {
+Plot sweep_plot(const io::SweepTable& table, const std::string& name, const std::string& source) {
   static const std::vector<std::string> kResults = {"predicted_stable",       "predicted_margin_per_s",
                                                     "predicted_frequency_Hz", "simulated_frequency_Hz",
                                                     "amplitude_Nm",           "onset_time_s"};
   // Swept keys: the numeric columns before the results.
-  std::vector<const SweepColumn*> keys;
+  std::vector<const io::SweepColumn*> keys;
   for (const auto& c : table.columns) {
     if (std::find(kResults.begin(), kResults.end(), c.name) != kResults.end()) break;
     keys.push_back(&c);
   }
-  if (keys.empty()) throw InputError(source, 0, "", "/cases has no swept-key column before the results");
-  const SweepColumn& key = *keys.front();
+  if (keys.empty()) throw io::InputError(source, 0, "", "/cases has no swept-key column before the results");
+  const io::SweepColumn& key = *keys.front();
   const std::size_t n = key.values.size();
-  if (n == 0) throw InputError(source, 0, "", "/cases is empty: the sweep has no cases");
+  if (n == 0) throw io::InputError(source, 0, "", "/cases is empty: the sweep has no cases");
   const auto column = [&](const std::string& c) -> std::vector<double> {
-    const SweepColumn* col = table.find(c);
+    const io::SweepColumn* col = table.find(c);
     if (!col) return std::vector<double>(n, kNaN);
     if (col->values.size() != n)
-      throw InputError(source, 0, "", "/cases/" + c + " has " + std::to_string(col->values.size()) +
+      throw io::InputError(source, 0, "", "/cases/" + c + " has " + std::to_string(col->values.size()) +
                                           " rows, " + key.name + " has " + std::to_string(n));
     return col->values;
   };
@@ -616,42 +616,42 @@ void plot_file(const std::string& h5_path, PlotKind kind, const std::string& out
   const std::string fallback = fs::path(h5_path).stem().string();
   const std::string file = fs::path(h5_path).filename().string();
   if (kind == PlotKind::kSweep) {
-    SweepTable table;
+    io::SweepTable table;
     try {
-      table = read_sweep_table(h5_path);
-    } catch (const InputError&) {
+      table = io::read_sweep_table(h5_path);
+    } catch (const io::InputError&) {
       // A readable run file gets a pointed message; anything else keeps the reader's own.
       bool run = false;
       try {
-        (void)read_run_hdf5(h5_path);
+        (void)io::read_run_hdf5(h5_path);
         run = true;
-      } catch (const InputError&) {
+      } catch (const io::InputError&) {
         run = false;
       }
       if (!run) throw;
-      throw InputError(h5_path, 0, "",
+      throw io::InputError(h5_path, 0, "",
                        "no /cases table: a run file; --what sweep needs a file written by `shudder sweep`");
     }
-    const std::string name = scenario_name(read_run_attribute(h5_path, "scenario"), fallback);
+    const std::string name = scenario_name(io::read_run_attribute(h5_path, "scenario"), fallback);
     write_plot(out_path, sweep_plot(table, name, h5_path));
     return;
   }
   Recording rec;
   try {
-    rec = read_run_hdf5(h5_path);
-  } catch (const InputError&) {
+    rec = io::read_run_hdf5(h5_path);
+  } catch (const io::InputError&) {
     bool sweep = false;
     try {
-      (void)read_sweep_table(h5_path);
+      (void)io::read_sweep_table(h5_path);
       sweep = true;
-    } catch (const InputError&) {
+    } catch (const io::InputError&) {
       sweep = false;
     }
     if (!sweep) throw;
-    throw InputError(h5_path, 0, "",
+    throw io::InputError(h5_path, 0, "",
                      "no /signals: a sweep file; use --what sweep, or plot one case's run file");
   }
-  const std::string name = scenario_name(read_run_attribute(h5_path, "scenario"), fallback);
+  const std::string name = scenario_name(io::read_run_attribute(h5_path, "scenario"), fallback);
   write_plot(out_path, run_plot(kind, rec, name, h5_path));
 }
 
@@ -660,7 +660,7 @@ Report write_run_report(const std::string& dir, const Recording& rec, const std:
   make_report_dir(dir);
   Report report;
   const auto path = [&](const char* f) { return (fs::path(dir) / f).string(); };
-  write_text_file_atomically(path("summary.txt"), summary);
+  io::write_text_file_atomically(path("summary.txt"), summary);
   report.files.push_back(path("summary.txt"));
   struct Item { PlotKind kind; const char* file; bool wanted; };
   // A driveline run has no torque cell: its coupling takes the torque plot's place.
@@ -676,7 +676,7 @@ Report write_run_report(const std::string& dir, const Recording& rec, const std:
     Plot plot;
     try {
       plot = run_plot(item.kind, rec, name, "the run");
-    } catch (const InputError& e) {
+    } catch (const io::InputError& e) {
       report.skipped.push_back(std::string(item.file) + ": " + e.what());
       continue;
     }
@@ -686,14 +686,14 @@ Report write_run_report(const std::string& dir, const Recording& rec, const std:
   return report;
 }
 
-Report write_sweep_report(const std::string& dir, const SweepTable& table, const std::string& name,
+Report write_sweep_report(const std::string& dir, const io::SweepTable& table, const std::string& name,
                           const std::string& summary) {
   make_report_dir(dir);
   Report report;
   report.files = {(fs::path(dir) / "summary.txt").string(), (fs::path(dir) / "sweep.png").string()};
-  write_text_file_atomically(report.files[0], summary);
+  io::write_text_file_atomically(report.files[0], summary);
   write_plot(report.files[1], sweep_plot(table, name, "the sweep"));
   return report;
 }
 
-}  // namespace shudder::io
+}  // namespace shudder::report

@@ -1,4 +1,4 @@
-#include "app/summary.hpp"
+#include "report/run_summary.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +12,7 @@
 #include "core/overloaded.hpp"
 #include "dynamics/signal_names.hpp"
 
-namespace shudder::app {
+namespace shudder::report {
 
 double signal_at(const dynamics::Recording& rec, std::string_view name, double t) {
   const auto* time = rec.find(dynamics::signal_names::kTime);
@@ -144,4 +144,4 @@ void print_run_summary(std::ostream& os, const io::Scenario& sc, const dynamics:
              sc.model);
 }
 
-}  // namespace shudder::app
+}  // namespace shudder::report
