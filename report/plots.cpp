@@ -14,6 +14,7 @@
 
 #include "analysis/shudder_detection.hpp"
 #include "analysis/spectrum.hpp"
+#include "rig_models/recording_detection.hpp"
 #include "io/atomic_file.hpp"
 #include "io/hdf5_run.hpp"
 #include "io/input_error.hpp"
@@ -37,12 +38,12 @@ std::string format(const char* fmt, double a) {
 /// "°C" for the files' "degC", "N m" as is, ...: the unit as printed on an axis.
 std::string display_units(const std::string& units) { return units == "degC" ? "°C" : units; }
 
-const Signal& require_signal(const Recording& rec, const char* name, const std::string& source,
+const Signal& require_signal(const Recording& rec, std::string_view name, const std::string& source,
                              const std::string& plot) {
   const Signal* s = rec.find(name);
   if (!s || s->values.empty())
     throw io::InputError(source, 0, "",
-                     std::string("no /signals/") + name + ": the " + plot + " plot needs it");
+                     "no /signals/" + std::string(name) + ": the " + plot + " plot needs it");
   return *s;
 }
 
@@ -73,23 +74,13 @@ bool has_finite(const Series& s) {
   return false;
 }
 
-/// The shudder detector on a recording: slip from slip_rpm (rig) or speed_rpm (prescribed
-/// slip: the speed is the slip); nothing if the record cannot be analysed.
+/// The shudder detector on a recording, with the channels and band its run was judged on
+/// (rig_models/recording_detection.hpp); nothing if the record cannot be analysed.
 std::optional<analysis::ShudderResult> detect(const Recording& rec) {
-  const Signal* t = rec.find("time_s");
-  const Signal* torque = rec.find("torque_Nm");
-  const Signal* slip = rec.find("slip_rpm");
-  if (!slip) slip = rec.find("speed_rpm");
-  if (!t || !torque || !slip) return std::nullopt;
-  analysis::DetectionInput in;
-  in.time_s = t->values;
-  in.torque_Nm = torque->values;
-  in.slip_rpm = slip->values;
-  if (const Signal* s = rec.find("stuck")) in.stuck = s->values;
-  if (const Signal* s = rec.find("interface_mean_temp_C")) in.interface_temp_C = s->values;
-  if (const Signal* s = rec.find("normal_force_N")) in.normal_force_N = s->values;
+  const auto detection = rig_models::recording_detection(rec);
+  if (!detection) return std::nullopt;
   try {
-    return analysis::detect_shudder(in);
+    return rig_models::judge_recording(*detection);
   } catch (const std::invalid_argument&) {
     return std::nullopt;
   }
@@ -220,7 +211,9 @@ Plot temperature_plot(const Recording& rec, const std::string& name, const std::
 
 Plot spectrum_plot(const Recording& rec, const std::string& name, const std::string& source) {
   const Signal& t = require_signal(rec, "time_s", source, "spectrum");
-  const Signal& torque = require_signal(rec, "torque_Nm", source, "spectrum");
+  // The torque the run was judged on: the torque cell, or a driveline's coupling.
+  const std::string_view torque_name = rig_models::judged_torque_signal(rec);
+  const Signal& torque = require_signal(rec, torque_name, source, "spectrum");
   const double fs = sample_rate_Hz(t, 64, source, "spectrum");
 
   // Amplitude spectrum of the torque less its mean, Hann window over the whole record.
@@ -246,7 +239,7 @@ Plot spectrum_plot(const Recording& rec, const std::string& name, const std::str
   p.x_min = 0.0;
   p.x_max = f_max;
   Series s;
-  s.label = "torque_Nm less its mean";
+  s.label = std::string(torque_name) + " less its mean";
   for (std::size_t k = 0; k < sp.frequency_Hz.size() && sp.frequency_Hz[k] <= f_max; ++k) {
     s.x.push_back(sp.frequency_Hz[k]);
     s.y.push_back(sp.amplitude[k] > 0 ? sp.amplitude[k] : kNaN);  // log axis: no zeros
@@ -283,7 +276,7 @@ Plot spectrum_plot(const Recording& rec, const std::string& name, const std::str
 
 Plot spectrogram_plot(const Recording& rec, const std::string& name, const std::string& source) {
   const Signal& t = require_signal(rec, "time_s", source, "spectrogram");
-  const Signal& torque = require_signal(rec, "torque_Nm", source, "spectrogram");
+  const Signal& torque = require_signal(rec, rig_models::judged_torque_signal(rec), source, "spectrogram");
   const double fs = sample_rate_Hz(t, 256, source, "spectrogram");
   const std::size_t n = t.values.size();
 

@@ -12,6 +12,7 @@
 #include "rig_models/channel_recorder.hpp"
 #include "rig_models/energy_scalars.hpp"
 #include "rig_models/multirate_clutch.hpp"
+#include "rig_models/recording_detection.hpp"
 
 namespace shudder::rig_models {
 
@@ -24,28 +25,6 @@ void require_positive(double v, const char* what) {
 
 double pack_torque_per_newton(const DrivelineParams& p, const clutch::WetClutch& clutch) {
   return clutch.params().sliding_interfaces * p.nominal_friction * clutch.mean_radius_m();
-}
-
-// Half peak-to-peak of x minus its centred one-period moving mean, over the last
-// max(2 periods, a tenth) of the record (uniform sampling).
-double final_oscillation_amplitude_Nm(const std::vector<double>& t, const std::vector<double>& x, double period_s) {
-  const std::size_t n = t.size();
-  if (n < 4) return 0.0;
-  const double dt = (t.back() - t.front()) / static_cast<double>(n - 1);
-  const std::size_t half = std::max<std::size_t>(1, static_cast<std::size_t>(0.5 * period_s / dt));
-  const double span_s = std::max(2.0 * period_s, 0.1 * (t.back() - t.front()));
-  const std::size_t from = n - std::min(n, static_cast<std::size_t>(span_s / dt) + half);
-  double lo = 0, hi = 0;
-  bool any = false;
-  for (std::size_t i = std::max(from, half); i + half < n; ++i) {
-    double mean = 0;
-    for (std::size_t j = i - half; j <= i + half; ++j) mean += x[j];
-    const double r = x[i] - mean / static_cast<double>(2 * half + 1);
-    lo = any ? std::min(lo, r) : r;
-    hi = any ? std::max(hi, r) : r;
-    any = true;
-  }
-  return any ? 0.5 * (hi - lo) : 0.0;
 }
 
 }  // namespace
@@ -238,29 +217,15 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
       break;
     }
   }
-  // Judder or stick-slip of the coupling, judged on its torque and slip as on the rig
-  // (analysis/shudder_detection.hpp), from 2 Hz: the driveline's modes start at a few Hz.
-  analysis::DetectionSettings ds;
-  ds.min_frequency_Hz = 2.0;
-  const auto& time = rec.find(sn::kTime)->values;
-  const auto& coupling_torque = rec.find(sn::kCouplingTorque)->values;
+  // Judder or stick-slip of the coupling, judged on its torque and slip as on the rig, with the
+  // channels and band every reader of this recording uses (rig_models/recording_detection.hpp).
+  const RecordingDetection detection = *recording_detection(rec);
   analysis::ShudderResult judder;
   try {
-    judder = analysis::detect_shudder(
-        analysis::DetectionInput{time, coupling_torque, rec.find(sn::kCouplingSlip)->values,
-                                 rec.find(sn::kStuck)->values, rec.find(sn::kInterfaceMeanTemp)->values,
-                                 rec.find(sn::kClampForce)->values},
-        ds);
+    judder = judge_recording(detection);
   } catch (const std::invalid_argument&) {
     judder.verdict = analysis::Verdict::kNone;  // too short a record to judge (< 64 samples)
     judder.frequency_Hz = judder.amplitude_Nm = std::numeric_limits<double>::quiet_NaN();
-  }
-  // A ringing that dies out is the driveline answering the manoeuvre (a torque step rings the
-  // shuffle mode), not judder: an oscillation counts only if it still has half its amplitude
-  // over the record's last two periods (or last tenth, if longer).
-  if (judder.verdict != analysis::Verdict::kNone && std::isfinite(judder.frequency_Hz) && judder.frequency_Hz > 0) {
-    const double end_amplitude = final_oscillation_amplitude_Nm(time, coupling_torque, 1.0 / judder.frequency_Hz);
-    if (end_amplitude < 0.5 * judder.amplitude_Nm) judder.verdict = analysis::Verdict::kNone;
   }
   rec.scalars = {
       {"coupling_verdict_code", "1", static_cast<double>(judder.verdict)},
