@@ -1,5 +1,7 @@
 #include "report/diagnosis_narrative.hpp"
 
+#include "report/text_format.hpp"
+
 #include <cstdio>
 #include <sstream>
 #include <utility>
@@ -9,11 +11,7 @@ namespace shudder::report {
 
 namespace {
 
-std::string fmt(double v, const char* f = "%.3g") {
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
+std::string fmt(double v, const char* f = "%.3g") { return number(v, f); }
 
 }  // namespace
 

@@ -1,6 +1,8 @@
 // Plot builders for `shudder plot` and the report directories; see plots.hpp and docs/plots.md.
 #include "report/plots.hpp"
 
+#include "report/text_format.hpp"
+
 #include <toml++/toml.h>
 
 #include <algorithm>
@@ -29,11 +31,7 @@ using dynamics::Signal;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-std::string format(const char* fmt, double a) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, fmt, a);
-  return buf;
-}
+std::string format(const char* fmt, double a) { return number(a, fmt); }
 
 /// "°C" for the files' "degC", "N m" as is, ...: the unit as printed on an axis.
 std::string display_units(const std::string& units) { return units == "degC" ? "°C" : units; }
