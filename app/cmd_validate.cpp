@@ -20,11 +20,11 @@
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
 #include "report/run_summary.hpp"
-#include "core/overloaded.hpp"
 #include "core/units.hpp"
 #include "io/atomic_file.hpp"
 #include "report/gnuplot.hpp"
 #include "io/input_error.hpp"
+#include "io/kind_refusal.hpp"
 #include "io/scenario.hpp"
 #include "io/validation_targets.hpp"
 #include "rig_models/model.hpp"
@@ -40,12 +40,6 @@ struct Run {
   rig_models::PrescribedSlipModel model;  // Paper G's runs are prescribed slip
   dynamics::Recording rec;
 };
-
-[[noreturn]] void refuse_kind(const std::string& path, ModelKind kind) {
-  throw io::InputError(path, 0, "scenario.type",
-                       std::string("is ").append(model_kind_name(kind)).append(
-                           "; validation compares prescribed_slip runs with the papers"));
-}
 
 struct Row {
   std::string case_label, quantity, target, result, pass;  // pass: "yes", "NO" or "–" (info)
@@ -381,15 +375,8 @@ int validate_command(const ValidateOptions& opt) {
       r.label = c.label;
       r.sc = io::load_scenario((fs::path(opt.scenarios_dir) / (c.scenario + ".toml")).string());
       for (const auto& w : r.sc.warnings) std::cerr << "shudder: warning: " << w << "\n";
-      r.model = std::visit(
-          overloaded{[](const rig_models::PrescribedSlipModel& m) { return m; },
-                     [&](const rig_models::RigModel& m) -> rig_models::PrescribedSlipModel {
-                       refuse_kind(r.sc.path, rig_models::kind(m));
-                     },
-                     [&](const rig_models::DrivelineModel& m) -> rig_models::PrescribedSlipModel {
-                       refuse_kind(r.sc.path, rig_models::kind(m));
-                     }},
-          r.sc.model);
+      r.model = io::visit_kind(r.sc.path, "scenario.type", r.sc.model,
+                               [](const auto& m) { return rig_models::validation_model(m); });
       r.rec = rig_models::simulate(r.model, r.sc.make_clutch());
       runs.push_back(std::move(r));
     }
