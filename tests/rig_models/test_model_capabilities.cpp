@@ -10,6 +10,7 @@
 #include <string>
 #include <utility>
 #include <variant>
+#include <vector>
 
 #include "io/diagnosis_inputs.hpp"
 #include "io/input_error.hpp"
@@ -22,22 +23,55 @@ namespace {
 
 using rig_models::Model;
 
+// One concept per capability, with the result type the commands rely on.
+struct Args {
+  const clutch::WetClutch& clutch;
+  dynamics::Recording& rec;
+  const rig_models::StickTimeFriction& stick_time;
+};
 template <class M>
-concept HasEveryCapability = requires(const M& m, const clutch::WetClutch& clutch, dynamics::Recording& rec,
-                                      const rig_models::StickTimeFriction& stick_time) {
+concept HasKind = requires(const M& m) {
   { rig_models::kind(m) } -> std::same_as<ModelKind>;
   { m.settings.duration_s } -> std::convertible_to<double>;
-  { rig_models::simulate(m, clutch) } -> std::same_as<dynamics::Recording>;
-  { rig_models::add_run_analysis(m, clutch, 40.0, rec) } -> std::same_as<std::vector<std::string>>;
+};
+template <class M>
+concept Simulates = requires(const M& m, Args a) {
+  { rig_models::simulate(m, a.clutch) } -> std::same_as<dynamics::Recording>;
+};
+template <class M>
+concept HasRunAnalysis = requires(const M& m, Args a) {
+  { rig_models::add_run_analysis(m, a.clutch, 40.0, a.rec) } -> std::same_as<std::vector<std::string>>;
   { rig_models::has_rig_plots(m) } -> std::same_as<bool>;
+};
+template <class M>
+concept SaysMeasuredRunExport = requires(const M& m) {
   { rig_models::require_measured_run_export(m) } -> std::same_as<void>;
+};
+template <class M>
+concept SaysSweep = requires(const M& m, Args a) {
   { rig_models::require_sweep(m) } -> std::same_as<void>;
-  { rig_models::evaluate_case(m, clutch, rec) } -> std::same_as<rig_models::CaseOutcome>;
-  { rig_models::replay_model(m, stick_time) } -> std::same_as<rig_models::ReplayModel>;
+  { rig_models::evaluate_case(m, a.clutch, a.rec) } -> std::same_as<rig_models::CaseOutcome>;
+};
+template <class M>
+concept SaysReplay = requires(const M& m, Args a) {
+  { rig_models::replay_model(m, a.stick_time) } -> std::same_as<rig_models::ReplayModel>;
+};
+template <class M>
+concept SaysModes = requires(const M& m) {
   { rig_models::modal_rig(m) } -> std::same_as<const rig_models::RigModel&>;
+};
+template <class M>
+concept SaysScreeningRig = requires(const M& m) {
   { rig_models::screening_rig(m) } -> std::same_as<const rig_models::RigParams&>;
+};
+template <class M>
+concept SaysValidation = requires(const M& m) {
   { rig_models::validation_model(m) } -> std::same_as<const rig_models::PrescribedSlipModel&>;
 };
+template <class M>
+concept HasEveryCapability = HasKind<M> && Simulates<M> && HasRunAnalysis<M> && SaysMeasuredRunExport<M> &&
+                             SaysSweep<M> && SaysReplay<M> && SaysModes<M> && SaysScreeningRig<M> &&
+                             SaysValidation<M>;
 
 template <std::size_t... I>
 constexpr bool every_alternative_has_every_capability(std::index_sequence<I...>) {
@@ -45,6 +79,16 @@ constexpr bool every_alternative_has_every_capability(std::index_sequence<I...>)
 }
 static_assert(every_alternative_has_every_capability(std::make_index_sequence<std::variant_size_v<Model>>{}),
               "a model kind lacks a capability overload (rig_models/model.hpp, docs/architecture_kinds.md)");
+
+// A type that is not a kind has none of the capabilities: no catch-all template or default
+// overload accepts it, so each check above can fail (a new alternative without its overloads).
+struct NotAKind {
+  rig_models::PrescribedSlipSettings settings;
+};
+static_assert(!HasKind<NotAKind>);  // it has settings.duration_s, but no kind()
+static_assert(!Simulates<NotAKind> && !HasRunAnalysis<NotAKind> && !SaysMeasuredRunExport<NotAKind> &&
+              !SaysSweep<NotAKind> && !SaysReplay<NotAKind> && !SaysModes<NotAKind> && !SaysScreeningRig<NotAKind> &&
+              !SaysValidation<NotAKind>);
 
 const std::string kPrescribed = std::string(SHUDDER_SOURCE_DIR) + "/scenarios/paper_g_case1_25kN.toml";
 const std::string kRig = std::string(SHUDDER_SOURCE_DIR) + "/scenarios/rig_case1_25kN_378Hz.toml";
