@@ -8,7 +8,6 @@
 #include "analysis/diagnosis.hpp"
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
-#include "core/overloaded.hpp"
 #include "io/diagnosis_inputs.hpp"
 #include "io/diagnosis_json.hpp"
 #include "io/measured_run.hpp"
@@ -22,13 +21,7 @@ namespace shudder::app {
 int diagnose_command(const DiagnoseOptions& opt) {
   return guarded(opt.model, "diagnosis", [&]() -> int {
     const io::Scenario scenario = io::load_scenario(opt.model);
-    std::visit(overloaded{[](const rig_models::PrescribedSlipModel&) {}, [](const rig_models::RigModel&) {},
-                          [&](const rig_models::DrivelineModel&) {
-                            throw io::InputError(opt.model, 0, "scenario.type",
-                                                 "measured runs are rig runs; diagnose needs a prescribed_slip "
-                                                 "or rig model");
-                          }},
-               scenario.model);
+    const auto model = io::replay_model(scenario);  // refuses kinds measured runs cannot come from
     for (const auto& w : scenario.warnings) std::cerr << "shudder: warning: " << w << "\n";
     scenario.make_clutch();  // fails early, naming the scenario, if the clutch is inconsistent
     std::vector<io::MeasuredRun> runs;
@@ -36,7 +29,6 @@ int diagnose_command(const DiagnoseOptions& opt) {
     io::DiagnosisData data = io::diagnosis_data(runs);
     for (const auto& w : data.warnings) std::cerr << "shudder: warning: " << w << "\n";
 
-    const auto model = io::replay_model(scenario);
     std::vector<std::string> skipped;
     const auto candidates = rig_models::replay_candidates(model, &skipped);
     analysis::DiagnosisOptions o;

@@ -9,9 +9,9 @@
 
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
-#include "core/overloaded.hpp"
 #include "core/units.hpp"
 #include "io/input_error.hpp"
+#include "io/kind_refusal.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/lsctr_rig.hpp"
 
@@ -59,15 +59,10 @@ int modes_command(const ModesOptions& opt) {
   return guarded(opt.scenario, "modal analysis", [&]() -> int {
     const io::Scenario sc = io::load_scenario(opt.scenario);
     for (const auto& w : sc.warnings) std::cerr << "shudder: warning: " << w << "\n";
-    const auto no_network = [&](ModelKind kind) {
-      throw io::InputError(opt.scenario, 0, "scenario.type",
-                           std::string("\"").append(model_kind_name(kind)).append(
-                               "\" has no torsional network; modes needs type = \"rig\""));
-    };
-    std::visit(overloaded{[&](const rig_models::PrescribedSlipModel& m) { no_network(rig_models::kind(m)); },
-                          [&](const rig_models::RigModel& m) { print_rig_modes(sc, m); },
-                          [&](const rig_models::DrivelineModel& m) { no_network(rig_models::kind(m)); }},
-               sc.model);
+    const rig_models::RigModel& rig = io::visit_kind(
+        opt.scenario, "scenario.type", sc.model,
+        [](const auto& m) -> const rig_models::RigModel& { return rig_models::modal_rig(m); });
+    print_rig_modes(sc, rig);
     return 0;
   });
 }

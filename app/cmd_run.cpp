@@ -8,20 +8,21 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 #include <variant>
+#include <vector>
 
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
 #include "report/run_summary.hpp"
-#include "core/overloaded.hpp"
 #include "core/units.hpp"
 #include "io/hdf5_run.hpp"
 #include "io/input_error.hpp"
+#include "io/kind_refusal.hpp"
 #include "io/measurement_csv.hpp"
 #include "report/plots.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/model.hpp"
-#include "rig_models/run_stability_map.hpp"
 
 namespace shudder::app {
 
@@ -32,30 +33,17 @@ int run_command(const RunOptions& opt) {
     const clutch::WetClutch clutch = scenario.make_clutch();
 
     const auto t0 = std::chrono::steady_clock::now();
-    dynamics::Recording rec = std::visit(
-        overloaded{[&](const rig_models::PrescribedSlipModel& m) { return rig_models::simulate(m, clutch); },
-                   [&](const rig_models::RigModel& m) { return rig_models::simulate(m, clutch); },
-                   [&](const rig_models::DrivelineModel& m) {
-                     if (!opt.measurement.empty())
-                       throw io::InputError(opt.scenario, 0, "--measurement",
-                                            "a measured run is a rig log; give a prescribed_slip or rig scenario");
-                     return rig_models::simulate(m, clutch);
-                   }},
-        scenario.model);
+    if (!opt.measurement.empty())
+      io::visit_kind(opt.scenario, "--measurement", scenario.model,
+                     [](const auto& m) { rig_models::require_measured_run_export(m); });
+    dynamics::Recording rec =
+        std::visit([&](const auto& m) { return rig_models::simulate(m, clutch); }, scenario.model);
     const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    // Rig runs carry their stability map (/analysis/stability_map) for `shudder plot`; a map
-    // that cannot be made (e.g. a cycle that never loads the clutch) costs the run nothing.
-    std::visit(overloaded{[](const rig_models::PrescribedSlipModel&) {},
-                          [&](const rig_models::RigModel& m) {
-                            try {
-                              rec.maps.push_back(rig_models::run_stability_map(m.params, clutch, m.cycle,
-                                                                               scenario.clutch.start_temp_C));
-                            } catch (const std::invalid_argument& e) {
-                              std::cerr << "shudder: warning: no stability map stored: " << e.what() << "\n";
-                            }
-                          },
-                          [](const rig_models::DrivelineModel&) {}},
-               scenario.model);
+    // The kind's extra analysis (the rig's stability map for `shudder plot`) goes into the recording.
+    const std::vector<std::string> analysis_warnings = std::visit(
+        [&](const auto& m) { return rig_models::add_run_analysis(m, clutch, scenario.clutch.start_temp_C, rec); },
+        scenario.model);
+    for (const auto& w : analysis_warnings) std::cerr << "shudder: warning: " << w << "\n";
 
     const std::string out = opt.output.empty() ? scenario.name + ".h5" : opt.output;
     io::write_run_hdf5(out, rec, scenario.text);
@@ -84,7 +72,8 @@ int run_command(const RunOptions& opt) {
       try {
         const report::Report report =
             report::write_run_report(opt.report, rec, scenario.name, summary.str(),
-                                 scenario.kind() == ModelKind::kRig);
+                                 std::visit([](const auto& m) { return rig_models::has_rig_plots(m); },
+                                            scenario.model));
         std::cout << "Report: " << opt.report << " (" << report.files.size() << " files)\n";
         for (const auto& s : report.skipped) std::cerr << "shudder: warning: report: " << s << "\n";
       } catch (const io::InputError&) {

@@ -13,9 +13,9 @@
 
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
-#include "core/overloaded.hpp"
 #include "io/fluid_loader.hpp"
 #include "io/input_error.hpp"
+#include "io/kind_refusal.hpp"
 #include "io/scenario.hpp"
 #include "io/screening_json.hpp"
 #include "rig_models/fluid_screening.hpp"
@@ -190,20 +190,13 @@ int screen_command(const ScreenOptions& opt) {
     if (!opt.rig.empty()) {
       const io::Scenario sc = io::load_scenario(opt.rig);
       for (const auto& w : sc.warnings) std::cerr << "shudder: warning: " << w << "\n";
-      const auto not_a_rig = [&](ModelKind kind) {
-        throw io::InputError(opt.rig, 0, "scenario.type",
-                             std::string("\"").append(model_kind_name(kind)).append(
-                                 "\" is not a rig; --rig needs a scenario with type = \"rig\""));
-      };
-      std::visit(overloaded{[&](const rig_models::PrescribedSlipModel& m) { not_a_rig(rig_models::kind(m)); },
-                            [&](const rig_models::RigModel& m) {
-                              rig_models::ScreeningRig rig;
-                              rig.params = m.params;
-                              rig.clutch = sc.clutch;
-                              so.rigs.push_back(rig);
-                            },
-                            [&](const rig_models::DrivelineModel& m) { not_a_rig(rig_models::kind(m)); }},
-                 sc.model);
+      rig_models::ScreeningRig rig;
+      rig.params = io::visit_kind(opt.rig, "scenario.type", sc.model,
+                                  [](const auto& m) -> const rig_models::RigParams& {
+                                    return rig_models::screening_rig(m);
+                                  });
+      rig.clutch = sc.clutch;
+      so.rigs.push_back(rig);
     }
 
     const rig_models::ScreeningReport rep = rig_models::screen_fluid(fluid, so);

@@ -20,12 +20,12 @@
 #include "analysis/shudder_detection.hpp"
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
-#include "core/overloaded.hpp"
 #include "core/parallel_for.hpp"
 #include "dynamics/signal_names.hpp"
 #include "io/hdf5_run.hpp"
 #include "io/hdf5_sweep.hpp"
 #include "io/input_error.hpp"
+#include "io/kind_refusal.hpp"
 #include "report/plots.hpp"
 #include "io/scenario.hpp"
 #include "io/sweep_spec.hpp"
@@ -43,22 +43,13 @@ constexpr std::string_view kKeptSignals[] = {sn::kTime, sn::kSpeed, sn::kSlip, s
 // The verdict as the number the part files store (analysis::kVerdicts' order).
 double verdict_code(const std::string& v) { return static_cast<double>(analysis::verdict_from_string(v)); }
 
-[[noreturn]] void refuse_driveline(const std::string& path) {
-  throw io::InputError(path, 0, "scenario.type",
-                       "sweeps judge rig and prescribed_slip cases (stability, shudder); a driveline "
-                       "scenario runs with `shudder run`");
-}
-
 // Runs one case and writes its part file (recording + outcome as summary scalars).
 void run_case(const std::string& text, const std::string& path, const std::string& part) {
   const io::Scenario sc = io::load_scenario_text(text, path);
   const clutch::WetClutch clutch = sc.make_clutch();
   dynamics::Recording rec;
-  const rig_models::CaseOutcome o = std::visit(
-      overloaded{[&](const rig_models::PrescribedSlipModel& m) { return rig_models::evaluate_case(m, clutch, rec); },
-                 [&](const rig_models::RigModel& m) { return rig_models::evaluate_case(m, clutch, rec); },
-                 [&](const rig_models::DrivelineModel&) -> rig_models::CaseOutcome { refuse_driveline(path); }},
-      sc.model);
+  const rig_models::CaseOutcome o = io::visit_kind(
+      path, "scenario.type", sc.model, [&](const auto& m) { return rig_models::evaluate_case(m, clutch, rec); });
   dynamics::Recording kept;
   for (const std::string_view name : kKeptSignals)
     if (const auto* s = rec.find(name)) kept.signals.push_back(*s);
@@ -87,9 +78,7 @@ void progress(std::size_t done, std::size_t total, double elapsed_s) {
 int sweep_command(const SweepOptions& opt) {
   return guarded(opt.scenario, "sweep", [&]() -> int {
     const io::Scenario base = io::load_scenario(opt.scenario);
-    std::visit(overloaded{[](const rig_models::PrescribedSlipModel&) {}, [](const rig_models::RigModel&) {},
-                          [&](const rig_models::DrivelineModel&) { refuse_driveline(opt.scenario); }},
-               base.model);
+    io::visit_kind(opt.scenario, "scenario.type", base.model, [](const auto& m) { rig_models::require_sweep(m); });
     for (const auto& w : base.warnings) std::cerr << "shudder: warning: " << w << "\n";
     if (opt.sets.empty()) throw io::InputError("--set", 0, "", "give at least one --set KEY=START:STOP:STEP");
     std::vector<io::SweepAxis> axes;

@@ -6,13 +6,12 @@
 #include <iostream>
 #include <stdexcept>
 #include <string>
-#include <variant>
 #include <vector>
 
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
-#include "core/overloaded.hpp"
 #include "io/input_error.hpp"
+#include "io/kind_refusal.hpp"
 #include "io/scenario.hpp"
 #include "io/validation_targets.hpp"
 #include "report/validation_report.hpp"
@@ -24,12 +23,6 @@ namespace {
 namespace fs = std::filesystem;
 
 using Run = report::ValidationRun;
-
-[[noreturn]] void refuse_kind(const std::string& path, ModelKind kind) {
-  throw io::InputError(path, 0, "scenario.type",
-                       std::string("is ").append(model_kind_name(kind)).append(
-                           "; validation compares prescribed_slip runs with the papers"));
-}
 
 }  // namespace
 
@@ -49,15 +42,8 @@ int validate_command(const ValidateOptions& opt) {
       r.label = c.label;
       r.sc = io::load_scenario((fs::path(opt.scenarios_dir) / (c.scenario + ".toml")).string());
       for (const auto& w : r.sc.warnings) std::cerr << "shudder: warning: " << w << "\n";
-      r.model = std::visit(
-          overloaded{[](const rig_models::PrescribedSlipModel& m) { return m; },
-                     [&](const rig_models::RigModel& m) -> rig_models::PrescribedSlipModel {
-                       refuse_kind(r.sc.path, rig_models::kind(m));
-                     },
-                     [&](const rig_models::DrivelineModel& m) -> rig_models::PrescribedSlipModel {
-                       refuse_kind(r.sc.path, rig_models::kind(m));
-                     }},
-          r.sc.model);
+      r.model = io::visit_kind(r.sc.path, "scenario.type", r.sc.model,
+                               [](const auto& m) { return rig_models::validation_model(m); });
       r.rec = rig_models::simulate(r.model, r.sc.make_clutch());
       runs.push_back(std::move(r));
     }

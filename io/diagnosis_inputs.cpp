@@ -4,38 +4,18 @@
 #include <filesystem>
 #include <variant>
 
-#include "core/overloaded.hpp"
 #include "dynamics/signal_names.hpp"
 #include "io/input_error.hpp"
+#include "io/kind_refusal.hpp"
 
 namespace shudder::io {
 
 rig_models::ReplayModel replay_model(const Scenario& s) {
-  rig_models::ReplayModel m;
+  rig_models::ReplayModel m = visit_kind(s.path, "scenario.type", s.model, [&](const auto& kind_model) {
+    return rig_models::replay_model(kind_model, s.stick_time);
+  });
   m.clutch = s.clutch;
   m.fluid = s.fluid;
-  std::visit(overloaded{[&](const rig_models::PrescribedSlipModel& ps) {
-                          m.rig = false;
-                          m.settings = ps.settings;
-                          // No rig to replay on; its stick-time friction still tells the
-                          // candidate list whether that effect is on.
-                          m.rig_params.stick_time = s.stick_time;
-                        },
-                        [&](const rig_models::RigModel& rig) {
-                          m.rig = true;
-                          m.settings.duration_s = rig.settings.duration_s;
-                          m.settings.thermal_step_s = rig.settings.thermal_step_s;
-                          m.settings.sample_rate_Hz = rig.settings.sample_rate_Hz;
-                          m.settings.snapshot_times_s = rig.settings.snapshot_times_s;
-                          m.settings.bearing_drag = rig.params.bearing_drag;
-                          m.rig_params = rig.params;
-                        },
-                        [&](const rig_models::DrivelineModel&) {
-                          throw InputError(s.path, 0, "scenario.type",
-                                           "measured runs are rig runs; diagnose needs a prescribed_slip or "
-                                           "rig model");
-                        }},
-             s.model);
   return m;
 }
 

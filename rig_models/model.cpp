@@ -1,42 +1,141 @@
 #include "rig_models/model.hpp"
 
-#include "core/overloaded.hpp"
+#include "rig_models/run_stability_map.hpp"
 
 namespace shudder::rig_models {
 
+namespace {
+
+// A refusal that names the kind, as the user wrote it in `type`: "\"driveline\" <rest>".
+[[noreturn]] void refuse_quoting_kind(ModelKind k, const char* rest) {
+  throw KindNotSupported(std::string("\"").append(model_kind_name(k)).append(rest));
+}
+
+constexpr const char* kNoMeasuredRun = "a measured run is a rig log; give a prescribed_slip or rig scenario";
+constexpr const char* kNoSweep =
+    "sweeps judge rig and prescribed_slip cases (stability, shudder); a driveline scenario runs with "
+    "`shudder run`";
+constexpr const char* kNoReplay = "measured runs are rig runs; diagnose needs a prescribed_slip or rig model";
+constexpr const char* kNoNetwork = "\" has no torsional network; modes needs type = \"rig\"";
+constexpr const char* kNotARig = "\" is not a rig; --rig needs a scenario with type = \"rig\"";
+
+[[noreturn]] void refuse_validation(ModelKind k) {
+  throw KindNotSupported(std::string("is ").append(model_kind_name(k)).append(
+      "; validation compares prescribed_slip runs with the papers"));
+}
+
+}  // namespace
+
 ModelKind kind(const Model& model) {
-  return std::visit(overloaded{[](const PrescribedSlipModel& m) { return kind(m); },
-                               [](const RigModel& m) { return kind(m); },
-                               [](const DrivelineModel& m) { return kind(m); }},
-                    model);
+  return std::visit([](const auto& m) { return kind(m); }, model);
 }
 
 double duration_s(const Model& model) {
-  return std::visit(overloaded{[](const PrescribedSlipModel& m) { return m.settings.duration_s; },
-                               [](const RigModel& m) { return m.settings.duration_s; },
-                               [](const DrivelineModel& m) { return m.settings.duration_s; }},
-                    model);
+  return std::visit([](const auto& m) { return m.settings.duration_s; }, model);
 }
+
+// ---- Prescribed slip --------------------------------------------------------------------------
 
 dynamics::Recording simulate(const PrescribedSlipModel& model, const clutch::WetClutch& clutch) {
   return run_prescribed_slip(clutch, model.cycle, model.settings);
 }
 
-dynamics::Recording simulate(const RigModel& model, const clutch::WetClutch& clutch) {
-  return run_rig(model.params, clutch, model.cycle, model.settings);
+std::vector<std::string> add_run_analysis(const PrescribedSlipModel&, const clutch::WetClutch&, double,
+                                          dynamics::Recording&) {
+  return {};
 }
 
-dynamics::Recording simulate(const DrivelineModel& model, const clutch::WetClutch& clutch) {
-  return run_driveline(model.params, clutch, model.manoeuvre, model.settings);
-}
+void require_measured_run_export(const PrescribedSlipModel&) {}
+
+void require_sweep(const PrescribedSlipModel&) {}
 
 CaseOutcome evaluate_case(const PrescribedSlipModel& model, const clutch::WetClutch& clutch,
                           dynamics::Recording& rec) {
   return evaluate_prescribed_case(clutch, model.cycle, model.settings, rec);
 }
 
+ReplayModel replay_model(const PrescribedSlipModel& model, const StickTimeFriction& stick_time) {
+  ReplayModel m;
+  m.rig = false;
+  m.settings = model.settings;
+  m.rig_params.stick_time = stick_time;
+  return m;
+}
+
+const RigModel& modal_rig(const PrescribedSlipModel& model) { refuse_quoting_kind(kind(model), kNoNetwork); }
+
+const RigParams& screening_rig(const PrescribedSlipModel& model) { refuse_quoting_kind(kind(model), kNotARig); }
+
+const PrescribedSlipModel& validation_model(const PrescribedSlipModel& model) { return model; }
+
+// ---- Rig ------------------------------------------------------------------------------------
+
+dynamics::Recording simulate(const RigModel& model, const clutch::WetClutch& clutch) {
+  return run_rig(model.params, clutch, model.cycle, model.settings);
+}
+
+std::vector<std::string> add_run_analysis(const RigModel& model, const clutch::WetClutch& clutch,
+                                          double start_temp_C, dynamics::Recording& rec) {
+  try {
+    rec.maps.push_back(run_stability_map(model.params, clutch, model.cycle, start_temp_C));
+  } catch (const std::invalid_argument& e) {
+    return {std::string("no stability map stored: ") + e.what()};
+  }
+  return {};
+}
+
+void require_measured_run_export(const RigModel&) {}
+
+void require_sweep(const RigModel&) {}
+
 CaseOutcome evaluate_case(const RigModel& model, const clutch::WetClutch& clutch, dynamics::Recording& rec) {
   return evaluate_rig_case(model.params, clutch, model.cycle, model.settings, rec);
 }
+
+// The rig carries its own stick-time friction in params; the scenario's copy is the same.
+ReplayModel replay_model(const RigModel& model, const StickTimeFriction&) {
+  ReplayModel m;
+  m.rig = true;
+  m.settings.duration_s = model.settings.duration_s;
+  m.settings.thermal_step_s = model.settings.thermal_step_s;
+  m.settings.sample_rate_Hz = model.settings.sample_rate_Hz;
+  m.settings.snapshot_times_s = model.settings.snapshot_times_s;
+  m.settings.bearing_drag = model.params.bearing_drag;
+  m.rig_params = model.params;
+  return m;
+}
+
+const RigModel& modal_rig(const RigModel& model) { return model; }
+
+const RigParams& screening_rig(const RigModel& model) { return model.params; }
+
+const PrescribedSlipModel& validation_model(const RigModel& model) { refuse_validation(kind(model)); }
+
+// ---- Driveline ------------------------------------------------------------------------------
+
+dynamics::Recording simulate(const DrivelineModel& model, const clutch::WetClutch& clutch) {
+  return run_driveline(model.params, clutch, model.manoeuvre, model.settings);
+}
+
+std::vector<std::string> add_run_analysis(const DrivelineModel&, const clutch::WetClutch&, double,
+                                          dynamics::Recording&) {
+  return {};
+}
+
+void require_measured_run_export(const DrivelineModel&) { throw KindNotSupported(kNoMeasuredRun); }
+
+void require_sweep(const DrivelineModel&) { throw KindNotSupported(kNoSweep); }
+
+CaseOutcome evaluate_case(const DrivelineModel&, const clutch::WetClutch&, dynamics::Recording&) {
+  throw KindNotSupported(kNoSweep);
+}
+
+ReplayModel replay_model(const DrivelineModel&, const StickTimeFriction&) { throw KindNotSupported(kNoReplay); }
+
+const RigModel& modal_rig(const DrivelineModel& model) { refuse_quoting_kind(kind(model), kNoNetwork); }
+
+const RigParams& screening_rig(const DrivelineModel& model) { refuse_quoting_kind(kind(model), kNotARig); }
+
+const PrescribedSlipModel& validation_model(const DrivelineModel& model) { refuse_validation(kind(model)); }
 
 }  // namespace shudder::rig_models

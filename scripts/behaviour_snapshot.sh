@@ -42,7 +42,7 @@ trap 'rm -rf "$work"' EXIT
 "$shudder" run scenarios/paper_g_case2_15kN_rig_heat.toml -o "$work/c2.h5" \
   --measurement "$work/c2_14.8kN.csv" --sample-rate 100 --noise --seed 3 > /dev/null
 "$shudder" diagnose scenarios/paper_g_case2_15kN.toml "$work/c2_14.8kN.csv" --json "$out/diag_case2.json" --jobs 2 \
-  | grep -v '^Time: ' > "$out/diag_case2.txt"
+  | grep -v '^Time: \|^JSON: ' > "$out/diag_case2.txt"
 for L in 10.4 25.3; do
   sed -e "s/normal_force_N = 14800.0/normal_force_N = ${L/./}00.0/" -e "s|\"fluids/|\"$root/scenarios/fluids/|" \
     scenarios/paper_g_case2_15kN_rig_heat.toml > "$work/rig_heat_$L.toml"
