@@ -1,6 +1,7 @@
 #pragma once
-// A run's recorded output: sampled signals, thermal-field snapshots, summary scalars and 2-D
-// maps (e.g. a stability map over slip speed x interface temperature).
+// A run's recorded output: sampled signals, thermal-field snapshots, summary scalars, 2-D
+// maps (e.g. a stability map over slip speed x interface temperature) and result blocks (e.g.
+// the shudder verdict).
 // Produced by the models (rig_models/), written by io/ (HDF5, CSV), read by analysis/.
 // Plain data, no behaviour beyond lookup.
 
@@ -65,6 +66,32 @@ struct Map2D {
   }
 };
 
+/// A named block of results that is neither a signal nor a map: scalars with units and text
+/// (e.g. the run's shudder verdict: its name, the channels judged). Written as the group
+/// /analysis/<name>/ (io/hdf5_run.hpp): each scalar a dataset with `units`, each text an
+/// attribute.
+struct ResultBlock {
+  struct Text {
+    std::string name;
+    std::string value;
+  };
+  std::string name;         // e.g. "verdict"
+  std::string description;  // one line: what the block is
+  std::vector<Text> texts;
+  std::vector<Scalar> scalars;
+
+  const Scalar* find_scalar(std::string_view scalar) const {
+    for (const auto& s : scalars)
+      if (s.name == scalar) return &s;
+    return nullptr;
+  }
+  const Text* find_text(std::string_view text) const {
+    for (const auto& t : texts)
+      if (t.name == text) return &t;
+    return nullptr;
+  }
+};
+
 struct Recording {
   std::vector<Signal> signals;            // equal lengths; `time_s` first
   std::vector<double> grid_r_m;           // (n_r) cell-centre radii of the thermal grid
@@ -72,6 +99,7 @@ struct Recording {
   std::vector<ThermalSnapshot> snapshots; // thermal field at chosen times
   std::vector<Scalar> scalars;            // summary values
   std::vector<Map2D> maps;                // 2-D results (e.g. "stability_map")
+  std::vector<ResultBlock> blocks;        // other results (e.g. "verdict")
 
   Signal& add_signal(std::string name, std::string units) {
     signals.push_back(Signal{std::move(name), std::move(units), {}});
@@ -90,6 +118,11 @@ struct Recording {
   const Map2D* find_map(std::string_view name) const {
     for (const auto& m : maps)
       if (m.name == name) return &m;
+    return nullptr;
+  }
+  const ResultBlock* find_block(std::string_view name) const {
+    for (const auto& b : blocks)
+      if (b.name == name) return &b;
     return nullptr;
   }
 };

@@ -113,6 +113,19 @@ void validate(const std::string& path, const Recording& rec) {
                                       std::to_string(m.x.size()) + " (" + m.x_name + ") x " +
                                       std::to_string(m.y.size()) + " (" + m.y_name + ")");
   }
+  // Result blocks share /analysis with the summary and the maps.
+  check_names(rec.blocks, "result block");
+  for (const auto& b : rec.blocks) {
+    const std::string where = "analysis/" + b.name;
+    if (b.name == "summary" || rec.find_map(b.name)) bad(where, "result block name is taken by the summary or a map");
+    std::set<std::string> datasets, texts{"description"};
+    for (const auto& sc : b.scalars)
+      if (sc.name.empty() || sc.name == "." || sc.name.find('/') != std::string::npos || !datasets.insert(sc.name).second)
+        bad(where, "scalar name '" + sc.name + "' must be non-empty, unique and contain no '/'");
+    for (const auto& t : b.texts)
+      if (t.name.empty() || !texts.insert(t.name).second)
+        bad(where, "text name '" + t.name + "' must be non-empty, unique and not 'description'");
+  }
   for (const auto& snap : rec.snapshots) {
     const auto& first = rec.snapshots.front().temp_C;
     if (snap.temp_C.rows() != first.rows() || snap.temp_C.cols() != first.cols())
@@ -167,6 +180,15 @@ void write_map(hid_t analysis, const dynamics::Map2D& m) {
   for (const auto& s : m.scalars) write_doubles(group, s.name, {}, &s.value, s.units);
 }
 
+// One result block as /analysis/<name>/: each scalar a dataset with `units`, each text and the
+// description a string attribute of the group.
+void write_block(hid_t analysis, const dynamics::ResultBlock& b) {
+  const Handle group = make_group(analysis, b.name);
+  write_string_attr(group, "description", b.description);
+  for (const auto& t : b.texts) write_string_attr(group, t.name, t.value);
+  for (const auto& sc : b.scalars) write_doubles(group, sc.name, {}, &sc.value, sc.units);
+}
+
 void write_file(const std::string& file_name, const Recording& rec, const std::string& scenario) {
   Handle file = own(H5Fcreate(file_name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
                     "create file '" + file_name + "'");
@@ -176,13 +198,14 @@ void write_file(const std::string& file_name, const Recording& rec, const std::s
     for (const auto& s : rec.signals)
       write_doubles(signals, s.name, {s.values.size()}, s.values.data(), s.units);
     write_thermal(file, rec);
-    // Summary scalars and maps.
-    if (!rec.scalars.empty() || !rec.maps.empty()) {
+    // Summary scalars, result blocks and maps.
+    if (!rec.scalars.empty() || !rec.blocks.empty() || !rec.maps.empty()) {
       const Handle analysis = make_group(file, "analysis");
       if (!rec.scalars.empty()) {
         const Handle summary = make_group(analysis, "summary");
         for (const auto& s : rec.scalars) write_doubles(summary, s.name, {}, &s.value, s.units);
       }
+      for (const auto& b : rec.blocks) write_block(analysis, b);
       for (const auto& m : rec.maps) write_map(analysis, m);
     }
     // Root attributes.
@@ -297,8 +320,51 @@ void read_scalars(hid_t file, Recording& rec) {
   }
 }
 
-// Every group under /analysis carrying the `x` and `y` attributes is a map (write_map); other
-// groups (the summary, analyses this reader does not know) are skipped.
+// Names of the attributes of `obj`, in name order.
+std::vector<std::string> attribute_names(hid_t obj, const std::string& where) {
+  std::vector<std::string> names;
+  hsize_t next = 0;
+  ok(H5Aiterate2(
+         obj, H5_INDEX_NAME, H5_ITER_INC, &next,
+         [](hid_t, const char* name, const H5A_info_t*, void* out) -> herr_t {
+           static_cast<std::vector<std::string>*>(out)->emplace_back(name);
+           return 0;
+         },
+         &names),
+     "list attributes of " + where);
+  return names;
+}
+
+// A group under /analysis without the map attributes, read as a result block (write_block):
+// its scalar numeric datasets and its string attributes; anything else in it is skipped.
+dynamics::ResultBlock read_block(hid_t group, const std::string& name) {
+  const std::string where = "/analysis/" + name;
+  dynamics::ResultBlock b;
+  b.name = name;
+  for (const auto& attr : attribute_names(group, where)) {
+    {
+      const Handle a = own(H5Aopen(group, attr.c_str(), H5P_DEFAULT), H5Aclose, "open attribute '" + attr + "'");
+      const Handle type = own(H5Aget_type(a), H5Tclose, "read type of '" + attr + "'");
+      if (H5Tget_class(type) != H5T_STRING) continue;
+    }
+    std::string value = read_string_attr(group, attr).value_or("");
+    if (attr == "description") b.description = std::move(value);
+    else b.texts.push_back({attr, std::move(value)});
+  }
+  for (const auto& dname : link_names(group)) {
+    const Handle obj = own(H5Oopen(group, dname.c_str(), H5P_DEFAULT), H5Oclose, "open " + where + "/" + dname);
+    if (H5Iget_type(obj) != H5I_DATASET) continue;
+    const Handle type = own(H5Dget_type(obj), H5Tclose, "read type of '" + dname + "'");
+    const H5T_class_t cls = H5Tget_class(type);
+    if (cls != H5T_FLOAT && cls != H5T_INTEGER) continue;
+    Array a = read_doubles(group, dname);
+    if (a.dims.empty()) b.scalars.push_back({dname, std::move(a.units), a.values.front()});
+  }
+  return b;
+}
+
+// Every group under /analysis carrying the `x` and `y` attributes is a map (write_map); every
+// other group but the summary is a result block (write_block).
 void read_maps(hid_t file, Recording& rec) {
   if (!has_link(file, "analysis")) return;
   const Handle analysis = own(H5Gopen2(file, "analysis", H5P_DEFAULT), H5Gclose, "open /analysis");
@@ -312,7 +378,10 @@ void read_maps(hid_t file, Recording& rec) {
     const Handle group = own(H5Gopen2(analysis, name.c_str(), H5P_DEFAULT), H5Gclose,
                              "open /analysis/" + name);
     const auto x_name = read_string_attr(group, "x"), y_name = read_string_attr(group, "y");
-    if (!x_name || !y_name) continue;
+    if (!x_name || !y_name) {
+      rec.blocks.push_back(read_block(group, name));
+      continue;
+    }
     const std::string where = "/analysis/" + name;
     dynamics::Map2D m;
     m.name = name;

@@ -7,6 +7,9 @@
 //   /thermal/times_s           1-D double (n_snap)                          [if snapshots]
 //   /thermal/temp_C            3-D double (n_snap x n_z x n_r), row-major    [if snapshots]
 //   /analysis/summary/<name>   scalar double, attribute `units`
+//   /analysis/<block>/         one group per dynamics::ResultBlock (e.g. `verdict`): each
+//                              scalar a scalar double with `units`, each text and the
+//                              `description` a string attribute              [if blocks]
 //   /analysis/<map>/           one group per dynamics::Map2D, attributes `x`, `y` (names of the
 //                              axis datasets) and `description`; in it the axes <x> (n_x),
 //                              <y> (n_y), each layer (n_x x n_y, row-major) and the map's
@@ -27,7 +30,9 @@ namespace shudder::io {
 
 /// Writes `rec` and the scenario text. Rejects (InputError) signals of unequal length, empty,
 /// duplicate or '/'-containing names, snapshots whose shape differs from each other or from
-/// the grid, and maps named "summary", with empty axes, no layers or layers not (n_x x n_y). An existing file at `path` is replaced atomically.
+/// the grid, and maps named "summary", with empty axes, no layers or layers not (n_x x n_y),
+/// result blocks named "summary" or like a map, or with duplicate or '/'-containing scalar names
+/// or duplicate text names. An existing file at `path` is replaced atomically.
 void write_run_hdf5(const std::string& path, const dynamics::Recording& rec,
                     const std::string& scenario_text);
 
@@ -35,7 +40,8 @@ void write_run_hdf5(const std::string& path, const dynamics::Recording& rec,
 /// file order with `time_s` moved first; a missing `units` attribute reads as "". Throws
 /// InputError for a missing or non-HDF5 file, a file without /signals, a signal that is not
 /// 1-D, signals of unequal length, or inconsistent thermal or map datasets. Groups under
-/// /analysis without the map attributes are skipped.
+/// /analysis without the map attributes (other than the summary) are read as result blocks:
+/// their scalar numeric datasets and string attributes (texts in name order), the rest skipped.
 dynamics::Recording read_run_hdf5(const std::string& path);
 
 /// A root string attribute of a run file (`scenario`, `shudder_version`, `created_utc`); ""

@@ -17,9 +17,11 @@
 #include "analysis/shudder_detection.hpp"
 #include "analysis/spectrum.hpp"
 #include "rig_models/recording_detection.hpp"
+#include "rig_models/run_verdict.hpp"
 #include "io/atomic_file.hpp"
 #include "io/hdf5_run.hpp"
 #include "io/input_error.hpp"
+#include "io/verdict_json.hpp"
 
 namespace shudder::report {
 
@@ -653,6 +655,10 @@ Report write_run_report(const std::string& dir, const Recording& rec, const std:
   const auto path = [&](const char* f) { return (fs::path(dir) / f).string(); };
   io::write_text_file_atomically(path("summary.txt"), summary);
   report.files.push_back(path("summary.txt"));
+  if (const auto* verdict = rec.find_block(rig_models::kVerdictBlock)) {
+    io::write_verdict_json(*verdict, path("verdict.json"));
+    report.files.push_back(path("verdict.json"));
+  }
   struct Item { PlotKind kind; const char* file; bool wanted; };
   // A driveline run has no torque cell: its coupling takes the torque plot's place.
   const bool driveline = rec.find("coupling_torque_Nm") != nullptr;

@@ -70,7 +70,8 @@ struct Report {
   std::vector<std::string> skipped;  // "spectrum.png: <why>" for plots the data do not support
 };
 
-/// Report directory of a run: `dir`/summary.txt (`summary`), torque.png, temperature.png,
+/// Report directory of a run: `dir`/summary.txt (`summary`), verdict.json (the recording's
+/// verdict block, io/verdict_json.hpp; when it holds one), torque.png, temperature.png,
 /// spectrum.png and, for rig runs (`rig`), spectrogram.png and stability_map.png (the latter
 /// when the recording holds the map). Creates `dir`. A plot the data cannot support (e.g. a
 /// record too short for a spectrum) is skipped and listed, not an error.

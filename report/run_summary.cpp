@@ -4,12 +4,11 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <set>
 #include <string>
 #include <variant>
 
-#include "analysis/shudder_detection.hpp"
 #include "dynamics/signal_names.hpp"
+#include "rig_models/run_verdict.hpp"
 
 namespace shudder::report {
 
@@ -31,37 +30,70 @@ namespace {
 
 namespace sn = dynamics::signal_names;
 
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
 double scalar(const dynamics::Recording& rec, const char* name) {
   const auto* s = rec.find_scalar(name);
-  return s ? s->value : std::numeric_limits<double>::quiet_NaN();
+  return s ? s->value : kNaN;
 }
 
-// A driveline run: the car, the coupling and its hydraulics at key times.
+// min / mean / max and the RMS about the mean of a signal over the samples in [from, to] (to
+// included only for the run's last interval, so each sample counts once); NaN if absent.
+struct Stats {
+  double min = kNaN, mean = kNaN, max = kNaN, rms_dev = kNaN;
+};
+
+Stats interval_stats(const dynamics::Recording& rec, std::string_view name, double from_s, double to_s, bool last) {
+  const auto* time = rec.find(sn::kTime);
+  const auto* sig = rec.find(name);
+  Stats st;
+  if (!time || !sig) return st;
+  const auto inside = [&](double t) { return t >= from_s && (t < to_s || (last && t <= to_s)); };
+  double sum = 0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < time->values.size(); ++i)
+    if (inside(time->values[i])) {
+      const double v = sig->values[i];
+      st.min = n == 0 ? v : std::min(st.min, v);
+      st.max = n == 0 ? v : std::max(st.max, v);
+      sum += v;
+      ++n;
+    }
+  if (n == 0) return st;
+  st.mean = sum / static_cast<double>(n);
+  double sq = 0;
+  for (std::size_t i = 0; i < time->values.size(); ++i)
+    if (inside(time->values[i])) sq += (sig->values[i] - st.mean) * (sig->values[i] - st.mean);
+  st.rms_dev = std::sqrt(sq / static_cast<double>(n));
+  return st;
+}
+
+// The table runs over fifths of the run: statistics over every sample, not samples at a few
+// instants (a 378 Hz oscillation sampled every T/5 prints as unrelated values).
+constexpr int kIntervals = 5;
+constexpr const char* kIntervalNote =
+    "Per fifth of the run, over every sample: min / mean / max; rms dev = RMS about the mean, trend "
+    "included (an oscillation of amplitude A alone gives A/sqrt(2))\n";
+
+// A driveline run: the car, the coupling and its hydraulics over each fifth of the run.
 void print_section(std::ostream& os, const rig_models::DrivelineModel& model, const dynamics::Recording& rec) {
   const double end = model.settings.duration_s;
   char line[512];
-  std::set<double> times{0.0, end};
-  for (double t : model.manoeuvre.engine_torque_Nm.times_s()) if (t > 0 && t < end) times.insert(t);
-  for (int k = 1; k < 5; ++k) times.insert(end * k / 5.0);
-  os << "   t [s]  car [km/h]  engine [rpm]  engine [Nm]  coupling slip [rpm]  coupling [Nm]  rear axle [Nm]"
-        "  pressure [bar]  interface max [C]\n";
-  for (double t : times) {
-    std::snprintf(line, sizeof line, "%8.2f  %10.2f  %12.1f  %11.1f  %19.3f  %13.1f  %14.1f  %14.2f  %17.2f\n", t,
-                  signal_at(rec, sn::kVehicleSpeed, t), signal_at(rec, sn::kEngineSpeed, t),
-                  signal_at(rec, sn::kEngineTorque, t), signal_at(rec, sn::kCouplingSlip, t),
-                  signal_at(rec, sn::kCouplingTorque, t), signal_at(rec, sn::kRearAxleTorque, t),
-                  signal_at(rec, sn::kPressure, t), signal_at(rec, sn::kInterfaceMaxTemp, t));
-    os << line;
-  }
-  const double code = scalar(rec, "coupling_verdict_code");
-  const bool oscillates = code == 1 || code == 2;
-  const std::string verdict(
-      analysis::to_string(oscillates ? analysis::kVerdicts[static_cast<std::size_t>(code)] : analysis::Verdict::kNone));
-  std::snprintf(line, sizeof line, "\nCoupling judder: %s", verdict.c_str());
-  os << line;
-  if (oscillates) {
-    std::snprintf(line, sizeof line, " at %.2f Hz, amplitude %.1f N m (FFT of the coupling torque)",
-                  scalar(rec, "coupling_oscillation_frequency_Hz"), scalar(rec, "coupling_oscillation_amplitude_Nm"));
+  os << kIntervalNote;
+  os << "                 car [km/h]  engine [rpm]  engine [Nm]  coupling slip [rpm]        coupling [Nm]"
+        "                rear axle [Nm]  pressure [bar]  interface max [C]\n"
+        "   interval [s]        mean          mean         mean       min       max      min     mean      max"
+        "  rms dev            mean            mean                max\n";
+  for (int k = 0; k < kIntervals; ++k) {
+    const double a = end * k / kIntervals, b = end * (k + 1) / kIntervals;
+    const bool last = k + 1 == kIntervals;
+    const auto st = [&](std::string_view name) { return interval_stats(rec, name, a, b, last); };
+    const Stats slip = st(sn::kCouplingSlip), coupling = st(sn::kCouplingTorque);
+    std::snprintf(line, sizeof line,
+                  "%7.2f-%-7.2f %10.2f  %12.1f  %11.1f  %8.3f  %8.3f %8.1f %8.1f %8.1f %8.1f  %14.1f  %14.2f  %17.2f\n", a,
+                  b, st(sn::kVehicleSpeed).mean, st(sn::kEngineSpeed).mean, st(sn::kEngineTorque).mean, slip.min,
+                  slip.max, coupling.min, coupling.mean, coupling.max, coupling.rms_dev, st(sn::kRearAxleTorque).mean,
+                  st(sn::kPressure).mean, st(sn::kInterfaceMaxTemp).max);
     os << line;
   }
   std::snprintf(line, sizeof line,
@@ -75,20 +107,21 @@ void print_section(std::ostream& os, const rig_models::DrivelineModel& model, co
   os << line;
 }
 
-// The rig and prescribed slip: the drive cycle's key times, temperatures and the heat account.
-void print_drive_cycle_section(std::ostream& os, const rig_models::DriveCycle& cycle, double end,
-                               const dynamics::Recording& rec) {
+// The rig and prescribed slip: the drive over each fifth of the run, temperatures and the heat
+// account.
+void print_drive_cycle_section(std::ostream& os, double end, const dynamics::Recording& rec) {
   char line[512];
-  // Key times: every drive breakpoint inside the run, five even splits, and the end.
-  std::set<double> times{0.0, end};
-  for (double t : cycle.slip_speed_rpm.times_s()) if (t > 0 && t < end) times.insert(t);
-  for (int k = 1; k < 5; ++k) times.insert(end * k / 5.0);
-  os << "   t [s]  speed [rpm]  force [kN]  torque [Nm]  thermocouple [C]  IR [C]  sump [C]\n";
-  for (double t : times) {
-    std::snprintf(line, sizeof line, "%8.2f  %11.2f  %10.2f  %11.2f  %16.2f  %7.2f  %8.2f\n", t,
-                  signal_at(rec, sn::kSpeed, t), signal_at(rec, sn::kNormalForce, t) / 1e3,
-                  signal_at(rec, sn::kTorque, t), signal_at(rec, sn::kTemp, t),
-                  signal_at(rec, sn::kIrTemp, t), signal_at(rec, sn::kSumpTemp, t));
+  os << kIntervalNote;
+  os << "                   speed [rpm]   force [kN]                torque [Nm]              max temperature [C]\n"
+        "   interval [s]     min     max        mean      min     mean      max  rms dev   thermocouple      IR    sump\n";
+  for (int k = 0; k < kIntervals; ++k) {
+    const double a = end * k / kIntervals, b = end * (k + 1) / kIntervals;
+    const bool last = k + 1 == kIntervals;
+    const auto st = [&](std::string_view name) { return interval_stats(rec, name, a, b, last); };
+    const Stats speed = st(sn::kSpeed), torque = st(sn::kTorque);
+    std::snprintf(line, sizeof line, "%7.2f-%-7.2f %7.2f %7.2f  %10.2f %8.2f %8.2f %8.2f %8.2f  %13.2f %7.2f %7.2f\n", a,
+                  b, speed.min, speed.max, st(sn::kNormalForce).mean / 1e3, torque.min, torque.mean, torque.max,
+                  torque.rms_dev, st(sn::kTemp).max, st(sn::kIrTemp).max, st(sn::kSumpTemp).max);
     os << line;
   }
   std::snprintf(line, sizeof line,
@@ -108,11 +141,11 @@ void print_drive_cycle_section(std::ostream& os, const rig_models::DriveCycle& c
 }
 
 void print_section(std::ostream& os, const rig_models::PrescribedSlipModel& model, const dynamics::Recording& rec) {
-  print_drive_cycle_section(os, model.cycle, model.settings.duration_s, rec);
+  print_drive_cycle_section(os, model.settings.duration_s, rec);
 }
 
 void print_section(std::ostream& os, const rig_models::RigModel& model, const dynamics::Recording& rec) {
-  print_drive_cycle_section(os, model.cycle, model.settings.duration_s, rec);
+  print_drive_cycle_section(os, model.settings.duration_s, rec);
   char line[512];
   std::snprintf(line, sizeof line,
                 "Rig: torsion bar %.4g N m/rad, clutch-side mode %.2f Hz; mechanical energy error "
@@ -123,6 +156,55 @@ void print_section(std::ostream& os, const rig_models::RigModel& model, const dy
                 scalar(rec, "mechanical_energy_relative_error"), scalar(rec, "integrator_steps"),
                 scalar(rec, "rhs_evaluations"), scalar(rec, "stick_events"),
                 scalar(rec, "breakaway_events"), scalar(rec, "reversal_events"));
+  os << line;
+}
+
+// The verdict block (rig_models/run_verdict.hpp) in three lines: what the run shows, the
+// operating point it was judged at, and what linear theory predicted there.
+void print_verdict(std::ostream& os, const char* label, const dynamics::Recording& rec) {
+  const auto* b = rec.find_block(rig_models::kVerdictBlock);
+  if (!b) {
+    os << label << ": not judged (no verdict in the recording)\n";
+    return;
+  }
+  const auto text = [&](const char* name) {
+    const auto* t = b->find_text(name);
+    return t ? t->value : std::string();
+  };
+  const auto value = [&](const char* name) {
+    const auto* s = b->find_scalar(name);
+    return s ? s->value : kNaN;
+  };
+  char line[768];
+  const std::string verdict = text("verdict");
+  if (verdict == "none" && value("amplitude_Nm") >= value("threshold_Nm"))
+    // Above the threshold yet none: the driveline's sustained-oscillation rule discarded it.
+    std::snprintf(line, sizeof line,
+                  "%s: none (an oscillation of %.3g N m at %.2f Hz dies out before the end: not sustained; judged "
+                  "on %s)\n",
+                  label, value("amplitude_Nm"), value("peak_frequency_Hz"), text("judged_signals").c_str());
+  else if (verdict == "none")
+    std::snprintf(line, sizeof line, "%s: none (largest oscillation %.3g N m, under the threshold %.3g N m; judged on %s)\n",
+                  label, value("amplitude_Nm"), value("threshold_Nm"), text("judged_signals").c_str());
+  else
+    std::snprintf(line, sizeof line, "%s: %s at %.2f Hz, amplitude %.3g N m, onset %.3f s (judged on %s)\n", label,
+                  verdict.c_str(), value("frequency_Hz"), value("amplitude_Nm"), value("onset_time_s"),
+                  text("judged_signals").c_str());
+  os << line;
+  std::snprintf(line, sizeof line,
+                "Operating point (mean over the %s, %.3f-%.3f s): slip %.2f rpm, interface %.2f C, normal force "
+                "%.3g kN\n",
+                text("operating_window").c_str(), value("window_from_s"), value("window_to_s"), value("slip_rpm"),
+                value("interface_temp_C"), value("normal_force_N") / 1e3);
+  os << line;
+  const double margin = value("predicted_margin_per_s");
+  if (std::isfinite(margin))
+    std::snprintf(line, sizeof line,
+                  "Predicted there: %s, margin %+.3g 1/s; least damped oscillatory mode %.2f Hz (margin %+.3g 1/s)\n",
+                  margin > 0 ? "unstable" : "stable", margin, value("predicted_frequency_Hz"),
+                  value("predicted_oscillatory_margin_per_s"));
+  else
+    std::snprintf(line, sizeof line, "Predicted there: %s\n", text("prediction").c_str());
   os << line;
 }
 
@@ -137,6 +219,9 @@ void print_run_summary(std::ostream& os, const io::Scenario& sc, const dynamics:
   os << "Effects on:";
   for (const auto& e : sc.enabled_effects) os << " " << e;
   os << "\n\n";
+  // The verdict first: whether it shuddered is what a reader looks for.
+  print_verdict(os, sc.kind() == ModelKind::kDriveline ? "Coupling judder" : "Shudder", rec);
+  os << "\n";
   // Each kind's own section: one print_section overload per kind above (no fallback, so a new
   // kind without its section does not compile).
   std::visit([&](const auto& m) { print_section(os, m, rec); }, sc.model);

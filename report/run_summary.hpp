@@ -1,6 +1,7 @@
 #pragma once
-// Human-readable run summary: torque and temperatures at the drive cycle's key times, final
-// temperatures, and the energy account.
+// Human-readable run summary: the verdict block (what the run shows, at which operating point,
+// what linear theory predicted there), min / mean / max of the main signals over each fifth of
+// the run, final temperatures, and the energy account.
 
 #include <ostream>
 #include <string_view>

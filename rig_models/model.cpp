@@ -1,6 +1,7 @@
 #include "rig_models/model.hpp"
 
 #include "rig_models/run_stability_map.hpp"
+#include "rig_models/run_verdict.hpp"
 
 namespace shudder::rig_models {
 
@@ -18,6 +19,22 @@ constexpr const char* kNoSweep =
 constexpr const char* kNoReplay = "measured runs are rig runs; diagnose needs a prescribed_slip or rig model";
 constexpr const char* kNoNetwork = "\" has no torsional network; modes needs type = \"rig\"";
 constexpr const char* kNotARig = "\" is not a rig; --rig needs a scenario with type = \"rig\"";
+
+// Judges the run, adds the kind's prediction at its operating point (`predict`: OperatingWindow
+// -> Prediction) and stores the verdict block (run_verdict.hpp). A recording that cannot be
+// judged (e.g. fewer than 64 samples) costs the run nothing but is said.
+template <class Predict>
+std::vector<std::string> add_verdict(dynamics::Recording& rec, Predict predict) {
+  RunVerdict v;
+  try {
+    v = judge_run(rec);
+  } catch (const std::invalid_argument& e) {
+    return {std::string("no verdict stored: ") + e.what()};
+  }
+  v.prediction = predict(v.window);
+  rec.blocks.push_back(verdict_block(v));
+  return {};
+}
 
 [[noreturn]] void refuse_validation(ModelKind k) {
   throw KindNotSupported(std::string("is ").append(model_kind_name(k)).append(
@@ -41,8 +58,10 @@ dynamics::Recording simulate(const PrescribedSlipModel& model, const clutch::Wet
 }
 
 std::vector<std::string> add_run_analysis(const PrescribedSlipModel&, const clutch::WetClutch&, double,
-                                          dynamics::Recording&) {
-  return {};
+                                          dynamics::Recording& rec) {
+  return add_verdict(rec, [](const OperatingWindow&) {
+    return Prediction::none("the slip is imposed, so there are no torsional dynamics to linearise");
+  });
 }
 
 void require_measured_run_export(const PrescribedSlipModel&) {}
@@ -76,12 +95,14 @@ dynamics::Recording simulate(const RigModel& model, const clutch::WetClutch& clu
 
 std::vector<std::string> add_run_analysis(const RigModel& model, const clutch::WetClutch& clutch,
                                           double start_temp_C, dynamics::Recording& rec) {
+  std::vector<std::string> warnings = add_verdict(
+      rec, [&](const OperatingWindow& window) { return predict_rig(model.params, clutch, window); });
   try {
     rec.maps.push_back(run_stability_map(model.params, clutch, model.cycle, start_temp_C));
   } catch (const std::invalid_argument& e) {
-    return {std::string("no stability map stored: ") + e.what()};
+    warnings.push_back(std::string("no stability map stored: ") + e.what());
   }
-  return {};
+  return warnings;
 }
 
 void require_measured_run_export(const RigModel&) {}
@@ -118,8 +139,10 @@ dynamics::Recording simulate(const DrivelineModel& model, const clutch::WetClutc
 }
 
 std::vector<std::string> add_run_analysis(const DrivelineModel&, const clutch::WetClutch&, double,
-                                          dynamics::Recording&) {
-  return {};
+                                          dynamics::Recording& rec) {
+  return add_verdict(rec, [](const OperatingWindow&) {
+    return Prediction::none("the driveline has no linear stability analysis yet");
+  });
 }
 
 void require_measured_run_export(const DrivelineModel&) { throw KindNotSupported(kNoMeasuredRun); }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <span>
 
 #include "dynamics/signal_names.hpp"
@@ -44,12 +45,14 @@ std::optional<RecordingDetection> recording_detection(const dynamics::Recording&
   const bool driveline = rec.find(sn::kCouplingTorque) != nullptr;
   const auto* time = rec.find(sn::kTime);
   const auto* torque = rec.find(judged_torque_signal(rec));
-  const auto* slip = rec.find(driveline ? sn::kCouplingSlip : sn::kSlip);
-  if (!slip && !driveline) slip = rec.find(sn::kSpeed);
+  std::string_view slip_signal = driveline ? sn::kCouplingSlip : sn::kSlip;
+  if (!driveline && !rec.find(slip_signal)) slip_signal = sn::kSpeed;
+  const auto* slip = rec.find(slip_signal);
   if (!time || !torque || !slip) return std::nullopt;
 
   RecordingDetection d;
   d.torque_signal = judged_torque_signal(rec);
+  d.slip_signal = slip_signal;
   d.input.time_s = time->values;
   d.input.torque_Nm = torque->values;
   d.input.slip_rpm = slip->values;
@@ -68,7 +71,14 @@ analysis::ShudderResult judge_recording(const RecordingDetection& d) {
   if (d.sustained_only && r.verdict != analysis::Verdict::kNone && std::isfinite(r.frequency_Hz) &&
       r.frequency_Hz > 0) {
     const double end_amplitude = final_oscillation_amplitude_Nm(d.input.time_s, d.input.torque_Nm, 1.0 / r.frequency_Hz);
-    if (end_amplitude < 0.5 * r.amplitude_Nm) r.verdict = analysis::Verdict::kNone;
+    if (end_amplitude < 0.5 * r.amplitude_Nm) {
+      // No verdict, so none of its timing either (ShudderResult's convention for none):
+      // peak_frequency_Hz and amplitude_Nm still say what rang.
+      constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+      r.verdict = analysis::Verdict::kNone;
+      r.frequency_Hz = r.onset_time_s = r.growth_rate_per_s = r.growth_acceleration_per_s2 = kNaN;
+      r.at_onset = {kNaN, kNaN, kNaN, kNaN};
+    }
   }
   return r;
 }

@@ -22,6 +22,7 @@ namespace shudder::rig_models {
 
 struct RecordingDetection {
   std::string_view torque_signal;  // the judged torque channel (its spectrum is the one to show)
+  std::string_view slip_signal;    // the judged slip channel
   analysis::DetectionInput input;
   analysis::DetectionSettings settings;
   bool sustained_only = false;  // a decaying oscillation is no verdict (drivelines)
@@ -31,7 +32,9 @@ struct RecordingDetection {
 std::string_view judged_torque_signal(const dynamics::Recording& rec);
 /// The detection case of a recording; nullopt when it lacks time, torque or slip.
 std::optional<RecordingDetection> recording_detection(const dynamics::Recording& rec);
-/// The verdict on a detection case (sustained-oscillation rule included). Throws
+/// The verdict on a detection case (sustained-oscillation rule included: an oscillation it
+/// discards reads as none, its frequency, onset, growth and operating point NaN, its
+/// amplitude and peak frequency kept). Throws
 /// std::invalid_argument like analysis::detect_shudder (e.g. fewer than 64 samples).
 analysis::ShudderResult judge_recording(const RecordingDetection& detection);
 
