@@ -177,6 +177,10 @@ void print_verdict(std::ostream& os, const char* label, const dynamics::Recordin
   };
   char line[768];
   const std::string verdict = text("verdict");
+  if (verdict == "not_judged") {
+    os << label << ": not judged (" << text("reason") << ")\n";
+    return;
+  }
   if (verdict == "none" && value("amplitude_Nm") >= value("threshold_Nm"))
     // Above the threshold yet none: the driveline's sustained-oscillation rule discarded it.
     std::snprintf(line, sizeof line,

@@ -22,18 +22,18 @@ constexpr const char* kNotARig = "\" is not a rig; --rig needs a scenario with t
 
 // Judges the run, adds the kind's prediction at its operating point (`predict`: OperatingWindow
 // -> Prediction) and stores the verdict block (run_verdict.hpp). A recording that cannot be
-// judged (e.g. fewer than 64 samples) costs the run nothing but is said.
+// judged (e.g. fewer than 64 samples) is a valid run: its block says "not_judged" and why.
 template <class Predict>
-std::vector<std::string> add_verdict(dynamics::Recording& rec, Predict predict) {
+void add_verdict(dynamics::Recording& rec, Predict predict) {
   RunVerdict v;
   try {
     v = judge_run(rec);
   } catch (const std::invalid_argument& e) {
-    return {std::string("no verdict stored: ") + e.what()};
+    rec.blocks.push_back(not_judged_block(e.what()));
+    return;
   }
   v.prediction = predict(v.window);
   rec.blocks.push_back(verdict_block(v));
-  return {};
 }
 
 [[noreturn]] void refuse_validation(ModelKind k) {
@@ -59,9 +59,10 @@ dynamics::Recording simulate(const PrescribedSlipModel& model, const clutch::Wet
 
 std::vector<std::string> add_run_analysis(const PrescribedSlipModel&, const clutch::WetClutch&, double,
                                           dynamics::Recording& rec) {
-  return add_verdict(rec, [](const OperatingWindow&) {
+  add_verdict(rec, [](const OperatingWindow&) {
     return Prediction::none("the slip is imposed, so there are no torsional dynamics to linearise");
   });
+  return {};
 }
 
 void require_measured_run_export(const PrescribedSlipModel&) {}
@@ -95,14 +96,13 @@ dynamics::Recording simulate(const RigModel& model, const clutch::WetClutch& clu
 
 std::vector<std::string> add_run_analysis(const RigModel& model, const clutch::WetClutch& clutch,
                                           double start_temp_C, dynamics::Recording& rec) {
-  std::vector<std::string> warnings = add_verdict(
-      rec, [&](const OperatingWindow& window) { return predict_rig(model.params, clutch, window); });
+  add_verdict(rec, [&](const OperatingWindow& window) { return predict_rig(model.params, clutch, window); });
   try {
     rec.maps.push_back(run_stability_map(model.params, clutch, model.cycle, start_temp_C));
   } catch (const std::invalid_argument& e) {
-    warnings.push_back(std::string("no stability map stored: ") + e.what());
+    return {std::string("no stability map stored: ") + e.what()};
   }
-  return warnings;
+  return {};
 }
 
 void require_measured_run_export(const RigModel&) {}
@@ -140,9 +140,10 @@ dynamics::Recording simulate(const DrivelineModel& model, const clutch::WetClutc
 
 std::vector<std::string> add_run_analysis(const DrivelineModel&, const clutch::WetClutch&, double,
                                           dynamics::Recording& rec) {
-  return add_verdict(rec, [](const OperatingWindow&) {
+  add_verdict(rec, [](const OperatingWindow&) {
     return Prediction::none("the driveline has no linear stability analysis yet");
   });
+  return {};
 }
 
 void require_measured_run_export(const DrivelineModel&) { throw KindNotSupported(kNoMeasuredRun); }

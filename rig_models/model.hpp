@@ -78,9 +78,9 @@ dynamics::Recording simulate(const DrivelineModel& model, const clutch::WetClutc
 /// The run's extra analysis, stored in `rec`: every kind's verdict block (run_verdict.hpp:
 /// judged verdict, operating point, and the prediction there — the rig's linear stability, "not
 /// predicted" for the others) and the rig's stability map (/analysis/stability_map, for
-/// `shudder plot`). Returns warnings (without the "shudder: warning: " prefix): a verdict or
-/// map that cannot be made (e.g. a record too short to judge, a cycle that never loads the
-/// clutch) costs the run nothing but is said.
+/// `shudder plot`; a record too short to judge gets a "not_judged" block with the reason).
+/// Returns warnings (without the "shudder: warning: " prefix): a map that cannot be made (e.g.
+/// a cycle that never loads the clutch) costs the run nothing but is said.
 std::vector<std::string> add_run_analysis(const PrescribedSlipModel& model, const clutch::WetClutch& clutch,
                                           double start_temp_C, dynamics::Recording& rec);
 std::vector<std::string> add_run_analysis(const RigModel& model, const clutch::WetClutch& clutch,

@@ -76,6 +76,14 @@ Prediction predict_rig(const RigParams& params, const clutch::WetClutch& clutch,
   return out;
 }
 
+dynamics::ResultBlock not_judged_block(const std::string& why) {
+  dynamics::ResultBlock b;
+  b.name = kVerdictBlock;
+  b.description = "the run could not be judged for shudder";
+  b.texts = {{"verdict", "not_judged"}, {"reason", why}};
+  return b;
+}
+
 dynamics::ResultBlock verdict_block(const RunVerdict& v) {
   const analysis::ShudderResult& r = v.judged;
   dynamics::ResultBlock b;

@@ -85,4 +85,8 @@ Prediction predict_rig(const RigParams& params, const clutch::WetClutch& clutch,
 /// predicted_frequency_Hz (NaN where undefined: no oscillation, not predicted, not recorded).
 dynamics::ResultBlock verdict_block(const RunVerdict& verdict);
 
+/// The block of a recording judge_run refused: texts `verdict` = "not_judged" and `reason`
+/// (`why`), no values.
+dynamics::ResultBlock not_judged_block(const std::string& why);
+
 }  // namespace shudder::rig_models

@@ -204,7 +204,8 @@ TEST(CliPlot, RunReportHoldsTheSummaryAndTheKeyPlots) {
   write_file(dir / "rig.toml", short_rig_scenario());
   auto r = run_cli("run rig.toml -o rig.h5 --report rep", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_THAT(r.out, HasSubstr("Report: rep (6 files)"));
+  EXPECT_THAT(r.out, HasSubstr("Report: rep (7 files)"));  // summary.txt, verdict.json, five plots
+  EXPECT_TRUE(fs::exists(dir / "rep" / "verdict.json"));
   const std::string summary = slurp(dir / "rep" / "summary.txt");
   EXPECT_THAT(summary, HasSubstr("Scenario  rig_shudder_negative_slope (rig)"));
   EXPECT_THAT(summary, HasSubstr("Output: rig.h5"));

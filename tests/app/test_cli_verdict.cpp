@@ -185,5 +185,25 @@ TEST(CliVerdict, DrivelineRunHasTheSameBlockAndSaysNotPredicted) {
   expect_json_matches_block(test::parse(test::slurp(dir / "rep" / "verdict.json")), *b);
 }
 
+// A run too short to judge (50 ms at 1 kHz: 51 samples, the detector needs 64) is still a
+// valid run: its block says "not_judged" and why, the summary says so, no warning about it
+// (the report's plots that need more samples are skipped with their own warnings).
+TEST(CliVerdict, RunTooShortToJudgeSaysNotJudged) {
+  const auto dir = scratch_dir("cli_verdict_short");
+  write_file(dir / "s.toml", test::replace(test::shipped_scenario_text("rig_case2_15kN_378Hz.toml"),
+                                           "duration_s = 30.0", "duration_s = 0.05"));
+  const auto r = run_cli("run s.toml -o s.h5 --report rep", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("verdict"), std::string::npos) << r.err;
+  const auto rec = io::read_run_hdf5((dir / "s.h5").string());
+  const auto* b = rec.find_block("verdict");
+  ASSERT_NE(b, nullptr) << "no /analysis/verdict";
+  EXPECT_EQ(block_text(*b, "verdict"), "not_judged");
+  EXPECT_THAT(block_text(*b, "reason"), HasSubstr("at least 64 samples of time_s, got 51"));
+  EXPECT_THAT(r.out, HasSubstr("Shudder: not judged (shudder detection needs at least 64 samples"));
+  const auto j = test::parse(test::slurp(dir / "rep" / "verdict.json"));
+  EXPECT_EQ(j["verdict"].str(), "not_judged");
+}
+
 }  // namespace
 }  // namespace shudder

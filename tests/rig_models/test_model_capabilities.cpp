@@ -4,6 +4,7 @@
 // The compile-time half: each alternative of rig_models::Model must have an overload of each
 // capability with the declared result. A new kind added to the variant without them fails this
 // file's static_assert (and every command's generic visit) instead of falling through.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <concepts>
@@ -182,10 +183,15 @@ TEST(ModelCapabilities, AcceptingKindsYieldTheirOwnModel) {
   EXPECT_EQ(rig_replay.settings.sample_rate_Hz, rig_model.settings.sample_rate_Hz);
   EXPECT_EQ(rig_replay.settings.duration_s, rig_model.settings.duration_s);
 
-  // Kinds without an extra analysis leave the recording as it was and say nothing.
+  // Every kind stores a verdict block and no map but the rig's; a recording that cannot be
+  // judged (here: empty) is a valid run whose block says so, without a warning. (Before the
+  // verdict block, prescribed slip left the recording as it was.)
   dynamics::Recording rec;
   EXPECT_TRUE(rig_models::add_run_analysis(ps_model, ps.make_clutch(), 40.0, rec).empty());
   EXPECT_TRUE(rec.maps.empty());
+  ASSERT_EQ(rec.blocks.size(), 1u);
+  EXPECT_EQ(rec.blocks.front().find_text("verdict")->value, "not_judged");
+  EXPECT_THAT(rec.blocks.front().find_text("reason")->value, ::testing::HasSubstr("no time, torque or slip channel"));
 }
 
 }  // namespace
