@@ -39,7 +39,10 @@ void require_distinct_paths(const std::vector<RolePath>& inputs, const std::vect
 }
 
 void require_output_directory(const std::string& path) {
-  const fs::path parent = fs::absolute(path).parent_path();
+  // "report/" names the directory report: drop the empty last element before going up.
+  fs::path target = fs::absolute(path);
+  if (!target.has_filename()) target = target.parent_path();
+  const fs::path parent = target.parent_path();
   std::error_code ec;
   if (!fs::is_directory(parent, ec))
     throw InputError(path, 0, "",

@@ -79,6 +79,9 @@ TEST_F(OutputSafety, MissingOutputDirectoryIsRefused) {
   EXPECT_THAT([&] { shudder::io::require_output_directory(path("nope/s.h5")); },
               ThrowsMessage<InputError>(HasSubstr("directory '" + path("nope") + "' does not exist")));
   EXPECT_NO_THROW(shudder::io::require_output_directory(path("s.h5")));
+  // A directory output named with a trailing slash (`--report report/`) needs only its parent.
+  EXPECT_NO_THROW(shudder::io::require_output_directory(path("report/")));
+  EXPECT_THROW(shudder::io::require_output_directory(path("nope/report/")), InputError);
   EXPECT_FALSE(fs::exists(dir_ / "nope"));
 }
 
