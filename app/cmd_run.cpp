@@ -14,14 +14,17 @@
 
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
+#include "app/output_size.hpp"
 #include "report/run_summary.hpp"
 #include "core/units.hpp"
 #include "io/hdf5_run.hpp"
 #include "io/input_error.hpp"
 #include "io/kind_refusal.hpp"
 #include "io/measurement_csv.hpp"
+#include "io/output_safety.hpp"
 #include "report/plots.hpp"
 #include "io/scenario.hpp"
+#include "rig_models/energy_guard.hpp"
 #include "rig_models/model.hpp"
 
 namespace shudder::app {
@@ -31,6 +34,19 @@ int run_command(const RunOptions& opt) {
     const io::Scenario scenario = io::load_scenario(opt.scenario);
     for (const auto& w : scenario.warnings) std::cerr << "shudder: warning: " << w << "\n";
     const clutch::WetClutch clutch = scenario.make_clutch();
+    const std::string out = opt.output.empty() ? scenario.name + ".h5" : opt.output;
+
+    // Before simulating: no output may replace an input or another output, every output's
+    // directory must exist, and the run file must fit the size limit (unless --force).
+    std::vector<io::RolePath> outputs{{"-o", out}};
+    if (!opt.measurement.empty()) outputs.push_back({"--measurement", opt.measurement});
+    if (!opt.report.empty()) outputs.push_back({"--report", opt.report});
+    io::require_distinct_paths({{"scenario", opt.scenario}, {"fluid file", scenario.fluid_path}}, outputs);
+    for (const auto& o : outputs) io::require_output_directory(o.path);
+    io::require_output_size(out, estimated_run_bytes(scenario),
+                            std::to_string(estimated_samples(scenario)) + " samples x " +
+                                std::to_string(kRecordedChannels) + " channels x 8 bytes + snapshots",
+                            opt.force);
 
     const auto t0 = std::chrono::steady_clock::now();
     if (!opt.measurement.empty())
@@ -45,8 +61,7 @@ int run_command(const RunOptions& opt) {
         scenario.model);
     for (const auto& w : analysis_warnings) std::cerr << "shudder: warning: " << w << "\n";
 
-    const std::string out = opt.output.empty() ? scenario.name + ".h5" : opt.output;
-    io::write_run_hdf5(out, rec, scenario.text);
+    io::write_run_hdf5(out, rec, scenario.text, scenario.fluid_text);
     if (!opt.measurement.empty()) {
       io::MeasurementOptions m;
       m.sample_rate_Hz = opt.measurement_rate_Hz;
@@ -61,6 +76,11 @@ int run_command(const RunOptions& opt) {
       m.temp_sensor = sensor;
       io::write_measurement(opt.measurement, rec, m);
     }
+    // Energy accounts that do not close mean the numbers are wrong: a numerical failure (exit
+    // 1), reported after the files are written so the user can inspect what went wrong.
+    if (const std::string bad = rig_models::energy_balance_violation(rec); !bad.empty())
+      throw std::runtime_error("numerical failure: " + bad + "; the run is written to " + out +
+                               " for inspection, but its results cannot be trusted");
 
     std::ostringstream summary;
     report::print_run_summary(summary, scenario, rec);

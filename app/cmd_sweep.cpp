@@ -20,15 +20,18 @@
 #include "analysis/shudder_detection.hpp"
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
+#include "app/output_size.hpp"
 #include "core/parallel_for.hpp"
 #include "dynamics/signal_names.hpp"
 #include "io/hdf5_run.hpp"
 #include "io/hdf5_sweep.hpp"
 #include "io/input_error.hpp"
 #include "io/kind_refusal.hpp"
+#include "io/output_safety.hpp"
 #include "report/plots.hpp"
 #include "io/scenario.hpp"
 #include "io/sweep_spec.hpp"
+#include "rig_models/energy_guard.hpp"
 #include "rig_models/model.hpp"
 
 namespace shudder::app {
@@ -50,6 +53,9 @@ void run_case(const std::string& text, const std::string& path, const std::strin
   dynamics::Recording rec;
   const rig_models::CaseOutcome o = io::visit_kind(
       path, "scenario.type", sc.model, [&](const auto& m) { return rig_models::evaluate_case(m, clutch, rec); });
+  // A case whose energy accounts do not close is a numerical failure, not a result.
+  if (const std::string bad = rig_models::energy_balance_violation(rec); !bad.empty())
+    throw std::runtime_error("numerical failure: " + bad);
   dynamics::Recording kept;
   for (const std::string_view name : kKeptSignals)
     if (const auto* s = rec.find(name)) kept.signals.push_back(*s);
@@ -85,18 +91,31 @@ int sweep_command(const SweepOptions& opt) {
     for (const auto& s : opt.sets) axes.push_back(io::parse_sweep_axis(s));
     const auto rows = io::sweep_cases(axes);
 
-    // Case texts, each validated now so bad keys or values stop the sweep before it runs.
+    // The output may replace neither an input nor the report, and its directory must exist:
+    // the parts folder beside it is created, never the directories above it.
+    std::vector<io::RolePath> outputs{{"-o", opt.output}};
+    if (!opt.report.empty()) outputs.push_back({"--report", opt.report});
+    io::require_distinct_paths({{"scenario", opt.scenario}, {"fluid file", base.fluid_path}}, outputs);
+    for (const auto& o : outputs) io::require_output_directory(o.path);
+
+    // Case texts, each validated now so bad keys or values stop the sweep before it runs; the
+    // output's size summed over the cases (a case may change the duration or the rate).
     std::vector<std::string> texts;
+    std::uint64_t bytes = 0;
     for (const auto& row : rows) {
       std::string text = base.text;
       for (std::size_t a = 0; a < axes.size(); ++a) text = io::set_scenario_key(text, opt.scenario, axes[a].key, row[a]);
-      (void)io::load_scenario_text(text, opt.scenario);
+      bytes += estimated_sweep_bytes(io::load_scenario_text(text, opt.scenario), 1);
       texts.push_back(std::move(text));
     }
+    io::require_output_size(opt.output, bytes,
+                            std::to_string(texts.size()) + " cases x samples x " +
+                                std::to_string(kSweepKeptChannels) + " kept signals x 8 bytes",
+                            opt.force);
 
     // Resume: a part whose stored scenario equals the case's text is finished.
     const fs::path parts = opt.output + ".parts";
-    fs::create_directories(parts);
+    fs::create_directory(parts);
     std::vector<std::string> part_paths;
     std::vector<std::size_t> todo;
     for (std::size_t k = 0; k < texts.size(); ++k) {
@@ -146,6 +165,7 @@ int sweep_command(const SweepOptions& opt) {
     // Assemble the sweep file from the parts.
     io::SweepOutput out;
     out.base_scenario_text = base.text;
+    out.fluid_text = base.fluid_text;
     for (const auto& a : axes) out.columns.push_back({a.key, "", {}});
     const char* results[] = {"predicted_stable", "predicted_margin_per_s", "predicted_frequency_Hz",
                              "simulated_frequency_Hz", "amplitude_Nm", "onset_time_s"};

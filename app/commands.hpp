@@ -19,6 +19,7 @@ struct RunOptions {
   unsigned seed = 1;
   bool profile = false;
   std::string report;                  // report directory (summary.txt + plots); empty = none
+  bool force = false;                  // write even above io::kMaxOutputBytesWithoutForce
 };
 int run_command(const RunOptions& options);
 
@@ -35,6 +36,7 @@ struct SweepOptions {
   bool quiet = false;
   bool keep_parts = false;        // keep OUT.h5.parts/ after assembling (default: remove)
   std::string report;             // report directory (summary.txt + sweep.png); empty = none
+  bool force = false;             // write even above io::kMaxOutputBytesWithoutForce
 };
 int sweep_command(const SweepOptions& options);
 

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--profile", run.profile, "Print the simulation's wall time");
   run_cmd->add_option("--report", run.report,
                       "Also write a report directory: summary.txt and the key plots (PNG)");
+  run_cmd->add_flag("--force", run.force, "Write the output even if its estimated size exceeds 2 GB");
 
   ModesOptions modes;
   auto* modes_cmd = app.add_subcommand("modes", "Natural frequencies and mode shapes of a rig scenario");
@@ -40,6 +41,7 @@ int main(int argc, char** argv) {
   sweep_cmd->add_flag("--quiet", sweep.quiet, "No progress bar or summary");
   sweep_cmd->add_flag("--keep-parts", sweep.keep_parts, "Keep the per-case files (OUT.h5.parts/)");
   sweep_cmd->add_option("--report", sweep.report, "Also write a report directory: summary.txt and sweep.png");
+  sweep_cmd->add_flag("--force", sweep.force, "Write the output even if its estimated size exceeds 2 GB");
 
   ScreenOptions screen;
   auto* screen_cmd = app.add_subcommand("screen", "Screen a fluid's friction data for vibration risk");

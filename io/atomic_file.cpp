@@ -2,18 +2,61 @@
 #include "io/atomic_file.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
+#include <charconv>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <string_view>
 
 #include "io/input_error.hpp"
 
 namespace shudder::io {
 
-std::string temp_path_for(const std::string& path) { return path + ".tmp"; }
+std::string temp_path_for(const std::string& path) {
+  static std::atomic<unsigned long> writes{0};
+  return path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(writes++);
+}
+
+namespace {
+
+// True if `rest` is "<pid>.<n>" (digits only) and no process `pid` runs (kill(pid, 0) fails
+// with ESRCH; EPERM means it runs under another user, so it is not ours to judge).
+bool names_a_dead_writer(std::string_view rest) {
+  const std::size_t dot = rest.find('.');
+  if (dot == std::string_view::npos || dot == 0 || dot + 1 == rest.size()) return false;
+  long pid = 0;
+  const auto [end, err] = std::from_chars(rest.data(), rest.data() + dot, pid);
+  if (err != std::errc() || end != rest.data() + dot || pid <= 0) return false;
+  for (char c : rest.substr(dot + 1))
+    if (c < '0' || c > '9') return false;
+  return ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+}
+
+}  // namespace
+
+void remove_stale_temp_files(const std::string& path) noexcept {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path target(path);
+  const std::string prefix = target.filename().string() + ".tmp";
+  if (prefix == ".tmp") return;
+  fs::path dir = target.parent_path();
+  if (dir.empty()) dir = ".";
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string_view rest = std::string_view(name).substr(prefix.size());
+    const bool stale = rest.empty() || (rest.front() == '.' && names_a_dead_writer(rest.substr(1)));
+    std::error_code rm;
+    if (stale && it->is_regular_file(rm)) fs::remove(it->path(), rm);
+  }
+}
 
 void discard_temp_file(const std::string& tmp) noexcept { std::remove(tmp.c_str()); }
 
@@ -36,6 +79,7 @@ void commit_temp_file(const std::string& tmp, const std::string& path) {
 }
 
 void write_text_file_atomically(const std::string& path, const std::string& text) {
+  remove_stale_temp_files(path);
   const std::string tmp = temp_path_for(path);
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);

@@ -8,8 +8,16 @@
 
 namespace shudder::io {
 
-/// The temporary name written first: `path + ".tmp"`.
+/// The temporary name written first: `path + ".tmp.<pid>.<n>"`, unique per process and write
+/// (n counts this process' writes), so two processes writing the same output never fill the
+/// same temporary and one cannot rename the other's half-written file into place.
 std::string temp_path_for(const std::string& path);
+
+/// Removes the temporaries a killed writer of `path` left behind: in `path`'s directory, the
+/// files named `path + ".tmp"` (the name before per-process temporaries) and `path +
+/// ".tmp.<pid>.<n>"` whose process no longer runs. Files of live writers and any other name
+/// are left alone. Called at the start of every atomic write of `path`; never throws.
+void remove_stale_temp_files(const std::string& path) noexcept;
 
 /// fsync()s `tmp` and renames it to `path` (replacing an existing file). On failure removes
 /// `tmp` and throws InputError naming `path` and the system's reason.

@@ -28,6 +28,53 @@ std::string num(double x) {
   return os.str();
 }
 
+// Plausible kinetic friction of a wet clutch: 0 < mu <= 1. mu <= 0 would make friction push
+// the sliding surfaces along (negative heat: the audit's sign typo in `beta` gave -4,923 J);
+// lubricated paper/steel interfaces run at mu ~ 0.05-0.2 and even dry friction materials stay
+// below ~0.6, so mu > 1 can only be a typing error (e.g. a shifted decimal point), not a fluid.
+constexpr double kMaxPlausibleMu = 1.0;
+// A [linear] law holds for any temperature, so it is checked over the temperatures a wet
+// clutch sees: a -40 °C cold start (the Paper G matrix' first row) to 150 °C, the upper end
+// of an ATF's continuous service (Paper E measured 30 to ~120 °C). mu is linear in T, so the
+// two ends are the extremes.
+constexpr double kLinearCheckLow_C = -40.0;
+constexpr double kLinearCheckHigh_C = 150.0;
+// Speeds per [maki] set at which mu is sampled, log-spaced over [min_speed, max_speed] with
+// both ends included: 256 points are 1.8 % apart over the default 6..590 mm/s. Mäki's form
+// C1 tanh(C2 v) + C3 v^0.1 + C4 is the sum of two monotone terms, smooth on the scale 1/C2
+// (Paper G's C2 <= 0.02 per mm/s, i.e. >= 50 mm/s), so an excursion to mu <= 0 between two
+// samples would need a dip narrower than 1.8 % in speed, which the form cannot make there.
+constexpr int kMakiSpeedSamples = 256;
+
+// mu must lie in (0, kMaxPlausibleMu]; "" if it does, else what is wrong.
+std::string implausible_mu(double mu) {
+  if (!(mu > 0.0))
+    return "gives mu = " + num(mu) + " <= 0 (friction would drive the sliding surfaces and "
+           "generate negative heat)";
+  if (mu > kMaxPlausibleMu)
+    return "gives mu = " + num(mu) + " > " + num(kMaxPlausibleMu) +
+           " (implausible for a lubricated clutch, whose mu is ~0.05-0.2)";
+  return "";
+}
+
+// Rejects a [maki] set whose mu leaves (0, 1] anywhere in [vmin, vmax]. The matrix blends the
+// mu VALUES of its sets bilinearly in load and temperature (clamped at the ends), so mu at any
+// (T, F) is a convex combination of the sets' values: checking each set checks the whole law.
+void check_maki_set(TomlTable& row, const clutch::MakiSet& set, std::size_t j, double load_N,
+                    double temp_C, double vmin, double vmax) {
+  for (int k = 0; k < kMakiSpeedSamples; ++k) {
+    const double v = k + 1 == kMakiSpeedSamples
+                         ? vmax
+                         : vmin * std::pow(vmax / vmin, static_cast<double>(k) / (kMakiSpeedSamples - 1));
+    const std::string what = implausible_mu(set.mu(v));
+    if (!what.empty())
+      row.fail("sets", "set " + std::to_string(j) + " " + what + " at speed " + num(v) +
+                           " mm/s, temperature " + num(temp_C) + " °C, load " + num(load_N) +
+                           " N; mu must lie in (0, " + num(kMaxPlausibleMu) + "] over the law's "
+                           "whole range (min_speed_mm_s..max_speed_mm_s, every row and load)");
+  }
+}
+
 // Rejects an axis that is not strictly increasing, naming the offending element.
 void require_increasing(TomlTable& t, const std::string& key, const std::vector<double>& axis) {
   for (std::size_t i = 1; i < axis.size(); ++i)
@@ -104,6 +151,8 @@ std::shared_ptr<const clutch::FrictionLaw> read_maki(TomlTable& maki, const toml
     temps.push_back(t);
     row.string_or("origin", "");
     const auto row_sets = read_sets(row, *raw_rows.get(i)->as_table(), loads, t);
+    for (std::size_t j = 0; j < row_sets.size(); ++j)
+      check_maki_set(row, row_sets[j], j, loads[j], t, vmin, vmax);
     sets.insert(sets.end(), row_sets.begin(), row_sets.end());
     row.finish();
   }
@@ -126,6 +175,18 @@ std::shared_ptr<const clutch::FrictionLaw> read_linear(TomlTable& lin) {
     if (v->size() != rpm.size())
       lin.fail(key, "has " + std::to_string(v->size()) + " elements; expected one per speed in "
                     "speeds_rpm (" + std::to_string(rpm.size()) + ")");
+  // mu in (0, 1] over the checked temperatures. Between speeds mu is a convex blend of two
+  // lines (weights in [0, 1]) and held beyond the ends, so each line at the two temperature
+  // ends covers the whole law exactly.
+  for (std::size_t i = 0; i < rpm.size(); ++i)
+    for (const double t : {kLinearCheckLow_C, kLinearCheckHigh_C}) {
+      const std::string what = implausible_mu(alpha[i] * t + beta[i]);
+      if (!what.empty())
+        lin.fail("beta", "the line at speed " + num(rpm[i]) + " rpm (alpha_per_C[" + std::to_string(i) +
+                             "] * T + beta[" + std::to_string(i) + "]) " + what + " at temperature " +
+                             num(t) + " °C (any load); mu must lie in (0, " + num(kMaxPlausibleMu) +
+                             "] from " + num(kLinearCheckLow_C) + " to " + num(kLinearCheckHigh_C) + " °C");
+    }
   lin.finish();
 
   // rpm -> local sliding speed at the mean radius: v = rpm * 2*pi/60 * r
@@ -140,14 +201,7 @@ std::shared_ptr<const clutch::FrictionLaw> read_linear(TomlTable& lin) {
   }
 }
 
-}  // namespace
-
-clutch::Fluid load_fluid(const std::string& path) {
-  // toml++ reads a directory as an empty document; say what is wrong instead.
-  std::error_code ec;
-  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
-    throw InputError(path, 0, "", "is not a regular file; expected a fluid TOML file");
-  const toml::table doc = TomlTable::parse_file(path);
+clutch::Fluid read_fluid(const toml::table& doc, const std::string& path) {
   TomlTable root(doc, path, "");
   clutch::Fluid fluid;
 
@@ -184,6 +238,20 @@ clutch::Fluid load_fluid(const std::string& path) {
   }
   root.finish();
   return fluid;
+}
+
+}  // namespace
+
+clutch::Fluid load_fluid(const std::string& path) {
+  // toml++ reads a directory as an empty document; say what is wrong instead.
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw InputError(path, 0, "", "is not a regular file; expected a fluid TOML file");
+  return read_fluid(TomlTable::parse_file(path), path);
+}
+
+clutch::Fluid load_fluid_text(const std::string& text, const std::string& path) {
+  return read_fluid(TomlTable::parse_text(text, path), path);
 }
 
 }  // namespace shudder::io

@@ -11,6 +11,10 @@
 //   [linear]           Papers B/C/E lines mu = alpha*T + beta per speed (speeds_rpm,
 //                      mean_radius_mm)
 //
+// Plausibility (issue 14): mu must lie in (0, 1] over the law's whole declared range — every
+// row and load of a [maki] matrix at speeds min_speed_mm_s..max_speed_mm_s, every line of a
+// [linear] law from -40 to 150 °C — else InputError naming the key and the failing point.
+//
 // Strict: every table is finished, so unknown keys are errors. Every failure is an
 // io::InputError naming the file, the line, the full key, what was wrong and what is allowed;
 // std::invalid_argument from the clutch constructors is rethrown as InputError with the file
@@ -23,5 +27,8 @@
 namespace shudder::io {
 
 clutch::Fluid load_fluid(const std::string& path);
+
+/// The same from the file's text (e.g. as stored in a run file); `path` names it in messages.
+clutch::Fluid load_fluid_text(const std::string& text, const std::string& path);
 
 }  // namespace shudder::io

@@ -14,7 +14,10 @@
 //                              axis datasets) and `description`; in it the axes <x> (n_x),
 //                              <y> (n_y), each layer (n_x x n_y, row-major) and the map's
 //                              scalars, all with `units`              [if maps]
-//   root attributes            `scenario`, `shudder_version`, `created_utc` (ISO 8601, UTC)
+//   root attributes            `scenario`, `fluid` (the fluid file's text; omitted when
+//                              not given), `shudder_version`, `created_utc` (ISO 8601, UTC)
+// Datasets of >= 256 values are chunked (<= 16384 values per chunk, along the first axis),
+// shuffled and deflated (level 4); readers decompress transparently.
 // Strings are variable-length UTF-8 (h5py reads them as str). Groups track link creation
 // order, so the reader returns signals and scalars in the order they were written.
 //
@@ -34,7 +37,7 @@ namespace shudder::io {
 /// result blocks named "summary" or like a map, or with duplicate or '/'-containing scalar names
 /// or duplicate text names. An existing file at `path` is replaced atomically.
 void write_run_hdf5(const std::string& path, const dynamics::Recording& rec,
-                    const std::string& scenario_text);
+                    const std::string& scenario_text, const std::string& fluid_text = "");
 
 /// Reads a file written by write_run_hdf5 (or any file with the same layout). Signals come in
 /// file order with `time_s` moved first; a missing `units` attribute reads as "". Throws
@@ -44,7 +47,7 @@ void write_run_hdf5(const std::string& path, const dynamics::Recording& rec,
 /// their scalar numeric datasets and string attributes (texts in name order), the rest skipped.
 dynamics::Recording read_run_hdf5(const std::string& path);
 
-/// A root string attribute of a run file (`scenario`, `shudder_version`, `created_utc`); ""
+/// A root string attribute of a run file (`scenario`, `fluid`, `shudder_version`, `created_utc`); ""
 /// when absent. Throws InputError like read_run_hdf5.
 std::string read_run_attribute(const std::string& path, const std::string& name);
 

@@ -5,7 +5,9 @@
 //                        per numeric result, `units` attribute; `simulated_verdict` as strings
 //   /case_NNNNN/signals/<name>   the case's recorded signals (a chosen subset)
 //   /case_NNNNN attribute `scenario`: the case's scenario text
-//   root attributes `scenario` (the base scenario), `shudder_version`, `created_utc`
+//   root attributes `scenario` (the base scenario), `fluid` (its fluid file's text, if given),
+//                   `shudder_version`, `created_utc`
+// Signals are chunked and deflated as in a run file (hdf5_run.hpp).
 // Written to a temporary name and renamed when complete. Implemented in hdf5_run.cpp, on the
 // helpers and the library-wide HDF5 mutex of hdf5_util.hpp.
 
@@ -25,6 +27,7 @@ struct SweepColumn {
 
 struct SweepOutput {
   std::string base_scenario_text;
+  std::string fluid_text;                            // the base scenario's fluid file; "" = none
   std::vector<SweepColumn> columns;                  // swept keys first, then results
   std::string text_column_name = "simulated_verdict";
   std::vector<std::string> text_column;              // (n_cases)

@@ -91,6 +91,7 @@ void write_file_atomically(const std::string& path, const std::string& what,
                            const std::function<void(const std::string& tmp)>& write) {
   const std::lock_guard lock(hdf5_mutex());
   const QuietHdf5 quiet;
+  remove_stale_temp_files(path);
   const std::string tmp = temp_path_for(path);
   try {
     write(tmp);

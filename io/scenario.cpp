@@ -29,6 +29,7 @@ struct Draft {
   std::string type;
   ModelKind kind = ModelKind::kPrescribedSlip;
   std::string fluid_path;
+  std::string fluid_text;
   clutch::Fluid fluid;
   clutch::WetClutchParams clutch;
   rig_models::DriveCycle cycle;                 // prescribed_slip and rig
@@ -73,7 +74,11 @@ void read_clutch(TomlTable& root, Draft& s) {
   const std::string fluid = c.string("fluid");
   s.fluid_path = (fs::path(s.path).parent_path() / fluid).string();
   if (!fs::exists(s.fluid_path)) c.fail("fluid", "file '" + s.fluid_path + "' does not exist");
-  s.fluid = load_fluid(s.fluid_path);
+  if (!fs::is_regular_file(s.fluid_path))
+    c.fail("fluid", "'" + s.fluid_path + "' is not a regular file; expected a fluid TOML file");
+  // The fluid is parsed from the very text stored in the outputs (reproducibility).
+  s.fluid_text = read_text(s.fluid_path);
+  s.fluid = load_fluid_text(s.fluid_text, s.fluid_path);
   p.sliding_interfaces = static_cast<int>(c.integer_or("sliding_interfaces", 1, 1, 64));
   p.start_temp_C = c.number("start_temp_C", kTemp_C);
   p.sump_start_temp_C = c.number_or("sump_start_temp_C", p.start_temp_C, kTemp_C);
@@ -88,7 +93,11 @@ void read_clutch(TomlTable& root, Draft& s) {
     th.oil_density_kg_m3 = oil->number_or("density_kg_m3", th.oil_density_kg_m3, Range::positive());
     th.oil_specific_heat_J_per_kgK =
         oil->number_or("specific_heat_J_per_kgK", th.oil_specific_heat_J_per_kgK, Range::positive());
-    th.film_thickness_m = oil->number_or("film_thickness_um", th.film_thickness_m * 1e6, Range::positive()) * 1e-6;
+    // Mean oil film in the interface (Paper G's h_mean = 10 µm). Bounded to [0.01, 1000] µm:
+    // below 0.01 µm (a few molecular layers) the film cell's heat capacity vanishes and its
+    // conductance r²/h explodes (the audit's 1e-300 µm gave 5e279 °C); above 1 mm it is no
+    // longer a film but a gap as deep as the discs are thick.
+    th.film_thickness_m = oil->number_or("film_thickness_um", th.film_thickness_m * 1e6, Range::closed(0.01, 1000.0)) * 1e-6;
     th.sump_volume_m3 = oil->number_or("sump_volume_ml", th.sump_volume_m3 * 1e6, Range::positive()) * 1e-6;
     th.supply_flow_m3_s = units::ml_min_to_m3_s(oil->number_or(  // rig pump: 0–1000 ml/min
         "supply_flow_ml_min", units::m3_s_to_ml_min(th.supply_flow_m3_s), Range::closed(0.0, 1000.0)));
@@ -375,6 +384,7 @@ Scenario load_scenario_text(const std::string& text, const std::string& path) {
     if (effect.enabled(target)) sc.enabled_effects.push_back(effect.name);
 
   sc.fluid_path = s.fluid_path;
+  sc.fluid_text = s.fluid_text;
   sc.fluid = s.fluid;
   sc.clutch = s.clutch;
   sc.stick_time = s.rig.stick_time;

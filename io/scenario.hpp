@@ -23,6 +23,7 @@ struct Scenario {
   std::string name;
   std::string description;
   std::string fluid_path;   // resolved relative to the scenario file
+  std::string fluid_text;   // the fluid file's text as read (stored in outputs beside `text`)
   clutch::Fluid fluid;
   clutch::WetClutchParams clutch;  // every kind; clutch effects applied
   rig_models::Model model;         // the kind and what it needs (rig and driveline params,

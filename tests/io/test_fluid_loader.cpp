@@ -281,3 +281,62 @@ TEST(LoadFluid, TomlSyntaxErrorNamesTheLine) {
 }
 
 }  // namespace
+
+// ---- Plausibility: mu in (0, 1] over the law's declared range (issue 14) ----------------------
+// On the old code each of these files loaded without complaint (the audit's sign typo in `beta`
+// then gave -4,923 J of friction heat and a thermocouple at -65 °C, exit 0).
+
+TEST(LoadFluidPlausibility, EveryShippedFluidLoads) {
+  int loaded = 0;
+  for (const auto& e : fs::directory_iterator(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/fluids")) {
+    EXPECT_NO_THROW(load_fluid(e.path().string())) << e.path();
+    ++loaded;
+  }
+  EXPECT_GE(loaded, 11);
+}
+
+TEST(LoadFluidPlausibility, ShippedFluidWithBetaNegatedIsRejectedNamingKeyAndPoint) {
+  // Paper E fluid A with `beta` negated: at 1 rpm and -40 °C, mu = -5.42e-4 * (-40) - 0.1018
+  // = -0.08012 (the first point checked: first speed, low temperature end).
+  std::ifstream in(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/fluids/paper_e_fluid_a.toml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text = with(text, "beta = [0.1018, 0.1164]", "beta = [-0.1018, -0.1164]");
+  const std::string path = write(text);
+  EXPECT_THAT([&] { load_fluid(path); },
+              fails_with(path, "linear.beta", "gives mu = -0.08012 <= 0"));
+  EXPECT_THAT([&] { load_fluid(path); },
+              ThrowsMessage<InputError>(AllOf(HasSubstr("speed 1 rpm"), HasSubstr("temperature -40 °C"),
+                                              HasSubstr("from -40 to 150 °C"))));
+}
+
+TEST(LoadFluidPlausibility, LinearLineCrossingZeroBelow150CIsRejectedAtTheHotEnd) {
+  // mu = -1e-3 T + 0.1 is 0.14 at -40 °C but -0.05 at 150 °C: the hot end fails.
+  const std::string path = write(with(with(kLinear, "alpha_per_C = [-5.42e-4, -2.96e-4]", "alpha_per_C = [-1e-3, -2.96e-4]"),
+                                      "beta = [0.1018, 0.1164]", "beta = [0.1, 0.1164]"));
+  EXPECT_THAT([&] { load_fluid(path); }, fails_with(path, "linear.beta", "gives mu = -0.05 <= 0"));
+  EXPECT_THAT([&] { load_fluid(path); }, ThrowsMessage<InputError>(HasSubstr("temperature 150 °C")));
+}
+
+TEST(LoadFluidPlausibility, LinearMuAboveOneIsRejected) {
+  // A shifted decimal point: beta = 1.018 gives mu = 1.018 + 5.42e-4 * 40 = 1.03968 at -40 °C.
+  const std::string path = write(with(kLinear, "beta = [0.1018, 0.1164]", "beta = [1.018, 0.1164]"));
+  EXPECT_THAT([&] { load_fluid(path); }, fails_with(path, "linear.beta", "gives mu = 1.03968 > 1"));
+}
+
+TEST(LoadFluidPlausibility, MakiSetNegativeAtLowSpeedNamesRowSetAndPoint) {
+  // The 20 °C row's 15 kN set: mu = 0.05 tanh(0.001 v) - 0.01; tanh(0.001 v) ~ 0.001 v, so mu
+  // <= 0 below v = 200 mm/s: the first sample, 6 mm/s, fails (0.05 tanh(0.006) - 0.01 =
+  // -0.0097).
+  const std::string path = write(with(kMaki, "[[0, 0, 0, 0.12], [0, 0, 0, 0.12]", "[[0, 0, 0, 0.12], [0.05, 0.001, 0, -0.01]"));
+  EXPECT_THAT([&] { load_fluid(path); }, fails_with(path, "maki.row[0].sets", "set 1 gives mu = -0.0097"));
+  EXPECT_THAT([&] { load_fluid(path); },
+              ThrowsMessage<InputError>(AllOf(HasSubstr("speed 6 mm/s"), HasSubstr("temperature 20 °C"),
+                                              HasSubstr("load 15000 N"))));
+}
+
+TEST(LoadFluidPlausibility, MakiSetNegativeOnlyAtHighSpeedIsFoundByTheSpeedGrid) {
+  // mu = -0.2 tanh(0.01 v) + 0.12: positive at low speed, 0.12 - 0.2 tanh(5.9) < 0 at 590 mm/s;
+  // mu = 0 at v = atanh(0.6)/0.01 = 69.3 mm/s, so the first failing sample lies just above it.
+  const std::string path = write(with(kMaki, "[[0, 0, 0, 0.12], [0, 0, 0, 0.12]", "[[0, 0, 0, 0.12], [-0.2, 0.01, 0, 0.12]"));
+  EXPECT_THAT([&] { load_fluid(path); }, fails_with(path, "maki.row[0].sets", "set 1 gives mu = -"));
+}
