@@ -7,8 +7,9 @@
 // under /analysis other than the summary and the stability map, no verdict.json; the table
 // sampled the torque every T/5, so rig_shudder_negative_slope's 378 Hz oscillation printed as
 // 87.9, 80.8, 28.2, 168.2 N m. Every test below fails on that code: this file compiled with
-// SHUDDER_CLI pointing at a build of d56e0c5 fails all four at "no /analysis/verdict" (and by
-// hand: that binary's summary has no "Shudder:" line, its report directory no verdict.json).
+// SHUDDER_CLI pointing at a build from before this change (its summaries match the recorded
+// baseline) fails all four at "no /analysis/verdict" (and by hand: that binary's summary has
+// no "Shudder:" line, its report directory no verdict.json).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
