@@ -163,8 +163,9 @@ TEST(CliSweep, ResumeWithAFailedCaseIsBitIdentical) {
   }
 }
 
-// Old: a key given to two --set options ran every case and then failed writing /cases (an HDF5
-// name clash), exit 1. Now it is refused before anything runs: exit 2 naming the key.
+// Old: a key given to two --set options ran every case and only then failed writing /cases
+// ("cannot create dataset ... name already exists; check the directory exists and is
+// writable"), leaving the parts behind. Now it is refused before anything runs, naming the key.
 TEST(CliSweep, ARepeatedSetKeyIsRefusedBeforeRunning) {
   const auto dir = scratch_dir("sweep_repeated_key");
   write_file(dir / "s.toml", short_shudder_scenario());
