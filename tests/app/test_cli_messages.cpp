@@ -99,3 +99,26 @@ TEST(CliMessages, AGridTooLargeForMemoryIsBadInputNamingItsSize) {
   expect_rejected(r, {"shudder: error: --set: the grid has 1e+15 cases: ran out of memory listing them"});
   EXPECT_FALSE(std::filesystem::exists(dir / "sw.h5"));
 }
+
+// Old: a run asking for more memory than there is (1000 s at 1 MS/s: 1e9 samples per signal)
+// printed "shudder: simulation failed: std::bad_alloc", exit 1 — as if the numerics had failed.
+// Now it is bad input (exit 2) saying what to reduce. ulimit -v (2 GB) makes the refusal
+// immediate and the same on any machine.
+TEST(CliMessages, OutOfMemoryIsBadInputSayingWhatToReduce) {
+  const auto dir = scratch_dir("msg_oom_run");
+  std::string s = shipped_scenario_text("rig_shudder_negative_slope.toml");
+  s = replace(s, "duration_s = 2.0", "duration_s = 1000.0");
+  s = replace(s, "time_s = [0.0, 2.0]", "time_s = [0.0, 1000.0]");
+  s = replace(s, "sample_rate_Hz = 20000.0", "sample_rate_Hz = 1000000.0");
+  write_file(dir / "s.toml", s);
+  const std::string cmd = "cd '" + dir.string() + "' && ulimit -v 2000000 && '" + SHUDDER_CLI +
+                          "' run s.toml -o out.h5 >stdout.txt 2>stderr.txt";
+  const int status = std::system(cmd.c_str());
+  CliResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(dir / "stdout.txt");
+  r.err = slurp(dir / "stderr.txt");
+  expect_rejected(r, {"shudder: error: s.toml: ran out of memory; reduce the duration, sample_rate_Hz or the "
+                      "number of cases"});
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
+}
