@@ -13,6 +13,7 @@
 #include <functional>
 #include <iostream>
 #include <mutex>
+#include <new>
 #include <string_view>
 #include <thread>
 #include <variant>
@@ -45,28 +46,74 @@ namespace sn = dynamics::signal_names;
 constexpr std::string_view kKeptSignals[] = {sn::kTime, sn::kSpeed, sn::kSlip, sn::kTorque, sn::kTemp};
 // The verdict as the number the part files store (analysis::kVerdicts' order).
 double verdict_code(const std::string& v) { return static_cast<double>(analysis::verdict_from_string(v)); }
+// The /cases verdict of a case whose run threw (not an analysis verdict: nothing was classified).
+constexpr const char* kFailed = "failed";
 
-// Runs one case and writes its part file (recording + outcome as summary scalars).
+// Runs one case and writes its part file (recording + outcome as summary scalars). A case whose
+// model or run throws is a result, not a sweep failure: its part records the message (verdict
+// `failed`), so the sweep finishes and a resume keeps it. Running out of memory is not a
+// property of the case and stops the sweep; so does a part that cannot be written.
 void run_case(const std::string& text, const std::string& path, const std::string& part) {
-  const io::Scenario sc = io::load_scenario_text(text, path);
-  const clutch::WetClutch clutch = sc.make_clutch();
-  dynamics::Recording rec;
-  const rig_models::CaseOutcome o = io::visit_kind(
-      path, "scenario.type", sc.model, [&](const auto& m) { return rig_models::evaluate_case(m, clutch, rec); });
-  // A case whose energy accounts do not close is a numerical failure, not a result.
-  if (const std::string bad = rig_models::energy_balance_violation(rec); !bad.empty())
-    throw std::runtime_error("numerical failure: " + bad);
   dynamics::Recording kept;
-  for (const std::string_view name : kKeptSignals)
-    if (const auto* s = rec.find(name)) kept.signals.push_back(*s);
-  kept.scalars = {{"predicted_stable", "1", o.predicted_stable ? 1.0 : 0.0},
-                  {"predicted_margin_per_s", "1/s", o.predicted_margin_per_s},
-                  {"predicted_frequency_Hz", "Hz", o.predicted_frequency_Hz},
-                  {"simulated_verdict_code", "1", verdict_code(o.simulated_verdict)},
-                  {"simulated_frequency_Hz", "Hz", o.simulated_frequency_Hz},
-                  {"amplitude_Nm", "N m", o.amplitude_Nm},
-                  {"onset_time_s", "s", o.onset_time_s}};
+  try {
+    const io::Scenario sc = io::load_scenario_text(text, path);
+    const clutch::WetClutch clutch = sc.make_clutch();
+    dynamics::Recording rec;
+    const rig_models::CaseOutcome o = io::visit_kind(
+        path, "scenario.type", sc.model, [&](const auto& m) { return rig_models::evaluate_case(m, clutch, rec); });
+    // A case whose energy accounts do not close is a numerical failure, not a result.
+    if (const std::string bad = rig_models::energy_balance_violation(rec); !bad.empty())
+      throw std::runtime_error("numerical failure: " + bad);
+    for (const std::string_view name : kKeptSignals)
+      if (const auto* s = rec.find(name)) kept.signals.push_back(*s);
+    kept.scalars = {{"predicted_stable", "1", o.predicted_stable ? 1.0 : 0.0},
+                    {"predicted_margin_per_s", "1/s", o.predicted_margin_per_s},
+                    {"predicted_frequency_Hz", "Hz", o.predicted_frequency_Hz},
+                    {"simulated_verdict_code", "1", verdict_code(o.simulated_verdict)},
+                    {"simulated_frequency_Hz", "Hz", o.simulated_frequency_Hz},
+                    {"amplitude_Nm", "N m", o.amplitude_Nm},
+                    {"onset_time_s", "s", o.onset_time_s}};
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    io::write_failed_case_part(part, text, e.what());
+    return;
+  }
   io::write_run_hdf5(part, kept, text);
+}
+
+// Rejects a key given to two --set options (the cases would repeat and /cases would hold two
+// columns of one name) before anything runs.
+void require_distinct_keys(const std::vector<io::SweepAxis>& axes) {
+  for (std::size_t a = 0; a < axes.size(); ++a)
+    for (std::size_t b = 0; b < a; ++b)
+      if (axes[a].key == axes[b].key)
+        throw io::InputError("--set", 0, axes[a].key,
+                             "given twice; give each key once (list several values as KEY=V1,V2,...)");
+}
+
+// The grid's rows; a grid too large to list in memory is an input error naming its size.
+std::vector<std::vector<double>> list_cases(const std::vector<io::SweepAxis>& axes) {
+  double n = 1.0;
+  for (const auto& a : axes) n *= static_cast<double>(a.values.size());
+  try {
+    return io::sweep_cases(axes);
+  } catch (const std::bad_alloc&) {
+    char what[160];
+    std::snprintf(what, sizeof what, "the grid has %.3g cases: ran out of memory listing them; reduce the --set ranges", n);
+    throw io::InputError("--set", 0, "", what);
+  }
+}
+
+// One line naming the failed cases (at most ten indices) and the first one's message.
+std::string failure_warning(const std::vector<std::size_t>& failed, std::size_t total, const std::string& first) {
+  std::string ids;
+  for (std::size_t i = 0; i < failed.size() && i < 10; ++i) ids += (i ? ", " : "") + std::to_string(failed[i]);
+  if (failed.size() > 10) ids += ", ...";
+  return "shudder: warning: " + std::to_string(failed.size()) + " of " + std::to_string(total) +
+         " cases failed (" + (failed.size() > 1 ? "cases " : "case ") + ids + "); case " +
+         std::to_string(failed.front()) + ": " + first + "; /cases marks them 'failed' with the message in " +
+         io::kSweepMessageColumn + "\n";
 }
 
 void progress(std::size_t done, std::size_t total, double elapsed_s) {
@@ -89,7 +136,8 @@ int sweep_command(const SweepOptions& opt) {
     if (opt.sets.empty()) throw io::InputError("--set", 0, "", "give at least one --set KEY=START:STOP:STEP");
     std::vector<io::SweepAxis> axes;
     for (const auto& s : opt.sets) axes.push_back(io::parse_sweep_axis(s));
-    const auto rows = io::sweep_cases(axes);
+    require_distinct_keys(axes);
+    const auto rows = list_cases(axes);
 
     // The output may replace neither an input nor the report, and its directory must exist:
     // the parts folder beside it is created, never the directories above it.
@@ -142,14 +190,18 @@ int sweep_command(const SweepOptions& opt) {
     std::atomic<std::size_t> done{0};
     std::mutex error_mutex;
     std::string first_error;
+    std::atomic<bool> out_of_memory{false};
     const auto t0 = std::chrono::steady_clock::now();
     const auto elapsed_s = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
     parallel_for(
         todo.size(), jobs,
         [&](std::size_t i) {
           const std::size_t k = todo[i];
+          // What escapes run_case stops the sweep: a part that cannot be written, or memory.
           try {
             run_case(texts[k], opt.scenario, part_paths[k]);
+          } catch (const std::bad_alloc&) {
+            out_of_memory = true;
           } catch (const std::exception& e) {
             const std::lock_guard lock(error_mutex);
             if (first_error.empty()) first_error = "case " + std::to_string(k) + ": " + e.what();
@@ -159,6 +211,11 @@ int sweep_command(const SweepOptions& opt) {
         show ? std::function<void()>([&] { progress(done, todo.size(), elapsed_s()); }) : std::function<void()>());
     const double wall_s = elapsed_s();
     if (show) std::fprintf(stderr, "\n");
+    if (out_of_memory)
+      throw io::InputError(opt.scenario, 0, "",
+                           "ran out of memory running " + std::to_string(todo.size()) + " cases on " +
+                               std::to_string(jobs) + " jobs; reduce --jobs, the duration or sample_rate_Hz "
+                               "(finished cases are kept in " + parts.string() + ")");
     if (!first_error.empty())
       throw std::runtime_error(first_error + " (finished cases are kept in " + parts.string() + "; rerun to resume)");
 
@@ -171,13 +228,24 @@ int sweep_command(const SweepOptions& opt) {
                              "simulated_frequency_Hz", "amplitude_Nm", "onset_time_s"};
     const char* units[] = {"1", "1/s", "Hz", "Hz", "N m", "s"};
     for (int r = 0; r < 6; ++r) out.columns.push_back({results[r], units[r], {}});
+    std::vector<std::size_t> failed;
     for (std::size_t k = 0; k < texts.size(); ++k) {
-      dynamics::Recording part = io::read_run_hdf5(part_paths[k]);
       for (std::size_t a = 0; a < axes.size(); ++a) out.columns[a].values.push_back(rows[k][a]);
+      out.case_scenarios.push_back(texts[k]);
+      std::string message = io::read_run_attribute(part_paths[k], io::kSweepMessageColumn);
+      if (!message.empty()) {
+        failed.push_back(k);
+        for (int r = 0; r < 6; ++r) out.columns[axes.size() + r].values.push_back(std::nan(""));
+        out.text_column.emplace_back(kFailed);
+        out.message_column.push_back(std::move(message));
+        out.case_recordings.emplace_back();
+        continue;
+      }
+      dynamics::Recording part = io::read_run_hdf5(part_paths[k]);
       for (int r = 0; r < 6; ++r) out.columns[axes.size() + r].values.push_back(part.find_scalar(results[r])->value);
       out.text_column.emplace_back(analysis::to_string(
           analysis::kVerdicts.at(static_cast<std::size_t>(part.find_scalar("simulated_verdict_code")->value))));
-      out.case_scenarios.push_back(texts[k]);
+      out.message_column.emplace_back();
       part.scalars.clear();
       out.case_recordings.push_back(std::move(part));
     }
@@ -190,13 +258,16 @@ int sweep_command(const SweepOptions& opt) {
                     base.name.c_str(), texts.size(), todo.size(), jobs, wall_s, opt.output.c_str());
       summary += line;
       std::size_t counts[3] = {0, 0, 0};
-      for (const auto& v : out.text_column) counts[static_cast<int>(verdict_code(v))]++;
-      std::snprintf(line, sizeof line, "Simulated: %zu none, %zu vibration, %zu stick-slip; predicted unstable: %zu\n",
-                    counts[0], counts[1], counts[2],
+      for (const auto& v : out.text_column)
+        if (v != kFailed) counts[static_cast<int>(verdict_code(v))]++;
+      const std::string failures = failed.empty() ? "" : ", " + std::to_string(failed.size()) + " failed";
+      std::snprintf(line, sizeof line, "Simulated: %zu none, %zu vibration, %zu stick-slip%s; predicted unstable: %zu\n",
+                    counts[0], counts[1], counts[2], failures.c_str(),
                     static_cast<std::size_t>(std::count(out.columns[axes.size()].values.begin(),
                                                         out.columns[axes.size()].values.end(), 0.0)));
       summary += line;
     }
+    if (!failed.empty()) std::cerr << failure_warning(failed, texts.size(), out.message_column[failed.front()]);
     if (!opt.quiet) std::fputs(summary.c_str(), stdout);
     if (!opt.report.empty()) {
       io::SweepTable table;

@@ -6,6 +6,18 @@
 
 #include "app/commands.hpp"
 
+namespace {
+
+// CLI11's message with any line breaks folded, so the error stays one line.
+std::string one_line(std::string s) {
+  for (char& c : s)
+    if (c == '\n' || c == '\r') c = ' ';
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace shudder::app;
   CLI::App app{"shudder: stick-slip and shudder in wet-clutch drivetrains"};
@@ -84,9 +96,18 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    // CLI11 uses exit code 0 for --help/--version; map every real usage error to 2.
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
+    // --help and --version (exit code 0) print as CLI11 prints them; every usage error is ONE
+    // line with our prefix and a pointer to the help, exit 2.
+    if (e.get_exit_code() == 0) return app.exit(e);
+    const auto used = app.get_subcommands();
+    std::cerr << "shudder: error: " << one_line(e.what()) << " (see shudder "
+              << (used.empty() ? std::string() : used.front()->get_name() + " ") << "--help)\n";
+    return 2;
+  }
+  // --seed only seeds the sensor noise: without --noise it would be silently ignored.
+  if (*run_cmd && run_cmd->count("--seed") > 0 && !run.noise) {
+    std::cerr << "shudder: error: --seed sets the sensor noise; give --noise too\n";
+    return 2;
   }
   if (*run_cmd) return run_command(run);
   if (*val_cmd) return validate_command(validate);

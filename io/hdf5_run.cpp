@@ -537,6 +537,7 @@ void write_sweep_file(const std::string& file_name, const SweepOutput& sw) {
     const Handle cases = make_group(file, "cases");
     for (const auto& c : sw.columns) write_doubles(cases, c.name, {c.values.size()}, c.values.data(), c.units);
     write_strings(cases, sw.text_column_name, sw.text_column);
+    write_strings(cases, kSweepMessageColumn, sw.message_column);
     for (std::size_t k = 0; k < sw.case_recordings.size(); ++k) {
       char name[32];
       std::snprintf(name, sizeof name, "case_%05zu", k);
@@ -558,11 +559,25 @@ void write_sweep_file(const std::string& file_name, const SweepOutput& sw) {
 
 void write_sweep_hdf5(const std::string& path, const SweepOutput& sweep) {
   const std::size_t n = sweep.text_column.size();
+  if (sweep.message_column.size() != n)
+    throw InputError(path, 0, "", "sweep message column has " + std::to_string(sweep.message_column.size()) +
+                                      " rows, expected " + std::to_string(n));
   for (const auto& c : sweep.columns)
     if (c.values.size() != n)
       throw InputError(path, 0, "", "sweep column '" + c.name + "' has " + std::to_string(c.values.size()) +
                                         " rows, expected " + std::to_string(n));
   write_file_atomically(path, "sweep file", [&](const std::string& tmp) { write_sweep_file(tmp, sweep); });
+}
+
+void write_failed_case_part(const std::string& path, const std::string& scenario_text, const std::string& message) {
+  write_file_atomically(path, "sweep part", [&](const std::string& tmp) {
+    Handle file = own(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
+                      "create file '" + tmp + "'");
+    write_string_attr(file, "scenario", scenario_text);
+    write_string_attr(file, kSweepMessageColumn, message);
+    write_string_attr(file, "shudder_version", SHUDDER_VERSION);
+    ok(file.close(), "close (flush) file '" + tmp + "'");
+  });
 }
 
 }  // namespace shudder::io
@@ -598,7 +613,9 @@ SweepTable read_sweep_table(const std::string& path) {
     for (const auto& name : link_names(cases)) {
       const Handle dset = own(H5Dopen2(cases, name.c_str(), H5P_DEFAULT), H5Dclose, "open '" + name + "'");
       const Handle type = own(H5Dget_type(dset), H5Tclose, "read type of '" + name + "'");
-      if (H5Tget_class(type) == H5T_STRING) {
+      if (H5Tget_class(type) == H5T_STRING && name == kSweepMessageColumn) {
+        t.message_column = read_strings(cases, name);
+      } else if (H5Tget_class(type) == H5T_STRING) {
         t.text_column_name = name;
         t.text_column = read_strings(cases, name);
       } else {

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <new>
 
 #include "io/input_error.hpp"
 
@@ -56,15 +57,24 @@ SweepAxis parse_sweep_axis(const std::string& arg) {
 }
 
 std::vector<std::vector<double>> sweep_cases(const std::vector<SweepAxis>& axes) {
-  std::vector<std::vector<double>> rows{{}};
-  for (const auto& axis : axes) {
-    std::vector<std::vector<double>> next;
-    for (const auto& row : rows)
-      for (double v : axis.values) {
-        next.push_back(row);
-        next.back().push_back(v);
-      }
-    rows = std::move(next);
+  // The whole grid is reserved first: a grid too large to hold fails here at once
+  // (std::bad_alloc) instead of after filling memory row by row.
+  double n_cases = 1.0;
+  for (const auto& axis : axes) n_cases *= static_cast<double>(axis.values.size());
+  std::vector<std::vector<double>> rows;
+  if (n_cases > static_cast<double>(rows.max_size())) throw std::bad_alloc();
+  const auto n = static_cast<std::size_t>(n_cases);
+  rows.reserve(n);
+  // Case i's value on each axis: i written in the mixed radix of the axis sizes, last digit
+  // (the last axis) varying fastest.
+  for (std::size_t i = 0; i < n; ++i) {
+    std::vector<double> row(axes.size());
+    std::size_t rest = i;
+    for (std::size_t a = axes.size(); a-- > 0;) {
+      row[a] = axes[a].values[rest % axes[a].values.size()];
+      rest /= axes[a].values.size();
+    }
+    rows.push_back(std::move(row));
   }
   return rows;
 }

@@ -1,5 +1,6 @@
 #include "io/toml_reader.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -24,6 +25,36 @@ std::string Range::describe() const {
   else
     os << "any finite number";
   return os.str();
+}
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  // d[i][j]: distance between a's first i and b's first j characters (Wagner–Fischer with the
+  // adjacent-swap case of Damerau).
+  std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
+  for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i)
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  return d[a.size()][b.size()];
+}
+
+std::string nearest_key(const std::string& key, const std::vector<std::string>& candidates) {
+  const std::size_t limit = std::min<std::size_t>(2, key.size() / 3);
+  std::string best;
+  std::size_t best_d = limit + 1;
+  for (const auto& c : candidates) {
+    const std::size_t dist = edit_distance(key, c);
+    if (dist < best_d) {
+      best_d = dist;
+      best = c;
+    }
+  }
+  return best;
 }
 
 TomlTable::TomlTable(const toml::table& table, std::string file, std::string path)
@@ -70,6 +101,19 @@ bool TomlTable::is_array(const std::string& key) const {
 
 const toml::node* TomlTable::get(const std::string& key) const { return table_->get(key); }
 
+void TomlTable::missing(const std::string& key, const std::string& expected) const {
+  // Keys are read in the loader's order, so a misspelt required key is met as the correct one
+  // missing; the misspelling itself is the better report. Only unread keys one edit away count:
+  // an unread key may still be a correct key read later, and correct keys lie two edits apart
+  // (nu40_cSt / nu100_cSt) but, among the required ones, never one.
+  for (const auto& [k, v] : *table_) {
+    const std::string u(k.str());
+    if (!read_.count(u) && edit_distance(u, key) == 1)
+      throw InputError(file_, line_of(u), full_key(u), "unknown key; did you mean '" + key + "'?");
+  }
+  fail(key, "missing; " + expected);
+}
+
 const char* toml_type_name(const toml::node& n) {
   switch (n.type()) {
     case toml::node_type::table: return "a table";
@@ -84,7 +128,7 @@ const char* toml_type_name(const toml::node& n) {
 
 double TomlTable::number(const std::string& key, Range range) {
   const auto* n = get(key);
-  if (!n) fail(key, "missing; expected a number in " + range.describe());
+  if (!n) missing(key, "expected a number in " + range.describe());
   read_.insert(key);
   double x = 0.0;
   if (auto v = n->as_floating_point())
@@ -111,7 +155,7 @@ long TomlTable::integer(const std::string& key, long min, long max) {
   const auto* n = get(key);
   const std::string allowed =
       "expected an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]";
-  if (!n) fail(key, "missing; " + allowed);
+  if (!n) missing(key, allowed);
   read_.insert(key);
   const auto* i = n->as_integer();
   if (!i) fail(key, std::string("is ") + toml_type_name(*n) + "; " + allowed);
@@ -126,7 +170,7 @@ long TomlTable::integer_or(const std::string& key, long fallback, long min, long
 
 bool TomlTable::boolean(const std::string& key) {
   const auto* n = get(key);
-  if (!n) fail(key, "missing; expected true or false");
+  if (!n) missing(key, "expected true or false");
   read_.insert(key);
   const auto* b = n->as_boolean();
   if (!b) fail(key, std::string("is ") + toml_type_name(*n) + "; expected true or false");
@@ -139,7 +183,7 @@ bool TomlTable::boolean_or(const std::string& key, bool fallback) {
 
 std::string TomlTable::string(const std::string& key) {
   const auto* n = get(key);
-  if (!n) fail(key, "missing; expected a string");
+  if (!n) missing(key, "expected a string");
   read_.insert(key);
   const auto* s = n->as_string();
   if (!s) fail(key, std::string("is ") + toml_type_name(*n) + "; expected a string");
@@ -165,7 +209,7 @@ std::vector<double> TomlTable::numbers(const std::string& key, Range range,
   const auto* n = get(key);
   const std::string allowed = "expected an array of at least " + std::to_string(min_size) +
                               " numbers in " + range.describe();
-  if (!n) fail(key, "missing; " + allowed);
+  if (!n) missing(key, allowed);
   read_.insert(key);
   const auto* arr = n->as_array();
   if (!arr) fail(key, std::string("is ") + toml_type_name(*n) + "; " + allowed);
@@ -212,7 +256,7 @@ std::optional<TomlTable> TomlTable::optional_table(const std::string& key) {
 
 std::vector<TomlTable> TomlTable::table_array(const std::string& key) {
   const auto* n = get(key);
-  if (!n) fail(key, "missing; expected an array of tables [[" + full_key(key) + "]]");
+  if (!n) missing(key, "expected an array of tables [[" + full_key(key) + "]]");
   read_.insert(key);
   const auto* arr = n->as_array();
   if (!arr) fail(key, std::string("is ") + toml_type_name(*n) + "; expected an array of tables");
@@ -238,8 +282,10 @@ void TomlTable::finish() const {
     if (read_.count(key)) continue;
     std::string allowed;
     for (const auto& r : read_) allowed += (allowed.empty() ? "" : ", ") + r;
+    const std::string near = nearest_key(key, {read_.begin(), read_.end()});
     throw InputError(file_, static_cast<long>(v.source().begin.line), full_key(key),
-                     "unknown key; allowed keys here: " + (allowed.empty() ? "(none)" : allowed));
+                     "unknown key; " + (near.empty() ? "" : "did you mean '" + near + "'? ") +
+                         "allowed keys here: " + (allowed.empty() ? "(none)" : allowed));
   }
 }
 

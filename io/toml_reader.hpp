@@ -30,6 +30,15 @@ struct Range {
   std::string describe() const;
 };
 
+/// Optimal-string-alignment (Damerau–Levenshtein) distance: insertions, deletions,
+/// substitutions and swaps of adjacent characters, each costing 1.
+std::size_t edit_distance(const std::string& a, const std::string& b);
+
+/// The candidate nearest to `key` if it is a plausible misspelling: distance <= 2 and at most a
+/// third of `key`'s length (so "fluid" does not suggest "lining"); ties go to the first
+/// candidate. "" when none is that near.
+std::string nearest_key(const std::string& key, const std::vector<std::string>& candidates);
+
 /// "a table", "an array", "a string", ... for messages about a value of the wrong type.
 const char* toml_type_name(const toml::node& n);
 
@@ -65,7 +74,8 @@ class TomlTable {
   /// The keys of this table that hold sub-tables (e.g. the effect names under [effects]).
   std::vector<std::string> subtable_keys() const;
 
-  /// Throws for the first key that no accessor read, listing the keys that were read.
+  /// Throws for the first key that no accessor read, naming the nearest key that was read
+  /// ("did you mean") and listing all of them.
   void finish() const;
 
   /// An error about `key` in this table, with the key's line when known.
@@ -77,6 +87,9 @@ class TomlTable {
 
  private:
   const toml::node* get(const std::string& key) const;
+  /// A required key is absent: if an unread key of this table is one edit away from it,
+  /// reports THAT key as unknown ("did you mean"), else "KEY: missing; <expected>".
+  [[noreturn]] void missing(const std::string& key, const std::string& expected) const;
   long line_of(const std::string& key) const;
 
   const toml::table* table_;

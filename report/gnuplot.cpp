@@ -15,7 +15,9 @@
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <regex>
 #include <stdexcept>
+#include <string>
 #include <system_error>
 
 #include "io/atomic_file.hpp"
@@ -333,12 +335,20 @@ int run_gnuplot(const fs::path& script, const fs::path& log) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
-std::string read_tail(const fs::path& file, std::size_t max_chars) {
-  std::ifstream in(file);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (text.size() > max_chars) text = "..." + text.substr(text.size() - max_chars);
-  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
-  return text;
+// gnuplot's own cause, without our script: gnuplot echoes the offending script line and a
+// caret, then writes `"FILE" line N: MESSAGE`; the first such MESSAGE that is not a warning is
+// the cause (else the first warning). "" if none.
+std::string gnuplot_cause(const fs::path& log) {
+  std::ifstream in(log);
+  const std::regex located(R"re(line [0-9]+: *(.*\S))re");
+  std::smatch m;
+  std::string warning;
+  for (std::string line; std::getline(in, line);) {
+    if (!std::regex_search(line, m, located)) continue;
+    if (m[1].str().rfind("warning:", 0) != 0) return m[1].str();
+    if (warning.empty()) warning = m[1].str();
+  }
+  return warning;
 }
 
 }  // namespace
@@ -379,9 +389,13 @@ void write_plot(const std::string& path, const Plot& plot) {
     }
     const int status = run_gnuplot(script, log);
     std::error_code ec;
-    if (status != 0 || fs::file_size(tmp, ec) == 0 || ec)
-      throw std::runtime_error("gnuplot failed (exit status " + std::to_string(status) +
-                               ") writing " + path + ": " + read_tail(log, 600));
+    if (status != 0 || fs::file_size(tmp, ec) == 0 || ec) {
+      const std::string cause = gnuplot_cause(log);
+      throw std::runtime_error("gnuplot could not draw " + path + ": " +
+                               (cause.empty() ? "it exited with status " + std::to_string(status) +
+                                                    " without writing the image"
+                                              : cause));
+    }
   } catch (...) {
     io::discard_temp_file(tmp);
     throw;

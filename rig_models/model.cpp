@@ -18,6 +18,10 @@ constexpr const char* kNoSweep =
     "`shudder run`";
 constexpr const char* kNoReplay = "measured runs are rig runs; diagnose needs a prescribed_slip or rig model";
 constexpr const char* kNoNetwork = "\" has no torsional network; modes needs type = \"rig\"";
+// The driveline has a network, but `modes` reports the rig's bar-and-housing shapes only.
+constexpr const char* kDrivelineModes =
+    "\": modes analyses a rig's torsion bar and housing; a driveline's modes are not reported yet "
+    "(issue 13); give a scenario with type = \"rig\"";
 constexpr const char* kNotARig = "\" is not a rig; --rig needs a scenario with type = \"rig\"";
 
 // Judges the run, adds the kind's prediction at its operating point (`predict`: OperatingWindow
@@ -156,7 +160,7 @@ CaseOutcome evaluate_case(const DrivelineModel&, const clutch::WetClutch&, dynam
 
 ReplayModel replay_model(const DrivelineModel&, const StickTimeFriction&) { throw KindNotSupported(kNoReplay); }
 
-const RigModel& modal_rig(const DrivelineModel& model) { refuse_quoting_kind(kind(model), kNoNetwork); }
+const RigModel& modal_rig(const DrivelineModel& model) { refuse_quoting_kind(kind(model), kDrivelineModes); }
 
 const RigParams& screening_rig(const DrivelineModel& model) { refuse_quoting_kind(kind(model), kNotARig); }
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "io/hdf5_sweep.hpp"
 #include "tests/support/cli.hpp"
@@ -99,4 +100,78 @@ TEST(CliSweep, BadSetArgumentsExitTwoNamingTheProblem) {
     EXPECT_THAT(r.err, HasSubstr(c.fragment)) << c.set;
     EXPECT_FALSE(std::filesystem::exists(dir / "sw.h5")) << c.set;
   }
+}
+
+// Issue 14, "Sweeps that finish". At 100 S/s the 0.4 s case has 41 samples, fewer than the
+// shudder detector's 64: that case throws while it is evaluated (it loads fine). Old: exit 1,
+// "case 1: ... (finished cases are kept in sw.h5.parts; rerun to resume)", no sw.h5, and every
+// rerun failed the same way. Now the sweep finishes: exit 0, one warning line naming the case,
+// and /cases holds all three rows, the failed one with verdict `failed`, NaN results and its
+// message.
+TEST(CliSweep, AFailingCaseIsRecordedAndTheSweepFinishes) {
+  const auto dir = scratch_dir("sweep_failing_case");
+  write_file(dir / "s.toml", short_shudder_scenario());
+  const auto r = run_cli("sweep s.toml --set output.sample_rate_Hz=10000,100,5000 --jobs 2 -o sw.h5", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err,
+            "shudder: warning: 1 of 3 cases failed (case 1); case 1: shudder detection needs at least 64 samples "
+            "of time_s, got 41; /cases marks them 'failed' with the message in simulated_message\n");
+  EXPECT_THAT(r.out, HasSubstr("Simulated: 0 none, 2 vibration, 0 stick-slip, 1 failed; predicted unstable: 2"));
+  const io::SweepTable t = io::read_sweep_table((dir / "sw.h5").string());
+  EXPECT_THAT(t.text_column, ::testing::ElementsAre("vibration", "failed", "vibration"));
+  ASSERT_EQ(t.message_column.size(), 3u);
+  EXPECT_EQ(t.message_column[0], "");
+  EXPECT_EQ(t.message_column[1], "shudder detection needs at least 64 samples of time_s, got 41");
+  EXPECT_EQ(t.message_column[2], "");
+  for (const char* col : {"predicted_stable", "predicted_margin_per_s", "amplitude_Nm", "onset_time_s"}) {
+    EXPECT_TRUE(std::isnan(t.find(col)->values[1])) << col;
+    EXPECT_FALSE(std::isnan(t.find(col)->values[0])) << col;
+  }
+}
+
+// Resume with a failed case stays bit-identical: a sweep interrupted after some cases (here: its
+// parts kept, then some deleted and the assembled file removed) and rerun gives the same /cases,
+// value for value and bit for bit, as the uninterrupted sweep; the failed case is finished too
+// (its part holds the message) and is not rerun. Old: the failing case stopped both runs.
+TEST(CliSweep, ResumeWithAFailedCaseIsBitIdentical) {
+  const auto dir = scratch_dir("sweep_failing_resume");
+  write_file(dir / "s.toml", short_shudder_scenario());
+  const std::string args = "sweep s.toml --set output.sample_rate_Hz=10000,100 --set " + std::string(kKey) +
+                           "=200,300 --jobs 2 --quiet -o ";
+  auto r = run_cli(args + "whole.h5", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_cli(args + "part.h5 --keep-parts", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::filesystem::remove(dir / "part.h5");
+  std::filesystem::remove(dir / "part.h5.parts" / "case_00000.h5");  // a case that ran
+  std::filesystem::remove(dir / "part.h5.parts" / "case_00003.h5");  // a failed case (100 S/s, 300 Hz)
+  r = run_cli(args + "part.h5", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("resuming: 2 of 4 cases already finished"));
+  const io::SweepTable whole = io::read_sweep_table((dir / "whole.h5").string());
+  const io::SweepTable resumed = io::read_sweep_table((dir / "part.h5").string());
+  EXPECT_THAT(whole.text_column, ::testing::ElementsAre("vibration", "vibration", "failed", "failed"));
+  EXPECT_EQ(resumed.text_column, whole.text_column);
+  EXPECT_EQ(resumed.message_column, whole.message_column);
+  ASSERT_EQ(resumed.columns.size(), whole.columns.size());
+  for (std::size_t c = 0; c < whole.columns.size(); ++c) {
+    EXPECT_EQ(resumed.columns[c].name, whole.columns[c].name);
+    ASSERT_EQ(resumed.columns[c].values.size(), whole.columns[c].values.size());
+    for (std::size_t k = 0; k < whole.columns[c].values.size(); ++k)
+      EXPECT_EQ(std::memcmp(&resumed.columns[c].values[k], &whole.columns[c].values[k], sizeof(double)), 0)
+          << whole.columns[c].name << " case " << k;
+  }
+}
+
+// Old: a key given to two --set options ran every case and only then failed writing /cases
+// ("cannot create dataset ... name already exists; check the directory exists and is
+// writable"), leaving the parts behind. Now it is refused before anything runs, naming the key.
+TEST(CliSweep, ARepeatedSetKeyIsRefusedBeforeRunning) {
+  const auto dir = scratch_dir("sweep_repeated_key");
+  write_file(dir / "s.toml", short_shudder_scenario());
+  const auto r = run_cli(std::string("sweep s.toml --set ") + kKey + "=200,300 --set " + kKey + "=400 -o sw.h5", dir);
+  expect_rejected(r, {"shudder: error: --set: key 'rig.torsion_bar.natural_frequency_Hz': given twice; give each key "
+                      "once (list several values as KEY=V1,V2,...)"});
+  EXPECT_FALSE(std::filesystem::exists(dir / "sw.h5"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "sw.h5.parts"));
 }

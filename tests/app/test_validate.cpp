@@ -133,4 +133,37 @@ TEST(WritePlot, MissingGnuplotIsAClearError) {
   EXPECT_FALSE(fs::exists(dir.path / "a.png.tmp"));
 }
 
+// Issue 14: a failing gnuplot is reported by its own cause, without our script. The stand-in
+// prints what gnuplot 5 prints for a script error (the echoed script line, a caret, then
+// `"FILE" line N: MESSAGE`) and exits 1. The old message appended the log's tail, so it held the
+// script text `plot 'data.txt' using 1:2` and the caret line.
+TEST(WritePlot, GnuplotFailureIsReportedByItsCauseWithoutTheScript) {
+  TempDir dir;
+  const fs::path fake = dir.path / "gnuplot";
+  {
+    std::ofstream out(fake);
+    out << "#!/bin/sh\n"
+           "echo \"\"\n"
+           "echo \"plot 'data.txt' using 1:2 with lines\"\n"
+           "echo \"                       ^\"\n"
+           "echo \"\\\"$1\\\" line 12: warning: Skipping data file with no valid points\"\n"
+           "echo \"\\\"$1\\\" line 14: undefined variable: foo\"\n"
+           "exit 1\n";
+  }
+  fs::permissions(fake, fs::perms::owner_all);
+  const char* old = std::getenv("PATH");
+  const std::string saved = old ? old : "";
+  ::setenv("PATH", dir.path.c_str(), 1);
+  const std::string out = (dir.path / "a.png").string();
+  std::string message;
+  try {
+    shudder::report::write_plot(out, sample_plot());
+  } catch (const std::runtime_error& e) {
+    message = e.what();
+  }
+  ::setenv("PATH", saved.c_str(), 1);
+  EXPECT_EQ(message, "gnuplot could not draw " + out + ": undefined variable: foo");
+  EXPECT_FALSE(fs::exists(out));
+}
+
 }  // namespace

@@ -138,8 +138,11 @@ TEST(ModelCapabilities, KindsWithoutATorsionalNetworkRefuseModesAndScreeningNami
   EXPECT_EQ(refusal(kPrescribed, "scenario.type", modes),
             kPrescribed + ": key 'scenario.type': \"prescribed_slip\" has no torsional network; modes needs type = "
                           "\"rig\"");
+  // Issue 14: a driveline HAS a torsional network (the old text said it had none); the refusal
+  // says what is true: modes reports a rig's bar and housing only.
   EXPECT_EQ(refusal(kDriveline, "scenario.type", modes),
-            kDriveline + ": key 'scenario.type': \"driveline\" has no torsional network; modes needs type = \"rig\"");
+            kDriveline + ": key 'scenario.type': \"driveline\": modes analyses a rig's torsion bar and housing; a "
+                         "driveline's modes are not reported yet (issue 13); give a scenario with type = \"rig\"");
   EXPECT_EQ(refusal(kPrescribed, "scenario.type", screening),
             kPrescribed + ": key 'scenario.type': \"prescribed_slip\" is not a rig; --rig needs a scenario with "
                           "type = \"rig\"");
