@@ -46,9 +46,11 @@ for h in scenario fluid measured_csv measured_hdf5; do
     extra+=(-fork=1 -ignore_timeouts=1 -ignore_ooms=1 -ignore_crashes=1 -detect_leaks=0)
   ./build-fuzz/fuzz/fuzz_$h "${extra[@]}" -max_total_time="$fuzz_seconds" -timeout=10 -rss_limit_mb=2048 \
     -artifact_prefix="build-fuzz/artifacts/$h/" -print_final_stats=1 "$corpus" "$seed_dir" >"$log" 2>&1 || status=$?
-  grep -E '^(stat::number_of_executed_units|stat::average_exec_per_sec)' "$log" || true
+  grep -E '^(stat::number_of_executed_units|stat::average_exec_per_sec|INFO: fuzzed for)' "$log" || true
   if [ "$h" = measured_hdf5 ]; then
+    # Fork mode exits with the last finding's status even when told to go on past it.
     echo "sanitize: libhdf5 findings (known, docs/fuzzing.md): $(ls "build-fuzz/artifacts/$h" | grep -c -E '^(crash|timeout|oom|leak)-' || true)"
+    status=0
   fi
   if [ "$status" -ne 0 ]; then
     tail -40 "$log"
