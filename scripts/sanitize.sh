@@ -17,7 +17,9 @@ fuzz_seconds=${FUZZ_SECONDS:-30}
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}
 
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSHUDDER_SANITIZE=ON >/dev/null
+# Warnings are not errors here: GCC 12's -Wmaybe-uninitialized gives false positives inside
+# std::regex/std::function once ASan instruments them; the plain build keeps -Werror.
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSHUDDER_SANITIZE=ON -DSHUDDER_WERROR=OFF >/dev/null
 cmake --build build-asan -j"$jobs" --target shudder_tests shudder
 filter='LoadFluid.*:MeasuredRunTest.*:MeasurementCsv.*:Hdf5Run.*:ScenarioModel.*:ValidationTargets.*'
 filter+=':DiagnosisJson.*:CliBadInput.*:ThermalModel.*:WetClutch.*:MakiFrictionMatrix.*'
