@@ -170,6 +170,12 @@ void read_rig(TomlTable& root, Draft& s) {
     if (auto motor = rig->optional_table("motor")) {
       r.speed_loop_bandwidth_Hz = motor->number_or("speed_loop_bandwidth_Hz", r.speed_loop_bandwidth_Hz, Range::closed(0.01, 1000.0));
       r.motor_torque_limit_Nm = motor->number_or("torque_limit_Nm", r.motor_torque_limit_Nm, Range::positive());
+      // Torque ripple, the seed of friction-induced vibration (rig_models/motor_ripple.hpp).
+      // Bounds: up to 10 % of the rated 500 N m (more is a faulty drive, not a ripple); up to
+      // 2000 periods/rev (4 kHz at 125 rpm: beyond, the integrator's step is set by the ripple).
+      r.motor_ripple.amplitude_Nm = motor->number_or("torque_ripple_Nm", r.motor_ripple.amplitude_Nm, Range::closed(0.0, 50.0));
+      r.motor_ripple.periods_per_rev =
+          motor->number_or("torque_ripple_periods_per_rev", r.motor_ripple.periods_per_rev, Range::closed(1.0, 2000.0));
       motor->finish();
     }
     rig->finish();

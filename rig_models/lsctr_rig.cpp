@@ -93,6 +93,8 @@ dynamics::TorsionalNetwork LsctrRig::build(double k_bar, double c_bar,
   n.add_inertia({"housing", p_.housing_inertia_kg_m2});
   n.add_motor({"motor", kDrive, [speed](double t) { return units::rpm_to_rad_s(speed(t)); }, kp_, ki_,
                p_.motor_torque_limit_Nm});
+  if (p_.motor_ripple.amplitude_Nm > 0)
+    n.add_torque_source({"motor_ripple", kDrive, MotorRippleTorque(p_.motor_ripple, speed_rpm_)});
   n.add_contact({"clutch", kDrive, kHousing, std::move(law)});
   n.add_shaft({"torsion_bar", kHousing, dynamics::kGround, k_bar, c_bar});
   n.validate();

@@ -3,7 +3,8 @@
 //
 //   motor+gearbox ══ coupling ══ drive shaft ══ friction disc  ┤clutch├  separators+housing
 //   [node 0 "drive": reflected motor, gearbox, coupling, shaft, disc]      [node 1 "housing"]
-//        ▲ PI speed loop, |T_m| <= 500 Nm                                       │ torsion bar
+//        ▲ PI speed loop, |T_m| <= 500 Nm, plus the motor's torque ripple (motor_ripple.hpp)
+//                                                                                │ torsion bar
 //                                                                             torque cell ─ ground
 //
 // The coupling is "torsionally rigid" (thesis), so motor, coupling, drive shaft and friction
@@ -28,6 +29,7 @@
 #include "dynamics/simulation.hpp"
 #include "rig_models/clutch_contact.hpp"
 #include "rig_models/drive_cycle.hpp"
+#include "rig_models/motor_ripple.hpp"
 
 namespace shudder::rig_models {
 
@@ -43,6 +45,7 @@ struct RigParams {
   bool start_at_rest = false;  // true: everything at rest, bar unloaded, clutch stuck (a test
                                // started from standstill); false: steady sliding at the
                                // cycle's first speed with the bar carrying the friction torque
+  MotorRipple motor_ripple;  // the drive's torque ripple (motor_ripple.hpp); amplitude 0: none
   BearingDrag bearing_drag;
   StickTimeFriction stick_time;
   // Tolerances: the bar twist is ~1e-3 rad and the slip ~0.1–10 rad/s, so 1e-6 absolute and

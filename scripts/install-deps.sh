@@ -13,6 +13,8 @@ packages=(
   libgtest-dev libgmock-dev  # unit tests
   libbenchmark-dev       # benchmarks
   gnuplot-nox            # plots (PNG/SVG), driven by the program
+  clang                  # libFuzzer harnesses (fuzz/, scripts/sanitize.sh): -fsanitize=fuzzer is clang-only
+  libclang-rt-14-dev     # clang 14's runtimes: libFuzzer, ASan and UBSan (libfuzzer-14-dev is not needed)
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -48,9 +48,13 @@ shudder::io::Scenario scenario(const std::string& name) {
   return shudder::io::load_scenario(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/" + name);
 }
 
-Recording run(const shudder::io::Scenario& sc) {
+// `ripple`: false switches the motor's torque ripple (issue 14) off, for closed forms of the
+// undisturbed rig.
+Recording run(const shudder::io::Scenario& sc, bool ripple = true) {
   const auto clutch = sc.make_clutch();
-  return shudder::rig_models::run_rig(shudder::test::rig_model(sc).params, clutch, shudder::test::rig_model(sc).cycle, shudder::test::rig_model(sc).settings);
+  auto params = shudder::test::rig_model(sc).params;
+  if (!ripple) params.motor_ripple.amplitude_Nm = 0.0;
+  return shudder::rig_models::run_rig(params, clutch, shudder::test::rig_model(sc).cycle, shudder::test::rig_model(sc).settings);
 }
 
 using shudder::test::scalar;
@@ -157,7 +161,9 @@ TEST(DetectionOnRig, CliRunFileGivesTheSameDetectionAsTheInProcessRun) {
 // settles, so the FFT peak, dominated by the settled cycles, is checked against the
 // breakaways per second after 0.5 s: 1 %, one cycle in the ~100 counted.
 TEST(DetectionOnRig, LowSpeedStickSlipIsStickSlipAtTheBreakawayRate) {
-  const Recording rec = run(scenario("rig_stick_slip.toml"));
+  // Without the motor ripple: at 1 rpm it runs at 9.6 Hz and modulates the cycle lengths the
+  // breakaway-rate check counts.
+  const Recording rec = run(scenario("rig_stick_slip.toml"), false);
   const ShudderResult r = ShudderDetector().detect(rec);
   const auto& t = signal(rec, "time_s");
   const auto& stuck = signal(rec, "stuck");

@@ -485,3 +485,48 @@ TEST_F(MeasuredRunTest, Hdf5WriterRefusesWhatTheReaderRejects) {
   EXPECT_FALSE(fs::exists(p));
   EXPECT_FALSE(fs::exists(p + ".tmp"));
 }
+
+namespace {
+
+// Fuzzing finding (fuzz/fuzz_measured_hdf5, docs/fuzzing.md): a damaged dataspace claiming 2^53
+// rows made the reader allocate 64 PiB (old behaviour: std::bad_alloc, which the CLI reports as
+// a numerical failure, or an abort under ASan) instead of rejecting the file. The file here is
+// a valid 7777-row run whose dataspaces (dimension and maximum, little-endian uint64) are
+// patched to 2^53.
+TEST(MeasuredRunFuzzRegression, Hdf5DatasetClaimingMoreRowsThanTheFileCanHoldIsRejected) {
+  const auto path = (std::filesystem::temp_directory_path() /
+                     ("shudder_fuzz_rows_" + std::to_string(::getpid()) + ".h5")).string();
+  MeasuredRun run;
+  run.metadata = {{"format", "shudder-measurement/1"}};
+  for (const char* name : {"time_s", "speed_rpm", "normal_force_N", "torque_Nm", "temp_C"})
+    run.columns.push_back({name, shudder::io::measured_run_units(name), {}});
+  for (std::size_t k = 0; k < 7777; ++k) {
+    const double row[] = {0.001 * static_cast<double>(k), 1.0, 25300.0, 98.4, 77.02};
+    for (std::size_t c = 0; c < 5; ++c) run.columns[c].values.push_back(row[c]);
+  }
+  shudder::io::write_measured_run_hdf5(path, run);
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const auto le64 = [](std::uint64_t v) {
+    std::string s(8, '\0');
+    for (int i = 0; i < 8; ++i) s[static_cast<std::size_t>(i)] = static_cast<char>((v >> (8 * i)) & 0xff);
+    return s;
+  };
+  const std::string from = le64(7777), to = le64(std::uint64_t{1} << 53);
+  int patched = 0;
+  for (auto at = bytes.find(from); at != std::string::npos; at = bytes.find(from, at + 8), ++patched)
+    bytes.replace(at, 8, to);
+  ASSERT_GE(patched, 1);
+  {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out << bytes;
+  }
+  EXPECT_THAT([&] { shudder::io::read_measured_run_hdf5(path); },
+              ThrowsMessage<InputError>(HasSubstr("claims 9007199254740992 rows")));
+  std::filesystem::remove(path);
+}
+
+}  // namespace

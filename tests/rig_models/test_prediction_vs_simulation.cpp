@@ -174,6 +174,10 @@ struct CaseResult {
 CaseResult compare(const std::string& scenario_name, double bar_Hz) {
   Scenario sc = scenario(scenario_name);
   shudder::test::rig_model(sc).params.bar_natural_frequency_Hz = bar_Hz;
+  // The prediction is the linear stability of the autonomous rig; the motor's torque ripple
+  // (issue 14) is a forcing whose frequency (9.6 Hz per rpm) crosses the 175 Hz bar at 18 rpm
+  // on the ramp and adds a resonant floor to the band the onset is fitted in: switched off.
+  shudder::test::rig_model(sc).params.motor_ripple.amplitude_Nm = 0.0;
   const auto clutch = sc.make_clutch();
   const Recording rec = shudder::rig_models::run_rig(shudder::test::rig_model(sc).params, clutch, shudder::test::rig_model(sc).cycle, shudder::test::rig_model(sc).settings);
 

@@ -76,6 +76,9 @@ PiecewiseLinear window_means(const std::vector<double>& t, const std::vector<dou
 
 TEST(SpeedSetpoint, RecoversTheSetPointOfAStickSlipRun) {
   io::Scenario sc = io::load_scenario(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/rig_stick_time_probe.toml");
+  // The estimate inverts the speed loop, which does not know the motor's torque ripple (issue 14):
+  // switched off, as the loop's closed form assumes.
+  shudder::test::rig_model(sc).params.motor_ripple.amplitude_Nm = 0.0;
   shudder::test::rig_model(sc).params.stick_time.enabled = true;
   shudder::test::rig_model(sc).params.stick_time.max_increase = 0.15;
   shudder::test::rig_model(sc).params.stick_time.time_constant_s = 0.05;
