@@ -79,7 +79,8 @@ void run_case(const std::string& text, const std::string& path, const std::strin
     io::write_failed_case_part(part, text, e.what());
     return;
   }
-  io::write_run_hdf5(part, kept, text);
+  // A part is read back once when the sweep is assembled: not worth deflating.
+  io::write_run_hdf5(part, kept, text, "", io::RunCompression::kNone);
 }
 
 // Rejects a key given to two --set options (the cases would repeat and /cases would hold two

@@ -51,9 +51,9 @@ constexpr unsigned kDeflateLevel = 4;
 // Dataset creation properties: contiguous for small data; otherwise chunked along the first
 // axis (whole rows of the others), byte-shuffled (the exponent bytes of neighbouring samples
 // agree, which deflate then finds) and deflated. Readers need nothing: HDF5 decompresses.
-Handle creation_properties(const std::vector<hsize_t>& dims, hsize_t count) {
+Handle creation_properties(const std::vector<hsize_t>& dims, hsize_t count, bool compress) {
   Handle dcpl = own(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "create dataset properties");
-  if (dims.empty() || count < kCompressFromValues) return dcpl;
+  if (!compress || dims.empty() || count < kCompressFromValues) return dcpl;
   const hsize_t row = count / dims.front();  // values per index of the first axis
   std::vector<hsize_t> chunk = dims;
   chunk.front() = std::max<hsize_t>(1, std::min(dims.front(), kChunkValues / std::max<hsize_t>(row, 1)));
@@ -65,14 +65,14 @@ Handle creation_properties(const std::vector<hsize_t>& dims, hsize_t count) {
 
 // A double dataset of shape `dims` (empty = scalar), row-major `data`, with a `units` attribute.
 void write_doubles(hid_t parent, const std::string& name, const std::vector<hsize_t>& dims,
-                   const double* data, const std::string& units) {
+                   const double* data, const std::string& units, bool compress = true) {
   const Handle space =
       dims.empty() ? own(H5Screate(H5S_SCALAR), H5Sclose, "create dataspace")
                    : own(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
                          H5Sclose, "create dataspace for '" + name + "'");
   hsize_t count = 1;
   for (hsize_t d : dims) count *= d;
-  const Handle dcpl = creation_properties(dims, count);
+  const Handle dcpl = creation_properties(dims, count, compress);
   const Handle dset = own(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT,
                                      dcpl, H5P_DEFAULT),
                           H5Dclose, "create dataset '" + name + "'");
@@ -215,14 +215,14 @@ void write_block(hid_t analysis, const dynamics::ResultBlock& b) {
 }
 
 void write_file(const std::string& file_name, const Recording& rec, const std::string& scenario,
-                const std::string& fluid) {
+                const std::string& fluid, bool compress_signals) {
   Handle file = own(H5Fcreate(file_name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
                     "create file '" + file_name + "'");
   {
     // Signals: all the same length (validated).
     const Handle signals = make_group(file, "signals");
     for (const auto& s : rec.signals)
-      write_doubles(signals, s.name, {s.values.size()}, s.values.data(), s.units);
+      write_doubles(signals, s.name, {s.values.size()}, s.values.data(), s.units, compress_signals);
     write_thermal(file, rec);
     // Summary scalars, result blocks and maps.
     if (!rec.scalars.empty() || !rec.blocks.empty() || !rec.maps.empty()) {
@@ -462,10 +462,12 @@ Handle open_for_reading(const std::string& path) {
 }  // namespace
 
 void write_run_hdf5(const std::string& path, const Recording& rec,
-                    const std::string& scenario_text, const std::string& fluid_text) {
+                    const std::string& scenario_text, const std::string& fluid_text,
+                    RunCompression compression) {
   validate(path, rec);
+  const bool deflate = compression == RunCompression::kDeflate;
   write_file_atomically(path, "run file",
-                        [&](const std::string& tmp) { write_file(tmp, rec, scenario_text, fluid_text); });
+                        [&](const std::string& tmp) { write_file(tmp, rec, scenario_text, fluid_text, deflate); });
 }
 
 Recording read_run_hdf5(const std::string& path) {
