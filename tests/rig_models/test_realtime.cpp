@@ -1,0 +1,129 @@
+// The fixed-step real-time mode (rig_models/realtime_*.hpp, docs/realtime.md) against the
+// adaptive runs of the same scenarios, and its refusals.
+//
+// Tolerances. The fixed-step mode differs from the adaptive run in three ways, all bounded by
+// how fast the recorded quantity moves:
+//   * the ring temperatures the friction sees lag by one extra thermal step Δt_th (the
+//     thermal task's handover), and the recorded temperatures are held over a thermal step
+//     where the adaptive run interpolates them: a time shift of at most 2 Δt_th;
+//   * inputs are held over each fixed step h (zero-order hold): a shift of at most h.
+// So |x_rt(t) − x_ad(t)| <= (2 Δt_th + h) · max|dx/dt| over the run, with dx/dt taken from the
+// adaptive recording (finite differences of its samples) and a factor 1.5 for the slope's
+// variation within the shift. The RK4 error of the rig's mechanics (~1e-6 relative per step,
+// realtime_rig.hpp) is far below this.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "io/scenario.hpp"
+#include "rig_models/realtime_coupling.hpp"
+#include "rig_models/realtime_rig.hpp"
+#include "rig_models/realtime_run.hpp"
+
+namespace shudder {
+namespace {
+
+const std::string kScenarios = std::string(SHUDDER_SOURCE_DIR) + "/scenarios/";
+
+const std::vector<double>& signal(const dynamics::Recording& rec, std::string_view name) {
+  const dynamics::Signal* s = rec.find(name);
+  EXPECT_NE(s, nullptr) << name;
+  return s->values;
+}
+
+// max |rt − ad| at common times and the bound (2 Δt_th + h) · 1.5 · max|dx/dt| of the adaptive run.
+struct Deviation {
+  double max_abs = 0.0, bound = 0.0;
+};
+Deviation compare(const dynamics::Recording& rt, const dynamics::Recording& ad, std::string_view name,
+                  double thermal_step_s, double step_s, double skip_s = 0.0) {
+  const auto& t_rt = signal(rt, "time_s");
+  const auto& t_ad = signal(ad, "time_s");
+  const auto& x_rt = signal(rt, name);
+  const auto& x_ad = signal(ad, name);
+  Deviation d;
+  double slope = 0.0;
+  for (std::size_t k = 1; k < t_ad.size(); ++k)
+    slope = std::max(slope, std::abs(x_ad[k] - x_ad[k - 1]) / (t_ad[k] - t_ad[k - 1]));
+  d.bound = 1.5 * (2.0 * thermal_step_s + step_s) * slope;
+  std::size_t j = 0;
+  for (std::size_t k = 0; k < t_rt.size(); ++k) {
+    while (j < t_ad.size() && t_ad[j] < t_rt[k] - 1e-9) ++j;
+    if (j == t_ad.size()) break;
+    if (std::abs(t_ad[j] - t_rt[k]) > 1e-9 || t_rt[k] < skip_s) continue;
+    d.max_abs = std::max(d.max_abs, std::abs(x_rt[k] - x_ad[j]));
+  }
+  return d;
+}
+
+TEST(Realtime, PrescribedSlipMatchesTheAdaptiveRunWithinTheThermalLagBound) {
+  io::Scenario sc = io::load_scenario(kScenarios + "paper_g_case1_25kN.toml");
+  auto& m = std::get<rig_models::PrescribedSlipModel>(sc.model);
+  m.settings.duration_s = 3.0;
+  const clutch::WetClutch clutch = sc.make_clutch();
+  const auto ad = rig_models::simulate(m, clutch);
+  const auto rt = rig_models::run_fixed_step(m, clutch, 1e-4);
+  for (const char* name : {"torque_Nm", "temp_C", "interface_max_temp_C", "sump_temp_C"}) {
+    const Deviation d = compare(rt, ad, name, m.settings.thermal_step_s, 1e-4);
+    EXPECT_LE(d.max_abs, d.bound) << name;
+    EXPECT_GT(d.max_abs, 0.0) << name;  // two different schemes: not bitwise equal
+    std::printf("prescribed slip %-22s max |rt - adaptive| = %.4g (bound %.4g)\n", name, d.max_abs, d.bound);
+  }
+  // The heat account closes in the fixed-step run as in the adaptive one.
+  EXPECT_LT(rt.find_scalar("energy_balance_relative_error")->value, 1e-10);
+  EXPECT_NEAR(rt.find_scalar("heat_generated_J")->value, ad.find_scalar("heat_generated_J")->value,
+              1e-3 * ad.find_scalar("heat_generated_J")->value);
+}
+
+TEST(Realtime, RigMatchesTheAdaptiveRunWithinTheThermalLagBound) {
+  io::Scenario sc = io::load_scenario(kScenarios + "rig_case1_25kN_378Hz.toml");
+  auto& m = std::get<rig_models::RigModel>(sc.model);
+  m.settings.duration_s = 1.0;
+  const clutch::WetClutch clutch = sc.make_clutch();
+  const auto ad = rig_models::simulate(m, clutch);
+  const auto rt = rig_models::run_fixed_step(m, clutch, 1e-4);
+  for (const char* name : {"torque_Nm", "slip_rpm", "temp_C", "interface_max_temp_C"}) {
+    const Deviation d = compare(rt, ad, name, m.settings.thermal_step_s, 1e-4);
+    EXPECT_LE(d.max_abs, d.bound) << name;
+    std::printf("rig %-22s max |rt - adaptive| = %.4g (bound %.4g)\n", name, d.max_abs, d.bound);
+  }
+}
+
+TEST(Realtime, ResultsDoNotDependOnThreadTiming) {
+  io::Scenario sc = io::load_scenario(kScenarios + "paper_g_case1_25kN.toml");
+  auto& m = std::get<rig_models::PrescribedSlipModel>(sc.model);
+  m.settings.duration_s = 0.5;
+  const clutch::WetClutch clutch = sc.make_clutch();
+  const auto a = rig_models::run_fixed_step(m, clutch, 1e-4);
+  const auto b = rig_models::run_fixed_step(m, clutch, 1e-4);
+  for (std::size_t c = 0; c < a.signals.size(); ++c) EXPECT_EQ(a.signals[c].values, b.signals[c].values);
+}
+
+TEST(Realtime, RefusesStepsThatDoNotDivideTheThermalStepOrTheSampleInterval) {
+  EXPECT_THROW(rig_models::steps_per_thermal_step({3e-4, 0.01}), std::invalid_argument);
+  EXPECT_THROW(rig_models::steps_per_thermal_step({0.0, 0.01}), std::invalid_argument);
+  EXPECT_THROW(rig_models::steps_per_thermal_step({0.02, 0.01}), std::invalid_argument);
+  EXPECT_EQ(rig_models::steps_per_thermal_step({1e-4, 0.01}), 100);
+  io::Scenario sc = io::load_scenario(kScenarios + "rig_case1_25kN_378Hz.toml");
+  const clutch::WetClutch clutch = sc.make_clutch();
+  EXPECT_THROW(rig_models::run_fixed_step(std::get<rig_models::RigModel>(sc.model), clutch, 3e-4),
+               std::invalid_argument);
+}
+
+TEST(Realtime, FixedStepRigStopsWithAMessageWhenTheClutchSticks) {
+  io::Scenario sc = io::load_scenario(kScenarios + "rig_case1_25kN_378Hz.toml");
+  auto& m = std::get<rig_models::RigModel>(sc.model);
+  m.cycle.slip_speed_rpm = rig_models::PiecewiseLinear({0.0, 0.05, 0.1}, {5.0, 5.0, 0.0});
+  m.settings.duration_s = 0.5;
+  const clutch::WetClutch clutch = sc.make_clutch();
+  try {
+    rig_models::run_fixed_step(m, clutch, 1e-4);
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("the fixed-step mode models sliding only"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace shudder
