@@ -37,8 +37,7 @@ RealtimeRig::RealtimeRig(const RigParams& params, const clutch::WetClutch& clutc
   x_[kThetaH] = m0 / rig_.bar_stiffness_Nm_per_rad();
   x_[kOmegaD] = w0;
   x_[kIntegral] = m0 / rig_.motor_ki();
-  clutch_Nm_ = m0;
-  motor_Nm_ = m0;
+  d1_ = derivative(x_, 0.0, k1_, motor_Nm_, clutch_Nm_);
 }
 
 RealtimeRig::State RealtimeRig::derivative(const State& x, double t, Eigen::VectorXd& heat_W, double& motor_Nm,
@@ -65,7 +64,7 @@ void RealtimeRig::step() {
   const double h = clutch_.settings().step_s;
   const double t = t_s_;
   double m, c;
-  const State d1 = derivative(x_, t, k1_, m, c);
+  const State d1 = d1_;  // k1_ holds its heats
   const State d2 = derivative(x_ + 0.5 * h * d1, t + 0.5 * h, k2_, m, c);
   const State d3 = derivative(x_ + 0.5 * h * d2, t + 0.5 * h, k3_, m, c);
   const State d4 = derivative(x_ + h * d3, t + h, k4_, m, c);
@@ -82,9 +81,9 @@ void RealtimeRig::step() {
   x_ = next;
   t_s_ = t_end;
   clutch_.end_step(heat_J_, angle, t_end, cycle_.normal_force_N(t_end));
-  // Outputs at the step's end, with the temperatures the next step will use.
-  State unused = derivative(x_, t_end, k1_, motor_Nm_, clutch_Nm_);
-  (void)unused;
+  // Outputs at the step's end, with the temperatures the next step will use; that evaluation is
+  // the next step's first stage (kept, so a step costs four evaluations, not five).
+  d1_ = derivative(x_, t_end, k1_, motor_Nm_, clutch_Nm_);
 }
 
 }  // namespace shudder::rig_models

@@ -59,7 +59,7 @@ class RealtimeRig {
   MotorRippleTorque ripple_;
   RealtimeClutch clutch_;
   double j_d_, j_h_, t_max_;
-  State x_;
+  State x_, d1_;  // the state and its derivative at t_s_ (the next step's first stage)
   double t_s_ = 0.0, motor_Nm_ = 0.0, clutch_Nm_ = 0.0;
   long steps_ = 0;
   Eigen::VectorXd k1_, k2_, k3_, k4_, heat_J_;  // (n_r) stage heats and the step's heat

@@ -70,6 +70,24 @@ TEST(Realtime, PrescribedSlipMatchesTheAdaptiveRunWithinTheThermalLagBound) {
     EXPECT_GT(d.max_abs, 0.0) << name;  // two different schemes: not bitwise equal
     std::printf("prescribed slip %-22s max |rt - adaptive| = %.4g (bound %.4g)\n", name, d.max_abs, d.bound);
   }
+  // A sharper torque bound: the torque moves with the ring temperatures only through the
+  // friction, so |ΔM| <= max|∂M/∂T| · (the interface temperature bound above) + h · max|dM/dt|,
+  // with ∂M/∂T by a 1 K difference at uniform ring temperatures along the adaptive run.
+  const auto& t_ad = signal(ad, "time_s");
+  const auto& speed = signal(ad, "speed_rpm");
+  const auto& force = signal(ad, "normal_force_N");
+  const auto& t_if = signal(ad, "interface_mean_temp_C");
+  double dM_dT = 0.0;
+  for (std::size_t k = 0; k < t_ad.size(); ++k) {
+    const double w = speed[k] * 0.10471975511965977;
+    const Eigen::VectorXd T = Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), t_if[k]);
+    dM_dT = std::max(dM_dT, std::abs(clutch.torque_Nm(w, force[k], T.array() + 1.0) - clutch.torque_Nm(w, force[k], T)));
+  }
+  const Deviation temp = compare(rt, ad, "interface_max_temp_C", m.settings.thermal_step_s, 1e-4);
+  const Deviation torque = compare(rt, ad, "torque_Nm", 0.0, 1e-4);
+  const double torque_bound = dM_dT * temp.bound + torque.bound;
+  std::printf("prescribed slip torque: max dM/dT %.3g N m/K, sharper bound %.4g N m\n", dM_dT, torque_bound);
+  EXPECT_LE(torque.max_abs, torque_bound);
   // The heat account closes in the fixed-step run as in the adaptive one.
   EXPECT_LT(rt.find_scalar("energy_balance_relative_error")->value, 1e-10);
   EXPECT_NEAR(rt.find_scalar("heat_generated_J")->value, ad.find_scalar("heat_generated_J")->value,
