@@ -38,6 +38,15 @@ RealtimeRig::RealtimeRig(const RigParams& params, const clutch::WetClutch& clutc
   x_[kOmegaD] = w0;
   x_[kIntegral] = m0 / rig_.motor_ki();
   d1_ = derivative(x_, 0.0, k1_, motor_Nm_, clutch_Nm_);
+  initial_energy_J_ = 0.5 * (j_d_ * w0 * w0 + rig_.bar_stiffness_Nm_per_rad() * x_[kThetaH] * x_[kThetaH]);
+}
+
+double RealtimeRig::energy_relative_error() const {
+  const double kinetic = 0.5 * (j_d_ * x_[kOmegaD] * x_[kOmegaD] + j_h_ * x_[kOmegaH] * x_[kOmegaH]);
+  const double elastic = 0.5 * rig_.bar_stiffness_Nm_per_rad() * x_[kThetaH] * x_[kThetaH];
+  const double imbalance =
+      x_[kSourceWork] - (kinetic + elastic - initial_energy_J_) - x_[kFrictionWork] - x_[kDamperLoss];
+  return x_[kSourceWork] != 0.0 ? std::abs(imbalance) / std::abs(x_[kSourceWork]) : 0.0;
 }
 
 RealtimeRig::State RealtimeRig::derivative(const State& x, double t, Eigen::VectorXd& heat_W, double& motor_Nm,
@@ -57,6 +66,9 @@ RealtimeRig::State RealtimeRig::derivative(const State& x, double t, Eigen::Vect
   d[kOmegaD] = (motor_Nm + ripple_(t) - clutch_Nm) / j_d_;
   d[kOmegaH] = (clutch_Nm - bar) / j_h_;
   d[kIntegral] = kp > 0 ? e + (motor_Nm - u) / (0.9 * kp) : e;
+  d[kSourceWork] = (motor_Nm + ripple_(t)) * x[kOmegaD];
+  d[kFrictionWork] = clutch_Nm * slip;
+  d[kDamperLoss] = rig_.bar_damping_Nms_per_rad() * x[kOmegaH] * x[kOmegaH];
   return d;
 }
 

@@ -29,8 +29,11 @@ namespace shudder::rig_models {
 
 class RealtimeRig {
  public:
-  using State = Eigen::Matrix<double, 5, 1>;  // θ_d, θ_h, ω_d, ω_h, I
-  static constexpr int kThetaD = 0, kThetaH = 1, kOmegaD = 2, kOmegaH = 3, kIntegral = 4;
+  // θ_d, θ_h, ω_d, ω_h, I, then the energy account's integrals (J): work of the motor and its
+  // ripple, friction work of the clutch (drag included), the bar damper's loss.
+  using State = Eigen::Matrix<double, 8, 1>;
+  static constexpr int kThetaD = 0, kThetaH = 1, kOmegaD = 2, kOmegaH = 3, kIntegral = 4, kSourceWork = 5,
+                       kFrictionWork = 6, kDamperLoss = 7;
 
   /// Builds the rig (bar stiffness, speed-loop gains) and starts in steady sliding at the
   /// cycle's first speed, as run_rig does. Throws std::invalid_argument for invalid inputs,
@@ -43,6 +46,10 @@ class RealtimeRig {
 
   double time_s() const { return t_s_; }
   const State& state() const { return x_; }
+  long steps() const { return steps_; }
+  /// |source work − Δkinetic − Δelastic − friction work − damper loss| / |source work| (0 if
+  /// no work was done): the mechanical energy balance of the integration.
+  double energy_relative_error() const;
   double motor_torque_Nm() const { return motor_Nm_; }
   double clutch_torque_Nm() const { return clutch_Nm_; }  // transmitted drive → housing
   double bar_torque_Nm() const { return rig_.bar_stiffness_Nm_per_rad() * x_[kThetaH] + rig_.bar_damping_Nms_per_rad() * x_[kOmegaH]; }
@@ -59,6 +66,7 @@ class RealtimeRig {
   MotorRippleTorque ripple_;
   RealtimeClutch clutch_;
   double j_d_, j_h_, t_max_;
+  double initial_energy_J_ = 0.0;  // kinetic + elastic at the start
   State x_, d1_;  // the state and its derivative at t_s_ (the next step's first stage)
   double t_s_ = 0.0, motor_Nm_ = 0.0, clutch_Nm_ = 0.0;
   long steps_ = 0;

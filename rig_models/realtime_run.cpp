@@ -139,6 +139,12 @@ dynamics::Recording run_fixed_step(const RigModel& model, const clutch::WetClutc
   rec.scalars.push_back({"peak_interface_temp_C", "degC", peak_C});
   rec.scalars.push_back({"bar_stiffness_Nm_per_rad", "N m/rad", rig.rig().bar_stiffness_Nm_per_rad()});
   rec.scalars.push_back({"clutch_side_frequency_Hz", "Hz", rig.rig().clutch_side_frequency_Hz()});
+  // The names the adaptive run uses, so the summary and the energy guard read them alike.
+  rec.scalars.push_back({"mechanical_energy_relative_error", "1", rig.energy_relative_error()});
+  rec.scalars.push_back({"integrator_steps", "1", static_cast<double>(rig.steps())});
+  rec.scalars.push_back({"rhs_evaluations", "1", static_cast<double>(4 * rig.steps() + 1)});
+  for (const char* events : {"stick_events", "breakaway_events", "reversal_events"})
+    rec.scalars.push_back({events, "1", 0.0});  // sliding only: a stick stops the run
   return rec;
 }
 

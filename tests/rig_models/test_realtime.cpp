@@ -106,6 +106,10 @@ TEST(Realtime, RigMatchesTheAdaptiveRunWithinTheThermalLagBound) {
     EXPECT_LE(d.max_abs, d.bound) << name;
     std::printf("rig %-22s max |rt - adaptive| = %.4g (bound %.4g)\n", name, d.max_abs, d.bound);
   }
+  // RK4's local error is O(h^5): over 10^4 steps the work–energy balance of the integrated
+  // account (motor work = Δkinetic + Δelastic + friction + damper) holds far below 1e-8.
+  EXPECT_LT(rt.find_scalar("mechanical_energy_relative_error")->value, 1e-8);
+  EXPECT_EQ(rt.find_scalar("integrator_steps")->value, 10000.0);
 }
 
 TEST(Realtime, ResultsDoNotDependOnThreadTiming) {
