@@ -13,7 +13,7 @@ long steps_per_thermal_step(const RealtimeSettings& s) {
   const double ratio = s.thermal_step_s / s.step_s;
   const double n = std::round(ratio);
   if (std::abs(ratio - n) > 1e-9 * n)
-    throw std::invalid_argument("thermal step must be a whole multiple of the fixed step");
+    throw std::invalid_argument("the thermal step (thermal_step_s) must be a whole multiple of the fixed step");
   return static_cast<long>(n);
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <initializer_list>
 #include <stdexcept>
 #include <string>
@@ -21,8 +22,12 @@ namespace sn = dynamics::signal_names;
 long whole_steps(double span_s, double step_s, const char* what) {
   const double ratio = span_s / step_s;
   const double n = std::round(ratio);
-  if (!(n >= 1.0) || std::abs(ratio - n) > 1e-9 * n)
-    throw std::invalid_argument(std::string(what) + " must be a whole number of fixed steps");
+  if (!(n >= 1.0) || std::abs(ratio - n) > 1e-9 * n) {
+    char line[256];
+    std::snprintf(line, sizeof line, "--fixed-step %g s: %s (%g s) must be a whole number of fixed steps; choose a step that divides it",
+                  step_s, what, span_s);
+    throw std::invalid_argument(line);
+  }
   return static_cast<long>(n);
 }
 
@@ -53,8 +58,8 @@ void finish_recording(dynamics::Recording& rec, RealtimeClutch& clutch, double s
 dynamics::Recording run_fixed_step(const PrescribedSlipModel& model, const clutch::WetClutch& clutch, double step_s) {
   const auto& cfg = model.settings;
   const RealtimeSettings rt{step_s, cfg.thermal_step_s};
-  const long n_steps = whole_steps(cfg.duration_s, step_s, "duration");
-  const long every = whole_steps(1.0 / cfg.sample_rate_Hz, step_s, "the sample interval (1 / sample rate)");
+  const long n_steps = whole_steps(cfg.duration_s, step_s, "scenario.duration_s");
+  const long every = whole_steps(1.0 / cfg.sample_rate_Hz, step_s, "the sample interval 1 / output.sample_rate_Hz");
   const auto& cycle = model.cycle;
   RealtimeCoupling coupling(clutch, cfg.bearing_drag, rt, cycle.normal_force_N(0.0));
 
@@ -100,8 +105,8 @@ dynamics::Recording run_fixed_step(const PrescribedSlipModel& model, const clutc
 dynamics::Recording run_fixed_step(const RigModel& model, const clutch::WetClutch& clutch, double step_s) {
   const auto& cfg = model.settings;
   const RealtimeSettings rt{step_s, cfg.thermal_step_s};
-  const long n_steps = whole_steps(cfg.duration_s, step_s, "duration");
-  const long every = whole_steps(1.0 / cfg.sample_rate_Hz, step_s, "the sample interval (1 / sample rate)");
+  const long n_steps = whole_steps(cfg.duration_s, step_s, "scenario.duration_s");
+  const long every = whole_steps(1.0 / cfg.sample_rate_Hz, step_s, "the sample interval 1 / output.sample_rate_Hz");
   RealtimeRig rig(model.params, clutch, model.cycle, rt);
 
   dynamics::Recording rec;
