@@ -9,17 +9,10 @@
 
 namespace shudder::rig_models {
 
-namespace {
-const RigParams& require_sliding_start(const RigParams& p) {
-  if (p.start_at_rest)
-    throw std::invalid_argument("the fixed-step rig starts in steady sliding; rig.start_at_rest is not supported");
-  return p;
-}
-}  // namespace
-
 RealtimeRig::RealtimeRig(const RigParams& params, const clutch::WetClutch& clutch, const DriveCycle& cycle,
                          const RealtimeSettings& settings)
-    : rig_(require_sliding_start(params), clutch, cycle),
+    : rig_(params, clutch, cycle),
+      context_(rig_.start_inputs()),
       cycle_(cycle),
       ripple_(params.motor_ripple, cycle.slip_speed_rpm),
       clutch_(clutch, params.bearing_drag, settings, cycle.normal_force_N(0.0)),
@@ -28,17 +21,22 @@ RealtimeRig::RealtimeRig(const RigParams& params, const clutch::WetClutch& clutc
       t_max_(params.motor_torque_limit_Nm) {
   const int nr = clutch.thermal().radial_cells();
   for (auto* v : {&k1_, &k2_, &k3_, &k4_, &heat_J_}) *v = Eigen::VectorXd::Zero(nr);
-  // Steady sliding at the first speed: the bar carries the friction torque and the speed
-  // loop's integrator supplies it (run_rig's start).
+  // run_rig's two starts: steady sliding at the first speed (the bar carries the friction
+  // torque, the speed loop's integrator supplies it), or everything at rest with the clutch
+  // stuck (also when the first speed is 0).
   const double w0 = units::rpm_to_rad_s(cycle.slip_speed_rpm(0.0));
-  if (w0 == 0.0) throw std::invalid_argument("the fixed-step rig needs a non-zero speed at t = 0");
-  const double m0 = std::copysign(clutch_.kinetic_torque_Nm(std::abs(w0), cycle.normal_force_N(0.0)), w0);
   x_.setZero();
-  x_[kThetaH] = m0 / rig_.bar_stiffness_Nm_per_rad();
-  x_[kOmegaD] = w0;
-  x_[kIntegral] = m0 / rig_.motor_ki();
+  if (!params.start_at_rest && w0 != 0.0) {
+    const double m0 = std::copysign(clutch_.kinetic_torque_Nm(std::abs(w0), cycle.normal_force_N(0.0)), w0);
+    x_[kThetaH] = m0 / rig_.bar_stiffness_Nm_per_rad();
+    x_[kOmegaD] = w0;
+    x_[kIntegral] = m0 / rig_.motor_ki();
+    direction_ = w0 > 0 ? 1.0 : -1.0;
+  } else {
+    stuck_ = true;
+  }
   d1_ = derivative(x_, 0.0, k1_, motor_Nm_, clutch_Nm_);
-  initial_energy_J_ = 0.5 * (j_d_ * w0 * w0 + rig_.bar_stiffness_Nm_per_rad() * x_[kThetaH] * x_[kThetaH]);
+  initial_energy_J_ = 0.5 * (j_d_ * x_[kOmegaD] * x_[kOmegaD] + rig_.bar_stiffness_Nm_per_rad() * x_[kThetaH] * x_[kThetaH]);
 }
 
 double RealtimeRig::energy_relative_error() const {
@@ -57,19 +55,76 @@ RealtimeRig::State RealtimeRig::derivative(const State& x, double t, Eigen::Vect
   motor_Nm = std::clamp(u, -t_max_, t_max_);
   const double slip = x[kOmegaD] - x[kOmegaH];
   const double w = std::abs(slip);
-  clutch_Nm = std::copysign(clutch_.kinetic_torque_Nm(w, cycle_.normal_force_N(t)), slip);
-  heat_W = clutch_.ring_torque_Nm() * w;
+  const double drive = motor_Nm + ripple_(t);
   const double bar = rig_.bar_stiffness_Nm_per_rad() * x[kThetaH] + rig_.bar_damping_Nms_per_rad() * x[kOmegaH];
   State d;
   d[kThetaD] = x[kOmegaD];
   d[kThetaH] = x[kOmegaH];
-  d[kOmegaD] = (motor_Nm + ripple_(t) - clutch_Nm) / j_d_;
-  d[kOmegaH] = (clutch_Nm - bar) / j_h_;
+  if (stuck_) {
+    // One body: (J_d + J_h) ω̇ = T_m + T_r − T_bar; the clutch carries what keeps Δω = 0.
+    const double acc = (drive - bar) / (j_d_ + j_h_);
+    clutch_Nm = drive - j_d_ * acc;
+    heat_W.setZero();
+    d[kOmegaD] = d[kOmegaH] = acc;
+  } else {
+    // The friction keeps the mode's direction within a step, as the adaptive run's modes do: a
+    // stage that overshoots Δω = 0 must not flip it (the crossing is handled at the step's end).
+    clutch_Nm = direction_ * clutch_.kinetic_torque_Nm(w, cycle_.normal_force_N(t));
+    heat_W = clutch_.ring_torque_Nm() * w;
+    d[kOmegaD] = (drive - clutch_Nm) / j_d_;
+    d[kOmegaH] = (clutch_Nm - bar) / j_h_;
+  }
   d[kIntegral] = kp > 0 ? e + (motor_Nm - u) / (0.9 * kp) : e;
-  d[kSourceWork] = (motor_Nm + ripple_(t)) * x[kOmegaD];
+  d[kSourceWork] = drive * x[kOmegaD];
   d[kFrictionWork] = clutch_Nm * slip;
   d[kDamperLoss] = rig_.bar_damping_Nms_per_rad() * x[kOmegaH] * x[kOmegaH];
   return d;
+}
+
+double RealtimeRig::static_capacity_Nm(double t) {
+  if (thermal().time_s != capacity_temps_time_s_) {  // new latched temperatures (same size: no allocation)
+    context_.set_ring_temperatures(thermal().ring_temp_C);
+    capacity_temps_time_s_ = thermal().time_s;
+  }
+  return rig_.clutch_contact().static_capacity_Nm(context_, t, t - stick_start_s_);
+}
+
+void RealtimeRig::update_modes(State& next, double slip_before, double t_end) {
+  double motor, held;
+  if (stuck_) {
+    // Breakaway when the torque that holds Δω = 0 exceeds the static capacity.
+    derivative(next, t_end, k1_, motor, held);
+    if (std::abs(held) > static_capacity_Nm(t_end)) {
+      stuck_ = false;
+      direction_ = held > 0 ? 1.0 : -1.0;
+      ++breakaways_;
+    }
+    return;
+  }
+  const double slip_after = next[kOmegaD] - next[kOmegaH];
+  (void)slip_before;
+  if (direction_ * slip_after > 0.0) return;  // still slipping the same way
+  // Δω reached zero within the step (located to the step, not finer): the two sides merge with
+  // their momentum and stick if the clutch can hold the torque that keeps them together.
+  State merged = next;
+  const double w = (j_d_ * next[kOmegaD] + j_h_ * next[kOmegaH]) / (j_d_ + j_h_);
+  merged[kOmegaD] = merged[kOmegaH] = w;
+  stuck_ = true;
+  stick_start_s_ = t_end;
+  derivative(merged, t_end, k1_, motor, held);
+  if (std::abs(held) <= static_capacity_Nm(t_end)) {
+    // The merge's kinetic-energy loss is friction work (as the adaptive run's impact loss).
+    const auto kinetic = [&](const State& x) {
+      return 0.5 * (j_d_ * x[kOmegaD] * x[kOmegaD] + j_h_ * x[kOmegaH] * x[kOmegaH]);
+    };
+    merged[kFrictionWork] += kinetic(next) - kinetic(merged);
+    next = merged;
+    ++sticks_;
+  } else {
+    stuck_ = false;
+    direction_ = slip_after != 0.0 ? (slip_after > 0 ? 1.0 : -1.0) : -direction_;
+    ++reversals_;
+  }
 }
 
 void RealtimeRig::step() {
@@ -81,14 +136,11 @@ void RealtimeRig::step() {
   const State d3 = derivative(x_ + 0.5 * h * d2, t + 0.5 * h, k3_, m, c);
   const State d4 = derivative(x_ + h * d3, t + h, k4_, m, c);
   const double slip_before = x_[kOmegaD] - x_[kOmegaH];
-  const State next = x_ + (h / 6.0) * (d1 + 2.0 * d2 + 2.0 * d3 + d4);
+  State next = x_ + (h / 6.0) * (d1 + 2.0 * d2 + 2.0 * d3 + d4);
   heat_J_ = (h / 6.0) * (k1_ + 2.0 * k2_ + 2.0 * k3_ + k4_);
-  const double slip_after = next[kOmegaD] - next[kOmegaH];
   ++steps_;
   const double t_end = static_cast<double>(steps_) * h;
-  if (!(slip_before * slip_after > 0.0))
-    throw std::runtime_error("fixed-step rig: the clutch slip reached zero at t = " + std::to_string(t_end) +
-                             " s; the fixed-step mode models sliding only (stick-slip needs the adaptive run)");
+  update_modes(next, slip_before, t_end);
   const double angle = (next[kThetaD] - next[kThetaH]) - (x_[kThetaD] - x_[kThetaH]);
   x_ = next;
   t_s_ = t_end;

@@ -16,8 +16,13 @@
 // (|λh| ≈ 0.1). Nothing is stiff at this step, so an explicit method of high order is cheaper
 // and more accurate than a semi-implicit one (first order in phase).
 //
-// Sliding only: the fixed-step rig has no stick/slip event handling (the adaptive run locates
-// those events to 1e-10 s). A step across Δω = 0 throws std::runtime_error naming the time.
+// Stick and slip: while stuck the two inertias move as one, (J_d + J_h) ω̇ = T_m + T_r − T_bar,
+// and the clutch carries λ = T_m + T_r − J_d ω̇ until |λ| exceeds the static capacity
+// (rig_models::ClutchContact, stick-time growth included): breakaway in the direction of λ.
+// A step in which Δω reaches zero ends with both sides merged at their common momentum speed
+// if the clutch can hold them (the kinetic energy lost counts as friction work), otherwise the
+// slip reverses. Events are located to the step h (the adaptive run locates them to 1e-10 s):
+// an O(h) error in their times.
 
 #include <Eigen/Dense>
 
@@ -35,9 +40,9 @@ class RealtimeRig {
   static constexpr int kThetaD = 0, kThetaH = 1, kOmegaD = 2, kOmegaH = 3, kIntegral = 4, kSourceWork = 5,
                        kFrictionWork = 6, kDamperLoss = 7;
 
-  /// Builds the rig (bar stiffness, speed-loop gains) and starts in steady sliding at the
-  /// cycle's first speed, as run_rig does. Throws std::invalid_argument for invalid inputs,
-  /// including a start at rest (not supported in the fixed-step mode).
+  /// Builds the rig (bar stiffness, speed-loop gains) and starts as run_rig does: in steady
+  /// sliding at the cycle's first speed, or at rest and stuck (`start_at_rest`, or a first
+  /// speed of 0). Throws std::invalid_argument for invalid inputs.
   RealtimeRig(const RigParams& params, const clutch::WetClutch& clutch, const DriveCycle& cycle,
               const RealtimeSettings& settings);
 
@@ -47,6 +52,10 @@ class RealtimeRig {
   double time_s() const { return t_s_; }
   const State& state() const { return x_; }
   long steps() const { return steps_; }
+  bool stuck() const { return stuck_; }
+  long stick_events() const { return sticks_; }
+  long breakaway_events() const { return breakaways_; }
+  long reversal_events() const { return reversals_; }
   /// |source work − Δkinetic − Δelastic − friction work − damper loss| / |source work| (0 if
   /// no work was done): the mechanical energy balance of the integration.
   double energy_relative_error() const;
@@ -60,8 +69,17 @@ class RealtimeRig {
  private:
   // dx/dt at (x, t); the per-ring heat power of one interface into `heat_W`.
   State derivative(const State& x, double t, Eigen::VectorXd& heat_W, double& motor_Nm, double& clutch_Nm);
+  // Stick, breakaway or reversal at the end of a step (may change `next` and the mode).
+  void update_modes(State& next, double slip_before, double t_end);
+  double static_capacity_Nm(double t);
 
   LsctrRig rig_;
+  ClutchContext context_;  // held ring temperatures and clamp force for the static capacity
+  double capacity_temps_time_s_ = 0.0;
+  bool stuck_ = false;
+  double direction_ = 1.0;  // slip direction while Δω = 0 exactly (breakaway)
+  double stick_start_s_ = 0.0;
+  long sticks_ = 0, breakaways_ = 0, reversals_ = 0;
   DriveCycle cycle_;
   MotorRippleTorque ripple_;
   RealtimeClutch clutch_;

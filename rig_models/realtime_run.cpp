@@ -122,6 +122,7 @@ dynamics::Recording run_fixed_step(const RigModel& model, const clutch::WetClutc
   col.add(sn::kClutchTorque, "N m");
   col.add(sn::kMotorTorque, "N m");
   col.add(sn::kHousingSpeed, "rpm");
+  col.add(sn::kStuck, "1");
   col.add(sn::kInterfaceMeanTemp, "degC");
   col.add(sn::kInterfaceMaxTemp, "degC");
   using S = RealtimeRig;
@@ -131,7 +132,7 @@ dynamics::Recording run_fixed_step(const RigModel& model, const clutch::WetClutc
     col.push({rig.time_s(), units::rad_s_to_rpm(x[S::kOmegaD]), model.cycle.normal_force_N(rig.time_s()),
               rig.bar_torque_Nm(), th.thermocouple_C, th.ir_C, th.sump_C,
               units::rad_s_to_rpm(x[S::kOmegaD] - x[S::kOmegaH]), rig.clutch_torque_Nm(), rig.motor_torque_Nm(),
-              units::rad_s_to_rpm(x[S::kOmegaH]), th.interface_mean_C, th.interface_max_C});
+              units::rad_s_to_rpm(x[S::kOmegaH]), rig.stuck() ? 1.0 : 0.0, th.interface_mean_C, th.interface_max_C});
   };
   record();
   double peak_C = rig.thermal().interface_max_C;
@@ -148,8 +149,9 @@ dynamics::Recording run_fixed_step(const RigModel& model, const clutch::WetClutc
   rec.scalars.push_back({"mechanical_energy_relative_error", "1", rig.energy_relative_error()});
   rec.scalars.push_back({"integrator_steps", "1", static_cast<double>(rig.steps())});
   rec.scalars.push_back({"rhs_evaluations", "1", static_cast<double>(4 * rig.steps() + 1)});
-  for (const char* events : {"stick_events", "breakaway_events", "reversal_events"})
-    rec.scalars.push_back({events, "1", 0.0});  // sliding only: a stick stops the run
+  rec.scalars.push_back({"stick_events", "1", static_cast<double>(rig.stick_events())});
+  rec.scalars.push_back({"breakaway_events", "1", static_cast<double>(rig.breakaway_events())});
+  rec.scalars.push_back({"reversal_events", "1", static_cast<double>(rig.reversal_events())});
   return rec;
 }
 

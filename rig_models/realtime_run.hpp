@@ -4,7 +4,7 @@
 //
 //   prescribed slip  rig_models::RealtimeCoupling, inputs Δω(t_k), F(t_k) held over each step
 //                    (what an FMU master gives it: the FMU test compares against this)
-//   rig              rig_models::RealtimeRig (RK4, sliding only)
+//   rig              rig_models::RealtimeRig (RK4; stick and slip located to the step)
 //   driveline        not supported (KindNotSupported)
 //
 // Samples are taken every round(1 / (rate · H)) steps, which must be a whole number; the

@@ -76,5 +76,17 @@ TEST(RealtimeAlloc, RigStepAllocatesNothing) {
   EXPECT_GT(rig.thermal().time_s, 0.9);
 }
 
+TEST(RealtimeAlloc, RigStepAllocatesNothingThroughStickAndSlip) {
+  const io::Scenario sc = io::load_scenario(kScenarios + "rig_stick_slip.toml");
+  const clutch::WetClutch clutch = sc.make_clutch();
+  const auto& m = std::get<rig_models::RigModel>(sc.model);
+  rig_models::RealtimeRig rig(m.params, clutch, m.cycle, {5e-5, 0.01});
+  for (int k = 0; k < 200; ++k) rig.step();
+  const long before = g_allocations;
+  for (int k = 0; k < 10000; ++k) rig.step();  // 0.5 s: breakaways and sticks included
+  EXPECT_EQ(g_allocations - before, 0);
+  EXPECT_GT(rig.stick_events(), 30);
+}
+
 }  // namespace
 }  // namespace shudder
