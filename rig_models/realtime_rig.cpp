@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
-#include <string>
 
 #include "core/units.hpp"
 
@@ -89,7 +87,7 @@ double RealtimeRig::static_capacity_Nm(double t) {
   return rig_.clutch_contact().static_capacity_Nm(context_, t, t - stick_start_s_);
 }
 
-void RealtimeRig::update_modes(State& next, double slip_before, double t_end) {
+void RealtimeRig::update_modes(State& next, double t_end) {
   double motor, held;
   if (stuck_) {
     // Breakaway when the torque that holds Δω = 0 exceeds the static capacity.
@@ -102,7 +100,6 @@ void RealtimeRig::update_modes(State& next, double slip_before, double t_end) {
     return;
   }
   const double slip_after = next[kOmegaD] - next[kOmegaH];
-  (void)slip_before;
   if (direction_ * slip_after > 0.0) return;  // still slipping the same way
   // Δω reached zero within the step (located to the step, not finer): the two sides merge with
   // their momentum and stick if the clutch can hold the torque that keeps them together.
@@ -135,12 +132,11 @@ void RealtimeRig::step() {
   const State d2 = derivative(x_ + 0.5 * h * d1, t + 0.5 * h, k2_, m, c);
   const State d3 = derivative(x_ + 0.5 * h * d2, t + 0.5 * h, k3_, m, c);
   const State d4 = derivative(x_ + h * d3, t + h, k4_, m, c);
-  const double slip_before = x_[kOmegaD] - x_[kOmegaH];
   State next = x_ + (h / 6.0) * (d1 + 2.0 * d2 + 2.0 * d3 + d4);
   heat_J_ = (h / 6.0) * (k1_ + 2.0 * k2_ + 2.0 * k3_ + k4_);
   ++steps_;
   const double t_end = static_cast<double>(steps_) * h;
-  update_modes(next, slip_before, t_end);
+  update_modes(next, t_end);
   const double angle = (next[kThetaD] - next[kThetaH]) - (x_[kThetaD] - x_[kThetaH]);
   x_ = next;
   t_s_ = t_end;

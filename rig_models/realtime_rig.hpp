@@ -70,7 +70,7 @@ class RealtimeRig {
   // dx/dt at (x, t); the per-ring heat power of one interface into `heat_W`.
   State derivative(const State& x, double t, Eigen::VectorXd& heat_W, double& motor_Nm, double& clutch_Nm);
   // Stick, breakaway or reversal at the end of a step (may change `next` and the mode).
-  void update_modes(State& next, double slip_before, double t_end);
+  void update_modes(State& next, double t_end);
   double static_capacity_Nm(double t);
 
   LsctrRig rig_;
