@@ -15,6 +15,7 @@ packages=(
   gnuplot-nox            # plots (PNG/SVG), driven by the program
   clang                  # libFuzzer harnesses (fuzz/, scripts/sanitize.sh): -fsanitize=fuzzer is clang-only
   libclang-rt-14-dev     # clang 14's runtimes: libFuzzer, ASan and UBSan (libfuzzer-14-dev is not needed)
+  libexpat1-dev          # the FMU test parses modelDescription.xml (tests/fmu)
 )
 missing=()
 for p in "${packages[@]}"; do
