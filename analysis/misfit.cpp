@@ -352,9 +352,14 @@ void MisfitModel::choose_channels() {
     channels_.push_back({Signal::kSump, "sump_temp_C", pooled_sigma(Signal::kSump, opt_.min_noise_temp_C), false});
   if (every_run_has(Signal::kIr))
     channels_.push_back({Signal::kIr, "ir_temp_C", pooled_sigma(Signal::kIr, opt_.min_noise_temp_C), false});
-  for (auto& c : channels_)
+  // temp_C's tolerance also serves the other thermometers unless they have their own: they
+  // watch the same thermal model, whose form error they share.
+  for (auto& c : channels_) {
+    for (const auto& [name, tol] : opt_.tolerance)
+      if (name == "temp_C" && c.signal != Signal::kTorque) c.tolerance = tol;
     for (const auto& [name, tol] : opt_.tolerance)
       if (name == c.name) c.tolerance = tol;
+  }
 }
 
 std::vector<std::size_t> union_runs(const SampleSet& a, const SampleSet& b) {
