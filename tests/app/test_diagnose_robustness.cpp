@@ -215,7 +215,8 @@ std::vector<double> delayed(const std::vector<double>& t, const std::vector<doub
 INSTANTIATE_TEST_SUITE_P(
     Faults, OutOfCatalogue,
     ::testing::Values(
-        // A 10 ms late torque channel (one sample at 100 Hz): the ramps' torque slope shows it.
+        // A 0.1 s late torque channel (10 samples at 100 Hz; one sample, 10 ms, stays within the
+        // noise here): the ramps' torque slope shows it.
         Fault{"torque_time_shift", "torque_Nm",
               [](const std::vector<double>& t, const std::vector<double>& x) { return delayed(t, x, 0.1); }},
         // A torque cell low-passed at 0.5 Hz (first order): the ramps' torque lags.
