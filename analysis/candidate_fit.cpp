@@ -1,5 +1,7 @@
 #include "analysis/candidate_fit.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "analysis/log_parameter_fit.hpp"
@@ -97,11 +99,39 @@ CandidateOutcome CandidateFitter::fit_candidate(const EffectCandidate& c, const 
     o.score.parameters.emplace_back(c.parameter_names[j], o.config.back().values[j]);
   o.score.fit_misfit = misfit_.misfit(misfit_.fit(), o.predictions);
   o.score.holdout_misfit = misfit_.misfit(misfit_.holdout(), o.predictions);
-  o.score.score = o.score.holdout_misfit + opt_.penalty_per_parameter * static_cast<double>(k);
-  o.score.gain = misfit_.misfit(misfit_.holdout(), current) - o.score.score;
+  const double j_ref = misfit_.misfit(misfit_.holdout(), current);
+  const double s = std::max(1.0, j_ref);
+  o.score.score = o.score.holdout_misfit + opt_.penalty_per_parameter * static_cast<double>(k) * s;
+  o.score.gain = j_ref - o.score.score;
   o.score.signature_correlation = signature_correlation(current, o.predictions);
+  o.score.rejection = rejection(c, o.config.back().values, o.score, s);
   o.ok = true;
   return o;
+}
+
+// The acceptance tests beyond the score (DiagnosisOptions): a parameter pinned at a bound
+// says the effect's shape does not fit and it is only being stretched to absorb something
+// else; a change that does not follow the residual is not what is missing; and a gain below
+// min_gain · s is within what a flexible term finds in any systematic gap.
+std::string CandidateFitter::rejection(const EffectCandidate& c, const std::vector<double>& values,
+                                       const CandidateScore& score, double s) const {
+  for (std::size_t j = 0; j < values.size(); ++j) {
+    const double margin = opt_.bound_margin * std::log(c.upper[j] / c.lower[j]);
+    if (std::log(values[j] / c.lower[j]) < margin || std::log(c.upper[j] / values[j]) < margin)
+      return c.parameter_names[j] + " at its bound";
+  }
+  if (score.signature_correlation < opt_.min_signature) return "signature does not follow the residual";
+  if (score.gain < opt_.min_gain * s) return "gain too small";
+  return {};
+}
+
+Config CandidateFitter::refit_fold(const Config& fold, Predictions& out) const {
+  const FlatConfig flat = flatten(fold);
+  int evaluations = 0;
+  Config cfg = fold;
+  if (auto fitted = fit_config(flat, {flat.values}, misfit_.fit(), opt_.jobs, evaluations)) cfg = std::move(*fitted);
+  out = predict(cfg, union_runs(misfit_.fit(), misfit_.holdout()), opt_.jobs);
+  return cfg;
 }
 
 Config CandidateFitter::refit_all(const Config& full, const Config& fold_added, Predictions& out) const {

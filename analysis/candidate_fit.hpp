@@ -3,8 +3,8 @@
 // parameters together with those of every effect added before it, by Levenberg–Marquardt over
 // several starts (analysis/log_parameter_fit.hpp) on the fit set, then scored on the hold-out:
 //
-//   score = J_holdout + penalty · (its parameters)
-//   gain  = J_holdout(current model) − score
+//   score = J_holdout + penalty · (its parameters) · s,  s = max(1, J_ref)
+//   gain  = J_ref − score, J_ref the hold-out misfit of the earlier effects refitted alone
 //   signature r = Pearson r of block means of (candidate − current) and (measured − current),
 //                 torque and temp_C in noise units: does the change look like the residual?
 
@@ -37,6 +37,9 @@ class CandidateFitter {
   Predictions predict(const Config& config, const std::vector<std::size_t>& which, unsigned jobs) const;
   /// Fits `c` on top of `fold` (the effects added so far) and scores it against `current`.
   CandidateOutcome fit_candidate(const EffectCandidate& c, const Config& fold, const Predictions& current) const;
+  /// Refits the effects of `fold` alone on the fit set from their values (the fair reference of
+  /// a round); `out` gets their fit and hold-out predictions. Returns the refitted config.
+  Config refit_fold(const Config& fold, Predictions& out) const;
   /// Jointly refits `full` plus the newest effect of `fold_added` on all runs from their current
   /// values; `out` gets the predictions of all runs.
   Config refit_all(const Config& full, const Config& fold_added, Predictions& out) const;
@@ -55,6 +58,8 @@ class CandidateFitter {
   std::optional<Config> fit_config(const FlatConfig& flat, std::vector<std::vector<double>> starts,
                                    const SampleSet& set, unsigned jobs, int& evaluations) const;
   double signature_correlation(const Predictions& current, const Predictions& candidate) const;
+  std::string rejection(const EffectCandidate& c, const std::vector<double>& values, const CandidateScore& score,
+                        double s) const;
 
   const std::vector<DiagnosisRun>& runs_;
   const std::vector<EffectCandidate>& candidates_;

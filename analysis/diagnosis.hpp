@@ -18,10 +18,10 @@
 //   fitting    Eigen's Levenberg–Marquardt on log(parameter) (positivity, scale-free steps),
 //              forward-difference Jacobian, several starts per effect (the best start wins).
 //   selection  greedy: each candidate is fitted together with the effects added before it
-//              (so an earlier stand-in can give way); score = J_holdout + penalty·(parameters);
-//              the best candidate is added if it lowers the hold-out misfit by more than
-//              min_gain + penalty·k; stop when no candidate does, or when every signal is within
-//              noise_tolerance·σ.
+//              (so an earlier stand-in can give way) and compared with those earlier effects
+//              refitted alone on the same fit set; the best-scored candidate that is interior,
+//              follows the residual (signature) and gains enough (DiagnosisOptions) is added;
+//              stop when none is, or when every signal is within noise_tolerance × its scale.
 //   segments   the residual averaged over blocks (≈1/80 of a run); a block disagrees when its
 //              mean stands above 3 standard errors and above half a noise sigma; neighbouring
 //              blocks of one sign join into a segment.
@@ -73,6 +73,7 @@ struct FittedEffect {
 /// A model's prediction of one run at the run's sample times.
 struct Prediction {
   std::vector<double> torque_Nm, temp_C, sump_temp_C, ir_temp_C;  // the last two when asked
+  std::vector<double> speed_rpm;  // the modelled drive speed (the reproduction check needs it)
 };
 
 /// Replays run `run` (index into the runs given to diagnose) with the baseline model plus
@@ -81,11 +82,24 @@ struct Prediction {
 using Simulator =
     std::function<Prediction(const std::vector<EffectSetting>& added, std::size_t run)>;
 
+/// Replays run `run`'s inputs with the baseline model, but with `pseudo` (a run the baseline
+/// model made, sensor noise added) in place of the measured signals. Its difference from the
+/// pseudo-run's truth is the replay's own reproduction error (DiagnosisResult::channels).
+/// Thread-safe; may be empty (no reproduction error counted).
+using Reproducer = std::function<Prediction(const DiagnosisRun& pseudo, std::size_t run)>;
+
 struct DiagnosisOptions {
   unsigned jobs = 1;                  // threads (candidates are fitted in parallel)
-  double noise_tolerance = 1.1;       // "within noise": every signal's RMS <= this × sigma
-  double min_gain = 0.05;             // hold-out misfit drop needed (noise variance units)
-  double penalty_per_parameter = 0.02;  // per fitted parameter, same units
+  double noise_tolerance = 1.1;       // "within noise": every signal's RMS <= this × its error scale
+  // Acceptance of a candidate (docs/diagnosis.md "Fair selection"), s = max(1, J_ref) with
+  // J_ref the hold-out misfit of the earlier effects refitted alone on the same fit set:
+  //   score = J_holdout + penalty_per_parameter · k · s,  gain = J_ref − score >= min_gain · s,
+  //   every own parameter interior (log-distance to each bound >= bound_margin of the log range),
+  //   signature r >= min_signature.
+  double min_gain = 0.02;             // hold-out misfit drop needed (noise variance units, × s)
+  double penalty_per_parameter = 0.02;  // per fitted parameter, same units (× s)
+  double bound_margin = 0.02;
+  double min_signature = 0.3;
   // At most this many effects added; the default is no limit (`shudder diagnose` passes the
   // registry's effect count, rig_models/effect_registry.hpp, which is also no limit).
   int max_effects = std::numeric_limits<int>::max();
@@ -103,6 +117,11 @@ struct DiagnosisOptions {
   // statistics show beyond it, counted for model and measurement both.
   bool torque_block_statistics = false;
   double statistics_block_s = 1.0;
+  // Model-form tolerance per channel (signal unit; keys torque_Nm, temp_C, sump_temp_C,
+  // ir_temp_C), added in quadrature to every error scale of that channel: data from another
+  // simulator or a real rig differ from any model by more than their noise even when nothing
+  // is missing (docs/diagnosis.md "Choosing a tolerance"). Default none.
+  std::vector<std::pair<std::string, double>> tolerance;
 };
 
 /// How well one measured signal is explained. Pointwise channels: rms of model − measured
@@ -115,7 +134,15 @@ struct ChannelFit {
   double noise = 0.0;      // estimated sigma of one sample, signal unit
   double baseline_rms = 0.0, final_rms = 0.0;
   double baseline_misfit = 0.0, final_misfit = 0.0;
+  // The error scale: RMS over all comparisons of sensor noise (+ jitter), reproduction error
+  // and tolerance in quadrature (signal unit); the last two on their own.
+  double error_scale = 0.0, reproduction = 0.0, tolerance = 0.0;
+  bool within = false;  // final_misfit <= noise_tolerance²: the gap left is within the scale
 };
+
+/// explained: every channel within its error scale (with the named effects, if any);
+/// partly explained: effects named, a gap remains; not explained: a gap no candidate closes.
+enum class DiagnosisVerdict { kExplained, kPartlyExplained, kNotExplained };
 
 /// RMS of model − measured over all samples of all runs (torque: block RMS when compared by
 /// block statistics, see ChannelFit).
@@ -150,6 +177,9 @@ struct CandidateScore {
   double signature_correlation = 0.0;  // r(current residual, change this effect makes)
   int evaluations = 0;          // model evaluations used by the fit
   std::string failure;          // non-empty if every simulation failed
+  // Why the candidate may not be added although fitted (empty: it may): a parameter at its
+  // bound, a signature that does not follow the residual, or a gain below the needed one.
+  std::string rejection;
 };
 
 struct DiagnosisStep {
@@ -175,6 +205,7 @@ struct StopReason {
   double needed_gain = 0.0;      // kNoGain: the gain the best candidate needed, its name, its gain
   std::string best_effect;
   double best_gain = 0.0;
+  std::string best_rejection;    // kNoGain: why the best-scored candidate was not added
 };
 
 /// Measured and modelled signals of one run, for plots (at the residual samples).
@@ -194,6 +225,7 @@ struct HoldoutSplit {
 };
 
 struct DiagnosisResult {
+  DiagnosisVerdict verdict = DiagnosisVerdict::kExplained;
   std::vector<std::string> runs;
   double noise_torque_Nm = 0.0, noise_temp_C = 0.0;  // estimated sigma
   HoldoutSplit holdout;
@@ -216,12 +248,16 @@ struct DiagnosisResult {
   // Simulator is wrapped to time each call on its thread).
   double simulation_thread_s = 0.0, fitting_thread_s = 0.0, wall_s = 0.0;
   long simulations = 0;
+  std::vector<std::string> warnings;  // suspicious data (plausibility), for the caller to print
 };
 
 /// Throws std::invalid_argument if a run is too short to fit anything (fewer than 20 samples
-/// or an empty hold-out/fit split), if columns differ in length, or if no runs are given.
+/// or an empty hold-out/fit split), if columns differ in length, if no runs are given, or if a
+/// run's temperature rises 6–15 × what the baseline predicts from its speeds (a speed_rpm
+/// column in rad/s reads 9.55 × low; above that range only a warning).
 DiagnosisResult diagnose(const std::vector<DiagnosisRun>& runs,
                          const std::vector<EffectCandidate>& candidates,
-                         const Simulator& simulate, const DiagnosisOptions& options);
+                         const Simulator& simulate, const DiagnosisOptions& options,
+                         const Reproducer& reproduce = {});
 
 }  // namespace shudder::analysis

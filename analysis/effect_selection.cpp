@@ -53,6 +53,9 @@ Selection select_effects(const std::vector<DiagnosisRun>& runs, const std::vecto
     std::stable_sort(open.begin(), open.end(), [](const EffectCandidate* a, const EffectCandidate* b) {
       return a->parameter_names.size() > b->parameter_names.size();
     });
+    // The fair reference: the earlier effects refitted alone on the same fit set, so that what
+    // re-fitting them gains is not credited to the newcomer.
+    if (!fold.empty()) fold = fitter.refit_fold(fold, fold_pred);
     std::vector<CandidateOutcome> outcomes(open.size());
     parallel_for(open.size(), opt.jobs,
                  [&](std::size_t i) { outcomes[i] = fitter.fit_candidate(*open[i], fold, fold_pred); });
@@ -62,23 +65,33 @@ Selection select_effects(const std::vector<DiagnosisRun>& runs, const std::vecto
     });
     std::vector<CandidateScore> scores;
     for (const auto& o : outcomes) scores.push_back(o.score);
-    const CandidateOutcome& best = outcomes.front();
-    const double k = static_cast<double>(best.score.parameters.size());
-    if (!best.ok || best.score.gain < opt.min_gain) {
+    // The best-scored candidate that passes every acceptance test.
+    const CandidateOutcome* chosen = nullptr;
+    for (const auto& o : outcomes)
+      if (!chosen && o.ok && o.score.rejection.empty()) chosen = &o;
+    if (!chosen) {
+      const CandidateOutcome& best = outcomes.front();
+      const double k = static_cast<double>(best.score.parameters.size());
+      const double s = std::max(1.0, misfit.misfit(misfit.holdout(), fold_pred));
       sel.last_round = scores;
       if (best.ok) {
         stop.kind = StopReason::Kind::kNoGain;
-        stop.needed_gain = opt.min_gain + opt.penalty_per_parameter * k;
+        stop.needed_gain = (opt.min_gain + opt.penalty_per_parameter * k) * s;
         stop.best_effect = best.score.effect;
-        stop.best_gain = best.score.gain;
+        stop.best_gain = best.score.gain + opt.penalty_per_parameter * k * s;
+        stop.best_rejection = best.score.rejection;
       } else {
         stop.kind = StopReason::Kind::kNoFit;
       }
       break;
     }
+    const CandidateOutcome& best = *chosen;
     DiagnosisStep step;
     step.effect = best.score.effect;
-    step.candidates = scores;
+    // The added candidate first (the step's reason speaks of it), the others best first.
+    step.candidates.push_back(best.score);
+    for (const auto& o : outcomes)
+      if (&o != chosen) step.candidates.push_back(o.score);
     step.holdout_misfit_before = misfit.misfit(misfit.holdout(), fold_pred);
     step.holdout_misfit_after = best.score.holdout_misfit;
     step.holdout = misfit.rms(misfit.holdout(), best.predictions);

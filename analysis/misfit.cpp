@@ -31,7 +31,7 @@ MisfitModel::MisfitModel(const std::vector<DiagnosisRun>& runs, const DiagnosisO
 
 double MisfitModel::channel_rms(const Channel& c, const SampleSet& set, const Predictions& p) const {
   std::vector<double> e;
-  const double sq = channel_sums(c, set, p, &e).second;
+  const double sq = channel_sums(c, set, p, &e).unit;
   // Block channels put two entries (mean, spread) per block: rms per block of both.
   const double count = static_cast<double>(e.size()) / (c.blocks ? 2.0 : 1.0);
   return std::sqrt(sq / count);
@@ -169,22 +169,27 @@ MisfitModel::BlockStats MisfitModel::stats(const std::vector<double>& x, std::si
   return {mean, std::sqrt(sq / sw)};
 }
 
-// Sum of squared residuals in noise units, and of squared residuals in signal units, of one
-// channel over a set; the normalised entries are appended to `entries` when given.
-std::pair<double, double> MisfitModel::channel_sums(const Channel& c, const SampleSet& set,
-                                                    const Predictions& p, std::vector<double>* entries) const {
-  double sn = 0, su = 0;
-  const auto put = [&](double unit, double normalised) {
-    su += unit * unit;
-    sn += normalised * normalised;
-    if (entries) entries->push_back(normalised);
+// Sums of squared residuals in error-scale units and in signal units, and of the squared
+// scales, of one channel over a set; the normalised entries are appended to `entries` when given.
+MisfitModel::Sums MisfitModel::channel_sums(const Channel& c, const SampleSet& set, const Predictions& p,
+                                            std::vector<double>* entries) const {
+  Sums s;
+  const auto put = [&](double unit, double scale2) {
+    s.unit += unit * unit;
+    s.normalised += unit * unit / scale2;
+    s.scale2 += scale2;
+    if (entries) entries->push_back(unit / std::sqrt(scale2));
   };
+  const std::size_t ci = channel_index(c);
+  const double tol2 = c.tolerance * c.tolerance;
   for (std::size_t k = 0; k < runs_.size(); ++k) {
     if (!p[k]) continue;
     const auto& m = measured(runs_[k], c.signal);
     const auto& q = predicted(*p[k], c.signal);
+    const BlockStats repro = reproduction_var_.empty() ? BlockStats{} : reproduction_var_[ci][k];
     if (!c.blocks) {
-      for (std::size_t i : set.index[k]) put(q[i] - m[i], (q[i] - m[i]) / c.sigma);
+      const double scale2 = c.sigma * c.sigma + repro.mean + tol2;
+      for (std::size_t i : set.index[k]) put(q[i] - m[i], scale2);
       continue;
     }
     for (std::size_t b : set.blocks[k]) {
@@ -194,18 +199,86 @@ std::pair<double, double> MisfitModel::channel_sums(const Channel& c, const Samp
       const double meas_std = std::sqrt(std::max(0.0, sm.std * sm.std - c.sigma * c.sigma));
       const double var = c.sigma * c.sigma / n;
       const BlockStats& jitter = block_jitter_var_[k];
-      put(sq.mean - sm.mean, (sq.mean - sm.mean) / std::sqrt(var + 2.0 * jitter.mean));
-      put(sq.std - meas_std, (sq.std - meas_std) / std::sqrt(0.5 * var + 2.0 * jitter.std));
+      put(sq.mean - sm.mean, var + 2.0 * jitter.mean + repro.mean + tol2);
+      put(sq.std - meas_std, 0.5 * var + 2.0 * jitter.std + repro.std + tol2);
     }
   }
-  return {sn, su};
+  return s;
+}
+
+std::size_t MisfitModel::channel_index(const Channel& c) const {
+  for (std::size_t i = 0; i < channels_.size(); ++i)
+    if (channels_[i].signal == c.signal) return i;
+  return 0;
+}
+
+// The truth is known here (the baseline made it), so whatever the replay gets wrong is the
+// replay's own: set point recovered from noisy signals, inputs averaged over windows, the
+// start temperature read off a noisy thermometer. Compared exactly as the data are compared.
+void MisfitModel::set_reproduction(const Predictions& truth, const Predictions& replayed) {
+  reproduction_var_.assign(channels_.size(), std::vector<BlockStats>(runs_.size()));
+  for (std::size_t ci = 0; ci < channels_.size(); ++ci) {
+    const Channel& c = channels_[ci];
+    for (std::size_t k = 0; k < runs_.size(); ++k) {
+      if (!truth[k] || !replayed[k]) continue;
+      const auto& a = predicted(*truth[k], c.signal);
+      const auto& b = predicted(*replayed[k], c.signal);
+      if (a.size() != b.size() || a.empty()) continue;
+      BlockStats& v = reproduction_var_[ci][k];
+      if (!c.blocks) {
+        for (std::size_t i : all_.index[k]) v.mean += (b[i] - a[i]) * (b[i] - a[i]);
+        v.mean /= static_cast<double>(std::max<std::size_t>(1, all_.index[k].size()));
+        continue;
+      }
+      for (std::size_t blk : all_.blocks[k]) {
+        const BlockStats sa = stats(a, k, blk), sb = stats(b, k, blk);
+        v.mean += (sb.mean - sa.mean) * (sb.mean - sa.mean);
+        v.std += (sb.std - sa.std) * (sb.std - sa.std);
+      }
+      const double nb = static_cast<double>(std::max<std::size_t>(1, all_.blocks[k].size()));
+      v.mean /= nb;
+      v.std /= nb;
+    }
+  }
+}
+
+double MisfitModel::reproduction_rms(const Channel& c) const {
+  if (reproduction_var_.empty()) return 0.0;
+  double v = 0;
+  for (const auto& r : reproduction_var_[channel_index(c)]) v += c.blocks ? r.mean + r.std : r.mean;
+  return std::sqrt(v / static_cast<double>(runs_.size()));
+}
+
+double MisfitModel::channel_scale(const Channel& c, const SampleSet& set) const {
+  // The scales do not depend on the prediction; the measured run stands in for it.
+  Predictions self(runs_.size());
+  for (std::size_t k = 0; k < runs_.size(); ++k) {
+    Prediction p;
+    p.torque_Nm = runs_[k].torque_Nm;
+    p.temp_C = runs_[k].temp_C;
+    p.sump_temp_C = runs_[k].sump_temp_C;
+    p.ir_temp_C = runs_[k].ir_temp_C;
+    self[k] = std::move(p);
+  }
+  std::vector<double> e;
+  const double s2 = channel_sums(c, set, self, &e).scale2;
+  return e.empty() ? 0.0 : std::sqrt(s2 / static_cast<double>(e.size()));
+}
+
+double MisfitModel::pointwise_scale(const Channel& c) const {
+  double repro = 0;
+  if (!reproduction_var_.empty() && !c.blocks) {
+    for (const auto& r : reproduction_var_[channel_index(c)]) repro += r.mean;
+    repro /= static_cast<double>(runs_.size());
+  }
+  return std::sqrt(c.sigma * c.sigma + repro + c.tolerance * c.tolerance);
 }
 
 double MisfitModel::misfit(const SampleSet& set, const Predictions& p) const {
   double j = 0;
   for (const auto& c : channels_) {
     std::vector<double> e;
-    const double sn = channel_sums(c, set, p, &e).first;
+    const double sn = channel_sums(c, set, p, &e).normalised;
     if (!e.empty()) j += channel_weight(c) * sn / static_cast<double>(e.size());
   }
   return j;
@@ -224,7 +297,7 @@ Misfit MisfitModel::rms(const SampleSet& set, const Predictions& p) const {
   for (const auto& c : channels_) {
     if (c.signal != Signal::kTorque && c.signal != Signal::kTemp) continue;
     std::vector<double> e;
-    const double su = channel_sums(c, set, p, &e).second;
+    const double su = channel_sums(c, set, p, &e).unit;
     // Block channels put two entries (mean, spread) per block: rms per block of both.
     const double count = static_cast<double>(e.size()) / (c.blocks ? 2.0 : 1.0);
     const double v = e.empty() ? 0.0 : std::sqrt(su / count);
@@ -256,7 +329,7 @@ std::size_t MisfitModel::residual_count(const SampleSet& set) const {
 
 double MisfitModel::channel_misfit(const Channel& c, const SampleSet& set, const Predictions& p) const {
   std::vector<double> e;
-  const double sn = channel_sums(c, set, p, &e).first;
+  const double sn = channel_sums(c, set, p, &e).normalised;
   return e.empty() ? 0.0 : sn / static_cast<double>(e.size());
 }
 
@@ -279,6 +352,14 @@ void MisfitModel::choose_channels() {
     channels_.push_back({Signal::kSump, "sump_temp_C", pooled_sigma(Signal::kSump, opt_.min_noise_temp_C), false});
   if (every_run_has(Signal::kIr))
     channels_.push_back({Signal::kIr, "ir_temp_C", pooled_sigma(Signal::kIr, opt_.min_noise_temp_C), false});
+  // temp_C's tolerance also serves the other thermometers unless they have their own: they
+  // watch the same thermal model, whose form error they share.
+  for (auto& c : channels_) {
+    for (const auto& [name, tol] : opt_.tolerance)
+      if (name == "temp_C" && c.signal != Signal::kTorque) c.tolerance = tol;
+    for (const auto& [name, tol] : opt_.tolerance)
+      if (name == c.name) c.tolerance = tol;
+  }
 }
 
 std::vector<std::size_t> union_runs(const SampleSet& a, const SampleSet& b) {

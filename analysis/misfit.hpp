@@ -10,6 +10,9 @@
 //              Hann-weighted mean and spread over blocks of statistics_block_s every half block;
 //              error scale = sensor noise over the block plus the block-to-block jitter the
 //              measured statistics show beyond it, for model and measurement both.
+//   scale      the error scale of one comparison: sensor noise (and, for blocks, jitter) plus,
+//              in quadrature, the replay's reproduction error (set_reproduction) and the user's
+//              model-form tolerance of the channel (DiagnosisOptions::tolerance).
 //   sets       all samples (every k-th beyond max_samples_per_run), the fit set and the
 //              hold-out: the last run with several runs, odd tenths of the time with one.
 
@@ -35,6 +38,7 @@ struct Channel {
   std::string name;
   double sigma = 0.0;   // noise of one sample
   bool blocks = false;  // compared by block statistics
+  double tolerance = 0.0;  // model-form tolerance (signal unit), DiagnosisOptions::tolerance
 };
 
 /// Sample indices and statistics blocks per run (empty for a run outside the set).
@@ -68,6 +72,19 @@ class MisfitModel {
   double channel_rms(const Channel& c, const SampleSet& set, const Predictions& p) const;
   /// Torque and temp_C RMS over a set.
   Misfit rms(const SampleSet& set, const Predictions& p) const;
+  /// The replay's reproduction error: `truth` are the baseline's predictions, `replayed` the
+  /// replays of those predictions taken as measured runs (noise added). Their differences,
+  /// compared as the channel compares (pointwise or block statistics), join every later error
+  /// scale in quadrature, per run.
+  void set_reproduction(const Predictions& truth, const Predictions& replayed);
+  /// RMS over all runs of the reproduction error of one channel (signal unit; 0 if not set).
+  double reproduction_rms(const Channel& c) const;
+  /// RMS of the error scale of one channel over a set (signal unit): what "within" is measured
+  /// against (J_c = 1 when the residuals are as large as it).
+  double channel_scale(const Channel& c, const SampleSet& set) const;
+  /// A pointwise scale of one channel for segment detection: noise, reproduction and
+  /// tolerance in quadrature (block channels: the sensor noise part of it).
+  double pointwise_scale(const Channel& c) const;
   /// Residuals scaled so that their sum of squares is J; false if any is not finite.
   bool residual_vector(const SampleSet& set, const Predictions& p, Eigen::VectorXd& out) const;
   std::size_t residual_count(const SampleSet& set) const;
@@ -84,8 +101,12 @@ class MisfitModel {
   };
   static double hann(double t_s, const StatBlock& b);
   BlockStats stats(const std::vector<double>& x, std::size_t run, std::size_t block) const;
-  std::pair<double, double> channel_sums(const Channel& c, const SampleSet& set, const Predictions& p,
-                                         std::vector<double>* entries) const;
+  struct Sums {
+    double normalised = 0.0, unit = 0.0, scale2 = 0.0;  // Σ (r/s)², Σ r², Σ s²
+  };
+  Sums channel_sums(const Channel& c, const SampleSet& set, const Predictions& p,
+                    std::vector<double>* entries) const;
+  std::size_t channel_index(const Channel& c) const;
   double channel_weight(const Channel& c) const;
   void choose_channels();
   void build_sample_sets();
@@ -97,6 +118,9 @@ class MisfitModel {
   std::vector<std::vector<StatBlock>> stat_blocks_;  // per run
   // Per run: variance of the block mean and block spread beyond what sensor noise explains.
   std::vector<BlockStats> block_jitter_var_;
+  // Per channel and run: reproduction error variance (pointwise: in .mean; blocks: of the
+  // block mean and spread).
+  std::vector<std::vector<BlockStats>> reproduction_var_;
   SampleSet all_, fit_, holdout_;
   HoldoutSplit split_;
 };

@@ -1,6 +1,8 @@
 // `shudder diagnose MODEL.toml RUN.csv…`: replay measured runs on the model, find where they
 // disagree, name the missing effects, print the summary, write JSON and a report on request.
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <thread>
 #include <variant>
@@ -10,6 +12,9 @@
 #include "app/guarded.hpp"
 #include "io/diagnosis_inputs.hpp"
 #include "io/diagnosis_json.hpp"
+#include "io/diagnosis_plausibility.hpp"
+#include "io/fixed_model.hpp"
+#include "io/input_error.hpp"
 #include "io/measured_run.hpp"
 #include "io/scenario.hpp"
 #include "report/diagnosis_narrative.hpp"
@@ -18,8 +23,43 @@
 
 namespace shudder::app {
 
+namespace {
+
+// "torque_Nm=0.5,temp_C=2" -> {{"torque_Nm", 0.5}, {"temp_C", 2}}; InputError (exit 2) for an
+// unknown channel, a value that is not a number >= 0, or a channel given twice.
+std::vector<std::pair<std::string, double>> parse_tolerance(const std::string& text) {
+  static const char* const kChannels[] = {"torque_Nm", "temp_C", "sump_temp_C", "ir_temp_C"};
+  const std::string allowed = "give CHANNEL=VALUE[,CHANNEL=VALUE…] with CHANNEL one of torque_Nm, temp_C, "
+                              "sump_temp_C, ir_temp_C and VALUE >= 0 in the channel's unit";
+  std::vector<std::pair<std::string, double>> out;
+  std::size_t pos = 0;
+  while (!text.empty() && pos <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', pos), text.size());
+    const std::string item = text.substr(pos, comma - pos);
+    const std::size_t eq = item.find('=');
+    const std::string name = item.substr(0, eq);
+    bool known = false;
+    for (const char* c : kChannels) known = known || name == c;
+    if (eq == std::string::npos || !known)
+      throw io::InputError("--tolerance", 0, "", "'" + item + "' is not a channel tolerance; " + allowed);
+    const std::string value = item.substr(eq + 1);
+    char* end = nullptr;
+    const double v = std::strtod(value.c_str(), &end);
+    if (value.empty() || *end != '\0' || !std::isfinite(v) || v < 0)
+      throw io::InputError("--tolerance", 0, name, "'" + value + "' is not a tolerance; " + allowed);
+    for (const auto& [n, x] : out)
+      if (n == name) throw io::InputError("--tolerance", 0, name, "given twice; " + allowed);
+    out.emplace_back(name, v);
+    pos = comma + 1;
+  }
+  return out;
+}
+
+}  // namespace
+
 int diagnose_command(const DiagnoseOptions& opt) {
   return guarded(opt.model, "diagnosis", [&]() -> int {
+    const auto tolerance = parse_tolerance(opt.tolerance);
     const io::Scenario scenario = io::load_scenario(opt.model);
     const auto model = io::replay_model(scenario);  // refuses kinds measured runs cannot come from
     for (const auto& w : scenario.warnings) std::cerr << "shudder: warning: " << w << "\n";
@@ -27,6 +67,8 @@ int diagnose_command(const DiagnoseOptions& opt) {
     std::vector<io::MeasuredRun> runs;
     for (const auto& path : opt.runs) runs.push_back(io::read_measured_run(path));
     io::DiagnosisData data = io::diagnosis_data(runs);
+    const analysis::DiagnosisOptions defaults;
+    io::check_plausibility(runs, model, defaults.statistics_block_s, data.warnings);
     for (const auto& w : data.warnings) std::cerr << "shudder: warning: " << w << "\n";
 
     std::vector<std::string> skipped;
@@ -35,14 +77,21 @@ int diagnose_command(const DiagnoseOptions& opt) {
     o.jobs = opt.jobs ? opt.jobs : std::max(1u, std::thread::hardware_concurrency());
     o.torque_block_statistics = model.rig;
     o.max_effects = opt.max_effects;
+    o.tolerance = tolerance;
+    const auto reproduce = rig_models::replay_reproducer(model, data.inputs);
     const auto result = analysis::diagnose(
-        data.runs, candidates, rig_models::replay_simulator(model, std::move(data.inputs)), o);
+        data.runs, candidates, rig_models::replay_simulator(model, std::move(data.inputs)), o, reproduce);
+    for (const auto& w : result.warnings) std::cerr << "shudder: warning: " << w << "\n";
 
     const std::string text = report::diagnosis_summary(scenario, result, skipped);
     std::cout << text;
     if (!opt.json.empty()) {
       io::write_diagnosis_json(opt.json, result, report::diagnosis_sentences(result));
       std::cout << "JSON: " << opt.json << "\n";
+    }
+    if (!opt.write_model.empty()) {
+      io::write_fixed_model(scenario, result.final_effects, opt.write_model);
+      std::cout << "Model: " << opt.write_model << "\n";
     }
     if (!opt.report.empty()) {
       const report::Report report = report::write_diagnosis_report(opt.report, result, text);

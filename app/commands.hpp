@@ -71,6 +71,8 @@ struct DiagnoseOptions {
   std::string report;             // report directory; empty = none
   unsigned jobs = 0;              // 0 = all cores
   int max_effects = static_cast<int>(rig_models::effect_registry().size());  // added at most (default: all)
+  std::string tolerance;          // "torque_Nm=0.5,temp_C=2": model-form tolerance per channel
+  std::string write_model;        // the baseline scenario with the named effects on; empty = none
 };
 int diagnose_command(const DiagnoseOptions& options);
 

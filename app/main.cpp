@@ -95,6 +95,11 @@ int main(int argc, char** argv) {
   diag_cmd->add_option("--max-effects", diagnose.max_effects,
                        "Add at most this many effects (default " + std::to_string(effect_count) + ": no limit)")
       ->check(CLI::Range(0, effect_count));
+  diag_cmd->add_option("--tolerance", diagnose.tolerance,
+                       "Model-form tolerance per channel, e.g. torque_Nm=0.5,temp_C=2 (signal units; "
+                       "docs/diagnosis.md)");
+  diag_cmd->add_option("--write-model", diagnose.write_model,
+                       "Write the baseline scenario with the named effects on at their fitted parameters");
 
   try {
     app.parse(argc, argv);

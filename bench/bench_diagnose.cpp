@@ -137,8 +137,11 @@ void run_diagnosis(benchmark::State& state, const std::string& model_text, const
   analysis::DiagnosisResult r;
   for (auto _ : state) {
     io::DiagnosisData data = io::diagnosis_data(runs);
+    // As `shudder diagnose` does: the replay's reproduction error measured too (one run each).
+    const auto reproduce = rig_models::replay_reproducer(model, data.inputs);
     r = analysis::diagnose(data.runs, candidates,
-                           rig_models::replay_simulator(model, std::move(data.inputs)), o);
+                           rig_models::replay_simulator(model, std::move(data.inputs)), o, reproduce);
+    state.counters["verdict"] = static_cast<double>(r.verdict);
     benchmark::DoNotOptimize(r);
   }
   state.counters["wall_s"] = r.wall_s;

@@ -99,7 +99,9 @@ std::string disagreement(const Disagreement& d) {
 std::string channel(const analysis::ChannelFit& c) {
   return Object().str("signal", c.signal).str("comparison", c.comparison).num("noise", c.noise)
       .num("baseline_rms", c.baseline_rms).num("final_rms", c.final_rms)
-      .num("baseline_misfit", c.baseline_misfit).num("final_misfit", c.final_misfit).text();
+      .num("baseline_misfit", c.baseline_misfit).num("final_misfit", c.final_misfit)
+      .num("error_scale", c.error_scale).num("reproduction", c.reproduction).num("tolerance", c.tolerance)
+      .text();
 }
 
 std::string tracking(const Tracking& t) {
@@ -114,6 +116,7 @@ std::string candidate(const CandidateScore& c) {
       .raw("evaluations", std::to_string(c.evaluations));
   // Present only for a failed candidate, so "has failure" is the test a reader needs.
   if (!c.failure.empty()) o.str("failure", c.failure);
+  if (c.failure.empty() && !c.rejection.empty()) o.str("rejected", c.rejection);
   return o.text();
 }
 
@@ -133,6 +136,27 @@ std::string step(const DiagnosisStep& st, const std::string& reason) {
   return os.str();
 }
 
+std::string verdict_key(analysis::DiagnosisVerdict v) {
+  switch (v) {
+    case analysis::DiagnosisVerdict::kExplained: return "explained";
+    case analysis::DiagnosisVerdict::kPartlyExplained: return "partly_explained";
+    case analysis::DiagnosisVerdict::kNotExplained: return "not_explained";
+  }
+  return {};
+}
+
+// The gap left per channel, with the final model's disagreement segments of that channel.
+std::string remaining(const analysis::DiagnosisResult& r) {
+  return list(r.channels, "    ", [&](const analysis::ChannelFit& c) {
+    std::vector<Disagreement> open;
+    for (const auto& d : r.final_disagreements)
+      if (d.signal == c.signal) open.push_back(d);
+    return Object().str("signal", c.signal).num("rms", c.final_rms).num("error_scale", c.error_scale)
+        .num("rms_over_scale", std::sqrt(c.final_misfit)).raw("within", c.within ? "true" : "false")
+        .raw("segments", list(open, "      ", disagreement)).text();
+  });
+}
+
 std::string fitted_effect(const analysis::FittedEffect& f) {
   return Object().str("effect", f.effect).raw("parameters", object_of(f.parameters)).text();
 }
@@ -147,6 +171,8 @@ std::string diagnosis_json(const analysis::DiagnosisResult& r, const DiagnosisSe
   Object o(",\n  ");
   o.str("format", "shudder-diagnosis/1")
       .str("shudder_version", SHUDDER_VERSION)
+      .str("verdict", verdict_key(r.verdict))
+      .str("verdict_text", words.verdict)
       .raw("runs", strings(r.runs))
       .raw("noise", Object().num("torque_Nm", r.noise_torque_Nm).num("temp_C", r.noise_temp_C).text())
       .str("holdout", words.holdout)
@@ -160,6 +186,7 @@ std::string diagnosis_json(const analysis::DiagnosisResult& r, const DiagnosisSe
       .raw("final_effects", list(r.final_effects, "    ", fitted_effect))
       .raw("channels", list(r.channels, "    ", channel))
       .raw("final_disagreements", list(r.final_disagreements, "    ", disagreement))
+      .raw("remaining", remaining(r))
       .str("conclusion", words.conclusion)
       .raw("timing", Object()
                          .num("simulation_thread_s", r.simulation_thread_s)

@@ -18,6 +18,7 @@ struct DiagnosisSentences {
   std::string holdout;                    // what was held out
   std::vector<std::string> step_reasons;  // why each step's effect was added (one per step)
   std::string conclusion;
+  std::string verdict;  // the verdict in one sentence, with the gap left
 };
 
 /// The result as JSON text (ends in a newline).

@@ -2,6 +2,7 @@
 
 #include "report/text_format.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <utility>
@@ -39,8 +40,10 @@ std::string stop_reason_text(const analysis::StopReason& stop) {
       return "the limit of " + std::to_string(stop.max_effects) + " added effects was reached";
     case Kind::kAllAdded: return "every candidate effect has been added";
     case Kind::kNoGain:
-      return "no candidate lowers the held-out misfit by more than " + fmt(stop.needed_gain) + " (best: " +
-             stop.best_effect + ", gain " + fmt(stop.best_gain) + ")";
+      return "no candidate lowers the held-out misfit by more than " + fmt(stop.needed_gain) +
+             " with interior parameters and a change that follows the residual (best: " + stop.best_effect +
+             ", lowers it by " + fmt(stop.best_gain) + (stop.best_rejection.empty() ? "" : "; " + stop.best_rejection) +
+             ")";
     case Kind::kNoFit: return "no candidate could be fitted";
   }
   return {};
@@ -72,6 +75,45 @@ std::string step_reason(const analysis::DiagnosisStep& step) {
   return os.str();
 }
 
+std::string verdict_words(analysis::DiagnosisVerdict v) {
+  switch (v) {
+    case analysis::DiagnosisVerdict::kExplained: return "explained";
+    case analysis::DiagnosisVerdict::kPartlyExplained: return "partly explained";
+    case analysis::DiagnosisVerdict::kNotExplained: return "not explained";
+  }
+  return {};
+}
+
+std::string verdict_sentence(const analysis::DiagnosisResult& r) {
+  std::ostringstream os;
+  os << "Verdict: " << verdict_words(r.verdict);
+  if (!r.missing_effects.empty()) {
+    os << " by ";
+    for (std::size_t i = 0; i < r.missing_effects.size(); ++i) os << (i ? ", " : "") << r.missing_effects[i];
+  }
+  std::string gaps;
+  for (const auto& c : r.channels) {
+    if (c.within) continue;
+    gaps += (gaps.empty() ? "" : "; ") + c.signal + " RMS " + fmt(c.final_rms) + " against an error scale of " +
+            fmt(c.error_scale) + " (" + fmt(std::sqrt(c.final_misfit), "%.2g") + "x)";
+    std::string where;
+    int shown = 0;
+    for (const auto& d : r.final_disagreements)
+      if (d.signal == c.signal && shown++ < 2)
+        where += (where.empty() ? "" : ", ") + d.run + " " + fmt(d.t_start_s, "%.1f") + "-" + fmt(d.t_end_s, "%.1f") +
+                 " s mean " + fmt(d.mean_error);
+    if (!where.empty()) gaps += " at " + where;
+  }
+  if (gaps.empty()) {
+    os << ": every channel within its error scale";
+  } else {
+    os << (r.verdict == analysis::DiagnosisVerdict::kNotExplained ? ": no candidate closes the gap; " : "; a gap remains: ")
+       << gaps;
+  }
+  os << ".";
+  return os.str();
+}
+
 std::string diagnosis_conclusion(const analysis::DiagnosisResult& r) {
   const std::string stop = stop_reason_text(r.stop);
   std::ostringstream concl;
@@ -90,7 +132,7 @@ std::string diagnosis_conclusion(const analysis::DiagnosisResult& r) {
 }
 
 io::DiagnosisSentences diagnosis_sentences(const analysis::DiagnosisResult& r) {
-  io::DiagnosisSentences words{holdout_text(r.holdout), {}, diagnosis_conclusion(r)};
+  io::DiagnosisSentences words{holdout_text(r.holdout), {}, diagnosis_conclusion(r), verdict_sentence(r)};
   for (const auto& st : r.steps) words.step_reasons.push_back(step_reason(st));
   return words;
 }

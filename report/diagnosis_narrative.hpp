@@ -17,6 +17,11 @@ std::string stop_reason_text(const analysis::StopReason& stop);
 /// Why a step's effect was added: what the residual tracked before it, its signature, its
 /// parameters and the hold-out misfit it reached, against the next best candidate.
 std::string step_reason(const analysis::DiagnosisStep& step);
+/// "explained", "partly explained", "not explained".
+std::string verdict_words(analysis::DiagnosisVerdict v);
+/// The summary's first line: the verdict, what was named, and where and how big the gap left
+/// is per channel against its error scale.
+std::string verdict_sentence(const analysis::DiagnosisResult& result);
 /// One paragraph: what is missing, the RMS before and after against the noise, why it stopped.
 std::string diagnosis_conclusion(const analysis::DiagnosisResult& result);
 /// All of the above for the JSON file.

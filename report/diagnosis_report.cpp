@@ -177,6 +177,14 @@ std::string diagnosis_candidates_markdown(const analysis::DiagnosisResult& r) {
      << "Misfit J in units of the noise variance (J ≈ 1: explained to the noise); residual = model − "
         "measured. score = hold-out misfit + penalty × parameters; gain = current hold-out misfit − "
         "score. Candidates best first.\n\n";
+  md << cell(verdict_sentence(r)) << "\n\n";
+  md << "| signal | final RMS | error scale | of which reproduction | tolerance | RMS / scale | within |\n"
+     << "|---|---|---|---|---|---|---|\n";
+  for (const auto& c : r.channels)
+    md << "| " << c.signal << " | " << fixed(c.final_rms) << " | " << fixed(c.error_scale) << " | "
+       << fixed(c.reproduction) << " | " << fixed(c.tolerance) << " | " << fixed(std::sqrt(c.final_misfit)) << " | "
+       << (c.within ? "yes" : "no") << " |\n";
+  md << "\n";
   const std::string holdout = holdout_text(r.holdout);
   if (!holdout.empty()) md << "Hold-out: " << cell(holdout) << ".\n\n";
   md << "Baseline hold-out misfit: " << fixed(r.baseline_holdout_misfit) << "; final: "

@@ -37,6 +37,7 @@ void print_candidates(std::ostream& os, const std::vector<analysis::CandidateSco
 std::string diagnosis_summary(const io::Scenario& s, const analysis::DiagnosisResult& r,
                               const std::vector<std::string>& skipped) {
   std::ostringstream os;
+  os << verdict_sentence(r) << "\n";
   os << "Diagnosis of " << r.runs.size() << " run(s) against " << s.path << " (" << model_kind_name(s.kind()) << ")\n";
   os << "  baseline effects on: ";
   for (std::size_t i = 0; i < s.enabled_effects.size(); ++i) os << (i ? ", " : "") << s.enabled_effects[i];
@@ -81,7 +82,12 @@ std::string diagnosis_summary(const io::Scenario& s, const analysis::DiagnosisRe
   for (const auto& c : r.channels)
     if (c.signal != "torque_Nm" && c.signal != "temp_C")
       os << ", " << c.signal << " RMS " << num(c.baseline_rms) << " -> " << num(c.final_rms);
-  os << "\n" << diagnosis_conclusion(r) << "\n";
+  os << "\nRemaining gap against the error scale (noise, replay reproduction, tolerance in quadrature):\n";
+  for (const auto& c : r.channels)
+    os << "  " << c.signal << "  RMS " << num(c.final_rms) << "  scale " << num(c.error_scale) << " (reproduction "
+       << num(c.reproduction) << ", tolerance " << num(c.tolerance) << ")  " << (c.within ? "within" : "NOT within")
+       << "\n";
+  os << "" << diagnosis_conclusion(r) << "\n";
   os << "Time: " << num(r.wall_s) << " s wall; " << r.simulations << " simulations took "
      << num(r.simulation_thread_s) << " thread-s, the fitting around them " << num(r.fitting_thread_s)
      << " thread-s\n";

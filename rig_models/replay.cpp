@@ -123,6 +123,7 @@ ReplayOutput replay(const ReplayModel& model, const ReplayInputs& in) {
   out.temp_C = interpolate(time, signal(rec, sn::kTemp), tq);
   out.sump_temp_C = interpolate(time, signal(rec, sn::kSumpTemp), tq);
   out.ir_temp_C = interpolate(time, signal(rec, sn::kIrTemp), tq);
+  out.speed_rpm = interpolate(time, signal(rec, sn::kSpeed), tq);
   return out;
 }
 
@@ -168,7 +169,21 @@ analysis::Simulator replay_simulator(ReplayModel model, std::vector<ReplayInputs
     for (const auto& e : added) enable_effect(m, e.effect, e.values);
     ReplayOutput o = replay(m, inputs.at(run));
     return analysis::Prediction{std::move(o.torque_Nm), std::move(o.temp_C), std::move(o.sump_temp_C),
-                                std::move(o.ir_temp_C)};
+                                std::move(o.ir_temp_C), std::move(o.speed_rpm)};
+  };
+}
+
+analysis::Reproducer replay_reproducer(ReplayModel model, std::vector<ReplayInputs> inputs) {
+  return [model = std::move(model), inputs = std::move(inputs)](const analysis::DiagnosisRun& pseudo,
+                                                                std::size_t run) {
+    ReplayInputs in = inputs.at(run);
+    in.speed_rpm = pseudo.speed_rpm;
+    in.temp_C = pseudo.temp_C;
+    if (!in.torque_Nm.empty()) in.torque_Nm = pseudo.torque_Nm;
+    if (!in.sump_temp_C.empty()) in.sump_temp_C = pseudo.sump_temp_C;
+    ReplayOutput o = replay(model, in);
+    return analysis::Prediction{std::move(o.torque_Nm), std::move(o.temp_C), std::move(o.sump_temp_C),
+                                std::move(o.ir_temp_C), std::move(o.speed_rpm)};
   };
 }
 

@@ -51,6 +51,7 @@ struct ReplayInputs {
 
 struct ReplayOutput {
   std::vector<double> torque_Nm, temp_C, sump_temp_C, ir_temp_C;  // at ReplayInputs::time_s
+  std::vector<double> speed_rpm;  // the model's drive speed (prescribed slip: the imposed one)
 };
 
 /// Throws std::invalid_argument if the model cannot be built or run on these inputs.
@@ -71,6 +72,10 @@ void enable_effect(ReplayModel& model, std::string_view name, const std::vector<
 
 /// The diagnosis' simulator: run k replays inputs[k] on `model` plus the added effects.
 analysis::Simulator replay_simulator(ReplayModel model, std::vector<ReplayInputs> inputs);
+
+/// The diagnosis' reproduction check: run k's inputs (flow, thermocouple place, windows) with
+/// the pseudo-run's signals in place of the measured ones, replayed on the baseline `model`.
+analysis::Reproducer replay_reproducer(ReplayModel model, std::vector<ReplayInputs> inputs);
 
 /// Every registry effect the model has off, as a diagnosis candidate. Effects inert in this
 /// model's kind (stick-time friction with imposed slip) are left out, with a note in `skipped`.

@@ -167,10 +167,10 @@ TEST(DiagnosisJson, ARealDiagnosisIsWrittenAsStrictJsonWithEveryKey) {
   const DiagnosisResult r =
       shudder::analysis::diagnose(runs, shudder::test::linear_candidates(), simulate, {});
   const Json j = parse(diagnosis_json(r));
-  const std::vector<std::string> keys{"format", "shudder_version", "runs", "noise", "holdout", "baseline",
-                                      "disagreements", "tracking", "steps", "missing_effects", "last_round",
-                                      "final", "final_effects", "channels", "final_disagreements",
-                                      "conclusion", "timing"};
+  const std::vector<std::string> keys{"format", "shudder_version", "verdict", "verdict_text", "runs", "noise",
+                                      "holdout", "baseline", "disagreements", "tracking", "steps",
+                                      "missing_effects", "last_round", "final", "final_effects", "channels",
+                                      "final_disagreements", "remaining", "conclusion", "timing"};
   ASSERT_EQ(j.members.size(), keys.size());
   for (std::size_t i = 0; i < keys.size(); ++i) EXPECT_EQ(j.members[i].first, keys[i]);
   ASSERT_EQ(j["steps"].items.size(), 1u);
@@ -280,7 +280,8 @@ TEST(DiagnosisJson, OptionalFieldsAreWritten) {
   EXPECT_EQ(j["conclusion"].str(),
             "Missing: temperature_dependent_friction. Torque RMS 8.12 -> 1.21 Nm, temperature RMS 6.3 -> "
             "0.95 C (noise 0.25 Nm, 0.5 C). The search stopped because no candidate lowers the held-out "
-            "misfit by more than 0.09 (best: sump_heating, gain 0.001).");
+            "misfit by more than 0.09 with interior parameters and a change that follows the residual "
+            "(best: sump_heating, lowers it by 0.001).");
   EXPECT_EQ(j["steps"][0]["reason"].str(),
             "temperature_dependent_friction (friction follows the interface temperature): before it, the "
             "torque error tracked temperature_rise (0.97) and the temperature error nothing. The change this "
@@ -345,7 +346,7 @@ TEST(DiagnosisJson, EscapesQuotesBackslashesAndControlCharacters) {
   const std::string text = diagnosis_json(r);
   EXPECT_THAT(text, HasSubstr(R"("C:\\runs\\\"hot\" run\t1\n.csv")"));
   EXPECT_THAT(text, HasSubstr(R"("key\"with\\quote": 0.002)"));
-  EXPECT_THAT(text, HasSubstr(R"(bell\u0007 and unicode °C, gain)"));
+  EXPECT_THAT(text, HasSubstr(R"(bell\u0007 and unicode °C, lowers it by)"));
   const Json j = parse(text);
   EXPECT_EQ(j["runs"][0].str(), odd);
   EXPECT_EQ(j["disagreements"][0]["run"].str(), odd);
@@ -442,7 +443,7 @@ namespace {
 TEST(DiagnosisJson, AReasonPerStepIsRequired) {
   DiagnosisResult r;
   r.steps.resize(2);
-  shudder::io::DiagnosisSentences words{"held", {"only one"}, "done"};
+  shudder::io::DiagnosisSentences words{"held", {"only one"}, "done", "explained"};
   EXPECT_THROW(shudder::io::diagnosis_json(r, words), std::logic_error);
   words.step_reasons.push_back("second");
   EXPECT_THAT(shudder::io::diagnosis_json(r, words), HasSubstr("\"reason\": \"second\""));
