@@ -96,4 +96,14 @@ struct CharacteriseOptions {
 };
 int characterise_command(const CharacteriseOptions& options);
 
+struct CompareOptions {
+  std::vector<std::string> fluids;   // fluid TOML files
+  std::vector<std::string> rigs;     // rig scenarios; empty = the screening's default rigs
+  std::string temps;                 // "30,60,90"; empty = 30, 60, 90 °C
+  double load_N = 20000.0;
+  double viscosity_cSt = 10.0;       // equal-viscosity comparison (Paper E Table 5)
+  std::string json, report;
+};
+int compare_command(const CompareOptions& options);
+
 }  // namespace shudder::app

@@ -138,6 +138,17 @@ int main(int argc, char** argv) {
   char_cmd->add_option("--breakaway-ratio", characterise.breakaway_ratio, "mu_s / mu_k(v_min) (default 1)")
       ->check(CLI::Range(0.5, 3.0));
 
+  CompareOptions compare;
+  auto* cmp_cmd = app.add_subcommand("compare", "Compare fluids: indices, equal viscosity, breakaway, rig margins, ranking");
+  cmp_cmd->add_option("fluids", compare.fluids, "Fluid files (TOML)")->required();
+  cmp_cmd->add_option("--rig", compare.rigs, "Rig scenario(s) (type = \"rig\"); default: 100, 300, 500 Hz bars");
+  cmp_cmd->add_option("--temps", compare.temps, "Temperatures, degC, comma-separated (default 30,60,90)");
+  cmp_cmd->add_option("--load-N", compare.load_N, "Normal load, N (default 20000)");
+  cmp_cmd->add_option("--viscosity-cSt", compare.viscosity_cSt, "Equal-viscosity comparison, cSt (default 10)")
+      ->check(CLI::Range(0.5, 10000.0));
+  cmp_cmd->add_option("--json", compare.json, "Write the comparison as JSON (shudder-compare/1)");
+  cmp_cmd->add_option("--report", compare.report, "Write a report directory (summary, overlaid mu-v plots)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -162,5 +173,6 @@ int main(int argc, char** argv) {
   if (*plot_cmd) return plot_command(plot);
   if (*diag_cmd) return diagnose_command(diagnose);
   if (*char_cmd) return characterise_command(characterise);
+  if (*cmp_cmd) return compare_command(compare);
   return 2;
 }
