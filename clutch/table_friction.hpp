@@ -33,6 +33,7 @@ class TableFriction final : public FrictionLaw {
   double min_speed_mm_s() const override { return speeds_.front(); }
   double max_speed_mm_s() const override { return speeds_.back(); }
   std::pair<double, double> temp_range_C() const override { return {temps_.front(), temps_.back()}; }
+  std::pair<double, double> load_range_N() const override { return {loads_.front(), loads_.back()}; }
 
   const std::vector<double>& speeds_mm_s() const { return speeds_; }
   const std::vector<double>& temps_C() const { return temps_; }

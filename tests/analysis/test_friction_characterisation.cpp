@@ -76,16 +76,19 @@ TEST(RampSearch, FindsPaperDUpAndDownRamps) {
 TEST(RampSearch, RejectsAStepALoadChangeAndASmallSweep) {
   // Paper E's return from 100 to 1 rpm is a step (rejected: too short); a ramp during which
   // the load doubles is no row of a matrix; a 1 -> 15 rpm sweep spans too little.
+  // The 26 -> 29 s return to 1 rpm is a proper (3 s) down-ramp and is used.
   rig_models::DriveCycle c{rig_models::PiecewiseLinear({0, 3, 13, 13.01, 16, 26, 29, 31}, {1, 1, 100, 1, 1, 100, 1, 15}),
-                           rig_models::PiecewiseLinear({0, 16, 26}, {20000, 10000, 20000})};
+                           rig_models::PiecewiseLinear({0, 15, 16, 26}, {20000, 20000, 10000, 20000})};
   const auto found = analysis::find_ramps(profile_run(c, 33.0), 0);
-  ASSERT_EQ(found.ramps.size(), 1u);
+  ASSERT_EQ(found.ramps.size(), 2u);
   EXPECT_NEAR(found.ramps[0].t_start_s, 3.0, 0.11);
+  EXPECT_NEAR(found.ramps[1].t_start_s, 26.0, 0.11);
+  ASSERT_EQ(found.rejected.size(), 3u);
   std::string reasons;
   for (const auto& r : found.rejected) reasons += r.reason + "|";
   EXPECT_NE(reasons.find("lasts"), std::string::npos) << reasons;
   EXPECT_NE(reasons.find("load varies"), std::string::npos) << reasons;
-  EXPECT_NE(reasons.find("spans 14"), std::string::npos) << reasons;
+  EXPECT_NE(reasons.find("rpm; a ramp must span at least 20 rpm"), std::string::npos) << reasons;
 }
 
 // Relative error of `law` against `truth` at a row, over the node speeds the law covers.
