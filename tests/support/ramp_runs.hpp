@@ -6,6 +6,7 @@
 //   Paper D cycle (PHYSICS.md §4): N0 = 1 rpm for 5 s, ramp to 100 rpm in t_ramp, hold 2 s,
 //                                  ramp down to 1 rpm in t_ramp, hold 3 s.
 //   Paper E cycle: five times (1 rpm for 3 s, then 1 -> 100 rpm in 10 s).
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -36,12 +37,16 @@ inline rig_models::DriveCycle paper_e_cycle(double load_N, int ramps = 5) {
 
 /// One simulated run of `cycle` from `start_temp_C` (discs and sump), sampled at `rate_Hz` with
 /// sensor noise (seed), as the characterisation reads it. `temp_channel` may also name a model
+/// signal the measured run does not carry; `vary` changes the clutch and thermal parameters
+/// (another thermal model than the one the characterisation is judged by). `temp_channel` may name a model
 /// signal the measured run does not carry (e.g. interface_mean_temp_C: the temperature a
 /// sensor would need to read for exact compensation), taken noise-free from the recording.
 inline analysis::RampRun simulated_ramp_run(const clutch::Fluid& fluid, const rig_models::DriveCycle& cycle,
                                             double start_temp_C, unsigned seed, double rate_Hz = 100.0,
-                                            const std::string& temp_channel = "temp_C") {
+                                            const std::string& temp_channel = "temp_C",
+                                            const std::function<void(clutch::WetClutchParams&)>& vary = {}) {
   clutch::WetClutchParams p;  // Paper G thermal defaults, one sliding interface
+  if (vary) vary(p);
   p.start_temp_C = start_temp_C;
   p.sump_start_temp_C = start_temp_C;
   const clutch::WetClutch clutch(p, fluid);
