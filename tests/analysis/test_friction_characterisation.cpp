@@ -15,6 +15,7 @@
 #include "analysis/friction_characterisation.hpp"
 #include "clutch/maki_friction.hpp"
 #include "io/fluid_loader.hpp"
+#include "rig_models/fluid_screening.hpp"
 #include "tests/support/ramp_runs.hpp"
 
 namespace {
@@ -239,6 +240,16 @@ TEST(CharacteriseRoundTrip, IndicesFollowTheTruth) {
   }
   std::printf("[ figures  ] fluid C round trip: mu1/mu50 at 15 kN, 40 and 60 °C within %.4f of the truth\n", worst);
   EXPECT_LT(worst, 0.05);  // the ratio of two values each within the mu bound above
+  // The screening verdict (default 100/300/500 Hz rigs, 15 kN, 40 and 60 °C) is the truth's.
+  clutch::Fluid fitted = rt.truth;
+  fitted.friction = quad.law;
+  rig_models::ScreeningOptions so;
+  so.indices.load_N = 15000.0;
+  so.temps_C = {40.0, 60.0};
+  const auto a = rig_models::screen_fluid(fitted, so), b = rig_models::screen_fluid(rt.truth, so);
+  std::printf("[ figures  ] screen verdict: characterised %s, truth %s\n", analysis::risk_level_name(a.verdict.level),
+              analysis::risk_level_name(b.verdict.level));
+  EXPECT_EQ(a.verdict.level, b.verdict.level);
 }
 
 // Paper E: fluids A–E, five Paper E ramps (1 rpm for 3 s, 1 -> 100 rpm in 10 s) from each of
