@@ -2,6 +2,7 @@
 // Subcommands of the `shudder` CLI. Each returns the process exit code:
 // 0 success, 2 bad input (io::InputError), 1 numerical or internal failure.
 
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -75,5 +76,37 @@ struct DiagnoseOptions {
   std::string write_model;        // the baseline scenario with the named effects on; empty = none
 };
 int diagnose_command(const DiagnoseOptions& options);
+
+struct CharacteriseOptions {
+  std::vector<std::string> runs;          // measured runs (CSV or HDF5)
+  std::string output;                     // fluid TOML written
+  std::string json;                       // FIT.json; empty = none
+  std::string report;                     // report directory; empty = none
+  std::string law = "maki";               // maki | linear | table
+  std::string compensation = "quadratic"; // none | linear | quadratic
+  double alpha_per_C = NAN;               // linear compensation: given alpha (NaN = fit it)
+  std::string temperature_channel = "temp_C";
+  std::string radius = "uniform_wear";    // uniform_wear | uniform_pressure
+  double mean_radius_mm = 46.0, inner_radius_mm = 38.1, outer_radius_mm = 56.4;
+  int interfaces = 1;
+  double bearing_drag_mu = 0.0;
+  double temp_tolerance_C = 3.0;
+  int min_ramps = 2;
+  double linear_load_N = 20000.0;
+  std::string row_temps, node_rpm;        // comma lists; empty = from the data / Paper D nodes
+  std::string name;                       // fluid name; empty = output file stem
+  double nu40_cSt = 0.0, nu100_cSt = 0.0, breakaway_ratio = 1.0;
+};
+int characterise_command(const CharacteriseOptions& options);
+
+struct CompareOptions {
+  std::vector<std::string> fluids;   // fluid TOML files
+  std::vector<std::string> rigs;     // rig scenarios; empty = the screening's default rigs
+  std::string temps;                 // "30,60,90"; empty = 30, 60, 90 °C
+  double load_N = 20000.0;
+  double viscosity_cSt = 10.0;       // equal-viscosity comparison (Paper E Table 5)
+  std::string json, report;
+};
+int compare_command(const CompareOptions& options);
 
 }  // namespace shudder::app

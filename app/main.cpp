@@ -101,6 +101,62 @@ int main(int argc, char** argv) {
   diag_cmd->add_option("--write-model", diagnose.write_model,
                        "Write the baseline scenario with the named effects on at their fitted parameters");
 
+  CharacteriseOptions characterise;
+  auto* char_cmd = app.add_subcommand(
+      "characterise", "Fit a fluid's friction law to measured speed ramps (docs/characterisation.md)");
+  char_cmd->add_option("runs", characterise.runs, "Measured runs (CSV or HDF5, FORMATS.md)")->required();
+  char_cmd->add_option("-o,--output", characterise.output, "Fluid file written (TOML)")->required();
+  char_cmd->add_option("--json", characterise.json, "Write the fit statistics (shudder-characterisation/1)");
+  char_cmd->add_option("--report", characterise.report, "Write a report directory (summary, plots)");
+  char_cmd->add_option("--law", characterise.law, "maki (Paper G eq. 13), linear (Papers B/C/E) or table")
+      ->check(CLI::IsMember({"maki", "linear", "table"}));
+  char_cmd->add_option("--compensation", characterise.compensation,
+                       "Temperature compensation: none, linear (Papers B/C) or quadratic (Paper D)")
+      ->check(CLI::IsMember({"none", "linear", "quadratic"}));
+  char_cmd->add_option("--alpha", characterise.alpha_per_C, "Linear compensation's alpha, 1/degC (default: fitted)")
+      ->check(CLI::Range(-0.1, 0.1));
+  char_cmd->add_option("--temperature-channel", characterise.temperature_channel, "temp_C or ir_temp_C")
+      ->check(CLI::IsMember({"temp_C", "ir_temp_C"}));
+  char_cmd->add_option("--radius", characterise.radius,
+                       "uniform_wear (thesis: --mean-radius-mm) or uniform_pressure (--inner/--outer-radius-mm)")
+      ->check(CLI::IsMember({"uniform_wear", "uniform_pressure"}));
+  char_cmd->add_option("--mean-radius-mm", characterise.mean_radius_mm, "Uniform-wear radius, mm (default 46)")
+      ->check(CLI::Range(1.0, 1000.0));
+  char_cmd->add_option("--inner-radius-mm", characterise.inner_radius_mm, "Friction annulus inner radius, mm (38.1)")
+      ->check(CLI::Range(0.0, 1000.0));
+  char_cmd->add_option("--outer-radius-mm", characterise.outer_radius_mm, "Friction annulus outer radius, mm (56.4)")
+      ->check(CLI::Range(1.0, 1000.0));
+  char_cmd->add_option("--interfaces", characterise.interfaces, "Sliding interfaces (default 1)")
+      ->check(CLI::Range(1, 100));
+  char_cmd->add_option("--bearing-drag-mu", characterise.bearing_drag_mu,
+                       "Bearing drag as an equivalent mu, subtracted (thesis rig: 0.005; default 0)")
+      ->check(CLI::Range(0.0, 0.1));
+  char_cmd->add_option("--temp-tolerance", characterise.temp_tolerance_C,
+                       "Ramps starting within this many degC share a row (default 3)")
+      ->check(CLI::Range(0.1, 50.0));
+  char_cmd->add_option("--min-ramps", characterise.min_ramps, "Fewest ramps per row (default 2)")
+      ->check(CLI::Range(1, 1000));
+  char_cmd->add_option("--linear-load", characterise.linear_load_N, "Load of a linear law's rows, N (20000)")
+      ->check(CLI::Range(1.0, 1e7));
+  char_cmd->add_option("--row-temps", characterise.row_temps, "Row temperatures, degC, e.g. 30,50,70");
+  char_cmd->add_option("--node-rpm", characterise.node_rpm, "Node speeds, rpm (default 1,5,10,...,100)");
+  char_cmd->add_option("--name", characterise.name, "Fluid name (default: the output's stem)");
+  char_cmd->add_option("--nu40-cSt", characterise.nu40_cSt, "Kinematic viscosity at 40 degC, cSt")->required();
+  char_cmd->add_option("--nu100-cSt", characterise.nu100_cSt, "Kinematic viscosity at 100 degC, cSt")->required();
+  char_cmd->add_option("--breakaway-ratio", characterise.breakaway_ratio, "mu_s / mu_k(v_min) (default 1)")
+      ->check(CLI::Range(0.5, 3.0));
+
+  CompareOptions compare;
+  auto* cmp_cmd = app.add_subcommand("compare", "Compare fluids: indices, equal viscosity, breakaway, rig margins, ranking");
+  cmp_cmd->add_option("fluids", compare.fluids, "Fluid files (TOML)")->required();
+  cmp_cmd->add_option("--rig", compare.rigs, "Rig scenario(s) (type = \"rig\"); default: 100, 300, 500 Hz bars");
+  cmp_cmd->add_option("--temps", compare.temps, "Temperatures, degC, comma-separated (default 30,60,90)");
+  cmp_cmd->add_option("--load-N", compare.load_N, "Normal load, N (default 20000)");
+  cmp_cmd->add_option("--viscosity-cSt", compare.viscosity_cSt, "Equal-viscosity comparison, cSt (default 10)")
+      ->check(CLI::Range(0.5, 10000.0));
+  cmp_cmd->add_option("--json", compare.json, "Write the comparison as JSON (shudder-compare/1)");
+  cmp_cmd->add_option("--report", compare.report, "Write a report directory (summary, overlaid mu-v plots)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -124,5 +180,7 @@ int main(int argc, char** argv) {
   if (*screen_cmd) return screen_command(screen);
   if (*plot_cmd) return plot_command(plot);
   if (*diag_cmd) return diagnose_command(diagnose);
+  if (*char_cmd) return characterise_command(characterise);
+  if (*cmp_cmd) return compare_command(compare);
   return 2;
 }

@@ -48,6 +48,13 @@ class FrictionLaw {
     return {-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
   }
 
+  /// Normal loads spanned by the law's data, N, as {lowest, highest}; outside them the law is
+  /// clamped ({-inf, +inf}: the law does not depend on load). Used to tell a run that it left
+  /// the data (clutch/friction_data_range.hpp).
+  virtual std::pair<double, double> load_range_N() const {
+    return {-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  }
+
   /// The law at fixed (T, F) as a SpeedCurve, if it has that form (false otherwise; callers
   /// then evaluate mu() directly).
   virtual bool speed_curve(double /*temp_C*/, double /*load_N*/, SpeedCurve& /*out*/) const {

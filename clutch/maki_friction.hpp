@@ -53,6 +53,7 @@ class MakiFrictionMatrix final : public FrictionLaw {
   double max_speed_mm_s() const override { return max_speed_mm_s_; }
   /// The first and last rows (the matrix' end rows; temperature is clamped beyond them).
   std::pair<double, double> temp_range_C() const override { return {temps_C_.front(), temps_C_.back()}; }
+  std::pair<double, double> load_range_N() const override { return {loads_N_.front(), loads_N_.back()}; }
   /// Exact: the blend of four Mäki sets is itself of SpeedCurve form (tanh terms with equal
   /// rates merged).
   bool speed_curve(double temp_C, double load_N, SpeedCurve& out) const override;

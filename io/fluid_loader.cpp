@@ -10,6 +10,7 @@
 
 #include "clutch/linear_friction.hpp"
 #include "clutch/maki_friction.hpp"
+#include "clutch/table_friction.hpp"
 #include "io/toml_reader.hpp"
 
 namespace shudder::io {
@@ -201,6 +202,87 @@ std::shared_ptr<const clutch::FrictionLaw> read_linear(TomlTable& lin) {
   }
 }
 
+// [table]: mu on speeds_mm_s x [[table.row]] temp_C x loads_N (clutch/table_friction.hpp).
+// Each row's `mu` holds one array per load, one value per speed, each in (0, 1]: the law
+// blends values convexly and holds them beyond the axes, so the grid bounds the whole law.
+// One row's `mu`: an array of arrays of finite numbers (shape checked by the caller).
+std::vector<std::vector<double>> read_mu_grid(TomlTable& row, const toml::table& raw_row) {
+  const std::string shape = "expected an array with one array of mu values per load";
+  const toml::node* node = raw_row.get("mu");
+  if (!node) row.fail("mu", "missing; " + shape);
+  row.mark_read("mu");
+  const toml::array* outer = node->as_array();
+  if (!outer) row.fail("mu", "is " + std::string(toml_type_name(*node)) + "; " + shape);
+  std::vector<std::vector<double>> out;
+  for (std::size_t j = 0; j < outer->size(); ++j) {
+    const toml::array* inner = outer->get(j)->as_array();
+    if (!inner) row.fail("mu", "element " + std::to_string(j) + " is " +
+                                   std::string(toml_type_name(*outer->get(j))) + "; " + shape);
+    std::vector<double> values;
+    for (std::size_t k = 0; k < inner->size(); ++k) {
+      const toml::node& e = *inner->get(k);
+      double x = 0.0;
+      if (auto f = e.as_floating_point())
+        x = f->get();
+      else if (auto i = e.as_integer())
+        x = static_cast<double>(i->get());
+      else
+        row.fail("mu", "array " + std::to_string(j) + " element " + std::to_string(k) + " is " +
+                           std::string(toml_type_name(e)) + "; expected a finite number");
+      if (!std::isfinite(x))
+        row.fail("mu", "array " + std::to_string(j) + " element " + std::to_string(k) +
+                           " is not finite (nan/inf); expected a finite number");
+      values.push_back(x);
+    }
+    out.push_back(std::move(values));
+  }
+  return out;
+}
+
+std::shared_ptr<const clutch::FrictionLaw> read_table(TomlTable& tab, const toml::table& raw) {
+  const std::vector<double> speeds = tab.numbers("speeds_mm_s", Range::positive());
+  require_increasing(tab, "speeds_mm_s", speeds);
+  const std::vector<double> loads = tab.numbers("loads_N", Range::positive());
+  require_increasing(tab, "loads_N", loads);
+  std::vector<TomlTable> rows = tab.table_array("row");
+  if (rows.empty()) tab.fail("row", "is empty; expected at least one [[table.row]]");
+  const toml::array& raw_rows = *raw.get("row")->as_array();
+  std::vector<double> temps, mu;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    TomlTable& row = rows[i];
+    const double t = row.number("temp_C", Range::closed(-273.15, 1000.0));
+    if (!temps.empty() && !(t > temps.back()))
+      row.fail("temp_C", "value " + num(t) + " is not above the previous row's " +
+                             num(temps.back()) + "; rows must be strictly increasing in temp_C");
+    temps.push_back(t);
+    row.string_or("origin", "");
+    const std::vector<std::vector<double>> grid = read_mu_grid(row, *raw_rows.get(i)->as_table());
+    if (grid.size() != loads.size())
+      row.fail("mu", "has " + std::to_string(grid.size()) + " arrays; expected one per load in "
+                     "table.loads_N (" + std::to_string(loads.size()) + ")");
+    for (std::size_t j = 0; j < grid.size(); ++j) {
+      if (grid[j].size() != speeds.size())
+        row.fail("mu", "array " + std::to_string(j) + " (load " + num(loads[j]) + " N) has " +
+                           std::to_string(grid[j].size()) + " values; expected one per speed in "
+                           "table.speeds_mm_s (" + std::to_string(speeds.size()) + ")");
+      for (std::size_t k = 0; k < speeds.size(); ++k) {
+        const std::string what = implausible_mu(grid[j][k]);
+        if (!what.empty())
+          row.fail("mu", "value at speed " + num(speeds[k]) + " mm/s, load " + num(loads[j]) +
+                             " N " + what + "; mu must lie in (0, " + num(kMaxPlausibleMu) + "]");
+        mu.push_back(grid[j][k]);
+      }
+    }
+    row.finish();
+  }
+  tab.finish();
+  try {
+    return std::make_shared<clutch::TableFriction>(speeds, temps, loads, std::move(mu));
+  } catch (const std::invalid_argument& e) {
+    tab.fail("row", e.what());
+  }
+}
+
 clutch::Fluid read_fluid(const toml::table& doc, const std::string& path) {
   TomlTable root(doc, path, "");
   clutch::Fluid fluid;
@@ -222,19 +304,23 @@ clutch::Fluid read_fluid(const toml::table& doc, const std::string& path) {
   s.finish();
 
   // Exactly one friction law.
-  const bool has_maki = root.has("maki"), has_linear = root.has("linear");
-  if (has_maki && has_linear)
-    root.fail("linear", "given together with [maki]; a fluid has exactly one friction law: "
-                        "[maki] (Paper G matrix) or [linear] (Papers B/C/E lines)");
-  if (!has_maki && !has_linear)
-    root.fail("maki", "missing; a fluid needs exactly one friction law: [maki] (Paper G matrix) "
-                      "or [linear] (Papers B/C/E lines)");
-  if (has_maki) {
+  const char* kLaws = "[maki] (Paper G matrix), [linear] (Papers B/C/E lines) or [table] "
+                      "(mu on a speed x temperature x load grid)";
+  const int n_laws = int(root.has("maki")) + int(root.has("linear")) + int(root.has("table"));
+  if (n_laws > 1)
+    root.fail(root.has("maki") && root.has("linear") ? "linear" : "table",
+              std::string("given together with [") + (root.has("maki") ? "maki" : "linear") +
+                  "]; a fluid has exactly one friction law: " + kLaws);
+  if (n_laws == 0) root.fail("maki", std::string("missing; a fluid needs exactly one friction law: ") + kLaws);
+  if (root.has("maki")) {
     TomlTable maki = root.table("maki");
     fluid.friction = read_maki(maki, *doc.get("maki")->as_table());
-  } else {
+  } else if (root.has("linear")) {
     TomlTable lin = root.table("linear");
     fluid.friction = read_linear(lin);
+  } else {
+    TomlTable tab = root.table("table");
+    fluid.friction = read_table(tab, *doc.get("table")->as_table());
   }
   root.finish();
   return fluid;

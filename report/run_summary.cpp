@@ -8,6 +8,7 @@
 #include <variant>
 
 #include "dynamics/signal_names.hpp"
+#include "rig_models/friction_range_block.hpp"
 #include "rig_models/run_verdict.hpp"
 
 namespace shudder::report {
@@ -225,6 +226,9 @@ void print_run_summary(std::ostream& os, const io::Scenario& sc, const dynamics:
   os << "\n\n";
   // The verdict first: whether it shuddered is what a reader looks for.
   print_verdict(os, sc.kind() == ModelKind::kDriveline ? "Coupling judder" : "Shudder", rec);
+  // Friction outside its data (rig_models/friction_range_block.hpp): said once, every kind.
+  if (const auto* b = rec.find_block(rig_models::kFrictionRangeBlock))
+    if (const auto* t = b->find_text("summary")) os << "Friction data: " << t->value << "\n";
   os << "\n";
   // Each kind's own section: one print_section overload per kind above (no fallback, so a new
   // kind without its section does not compile).

@@ -1,3 +1,4 @@
+#include "rig_models/friction_range_block.hpp"
 #include "rig_models/haldex_driveline.hpp"
 
 #include <algorithm>
@@ -187,6 +188,7 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
   recorder.sample(sim.sample());
   recorder.start(ts);
   double peak_C = th.interface_temps_C(ts).maxCoeff();
+  clutch::FrictionDataRange data_range(*clutch.fluid().friction);
   run_multirate(sim, *coupling_context, clutch, ts, D::kCoupling, cfg.duration_s, cfg.slow_step_s, cfg.sample_rate_Hz,
                 [&](const dynamics::Sample& s) { recorder.sample(s); }, [&](const SlowStep& step) {
                   // The pump strokes with the relative rotation; |Δθ| over the step is its
@@ -200,7 +202,9 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
                   coupling_context->set_normal_force(PiecewiseLinear({0.0}, {dl.hydraulics().clamp_force_N(pressure_bar)}));
                   peak_C = std::max(peak_C, th.interface_temps_C(ts).maxCoeff());
                   recorder.step(ts, step.ta_s, step.tb_s);
-                });
+                },
+                &data_range);
+  rec.blocks.push_back(friction_range_block(data_range));
 
   const double n_if = clutch.params().sliding_interfaces;
   const auto me = sim.energy();

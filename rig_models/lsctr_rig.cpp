@@ -1,3 +1,4 @@
+#include "rig_models/friction_range_block.hpp"
 #include "rig_models/lsctr_rig.hpp"
 
 #include <algorithm>
@@ -193,6 +194,7 @@ dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& cl
   std::vector<double> snaps = cfg.snapshot_times_s;
   std::sort(snaps.begin(), snaps.end());
   std::size_t next_snap = 0;
+  clutch::FrictionDataRange data_range(*clutch.fluid().friction);
   run_multirate(sim, *clutch_context, clutch, ts, LsctrRig::kClutch, cfg.duration_s, cfg.thermal_step_s, cfg.sample_rate_Hz,
                 [&](const dynamics::Sample& s) { recorder.sample(s); }, [&](const SlowStep& step) {
                   peak_interface_C = std::max(peak_interface_C, th.interface_temps_C(ts).maxCoeff());
@@ -202,7 +204,9 @@ dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& cl
                     rec.snapshots.push_back({step.tb_s, th.field_C(ts)});
                     ++next_snap;
                   }
-                });
+                },
+                &data_range);
+  rec.blocks.push_back(friction_range_block(data_range));
 
   const int nr = th.radial_cells();
   for (int i = 0; i < nr; ++i) rec.grid_r_m.push_back(th.ring_radius_m()[i]);

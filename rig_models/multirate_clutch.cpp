@@ -8,7 +8,8 @@ namespace shudder::rig_models {
 void run_multirate(dynamics::Simulation& sim, ClutchContext& context, const clutch::WetClutch& clutch,
                    clutch::ThermalState& ts, int contact, double duration_s, double slow_step_s,
                    double sample_rate_Hz, const std::function<void(const dynamics::Sample&)>& on_sample,
-                   const std::function<void(const SlowStep&)>& after_step) {
+                   const std::function<void(const SlowStep&)>& after_step,
+                   clutch::FrictionDataRange* data_range) {
   std::vector<double> sample_times;
   const long n_samples = static_cast<long>(std::floor(duration_s * sample_rate_Hz + 1e-9));
   for (long k = 1; k <= n_samples; ++k) sample_times.push_back(static_cast<double>(k) / sample_rate_Hz);
@@ -33,6 +34,9 @@ void run_multirate(dynamics::Simulation& sim, ClutchContext& context, const clut
       return angle(c.a) - angle(c.b);
     };
     const double mean_slip = (twist(sb) - twist(sa)) / dt;
+    if (data_range)  // the inputs the friction was evaluated at over this step
+      data_range->add(dt, mean_slip, th.ring_radius_m(), context.held().ring_temp_C,
+                      context.held().normal_force_N(0.5 * (ta + tb)));
     th.step(ts, workspace, dt, (heat_now - heat_before) / dt, mean_slip);
     ts.time_s = tb;
     heat_before = heat_now;

@@ -12,6 +12,7 @@
 
 #include <functional>
 
+#include "clutch/friction_data_range.hpp"
 #include "clutch/wet_clutch.hpp"
 #include "dynamics/simulation.hpp"
 #include "rig_models/clutch_contact.hpp"
@@ -27,10 +28,12 @@ struct SlowStep {
 /// Runs `sim` from its current time to `duration_s`; `on_sample` gets every sample at
 /// `sample_rate_Hz` (k / rate, k >= 1), `after_step` each completed slow step after the thermal
 /// update of `ts` and of the ring temperatures held in `context` (the context the network's
-/// clutch law is bound to).
+/// clutch law is bound to). `data_range` (if given) tallies each step's slip, held ring
+/// temperatures and clamp force against the friction law's data (clutch/friction_data_range.hpp).
 void run_multirate(dynamics::Simulation& sim, ClutchContext& context, const clutch::WetClutch& clutch,
                    clutch::ThermalState& ts, int contact, double duration_s, double slow_step_s,
                    double sample_rate_Hz, const std::function<void(const dynamics::Sample&)>& on_sample,
-                   const std::function<void(const SlowStep&)>& after_step);
+                   const std::function<void(const SlowStep&)>& after_step,
+                   clutch::FrictionDataRange* data_range = nullptr);
 
 }  // namespace shudder::rig_models

@@ -1,3 +1,4 @@
+#include "rig_models/friction_range_block.hpp"
 #include "rig_models/prescribed_slip.hpp"
 
 #include <algorithm>
@@ -104,6 +105,7 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
   take_snapshots(0.0, cfg.thermal_step_s);
 
   Eigen::VectorXd h0, hm, h1;
+  clutch::FrictionDataRange data_range(*clutch.fluid().friction);
   double peak_interface_C = th.interface_temps_C(state).maxCoeff();
   while (state.time_s < cfg.duration_s - 1e-12) {
     const double t0 = state.time_s;
@@ -119,6 +121,7 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
     heat_at(t1, h1);
     const Eigen::VectorXd mean_heat = (h0 + 4.0 * hm + h1) / 6.0;
     th.step(state, workspace, dt, mean_heat, units::rpm_to_rad_s(cycle.slip_speed_rpm(tm)));
+    data_range.add(dt, units::rpm_to_rad_s(cycle.slip_speed_rpm(tm)), th.ring_radius_m(), ring_T, cycle.normal_force_N(tm));
     state.time_s = t1;  // exact end time, free of accumulated round-off
 
     const Probe after = measure(clutch, state, cycle, cfg.bearing_drag, t1);
@@ -142,6 +145,7 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
   rec.scalars.push_back({"peak_interface_temp_C", "degC", peak_interface_C});
   rec.scalars.push_back({"final_max_temp_C", "degC", th.max_temp_C(state)});
   rec.scalars.push_back({"thermal_steps", "1", std::ceil(cfg.duration_s / cfg.thermal_step_s - 1e-9)});
+  rec.blocks.push_back(friction_range_block(data_range));
   return rec;
 }
 

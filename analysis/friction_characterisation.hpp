@@ -1,0 +1,143 @@
+#pragma once
+// From measured speed ramps to a friction law (issue 11; the thesis' method, PHYSICS.md §2, §7):
+//
+//   1. ramps   analysis/ramp_detection finds the up- and down-ramps of every run.
+//   2. mu      mu = (M / (n F r_eff)) − mu_bearing, M the torque cell, F the normal force, n the
+//              sliding interfaces, r_eff the effective friction radius:
+//                uniform wear (the thesis):     r_eff = the stated mean radius (46 mm),
+//                uniform pressure (Paper G):    r_eff = 2/3 (ro³ − ri³)/(ro² − ri²) (47.8 mm
+//                                               for 38.1–56.4 mm, PHYSICS.md §9);
+//              the sliding speed at the same radius, v = ω r_eff (1 rpm = 4.82 mm/s at 46 mm).
+//              mu_bearing is the bearing drag as an equivalent friction coefficient at r_eff
+//              (thesis: "bearing losses equivalent to mu = 0.005").
+//   3. rows    one row per load x reference temperature. A ramp's reference temperature is its
+//              start temperature; a down-ramp takes that of the up-ramp before it in the same
+//              run (one Paper D cycle: both belong to the cycle's start temperature). Loads
+//              within ±load_tolerance and temperatures within ±temp_tolerance_C join.
+//   4. compensation to the row temperature T_row, sample by sample at temperature T:
+//              none       mu as measured (the bias the thesis removes);
+//              linear     mu − alpha (T − T_row) (Papers B/C), alpha given or fitted as the
+//                         within-group slope of mu on T, groups = load x narrow speed bin;
+//              quadratic  mu + q_k(T_row) − q_k(T) with q_k(T) = a + bT + cT² fitted at every
+//                         node speed k (Paper D: 1, 5, 10, …, 100 rpm) over all ramps of the load
+//                         (value and temperature read where each ramp crosses the node), linear
+//                         in ln v between nodes.
+//   5. fit     maki:   Paper G eq. 13 per row, weighted least squares on the row's speed-binned
+//                      means by variable projection: C2 searched on a log grid and refined by
+//                      golden section, C1, C3, C4 linear least squares for each C2 (exact
+//                      optimum of the separable problem; no start values needed);
+//              linear: mu_k(T) = alpha_k T + beta_k per node over the rows at one load
+//                      (Paper E: 20 kN);
+//              table:  the rows' compensated curves at the node speeds.
+//
+// Errors: bad input (a run without a usable ramp, a row with too few ramps, a missing cell of
+// the grid, a requested temperature no ramp reaches) throws CharacterisationInputError naming
+// the file or row; a fit that fails numerically throws std::runtime_error.
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "analysis/ramp_detection.hpp"
+#include "clutch/friction_law.hpp"
+
+namespace shudder::analysis {
+
+class CharacterisationInputError : public std::invalid_argument {
+ public:
+  CharacterisationInputError(std::string file, const std::string& message)
+      : std::invalid_argument(message), file_(std::move(file)) {}
+  const std::string& file() const { return file_; }
+
+ private:
+  std::string file_;
+};
+
+enum class RadiusRule { kUniformWear, kUniformPressure };
+enum class Compensation { kNone, kLinear, kQuadratic };
+enum class LawKind { kMaki, kLinear, kTable };
+const char* compensation_name(Compensation c);  // "none", "linear", "quadratic"
+const char* law_name(LawKind k);                // "maki", "linear", "table"
+
+struct FrictionConversion {
+  RadiusRule rule = RadiusRule::kUniformWear;
+  double mean_radius_mm = 46.0;   // thesis: uniform wear at the mean radius 46 mm
+  double inner_radius_mm = 38.1;  // Paper G's annulus (uniform pressure)
+  double outer_radius_mm = 56.4;
+  int interfaces = 1;             // sliding interfaces n (Paper G simulates one)
+  double bearing_drag_mu = 0.0;   // subtracted; thesis rig: 0.005
+  double effective_radius_mm() const;
+};
+
+struct CharacterisationSettings {
+  FrictionConversion conversion;
+  RampSettings ramps;
+  Compensation compensation = Compensation::kQuadratic;
+  std::optional<double> alpha_per_C;  // linear compensation: given instead of fitted
+  LawKind law = LawKind::kMaki;
+  double temp_tolerance_C = 3.0;      // reference temperatures within this join one row
+  double load_tolerance = 0.05;       // loads within ±5 % join one row
+  int min_ramps_per_row = 2;          // one up and one down, or two up
+  std::vector<double> node_rpm;       // empty: Paper D's 1, 5, 10, …, 100 rpm
+  std::vector<double> row_temps_C;    // empty: the clusters of the data
+  double linear_load_N = 20000.0;     // the linear law's load (Paper E: 20 kN); nearest row
+  int speed_bins = 48;                // log-spaced bins per row for the fit
+};
+
+struct QuadraticNode {
+  double load_N = 0.0, rpm = 0.0;
+  double a = 0.0, b = 0.0, c = 0.0;  // mu = a + b T + c T², T in °C
+  int ramps = 0;
+  double rms = 0.0;                  // residual of the ramps' node values
+};
+
+struct RowFit {
+  std::size_t i_temp = 0, i_load = 0;
+  double load_N = 0.0, temp_C = 0.0;
+  int ramps_up = 0, ramps_down = 0;
+  double min_speed_mm_s = 0.0, max_speed_mm_s = 0.0;  // data range of the row
+  double min_temp_C = 0.0, max_temp_C = 0.0;          // temperature channel over its ramps
+  std::vector<double> bin_speed_mm_s, bin_mu_raw, bin_mu, bin_count;  // binned means
+  std::vector<double> up_raw, down_raw, up_comp, down_comp;  // means at the node speeds (NaN: none)
+  double up_down_gap_raw = 0.0, up_down_gap_comp = 0.0;      // mean |up − down| over the nodes
+  std::vector<double> node_mu;                               // compensated curve at the nodes
+  std::array<double, 4> maki{}, maki_se{};                   // C1..C4 and standard errors
+  double rms_residual = 0.0, max_residual = 0.0;             // law − bin means
+};
+
+struct LinearLine {
+  double rpm = 0.0, alpha_per_C = 0.0, beta = 0.0, alpha_se = 0.0, beta_se = 0.0;
+};
+
+struct Characterisation {
+  double effective_radius_mm = 0.0;
+  std::vector<Ramp> used;
+  std::vector<double> used_ref_temp_C;
+  std::vector<RejectedRamp> rejected;
+  std::vector<double> loads_N, temps_C;          // the grid's axes
+  std::vector<double> node_rpm, node_speeds_mm_s;
+  std::vector<RowFit> rows;                       // every cell that has ramps, temp-major
+  double alpha_per_C = 0.0;                       // linear compensation
+  bool alpha_fitted = false;
+  std::vector<QuadraticNode> quadratic;
+  std::vector<LinearLine> lines;                  // linear law
+  double linear_load_N = 0.0;
+  double min_speed_mm_s = 0.0, max_speed_mm_s = 0.0;  // the law's speed range
+  double min_temp_C = 0.0, max_temp_C = 0.0;          // temperature channel, all used ramps
+  std::shared_ptr<const clutch::FrictionLaw> law;
+};
+
+/// `runs` in the order given (their names appear in errors and in `used`/`rejected`).
+Characterisation characterise(const std::vector<RampRun>& runs, const CharacterisationSettings& settings);
+
+/// Paper G eq. 13 fitted to (v, mu) with weights w by variable projection (file comment).
+/// Returns C1..C4; `se` (if given) gets their standard errors with the residual variance
+/// `sigma2`. Throws std::runtime_error if no finite fit exists.
+std::array<double, 4> fit_maki_curve(const std::vector<double>& v_mm_s, const std::vector<double>& mu,
+                                     const std::vector<double>& weight, double sigma2 = 0.0,
+                                     std::array<double, 4>* se = nullptr);
+
+}  // namespace shudder::analysis

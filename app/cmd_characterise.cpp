@@ -1,0 +1,142 @@
+// `shudder characterise RUN... -o FLUID.toml`: measured speed ramps -> a fluid file
+// (docs/characterisation.md). Parsing, file checks and printing only: the ramps, compensation
+// and fits are analysis::characterise; the files come from io/characterisation_output.
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "analysis/friction_characterisation.hpp"
+#include "app/commands.hpp"
+#include "app/guarded.hpp"
+#include "io/atomic_file.hpp"
+#include "io/characterisation_output.hpp"
+#include "io/fluid_loader.hpp"
+#include "io/input_error.hpp"
+#include "io/measured_run.hpp"
+#include "io/output_safety.hpp"
+#include "report/characterisation_report.hpp"
+
+namespace shudder::app {
+
+namespace {
+
+// "40,80,120" -> {40, 80, 120}; InputError naming `option` otherwise.
+std::vector<double> parse_list(const std::string& option, const std::string& text) {
+  std::vector<double> out;
+  std::size_t start = 0;
+  while (!text.empty()) {
+    const std::size_t comma = text.find(',', start);
+    const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    char* end = nullptr;
+    const double x = std::strtod(item.c_str(), &end);
+    if (item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(x))
+      throw io::InputError(option, 0, "", "'" + item + "' is not a number; give numbers separated by commas");
+    out.push_back(x);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+analysis::RampRun to_ramp_run(const io::MeasuredRun& m, const std::string& temp_channel) {
+  const std::vector<double>* temp = m.column(temp_channel);
+  if (!temp)
+    throw io::InputError(m.path, 0, "", "has no column '" + temp_channel + "' (--temperature-channel); its columns "
+                                        "are those of FORMATS.md: temp_C always, ir_temp_C when the rig logged it");
+  return {m.path, m.required("time_s"), m.required("speed_rpm"), m.required("normal_force_N"),
+          m.required("torque_Nm"), *temp};
+}
+
+}  // namespace
+
+int characterise_command(const CharacteriseOptions& o) {
+  return guarded(o.output, "characterise", [&] {
+    if (o.runs.empty()) throw io::InputError("characterise", 0, "", "no measured run given");
+    std::vector<io::RolePath> inputs, outputs{{"-o", o.output}};
+    for (const auto& r : o.runs) inputs.push_back({"measured run", r});
+    if (!o.json.empty()) outputs.push_back({"--json", o.json});
+    io::require_distinct_paths(inputs, outputs);
+    for (const auto& out : outputs) io::require_output_directory(out.path);
+    if (!(o.nu40_cSt > o.nu100_cSt) || !(o.nu100_cSt > 0))
+      throw io::InputError("--nu40-cSt/--nu100-cSt", 0, "",
+                           "give the fluid's kinematic viscosities with nu40 > nu100 > 0 cSt (Walther needs both)");
+
+    analysis::CharacterisationSettings s;
+    s.law = o.law == "linear" ? analysis::LawKind::kLinear
+            : o.law == "table" ? analysis::LawKind::kTable
+                               : analysis::LawKind::kMaki;
+    s.compensation = o.compensation == "none"     ? analysis::Compensation::kNone
+                     : o.compensation == "linear" ? analysis::Compensation::kLinear
+                                                  : analysis::Compensation::kQuadratic;
+    if (std::isfinite(o.alpha_per_C)) s.alpha_per_C = o.alpha_per_C;
+    s.conversion.rule = o.radius == "uniform_pressure" ? analysis::RadiusRule::kUniformPressure
+                                                       : analysis::RadiusRule::kUniformWear;
+    s.conversion.mean_radius_mm = o.mean_radius_mm;
+    s.conversion.inner_radius_mm = o.inner_radius_mm;
+    s.conversion.outer_radius_mm = o.outer_radius_mm;
+    if (!(o.outer_radius_mm > o.inner_radius_mm))
+      throw io::InputError("--inner-radius-mm/--outer-radius-mm", 0, "", "the outer radius must exceed the inner");
+    s.conversion.interfaces = o.interfaces;
+    s.conversion.bearing_drag_mu = o.bearing_drag_mu;
+    s.temp_tolerance_C = o.temp_tolerance_C;
+    s.min_ramps_per_row = o.min_ramps;
+    s.linear_load_N = o.linear_load_N;
+    s.row_temps_C = parse_list("--row-temps", o.row_temps);
+    s.node_rpm = parse_list("--node-rpm", o.node_rpm);
+
+    // Read every run; the runs must come from one rig.
+    std::vector<analysis::RampRun> runs;
+    std::string rig, rig_file;
+    for (const auto& path : o.runs) {
+      const io::MeasuredRun m = io::read_measured_run(path);
+      const std::string this_rig = m.meta("rig").value_or("");
+      if (runs.empty()) {
+        rig = this_rig;
+        rig_file = path;
+      } else if (this_rig != rig) {
+        throw io::InputError(path, 0, "rig", "is '" + this_rig + "' but " + rig_file + " is '" + rig +
+                                                 "'; characterise one rig's runs at a time (friction radius and "
+                                                 "interfaces differ between rigs)");
+      }
+      runs.push_back(to_ramp_run(m, o.temperature_channel));
+    }
+
+    analysis::Characterisation c;
+    try {
+      c = analysis::characterise(runs, s);
+    } catch (const analysis::CharacterisationInputError& e) {
+      throw io::InputError(e.file(), 0, "", e.what());
+    }
+
+    io::FluidIdentity id;
+    id.name = o.name.empty() ? std::filesystem::path(o.output).stem().string() : o.name;
+    id.description = "characterised by shudder from " + std::to_string(o.runs.size()) + " measured run(s)";
+    id.nu40_cSt = o.nu40_cSt;
+    id.nu100_cSt = o.nu100_cSt;
+    id.breakaway_ratio = o.breakaway_ratio;
+    id.breakaway_source = o.breakaway_ratio == 1.0 ? "not measured: mu_s = mu_k(v_min) assumed"
+                                                   : "given on the command line (--breakaway-ratio)";
+    const std::string toml = io::characterised_fluid_toml(c, s, id, o.runs);
+    // The file must load as every command loads it; a failure here is ours (exit 1).
+    try {
+      io::load_fluid_text(toml, o.output);
+    } catch (const io::InputError& e) {
+      throw std::runtime_error(std::string("the fitted fluid file would not load: ") + e.what());
+    }
+    const std::string summary = report::characterisation_summary(c, s, o.output);
+    const std::string json = o.json.empty() ? "" : io::characterisation_json(c, s, o.runs, o.output);
+    if (!o.report.empty()) {
+      const report::Report rep = report::write_characterisation_report(o.report, c, summary);
+      for (const auto& why : rep.skipped) std::cerr << "shudder: note: report: skipped " << why << "\n";
+    }
+    io::write_text_file_atomically(o.output, toml);
+    if (!o.json.empty()) io::write_text_file_atomically(o.json, json);
+    std::cout << summary;
+    return 0;
+  });
+}
+
+}  // namespace shudder::app

@@ -1,0 +1,36 @@
+#pragma once
+// Output of `shudder characterise` (docs/characterisation.md):
+//   * the fluid file (docs/fluid_format.md): [fluid] identity and viscosity, [static_friction],
+//     and the fitted law as [maki], [linear] or [table]; the header says how it was made
+//     (runs, radius rule, compensation), so the file documents its own provenance;
+//   * FIT.json, format "shudder-characterisation/1": settings, data ranges, ramps used and
+//     rejected (with the reason), per row the fit's RMS and max residual, the Mäki parameters
+//     and their standard errors, up/down agreement before and after compensation.
+// Hand-written JSON as the other writers (io::json_string; numbers with 10 significant
+// digits; NaN/inf as null). Both are written through a temporary file and a rename.
+
+#include <string>
+#include <vector>
+
+#include "analysis/friction_characterisation.hpp"
+
+namespace shudder::io {
+
+struct FluidIdentity {
+  std::string name;
+  std::string description;
+  double nu40_cSt = 0.0, nu100_cSt = 0.0;
+  double density_kg_m3 = 868.0;
+  double breakaway_ratio = 1.0;
+  std::string breakaway_source;
+};
+
+/// The fluid file's text. `runs` are the input file names, recorded in the header.
+std::string characterised_fluid_toml(const analysis::Characterisation& c, const analysis::CharacterisationSettings& s,
+                                     const FluidIdentity& fluid, const std::vector<std::string>& runs);
+
+/// FIT.json's text.
+std::string characterisation_json(const analysis::Characterisation& c, const analysis::CharacterisationSettings& s,
+                                  const std::vector<std::string>& runs, const std::string& fluid_path);
+
+}  // namespace shudder::io

@@ -1,0 +1,139 @@
+#include "report/characterisation_report.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+
+#include "io/atomic_file.hpp"
+#include "io/input_error.hpp"
+#include "report/gnuplot.hpp"
+
+namespace shudder::report {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string f(const char* fmt, double x) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, fmt, x);
+  return buf;
+}
+
+bool gnuplot_found() {
+  const char* path = std::getenv("PATH");
+  std::istringstream dirs(path ? path : "");
+  std::string d;
+  while (std::getline(dirs, d, ':'))
+    if (::access(((d.empty() ? std::string(".") : d) + "/gnuplot").c_str(), X_OK) == 0) return true;
+  return false;
+}
+
+Plot titled(const std::string& title, const std::string& ylabel) {
+  Plot p;
+  p.title = title;
+  p.xlabel = "sliding speed [mm/s]";
+  p.ylabel = ylabel;
+  return p;
+}
+
+std::string load_tag(double load_N) { return f("%.4g", load_N / 1000.0) + "kN"; }
+
+}  // namespace
+
+std::string characterisation_summary(const analysis::Characterisation& c, const analysis::CharacterisationSettings& s,
+                                     const std::string& fluid_path) {
+  std::ostringstream o;
+  int up = 0;
+  for (const auto& r : c.used) up += r.direction == analysis::RampDirection::kUp;
+  o << "characterise: " << c.used.size() << " ramps used (" << up << " up, " << c.used.size() - std::size_t(up)
+    << " down), " << c.rejected.size() << " rejected\n"
+    << "  friction radius " << f("%.4g", c.effective_radius_mm) << " mm, " << s.conversion.interfaces
+    << " interface(s), bearing drag mu " << f("%.4g", s.conversion.bearing_drag_mu) << "\n"
+    << "  compensation: " << analysis::compensation_name(s.compensation);
+  if (s.compensation == analysis::Compensation::kLinear)
+    o << " (alpha " << f("%.4g", c.alpha_per_C) << " 1/°C, " << (c.alpha_fitted ? "fitted" : "given") << ")";
+  o << "; law: " << analysis::law_name(s.law) << "\n"
+    << "  data: " << f("%.4g", c.min_speed_mm_s) << "-" << f("%.4g", c.max_speed_mm_s) << " mm/s, "
+    << f("%.4g", c.min_temp_C) << "-" << f("%.4g", c.max_temp_C) << " °C, " << c.loads_N.size() << " load(s) x "
+    << c.temps_C.size() << " temperature(s)\n"
+    << "  row (kN, °C)   ramps up/down   rms resid   max resid   up-down gap raw -> compensated\n";
+  for (const auto& r : c.rows)
+    o << "  " << f("%6.3g", r.load_N / 1000.0) << f(" %7.3g", r.temp_C) << "      " << f("%3.0f", r.ramps_up) << "/"
+      << f("%-3.0f", r.ramps_down) << "        " << f("%.2e", r.rms_residual) << "    " << f("%.2e", r.max_residual)
+      << "    " << f("%.2e", r.up_down_gap_raw) << " -> " << f("%.2e", r.up_down_gap_comp) << "\n";
+  for (std::size_t i = 0; i < c.rejected.size() && i < 5; ++i)
+    o << "  rejected: run " << c.rejected[i].run << " " << f("%.3g", c.rejected[i].t_start_s) << "-"
+      << f("%.3g", c.rejected[i].t_end_s) << " s: " << c.rejected[i].reason << "\n";
+  if (c.rejected.size() > 5) o << "  (" << c.rejected.size() - 5 << " more rejections in the JSON)\n";
+  o << "  wrote " << fluid_path << "\n";
+  return o.str();
+}
+
+Report write_characterisation_report(const std::string& dir, const analysis::Characterisation& c,
+                                     const std::string& summary_text) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir))
+    throw io::InputError(dir, 0, "", "cannot create the report directory: " + ec.message());
+  Report report;
+  const auto path = [&](const std::string& file) { return (fs::path(dir) / file).string(); };
+  io::write_text_file_atomically(path("summary.txt"), summary_text);
+  report.files.push_back(path("summary.txt"));
+
+  std::vector<std::pair<std::string, Plot>> plots;
+  Plot residuals = titled("law - measured mu (binned means)", "residual [-]");
+  for (std::size_t il = 0; il < c.loads_N.size(); ++il) {
+    const std::string tag = load_tag(c.loads_N[il]);
+    Plot mu_v = titled("measured (points, compensated) and fitted (lines) mu at " + tag, "mu [-]");
+    Plot ud = titled("up (o) / down (x) ramps at " + tag + ": raw dashed, compensated solid", "mu [-]");
+    int colour = 0;
+    for (const auto& r : c.rows) {
+      if (r.i_load != il) continue;
+      const std::string t = f("%.3g °C", r.temp_C);
+      Series pts{t + " measured", r.bin_speed_mm_s, r.bin_mu, colour, false, SeriesStyle::kPoints, 7, 0.8};
+      std::vector<double> vf, mf, res;
+      for (int k = 0; k <= 80; ++k) {
+        const double v = c.min_speed_mm_s * std::pow(c.max_speed_mm_s / c.min_speed_mm_s, k / 80.0);
+        vf.push_back(v);
+        mf.push_back(c.law->mu(v, r.temp_C, r.load_N));
+      }
+      for (std::size_t b = 0; b < r.bin_mu.size(); ++b)
+        res.push_back(c.law->mu(r.bin_speed_mm_s[b], r.temp_C, r.load_N) - r.bin_mu[b]);
+      mu_v.series.push_back(pts);
+      mu_v.series.push_back({"", vf, mf, colour});
+      residuals.series.push_back({tag + " " + t, r.bin_speed_mm_s, res, colour, false, SeriesStyle::kLinesPoints, 7, 0.6, 1.0});
+      ud.series.push_back({t + " up raw", c.node_speeds_mm_s, r.up_raw, colour, true, SeriesStyle::kLinesPoints, 6, 0.8, 1.0});
+      ud.series.push_back({"", c.node_speeds_mm_s, r.down_raw, colour, true, SeriesStyle::kLinesPoints, 2, 0.8, 1.0});
+      ud.series.push_back({"", c.node_speeds_mm_s, r.up_comp, colour, false, SeriesStyle::kLinesPoints, 6, 0.8, 1.5});
+      ud.series.push_back({"", c.node_speeds_mm_s, r.down_comp, colour, false, SeriesStyle::kLinesPoints, 2, 0.8, 1.5});
+      colour = (colour + 1) % 8;
+    }
+    plots.emplace_back("mu_v_" + tag + ".png", mu_v);
+    plots.emplace_back("up_down_" + tag + ".png", ud);
+  }
+  plots.emplace_back("residuals.png", residuals);
+  const bool gnuplot = gnuplot_found();
+  for (auto& [file, plot] : plots) {
+    if (!gnuplot) {
+      report.skipped.push_back(file + ": gnuplot not found; install gnuplot (Debian: gnuplot-nox)");
+      continue;
+    }
+    try {
+      write_plot(path(file), plot);
+    } catch (const io::InputError&) {
+      throw;
+    } catch (const std::exception& e) {
+      report.skipped.push_back(file + ": " + e.what());
+      continue;
+    }
+    report.files.push_back(path(file));
+  }
+  return report;
+}
+
+}  // namespace shudder::report

@@ -1,0 +1,113 @@
+#include "report/comparison_report.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+
+#include "io/atomic_file.hpp"
+#include "io/input_error.hpp"
+#include "report/gnuplot.hpp"
+
+namespace shudder::report {
+
+namespace {
+
+std::string f(const char* fmt, double x) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, fmt, x);
+  return buf;
+}
+
+bool gnuplot_found() {
+  const char* path = std::getenv("PATH");
+  std::istringstream dirs(path ? path : "");
+  std::string d;
+  while (std::getline(dirs, d, ':'))
+    if (::access(((d.empty() ? std::string(".") : d) + "/gnuplot").c_str(), X_OK) == 0) return true;
+  return false;
+}
+
+}  // namespace
+
+std::string comparison_summary(const rig_models::Comparison& c) {
+  std::ostringstream o;
+  o << "Fluids compared at " << f("%.0f", c.load_N) << " N (indices: docs/screening.md; equal viscosity "
+    << f("%.3g", c.viscosity_cSt) << " cSt as Paper E Table 5)\n";
+  o << "  rank  fluid                     verdict     breakaway  max margin";
+  for (double t : c.temps_C) {
+    const std::string h = "mu1/mu50@" + f("%.4g", t) + "°C";
+    o << "  " << std::string(h.size() < 16 ? 16 - h.size() : 0, ' ') << h;  // °C is 2 bytes, 1 column
+  }
+  o << "  T(" << f("%.3g", c.viscosity_cSt) << " cSt)  mu1/mu50 there\n";
+  std::vector<const rig_models::FluidComparison*> sorted;
+  for (const auto& fl : c.fluids) sorted.push_back(&fl);
+  std::stable_sort(sorted.begin(), sorted.end(), [](auto a, auto b) { return a->rank < b->rank; });
+  for (const auto* fl : sorted) {
+    char name[32];
+    std::snprintf(name, sizeof name, "%-24.24s", fl->name.c_str());
+    o << "  " << f("%4.0f", fl->rank) << "  " << name << "  ";
+    char verdict[16];
+    std::snprintf(verdict, sizeof verdict, "%-10s", analysis::risk_level_name(fl->screen.verdict.level));
+    o << verdict << "  " << f("%9.3f", fl->breakaway_ratio) << "  "
+      << (std::isfinite(fl->worst_margin_per_s) ? f("%8.3g/s", fl->worst_margin_per_s) : std::string("   n/a    "));
+    for (const auto& at : fl->screen.indices) o << f("  %14.4f", at[analysis::Index::kMu1OverMu50].value);
+    o << (std::isfinite(fl->equal_viscosity_temp_C) ? f("  %8.1f °C", fl->equal_viscosity_temp_C) : std::string("       n/a  "))
+      << f("  %14.4f", fl->at_equal_viscosity[analysis::Index::kMu1OverMu50].value) << "\n";
+  }
+  o << "Ranking: verdict, then largest stability margin, largest mu1/mu50, breakaway ratio (Paper F: lower is better)\n";
+  for (const auto& s : c.separations) o << "  " << s << "\n";
+  for (const auto* fl : sorted) o << "  " << fl->name << ": " << fl->screen.verdict.text << "\n";
+  return o.str();
+}
+
+Report write_comparison_report(const std::string& dir, const rig_models::Comparison& c,
+                               const std::vector<std::pair<std::string, clutch::Fluid>>& fluids,
+                               const std::string& summary_text) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir))
+    throw io::InputError(dir, 0, "", "cannot create the report directory: " + ec.message());
+  Report report;
+  const auto path = [&](const std::string& file) { return (fs::path(dir) / file).string(); };
+  io::write_text_file_atomically(path("summary.txt"), summary_text);
+  report.files.push_back(path("summary.txt"));
+  const bool gnuplot = gnuplot_found();
+  for (double t : c.temps_C) {
+    const std::string file = "mu_v_" + f("%.4g", t) + "C.png";
+    if (!gnuplot) {
+      report.skipped.push_back(file + ": gnuplot not found; install gnuplot (Debian: gnuplot-nox)");
+      continue;
+    }
+    Plot p;
+    p.title = "mu against slip speed at " + f("%.4g", t) + " °C, " + f("%.0f", c.load_N) + " N";
+    p.xlabel = "slip speed [rpm]";
+    p.ylabel = "mu [-]";
+    for (const auto& [file_name, fluid] : fluids) {
+      Series s;
+      s.label = fluid.name;
+      for (double rpm = 1.0; rpm <= 120.0; rpm += 1.0) {
+        s.x.push_back(rpm);
+        s.y.push_back(fluid.friction->mu(analysis::rpm_to_mm_s(rpm), t, c.load_N));
+      }
+      p.series.push_back(s);
+    }
+    try {
+      write_plot(path(file), p);
+    } catch (const io::InputError&) {
+      throw;
+    } catch (const std::exception& e) {
+      report.skipped.push_back(file + ": " + e.what());
+      continue;
+    }
+    report.files.push_back(path(file));
+  }
+  return report;
+}
+
+}  // namespace shudder::report

@@ -1,0 +1,22 @@
+#pragma once
+// `shudder compare`: the printed table and the report directory (docs/characterisation.md):
+//   summary.txt           the printed text
+//   mu_v_<T>C.png         per screening temperature, every fluid's mu against speed (1–120 rpm)
+// Without gnuplot the PNGs are skipped and listed; an unwritable directory is an io::InputError.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "clutch/fluid.hpp"
+#include "report/plots.hpp"
+#include "rig_models/fluid_comparison.hpp"
+
+namespace shudder::report {
+
+std::string comparison_summary(const rig_models::Comparison& c);
+
+Report write_comparison_report(const std::string& dir, const rig_models::Comparison& c,
+                               const std::vector<std::pair<std::string, clutch::Fluid>>& fluids,
+                               const std::string& summary_text);
+
+}  // namespace shudder::report

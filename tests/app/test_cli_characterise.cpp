@@ -1,0 +1,155 @@
+// `shudder characterise` end to end: simulated Paper D ramp logs (CSV, sensor noise) -> a fluid
+// file that `screen` and `run` accept, FIT.json and a report; bad input -> exit 2 with one
+// line naming the file and the reason, a fit that gives no plausible law -> exit 1, and in
+// every failure nothing written.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "io/fluid_loader.hpp"
+#include "tests/support/cli.hpp"
+#include "tests/support/json.hpp"
+#include "tests/support/ramp_runs.hpp"
+
+namespace {
+
+using namespace shudder;
+namespace fs = std::filesystem;
+
+// Paper D cycles of fluid C at 10 and 20 kN from 40, 60 and 80 °C, one CSV each (a.csv ...).
+std::string write_runs(const fs::path& dir, const std::string& rig = "lsctr", double t_ramp_s = 10.0) {
+  const clutch::Fluid fluid = io::load_fluid(SHUDDER_SOURCE_DIR "/scenarios/fluids/lsc_fluid_c.toml");
+  std::string names;
+  unsigned seed = 1;
+  for (double load : {10000.0, 20000.0})
+    for (double t0 : {40.0, 60.0, 80.0}) {
+      clutch::WetClutchParams p;
+      p.start_temp_C = p.sump_start_temp_C = t0;
+      rig_models::PrescribedSlipSettings s;
+      const auto cycle = test::paper_d_cycle(load, t_ramp_s);
+      s.duration_s = cycle.slip_speed_rpm.times_s().back();
+      s.thermal_step_s = 0.02;
+      s.sample_rate_Hz = 50.0;
+      const auto rec = rig_models::run_prescribed_slip(clutch::WetClutch(p, fluid), cycle, s);
+      io::MeasurementOptions mo;
+      mo.noise = true;
+      mo.seed = seed;
+      mo.rig = rig;
+      const std::string name = std::string(1, char('a' + seed - 1)) + ".csv";
+      io::write_measurement((dir / name).string(), rec, mo);
+      names += " " + name;
+      ++seed;
+    }
+  return names;
+}
+
+const std::string kFluidArgs = " --nu40-cSt 35 --nu100-cSt 6.7 --radius uniform_pressure";
+
+TEST(CliCharacterise, WritesAFluidThatScreenAndRunAcceptPlusJsonAndReport) {
+  const auto dir = test::scratch_dir("characterise_ok");
+  const std::string runs = write_runs(dir);
+  const auto r = test::run_cli("characterise" + runs + " -o fitted.toml --json fit.json --report rep" + kFluidArgs, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, ::testing::HasSubstr("12 ramps used (6 up, 6 down)"));
+  const auto json = test::parse(test::slurp(dir / "fit.json"));
+  EXPECT_EQ(json["format"].str(), "shudder-characterisation/1");
+  EXPECT_EQ(json["rows"].items.size(), 6u);
+  EXPECT_EQ(json["ramps_used"].items.size(), 12u);
+  EXPECT_TRUE(fs::exists(dir / "rep" / "summary.txt"));
+  const auto screen = test::run_cli("screen fitted.toml --load-N 15000", dir);
+  EXPECT_EQ(screen.exit_code, 0) << screen.err;
+  // The same runs as a table law; a Paper G Case 2 run with it.
+  const auto t = test::run_cli("characterise" + runs + " -o table.toml --law table" + kFluidArgs, dir);
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  test::write_file(dir / "case2.toml", test::replace(test::shipped_scenario_text("paper_g_case2_15kN.toml"),
+                                                     "fluid = \"" + test::source_path("scenarios/fluids/lsc_fluid_c.toml"),
+                                                     "fluid = \"table.toml"));
+  const auto run = test::run_cli("run case2.toml -o case2.h5", dir);
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+}
+
+void expect_nothing_written(const fs::path& dir) {
+  EXPECT_FALSE(fs::exists(dir / "out.toml"));
+  EXPECT_FALSE(fs::exists(dir / "fit.json"));
+}
+
+TEST(CliCharacterise, RunWithoutARampIsBadInput) {
+  const auto dir = test::scratch_dir("characterise_noramp");
+  write_runs(dir);
+  std::ostringstream flat;
+  flat << "# format: shudder-measurement/1\n# rig: lsctr\ntime_s,speed_rpm,normal_force_N,torque_Nm,temp_C\n";
+  for (int k = 0; k < 200; ++k) flat << k * 0.01 << ",25,20000,90," << 60 + 0.01 * k << "\n";
+  test::write_file(dir / "flat.csv", flat.str());
+  const auto r = test::run_cli("characterise a.csv flat.csv -o out.toml --json fit.json" + kFluidArgs, dir);
+  test::expect_rejected(r, {"flat.csv", "no speed ramp found"});
+  expect_nothing_written(dir);
+}
+
+TEST(CliCharacterise, MixedRigsAreBadInput) {
+  const auto dir = test::scratch_dir("characterise_rigs");
+  write_runs(dir);
+  const auto other = test::scratch_dir("characterise_rigs_other");
+  write_runs(other, "other_rig");
+  fs::copy_file(other / "a.csv", dir / "z.csv");
+  const auto r = test::run_cli("characterise a.csv b.csv z.csv -o out.toml --json fit.json" + kFluidArgs, dir);
+  test::expect_rejected(r, {"z.csv", "rig", "'other_rig'", "one rig's runs"});
+  expect_nothing_written(dir);
+}
+
+TEST(CliCharacterise, RowWithTooFewRampsIsBadInput) {
+  const auto dir = test::scratch_dir("characterise_few");
+  const std::string runs = write_runs(dir);
+  const auto r = test::run_cli("characterise" + runs + " -o out.toml --json fit.json --min-ramps 3" + kFluidArgs, dir);
+  test::expect_rejected(r, {".csv", "has 2 ramp(s); at least 3 are needed"});
+  expect_nothing_written(dir);
+}
+
+TEST(CliCharacterise, RequestedTemperatureOutsideEveryRampIsBadInput) {
+  const auto dir = test::scratch_dir("characterise_temps");
+  const std::string runs = write_runs(dir);
+  const auto r = test::run_cli("characterise" + runs + " -o out.toml --json fit.json --law table --row-temps 40,150" + kFluidArgs, dir);
+  test::expect_rejected(r, {"requested row temperature 150 °C: no ramp starts within ±3 °C"});
+  expect_nothing_written(dir);
+}
+
+TEST(CliCharacterise, QuadraticCompensationWithOneTemperatureIsBadInput) {
+  const auto dir = test::scratch_dir("characterise_onetemp");
+  write_runs(dir);
+  const auto r = test::run_cli("characterise a.csv -o out.toml --json fit.json" + kFluidArgs, dir);
+  test::expect_rejected(r, {"a.csv", "quadratic compensation at 10 kN", "--compensation linear or none"});
+  expect_nothing_written(dir);
+}
+
+TEST(CliCharacterise, FitWithoutAPlausibleLawIsANumericalFailure) {
+  // Torque x 20: mu ~ 2, which the fitted Mäki sets cannot give inside (0, 1].
+  const auto dir = test::scratch_dir("characterise_implausible");
+  const std::string runs = write_runs(dir);
+  for (const char* f : {"a.csv", "b.csv", "c.csv", "d.csv", "e.csv", "f.csv"}) {
+    std::istringstream in(test::slurp(dir / f));
+    std::ostringstream out;
+    std::string line;
+    while (std::getline(in, line)) {
+      if (line.empty() || line[0] == '#' || line[0] == 't') {
+        out << line << "\n";
+        continue;
+      }
+      std::vector<std::string> cells;
+      std::istringstream ls(line);
+      for (std::string c; std::getline(ls, c, ',');) cells.push_back(c);
+      cells[3] = std::to_string(20.0 * std::stod(cells[3]));
+      for (std::size_t i = 0; i < cells.size(); ++i) out << (i ? "," : "") << cells[i];
+      out << "\n";
+    }
+    test::write_file(dir / f, out.str());
+  }
+  const auto r = test::run_cli("characterise" + runs + " -o out.toml --json fit.json" + kFluidArgs, dir);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_THAT(r.err, ::testing::HasSubstr("outside (0, 1]"));
+  expect_nothing_written(dir);
+}
+
+}  // namespace
