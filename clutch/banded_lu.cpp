@@ -1,0 +1,59 @@
+#include "clutch/banded_lu.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+
+namespace shudder::clutch {
+
+BandedLu::BandedLu(int n, int half_band)
+    : n_(n), b_(half_band), width_(static_cast<std::size_t>(2 * half_band + 1)) {
+  if (n < 1 || half_band < 0) throw std::invalid_argument("band matrix needs n >= 1 and b >= 0");
+  data_.assign(static_cast<std::size_t>(n) * width_, 0.0);
+}
+
+bool BandedLu::factorize(const Eigen::SparseMatrix<double>& a) {
+  if (a.rows() != n_ || a.cols() != n_) throw std::invalid_argument("band matrix size mismatch");
+  std::fill(data_.begin(), data_.end(), 0.0);
+  for (int k = 0; k < a.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(a, k); it; ++it) {
+      const int i = static_cast<int>(it.row()), j = static_cast<int>(it.col());
+      if (std::abs(i - j) > b_) throw std::invalid_argument("matrix entry outside the band");
+      at(i, j) += it.value();
+    }
+  // Right-looking elimination: column k's multipliers, then the rank-one update of the
+  // trailing band, one column at a time.
+  for (int k = 0; k < n_; ++k) {
+    const double pivot = at(k, k);
+    if (!std::isfinite(pivot) || pivot == 0.0) return false;
+    const int last = std::min(n_ - 1, k + b_);
+    for (int i = k + 1; i <= last; ++i) at(i, k) /= pivot;
+    for (int j = k + 1; j <= last; ++j) {
+      const double u = at(k, j);
+      if (u == 0.0) continue;
+      for (int i = k + 1; i <= last; ++i) at(i, j) -= at(i, k) * u;
+    }
+  }
+  return true;
+}
+
+void BandedLu::solve_in_place(Eigen::VectorXd& x) const {
+  double* y = x.data();
+  // L y = x (unit lower), column by column.
+  for (int k = 0; k < n_; ++k) {
+    const double yk = y[k];
+    const int last = std::min(n_ - 1, k + b_);
+    const double* col = &data_[static_cast<std::size_t>(k) * width_ + b_];
+    for (int i = k + 1; i <= last; ++i) y[i] -= col[i - k] * yk;
+  }
+  // U x = y, column by column from the last.
+  for (int k = n_ - 1; k >= 0; --k) {
+    const double* col = &data_[static_cast<std::size_t>(k) * width_ + b_];
+    y[k] /= col[0];
+    const double xk = y[k];
+    for (int i = std::max(0, k - b_); i < k; ++i) y[i] -= col[i - k] * xk;
+  }
+}
+
+}  // namespace shudder::clutch
