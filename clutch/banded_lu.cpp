@@ -7,6 +7,15 @@
 
 namespace shudder::clutch {
 
+namespace {
+
+// out[0..len) -= a[0..len) * s; the two never overlap (a is the factor, out the vector).
+void subtract_scaled(double* __restrict out, const double* __restrict a, double s, int len) {
+  for (int t = 0; t < len; ++t) out[t] -= a[t] * s;
+}
+
+}  // namespace
+
 BandedLu::BandedLu(int n, int half_band)
     : n_(n), b_(half_band), width_(static_cast<std::size_t>(2 * half_band + 1)) {
   if (n < 1 || half_band < 0) throw std::invalid_argument("band matrix needs n >= 1 and b >= 0");
@@ -40,19 +49,21 @@ bool BandedLu::factorize(const Eigen::SparseMatrix<double>& a) {
 
 void BandedLu::solve_in_place(Eigen::VectorXd& x) const {
   double* y = x.data();
-  // L y = x (unit lower), column by column.
+  // L y = x (unit lower), column by column: y[k+1..k+b] -= L(k+1..k+b, k) * y[k]. The factor and
+  // the vector never overlap (__restrict), so the update vectorises without a run-time
+  // aliasing check.
   for (int k = 0; k < n_; ++k) {
+    const int len = std::min(n_ - 1, k + b_) - k;
     const double yk = y[k];
-    const int last = std::min(n_ - 1, k + b_);
-    const double* col = &data_[static_cast<std::size_t>(k) * width_ + b_];
-    for (int i = k + 1; i <= last; ++i) y[i] -= col[i - k] * yk;
+    subtract_scaled(y + k + 1, &data_[static_cast<std::size_t>(k) * width_ + b_ + 1], yk, len);
   }
-  // U x = y, column by column from the last.
+  // U x = y, column by column from the last: x[k] = y[k] / U(k,k); y[k-b..k-1] -= U(.., k) x[k].
   for (int k = n_ - 1; k >= 0; --k) {
-    const double* col = &data_[static_cast<std::size_t>(k) * width_ + b_];
-    y[k] /= col[0];
+    const double* diag = &data_[static_cast<std::size_t>(k) * width_ + b_];
+    y[k] /= diag[0];
     const double xk = y[k];
-    for (int i = std::max(0, k - b_); i < k; ++i) y[i] -= col[i - k] * xk;
+    const int first = std::max(0, k - b_);
+    subtract_scaled(y + first, diag - (k - first), xk, k - first);
   }
 }
 
