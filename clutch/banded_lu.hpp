@@ -32,8 +32,8 @@ class BandedLu {
   /// Factorises `a` (n x n, every non-zero inside the band; entries outside it are an error).
   /// Returns false on a zero or non-finite pivot.
   bool factorize(const Eigen::SparseMatrix<double>& a);
-  /// x := A⁻¹ x, with the last factorisation.
-  void solve_in_place(Eigen::VectorXd& x) const;
+  /// x := A⁻¹ x, with the last factorisation (x has n entries).
+  void solve_in_place(Eigen::VectorXd& x);
 
   int size() const { return n_; }
   int half_band() const { return b_; }
@@ -45,6 +45,7 @@ class BandedLu {
   int n_ = 0, b_ = 0;
   std::size_t width_ = 1;
   std::vector<double> data_;
+  std::vector<double> padded_;  // solve scratch: the vector with b slots of padding each side
 };
 
 }  // namespace shudder::clutch
