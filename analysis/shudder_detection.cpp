@@ -103,11 +103,14 @@ void check_input(const DetectionInput& in) {
   same(in.normal_force_N, "normal_force_N", true);
   const double dt = (in.time_s[n - 1] - in.time_s[0]) / static_cast<double>(n - 1);
   require(dt > 0.0, "shudder detection: time_s must increase");
+  // The message is built only for a failing step (building it for every sample cost more than
+  // the rest of the detection on a 1000-sample run).
   for (std::size_t i = 1; i < n; ++i)
-    require(std::abs(in.time_s[i] - in.time_s[i - 1] - dt) <= 1e-3 * dt,
-            "shudder detection needs uniform sampling: time_s steps by " +
-                std::to_string(in.time_s[i] - in.time_s[i - 1]) + " s at t = " + std::to_string(in.time_s[i]) +
-                " s against a mean step of " + std::to_string(dt) + " s; resample first");
+    if (!(std::abs(in.time_s[i] - in.time_s[i - 1] - dt) <= 1e-3 * dt))
+      require(false, "shudder detection needs uniform sampling: time_s steps by " +
+                         std::to_string(in.time_s[i] - in.time_s[i - 1]) + " s at t = " +
+                         std::to_string(in.time_s[i]) + " s against a mean step of " +
+                         std::to_string(dt) + " s; resample first");
 }
 
 }  // namespace

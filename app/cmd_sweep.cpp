@@ -239,16 +239,17 @@ int sweep_command(const SweepOptions& opt) {
         for (int r = 0; r < 6; ++r) out.columns[axes.size() + r].values.push_back(std::nan(""));
         out.text_column.emplace_back(kFailed);
         out.message_column.push_back(std::move(message));
-        out.case_recordings.emplace_back();
+        out.case_part_paths.emplace_back();
         continue;
       }
-      dynamics::Recording part = io::read_run_hdf5(part_paths[k]);
+      // The results now; the signals are copied by the writer one case at a time, so the
+      // sweep's memory does not grow with its case count.
+      const dynamics::Recording part = io::read_run_hdf5(part_paths[k]);
       for (int r = 0; r < 6; ++r) out.columns[axes.size() + r].values.push_back(part.find_scalar(results[r])->value);
       out.text_column.emplace_back(analysis::to_string(
           analysis::kVerdicts.at(static_cast<std::size_t>(part.find_scalar("simulated_verdict_code")->value))));
       out.message_column.emplace_back();
-      part.scalars.clear();
-      out.case_recordings.push_back(std::move(part));
+      out.case_part_paths.push_back(part_paths[k]);
     }
     io::write_sweep_hdf5(opt.output, out);
     if (!opt.keep_parts) fs::remove_all(parts);

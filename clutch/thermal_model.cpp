@@ -5,6 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 
 #include "core/units.hpp"
 
@@ -37,8 +38,8 @@ std::pair<int, double> locate(const Eigen::VectorXd& pos, double x) {
 
 }  // namespace
 
-ThermalWorkspace::ThermalWorkspace(const ThermalModel& model) : system_(model.conduction_) {
-  lu_.analyzePattern(system_);
+ThermalWorkspace::ThermalWorkspace(const ThermalModel& model)
+    : system_(model.conduction_), lu_(model.nr_ * model.nz_, model.nz_) {
   rhs_.resize(model.nr_ * model.nz_);
 }
 
@@ -170,6 +171,18 @@ void ThermalModel::build_grid() {
   conduction_ = assemble(cond);
   advection_ = assemble(adv);
   identity_ = assemble(cap);
+
+  // Probe points. The IR spot: kSamples chords across a circle of the spot's diameter.
+  thermocouple_ = probe_weights(p_.thermocouple_r_m, p_.thermocouple_z_m);
+  constexpr int kSamples = 41;
+  const double radius = 0.5 * p_.ir_spot_diameter_m;
+  ir_points_.clear();
+  ir_chords_.clear();
+  for (int k = 0; k < kSamples; ++k) {
+    const double x = radius * (2.0 * (k + 0.5) / kSamples - 1.0);
+    ir_chords_.push_back(std::sqrt(radius * radius - x * x));
+    ir_points_.push_back(probe_weights(p_.ir_r_m + x, z_[film_j_]));
+  }
 }
 
 ThermalState ThermalModel::initial_state(double start_temp_C, double inner_temp_C,
@@ -208,8 +221,7 @@ void ThermalModel::step(ThermalState& s, ThermalWorkspace& w, double dt,
     const double* cap = identity_.valuePtr();
     for (Eigen::Index e = 0; e < w.system_.nonZeros(); ++e)
       m[e] = cap[e] / dt + c[e] + flow_W_per_K * a[e];
-    w.lu_.factorize(w.system_);
-    if (w.lu_.info() != Eigen::Success)
+    if (!w.lu_.factorize(w.system_))
       throw std::runtime_error("thermal solve: factorisation failed at t = " +
                                std::to_string(s.time_s) + " s");
     w.factored_dt_ = dt;
@@ -225,7 +237,8 @@ void ThermalModel::step(ThermalState& s, ThermalWorkspace& w, double dt,
   }
   w.rhs_[node(0, film_j_)] += flow_W_per_K * adv_weight_[0] * s.inner_temp_C;
 
-  const Eigen::VectorXd next = w.lu_.solve(w.rhs_);
+  w.lu_.solve_in_place(w.rhs_);
+  const Eigen::VectorXd& next = w.rhs_;
   for (int a = 0; a < n; ++a)
     if (!std::isfinite(next[a]))
       throw std::runtime_error("thermal solve produced a non-finite temperature at t = " +
@@ -246,7 +259,7 @@ void ThermalModel::step(ThermalState& s, ThermalWorkspace& w, double dt,
   s.energy.to_sump_J += to_sump;
   s.energy.to_rig_J += to_rig;
 
-  s.temp_C = next;
+  s.temp_C.swap(w.rhs_);  // the new field; the old one's storage is the next right-hand side
   s.time_s += dt;
   if (p_.sump_heating) s.sump_temp_C += to_sump / sump_heat_capacity_J_per_K();
   if (p_.rig_heat_capacity) s.rig_temp_C += to_rig / p_.rig_heat_capacity_J_per_K;
@@ -269,29 +282,30 @@ double ThermalModel::mean_interface_temp_C(const ThermalState& s) const {
 
 double ThermalModel::max_temp_C(const ThermalState& s) const { return s.temp_C.maxCoeff(); }
 
-double ThermalModel::probe(const ThermalState& s, double r_m, double z_m) const {
-  const auto [i, wr] = locate(r_, r_m);
-  const auto [j, wz] = locate(z_, z_m);
-  const int i1 = std::min(i + 1, nr_ - 1), j1 = std::min(j + 1, nz_ - 1);
-  const double lo = (1 - wz) * s.temp_C[node(i, j)] + wz * s.temp_C[node(i, j1)];
-  const double hi = (1 - wz) * s.temp_C[node(i1, j)] + wz * s.temp_C[node(i1, j1)];
-  return (1 - wr) * lo + wr * hi;
+ThermalModel::ProbeWeights ThermalModel::probe_weights(double r_m, double z_m) const {
+  ProbeWeights w;
+  std::tie(w.i, w.wr) = locate(r_, r_m);
+  std::tie(w.j, w.wz) = locate(z_, z_m);
+  w.i1 = std::min(w.i + 1, nr_ - 1);
+  w.j1 = std::min(w.j + 1, nz_ - 1);
+  return w;
 }
 
-double ThermalModel::thermocouple_C(const ThermalState& s) const {
-  return probe(s, p_.thermocouple_r_m, p_.thermocouple_z_m);
+double ThermalModel::probe(const ThermalState& s, const ProbeWeights& w) const {
+  const double lo = (1 - w.wz) * s.temp_C[node(w.i, w.j)] + w.wz * s.temp_C[node(w.i, w.j1)];
+  const double hi = (1 - w.wz) * s.temp_C[node(w.i1, w.j)] + w.wz * s.temp_C[node(w.i1, w.j1)];
+  return (1 - w.wr) * lo + w.wr * hi;
 }
+
+double ThermalModel::thermocouple_C(const ThermalState& s) const { return probe(s, thermocouple_); }
 
 double ThermalModel::ir_C(const ThermalState& s) const {
-  // Mean over a circular spot of the interface: weight each radius by its chord length.
-  constexpr int kSamples = 41;
-  const double radius = 0.5 * p_.ir_spot_diameter_m;
+  // Mean over a circular spot of the interface: each radius weighted by its chord length
+  // (points and weights fixed in build_grid).
   double sum = 0.0, weight = 0.0;
-  for (int k = 0; k < kSamples; ++k) {
-    const double x = radius * (2.0 * (k + 0.5) / kSamples - 1.0);
-    const double w = std::sqrt(radius * radius - x * x);
-    sum += w * probe(s, p_.ir_r_m + x, z_[film_j_]);
-    weight += w;
+  for (std::size_t k = 0; k < ir_points_.size(); ++k) {
+    sum += ir_chords_[k] * probe(s, ir_points_[k]);
+    weight += ir_chords_[k];
   }
   return sum / weight;
 }

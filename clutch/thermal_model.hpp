@@ -19,7 +19,8 @@
 // Discretisation: finite volumes, cell-centred, uniform within a layer; harmonic (series)
 // conductances across layer boundaries give flux continuity (eq. 8). Time stepping: backward
 // Euler on the whole field (first order, unconditionally stable and non-oscillating for the
-// stiff film nodes), solved by sparse LU. Sump and rig temperatures lag one step (explicit,
+// stiff film nodes), solved by a band LU (ring-major numbering: half band width = nodes per
+// ring; see banded_lu.hpp), factorised only when dt or the oil flow changes. Sump and rig temperatures lag one step (explicit,
 // their time constants are seconds); every flux of the ledger is evaluated with the same
 // end-of-step temperatures as the solve, so the discrete energy balance closes to round-off.
 //
@@ -27,9 +28,9 @@
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
-#include <Eigen/SparseLU>
 #include <vector>
 
+#include "clutch/banded_lu.hpp"
 #include "clutch/oil_flow.hpp"
 
 namespace shudder::clutch {
@@ -99,9 +100,10 @@ struct ThermalState {
 
 class ThermalModel;
 
-/// The solver's scratch for one run (not physics state): the system matrix, its sparse LU and
+/// The solver's scratch for one run (not physics state): the system matrix, its band LU and
 /// the right-hand side. Owned by whoever steps the model (one per run, or per thread); the LU is
-/// re-factorised only when the step size or the oil flow changed since the last step.
+/// re-factorised only when the step size or the oil flow changed since the last step. A step
+/// with an unchanged factorisation allocates nothing here.
 class ThermalWorkspace {
  public:
   /// Sized and analysed for `model`'s grid; use it only with that model.
@@ -110,10 +112,10 @@ class ThermalWorkspace {
  private:
   friend class ThermalModel;
   Eigen::SparseMatrix<double> system_;  // capacity/dt + conduction + rho*cp*Q * advection
-  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;
+  BandedLu lu_;
   double factored_dt_ = -1.0;
   double factored_flow_W_per_K_ = -1.0;
-  Eigen::VectorXd rhs_;
+  Eigen::VectorXd rhs_;  // right-hand side, solved in place into the new temperatures
 };
 
 class ThermalModel {
@@ -153,7 +155,14 @@ class ThermalModel {
  private:
   int node(int ring, int j) const { return ring * nz_ + j; }
   void build_grid();
-  double probe(const ThermalState& s, double r_m, double z_m) const;
+  // A probe point's bilinear weights: ring i (and i + 1) with weight wr, node j (and j + 1)
+  // with weight wz; fixed by the grid, so found once.
+  struct ProbeWeights {
+    int i = 0, i1 = 0, j = 0, j1 = 0;
+    double wr = 0.0, wz = 0.0;
+  };
+  ProbeWeights probe_weights(double r_m, double z_m) const;
+  double probe(const ThermalState& s, const ProbeWeights& w) const;
 
   ThermalParams p_;
   int nr_ = 0, nz_ = 0, film_j_ = 0;
@@ -165,6 +174,9 @@ class ThermalModel {
   Eigen::SparseMatrix<double> conduction_;  // (n_nodes^2) Laplacian incl. boundary terms
   Eigen::SparseMatrix<double> advection_;   // same pattern, per unit rho*cp*Q
   Eigen::SparseMatrix<double> identity_;    // same pattern, capacity on the diagonal
+  ProbeWeights thermocouple_;               // the thermocouple's point
+  std::vector<ProbeWeights> ir_points_;     // the IR spot's chord samples
+  std::vector<double> ir_chords_;           // their chord-length weights
   friend class ThermalWorkspace;
 };
 

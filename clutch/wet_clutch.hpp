@@ -87,12 +87,12 @@ class WetClutch {
   /// Torque per ring of ONE interface (n_r), N m, at |slip| with a frozen state.
   void ring_torque_Nm(const FrozenFriction& frozen, double abs_slip_rad_s, double force_N,
                       Eigen::VectorXd& torque) const;
-
- private:
-  // Torque contribution per ring of one interface (n_r), N m, for |slip|.
+  /// Torque per ring of ONE interface (n_r), N m, for |slip| (>= 0 whatever slip's sign):
+  /// torque_Nm is copysign(sliding_interfaces * sum, slip) of it, ring_heat_W it times |slip|.
   void ring_torque_Nm(double slip_rad_s, double force_N, const Eigen::VectorXd& ring_temp_C,
                       Eigen::VectorXd& torque) const;
 
+ private:
   WetClutchParams p_;
   Fluid fluid_;
   ThermalModel thermal_;

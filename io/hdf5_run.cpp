@@ -39,9 +39,12 @@ Handle make_group(hid_t parent, const std::string& name) {
              "create group '" + name + "'");
 }
 
-// Datasets of at least this many values are chunked and compressed; below it the chunk index
-// and filter header (~1 kB) outweigh what deflate saves.
-constexpr hsize_t kCompressFromValues = 256;
+// Datasets of at least this many values (512 kB) are chunked and compressed; below it deflate
+// saves little on disk but much time: Paper G Case 1 (15 signals x 1001 samples) took 193 kB
+// stored plain and 134 kB deflated, and the deflate cost ~13 M instructions, a tenth of the
+// whole `shudder run` (docs/performance.md). Long runs (10 kHz rig runs, 10^5+ samples) are
+// still compressed.
+constexpr hsize_t kCompressFromValues = 65536;
 // Values per chunk, at most: 2^14 doubles = 128 kB, inside HDF5's advice of 10 kB–1 MB per
 // chunk and its 1 MB default chunk cache, so a reader decompresses each chunk once.
 constexpr hsize_t kChunkValues = 16384;
@@ -540,12 +543,19 @@ void write_sweep_file(const std::string& file_name, const SweepOutput& sw) {
     for (const auto& c : sw.columns) write_doubles(cases, c.name, {c.values.size()}, c.values.data(), c.units);
     write_strings(cases, sw.text_column_name, sw.text_column);
     write_strings(cases, kSweepMessageColumn, sw.message_column);
-    for (std::size_t k = 0; k < sw.case_recordings.size(); ++k) {
+    const bool from_parts = !sw.case_part_paths.empty();
+    const std::size_t n_cases = from_parts ? sw.case_part_paths.size() : sw.case_recordings.size();
+    for (std::size_t k = 0; k < n_cases; ++k) {
       char name[32];
       std::snprintf(name, sizeof name, "case_%05zu", k);
       const Handle group = make_group(file, name);
       const Handle signals = make_group(group, "signals");
-      for (const auto& s : sw.case_recordings[k].signals)
+      Recording part;  // one part's signals at a time (the caller holds the HDF5 mutex)
+      if (from_parts && !sw.case_part_paths[k].empty()) {
+        const Handle in = open_for_reading(sw.case_part_paths[k]);
+        read_signals(in, part);
+      }
+      for (const auto& s : from_parts ? part.signals : sw.case_recordings[k].signals)
         write_doubles(signals, s.name, {s.values.size()}, s.values.data(), s.units);
       if (k < sw.case_scenarios.size()) write_string_attr(group, "scenario", sw.case_scenarios[k]);
     }

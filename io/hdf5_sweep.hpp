@@ -37,6 +37,10 @@ struct SweepOutput {
   std::vector<std::string> message_column;           // (n_cases) "" unless the case failed
   std::vector<std::string> case_scenarios;           // (n_cases)
   std::vector<dynamics::Recording> case_recordings;  // (n_cases) signals only are written
+  /// Alternative to case_recordings: (n_cases) run files whose signals are copied into the case
+  /// groups one case at a time ("" = a case without signals), so the writer's memory does not
+  /// grow with the case count (a sweep's part files).
+  std::vector<std::string> case_part_paths;
 };
 
 void write_sweep_hdf5(const std::string& path, const SweepOutput& sweep);

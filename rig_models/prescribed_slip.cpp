@@ -21,17 +21,21 @@ struct Probe {
       interface_mean_C, interface_max_C, field_max_C, mean_mu, heat_W, flow_ml_min, rig_C;
 };
 
+// `heat` gets the ring heat powers at t with the state's temperatures: exactly what the next
+// thermal step's Simpson rule needs at its start, so the step reuses them. The ring torques are
+// evaluated once for the torque and the heat (WetClutch::torque_Nm and ring_heat_W would each
+// evaluate them, with the same numbers).
 Probe measure(const clutch::WetClutch& clutch, const clutch::ThermalState& s,
-              const DriveCycle& cycle, const BearingDrag& drag, double t) {
+              const DriveCycle& cycle, const BearingDrag& drag, double t, Eigen::VectorXd& heat) {
   const auto& th = clutch.thermal();
   const double slip_rpm = cycle.slip_speed_rpm(t);
   const double slip = units::rpm_to_rad_s(slip_rpm);
   const double force = cycle.normal_force_N(t);
   const Eigen::VectorXd ring_T = th.interface_temps_C(s);
-  const double m = clutch.torque_Nm(slip, force, ring_T);
+  clutch.ring_torque_Nm(slip, force, ring_T, heat);
+  const double m = std::copysign(clutch.params().sliding_interfaces * heat.sum(), slip);
+  heat *= std::abs(slip);
   const double drag_Nm = drag.enabled ? std::copysign(drag.equivalent_mu * force * drag.radius_m, slip) : 0.0;
-  Eigen::VectorXd heat;
-  clutch.ring_heat_W(slip, force, ring_T, heat);
   const double n = clutch.params().sliding_interfaces;
   const double denom = n * force * clutch.mean_radius_m();
   return Probe{slip_rpm,
@@ -90,7 +94,8 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
   const long n_samples = static_cast<long>(std::floor(cfg.duration_s * cfg.sample_rate_Hz + 1e-9)) + 1;
   long next_sample = 0;
   recorder.sample(0.0);
-  recorder.start(measure(clutch, state, cycle, cfg.bearing_drag, 0.0));
+  Eigen::VectorXd h0, hm, h1;  // ring heat at a step's start, middle and end
+  recorder.start(measure(clutch, state, cycle, cfg.bearing_drag, 0.0, h0));
   next_sample = 1;
 
   std::vector<double> snaps = cfg.snapshot_times_s;
@@ -104,7 +109,6 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
   };
   take_snapshots(0.0, cfg.thermal_step_s);
 
-  Eigen::VectorXd h0, hm, h1;
   clutch::FrictionDataRange data_range(*clutch.fluid().friction);
   double peak_interface_C = th.interface_temps_C(state).maxCoeff();
   while (state.time_s < cfg.duration_s - 1e-12) {
@@ -116,7 +120,7 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
     const auto heat_at = [&](double t, Eigen::VectorXd& h) {
       clutch.ring_heat_W(units::rpm_to_rad_s(cycle.slip_speed_rpm(t)), cycle.normal_force_N(t), ring_T, h);
     };
-    heat_at(t0, h0);
+    // h0 (at t0 with the temperatures at t0) is the previous measure()'s.
     heat_at(tm, hm);
     heat_at(t1, h1);
     const Eigen::VectorXd mean_heat = (h0 + 4.0 * hm + h1) / 6.0;
@@ -124,7 +128,7 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
     data_range.add(dt, units::rpm_to_rad_s(cycle.slip_speed_rpm(tm)), th.ring_radius_m(), ring_T, cycle.normal_force_N(tm));
     state.time_s = t1;  // exact end time, free of accumulated round-off
 
-    const Probe after = measure(clutch, state, cycle, cfg.bearing_drag, t1);
+    const Probe after = measure(clutch, state, cycle, cfg.bearing_drag, t1, h0);
     while (next_sample < n_samples) {
       const double ts = static_cast<double>(next_sample) / cfg.sample_rate_Hz;
       if (ts > t1 + 1e-12) break;

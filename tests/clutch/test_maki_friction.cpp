@@ -10,9 +10,12 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "clutch/maki_friction.hpp"
 
@@ -182,3 +185,47 @@ TEST(MakiFrictionMatrix, ConstructorRejectsBadAxesAndSizes) {
 }
 
 }  // namespace
+
+namespace {
+
+// The definition, written out: the bilinear blend of the four surrounding sets' mu values.
+double blend_of_set_values(const MakiFrictionMatrix& m, double v_mm_s, double temp_C, double load_N) {
+  const auto bracket = [](const std::vector<double>& axis, double x) -> std::pair<std::size_t, double> {
+    if (axis.size() == 1 || x <= axis.front()) return {0, 0.0};
+    if (x >= axis.back()) return {axis.size() - 2, 1.0};
+    std::size_t i = 0;
+    while (axis[i + 1] <= x) ++i;
+    return {i, (x - axis[i]) / (axis[i + 1] - axis[i])};
+  };
+  const double v = std::clamp(std::abs(v_mm_s), m.min_speed_mm_s(), m.max_speed_mm_s());
+  const auto [it, wt] = bracket(m.temps_C(), temp_C);
+  const auto [il, wl] = bracket(m.loads_N(), load_N);
+  const std::size_t it1 = std::min(it + 1, m.temps_C().size() - 1);
+  const std::size_t il1 = std::min(il + 1, m.loads_N().size() - 1);
+  const double lo = (1.0 - wl) * m.set(it, il).mu(v) + wl * m.set(it, il1).mu(v);
+  const double hi = (1.0 - wl) * m.set(it1, il).mu(v) + wl * m.set(it1, il1).mu(v);
+  return (1.0 - wt) * lo + wt * hi;
+}
+
+}  // namespace
+
+// mu() shares v^0.1 and equal-rate tanh terms between the sets and skips sets of weight zero;
+// that must give the definition's numbers bit for bit (the thermal runs' results rely on it),
+// inside the matrix, on its axes, clamped beyond them, and with equal and unequal C2.
+TEST(MakiFrictionMatrix, FastBlendEqualsTheBlendOfSetValuesBitForBit) {
+  const MakiFrictionMatrix m({10000.0, 15000.0, 25000.0}, {-40.0, 20.0, 70.0, 200.0},
+                             {{-0.031, 0.0014, 0.057, 0.035}, {-0.026, 0.0037, 0.035, 0.07},
+                              {-0.0024, 0.0098, 0.012, 0.101}, {-0.024, 0.0024, 0.047, 0.05},
+                              {-0.024, 0.0024, 0.020, 0.084}, {-0.038, 0.002, 0.037, 0.068},
+                              {-0.039, 0.001, 0.077, -0.024}, {-0.039, 0.001, 0.05, 0.01},
+                              {-0.038, 0.002, 0.03, 0.02}, {-0.031, 0.0014, 0.057, 0.035},
+                              {-0.026, 0.0037, 0.035, 0.07}, {-0.0024, 0.0098, 0.012, 0.101}});
+  int checked = 0;
+  for (double v : {0.0, 3.0, 6.0, 17.3, 241.0, 590.0, 900.0, -55.0})
+    for (double t : {-60.0, -40.0, 0.0, 20.0, 45.5, 70.0, 133.3, 200.0, 250.0})
+      for (double f : {0.0, 10000.0, 12345.0, 15000.0, 21000.0, 25000.0, 25300.0}) {
+        EXPECT_EQ(m.mu(v, t, f), blend_of_set_values(m, v, t, f)) << v << " " << t << " " << f;
+        ++checked;
+      }
+  EXPECT_EQ(checked, 8 * 9 * 7);
+}

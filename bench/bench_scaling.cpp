@@ -1,0 +1,128 @@
+// How cost grows (docs/performance.md): Paper G Case 1 (prescribed slip + thermal model) against
+// the thermal grid and the simulated time; the whole `shudder run` process against the 6 ms
+// target; a sweep's peak memory against its case count. Each benchmark states the figure it
+// re-measures; the exponents in docs/performance.md are log-log slopes between these rows.
+//   ./build/bench/shudder_bench --benchmark_filter=Scaling --benchmark_format=json
+#include <benchmark/benchmark.h>
+
+#include <sys/resource.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "io/scenario.hpp"
+#include "rig_models/model.hpp"
+#include "rig_models/prescribed_slip.hpp"
+
+using namespace shudder;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+io::Scenario case1() { return io::load_scenario(SHUDDER_SOURCE_DIR "/scenarios/paper_g_case1_25kN.toml"); }
+
+// Cost vs rings x axial cells: radial cells = range(0); every layer's axial cells x range(1)
+// (default grid: 20 rings x 12 axial nodes). Time step and simulated time fixed (10 ms, 10 s).
+void BM_Scaling_Case1Grid(benchmark::State& state) {
+  auto sc = case1();
+  auto& th = sc.clutch.thermal;
+  th.radial_cells = static_cast<int>(state.range(0));
+  th.separator.cells *= static_cast<int>(state.range(1));
+  th.lining.cells *= static_cast<int>(state.range(1));
+  th.core.cells *= static_cast<int>(state.range(1));
+  const auto clutch = sc.make_clutch();
+  const auto& model = std::get<rig_models::PrescribedSlipModel>(sc.model);
+  for (auto _ : state) {
+    auto rec = rig_models::simulate(model, clutch);
+    benchmark::DoNotOptimize(rec);
+  }
+  state.counters["nodes"] = clutch.thermal().radial_cells() * clutch.thermal().nodes_per_ring();
+}
+
+// Cost vs simulated time: Case 1 run for range(0) seconds (the ramp ends at 10 s and holds).
+void BM_Scaling_Case1Duration(benchmark::State& state) {
+  auto sc = case1();
+  auto& model = std::get<rig_models::PrescribedSlipModel>(sc.model);
+  model.settings.duration_s = static_cast<double>(state.range(0));
+  model.settings.snapshot_times_s.clear();
+  const auto clutch = sc.make_clutch();
+  for (auto _ : state) {
+    auto rec = rig_models::simulate(model, clutch);
+    benchmark::DoNotOptimize(rec);
+  }
+  state.counters["simulated_s"] = model.settings.duration_s;
+}
+
+// Runs `cmd` in a shell; returns the wall time, adds the child's peak RSS (kB) to `peak_kB`.
+double run_timed(const std::string& cmd, long& peak_kB) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (std::system(cmd.c_str()) != 0) throw std::runtime_error("failed: " + cmd);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  rusage ru{};
+  getrusage(RUSAGE_CHILDREN, &ru);
+  peak_kB = std::max(peak_kB, ru.ru_maxrss);
+  return wall;
+}
+
+// The target: Paper G Case 1, the whole process (start-up, TOML, simulation, HDF5 write,
+// summary) <= 6 ms. Manual time = the wall time of `shudder run` (plus the shell's fork/exec,
+// ~1 ms: compare with Scaling_CliHelp, the start-up alone). peak_RSS_kB: target <= 20 MB.
+void BM_Scaling_Case1WholeProcess(benchmark::State& state) {
+  const fs::path out = fs::temp_directory_path() / "shudder_bench_case1.h5";
+  const std::string cmd = std::string("'") + SHUDDER_CLI + "' run '" SHUDDER_SOURCE_DIR
+                          "/scenarios/paper_g_case1_25kN.toml' -o '" + out.string() + "' >/dev/null";
+  long peak_kB = 0;
+  for (auto _ : state) state.SetIterationTime(run_timed(cmd, peak_kB));
+  state.counters["peak_RSS_kB"] = static_cast<double>(peak_kB);
+  fs::remove(out);
+}
+
+// Start-up alone: `shudder --help` (dynamic loading, static initialisation, CLI11).
+void BM_Scaling_CliHelp(benchmark::State& state) {
+  const std::string cmd = std::string("'") + SHUDDER_CLI + "' --help >/dev/null";
+  long peak_kB = 0;
+  for (auto _ : state) state.SetIterationTime(run_timed(cmd, peak_kB));
+  state.counters["peak_RSS_kB"] = static_cast<double>(peak_kB);
+}
+
+// A sweep's memory against its case count: Case 1 over range(0) normal forces, --jobs 2.
+// peak_RSS_kB should not grow with the count (the cases are written to part files as they
+// finish and merged one at a time). Wall time per case: the sweep's overhead per case.
+void BM_Scaling_SweepCases(benchmark::State& state) {
+  const long cases = state.range(0);
+  const fs::path out = fs::temp_directory_path() / ("shudder_bench_sweep_" + std::to_string(cases) + ".h5");
+  const std::string cmd = std::string("'") + SHUDDER_CLI + "' sweep '" SHUDDER_SOURCE_DIR
+                          "/scenarios/paper_g_case1_25kN.toml' --set drive.normal_force_N=10000:" +
+                          std::to_string(10000 + 100 * (cases - 1)) + ":100 --jobs 2 --quiet -o '" +
+                          out.string() + "'";
+  long peak_kB = 0;
+  double wall = 0.0;
+  for (auto _ : state) {
+    fs::remove(out);
+    fs::remove_all(out.string() + ".parts");
+    wall = run_timed(cmd, peak_kB);
+    state.SetIterationTime(wall);
+  }
+  state.counters["cases"] = static_cast<double>(cases);
+  state.counters["wall_per_case_ms"] = wall / static_cast<double>(cases) * 1e3;
+  state.counters["peak_RSS_kB"] = static_cast<double>(peak_kB);
+  fs::remove(out);
+}
+
+}  // namespace
+
+BENCHMARK(BM_Scaling_Case1Grid)
+    ->ArgsProduct({{10, 20, 40, 80}, {1, 2, 4}})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Scaling_Case1Duration)->Arg(5)->Arg(10)->Arg(20)->Arg(40)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Scaling_Case1WholeProcess)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(20);
+BENCHMARK(BM_Scaling_CliHelp)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(20);
+BENCHMARK(BM_Scaling_SweepCases)->Arg(10)->Arg(40)->UseManualTime()->Unit(benchmark::kSecond)->Iterations(1);
