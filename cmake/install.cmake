@@ -31,7 +31,7 @@ set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_MAINTAINER "shudder maintainers <shudder@localhost>")
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
-set(shudder_deb_depends "libc6, libstdc++6, libhdf5-103-1, libfftw3-double3")
+set(shudder_deb_depends "libc6, libstdc++6, libhdf5-103-1, libfftw3-double3, libtomlplusplus3")
 if(SHUDDER_MPI)
   string(APPEND shudder_deb_depends ", libopenmpi3, openmpi-bin")
 endif()
@@ -48,6 +48,10 @@ if(BUILD_TESTING)
            COMMAND bash ${PROJECT_SOURCE_DIR}/tests/install/check_install.sh ${CMAKE_BINARY_DIR}
                    ${CMAKE_CURRENT_BINARY_DIR}/install_test ${SHUDDER_INSTALL_PYTHONDIR})
   set_tests_properties(install_prefix PROPERTIES TIMEOUT 120)
+  add_test(NAME deb_package
+           COMMAND bash ${PROJECT_SOURCE_DIR}/tests/install/check_deb.sh ${CMAKE_BINARY_DIR}
+                   ${CMAKE_CURRENT_BINARY_DIR}/deb_test)
+  set_tests_properties(deb_package PROPERTIES TIMEOUT 120)
   add_test(NAME version_fallback
            COMMAND bash ${PROJECT_SOURCE_DIR}/tests/install/check_version_fallback.sh ${PROJECT_SOURCE_DIR}
                    ${CMAKE_CURRENT_BINARY_DIR}/version_test ${PROJECT_VERSION})
