@@ -26,6 +26,7 @@
 #include "io/scenario.hpp"
 #include "rig_models/energy_guard.hpp"
 #include "rig_models/model.hpp"
+#include "rig_models/realtime_run.hpp"
 
 namespace shudder::app {
 
@@ -53,7 +54,10 @@ int run_command(const RunOptions& opt) {
       io::visit_kind(opt.scenario, "--measurement", scenario.model,
                      [](const auto& m) { rig_models::require_measured_run_export(m); });
     dynamics::Recording rec =
-        std::visit([&](const auto& m) { return rig_models::simulate(m, clutch); }, scenario.model);
+        opt.fixed_step_s > 0
+            ? io::visit_kind(opt.scenario, "--fixed-step", scenario.model,
+                             [&](const auto& m) { return rig_models::run_fixed_step(m, clutch, opt.fixed_step_s); })
+            : std::visit([&](const auto& m) { return rig_models::simulate(m, clutch); }, scenario.model);
     const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     // The kind's extra analysis (the rig's stability map for `shudder plot`) goes into the recording.
     const std::vector<std::string> analysis_warnings = std::visit(

@@ -20,6 +20,7 @@ struct RunOptions {
   bool profile = false;
   std::string report;                  // report directory (summary.txt + plots); empty = none
   bool force = false;                  // write even above io::kMaxOutputBytesWithoutForce
+  double fixed_step_s = 0.0;           // > 0: the fixed-step real-time mode (docs/realtime.md)
 };
 int run_command(const RunOptions& options);
 

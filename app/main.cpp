@@ -39,6 +39,9 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--report", run.report,
                       "Also write a report directory: summary.txt and the key plots (PNG)");
   run_cmd->add_flag("--force", run.force, "Write the output even if its estimated size exceeds 2 GB");
+  run_cmd->add_option("--fixed-step", run.fixed_step_s,
+                      "Run with the fixed-step real-time stepper at this step, s (docs/realtime.md)")
+      ->check(CLI::Range(1e-7, 1.0));  // a step from 0.1 µs to 1 s
 
   ModesOptions modes;
   auto* modes_cmd = app.add_subcommand("modes", "Natural frequencies and mode shapes of a rig scenario");

@@ -5,8 +5,7 @@
 #            -DSHUDDER_INSTALL_PYTHONDIR=... for another)
 #   data     share/shudder/scenarios/  (the scenario files and fluids, as in the source tree)
 #   docs     share/doc/shudder/  (README.md and docs/)
-#   fmu      the co-simulation FMU (issue 15 part 2) joins here: install(FILES <the .fmu>
-#            DESTINATION ${CMAKE_INSTALL_DATADIR}/shudder/fmu COMPONENT fmu)
+#   (fmu)    share/shudder/fmu/shudder_clutch.fmu, installed by fmu/CMakeLists.txt (docs/fmu.md)
 include(GNUInstallDirs)
 set(SHUDDER_INSTALL_PYTHONDIR "lib/python3/dist-packages" CACHE STRING
     "Where the Python module is installed, relative to the prefix")

@@ -21,6 +21,7 @@ packages=(
   python3-h5py           # docs/python.md reads the HDF5 outputs with it; the MPI sweep test compares files
   python3-matplotlib     # docs/python.md's worked example plots with it (run by the tests)
   libopenmpi-dev openmpi-bin  # `shudder sweep --mpi` across MPI ranks (docs/mpi.md; mpirun in the tests)
+  libexpat1-dev          # the FMU test parses modelDescription.xml (tests/fmu)
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -1,35 +1,37 @@
 #!/usr/bin/env bash
-# Sanitizer and fuzzing pass of CI (docs/fuzzing.md), called by scripts/test.sh:
-#   1. an AddressSanitizer + UndefinedBehaviorSanitizer build (g++, -DSHUDDER_SANITIZE=ON) in
-#      build-asan, and a representative fast subset of the unit tests on it: every reader of user
-#      files (scenario, fluid, measured run CSV/HDF5, measurement CSV, HDF5 run), the CLI's
-#      bad-input tests (they run the sanitized `shudder`), the clutch and dynamics cores and the
-#      rig's motor ripple. The whole suite under ASan takes ~2x the normal run, which would push
-#      CI over its 15-minute test budget; the slow end-to-end simulations are left to the plain run.
-#   2. a bounded libFuzzer run of every harness in fuzz/ (clang, build-fuzz), seeded from the
-#      shipped files (scripts/fuzz_seeds.sh). FUZZ_SECONDS per harness, default 30.
+# Sanitizer and fuzzing pass (docs/fuzzing.md), called by scripts/test.sh. One clang build
+# (build-fuzz, -DSHUDDER_FUZZ=ON) serves both halves: every library is compiled once with
+# AddressSanitizer + UndefinedBehaviorSanitizer and libFuzzer's coverage hooks, then
+#   1. a fast subset of the unit tests linked against those libraries: every reader of user files
+#      (scenario, fluid, measured run CSV/HDF5, measurement CSV, HDF5 run, validation targets,
+#      diagnosis JSON), the CLI's bad-input tests (they run the sanitized `shudder`), the clutch and
+#      dynamics cores and the rig's motor ripple. The whole suite under ASan takes ~2x the plain
+#      run; the slow end-to-end simulations are left to the plain build;
+#   2. a bounded libFuzzer run of every harness in fuzz/, seeded from the shipped files
+#      (scripts/fuzz_seeds.sh), FUZZ_SECONDS per harness (default 20).
+# A second g++ ASan build (SHUDDER_SANITIZE=ON) would cost a full build more for the same checks.
 # Any sanitizer report, crash or escaped exception fails the script.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=${JOBS:-$(nproc)}
-fuzz_seconds=${FUZZ_SECONDS:-30}
+fuzz_seconds=${FUZZ_SECONDS:-20}
 
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}
 
-# Warnings are not errors here: GCC 12's -Wmaybe-uninitialized gives false positives inside
-# std::regex/std::function once ASan instruments them; the plain build keeps -Werror.
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSHUDDER_SANITIZE=ON -DSHUDDER_WERROR=OFF >/dev/null
-cmake --build build-asan -j"$jobs" --target shudder_tests shudder
+launcher=()
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \
+  -DCMAKE_CXX_COMPILER=clang++ -DSHUDDER_FUZZ=ON -DBUILD_TESTING=ON "${launcher[@]}" >/dev/null
+cmake --build build-fuzz -j"$jobs" --target shudder_tests shudder \
+  fuzz_scenario fuzz_fluid fuzz_measured_csv fuzz_measured_hdf5
+
 filter='LoadFluid.*:MeasuredRunTest.*:MeasurementCsv.*:Hdf5Run.*:ScenarioModel.*:ValidationTargets.*'
 filter+=':DiagnosisJson.*:CliBadInput.*:ThermalModel.*:WetClutch.*:MakiFrictionMatrix.*'
 filter+=':LinearTemperatureFriction.*:DynamicsEnergy.*:DynamicsStickSlip.*:DynamicsNetworkModes.*'
 filter+=':MotorRipple.TorqueIs*:MotorRipple.Rejects*:*FuzzRegression.*'
-./build-asan/tests/shudder_tests --gtest_filter="$filter" --gtest_brief=1
+./build-fuzz/tests/shudder_tests --gtest_filter="$filter" --gtest_brief=1
 
-cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \
-  -DCMAKE_CXX_COMPILER=clang++ -DSHUDDER_FUZZ=ON -DBUILD_TESTING=OFF >/dev/null
-cmake --build build-fuzz -j"$jobs" --target fuzz_scenario fuzz_fluid fuzz_measured_csv fuzz_measured_hdf5
 seeds=build-fuzz/seeds
 rm -rf "$seeds"
 bash scripts/fuzz_seeds.sh build/app/shudder "$seeds"

@@ -15,6 +15,9 @@ for f in ./usr/bin/shudder ./usr/share/shudder/scenarios/paper_g_case1_10kN.toml
   grep -q " $f\$" <<<"$contents" || { echo "FAIL: $f not in $deb"; exit 1; }
 done
 grep -qE " ./usr/lib/python3/dist-packages/shudder\..*\.so\$" <<<"$contents" || { echo "FAIL: no Python module in $deb"; exit 1; }
+if [ -f "$build/fmu/shudder_clutch.fmu" ]; then
+  grep -q " ./usr/share/shudder/fmu/shudder_clutch.fmu\$" <<<"$contents" || { echo "FAIL: no FMU in $deb"; exit 1; }
+fi
 # Every shared library the CLI and the module need comes from a package the .deb depends on
 # (directly, or through hdf5/openmpi, whose packages pull the rest).
 depends=$(dpkg-deb -f "$deb" Depends)

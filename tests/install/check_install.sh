@@ -14,6 +14,9 @@ case "$out" in "shudder $version"*) ;; *) echo "FAIL: --version printed '$out', 
 test -f "$prefix/share/shudder/scenarios/paper_g_case1_10kN.toml" || { echo "FAIL: scenarios not installed"; exit 1; }
 test -f "$prefix/share/doc/shudder/python.md" || { echo "FAIL: docs not installed"; exit 1; }
 test -f "$prefix/share/doc/shudder/README.md" || { echo "FAIL: README not installed"; exit 1; }
+if [ -f "$build/fmu/shudder_clutch.fmu" ]; then  # the FMU, where this build makes one
+  cmp -s "$build/fmu/shudder_clutch.fmu" "$prefix/share/shudder/fmu/shudder_clutch.fmu" || { echo "FAIL: FMU not installed"; exit 1; }
+fi
 cd / && PYTHONPATH="$prefix/$pydir" /usr/bin/python3 -c '
 import sys, shudder
 assert shudder.__file__.startswith(sys.argv[1]), shudder.__file__

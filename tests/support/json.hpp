@@ -17,19 +17,13 @@ struct Json {
   double number = 0.0;
   std::string text;                                   // kString
   std::vector<Json> items;                            // kArray
-  std::vector<std::pair<std::string, Json>> members;  // kObject, in text order
+  // A named struct rather than std::pair: libstdc++'s pair needs a complete Json here, which
+  // clang (the sanitizer build) enforces; vector<incomplete> is allowed since C++17.
+  struct Member;
+  std::vector<Member> members;  // kObject, in text order
 
-  bool has(const std::string& k) const {
-    for (const auto& m : members)
-      if (m.first == k) return true;
-    return false;
-  }
-  const Json& operator[](const std::string& k) const {
-    if (type != Type::kObject) throw std::runtime_error("not an object looking up '" + k + "'");
-    for (const auto& m : members)
-      if (m.first == k) return m.second;
-    throw std::runtime_error("no key '" + k + "'");
-  }
+  bool has(const std::string& k) const;
+  const Json& operator[](const std::string& k) const;
   const Json& operator[](std::size_t i) const {
     if (type != Type::kArray || i >= items.size()) throw std::runtime_error("bad array index");
     return items[i];
@@ -44,6 +38,24 @@ struct Json {
   }
   bool is_null() const { return type == Type::kNull; }
 };
+
+struct Json::Member {
+  std::string first;
+  Json second;
+};
+
+inline bool Json::has(const std::string& k) const {
+  for (const auto& m : members)
+    if (m.first == k) return true;
+  return false;
+}
+
+inline const Json& Json::operator[](const std::string& k) const {
+  if (type != Type::kObject) throw std::runtime_error("not an object looking up '" + k + "'");
+  for (const auto& m : members)
+    if (m.first == k) return m.second;
+  throw std::runtime_error("no key '" + k + "'");
+}
 
 // Recursive descent over RFC 8259; throws std::runtime_error with the offset on anything else
 // (trailing commas, NaN, bare control characters, duplicate keys, trailing text).
@@ -90,7 +102,7 @@ class Parser {
         if (v.has(k)) fail("duplicate key '" + k + "'");
         ws();
         expect(':');
-        v.members.emplace_back(std::move(k), value());
+        v.members.push_back(Json::Member{std::move(k), value()});
         ws();
         if (peek() == ',') { ++i_; continue; }
         expect('}');
