@@ -1,7 +1,8 @@
 // `shudder sweep`: runs a scenario over the cartesian product of --set axes, in parallel, and
 // writes one HDF5 with a /cases table (io/hdf5_sweep.hpp). Finished cases are kept in
 // OUT.h5.parts/ (one run file each, tagged with the case's scenario text) so an interrupted
-// sweep resumes where it stopped; the folder is removed once OUT.h5 is complete.
+// sweep resumes where it stopped; the folder is removed once OUT.h5 is complete. With --mpi the
+// cases run on every MPI rank instead of threads (app/mpi_sweep.hpp); the file is the same.
 #include <unistd.h>
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include <iostream>
 #include <mutex>
 #include <new>
+#include <optional>
 #include <string_view>
 #include <thread>
 #include <variant>
@@ -21,6 +23,7 @@
 #include "analysis/shudder_detection.hpp"
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
+#include "app/mpi_sweep.hpp"
 #include "app/output_size.hpp"
 #include "core/parallel_for.hpp"
 #include "dynamics/signal_names.hpp"
@@ -131,6 +134,21 @@ void progress(std::size_t done, std::size_t total, double elapsed_s) {
 
 int sweep_command(const SweepOptions& opt) {
   return guarded(opt.scenario, "sweep", [&]() -> int {
+    // --mpi: every rank runs this command; rank 0 sweeps as below, the others run its cases.
+    std::optional<mpi::Session> mpi_session;
+    if (opt.mpi) {
+      if (opt.jobs)
+        throw io::InputError("--jobs", 0, "", "not with --mpi: each MPI rank runs one case at a time; "
+                                              "choose the number of ranks with mpirun -np N");
+      mpi_session.emplace();
+      if (!mpi_session->coordinator()) {
+        mpi::serve_cases(*mpi_session, [&](const std::string& text, const std::string& part) {
+          run_case(text, opt.scenario, part);
+        });
+        return 0;
+      }
+    }
+    mpi::Session* const mpi = mpi_session ? &*mpi_session : nullptr;
     const io::Scenario base = io::load_scenario(opt.scenario);
     io::visit_kind(opt.scenario, "scenario.type", base.model, [](const auto& m) { rig_models::require_sweep(m); });
     for (const auto& w : base.warnings) std::cerr << "shudder: warning: " << w << "\n";
@@ -185,8 +203,9 @@ int sweep_command(const SweepOptions& opt) {
       std::cerr << "shudder: resuming: " << texts.size() - todo.size() << " of " << texts.size()
                 << " cases already finished in " << parts.string() << "\n";
 
-    // Worker pool.
-    const unsigned jobs = std::max(1u, opt.jobs ? opt.jobs : std::thread::hardware_concurrency());
+    // Worker pool: threads here, or every MPI rank (app/mpi_sweep.hpp) with --mpi.
+    const unsigned jobs = mpi ? static_cast<unsigned>(mpi->ranks())
+                              : std::max(1u, opt.jobs ? opt.jobs : std::thread::hardware_concurrency());
     const bool show = isatty(STDERR_FILENO) && !opt.quiet;
     std::atomic<std::size_t> done{0};
     std::mutex error_mutex;
@@ -194,22 +213,36 @@ int sweep_command(const SweepOptions& opt) {
     std::atomic<bool> out_of_memory{false};
     const auto t0 = std::chrono::steady_clock::now();
     const auto elapsed_s = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-    parallel_for(
-        todo.size(), jobs,
-        [&](std::size_t i) {
-          const std::size_t k = todo[i];
-          // What escapes run_case stops the sweep: a part that cannot be written, or memory.
-          try {
-            run_case(texts[k], opt.scenario, part_paths[k]);
-          } catch (const std::bad_alloc&) {
-            out_of_memory = true;
-          } catch (const std::exception& e) {
-            const std::lock_guard lock(error_mutex);
-            if (first_error.empty()) first_error = "case " + std::to_string(k) + ": " + e.what();
-          }
-          ++done;
-        },
-        show ? std::function<void()>([&] { progress(done, todo.size(), elapsed_s()); }) : std::function<void()>());
+    std::string mpi_balance;  // --mpi: one summary line, the hand-out's balance
+    if (mpi) {
+      const auto outcome = mpi::run_cases(
+          *mpi, todo, texts, part_paths,
+          [&](const std::string& text, const std::string& part) { run_case(text, opt.scenario, part); },
+          show ? std::function<void(std::size_t)>([&](std::size_t n) { progress(n, todo.size(), elapsed_s()); })
+               : std::function<void(std::size_t)>());
+      first_error = outcome.first_error;
+      out_of_memory = outcome.out_of_memory;
+      mpi_balance = "Cases per MPI rank:";
+      for (const std::size_t n : outcome.cases_per_rank) mpi_balance += " " + std::to_string(n);
+      mpi_balance += "\n";
+    } else {
+      parallel_for(
+          todo.size(), jobs,
+          [&](std::size_t i) {
+            const std::size_t k = todo[i];
+            // What escapes run_case stops the sweep: a part that cannot be written, or memory.
+            try {
+              run_case(texts[k], opt.scenario, part_paths[k]);
+            } catch (const std::bad_alloc&) {
+              out_of_memory = true;
+            } catch (const std::exception& e) {
+              const std::lock_guard lock(error_mutex);
+              if (first_error.empty()) first_error = "case " + std::to_string(k) + ": " + e.what();
+            }
+            ++done;
+          },
+          show ? std::function<void()>([&] { progress(done, todo.size(), elapsed_s()); }) : std::function<void()>());
+    }
     const double wall_s = elapsed_s();
     if (show) std::fprintf(stderr, "\n");
     if (out_of_memory)
@@ -268,6 +301,7 @@ int sweep_command(const SweepOptions& opt) {
                     static_cast<std::size_t>(std::count(out.columns[axes.size()].values.begin(),
                                                         out.columns[axes.size()].values.end(), 0.0)));
       summary += line;
+      summary += mpi_balance;
     }
     if (!failed.empty()) std::cerr << failure_warning(failed, texts.size(), out.message_column[failed.front()]);
     if (!opt.quiet) std::fputs(summary.c_str(), stdout);

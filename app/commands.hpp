@@ -39,6 +39,7 @@ struct SweepOptions {
   bool keep_parts = false;        // keep OUT.h5.parts/ after assembling (default: remove)
   std::string report;             // report directory (summary.txt + sweep.png); empty = none
   bool force = false;             // write even above io::kMaxOutputBytesWithoutForce
+  bool mpi = false;               // run the cases on the MPI ranks (mpirun; app/mpi_sweep.hpp)
 };
 int sweep_command(const SweepOptions& options);
 

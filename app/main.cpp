@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
   using namespace shudder::app;
   CLI::App app{"shudder: stick-slip and shudder in wet-clutch drivetrains"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", SHUDDER_VERSION);
+  app.set_version_flag("--version", std::string("shudder ") + SHUDDER_BUILD_VERSION);
 
   RunOptions run;
   auto* run_cmd = app.add_subcommand("run", "Run a scenario; write HDF5 and print a summary");
@@ -57,6 +57,7 @@ int main(int argc, char** argv) {
   sweep_cmd->add_flag("--keep-parts", sweep.keep_parts, "Keep the per-case files (OUT.h5.parts/)");
   sweep_cmd->add_option("--report", sweep.report, "Also write a report directory: summary.txt and sweep.png");
   sweep_cmd->add_flag("--force", sweep.force, "Write the output even if its estimated size exceeds 2 GB");
+  sweep_cmd->add_flag("--mpi", sweep.mpi, "Run the cases on every MPI rank (mpirun -np N shudder sweep ...; docs/mpi.md)");
 
   ScreenOptions screen;
   auto* screen_cmd = app.add_subcommand("screen", "Screen a fluid's friction data for vibration risk");

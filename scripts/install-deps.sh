@@ -15,6 +15,12 @@ packages=(
   gnuplot-nox            # plots (PNG/SVG), driven by the program
   clang                  # libFuzzer harnesses (fuzz/, scripts/sanitize.sh): -fsanitize=fuzzer is clang-only
   libclang-rt-14-dev     # clang 14's runtimes: libFuzzer, ASan and UBSan (libfuzzer-14-dev is not needed)
+  pybind11-dev python3-dev  # the Python module (python/; docs/python.md), for Debian's /usr/bin/python3
+  python3-numpy          # the Python module's signals are numpy arrays
+  python3-pytest         # the Python module's tests (ctest python_module)
+  python3-h5py           # docs/python.md reads the HDF5 outputs with it; the MPI sweep test compares files
+  python3-matplotlib     # docs/python.md's worked example plots with it (run by the tests)
+  libopenmpi-dev openmpi-bin  # `shudder sweep --mpi` across MPI ranks (docs/mpi.md; mpirun in the tests)
   libexpat1-dev          # the FMU test parses modelDescription.xml (tests/fmu)
 )
 missing=()

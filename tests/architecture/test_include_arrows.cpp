@@ -27,6 +27,7 @@ const std::map<std::string, std::set<std::string>>& allowed() {
       {"io", {"core", "clutch", "dynamics", "analysis", "rig_models"}},
       {"report", {"core", "clutch", "dynamics", "analysis", "rig_models", "io"}},
       {"app", {"core", "clutch", "dynamics", "analysis", "rig_models", "io", "report"}},
+      {"python", {"core", "clutch", "dynamics", "analysis", "rig_models", "io", "report", "app"}},
       {"fmu", {"core", "clutch", "dynamics", "analysis", "rig_models", "io"}},  // the FMU, beside app
   };
   return k;

@@ -1,0 +1,51 @@
+// shudder.load / shudder.run in plain C++ (py_run.hpp).
+#include "python/py_run.hpp"
+
+#include <chrono>
+#include <stdexcept>
+#include <variant>
+
+#include "app/output_size.hpp"
+#include "io/hdf5_run.hpp"
+#include "io/output_safety.hpp"
+#include "rig_models/energy_guard.hpp"
+#include "rig_models/model.hpp"
+
+namespace shudder::python {
+
+io::Scenario load_with_overrides(const std::string& text_or_empty, const std::string& path,
+                                 const std::vector<std::pair<std::string, double>>& overrides) {
+  std::string text = text_or_empty.empty() ? io::load_scenario(path).text : text_or_empty;
+  for (const auto& [key, value] : overrides) text = io::set_scenario_key(text, path, key, value);
+  return io::load_scenario_text(text, path);
+}
+
+RunOutcome run(const io::Scenario& scenario, const std::string& output, bool force) {
+  RunOutcome out;
+  out.warnings = scenario.warnings;
+  const clutch::WetClutch clutch = scenario.make_clutch();
+  if (!output.empty()) {
+    // The checks of `shudder run` before simulating: not an input, an existing directory, a size.
+    io::require_distinct_paths({{"scenario", scenario.path}, {"fluid file", scenario.fluid_path}}, {{"output", output}});
+    io::require_output_directory(output);
+    io::require_output_size(output, app::estimated_run_bytes(scenario),
+                            std::to_string(app::estimated_samples(scenario)) + " samples x " +
+                                std::to_string(app::kRecordedChannels) + " channels x 8 bytes + snapshots",
+                            force);
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  out.recording = std::visit([&](const auto& m) { return rig_models::simulate(m, clutch); }, scenario.model);
+  out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const auto analysis_warnings = std::visit(
+      [&](const auto& m) { return rig_models::add_run_analysis(m, clutch, scenario.clutch.start_temp_C, out.recording); },
+      scenario.model);
+  out.warnings.insert(out.warnings.end(), analysis_warnings.begin(), analysis_warnings.end());
+  if (!output.empty()) io::write_run_hdf5(output, out.recording, scenario.text, scenario.fluid_text);
+  if (const std::string bad = rig_models::energy_balance_violation(out.recording); !bad.empty())
+    throw std::runtime_error("numerical failure: " + bad + (output.empty() ? "" : "; the run is written to " + output +
+                                                                                     " for inspection") +
+                             ", but its results cannot be trusted");
+  return out;
+}
+
+}  // namespace shudder::python
