@@ -84,6 +84,8 @@ struct TorqueSource {
   std::string name;
   int node = kGround;
   TimeFunction torque_Nm;
+  /// If set, used instead of torque_Nm: a torque that depends on the node's speed (an engine map).
+  std::function<double(double t_s, double omega_rad_s)> torque_at_speed_Nm = nullptr;
 };
 struct SpeedSource {
   std::string name;

@@ -130,7 +130,7 @@ void Simulation::compute(const State& x, double t, Forces& f) const {
   }
   // Torque sources.
   for (const auto& s : net_.torque_sources()) {
-    const double T = s.torque_Nm(t);
+    const double T = s.torque_at_speed_Nm ? s.torque_at_speed_Nm(t, om[s.node]) : s.torque_Nm(t);
     f.tau[s.node] += T;
     f.source_P += T * om[s.node];
   }

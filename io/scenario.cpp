@@ -225,6 +225,27 @@ void read_driveline(TomlTable& root, Draft& s) {
     // Straight (1) to well past full lock (≈ 1.05); below 1 the rear axle would run ahead,
     // which a car in a turn does not do.
     p.turn_ratio = d->number_or("turn_ratio", p.turn_ratio, Range::closed(1.0, 1.2));
+    if (auto e = d->optional_table("engine")) {
+      auto& ep = p.engine;
+      if (e->has("full_load_speed_rpm") || e->has("full_load_torque_Nm")) {
+        const auto speeds = e->numbers("full_load_speed_rpm", Range::non_negative(), 1);
+        for (std::size_t i = 1; i < speeds.size(); ++i)
+          if (speeds[i] <= speeds[i - 1]) e->fail("full_load_speed_rpm", "must be strictly increasing");
+        const auto torques = e->numbers("full_load_torque_Nm", Range::closed(0.0, 2000.0), 1);
+        if (torques.size() != speeds.size())
+          e->fail("full_load_torque_Nm", "needs one value per full_load_speed_rpm (" + std::to_string(speeds.size()) + ")");
+        ep.full_load_torque_Nm = rig_models::PiecewiseLinear(speeds, torques);
+      }
+      ep.stall_speed_rpm = e->number_or("stall_speed_rpm", ep.stall_speed_rpm, Range::closed(50.0, 2000.0));
+      ep.idle_speed_rpm = e->number_or("idle_speed_rpm", ep.idle_speed_rpm,
+                                       Range{ep.stall_speed_rpm, 3000.0, true, false});
+      ep.max_speed_rpm = e->number_or("max_speed_rpm", ep.max_speed_rpm, Range{ep.idle_speed_rpm, 20000.0, true, false});
+      ep.idle_governor_gain_Nms_per_rad =
+          e->number_or("idle_governor_gain_Nms_per_rad", ep.idle_governor_gain_Nms_per_rad, Range::closed(0.0, 1000.0));
+      ep.loss_torque_idle_Nm = e->number_or("loss_torque_idle_Nm", ep.loss_torque_idle_Nm, Range::closed(0.0, 500.0));
+      ep.loss_torque_max_Nm = e->number_or("loss_torque_max_Nm", ep.loss_torque_max_Nm, Range::closed(0.0, 500.0));
+      e->finish();
+    }
     if (auto h = d->optional_table("hydraulics")) {
       auto& hp = p.hydraulics;
       hp.relief_pressure_bar = h->number_or("relief_pressure_bar", hp.relief_pressure_bar, Range::closed(1.0, 200.0));
@@ -239,12 +260,30 @@ void read_driveline(TomlTable& root, Draft& s) {
   const auto times = m.numbers("time_s", Range::non_negative(), 1);
   for (std::size_t i = 1; i < times.size(); ++i)
     if (times[i] <= times[i - 1]) m.fail("time_s", "must be strictly increasing");
-  s.manoeuvre.engine_torque_Nm = read_schedule(m, "engine_torque_Nm", times, Range::closed(-1000.0, 1000.0));
+  if (m.has("throttle")) {
+    // The engine map (rig_models/engine.hpp) instead of a raw torque schedule.
+    if (m.has("engine_torque_Nm"))
+      m.fail("throttle", "engine_torque_Nm is given too; give either a throttle (the engine map) or a torque schedule");
+    s.manoeuvre.throttle = read_schedule(m, "throttle", times, Range::closed(0.0, 1.0));
+  } else {
+    s.manoeuvre.engine_torque_Nm = read_schedule(m, "engine_torque_Nm", times, Range::closed(-1000.0, 1000.0));
+  }
   if (m.has("valve_pressure_bar"))
     // The valve cannot hold more than the relief valve lets through.
     s.manoeuvre.valve_pressure_bar =
         read_schedule(m, "valve_pressure_bar", times, Range::closed(0.0, p.hydraulics.relief_pressure_bar));
   s.manoeuvre.start_speed_km_h = m.number_or("start_speed_km_h", 0.0, Range::closed(0.0, 300.0));
+  if (s.manoeuvre.throttle) {
+    // No clutch or torque converter is modelled: the engine turns with the wheels, so a mapped
+    // engine must start above its stall speed (launches from rest take a torque schedule).
+    const double engine_rpm = s.manoeuvre.start_speed_km_h / 3.6 / p.wheel_radius_m * p.gear_ratio *
+                              p.final_drive_ratio * 60.0 / (2.0 * 3.14159265358979323846);
+    if (engine_rpm <= p.engine.stall_speed_rpm)
+      m.fail("start_speed_km_h", "puts the engine at " + std::to_string(static_cast<int>(engine_rpm)) +
+                                     " rpm, at or below its stall speed; a throttle needs the engine above " +
+                                     std::to_string(static_cast<int>(p.engine.stall_speed_rpm)) +
+                                     " rpm at the start (no clutch is modelled; launch from rest with engine_torque_Nm)");
+  }
   if (m.has("turn_radius_m")) {
     if (p.turn_ratio != 1.0)
       m.fail("turn_radius_m", "[driveline] turn_ratio is given too; give either turn_radius_m or turn_ratio");

@@ -48,7 +48,9 @@ HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::We
     : p_(params),
       hydraulics_(params.hydraulics, pack_torque_per_newton(params, clutch)),
       contact_(clutch, BearingDrag{}, params.stick_time),
-      engine_torque_Nm_(inputs.engine_torque_Nm) {
+      engine_torque_Nm_(inputs.engine_torque_Nm),
+      throttle_(inputs.throttle),
+      engine_(params.engine) {
   for (const auto& [v, what] : std::initializer_list<std::pair<double, const char*>>{
            {p_.engine_inertia_kg_m2, "engine_inertia_kg_m2"}, {p_.gear_ratio, "gear_ratio"},
            {p_.final_drive_ratio, "final_drive_ratio"}, {p_.front_diff_inertia_kg_m2, "front_diff_inertia_kg_m2"},
@@ -157,14 +159,29 @@ dynamics::TorsionalNetwork HaldexDriveline::build(std::shared_ptr<const dynamics
   n.add_force_element(dynamics::ForceElement{"road_load", kVehicle, dynamics::kGround, 1.0, road_load_});
 
   n.add_contact(dynamics::FrictionContact{"haldex_coupling", kCouplingIn, kCouplingOut, std::move(law)});
-  const PiecewiseLinear engine = engine_torque_Nm_;
-  n.add_torque_source(dynamics::TorqueSource{"engine", kEngine, [engine](double t) { return engine(t); }});
+  if (throttle_) {
+    const Engine engine = engine_;
+    const PiecewiseLinear throttle = *throttle_;
+    n.add_torque_source(dynamics::TorqueSource{
+        "engine", kEngine, {}, [engine, throttle](double t, double w) { return engine.torque_Nm(w, throttle(t)); }});
+  } else {
+    const PiecewiseLinear engine = engine_torque_Nm_;
+    n.add_torque_source(dynamics::TorqueSource{"engine", kEngine, [engine](double t) { return engine(t); }});
+  }
   if (grade_torque_Nm_ != 0.0) {
     const double grade = grade_torque_Nm_;
     n.add_torque_source(dynamics::TorqueSource{"grade", kVehicle, [grade](double) { return grade; }});
   }
   n.validate();
   return n;
+}
+
+double HaldexDriveline::engine_torque_Nm(double t, double w) const {
+  return throttle_ ? engine_.torque_Nm(w, (*throttle_)(t)) : engine_torque_Nm_(t);
+}
+
+double HaldexDriveline::engine_slope_Nms_per_rad(double t, double w) const {
+  return throttle_ ? engine_.torque_speed_slope_Nms_per_rad(w, (*throttle_)(t)) : 0.0;
 }
 
 Eigen::VectorXd HaldexDriveline::rolling_speed_ratios() const {
@@ -232,7 +249,8 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
                         [](const Sample& s) {
                           return s.shaft_torque_Nm[D::kRearLeftHalfshaft] + s.shaft_torque_Nm[D::kRearRightHalfshaft];
                         }),
-      Recorder::sampled(sn::kEngineTorque, "N m", [&](const Sample& s) { return inputs.engine_torque_Nm(s.t_s); }),
+      Recorder::sampled(sn::kEngineTorque, "N m",
+                        [&](const Sample& s) { return dl.engine_torque_Nm(s.t_s, s.omega_rad_s[D::kEngine]); }),
       Recorder::sampled(sn::kStuck, "1",
                         [](const Sample& s) {
                           return static_cast<double>(s.modes[D::kCoupling] == dynamics::ContactMode::kStuck);
@@ -256,11 +274,22 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
                              [&](const ThermalState& state) { return th.interface_temps_C(state).maxCoeff(); }),
   });
 
+  // Stall: the mapped engine's speed below its stall speed (the first sample that shows it).
+  double stall_time_s = std::numeric_limits<double>::quiet_NaN();
+  const auto watch_stall = [&](const dynamics::Sample& s) {
+    if (dl.engine_mapped() && std::isnan(stall_time_s) && s.omega_rad_s[D::kEngine] < dl.engine().stall_speed_rad_s())
+      stall_time_s = s.t_s;
+  };
+  watch_stall(sim.sample());
   recorder.sample(sim.sample());
   recorder.start(ts);
   double peak_C = th.interface_temps_C(ts).maxCoeff();
   run_multirate(sim, *coupling_context, clutch, ts, D::kCoupling, cfg.duration_s, cfg.slow_step_s, cfg.sample_rate_Hz,
-                [&](const dynamics::Sample& s) { recorder.sample(s); }, [&](const SlowStep& step) {
+                [&](const dynamics::Sample& s) {
+                  watch_stall(s);
+                  recorder.sample(s);
+                },
+                [&](const SlowStep& step) {
                   // The pump strokes with the relative rotation; |Δθ| over the step is its
                   // integral of |Δω| unless the slip reversed within the step.
                   const auto twist = [](const dynamics::Sample& s) {
@@ -280,7 +309,12 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
   // The driveline's lowest oscillating mode with the coupling locked, from the damped
   // eigenvalues, the tyres as their standstill springs (their relaxation damping, which falls
   // with speed, is not in the damping ratio).
-  const auto modes_locked = dl.network().modes({true});
+  // The engine's torque–speed slope at the end enters as a damper −dT/dω on the engine.
+  const dynamics::Sample end = sim.sample();
+  const double engine_slope = dl.engine_slope_Nms_per_rad(end.t_s, end.omega_rad_s[D::kEngine]);
+  Eigen::MatrixXd engine_damping = Eigen::MatrixXd::Zero(D::kNodes, D::kNodes);
+  engine_damping(D::kEngine, D::kEngine) = -engine_slope;
+  const auto modes_locked = dl.network().modes({true}, engine_damping);
   double shuffle_Hz = 0, shuffle_zeta = 0;
   for (Eigen::Index j = 0; j < modes_locked.damped_eigenvalues.size(); ++j) {
     const auto lambda = modes_locked.damped_eigenvalues[j];
@@ -314,6 +348,8 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
       {"shuffle_frequency_Hz", "Hz", shuffle_Hz},
       {"shuffle_damping_ratio", "1", shuffle_zeta},
       {"piston_area_m2", "m^2", dl.hydraulics().piston_area_m2()},
+      {"engine_torque_speed_slope_Nms_per_rad", "N m s/rad", engine_slope},
+      {"engine_stall_time_s", "s", stall_time_s},
       {"integrator_steps", "1", static_cast<double>(cnt.steps)},
       {"stick_events", "1", static_cast<double>(cnt.stick_events)},
       {"breakaway_events", "1", static_cast<double>(cnt.breakaway_events)},

@@ -31,6 +31,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 
 #include "clutch/wet_clutch.hpp"
 #include "dynamics/network.hpp"
@@ -38,6 +39,7 @@
 #include "dynamics/simulation.hpp"
 #include "rig_models/clutch_contact.hpp"
 #include "rig_models/drive_cycle.hpp"
+#include "rig_models/engine.hpp"
 #include "rig_models/haldex_hydraulics.hpp"
 #include "rig_models/tyre.hpp"
 
@@ -75,13 +77,15 @@ struct DrivelineParams {
   double turn_ratio = 1.0;                  // legacy ρ of the front axle, see header
   double nominal_friction = 0.12;           // μ_nom for the piston area (estimate: wet clutch)
   HaldexHydraulicsParams hydraulics;
+  EngineParams engine;                      // used when the manoeuvre gives a throttle
   StickTimeFriction stick_time;             // the `stick_time_static_friction` effect
   // Tolerances as for the rig: speeds of ~1–100 rad/s, twists of ~1e-2 rad.
   dynamics::IntegratorSettings integrator{1e-6, 1e-6, 1e-3, 1e-6, 1e-10};
 };
 
 struct DrivelineInputs {
-  PiecewiseLinear engine_torque_Nm{{0.0}, {0.0}};
+  PiecewiseLinear engine_torque_Nm{{0.0}, {0.0}};  // raw schedule, used without a throttle
+  std::optional<PiecewiseLinear> throttle;         // 0–1: the engine map of rig_models/engine.hpp
   PiecewiseLinear valve_pressure_bar{{0.0}, {30.0}};  // the controller's setting
   double start_speed_km_h = 0.0;  // vehicle speed at t = 0, every part rolling with it
   double turn_radius_m = 0.0;     // R of the rear axle centre, left turn; 0 = straight
@@ -117,6 +121,12 @@ class HaldexDriveline {
   /// The tyre of wheel i (FL, FR, RL, RR).
   const BrushTyre& tyre(int wheel) const { return *tyres_[static_cast<std::size_t>(wheel)]; }
   const RoadLoad& road_load() const { return *road_load_; }
+  /// The engine's torque at a time and crankshaft speed: the map with the throttle, or the schedule.
+  double engine_torque_Nm(double t_s, double omega_rad_s) const;
+  /// dT/dω of the engine there (0 for a raw schedule), N m s/rad.
+  double engine_slope_Nms_per_rad(double t_s, double omega_rad_s) const;
+  bool engine_mapped() const { return throttle_.has_value(); }
+  const Engine& engine() const { return engine_; }
   /// The grade's torque on the vehicle node, −m g sin θ r_w (N m).
   double grade_torque_Nm() const { return grade_torque_Nm_; }
 
@@ -135,6 +145,8 @@ class HaldexDriveline {
   HaldexHydraulics hydraulics_;
   ClutchContact contact_;
   PiecewiseLinear engine_torque_Nm_;
+  std::optional<PiecewiseLinear> throttle_;
+  Engine engine_;
   std::array<double, 4> path_ratios_{};
   std::array<std::shared_ptr<const BrushTyre>, 4> tyres_;
   std::shared_ptr<const RoadLoad> road_load_;

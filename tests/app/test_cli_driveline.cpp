@@ -86,6 +86,15 @@ TEST(CliDriveline, RejectsARigOnlyEffect) {
                   {"s.toml", "bearing_drag", "torque-cell bearing"});
 }
 
+TEST(CliDriveline, RejectsAThrottleWithATorqueScheduleOrAStalledStart) {
+  expect_rejected(test::run_scenario_in("cli_driveline_throttle", replace(tight_turn(), "valve_pressure_bar = 30.0",
+                                                                         "valve_pressure_bar = 30.0\nthrottle = 0.2")),
+                  {"s.toml", "throttle", "either"});
+  const std::string mapped = replace(replace(tight_turn(), "engine_torque_Nm = [0.0, 30.0, 30.0]", "throttle = 0.1"),
+                                     "start_speed_km_h = 5.0", "start_speed_km_h = 2.0");
+  expect_rejected(test::run_scenario_in("cli_driveline_stalled", mapped), {"s.toml", "start_speed_km_h", "stall speed"});
+}
+
 TEST(CliDriveline, RejectsARoadTableOnARig) {
   expect_rejected(test::run_scenario_in("cli_rig_road", test::shipped_scenario_text("rig_stick_slip.toml") +
                                                             "\n[road]\nfriction = [1.0]\n"),
