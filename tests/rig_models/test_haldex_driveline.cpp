@@ -18,12 +18,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <variant>
 
 #include "core/units.hpp"
 
 #include "io/fluid_loader.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/haldex_driveline.hpp"
+#include "rig_models/model.hpp"
 #include "tests/support/recording.hpp"
 
 namespace shudder::rig_models {
@@ -278,6 +280,31 @@ TEST(HaldexDriveline, RejectsNonPhysicalParameters) {
   in = {};
   in.road_friction[2] = 0.0;
   EXPECT_THROW(HaldexDriveline(p, pack.clutch, in), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace shudder::rig_models
+
+namespace shudder::rig_models {
+namespace {
+
+// The shipped launches (docs/driveline.md) do what their files say: on split μ the ice wheel
+// outruns its partner and the rear axle carries more than the front; uphill on snow the coupling
+// carries torque to the rear and the car climbs. Energy closes in both.
+dynamics::Recording shipped(const char* name) {
+  const auto sc = io::load_scenario(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/" + name);
+  return simulate(std::get<DrivelineModel>(sc.model), sc.make_clutch());
+}
+
+TEST(HaldexDriveline, ShippedLaunchesDriveTheRearAxle) {
+  const auto split = shipped("driveline_split_mu_launch.toml");
+  EXPECT_GT(last(split, "wheel_fl_speed_rpm"), 1.03 * last(split, "wheel_fr_speed_rpm"));
+  EXPECT_GT(last(split, "rear_axle_torque_Nm"), 2.0 * last(split, "front_axle_torque_Nm"));
+  EXPECT_LT(test::scalar(split, "mechanical_energy_relative_error"), 1e-6);
+  const auto uphill = shipped("driveline_low_mu_uphill.toml");
+  EXPECT_GT(last(uphill, "vehicle_speed_km_h"), 5.0);
+  EXPECT_GT(last(uphill, "coupling_torque_Nm"), 50.0);
+  EXPECT_LT(test::scalar(uphill, "mechanical_energy_relative_error"), 1e-6);
 }
 
 }  // namespace
