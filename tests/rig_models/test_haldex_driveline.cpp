@@ -301,6 +301,11 @@ TEST(HaldexDriveline, ShippedLaunchesDriveTheRearAxle) {
   EXPECT_GT(last(split, "wheel_fl_speed_rpm"), 1.03 * last(split, "wheel_fr_speed_rpm"));
   EXPECT_GT(last(split, "rear_axle_torque_Nm"), 2.0 * last(split, "front_axle_torque_Nm"));
   EXPECT_LT(test::scalar(split, "mechanical_energy_relative_error"), 1e-6);
+  // Parking at full lock with the valve open: the pack slips on its preload, no wind-up.
+  const auto park = shipped("driveline_parking_turn.toml");
+  EXPECT_EQ(last(park, "pressure_bar"), 0.0);
+  EXPECT_LT(last(park, "coupling_torque_Nm"), 60.0);
+  EXPECT_GT(last(park, "coupling_slip_rpm"), 5.0);
   const auto uphill = shipped("driveline_low_mu_uphill.toml");
   EXPECT_GT(last(uphill, "vehicle_speed_km_h"), 5.0);
   EXPECT_GT(last(uphill, "coupling_torque_Nm"), 50.0);
