@@ -46,7 +46,7 @@ int run_command(const RunOptions& opt) {
     for (const auto& o : outputs) io::require_output_directory(o.path);
     io::require_output_size(out, estimated_run_bytes(scenario),
                             std::to_string(estimated_samples(scenario)) + " samples x " +
-                                std::to_string(kRecordedChannels) + " channels x 8 bytes + snapshots",
+                                std::to_string(recorded_channels(scenario)) + " channels x 8 bytes + snapshots",
                             opt.force);
 
     const auto t0 = std::chrono::steady_clock::now();

@@ -28,11 +28,16 @@ std::uint64_t estimated_samples(const io::Scenario& scenario) {
   return static_cast<std::uint64_t>(std::floor(duration * rate)) + 1;
 }
 
+std::uint64_t recorded_channels(const io::Scenario& scenario) {
+  return std::holds_alternative<rig_models::DrivelineModel>(scenario.model) ? kDrivelineRecordedChannels
+                                                                             : kRecordedChannels;
+}
+
 std::uint64_t estimated_run_bytes(const io::Scenario& scenario) {
   const auto& th = scenario.clutch.thermal;
   const auto cells = static_cast<std::uint64_t>(th.radial_cells) *
                      static_cast<std::uint64_t>(th.separator.cells + th.lining.cells + th.core.cells);
-  return 8 * (estimated_samples(scenario) * kRecordedChannels + snapshot_count(scenario.model) * cells);
+  return 8 * (estimated_samples(scenario) * recorded_channels(scenario) + snapshot_count(scenario.model) * cells);
 }
 
 std::uint64_t estimated_sweep_bytes(const io::Scenario& case_scenario, std::uint64_t cases) {

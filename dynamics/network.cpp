@@ -38,6 +38,15 @@ int TorsionalNetwork::add_contact(FrictionContact c) {
   return static_cast<int>(contacts_.size()) - 1;
 }
 
+int TorsionalNetwork::add_differential(Differential d) {
+  differentials_.push_back(std::move(d));
+  return static_cast<int>(differentials_.size()) - 1;
+}
+int TorsionalNetwork::add_force_element(ForceElement e) {
+  force_elements_.push_back(std::move(e));
+  return static_cast<int>(force_elements_.size()) - 1;
+}
+
 void TorsionalNetwork::check_node(int node, const std::string& what, bool ground_ok) const {
   if (node == kGround && ground_ok) return;
   if (node < 0 || node >= nodes())
@@ -67,6 +76,18 @@ void TorsionalNetwork::validate() const {
     check_node(g.b, "gear '" + g.name + "'", false);
     if (!std::isfinite(g.ratio) || g.ratio == 0.0)
       throw std::invalid_argument("gear '" + g.name + "' ratio must be finite and non-zero");
+  }
+  for (const auto& d : differentials_) {
+    for (int node : {d.carrier, d.left, d.right}) check_node(node, "differential '" + d.name + "'", false);
+    if (d.carrier == d.left || d.carrier == d.right || d.left == d.right)
+      throw std::invalid_argument("differential '" + d.name + "' needs three different nodes");
+  }
+  for (const auto& e : force_elements_) {
+    check_node(e.a, "force element '" + e.name + "'", false);
+    check_node(e.b, "force element '" + e.name + "'", true);
+    if (!e.law) throw std::invalid_argument("force element '" + e.name + "' has no law");
+    if (!std::isfinite(e.ratio) || e.ratio == 0.0)
+      throw std::invalid_argument("force element '" + e.name + "' ratio must be finite and non-zero");
   }
   for (const auto& s : torque_sources_) check_node(s.node, "torque source '" + s.name + "'", false);
   for (const auto& s : speed_sources_) check_node(s.node, "speed source '" + s.name + "'", false);
@@ -104,6 +125,15 @@ Eigen::MatrixXd TorsionalNetwork::stiffness_matrix() const {
   Eigen::MatrixXd k = Eigen::MatrixXd::Zero(nodes(), nodes());
   for (const auto& s : shafts_) stamp(k, s.a, s.b, s.stiffness_Nm_per_rad);
   for (const auto& m : motors_) k(m.node, m.node) += m.ki_Nm_per_rad;
+  // T = k_e (θ_a − ρ θ_b): K += k_e v vᵀ with v = e_a − ρ e_b.
+  for (const auto& e : force_elements_) {
+    const double ke = e.law->modal_stiffness_Nm_per_rad();
+    k(e.a, e.a) += ke;
+    if (e.b == kGround) continue;
+    k(e.b, e.b) += ke * e.ratio * e.ratio;
+    k(e.a, e.b) -= ke * e.ratio;
+    k(e.b, e.a) -= ke * e.ratio;
+  }
   return k;
 }
 
@@ -123,6 +153,10 @@ Eigen::MatrixXd TorsionalNetwork::constraint_basis(const std::vector<bool>& stuc
     rows.push_back(r);
   };
   for (const auto& g : gears_) row(g.a, 1.0, g.b, -g.ratio);
+  for (const auto& d : differentials_) {
+    row(d.left, 1.0, d.right, 1.0);
+    rows.back()[d.carrier] -= 2.0;
+  }
   for (const auto& s : speed_sources_) row(s.node, 1.0, kGround, 0.0);
   for (std::size_t c = 0; c < contacts_.size(); ++c)
     if (c < stuck.size() && stuck[c]) row(contacts_[c].a, 1.0, contacts_[c].b, -1.0);

@@ -11,6 +11,12 @@
 // Shaft k between a and b:  T = k_s (θ_a − θ_b) + c_s (ω_a − ω_b), acting −T on a, +T on b
 //                           (k_s >= 0, c_s >= 0, not both 0: k_s = 0 is a pure damper).
 // Gear (a, b, ratio):       ω_a = ratio · ω_b  (constraint row e_a − ratio e_b).
+// Differential (c; l, r):   ω_l + ω_r = 2 ω_c  (an open differential without inertia of its own:
+//                           constraint row e_l + e_r − 2 e_c; it splits the carrier's torque equally).
+// Force element (a, b, ρ):  a nonlinear element with internal states z (e.g. a tyre with its
+//                           relaxation, a road load): torque −T on a, +ρ T on b, where
+//                           T, dz/dt = law(ω_a, ρ ω_b, z); its power T (ω_a − ρ ω_b) = dE(z)/dt + P_diss
+//                           with E the law's stored energy and P_diss >= 0 what it dissipates.
 // Speed source on i:        ω_i = ω_ref(t)      (constraint row e_i, b = dω_ref/dt).
 // Stuck contact (a, b):     ω_a = ω_b           (constraint row e_a − e_b); its torque −μ.
 // Motor on i (PI speed loop with torque limit and anti-windup by back-calculation):
@@ -47,10 +53,39 @@ struct Gear {
   int a = kGround, b = kGround;
   double ratio = 1.0;  // ω_a = ratio · ω_b
 };
+struct Differential {
+  std::string name;
+  int carrier = kGround, left = kGround, right = kGround;
+};
+
+/// The constitutive law of a ForceElement (see the header).
+class ForceLaw {
+ public:
+  virtual ~ForceLaw() = default;
+  virtual int states() const = 0;
+  struct Output {
+    double torque_Nm = 0.0;     // T, acting −T on a and +ρ T on b
+    double dissipated_W = 0.0;  // P_diss >= 0
+  };
+  /// `omega_b_at_a` = ρ ω_b; writes dz/dt (states() values) into `dzdt`.
+  virtual Output evaluate(double omega_a, double omega_b_at_a, const double* z, double* dzdt) const = 0;
+  virtual double stored_energy_J(const double* z) const = 0;
+  /// The element as a linear spring between a and b for small motions (modes): dT/dθ at rest.
+  virtual double modal_stiffness_Nm_per_rad() const = 0;
+};
+struct ForceElement {
+  std::string name;
+  int a = kGround, b = kGround;  // b may be ground
+  double ratio = 1.0;            // ρ
+  std::shared_ptr<const ForceLaw> law;
+};
+
 struct TorqueSource {
   std::string name;
   int node = kGround;
   TimeFunction torque_Nm;
+  /// If set, used instead of torque_Nm: a torque that depends on the node's speed (an engine map).
+  std::function<double(double t_s, double omega_rad_s)> torque_at_speed_Nm = nullptr;
 };
 struct SpeedSource {
   std::string name;
@@ -88,6 +123,8 @@ class TorsionalNetwork {
   int add_speed_source(SpeedSource s);
   int add_motor(Motor m);
   int add_contact(FrictionContact c);
+  int add_differential(Differential d);
+  int add_force_element(ForceElement e);
 
   int nodes() const { return static_cast<int>(inertias_.size()); }
   const std::vector<Inertia>& inertias() const { return inertias_; }
@@ -97,9 +134,12 @@ class TorsionalNetwork {
   const std::vector<SpeedSource>& speed_sources() const { return speed_sources_; }
   const std::vector<Motor>& motors() const { return motors_; }
   const std::vector<FrictionContact>& contacts() const { return contacts_; }
+  const std::vector<Differential>& differentials() const { return differentials_; }
+  const std::vector<ForceElement>& force_elements() const { return force_elements_; }
 
   /// Mass, stiffness and damping matrices over the nodes (n x n). Motors count as a spring
-  /// K_i and damper K_p to ground (their linear, unsaturated loop); contacts add nothing.
+  /// K_i and damper K_p to ground (their linear, unsaturated loop); contacts add nothing; force
+  /// elements their modal stiffness.
   Eigen::MatrixXd mass_matrix() const;
   Eigen::MatrixXd stiffness_matrix() const;
   Eigen::MatrixXd damping_matrix() const;
@@ -122,6 +162,8 @@ class TorsionalNetwork {
   std::vector<SpeedSource> speed_sources_;
   std::vector<Motor> motors_;
   std::vector<FrictionContact> contacts_;
+  std::vector<Differential> differentials_;
+  std::vector<ForceElement> force_elements_;
 };
 
 }  // namespace shudder::dynamics

@@ -45,5 +45,15 @@ inline constexpr std::string_view kRearAxleTorque = "rear_axle_torque_Nm";
 inline constexpr std::string_view kEngineTorque = "engine_torque_Nm";
 inline constexpr std::string_view kPressure = "pressure_bar";
 inline constexpr std::string_view kClampForce = "clamp_force_N";
+// Per wheel (fl, fr, rl, rr): speed and the tyre's longitudinal force.
+inline constexpr std::string_view kWheelSpeedFL = "wheel_fl_speed_rpm";
+inline constexpr std::string_view kWheelSpeedFR = "wheel_fr_speed_rpm";
+inline constexpr std::string_view kWheelSpeedRL = "wheel_rl_speed_rpm";
+inline constexpr std::string_view kWheelSpeedRR = "wheel_rr_speed_rpm";
+inline constexpr std::string_view kTyreForceFL = "tyre_fl_force_N";
+inline constexpr std::string_view kTyreForceFR = "tyre_fr_force_N";
+inline constexpr std::string_view kTyreForceRL = "tyre_rl_force_N";
+inline constexpr std::string_view kTyreForceRR = "tyre_rr_force_N";
+inline constexpr std::string_view kRoadLoad = "road_load_N";
 
 }  // namespace shudder::dynamics::signal_names

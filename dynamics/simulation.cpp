@@ -20,6 +20,8 @@ struct Simulation::Forces {
   Eigen::VectorXd shaft_T;     // (n_shafts)
   Eigen::VectorXd contact_T;   // (n_contacts) torque on b (−it on a)
   Eigen::VectorXd friction_P;  // (n_contacts) dissipated power, W
+  Eigen::VectorXd element_T;   // (n_force_elements)
+  std::vector<double> element_dz;  // d/dt of the force elements' states
   double source_P = 0.0, damper_P = 0.0;
 };
 
@@ -44,6 +46,12 @@ Simulation::Simulation(const TorsionalNetwork& network, IntegratorSettings setti
   n_ = net_.nodes();
   motor_offset_ = 2 * n_;
   int off = motor_offset_ + static_cast<int>(net_.motors().size());
+  element_offset_ = off;
+  for (const auto& e : net_.force_elements()) {
+    element_state_offset_.push_back(off);
+    off += e.law->states();
+  }
+  element_states_ = off - element_offset_;
   for (const auto& c : net_.contacts()) {
     channel_offset_.push_back(off);
     off += c.law->heat_channels();
@@ -122,7 +130,7 @@ void Simulation::compute(const State& x, double t, Forces& f) const {
   }
   // Torque sources.
   for (const auto& s : net_.torque_sources()) {
-    const double T = s.torque_Nm(t);
+    const double T = s.torque_at_speed_Nm ? s.torque_at_speed_Nm(t, om[s.node]) : s.torque_Nm(t);
     f.tau[s.node] += T;
     f.source_P += T * om[s.node];
   }
@@ -151,6 +159,20 @@ void Simulation::compute(const State& x, double t, Forces& f) const {
     f.tau[mo.node] += T;
     f.source_P += T * om[mo.node];
   }
+  // Force elements: −T on a, +ρ T on b.
+  const auto& elements = net_.force_elements();
+  f.element_T.resize(static_cast<Eigen::Index>(elements.size()));
+  f.element_dz.assign(static_cast<std::size_t>(element_states_), 0.0);
+  for (std::size_t e = 0; e < elements.size(); ++e) {
+    const auto& el = elements[e];
+    const int z = element_state_offset_[e];
+    const auto out = el.law->evaluate(om[el.a], el.ratio * node_speed(el.b), x.data() + z,
+                                      f.element_dz.data() + (z - element_offset_));
+    f.element_T[e] = out.torque_Nm;
+    f.tau[el.a] -= out.torque_Nm;
+    if (el.b != kGround) f.tau[el.b] += el.ratio * out.torque_Nm;
+    f.damper_P += out.dissipated_W;
+  }
   // Slipping contacts: torque −s·T_k on a, +s·T_k on b.
   f.contact_T = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(contacts.size()));
   f.friction_P = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(contacts.size()));
@@ -167,9 +189,10 @@ void Simulation::compute(const State& x, double t, Forces& f) const {
   }
 
   // Constraints: gears, speed sources, stuck contacts. Rows G, right-hand side b.
-  struct Row { int a; double ga; int b; double gb; double rhs; int contact; int speed_node; };
+  struct Row { int a; double ga; int b; double gb; double rhs; int contact; int speed_node; int c = kGround; double gc = 0; };
   std::vector<Row> rows;
   for (const auto& g : net_.gears()) rows.push_back({g.a, 1.0, g.b, -g.ratio, 0.0, -1, -1});
+  for (const auto& d : net_.differentials()) rows.push_back({d.left, 1.0, d.right, 1.0, 0.0, -1, -1, d.carrier, -2.0});
   for (const auto& s : net_.speed_sources())
     rows.push_back({s.node, 1.0, kGround, 0.0, s.acceleration_rad_s2(t), -1, s.node});
   for (std::size_t c = 0; c < contacts.size(); ++c)
@@ -193,6 +216,10 @@ void Simulation::compute(const State& x, double t, Forces& f) const {
     if (w.b != kGround) {
       kkt(n_ + r, w.b) += w.gb;
       kkt(w.b, n_ + r) += w.gb;
+    }
+    if (w.c != kGround) {
+      kkt(n_ + r, w.c) += w.gc;
+      kkt(w.c, n_ + r) += w.gc;
     }
     rhs[n_ + r] = w.rhs;
   }
@@ -218,6 +245,7 @@ void Simulation::derivative(const State& x, State& dxdt, double t) const {
     dxdt[n_ + i] = f.acc[i];
   }
   for (Eigen::Index m = 0; m < f.motor_dI.size(); ++m) dxdt[motor_offset_ + m] = f.motor_dI[m];
+  std::copy(f.element_dz.begin(), f.element_dz.end(), dxdt.begin() + element_offset_);
   const auto& contacts = net_.contacts();
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     dxdt[friction_offset_ + c] = f.friction_P[c];
@@ -250,6 +278,10 @@ double Simulation::project_velocities(State& x, double t) {
     b.push_back(rhs);
   };
   for (const auto& g : net_.gears()) add(g.a, 1.0, g.b, -g.ratio, 0.0);
+  for (const auto& d : net_.differentials()) {
+    add(d.left, 1.0, d.right, 1.0, 0.0);
+    rows.back()[d.carrier] -= 2.0;
+  }
   for (const auto& s : net_.speed_sources()) add(s.node, 1.0, kGround, 0.0, s.speed_rad_s(t));
   for (std::size_t c = 0; c < net_.contacts().size(); ++c)
     if (modes_[c] == ContactMode::kStuck) add(net_.contacts()[c].a, 1.0, net_.contacts()[c].b, -1.0, 0.0);
@@ -351,6 +383,8 @@ EnergyAccount Simulation::energy() const {
     const double d = x_[s.a] - (s.b == kGround ? 0.0 : x_[s.b]);
     e.elastic_J += 0.5 * s.stiffness_Nm_per_rad * d * d;
   }
+  for (std::size_t k = 0; k < net_.force_elements().size(); ++k)
+    e.elastic_J += net_.force_elements()[k].law->stored_energy_J(x_.data() + element_state_offset_[k]);
   for (std::size_t c = 0; c < net_.contacts().size(); ++c) e.friction_heat_J += friction_work_J(static_cast<int>(c));
   e.source_work_J = x_[source_offset_];
   e.damper_loss_J = x_[damper_offset_];
@@ -369,6 +403,7 @@ Sample Simulation::evaluate(const State& x, double t) const {
   s.motor_torque_Nm = f.motor_T;
   s.shaft_torque_Nm = f.shaft_T;
   s.contact_torque_Nm = f.contact_T;
+  s.element_torque_Nm = f.element_T;
   s.contact_slip_rad_s.resize(static_cast<Eigen::Index>(net_.contacts().size()));
   for (std::size_t c = 0; c < net_.contacts().size(); ++c) {
     const auto& k = net_.contacts()[c];

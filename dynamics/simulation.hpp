@@ -18,6 +18,8 @@
 // defined when constraints are dependent (e.g. contacts that lock together). Members of a stuck
 // group receive bitwise-identical accelerations, so their relative speed stays exactly zero.
 //
+// Force elements' internal states (e.g. a tyre's deflection) follow the motors' integrals; their
+// stored energy counts as elastic, their dissipation with the dampers'.
 // Extra integrated states make coupling and energy exact: the heat of every contact channel
 // (e.g. clutch rings, handed to a thermal step), each contact's total friction work, the work
 // of all sources and the damper losses.
@@ -48,6 +50,7 @@ struct Sample {
   Eigen::VectorXd shaft_torque_Nm;          // (n_shafts) k Δθ + c Δω, as carried by the shaft
   Eigen::VectorXd contact_torque_Nm;        // (n_contacts) torque transmitted from a to b
   Eigen::VectorXd contact_slip_rad_s;       // (n_contacts) Δω = ω_a − ω_b
+  Eigen::VectorXd element_torque_Nm;        // (n_force_elements) T of each force element
   std::vector<ContactMode> modes;
 };
 
@@ -56,7 +59,7 @@ struct EnergyAccount {
   double kinetic_J = 0.0, initial_kinetic_J = 0.0;
   double elastic_J = 0.0, initial_elastic_J = 0.0;
   double friction_heat_J = 0.0;     // all contacts, incl. the tiny losses of stick impacts
-  double damper_loss_J = 0.0;
+  double damper_loss_J = 0.0;       // dampers and the force elements' dissipation
   /// source work − Δkinetic − Δelastic − friction heat − damper losses
   double imbalance_J() const {
     return source_work_J - (kinetic_J - initial_kinetic_J) - (elastic_J - initial_elastic_J) -
@@ -117,8 +120,10 @@ class Simulation {
   const TorsionalNetwork& net_;
   IntegratorSettings cfg_;
   int n_ = 0;
-  int motor_offset_ = 0, friction_offset_ = 0, source_offset_ = 0, damper_offset_ = 0, size_ = 0;
+  int motor_offset_ = 0, element_offset_ = 0, friction_offset_ = 0, source_offset_ = 0, damper_offset_ = 0, size_ = 0;
   std::vector<int> channel_offset_;
+  std::vector<int> element_state_offset_;  // per force element, into the state
+  int element_states_ = 0;                 // all force elements' states
   std::vector<ContactMode> modes_;
   std::vector<double> stick_start_s_;
   std::vector<double> impact_loss_J_;

@@ -210,7 +210,14 @@ void read_driveline(TomlTable& root, Draft& s) {
     positive("wheel_inertia_kg_m2", p.wheel_inertia_kg_m2);
     positive("tyre_stiffness_Nm_per_rad", p.tyre_stiffness_Nm_per_rad);
     positive("tyre_slip_stiffness_N", p.tyre_slip_stiffness_N);
-    positive("tyre_reference_speed_m_s", p.tyre_reference_speed_m_s);
+    positive("side_gear_inertia_kg_m2", p.side_gear_inertia_kg_m2);
+    positive("wheelbase_m", p.wheelbase_m);
+    positive("track_width_m", p.track_width_m);
+    p.front_axle_load_share = d->number_or("front_axle_load_share", p.front_axle_load_share, Range::closed(0.05, 0.95));
+    p.rolling_resistance_coefficient =
+        d->number_or("rolling_resistance_coefficient", p.rolling_resistance_coefficient, Range::closed(0.0, 0.1));
+    p.drag_coefficient_area_m2 = d->number_or("drag_coefficient_area_m2", p.drag_coefficient_area_m2, Range::closed(0.0, 10.0));
+    p.air_density_kg_m3 = d->number_or("air_density_kg_m3", p.air_density_kg_m3, Range::closed(0.0, 2.0));
     positive("vehicle_mass_kg", p.vehicle_mass_kg);
     positive("wheel_radius_m", p.wheel_radius_m);
     positive("coupling_half_inertia_kg_m2", p.coupling_half_inertia_kg_m2);
@@ -218,6 +225,27 @@ void read_driveline(TomlTable& root, Draft& s) {
     // Straight (1) to well past full lock (≈ 1.05); below 1 the rear axle would run ahead,
     // which a car in a turn does not do.
     p.turn_ratio = d->number_or("turn_ratio", p.turn_ratio, Range::closed(1.0, 1.2));
+    if (auto e = d->optional_table("engine")) {
+      auto& ep = p.engine;
+      if (e->has("full_load_speed_rpm") || e->has("full_load_torque_Nm")) {
+        const auto speeds = e->numbers("full_load_speed_rpm", Range::non_negative(), 1);
+        for (std::size_t i = 1; i < speeds.size(); ++i)
+          if (speeds[i] <= speeds[i - 1]) e->fail("full_load_speed_rpm", "must be strictly increasing");
+        const auto torques = e->numbers("full_load_torque_Nm", Range::closed(0.0, 2000.0), 1);
+        if (torques.size() != speeds.size())
+          e->fail("full_load_torque_Nm", "needs one value per full_load_speed_rpm (" + std::to_string(speeds.size()) + ")");
+        ep.full_load_torque_Nm = rig_models::PiecewiseLinear(speeds, torques);
+      }
+      ep.stall_speed_rpm = e->number_or("stall_speed_rpm", ep.stall_speed_rpm, Range::closed(50.0, 2000.0));
+      ep.idle_speed_rpm = e->number_or("idle_speed_rpm", ep.idle_speed_rpm,
+                                       Range{ep.stall_speed_rpm, 3000.0, true, false});
+      ep.max_speed_rpm = e->number_or("max_speed_rpm", ep.max_speed_rpm, Range{ep.idle_speed_rpm, 20000.0, true, false});
+      ep.idle_governor_gain_Nms_per_rad =
+          e->number_or("idle_governor_gain_Nms_per_rad", ep.idle_governor_gain_Nms_per_rad, Range::closed(0.0, 1000.0));
+      ep.loss_torque_idle_Nm = e->number_or("loss_torque_idle_Nm", ep.loss_torque_idle_Nm, Range::closed(0.0, 500.0));
+      ep.loss_torque_max_Nm = e->number_or("loss_torque_max_Nm", ep.loss_torque_max_Nm, Range::closed(0.0, 500.0));
+      e->finish();
+    }
     if (auto h = d->optional_table("hydraulics")) {
       auto& hp = p.hydraulics;
       hp.relief_pressure_bar = h->number_or("relief_pressure_bar", hp.relief_pressure_bar, Range::closed(1.0, 200.0));
@@ -232,11 +260,46 @@ void read_driveline(TomlTable& root, Draft& s) {
   const auto times = m.numbers("time_s", Range::non_negative(), 1);
   for (std::size_t i = 1; i < times.size(); ++i)
     if (times[i] <= times[i - 1]) m.fail("time_s", "must be strictly increasing");
-  s.manoeuvre.engine_torque_Nm = read_schedule(m, "engine_torque_Nm", times, Range::closed(-1000.0, 1000.0));
+  if (m.has("throttle")) {
+    // The engine map (rig_models/engine.hpp) instead of a raw torque schedule.
+    if (m.has("engine_torque_Nm"))
+      m.fail("throttle", "engine_torque_Nm is given too; give either a throttle (the engine map) or a torque schedule");
+    s.manoeuvre.throttle = read_schedule(m, "throttle", times, Range::closed(0.0, 1.0));
+  } else {
+    s.manoeuvre.engine_torque_Nm = read_schedule(m, "engine_torque_Nm", times, Range::closed(-1000.0, 1000.0));
+  }
   if (m.has("valve_pressure_bar"))
-    s.manoeuvre.valve_pressure_bar = read_schedule(m, "valve_pressure_bar", times, Range::closed(0.0, 200.0));
+    // The valve cannot hold more than the relief valve lets through.
+    s.manoeuvre.valve_pressure_bar =
+        read_schedule(m, "valve_pressure_bar", times, Range::closed(0.0, p.hydraulics.relief_pressure_bar));
   s.manoeuvre.start_speed_km_h = m.number_or("start_speed_km_h", 0.0, Range::closed(0.0, 300.0));
+  if (s.manoeuvre.throttle) {
+    // No clutch or torque converter is modelled: the engine turns with the wheels, so a mapped
+    // engine must start above its stall speed (launches from rest take a torque schedule).
+    const double engine_rpm = s.manoeuvre.start_speed_km_h / 3.6 / p.wheel_radius_m * p.gear_ratio *
+                              p.final_drive_ratio * 60.0 / (2.0 * 3.14159265358979323846);
+    if (engine_rpm <= p.engine.stall_speed_rpm)
+      m.fail("start_speed_km_h", "puts the engine at " + std::to_string(static_cast<int>(engine_rpm)) +
+                                     " rpm, at or below its stall speed; a throttle needs the engine above " +
+                                     std::to_string(static_cast<int>(p.engine.stall_speed_rpm)) +
+                                     " rpm at the start (no clutch is modelled; launch from rest with engine_torque_Nm)");
+  }
+  if (m.has("turn_radius_m")) {
+    if (p.turn_ratio != 1.0)
+      m.fail("turn_radius_m", "[driveline] turn_ratio is given too; give either turn_radius_m or turn_ratio");
+    // Geometry: the inner rear wheel must roll forwards, R > track / 2.
+    s.manoeuvre.turn_radius_m = m.number_or("turn_radius_m", 0.0, Range{0.5 * p.track_width_m, 1e4, true, false});
+  }
   m.finish();
+  if (auto road = root.optional_table("road")) {
+    // μ per wheel (FL, FR, RL, RR) or one for all; > 0 (ice ≈ 0.1, dry asphalt ≈ 1).
+    const auto mu = road->numbers("friction", Range{0.0, 2.0, true, false}, 1);
+    if (mu.size() != 1 && mu.size() != 4)
+      road->fail("friction", "needs one value or four (FL, FR, RL, RR), got " + std::to_string(mu.size()));
+    for (std::size_t w = 0; w < 4; ++w) s.manoeuvre.road_friction[w] = mu[mu.size() == 1 ? 0 : w];
+    s.manoeuvre.grade_percent = road->number_or("grade_percent", 0.0, Range::closed(-50.0, 50.0));
+    road->finish();
+  }
 }
 
 // The scenario's structs that effects write into (the registry's EffectTarget).
@@ -270,9 +333,14 @@ void read_effects(TomlTable& root, Draft& s) {
   }
   const ModelKind kind = s.kind;
   for (const auto& effect : rig_models::effect_registry())
-    if (const auto why = rig_models::inert_reason(effect, kind); why && effect.enabled(target))
+    if (const auto why = rig_models::inert_reason(effect, kind); why && effect.enabled(target)) {
+      // On a car, a rig-only effect is a mistake in the file, not a harmless no-op.
+      if (kind == ModelKind::kDriveline)
+        effects->fail(effect.name, "has no effect in a driveline scenario (" + std::string(*why) +
+                                       "); disable it or remove the table");
       s.warnings.push_back("effect " + effect.name + " has no effect in a " +
                            std::string(model_kind_name(kind)) + " scenario (" + std::string(*why) + ")");
+    }
   effects->finish();
 }
 
@@ -357,6 +425,8 @@ Scenario load_scenario_text(const std::string& text, const std::string& path) {
   }
   if (s.kind != ModelKind::kDriveline && root.has("driveline"))
     root.fail("driveline", "[driveline] belongs to type = \"driveline\" scenarios");
+  if (s.kind != ModelKind::kDriveline && root.has("road"))
+    root.fail("road", "[road] belongs to type = \"driveline\" scenarios");
   if (s.kind == ModelKind::kRig) {
     read_rig(root, s);
     s.settings.sample_rate_Hz = 1000.0;  // rig default: the thesis' typical 100 S/s–1 kS/s

@@ -28,6 +28,20 @@ double pack_torque_per_newton(const DrivelineParams& p, const clutch::WetClutch&
   return clutch.params().sliding_interfaces * p.nominal_friction * clutch.mean_radius_m();
 }
 
+// ρ of each wheel (FL, FR, RL, RR) for the turn of the inputs or the legacy axle ratio.
+std::array<double, 4> wheel_path_ratios(const DrivelineParams& p, const DrivelineInputs& in) {
+  const double rho = p.turn_ratio;
+  if (in.turn_radius_m == 0.0) return {rho, rho, 1.0, 1.0};
+  if (rho != 1.0)
+    throw std::invalid_argument("driveline: turn_ratio and turn_radius_m are alternatives; give one");
+  const double r = in.turn_radius_m, half = 0.5 * p.track_width_m, l = p.wheelbase_m;
+  if (!std::isfinite(r) || !(r > half))
+    throw std::invalid_argument("driveline: turn radius " + std::to_string(r) +
+                                " m must exceed half the track (" + std::to_string(half) +
+                                " m): the inner rear wheel would stand or run backwards");
+  return {std::hypot(l, r - half) / r, std::hypot(l, r + half) / r, (r - half) / r, (r + half) / r};
+}
+
 }  // namespace
 
 HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::WetClutch& clutch,
@@ -35,24 +49,58 @@ HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::We
     : p_(params),
       hydraulics_(params.hydraulics, pack_torque_per_newton(params, clutch)),
       contact_(clutch, BearingDrag{}, params.stick_time),
-      engine_torque_Nm_(inputs.engine_torque_Nm) {
+      engine_torque_Nm_(inputs.engine_torque_Nm),
+      throttle_(inputs.throttle),
+      engine_(params.engine) {
   for (const auto& [v, what] : std::initializer_list<std::pair<double, const char*>>{
            {p_.engine_inertia_kg_m2, "engine_inertia_kg_m2"}, {p_.gear_ratio, "gear_ratio"},
            {p_.final_drive_ratio, "final_drive_ratio"}, {p_.front_diff_inertia_kg_m2, "front_diff_inertia_kg_m2"},
            {p_.halfshaft_stiffness_Nm_per_rad, "halfshaft_stiffness_Nm_per_rad"},
+           {p_.side_gear_inertia_kg_m2, "side_gear_inertia_kg_m2"},
            {p_.wheel_inertia_kg_m2, "wheel_inertia_kg_m2"}, {p_.tyre_stiffness_Nm_per_rad, "tyre_stiffness_Nm_per_rad"},
-           {p_.tyre_slip_stiffness_N, "tyre_slip_stiffness_N"}, {p_.tyre_reference_speed_m_s, "tyre_reference_speed_m_s"},
+           {p_.tyre_slip_stiffness_N, "tyre_slip_stiffness_N"}, {p_.wheelbase_m, "wheelbase_m"},
+           {p_.track_width_m, "track_width_m"},
            {p_.vehicle_mass_kg, "vehicle_mass_kg"}, {p_.wheel_radius_m, "wheel_radius_m"}, {p_.ptu_ratio, "ptu_ratio"},
            {p_.ptu_inertia_kg_m2, "ptu_inertia_kg_m2"}, {p_.propshaft_stiffness_Nm_per_rad, "propshaft_stiffness_Nm_per_rad"},
            {p_.coupling_half_inertia_kg_m2, "coupling_half_inertia_kg_m2"}, {p_.rear_diff_ratio, "rear_diff_ratio"},
            {p_.rear_diff_inertia_kg_m2, "rear_diff_inertia_kg_m2"}, {p_.turn_ratio, "turn_ratio"},
-           {p_.nominal_friction, "nominal_friction"}, {p_.belt_share, "belt_share"}})
+           {p_.nominal_friction, "nominal_friction"}, {p_.front_axle_load_share, "front_axle_load_share"}})
     require_positive(v, what);
-  if (!(p_.belt_share < 1)) throw std::invalid_argument("driveline: belt_share must be in (0, 1)");
+  if (!(p_.front_axle_load_share < 1))
+    throw std::invalid_argument("driveline: front_axle_load_share must be in (0, 1)");
   for (const auto& [v, what] : std::initializer_list<std::pair<double, const char*>>{
            {p_.halfshaft_damping_Nms_per_rad, "halfshaft_damping_Nms_per_rad"},
-           {p_.propshaft_damping_Nms_per_rad, "propshaft_damping_Nms_per_rad"}})
+           {p_.propshaft_damping_Nms_per_rad, "propshaft_damping_Nms_per_rad"},
+           {p_.rolling_resistance_coefficient, "rolling_resistance_coefficient"},
+           {p_.drag_coefficient_area_m2, "drag_coefficient_area_m2"}, {p_.air_density_kg_m3, "air_density_kg_m3"}})
     if (!std::isfinite(v) || v < 0) throw std::invalid_argument(std::string("driveline: ") + what + " must be >= 0");
+  for (double mu : inputs.road_friction)
+    if (!std::isfinite(mu) || !(mu > 0))
+      throw std::invalid_argument("driveline: road friction must be a finite value > 0 at every wheel");
+  if (!std::isfinite(inputs.grade_percent) || std::abs(inputs.grade_percent) > 100)
+    throw std::invalid_argument("driveline: grade must be within ±100 %");
+
+  path_ratios_ = wheel_path_ratios(p_, inputs);
+  const double theta = std::atan(inputs.grade_percent / 100.0);
+  const double weight_N = p_.vehicle_mass_kg * kGravity_m_s2;
+  const double r = p_.wheel_radius_m;
+  for (int w = 0; w < 4; ++w) {
+    const double share = w < 2 ? p_.front_axle_load_share : 1.0 - p_.front_axle_load_share;
+    TyreParams t;
+    t.slip_stiffness_N = p_.tyre_slip_stiffness_N;
+    t.relaxation_length_m = p_.tyre_slip_stiffness_N * r * r / p_.tyre_stiffness_Nm_per_rad;
+    t.vertical_load_N = 0.5 * share * weight_N * std::cos(theta);
+    t.road_friction = inputs.road_friction[static_cast<std::size_t>(w)];
+    t.radius_m = r;
+    tyres_[static_cast<std::size_t>(w)] = std::make_shared<const BrushTyre>(t);
+  }
+  RoadLoadParams rl;
+  rl.rolling_resistance_N = p_.rolling_resistance_coefficient * weight_N * std::cos(theta);
+  rl.drag_coefficient_area_m2 = p_.drag_coefficient_area_m2;
+  rl.air_density_kg_m3 = p_.air_density_kg_m3;
+  rl.radius_m = r;
+  road_load_ = std::make_shared<const RoadLoad>(rl);
+  grade_torque_Nm_ = -weight_N * std::sin(theta) * r;
 
   // Builds the network once to validate it; runs build their own around their context.
   build(std::make_shared<ClutchContactLaw>(contact_, std::make_shared<ClutchContext>(start_inputs())));
@@ -72,59 +120,84 @@ dynamics::TorsionalNetwork HaldexDriveline::network() const {
 
 dynamics::TorsionalNetwork HaldexDriveline::build(std::shared_ptr<const dynamics::ContactLaw> law) const {
   const double r = p_.wheel_radius_m;
-  const double tyre_damping = p_.tyre_slip_stiffness_N * r * r / p_.tyre_reference_speed_m_s;
   using dynamics::Gear;
   using dynamics::Inertia;
   using dynamics::Shaft;
   dynamics::TorsionalNetwork n;
   n.add_inertia(Inertia{"engine", p_.engine_inertia_kg_m2});
   n.add_inertia(Inertia{"front_diff", p_.front_diff_inertia_kg_m2});
-  const double rim = 2 * p_.wheel_inertia_kg_m2 * (1 - p_.belt_share), belt = 2 * p_.wheel_inertia_kg_m2 * p_.belt_share;
-  n.add_inertia(Inertia{"front_wheels", rim});
-  n.add_inertia(Inertia{"front_belts", belt});
-  // The front tyres' road contact carries no mass of its own; a small inertia keeps the node
-  // a node (the gear to the vehicle reflects it: 1e-6 of the vehicle's).
-  n.add_inertia(Inertia{"front_road", 1e-6 * p_.vehicle_mass_kg * r * r});
+  n.add_inertia(Inertia{"front_side_left", p_.side_gear_inertia_kg_m2});
+  n.add_inertia(Inertia{"front_side_right", p_.side_gear_inertia_kg_m2});
+  n.add_inertia(Inertia{"wheel_fl", p_.wheel_inertia_kg_m2});
+  n.add_inertia(Inertia{"wheel_fr", p_.wheel_inertia_kg_m2});
   n.add_inertia(Inertia{"vehicle", p_.vehicle_mass_kg * r * r});
   n.add_inertia(Inertia{"ptu", p_.ptu_inertia_kg_m2});
   n.add_inertia(Inertia{"coupling_in", p_.coupling_half_inertia_kg_m2});
   n.add_inertia(Inertia{"coupling_out", p_.coupling_half_inertia_kg_m2});
   n.add_inertia(Inertia{"rear_diff", p_.rear_diff_inertia_kg_m2});
-  n.add_inertia(Inertia{"rear_wheels", rim});
-  n.add_inertia(Inertia{"rear_belts", belt});
+  n.add_inertia(Inertia{"rear_side_left", p_.side_gear_inertia_kg_m2});
+  n.add_inertia(Inertia{"rear_side_right", p_.side_gear_inertia_kg_m2});
+  n.add_inertia(Inertia{"wheel_rl", p_.wheel_inertia_kg_m2});
+  n.add_inertia(Inertia{"wheel_rr", p_.wheel_inertia_kg_m2});
 
-  n.add_shaft(Shaft{"front_halfshafts", kFrontDiff, kFrontWheels, 2 * p_.halfshaft_stiffness_Nm_per_rad,
-                    2 * p_.halfshaft_damping_Nms_per_rad});
-  n.add_shaft(Shaft{"front_tyre_carcass", kFrontWheels, kFrontBelts, 2 * p_.tyre_stiffness_Nm_per_rad, 0.0});
-  n.add_shaft(Shaft{"front_tyre_slip", kFrontBelts, kFrontRoad, 0.0, 2 * tyre_damping});
+  const double k_h = p_.halfshaft_stiffness_Nm_per_rad, c_h = p_.halfshaft_damping_Nms_per_rad;
+  n.add_shaft(Shaft{"front_left_halfshaft", kFrontSideLeft, kFrontLeftWheel, k_h, c_h});
+  n.add_shaft(Shaft{"front_right_halfshaft", kFrontSideRight, kFrontRightWheel, k_h, c_h});
   n.add_shaft(Shaft{"propshaft", kPtu, kCouplingIn, p_.propshaft_stiffness_Nm_per_rad, p_.propshaft_damping_Nms_per_rad});
-  n.add_shaft(Shaft{"rear_halfshafts", kRearDiff, kRearWheels, 2 * p_.halfshaft_stiffness_Nm_per_rad,
-                    2 * p_.halfshaft_damping_Nms_per_rad});
-  n.add_shaft(Shaft{"rear_tyre_carcass", kRearWheels, kRearBelts, 2 * p_.tyre_stiffness_Nm_per_rad, 0.0});
-  n.add_shaft(Shaft{"rear_tyre_slip", kRearBelts, kVehicle, 0.0, 2 * tyre_damping});
+  n.add_shaft(Shaft{"rear_left_halfshaft", kRearSideLeft, kRearLeftWheel, k_h, c_h});
+  n.add_shaft(Shaft{"rear_right_halfshaft", kRearSideRight, kRearRightWheel, k_h, c_h});
 
   n.add_gear(Gear{"gearbox_and_final_drive", kEngine, kFrontDiff, p_.gear_ratio * p_.final_drive_ratio});
-  n.add_gear(Gear{"turn", kFrontRoad, kVehicle, p_.turn_ratio});
   n.add_gear(Gear{"power_take_off", kPtu, kFrontDiff, p_.ptu_ratio});
   n.add_gear(Gear{"rear_differential", kCouplingOut, kRearDiff, p_.rear_diff_ratio});
+  n.add_differential(dynamics::Differential{"front_differential", kFrontDiff, kFrontSideLeft, kFrontSideRight});
+  n.add_differential(dynamics::Differential{"rear_differential", kRearDiff, kRearSideLeft, kRearSideRight});
+
+  const std::array<int, 4> wheel_nodes{kFrontLeftWheel, kFrontRightWheel, kRearLeftWheel, kRearRightWheel};
+  const std::array<const char*, 4> tyre_names{"tyre_fl", "tyre_fr", "tyre_rl", "tyre_rr"};
+  for (std::size_t w = 0; w < 4; ++w)
+    n.add_force_element(dynamics::ForceElement{tyre_names[w], wheel_nodes[w], kVehicle, path_ratios_[w], tyres_[w]});
+  n.add_force_element(dynamics::ForceElement{"road_load", kVehicle, dynamics::kGround, 1.0, road_load_});
 
   n.add_contact(dynamics::FrictionContact{"haldex_coupling", kCouplingIn, kCouplingOut, std::move(law)});
-  const PiecewiseLinear engine = engine_torque_Nm_;
-  n.add_torque_source(dynamics::TorqueSource{"engine", kEngine, [engine](double t) { return engine(t); }});
+  if (throttle_) {
+    const Engine engine = engine_;
+    const PiecewiseLinear throttle = *throttle_;
+    n.add_torque_source(dynamics::TorqueSource{
+        "engine", kEngine, {}, [engine, throttle](double t, double w) { return engine.torque_Nm(w, throttle(t)); }});
+  } else {
+    const PiecewiseLinear engine = engine_torque_Nm_;
+    n.add_torque_source(dynamics::TorqueSource{"engine", kEngine, [engine](double t) { return engine(t); }});
+  }
+  if (grade_torque_Nm_ != 0.0) {
+    const double grade = grade_torque_Nm_;
+    n.add_torque_source(dynamics::TorqueSource{"grade", kVehicle, [grade](double) { return grade; }});
+  }
   n.validate();
   return n;
 }
 
+double HaldexDriveline::engine_torque_Nm(double t, double w) const {
+  return throttle_ ? engine_.torque_Nm(w, (*throttle_)(t)) : engine_torque_Nm_(t);
+}
+
+double HaldexDriveline::engine_slope_Nms_per_rad(double t, double w) const {
+  return throttle_ ? engine_.torque_speed_slope_Nms_per_rad(w, (*throttle_)(t)) : 0.0;
+}
+
 Eigen::VectorXd HaldexDriveline::rolling_speed_ratios() const {
-  // Rolling without tyre slip or twist: the front axle follows the front road (ρ ω_v), the rear
-  // axle the vehicle; the coupling's two sides then differ by i_ptu (ρ − 1) ω_v.
+  // Rolling without tyre slip or twist: each wheel and its side gear follow the wheel's path
+  // (ρ_i ω_v), each carrier the mean of its two; the coupling's two sides then differ.
   Eigen::VectorXd s(kNodes);
   s[kVehicle] = 1.0;
-  s[kFrontRoad] = p_.turn_ratio;
-  s[kFrontBelts] = s[kFrontWheels] = s[kFrontDiff] = p_.turn_ratio;
+  s[kFrontSideLeft] = s[kFrontLeftWheel] = path_ratios_[kFL];
+  s[kFrontSideRight] = s[kFrontRightWheel] = path_ratios_[kFR];
+  s[kRearSideLeft] = s[kRearLeftWheel] = path_ratios_[kRL];
+  s[kRearSideRight] = s[kRearRightWheel] = path_ratios_[kRR];
+  s[kFrontDiff] = 0.5 * (path_ratios_[kFL] + path_ratios_[kFR]);
+  s[kRearDiff] = 0.5 * (path_ratios_[kRL] + path_ratios_[kRR]);
   s[kEngine] = p_.gear_ratio * p_.final_drive_ratio * s[kFrontDiff];
   s[kPtu] = s[kCouplingIn] = p_.ptu_ratio * s[kFrontDiff];
-  s[kRearBelts] = s[kRearWheels] = s[kRearDiff] = 1.0;
   s[kCouplingOut] = p_.rear_diff_ratio * s[kRearDiff];
   return s;
 }
@@ -161,17 +234,24 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
                         [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kEngine]); }),
       Recorder::sampled(sn::kVehicleSpeed, "km/h",
                         [&](const Sample& s) { return s.omega_rad_s[D::kVehicle] * params.wheel_radius_m * 3.6; }),
+      // An axle's wheel speed: the mean of its two wheels, the carrier's speed.
       Recorder::sampled(sn::kFrontWheelSpeed, "rpm",
-                        [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kFrontWheels]); }),
+                        [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kFrontDiff]); }),
       Recorder::sampled(sn::kRearWheelSpeed, "rpm",
-                        [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kRearWheels]); }),
+                        [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kRearDiff]); }),
       Recorder::sampled(sn::kCouplingSlip, "rpm",
                         [](const Sample& s) { return units::rad_s_to_rpm(s.contact_slip_rad_s[D::kCoupling]); }),
       Recorder::sampled(sn::kCouplingTorque, "N m", [](const Sample& s) { return s.contact_torque_Nm[D::kCoupling]; }),
       Recorder::sampled(sn::kFrontAxleTorque, "N m",
-                        [](const Sample& s) { return s.shaft_torque_Nm[D::kFrontHalfshafts]; }),
-      Recorder::sampled(sn::kRearAxleTorque, "N m", [](const Sample& s) { return s.shaft_torque_Nm[D::kRearHalfshafts]; }),
-      Recorder::sampled(sn::kEngineTorque, "N m", [&](const Sample& s) { return inputs.engine_torque_Nm(s.t_s); }),
+                        [](const Sample& s) {
+                          return s.shaft_torque_Nm[D::kFrontLeftHalfshaft] + s.shaft_torque_Nm[D::kFrontRightHalfshaft];
+                        }),
+      Recorder::sampled(sn::kRearAxleTorque, "N m",
+                        [](const Sample& s) {
+                          return s.shaft_torque_Nm[D::kRearLeftHalfshaft] + s.shaft_torque_Nm[D::kRearRightHalfshaft];
+                        }),
+      Recorder::sampled(sn::kEngineTorque, "N m",
+                        [&](const Sample& s) { return dl.engine_torque_Nm(s.t_s, s.omega_rad_s[D::kEngine]); }),
       Recorder::sampled(sn::kStuck, "1",
                         [](const Sample& s) {
                           return static_cast<double>(s.modes[D::kCoupling] == dynamics::ContactMode::kStuck);
@@ -179,18 +259,39 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
       Recorder::sampled(sn::kPressure, "bar", [&](const Sample&) { return pressure_bar; }),
       Recorder::sampled(sn::kClampForce, "N",
                         [&](const Sample&) { return dl.hydraulics().clamp_force_N(pressure_bar); }),
+      Recorder::sampled(sn::kWheelSpeedFL, "rpm", [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kFrontLeftWheel]); }),
+      Recorder::sampled(sn::kWheelSpeedFR, "rpm", [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kFrontRightWheel]); }),
+      Recorder::sampled(sn::kWheelSpeedRL, "rpm", [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kRearLeftWheel]); }),
+      Recorder::sampled(sn::kWheelSpeedRR, "rpm", [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kRearRightWheel]); }),
+      Recorder::sampled(sn::kTyreForceFL, "N", [&](const Sample& s) { return s.element_torque_Nm[D::kFL] / params.wheel_radius_m; }),
+      Recorder::sampled(sn::kTyreForceFR, "N", [&](const Sample& s) { return s.element_torque_Nm[D::kFR] / params.wheel_radius_m; }),
+      Recorder::sampled(sn::kTyreForceRL, "N", [&](const Sample& s) { return s.element_torque_Nm[D::kRL] / params.wheel_radius_m; }),
+      Recorder::sampled(sn::kTyreForceRR, "N", [&](const Sample& s) { return s.element_torque_Nm[D::kRR] / params.wheel_radius_m; }),
+      Recorder::sampled(sn::kRoadLoad, "N",
+                        [&](const Sample& s) { return s.element_torque_Nm[D::kRoadLoadElement] / params.wheel_radius_m; }),
       Recorder::interpolated(sn::kInterfaceMeanTemp, "degC",
                              [&](const ThermalState& state) { return th.mean_interface_temp_C(state); }),
       Recorder::interpolated(sn::kInterfaceMaxTemp, "degC",
                              [&](const ThermalState& state) { return th.interface_temps_C(state).maxCoeff(); }),
   });
 
+  // Stall: the mapped engine's speed below its stall speed (the first sample that shows it).
+  double stall_time_s = std::numeric_limits<double>::quiet_NaN();
+  const auto watch_stall = [&](const dynamics::Sample& s) {
+    if (dl.engine_mapped() && std::isnan(stall_time_s) && s.omega_rad_s[D::kEngine] < dl.engine().stall_speed_rad_s())
+      stall_time_s = s.t_s;
+  };
+  watch_stall(sim.sample());
   recorder.sample(sim.sample());
   recorder.start(ts);
   double peak_C = th.interface_temps_C(ts).maxCoeff();
   clutch::FrictionDataRange data_range(*clutch.fluid().friction);
   run_multirate(sim, *coupling_context, clutch, ts, D::kCoupling, cfg.duration_s, cfg.slow_step_s, cfg.sample_rate_Hz,
-                [&](const dynamics::Sample& s) { recorder.sample(s); }, [&](const SlowStep& step) {
+                [&](const dynamics::Sample& s) {
+                  watch_stall(s);
+                  recorder.sample(s);
+                },
+                [&](const SlowStep& step) {
                   // The pump strokes with the relative rotation; |Δθ| over the step is its
                   // integral of |Δω| unless the slip reversed within the step.
                   const auto twist = [](const dynamics::Sample& s) {
@@ -210,12 +311,20 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
   const auto me = sim.energy();
   const auto& cnt = sim.counters();
   // The driveline's lowest oscillating mode with the coupling locked, from the damped
-  // eigenvalues (the tyres' slip is a damper: the undamped modes would leave the car loose).
-  const auto modes_locked = dl.network().modes({true});
+  // eigenvalues, the tyres as their standstill springs (their relaxation damping, which falls
+  // with speed, is not in the damping ratio).
+  // The engine's torque–speed slope at the end enters as a damper −dT/dω on the engine.
+  const dynamics::Sample end = sim.sample();
+  const double engine_slope = dl.engine_slope_Nms_per_rad(end.t_s, end.omega_rad_s[D::kEngine]);
+  Eigen::MatrixXd engine_damping = Eigen::MatrixXd::Zero(D::kNodes, D::kNodes);
+  engine_damping(D::kEngine, D::kEngine) = -engine_slope;
+  const auto modes_locked = dl.network().modes({true}, engine_damping);
   double shuffle_Hz = 0, shuffle_zeta = 0;
   for (Eigen::Index j = 0; j < modes_locked.damped_eigenvalues.size(); ++j) {
     const auto lambda = modes_locked.damped_eigenvalues[j];
-    if (std::abs(lambda.imag()) > 1e-6) {
+    // The car's rolling is a rigid-body mode (a double zero eigenvalue, which the eigensolver
+    // returns as a pair with a small spurious imaginary part): oscillations start at 0.5 Hz.
+    if (std::abs(lambda.imag()) > units::kTwoPi * 0.5) {
       shuffle_Hz = std::abs(lambda.imag()) / units::kTwoPi;
       shuffle_zeta = -lambda.real() / std::abs(lambda);
       break;
@@ -243,6 +352,8 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
       {"shuffle_frequency_Hz", "Hz", shuffle_Hz},
       {"shuffle_damping_ratio", "1", shuffle_zeta},
       {"piston_area_m2", "m^2", dl.hydraulics().piston_area_m2()},
+      {"engine_torque_speed_slope_Nms_per_rad", "N m s/rad", engine_slope},
+      {"engine_stall_time_s", "s", stall_time_s},
       {"integrator_steps", "1", static_cast<double>(cnt.steps)},
       {"stick_events", "1", static_cast<double>(cnt.stick_events)},
       {"breakaway_events", "1", static_cast<double>(cnt.breakaway_events)},

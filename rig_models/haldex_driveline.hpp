@@ -1,35 +1,37 @@
 #pragma once
 // An all-wheel-drive car with a Haldex limited-slip coupling (thesis Introduction; PHYSICS.md §8)
-// as a torsional network, lumped per axle (the two wheels of an axle, and their half-shafts and
-// tyres, act in parallel as one):
+// as a torsional network, per wheel (left and right on each axle, open differentials):
 //
-//   engine ═(i_g·i_f)═ front_diff ─half-shafts─ front_wheels ─k_t─ front_belts ─c_t─ front_road ═(ρ)═ vehicle
-//                          ║ (i_ptu)                                                                         │
-//                         ptu ─propeller shaft─ coupling_in ┤Haldex├ coupling_out                            │
-//                                                                ║ (i_r)                                     │
-//                                               rear_diff ─half-shafts─ rear_wheels ─k_t─ rear_belts ─c_t────┘
+//   engine ═(i_g·i_f)═ front_diff ⟨open diff⟩ front_side_l/r ─half-shaft─ wheel_fl/fr ~tyre(ρ_fl/fr)~ vehicle
+//                          ║ (i_ptu)                                                                    │
+//                         ptu ─propeller shaft─ coupling_in ┤Haldex├ coupling_out                         │
+//                                                                ║ (i_r)                                  │
+//                                               rear_diff ⟨open diff⟩ rear_side_l/r ─half-shaft─ wheel_rl/rr ~tyre(ρ_rl/rr)~┘
+//   vehicle ~road load~ ground;  grade: a constant torque −m g sin θ r on the vehicle.
 //
-//   ═(r)═ a gear: ω_a = r ω_b;  ─ a shaft (spring k and damper c in parallel);  ┤├ the clutch.
-//   vehicle: the car's mass as an inertia m r_w² turning at v / r_w (no road load yet).
-//   front_road: where the front tyres meet the road. In a turn the front axle travels a longer
-//     path than the rear: ρ = path_front / path_rear (1 straight; ≈ 1.03–1.05 at full lock, from
-//     1/cos of the mean steering angle). With the coupling locked, ρ > 1 winds the driveline up:
-//     the tight-turn case where a Haldex clutch slips slowly under high torque.
+//   ═(r)═ a gear: ω_a = r ω_b;  ─ a shaft (spring k and damper c);  ┤├ the clutch;
+//   ⟨open diff⟩ ω_l + ω_r = 2 ω_carrier (dynamics::Differential; equal torques left and right);
+//   ~tyre(ρ)~ rig_models/tyre.hpp: the brush tyre with its relaxation length and the wheel's road
+//     friction, between the wheel and the vehicle seen through ρ.
+//   vehicle: the car's mass as an inertia m r_w² turning at v / r_w, v the rear axle centre's speed.
+//   ρ_i: wheel i's path over the rear axle centre's in a steady turn (kinematic, no side slip):
+//     rear wheels (R ∓ w/2)/R, front wheels √(L² + (R ∓ w/2)²)/R for a left turn of radius R
+//     (rear axle centre), wheelbase L, track w. With the coupling locked, the front axle's longer
+//     path winds the driveline up through the tyres' slip: the tight-turn case. (A legacy
+//     `turn_ratio` ρ puts both front wheels on ρ and both rear on 1.)
+//   Vertical loads: static, F_z = m g cos θ × the axle's share / 2 (no load transfer yet).
 //   the coupling: the wet clutch of clutch/ (WetClutch as a ClutchContactLaw) clamped by
 //     F = F_preload + A p from HaldexHydraulics, p advanced per slow step with the coupling's
 //     relative rotation and held over the next (as the disc temperatures are).
 //
-// Tyres: the carcass, a spring k_t from the rim to the belt and tread, in series with the slip,
-// a damper c_t = C_κ r_w² / v_ref from the belt to the road (the longitudinal slip stiffness C_κ
-// read as a damping at the reference speed v_ref): the linear tyre about an operating point. In
-// series, so that a steady slip (a turn) carries a steady torque instead of winding the carcass
-// up. It cannot spin a wheel: slip limits are not modelled yet.
-//
 // Parameters are not in the thesis: every default below is an ESTIMATE for a mid-size AWD car of
-// the thesis' era (1.7 t, 1st gear), named and overridable. Together they put the first
-// driveline (shuffle) mode at a few Hz, in PHYSICS.md's 2–10 Hz.
+// the thesis' era (1.7 t, 1st gear; wheelbase and track of a VW Golf IV 4motion, the first
+// Haldex car), named and overridable. Together they put the first driveline (shuffle) mode at a
+// few Hz, in PHYSICS.md's 2–10 Hz.
 
+#include <array>
 #include <memory>
+#include <optional>
 
 #include "clutch/wet_clutch.hpp"
 #include "dynamics/network.hpp"
@@ -37,7 +39,9 @@
 #include "dynamics/simulation.hpp"
 #include "rig_models/clutch_contact.hpp"
 #include "rig_models/drive_cycle.hpp"
+#include "rig_models/engine.hpp"
 #include "rig_models/haldex_hydraulics.hpp"
+#include "rig_models/tyre.hpp"
 
 namespace shudder::rig_models {
 
@@ -48,12 +52,20 @@ struct DrivelineParams {
   double front_diff_inertia_kg_m2 = 0.05;   // estimate: gearbox output, differential
   double halfshaft_stiffness_Nm_per_rad = 6000.0;  // estimate, per shaft (×2 per axle)
   double halfshaft_damping_Nms_per_rad = 5.0;      // estimate, per shaft
+  double side_gear_inertia_kg_m2 = 0.005;   // estimate, per differential side gear
   double wheel_inertia_kg_m2 = 1.0;         // estimate, per wheel with tyre and brake disc
-  double belt_share = 0.35;                 // estimate: tread and belt's part of it (~4 kg at 0.3 m)
-  double tyre_stiffness_Nm_per_rad = 50000.0;  // estimate, per tyre: ~5e5 N/m at the patch × r²
-  double tyre_slip_stiffness_N = 1.5e5;     // C_κ per tyre (estimate: typical passenger tyre)
-  double tyre_reference_speed_m_s = 5.0;    // v_ref for the slip damping (estimate: manoeuvring)
+  // Carcass: c_x r², c_x ≈ 5e5 N/m (estimate; Pacejka §7.2 gives 3–10e5 N/m for car tyres); the
+  // relaxation length is σ = C_κ r² / (c_x r²) = 0.31 m with the slip stiffness below (Pacejka:
+  // σ ≈ 0.1–0.5 m, about a tyre radius).
+  double tyre_stiffness_Nm_per_rad = 50000.0;
+  double tyre_slip_stiffness_N = 1.5e5;     // C_κ per tyre (estimate: ~36 F_z, passenger tyre)
   double vehicle_mass_kg = 1700.0;          // estimate
+  double wheelbase_m = 2.51;                // VW Golf IV (public data)
+  double track_width_m = 1.51;              // VW Golf IV, mean of front and rear (public data)
+  double front_axle_load_share = 0.6;       // estimate: front-engined car
+  double rolling_resistance_coefficient = 0.012;  // f_r (Gillespie ch. 4: 0.01–0.015)
+  double drag_coefficient_area_m2 = 0.67;   // c_d A: Golf IV c_d 0.32 × A 2.1 m² (public, rounded)
+  double air_density_kg_m3 = 1.2;
   double wheel_radius_m = 0.32;             // estimate: 205/55 R16 rolling radius
   double ptu_ratio = 2.6;                   // estimate: power take-off, front diff → propshaft
   double ptu_inertia_kg_m2 = 0.01;          // estimate
@@ -62,18 +74,23 @@ struct DrivelineParams {
   double coupling_half_inertia_kg_m2 = 0.02;  // estimate, each side of the disc pack
   double rear_diff_ratio = 2.6;             // estimate; = ptu_ratio: front and rear axles match
   double rear_diff_inertia_kg_m2 = 0.03;    // estimate
-  double turn_ratio = 1.0;                  // ρ, see header
+  double turn_ratio = 1.0;                  // legacy ρ of the front axle, see header
   double nominal_friction = 0.12;           // μ_nom for the piston area (estimate: wet clutch)
   HaldexHydraulicsParams hydraulics;
+  EngineParams engine;                      // used when the manoeuvre gives a throttle
   StickTimeFriction stick_time;             // the `stick_time_static_friction` effect
   // Tolerances as for the rig: speeds of ~1–100 rad/s, twists of ~1e-2 rad.
   dynamics::IntegratorSettings integrator{1e-6, 1e-6, 1e-3, 1e-6, 1e-10};
 };
 
 struct DrivelineInputs {
-  PiecewiseLinear engine_torque_Nm{{0.0}, {0.0}};
+  PiecewiseLinear engine_torque_Nm{{0.0}, {0.0}};  // raw schedule, used without a throttle
+  std::optional<PiecewiseLinear> throttle;         // 0–1: the engine map of rig_models/engine.hpp
   PiecewiseLinear valve_pressure_bar{{0.0}, {30.0}};  // the controller's setting
   double start_speed_km_h = 0.0;  // vehicle speed at t = 0, every part rolling with it
+  double turn_radius_m = 0.0;     // R of the rear axle centre, left turn; 0 = straight
+  std::array<double, 4> road_friction{1.0, 1.0, 1.0, 1.0};  // μ per wheel: FL, FR, RL, RR (dry asphalt ≈ 1)
+  double grade_percent = 0.0;     // road gradient, uphill > 0 (100 tan θ)
 };
 
 struct DrivelineSettings {
@@ -99,12 +116,28 @@ class HaldexDriveline {
   const DrivelineParams& params() const { return p_; }
   /// Speed of every node per unit vehicle speed (rad/s per rad/s) when all rolls together.
   Eigen::VectorXd rolling_speed_ratios() const;
+  /// ρ of each wheel (FL, FR, RL, RR), see the header.
+  const std::array<double, 4>& path_ratios() const { return path_ratios_; }
+  /// The tyre of wheel i (FL, FR, RL, RR).
+  const BrushTyre& tyre(int wheel) const { return *tyres_[static_cast<std::size_t>(wheel)]; }
+  const RoadLoad& road_load() const { return *road_load_; }
+  /// The engine's torque at a time and crankshaft speed: the map with the throttle, or the schedule.
+  double engine_torque_Nm(double t_s, double omega_rad_s) const;
+  /// dT/dω of the engine there (0 for a raw schedule), N m s/rad.
+  double engine_slope_Nms_per_rad(double t_s, double omega_rad_s) const;
+  bool engine_mapped() const { return throttle_.has_value(); }
+  const Engine& engine() const { return engine_; }
+  /// The grade's torque on the vehicle node, −m g sin θ r_w (N m).
+  double grade_torque_Nm() const { return grade_torque_Nm_; }
 
-  enum Node { kEngine, kFrontDiff, kFrontWheels, kFrontBelts, kFrontRoad, kVehicle, kPtu, kCouplingIn,
-              kCouplingOut, kRearDiff, kRearWheels, kRearBelts, kNodes };
-  enum ShaftIndex { kFrontHalfshafts, kFrontCarcass, kFrontSlip, kPropshaft, kRearHalfshafts, kRearCarcass,
-                    kRearSlip };
+  enum Node { kEngine, kFrontDiff, kFrontSideLeft, kFrontSideRight, kFrontLeftWheel, kFrontRightWheel, kVehicle,
+              kPtu, kCouplingIn, kCouplingOut, kRearDiff, kRearSideLeft, kRearSideRight, kRearLeftWheel,
+              kRearRightWheel, kNodes };
+  enum ShaftIndex { kFrontLeftHalfshaft, kFrontRightHalfshaft, kPropshaft, kRearLeftHalfshaft, kRearRightHalfshaft };
+  enum Wheel { kFL, kFR, kRL, kRR };
   static constexpr int kCoupling = 0;
+  static constexpr int kRoadLoadElement = 4;  // force elements: the four tyres (Wheel order), then the road load
+  static constexpr double kGravity_m_s2 = 9.80665;
 
  private:
   dynamics::TorsionalNetwork build(std::shared_ptr<const dynamics::ContactLaw> coupling_law) const;
@@ -112,6 +145,12 @@ class HaldexDriveline {
   HaldexHydraulics hydraulics_;
   ClutchContact contact_;
   PiecewiseLinear engine_torque_Nm_;
+  std::optional<PiecewiseLinear> throttle_;
+  Engine engine_;
+  std::array<double, 4> path_ratios_{};
+  std::array<std::shared_ptr<const BrushTyre>, 4> tyres_;
+  std::shared_ptr<const RoadLoad> road_load_;
+  double grade_torque_Nm_ = 0;
 };
 
 /// Simulates the driveline with the coupling's thermal model and hydraulics (multi-rate) and

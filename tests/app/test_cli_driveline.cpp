@@ -4,6 +4,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "io/hdf5_run.hpp"
 #include "tests/support/cli.hpp"
 #include "tests/support/recording.hpp"
@@ -36,18 +38,67 @@ TEST(CliDriveline, RunsTheTightTurnAndWritesItsSignals) {
   EXPECT_TRUE(std::filesystem::exists(dir / "rep" / "coupling.png"));
   EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;  // no rig plot attempted
   const auto rec = io::read_run_hdf5((dir / "turn.h5").string());
+  // The size guard's count (app/output_size.hpp, docs/run_output.md): 24 channels.
+  EXPECT_EQ(rec.signals.size(), 24u);
   // At the start the car rolls at 5 km/h and the axles differ by the turn: the coupling slips at
-  // i_ptu (ρ − 1) ω_front_diff = 2.6 × 0.04 × (5/3.6/0.32 rad/s) = 4.31 rpm.
-  EXPECT_NEAR(test::signal(rec, "coupling_slip_rpm").front(), 2.6 * 0.04 * 5 / 3.6 / 0.32 * 60 / (2 * 3.14159265358979),
-              1e-6);
+  // i_ptu (ρ̄_f − ρ̄_r) ω_v, ρ̄_f the front wheels' mean path ratio on R = 9 m (wheelbase 2.51 m,
+  // track 1.51 m), ρ̄_r = 1.
+  const double rho_f = 0.5 * (std::hypot(2.51, 9.0 - 0.755) + std::hypot(2.51, 9.0 + 0.755)) / 9.0;
+  EXPECT_NEAR(test::signal(rec, "coupling_slip_rpm").front(),
+              2.6 * (rho_f - 1.0) * 5 / 3.6 / 0.32 * 60 / (2 * 3.14159265358979), 1e-6);
   // The pump turns that slip into pressure, and the pack's torque follows it.
   EXPECT_GT(test::signal(rec, "pressure_bar").back(), 1.0);
   EXPECT_GT(test::signal(rec, "coupling_torque_Nm").back(), test::signal(rec, "coupling_torque_Nm").front());
 }
 
 TEST(CliDriveline, RejectsATurnRatioBelowOne) {
-  expect_rejected(test::run_scenario_in("cli_driveline_turn", replace(tight_turn(), "turn_ratio = 1.04", "turn_ratio = 0.9")),
+  expect_rejected(test::run_scenario_in("cli_driveline_turn",
+                                        replace(tight_turn("\n[driveline]\nturn_ratio = 0.9\n"), "turn_radius_m = 9.0", "")),
                   {"s.toml", "turn_ratio", "[1, 1.2]"});
+}
+
+// Bad input the issue names: impossible geometry, road μ <= 0, a valve setting beyond the relief
+// valve, a rig-only effect on a car: exit 2, one line naming file and key.
+TEST(CliDriveline, RejectsATurnInsideHalfTheTrack) {
+  expect_rejected(test::run_scenario_in("cli_driveline_radius", replace(tight_turn(), "turn_radius_m = 9.0", "turn_radius_m = 0.7")),
+                  {"s.toml", "turn_radius_m", "(0.755, 10000]"});
+}
+
+TEST(CliDriveline, RejectsBothTurnKeys) {
+  expect_rejected(test::run_scenario_in("cli_driveline_both", tight_turn("\n[driveline]\nturn_ratio = 1.04\n")),
+                  {"s.toml", "turn_radius_m", "either"});
+}
+
+TEST(CliDriveline, RejectsANonPositiveRoadFriction) {
+  expect_rejected(test::run_scenario_in("cli_driveline_mu", tight_turn("\n[road]\nfriction = [0.1, 0.0, 1.0, 1.0]\n")),
+                  {"s.toml", "friction", "(0, 2]"});
+  expect_rejected(test::run_scenario_in("cli_driveline_mu3", tight_turn("\n[road]\nfriction = [0.1, 1.0, 1.0]\n")),
+                  {"s.toml", "friction", "four (FL, FR, RL, RR)"});
+}
+
+TEST(CliDriveline, RejectsAValveSettingBeyondTheRelief) {
+  expect_rejected(test::run_scenario_in("cli_driveline_valve", replace(tight_turn(), "valve_pressure_bar = 30.0", "valve_pressure_bar = 31.0")),
+                  {"s.toml", "valve_pressure_bar", "[0, 30]"});
+}
+
+TEST(CliDriveline, RejectsARigOnlyEffect) {
+  expect_rejected(test::run_scenario_in("cli_driveline_effect", tight_turn("\n[effects.bearing_drag]\nenabled = true\n")),
+                  {"s.toml", "bearing_drag", "torque-cell bearing"});
+}
+
+TEST(CliDriveline, RejectsAThrottleWithATorqueScheduleOrAStalledStart) {
+  expect_rejected(test::run_scenario_in("cli_driveline_throttle", replace(tight_turn(), "valve_pressure_bar = 30.0",
+                                                                         "valve_pressure_bar = 30.0\nthrottle = 0.2")),
+                  {"s.toml", "throttle", "either"});
+  const std::string mapped = replace(replace(tight_turn(), "engine_torque_Nm = [0.0, 30.0, 30.0]", "throttle = 0.1"),
+                                     "start_speed_km_h = 5.0", "start_speed_km_h = 2.0");
+  expect_rejected(test::run_scenario_in("cli_driveline_stalled", mapped), {"s.toml", "start_speed_km_h", "stall speed"});
+}
+
+TEST(CliDriveline, RejectsARoadTableOnARig) {
+  expect_rejected(test::run_scenario_in("cli_rig_road", test::shipped_scenario_text("rig_stick_slip.toml") +
+                                                            "\n[road]\nfriction = [1.0]\n"),
+                  {"s.toml", "road", "driveline"});
 }
 
 TEST(CliDriveline, RejectsARigDriveCycle) {
