@@ -22,7 +22,7 @@ struct Probe {
 };
 
 Probe measure(const clutch::WetClutch& clutch, const clutch::ThermalState& s,
-              const DriveCycle& cycle, const BearingDrag& drag, double t) {
+              const DriveCycle& cycle, const BearingDrag& drag, const TorqueCell& cell, double t) {
   const auto& th = clutch.thermal();
   const double slip_rpm = cycle.slip_speed_rpm(t);
   const double slip = units::rpm_to_rad_s(slip_rpm);
@@ -36,7 +36,7 @@ Probe measure(const clutch::WetClutch& clutch, const clutch::ThermalState& s,
   const double denom = n * force * clutch.mean_radius_m();
   return Probe{slip_rpm,
                force,
-               m + drag_Nm,
+               cell.reading_Nm(m + drag_Nm),
                m,
                s.sensor_temp_C,
                th.ir_C(s),
@@ -90,7 +90,7 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
   const long n_samples = static_cast<long>(std::floor(cfg.duration_s * cfg.sample_rate_Hz + 1e-9)) + 1;
   long next_sample = 0;
   recorder.sample(0.0);
-  recorder.start(measure(clutch, state, cycle, cfg.bearing_drag, 0.0));
+  recorder.start(measure(clutch, state, cycle, cfg.bearing_drag, cfg.torque_cell, 0.0));
   next_sample = 1;
 
   std::vector<double> snaps = cfg.snapshot_times_s;
@@ -124,7 +124,7 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
     data_range.add(dt, units::rpm_to_rad_s(cycle.slip_speed_rpm(tm)), th.ring_radius_m(), ring_T, cycle.normal_force_N(tm));
     state.time_s = t1;  // exact end time, free of accumulated round-off
 
-    const Probe after = measure(clutch, state, cycle, cfg.bearing_drag, t1);
+    const Probe after = measure(clutch, state, cycle, cfg.bearing_drag, cfg.torque_cell, t1);
     while (next_sample < n_samples) {
       const double ts = static_cast<double>(next_sample) / cfg.sample_rate_Hz;
       if (ts > t1 + 1e-12) break;

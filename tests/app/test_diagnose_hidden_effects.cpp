@@ -152,6 +152,32 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"none", "", "", {}, {}}),
     [](const ::testing::TestParamInfo<Case>& i) { return i.param.name; });
 
+// Rig faults of the measurement chain (issue 12 item 4), each hidden alone and beside one
+// effect of the other channel. Magnitudes: a 3 % torque-cell gain (a cell calibrated on a
+// wrong lever arm or a drifted bridge), a 3 N m offset (2.4 sigma of the torque noise, an
+// unzeroed cell), a +2 K thermocouple (a type K junction's standard tolerance is ±2.2 K).
+// Order: the larger gap first (a 1 s lag moves the temperature by several sigma, more than a
+// 3 % gain or 3 N m moves the torque).
+const char* const kGain = "[effects.torque_sensor_gain]\nenabled = true\ngain = 1.03\n";
+const char* const kTorqueOffset = "[effects.torque_sensor_offset]\nenabled = true\noffset_Nm = 3.0\n";
+const char* const kThermocouple = "[effects.thermocouple_offset]\nenabled = true\noffset_K = 2.0\n";
+const char* const kLag = "[effects.temperature_sensor_lag]\nenabled = true\ntime_constant_s = 1.0\n";
+const char* const kDrag = "[effects.bearing_drag]\nenabled = true\nequivalent_mu = 0.005\n";
+
+INSTANTIATE_TEST_SUITE_P(
+    DiagnoseRigFaults, HiddenEffect,
+    ::testing::Values(
+        Case{"torque_sensor_gain", kGain, "", {"torque_sensor_gain"}, {{"gain", 1.03}}},
+        Case{"torque_sensor_gain_and_lag", std::string(kGain) + kLag, "",
+             {"temperature_sensor_lag", "torque_sensor_gain"}, {{"gain", 1.03}, {"time_constant_s", 1.0}}},
+        Case{"torque_sensor_offset", kTorqueOffset, "", {"torque_sensor_offset"}, {{"offset_Nm", 3.0}}},
+        Case{"torque_sensor_offset_and_lag", std::string(kTorqueOffset) + kLag, "",
+             {"temperature_sensor_lag", "torque_sensor_offset"}, {{"offset_Nm", 3.0}, {"time_constant_s", 1.0}}},
+        Case{"thermocouple_offset", kThermocouple, "", {"thermocouple_offset"}, {{"offset_K", 2.0}}},
+        Case{"thermocouple_offset_and_drag", std::string(kThermocouple) + kDrag, "",
+             {"bearing_drag", "thermocouple_offset"}, {{"offset_K", 2.0}, {"equivalent_mu", 0.005}}}),
+    [](const ::testing::TestParamInfo<Case>& i) { return i.param.name; });
+
 // Stick-time static friction acts only where the surfaces stick, so it is hidden in rig runs of
 // stick-slip (scenarios/rig_stick_time_probe.toml: 100 Hz bar, 15 kN, from rest), at 0.5 rpm
 // (sticks of ~0.25 s, past τ: sets max_increase) and 1.5 rpm (sticks of ~0.05 s, near τ: sets
