@@ -28,7 +28,7 @@ Predictions CandidateFitter::predict(const Config& config, const std::vector<std
 }
 
 CandidateFitter::FlatConfig CandidateFitter::flatten(const Config& config) const {
-  FlatConfig f{config, {}, {}, {}, {}};
+  FlatConfig f{config, {}, {}, {}, {}, {}};
   for (std::size_t e = 0; e < config.size(); ++e) {
     const auto& c = candidate(config[e].effect);
     for (std::size_t j = 0; j < config[e].values.size(); ++j) {
@@ -36,6 +36,7 @@ CandidateFitter::FlatConfig CandidateFitter::flatten(const Config& config) const
       f.values.push_back(config[e].values[j]);
       f.lower.push_back(c.lower[j]);
       f.upper.push_back(c.upper[j]);
+      f.linear.push_back(!c.linear.empty() && c.linear[j]);
     }
   }
   return f;
@@ -53,6 +54,7 @@ std::optional<Config> CandidateFitter::fit_config(const FlatConfig& flat, std::v
   LogParameterProblem problem;
   problem.lower = flat.lower;
   problem.upper = flat.upper;
+  problem.linear = flat.linear;
   problem.starts = std::move(starts);
   problem.residuals = static_cast<int>(misfit_.residual_count(set));
   problem.max_evaluations = opt_.max_evaluations;
@@ -116,8 +118,11 @@ CandidateOutcome CandidateFitter::fit_candidate(const EffectCandidate& c, const 
 std::string CandidateFitter::rejection(const EffectCandidate& c, const std::vector<double>& values,
                                        const CandidateScore& score, double s) const {
   for (std::size_t j = 0; j < values.size(); ++j) {
-    const double margin = opt_.bound_margin * std::log(c.upper[j] / c.lower[j]);
-    if (std::log(values[j] / c.lower[j]) < margin || std::log(c.upper[j] / values[j]) < margin)
+    // The margin is a fraction of the range in the space the parameter is fitted in.
+    const bool linear = !c.linear.empty() && c.linear[j];
+    const auto space = [linear](double v) { return linear ? v : std::log(v); };
+    const double margin = opt_.bound_margin * (space(c.upper[j]) - space(c.lower[j]));
+    if (space(values[j]) - space(c.lower[j]) < margin || space(c.upper[j]) - space(values[j]) < margin)
       return c.parameter_names[j] + " at its bound";
   }
   if (score.signature_correlation < opt_.min_signature) return "signature does not follow the residual";

@@ -51,6 +51,7 @@ class CandidateFitter {
     Config config;
     std::vector<std::pair<std::size_t, std::size_t>> slots;  // (effect, parameter) of config
     std::vector<double> values, lower, upper;
+    std::vector<bool> linear;
     Config with(const std::vector<double>& v) const;
   };
   FlatConfig flatten(const Config& config) const;

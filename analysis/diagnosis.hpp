@@ -50,13 +50,15 @@ struct DiagnosisRun {
 };
 
 /// A switchable effect the diagnosis may add, with the parameters it fits (all > 0, fitted in
-/// log space inside [lower, upper]). An effect without parameters is just switched on.
+/// log space inside [lower, upper]; those marked `linear` are signed and fitted linearly). An
+/// effect without parameters is just switched on.
 struct EffectCandidate {
   std::string name;
   std::string description;                    // one line: what the effect does (for the reason)
   std::vector<std::string> parameter_names;   // scenario keys, e.g. "heat_capacity_J_per_K"
   std::vector<std::vector<double>> starts;    // initial guesses (each of parameter_names' size)
   std::vector<double> lower, upper;
+  std::vector<bool> linear;  // empty, or per parameter (log_parameter_fit.hpp)
 };
 
 /// An effect switched on with parameter values (in parameter_names order).

@@ -13,6 +13,8 @@ namespace {
 // Cost assigned to an infeasible point: the solver sees a wall, never a NaN.
 constexpr double kInfeasibleResidual = 1e6;
 
+bool is_linear(const LogParameterProblem& p, std::size_t j) { return !p.linear.empty() && p.linear[j]; }
+
 struct Tracker {
   const LogParameterProblem& problem;
   int evaluations = 0;
@@ -53,11 +55,15 @@ struct Functor : Eigen::DenseFunctor<double> {
   Functor(Tracker& t, std::vector<double> origin, int n, int m)
       : Eigen::DenseFunctor<double>(n, m), tracker(t), origin(std::move(origin)) {}
   Tracker& tracker;
-  std::vector<double> origin;  // p_start: theta = log(p / p_start)
+  std::vector<double> origin;  // p_start: theta = log(p / p_start), or (p - p_start) / span
 
   std::vector<double> parameters(const InputType& theta) const {
+    const auto& p = tracker.problem;
     std::vector<double> v(origin.size());
-    for (std::size_t j = 0; j < v.size(); ++j) v[j] = origin[j] * std::exp(theta[static_cast<Eigen::Index>(j)]);
+    for (std::size_t j = 0; j < v.size(); ++j) {
+      const double th = theta[static_cast<Eigen::Index>(j)];
+      v[j] = is_linear(p, j) ? origin[j] + th * (p.upper[j] - p.lower[j]) : origin[j] * std::exp(th);
+    }
     return v;
   }
   int operator()(const InputType& theta, ValueType& f) {
@@ -93,10 +99,11 @@ struct Functor : Eigen::DenseFunctor<double> {
 
 LogParameterFit fit_log_parameters(const LogParameterProblem& p) {
   const std::size_t n = p.lower.size();
-  if (n == 0 || p.upper.size() != n || p.starts.empty() || p.residuals < static_cast<int>(n))
+  if (n == 0 || p.upper.size() != n || p.starts.empty() || p.residuals < static_cast<int>(n) ||
+      !(p.linear.empty() || p.linear.size() == n))
     throw std::invalid_argument("fit_log_parameters: inconsistent problem sizes");
   for (std::size_t j = 0; j < n; ++j)
-    if (!(p.lower[j] > 0 && p.upper[j] > p.lower[j]))
+    if (!((is_linear(p, j) || p.lower[j] > 0) && p.upper[j] > p.lower[j]))
       throw std::invalid_argument("fit_log_parameters: bounds must satisfy 0 < lower < upper");
 
   Tracker tracker{p, 0, {}};

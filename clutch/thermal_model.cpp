@@ -192,7 +192,7 @@ ThermalState ThermalModel::initial_state(double start_temp_C, double inner_temp_
   s.inner_temp_C = inner_temp_C;
   s.sump_temp_C = sump_temp_C;
   s.rig_temp_C = start_temp_C;
-  s.sensor_temp_C = thermocouple_C(s);
+  s.sensor_temp_C = thermocouple_C(s) + (p_.thermocouple_offset ? p_.thermocouple_offset_K : 0.0);
   s.energy.initial_stored_J = stored_energy_J(s);
   return s;
 }
@@ -263,7 +263,7 @@ void ThermalModel::step(ThermalState& s, ThermalWorkspace& w, double dt,
   s.time_s += dt;
   if (p_.sump_heating) s.sump_temp_C += to_sump / sump_heat_capacity_J_per_K();
   if (p_.rig_heat_capacity) s.rig_temp_C += to_rig / p_.rig_heat_capacity_J_per_K;
-  const double probe_now = thermocouple_C(s);
+  const double probe_now = thermocouple_C(s) + (p_.thermocouple_offset ? p_.thermocouple_offset_K : 0.0);
   s.sensor_temp_C = p_.temperature_sensor_lag
                         ? probe_now + (s.sensor_temp_C - probe_now) *
                                           std::exp(-dt / p_.sensor_time_constant_s)

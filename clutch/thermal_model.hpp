@@ -78,6 +78,10 @@ struct ThermalParams {
   double rig_conductance_W_per_K = 10.0;     // estimate: FORMATS.md example
   bool temperature_sensor_lag = false;
   double sensor_time_constant_s = 1.0;       // estimate
+  // `thermocouple_offset` (measurement only): the reading is T_probe + dT [K]; estimate — a
+  // type K junction's standard tolerance is ±2.2 K, hence the fit's ±10 K bounds.
+  bool thermocouple_offset = false;
+  double thermocouple_offset_K = 0.0;
 };
 
 /// Running energy account of one interface's domain, joules since the start.
@@ -94,7 +98,7 @@ struct ThermalState {
   double inner_temp_C = 0.0;     // Dirichlet value at R_in (held)
   double sump_temp_C = 0.0;      // Dirichlet value at R_out (stirred sump)
   double rig_temp_C = 0.0;       // lumped rig mass
-  double sensor_temp_C = 0.0;    // thermocouple reading after its lag
+  double sensor_temp_C = 0.0;    // thermocouple reading after its lag (and offset)
   EnergyLedger energy;
 };
 

@@ -303,7 +303,7 @@ void read_driveline(TomlTable& root, Draft& s) {
 }
 
 // The scenario's structs that effects write into (the registry's EffectTarget).
-rig_models::EffectTarget effect_target(Draft& s) { return {s.clutch, s.settings.bearing_drag, s.rig.stick_time}; }
+rig_models::EffectTarget effect_target(Draft& s) { return {s.clutch, s.settings.bearing_drag, s.rig.stick_time, s.settings.torque_cell}; }
 
 Range toml_range(const rig_models::ValueRange& r) { return {r.min, r.max, r.min_exclusive, r.max_exclusive}; }
 

@@ -33,6 +33,7 @@ struct ConstEffectTarget {
   const clutch::WetClutchParams& clutch;
   const BearingDrag& bearing_drag;
   const StickTimeFriction& stick_time;
+  const TorqueCell& torque_cell;
 };
 
 /// The parameter structs effects write into. A scenario builds it from its clutch, bearing drag
@@ -41,8 +42,9 @@ struct EffectTarget {
   clutch::WetClutchParams& clutch;
   BearingDrag& bearing_drag;
   StickTimeFriction& stick_time;
+  TorqueCell& torque_cell;
 
-  operator ConstEffectTarget() const { return {clutch, bearing_drag, stick_time}; }  // NOLINT: a view
+  operator ConstEffectTarget() const { return {clutch, bearing_drag, stick_time, torque_cell}; }  // NOLINT: a view
 };
 
 /// A member of the effect structs, named once by a stateless lambda that serves both
@@ -90,8 +92,9 @@ inline constexpr KeyScale kMilli{1e3, 1e-3};  // mm -> m
 /// basin. Every fitted parameter of one effect has the same number of starts: start j of the
 /// effect is the j-th start of each.
 struct FitSpec {
-  double lower, upper;  // > 0 (the fit works on log values)
+  double lower, upper;  // > 0 (the fit works on log values), unless linear
   std::vector<double> starts;
+  bool linear = false;  // a signed parameter (an offset), fitted on linear values
 };
 
 struct EffectParameter {

@@ -26,7 +26,8 @@ struct Probe {
 // evaluated once for the torque and the heat (WetClutch::torque_Nm and ring_heat_W would each
 // evaluate them, with the same numbers).
 Probe measure(const clutch::WetClutch& clutch, const clutch::ThermalState& s,
-              const DriveCycle& cycle, const BearingDrag& drag, double t, Eigen::VectorXd& heat) {
+              const DriveCycle& cycle, const BearingDrag& drag, const TorqueCell& cell, double t,
+              Eigen::VectorXd& heat) {
   const auto& th = clutch.thermal();
   const double slip_rpm = cycle.slip_speed_rpm(t);
   const double slip = units::rpm_to_rad_s(slip_rpm);
@@ -40,7 +41,7 @@ Probe measure(const clutch::WetClutch& clutch, const clutch::ThermalState& s,
   const double denom = n * force * clutch.mean_radius_m();
   return Probe{slip_rpm,
                force,
-               m + drag_Nm,
+               cell.reading_Nm(m + drag_Nm),
                m,
                s.sensor_temp_C,
                th.ir_C(s),
@@ -95,7 +96,7 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
   long next_sample = 0;
   recorder.sample(0.0);
   Eigen::VectorXd h0, hm, h1;  // ring heat at a step's start, middle and end
-  recorder.start(measure(clutch, state, cycle, cfg.bearing_drag, 0.0, h0));
+  recorder.start(measure(clutch, state, cycle, cfg.bearing_drag, cfg.torque_cell, 0.0, h0));
   next_sample = 1;
 
   std::vector<double> snaps = cfg.snapshot_times_s;
@@ -128,7 +129,7 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
     data_range.add(dt, units::rpm_to_rad_s(cycle.slip_speed_rpm(tm)), th.ring_radius_m(), ring_T, cycle.normal_force_N(tm));
     state.time_s = t1;  // exact end time, free of accumulated round-off
 
-    const Probe after = measure(clutch, state, cycle, cfg.bearing_drag, t1, h0);
+    const Probe after = measure(clutch, state, cycle, cfg.bearing_drag, cfg.torque_cell, t1, h0);
     while (next_sample < n_samples) {
       const double ts = static_cast<double>(next_sample) / cfg.sample_rate_Hz;
       if (ts > t1 + 1e-12) break;

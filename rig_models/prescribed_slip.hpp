@@ -10,6 +10,10 @@
 //
 // Bearing drag (`bearing_drag` effect, rig: equivalent mu = 0.005, thesis Method): the torque
 // cell sees M_cell = M_clutch + mu_b * F * r_b * sign(Δω); it generates no heat in the discs.
+//
+// Torque-cell faults (`torque_sensor_gain`, `torque_sensor_offset` effects; measurement only,
+// the physics is unchanged): the recorded torque is M_rec = g * M_cell + M_0 [N m]. Source:
+// estimate — a mis-calibrated cell's linear error; bounds in rig_models/effect_registry.cpp.
 
 #include <vector>
 
@@ -25,12 +29,23 @@ struct BearingDrag {
   double radius_m = 0.04725;     // estimate: mean radius of the modelled annulus
 };
 
+struct TorqueCell {
+  bool gain_fault = false;
+  double gain = 1.0;  // g, recorded / true
+  bool offset_fault = false;
+  double offset_Nm = 0.0;  // M_0
+  double reading_Nm(double true_Nm) const {
+    return (gain_fault ? gain * true_Nm : true_Nm) + (offset_fault ? offset_Nm : 0.0);
+  }
+};
+
 struct PrescribedSlipSettings {
   double duration_s = 10.0;
   double thermal_step_s = 0.01;
   double sample_rate_Hz = 100.0;
   std::vector<double> snapshot_times_s;  // thermal-field snapshots (nearest step end)
   BearingDrag bearing_drag;
+  TorqueCell torque_cell;
 };
 
 /// Runs the cycle and returns the recording: signals named as FORMATS.md (time_s, speed_rpm,

@@ -85,6 +85,13 @@ ReplayOutput replay(const ReplayModel& model, const ReplayInputs& in) {
   clutch::WetClutchParams cp = model.clutch;
   cp.start_temp_C = start_mean(t, in.temp_C);
   cp.sump_start_temp_C = in.sump_temp_C.size() == t.size() ? start_mean(t, in.sump_temp_C) : cp.start_temp_C;
+  // A thermocouple reading dT too much would carry its offset into the start temperature and
+  // hide it: under that hypothesis the discs start at the sump's reading (oil and discs at rest
+  // together), or without a sump channel at the reading less dT.
+  if (cp.thermal.thermocouple_offset)
+    cp.start_temp_C = in.sump_temp_C.size() == t.size() ? cp.sump_start_temp_C
+                                                         : cp.start_temp_C - cp.thermal.thermocouple_offset_K;
+  if (cp.thermal.thermocouple_offset && in.sump_temp_C.size() != t.size()) cp.sump_start_temp_C = cp.start_temp_C;
   if (in.oil_flow_ml_min) cp.thermal.supply_flow_m3_s = units::ml_min_to_m3_s(*in.oil_flow_ml_min);
   if (in.thermocouple_r_mm) cp.thermal.thermocouple_r_m = *in.thermocouple_r_mm * 1e-3;
   if (in.thermocouple_z_mm) cp.thermal.thermocouple_z_m = *in.thermocouple_z_mm * 1e-3;
@@ -141,10 +148,10 @@ ModelKind model_kind(const ReplayModel& m) { return m.rig ? ModelKind::kRig : Mo
 
 }  // namespace
 
-EffectTarget effect_target(ReplayModel& m) { return {m.clutch, m.settings.bearing_drag, m.rig_params.stick_time}; }
+EffectTarget effect_target(ReplayModel& m) { return {m.clutch, m.settings.bearing_drag, m.rig_params.stick_time, m.settings.torque_cell}; }
 
 ConstEffectTarget effect_target(const ReplayModel& m) {
-  return {m.clutch, m.settings.bearing_drag, m.rig_params.stick_time};
+  return {m.clutch, m.settings.bearing_drag, m.rig_params.stick_time, m.settings.torque_cell};
 }
 
 bool effect_enabled(const ReplayModel& m, std::string_view name) {
@@ -205,6 +212,7 @@ std::vector<analysis::EffectCandidate> replay_candidates(const ReplayModel& mode
       c.parameter_names.push_back(p->key);
       c.lower.push_back(p->fit->lower);
       c.upper.push_back(p->fit->upper);
+      c.linear.push_back(p->fit->linear);
     }
     // Start j of the effect is the j-th start of each fitted parameter.
     const std::size_t starts = fitted.empty() ? 0 : fitted.front()->fit->starts.size();

@@ -10,7 +10,11 @@
 //     torque cell by inverting the loop (rig_models/speed_setpoint.hpp): under a rising
 //     load, and in stick-slip, the drive lags its set point.
 //   * start temperatures: discs and inner boundary at the mean temp_C of the first 0.1 s (at
-//     least 5 samples); sump at the mean sump_temp_C there when measured, else the same.
+//     least 5 samples); sump at the mean sump_temp_C there when measured, else the same. With
+//     `thermocouple_offset` on, the discs start at the sump's mean instead (the offset shows
+//     as the thermocouple's gap to the oil at rest), or without a sump channel at the mean
+//     temp_C less the offset (then the offset is seen only through the temperature
+//     dependence of friction and heat flow: weakly; docs/effects.md).
 //   * metadata: oil_flow_ml_min sets the supply flow; temp_sensor "… r_mm=R z_mm=Z" places
 //     the thermocouple.
 // The model's own recording rate is kept and its torque_Nm and temp_C are interpolated

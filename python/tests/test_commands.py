@@ -82,7 +82,9 @@ def test_diagnose_finds_the_hidden_effect(tmp_path):
     probe = (SOURCE / "scenarios" / "diagnosis_probe.toml").read_text()
     probe = probe.replace('fluid = "fluids/', 'fluid = "' + str(SOURCE / "scenarios" / "fluids") + "/")
     (tmp_path / "hidden.toml").write_text(probe + "\n[effects.bearing_drag]\nenabled = true\nequivalent_mu = 0.005\n")
-    (tmp_path / "model.toml").write_text(probe)
+    # One run at one constant force cannot tell a bearing drag from a torque-cell offset (the same
+    # constant torque, no heat in the clutch): the model declares its cell zeroed, as the CLI test does.
+    (tmp_path / "model.toml").write_text(probe + "\n[effects.torque_sensor_offset]\nenabled = true\noffset_Nm = 0.0\n")
     code, _, err = cli("run", "hidden.toml", "-o", "hidden.h5", "--measurement", "a.csv", "--sample-rate", "100",
                        "--noise", "--seed", "1", cwd=tmp_path)
     assert code == 0, err

@@ -99,6 +99,36 @@ TEST(LogParameterFit, RecoversTheParametersOfADecay) {
   EXPECT_LE(fit.evaluations, problem.max_evaluations);
 }
 
+// A signed parameter (a sensor offset) marked linear: y = A exp(-t/tau) + c with c = -3 is
+// found exactly (noise-free data), from a start of the other sign; a log fit could not reach
+// it (the same bounds are refused without the flag).
+TEST(LogParameterFit, FitsASignedParameterMarkedLinear) {
+  const double A = 2.0, tau = 0.5, c = -3.0;
+  std::vector<double> t, y;
+  for (int i = 0; i <= 40; ++i) {
+    t.push_back(0.05 * i);
+    y.push_back(A * std::exp(-t.back() / tau) + c);
+  }
+  shudder::analysis::LogParameterProblem problem;
+  problem.residuals = static_cast<int>(t.size());
+  problem.lower = {0.1, 0.01, -10.0};
+  problem.upper = {10.0, 10.0, 10.0};
+  problem.linear = {false, false, true};
+  problem.starts = {{1.0, 1.0, 1.0}};
+  problem.max_evaluations = 200;
+  problem.evaluate = [&](const std::vector<double>& v, Eigen::VectorXd& r) {
+    for (std::size_t i = 0; i < t.size(); ++i)
+      r[static_cast<Eigen::Index>(i)] = v[0] * std::exp(-t[i] / v[1]) + v[2] - y[i];
+    return true;
+  };
+  const auto fit = shudder::analysis::fit_log_parameters(problem);
+  ASSERT_TRUE(fit.feasible);
+  EXPECT_NEAR(fit.values[2], c, 1e-4);  // exact data: only LM's stopping rule (0.1 % steps) remains
+  EXPECT_NEAR(fit.values[0] / A, 1.0, 1e-3);
+  problem.linear.clear();
+  EXPECT_THROW(shudder::analysis::fit_log_parameters(problem), std::invalid_argument);
+}
+
 TEST(LogParameterFit, AModelThatCannotBeEvaluatedIsInfeasible) {
   shudder::analysis::LogParameterProblem problem;
   problem.residuals = 3;

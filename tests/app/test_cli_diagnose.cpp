@@ -36,7 +36,10 @@ std::filesystem::path generate(const std::filesystem::path& dir, const std::stri
 TEST(CliDiagnose, WritesJsonReportAndSummary) {
   const auto dir = scratch_dir("cli_diagnose_ok");
   generate(dir, "a", 1);
-  write_file(dir / "model.toml", probe());
+  // One run at one constant force: a bearing drag mu F r and a torque-cell offset are the same
+  // constant (held-out J 0.9941 and 0.9939), so the model declares its cell zeroed (the offset
+  // effect on at 0 is no candidate), as a user with a zeroed cell would.
+  write_file(dir / "model.toml", probe("[effects.torque_sensor_offset]\nenabled = true\noffset_Nm = 0.0\n"));
   const auto r = run_cli("diagnose model.toml a.csv --json d.json --report rep --jobs 2", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("Missing effects: bearing_drag"));

@@ -55,7 +55,8 @@ struct Defaults {
   clutch::WetClutchParams clutch;
   rig_models::BearingDrag bearing_drag;
   rig_models::StickTimeFriction stick_time;
-  rig_models::EffectTarget target() { return {clutch, bearing_drag, stick_time}; }
+  rig_models::TorqueCell torque_cell;
+  rig_models::EffectTarget target() { return {clutch, bearing_drag, stick_time, torque_cell}; }
 };
 
 // The two tables docs/effects.md must carry (effects; parameters), generated from the registry.
@@ -149,9 +150,12 @@ TEST(EffectRegistry, IsWellFormed) {
     EXPECT_FALSE(e.description.empty()) << e.name;
     const auto fitted = rig_models::fitted_parameters(e);
     for (const auto* p : fitted) {
-      // The fit works on log values; every starting guess lies within the bounds, and start j of
-      // the effect takes the j-th start of each parameter, so all have as many.
-      EXPECT_GT(p->fit->lower, 0.0) << e.name << "." << p->key;
+      // The fit works on log values (signed offsets on linear ones); every starting guess lies
+      // within the bounds, and start j of the effect takes the j-th start of each parameter, so
+      // all have as many.
+      if (!p->fit->linear) {
+        EXPECT_GT(p->fit->lower, 0.0) << e.name << "." << p->key;
+      }
       EXPECT_LT(p->fit->lower, p->fit->upper) << e.name << "." << p->key;
       EXPECT_EQ(p->fit->starts.size(), fitted.front()->fit->starts.size()) << e.name << "." << p->key;
       for (double x : p->fit->starts) {
@@ -302,12 +306,14 @@ TEST(EffectRegistry, StickTimeIsACandidateOnTheRigOnly) {
   skipped.clear();
   const auto rig_candidates = rig_models::replay_candidates(rig, &skipped);
   EXPECT_TRUE(is_candidate(rig_candidates, "stick_time_static_friction"));
-  EXPECT_TRUE(skipped.empty());
-  // Default model: every effect off by default is a candidate, each once, in registry order.
+  const std::string loop = ": the rig's torque cell also drives its speed loop; not modelled there yet";
+  EXPECT_EQ(skipped, (std::vector<std::string>{"torque_sensor_gain" + loop, "torque_sensor_offset" + loop}));
+  // Default model: every effect off by default and active on the rig is a candidate, each
+  // once, in registry order.
   std::vector<std::string> expected;
   Defaults d;
   for (const auto& e : effect_registry())
-    if (!e.enabled(d.target())) expected.push_back(e.name);
+    if (!e.enabled(d.target()) && !rig_models::inert_reason(e, ModelKind::kRig)) expected.push_back(e.name);
   std::vector<std::string> got;
   for (const auto& c : rig_candidates) got.push_back(c.name);
   EXPECT_EQ(got, expected);

@@ -184,6 +184,34 @@ TEST(PrescribedSlip, BearingDragAddsMuFrToTheTorqueCellButNoHeat) {
   EXPECT_EQ(signal(dragged, "temp_C").back(), signal(plain, "temp_C").back());
 }
 
+// Measurement faults change only the recorded channel: torque_Nm = g (M_clutch + drag) + M_0
+// exactly (round-off of the interpolation, 1e-12 relative), the heat and the friction state
+// untouched; temp_C = T_probe + dT with the discs' field unchanged.
+TEST(PrescribedSlip, SensorFaultsChangeOnlyTheRecordedChannel) {
+  const WetClutch clutch = case1_clutch();
+  PrescribedSlipSettings faulty = settings(0.01);
+  faulty.torque_cell = {true, 1.03, true, -2.5};
+  const Recording plain = run_prescribed_slip(clutch, case1_cycle(), settings(0.01));
+  const Recording cell = run_prescribed_slip(clutch, case1_cycle(), faulty);
+  const auto& m = signal(cell, "torque_Nm");
+  const auto& m0 = signal(plain, "torque_Nm");
+  ASSERT_EQ(m.size(), m0.size());
+  for (std::size_t k = 0; k < m.size(); ++k)
+    EXPECT_NEAR(m[k], 1.03 * m0[k] - 2.5, 1e-12 * std::abs(m0[k]) + 1e-12) << "sample " << k;
+  EXPECT_EQ(scalar(cell, "heat_generated_J"), scalar(plain, "heat_generated_J"));
+  EXPECT_EQ(signal(cell, "temp_C"), signal(plain, "temp_C"));
+
+  WetClutchParams p = case1_clutch().params();
+  p.thermal.thermocouple_offset = true;
+  p.thermal.thermocouple_offset_K = 2.0;
+  const Recording hot = run_prescribed_slip(WetClutch(p, case1_clutch().fluid()), case1_cycle(), settings(0.01));
+  const auto& tc = signal(hot, "temp_C");
+  const auto& tc0 = signal(plain, "temp_C");
+  for (std::size_t k = 0; k < tc.size(); ++k) EXPECT_NEAR(tc[k] - tc0[k], 2.0, 1e-9) << "sample " << k;
+  EXPECT_EQ(signal(hot, "torque_Nm"), m0);
+  EXPECT_EQ(signal(hot, "interface_max_temp_C"), signal(plain, "interface_max_temp_C"));
+}
+
 TEST(PrescribedSlip, RejectsBadSettingsNamingTheQuantity) {
   const WetClutch clutch = case1_clutch();
   PrescribedSlipSettings s = settings(0.0);
