@@ -1,6 +1,6 @@
 // The Python module `shudder` (docs/python.md): load a scenario (file or TOML string) with keys
 // overridden as `shudder sweep --set` sets them, run it into numpy signals with units, scalars
-// and the verdict, and call sweep / screen / diagnose — the CLI's own code (app/, io/). Errors
+// and the verdict, and call sweep / screen / diagnose / characterise / compare — the CLI's own code (app/, io/). Errors
 // are Python exceptions carrying the CLI's one-line messages: shudder.InputError (the CLI's
 // exit 2: its line after "shudder: error: ") and shudder.NumericalError (exit 1: its line after
 // "shudder: "), both subclasses of shudder.Error. The GIL is released while shudder computes.
@@ -297,6 +297,61 @@ py::object diagnose(const std::string& model, const std::vector<std::string>& ru
   return json.json();
 }
 
+// A CLI option whose allowed values CLI11 checks on the command line: checked here too, so a bad
+// value is the same kind of error (shudder.InputError) naming the option and what is allowed.
+void require_choice(const std::string& option, const std::string& value, const std::vector<std::string>& allowed) {
+  for (const auto& a : allowed)
+    if (value == a) return;
+  std::string list;
+  for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+  throw InputErrorPy(option + ": '" + value + "' is not one of " + list);
+}
+
+py::object characterise(const std::vector<std::string>& runs, const std::string& output, double nu40_cSt,
+                        double nu100_cSt, const std::string& law, const std::string& compensation,
+                        const std::string& temperature_channel, const std::string& radius, int interfaces,
+                        double bearing_drag_mu, const std::string& report, const std::string& name) {
+  require_choice("--law", law, {"maki", "linear", "table"});
+  require_choice("--compensation", compensation, {"none", "linear", "quadratic"});
+  require_choice("--temperature-channel", temperature_channel, {"temp_C", "ir_temp_C"});
+  require_choice("--radius", radius, {"uniform_wear", "uniform_pressure"});
+  if (interfaces < 1 || interfaces > 100) throw InputErrorPy("--interfaces: " + std::to_string(interfaces) + " is not in [1, 100]");
+  if (!(bearing_drag_mu >= 0.0 && bearing_drag_mu <= 0.1))
+    throw InputErrorPy("--bearing-drag-mu: " + std::to_string(bearing_drag_mu) + " is not in [0, 0.1]");
+  app::CharacteriseOptions o;
+  o.runs = runs;
+  o.output = output;
+  o.nu40_cSt = nu40_cSt;
+  o.nu100_cSt = nu100_cSt;
+  o.law = law;
+  o.compensation = compensation;
+  o.temperature_channel = temperature_channel;
+  o.radius = radius;
+  o.interfaces = interfaces;
+  o.bearing_drag_mu = bearing_drag_mu;
+  o.report = report;
+  o.name = name;
+  const ScratchFile json;
+  o.json = json.path;
+  command("characterisation", [&] { return app::characterise_command(o); });
+  return json.json();
+}
+
+py::object compare(const std::vector<std::string>& fluids, const std::vector<std::string>& rigs,
+                   const py::object& temps, double load_N, double viscosity_cSt, const std::string& report) {
+  app::CompareOptions o;
+  o.fluids = fluids;
+  o.rigs = rigs;
+  if (!temps.is_none()) o.temps = comma_separated(temps);
+  o.load_N = load_N;
+  o.viscosity_cSt = viscosity_cSt;
+  o.report = report;
+  const ScratchFile json;
+  o.json = json.path;
+  command("comparison", [&] { return app::compare_command(o); });
+  return json.json();
+}
+
 }  // namespace
 
 PYBIND11_MODULE(shudder, m) {
@@ -360,4 +415,13 @@ PYBIND11_MODULE(shudder, m) {
   m.def("diagnose", &diagnose, py::arg("model"), py::arg("runs"), py::kw_only(), py::arg("jobs") = 0u,
         py::arg("max_effects") = py::none(), py::arg("report") = "",
         "`shudder diagnose`: returns its JSON (shudder-diagnosis/1) as a dict");
+  m.def("characterise", &characterise, py::arg("runs"), py::kw_only(), py::arg("output"), py::arg("nu40_cSt"),
+        py::arg("nu100_cSt"), py::arg("law") = "maki", py::arg("compensation") = "quadratic",
+        py::arg("temperature_channel") = "temp_C", py::arg("radius") = "uniform_wear", py::arg("interfaces") = 1,
+        py::arg("bearing_drag_mu") = 0.0, py::arg("report") = "", py::arg("name") = "",
+        "`shudder characterise`: writes the fluid file `output`; returns the fit (shudder-characterisation/1) "
+        "as a dict (docs/characterisation.md)");
+  m.def("compare", &compare, py::arg("fluids"), py::kw_only(), py::arg("rigs") = std::vector<std::string>{},
+        py::arg("temps") = py::none(), py::arg("load_N") = 20000.0, py::arg("viscosity_cSt") = 10.0,
+        py::arg("report") = "", "`shudder compare`: returns its JSON (shudder-compare/1) as a dict");
 }
