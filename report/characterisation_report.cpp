@@ -11,6 +11,8 @@
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 #include "report/gnuplot.hpp"
+#include "report/plots.hpp"
+#include "report/text_format.hpp"
 
 namespace shudder::report {
 
@@ -18,20 +20,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string f(const char* fmt, double x) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, fmt, x);
-  return buf;
-}
-
-bool gnuplot_found() {
-  const char* path = std::getenv("PATH");
-  std::istringstream dirs(path ? path : "");
-  std::string d;
-  while (std::getline(dirs, d, ':'))
-    if (::access(((d.empty() ? std::string(".") : d) + "/gnuplot").c_str(), X_OK) == 0) return true;
-  return false;
-}
+std::string f(const char* fmt, double x) { return number(x, fmt); }
 
 Plot titled(const std::string& title, const std::string& ylabel) {
   Plot p;
@@ -76,10 +65,7 @@ std::string characterisation_summary(const analysis::Characterisation& c, const 
 
 Report write_characterisation_report(const std::string& dir, const analysis::Characterisation& c,
                                      const std::string& summary_text) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir))
-    throw io::InputError(dir, 0, "", "cannot create the report directory: " + ec.message());
+  make_report_dir(dir);
   Report report;
   const auto path = [&](const std::string& file) { return (fs::path(dir) / file).string(); };
   io::write_text_file_atomically(path("summary.txt"), summary_text);
@@ -117,7 +103,7 @@ Report write_characterisation_report(const std::string& dir, const analysis::Cha
     plots.emplace_back("up_down_" + tag + ".png", ud);
   }
   plots.emplace_back("residuals.png", residuals);
-  const bool gnuplot = gnuplot_found();
+  const bool gnuplot = gnuplot_on_path();
   for (auto& [file, plot] : plots) {
     if (!gnuplot) {
       report.skipped.push_back(file + ": gnuplot not found; install gnuplot (Debian: gnuplot-nox)");

@@ -12,25 +12,14 @@
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 #include "report/gnuplot.hpp"
+#include "report/plots.hpp"
+#include "report/text_format.hpp"
 
 namespace shudder::report {
 
 namespace {
 
-std::string f(const char* fmt, double x) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, fmt, x);
-  return buf;
-}
-
-bool gnuplot_found() {
-  const char* path = std::getenv("PATH");
-  std::istringstream dirs(path ? path : "");
-  std::string d;
-  while (std::getline(dirs, d, ':'))
-    if (::access(((d.empty() ? std::string(".") : d) + "/gnuplot").c_str(), X_OK) == 0) return true;
-  return false;
-}
+std::string f(const char* fmt, double x) { return number(x, fmt); }
 
 }  // namespace
 
@@ -69,15 +58,12 @@ Report write_comparison_report(const std::string& dir, const rig_models::Compari
                                const std::vector<std::pair<std::string, clutch::Fluid>>& fluids,
                                const std::string& summary_text) {
   namespace fs = std::filesystem;
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir))
-    throw io::InputError(dir, 0, "", "cannot create the report directory: " + ec.message());
+  make_report_dir(dir);
   Report report;
   const auto path = [&](const std::string& file) { return (fs::path(dir) / file).string(); };
   io::write_text_file_atomically(path("summary.txt"), summary_text);
   report.files.push_back(path("summary.txt"));
-  const bool gnuplot = gnuplot_found();
+  const bool gnuplot = gnuplot_on_path();
   for (double t : c.temps_C) {
     const std::string file = "mu_v_" + f("%.4g", t) + "C.png";
     if (!gnuplot) {

@@ -16,6 +16,7 @@
 #include "io/atomic_file.hpp"
 #include "report/diagnosis_narrative.hpp"
 #include "report/gnuplot.hpp"
+#include "report/plots.hpp"
 #include "io/input_error.hpp"
 
 namespace shudder::report {
@@ -67,17 +68,6 @@ void candidate_table(std::ostringstream& md, const std::vector<CandidateScore>& 
        << fixed(c.gain, "%+.4g") << " | " << fixed(c.signature_correlation, "%+.3f") << " | "
        << c.evaluations << " | " << cell(c.failure.empty() ? "" : "failed: " + c.failure) << " |\n";
   md << "\n";
-}
-
-bool gnuplot_on_path() {
-  const char* path = std::getenv("PATH");
-  std::istringstream dirs(path ? path : "");
-  std::string d;
-  while (std::getline(dirs, d, ':')) {
-    const std::string exe = (d.empty() ? std::string(".") : d) + "/gnuplot";
-    if (::access(exe.c_str(), X_OK) == 0) return true;
-  }
-  return false;
 }
 
 /// Run names go into gnuplot titles; control characters there would break the script line.
@@ -210,10 +200,7 @@ std::string diagnosis_candidates_markdown(const analysis::DiagnosisResult& r) {
 
 Report write_diagnosis_report(const std::string& dir, const analysis::DiagnosisResult& r,
                               const std::string& summary_text) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir))
-    throw io::InputError(dir, 0, "", "cannot create the report directory: " + ec.message());
+  make_report_dir(dir);
   Report report;
   const auto path = [&](const std::string& f) { return (fs::path(dir) / f).string(); };
   io::write_text_file_atomically(path("summary.txt"), summary_text);

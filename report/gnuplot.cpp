@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -401,6 +402,17 @@ void write_plot(const std::string& path, const Plot& plot) {
     throw;
   }
   io::commit_temp_file(tmp, path);
+}
+
+bool gnuplot_on_path() {
+  const char* path = std::getenv("PATH");
+  std::istringstream dirs(path ? path : "");
+  std::string d;
+  while (std::getline(dirs, d, ':')) {
+    const std::string exe = (d.empty() ? std::string(".") : d) + "/gnuplot";
+    if (::access(exe.c_str(), X_OK) == 0) return true;
+  }
+  return false;
 }
 
 }  // namespace shudder::report

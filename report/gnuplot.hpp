@@ -70,4 +70,7 @@ struct Plot {
 /// Renders `plot` to `path` (.png or .svg). Replaces an existing file.
 void write_plot(const std::string& path, const Plot& plot);
 
+/// True when an executable `gnuplot` is on PATH: reports list their plots as skipped without it.
+bool gnuplot_on_path();
+
 }  // namespace shudder::report

@@ -105,13 +105,6 @@ std::string verdict_text(analysis::Verdict v) {
   return "no shudder";
 }
 
-void make_report_dir(const std::string& dir) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir))
-    throw io::InputError(dir, 0, "", "cannot create the report directory: " + ec.message());
-}
-
 }  // namespace
 
 const std::vector<std::string>& plot_kind_names() {
@@ -691,6 +684,13 @@ Report write_sweep_report(const std::string& dir, const io::SweepTable& table, c
   io::write_text_file_atomically(report.files[0], summary);
   write_plot(report.files[1], sweep_plot(table, name, "the sweep"));
   return report;
+}
+
+void make_report_dir(const std::string& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir))
+    throw io::InputError(dir, 0, "", "cannot create the report directory: " + ec.message());
 }
 
 }  // namespace shudder::report

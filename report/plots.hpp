@@ -65,6 +65,9 @@ Series contour_series(const std::vector<double>& x, const std::vector<double>& y
 /// .svg). io::InputError when the file is unreadable or lacks what the plot needs.
 void plot_file(const std::string& h5_path, PlotKind kind, const std::string& out_path);
 
+/// Creates the report directory `dir` (and its parents); io::InputError naming it when it cannot.
+void make_report_dir(const std::string& dir);
+
 struct Report {
   std::vector<std::string> files;    // written, in order
   std::vector<std::string> skipped;  // "spectrum.png: <why>" for plots the data do not support
