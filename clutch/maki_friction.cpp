@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "clutch/axis_bracket.hpp"
+
 namespace shudder::clutch {
 
 double MakiSet::mu(double v) const { return c1 * std::tanh(c2 * v) + c3 * std::pow(v, 0.1) + c4; }
@@ -33,15 +35,6 @@ void require_increasing(const std::vector<double>& axis, const char* what) {
   }
 }
 
-// Index i and weight w such that x lies between axis[i] and axis[i+1] (w = 0 at axis[i]),
-// after clamping x to the axis ends. A single-point axis gives (0, 0).
-std::pair<std::size_t, double> bracket(const std::vector<double>& axis, double x) {
-  if (axis.size() == 1 || x <= axis.front()) return {0, 0.0};
-  if (x >= axis.back()) return {axis.size() - 2, 1.0};
-  const auto it = std::upper_bound(axis.begin(), axis.end(), x);
-  const std::size_t i = static_cast<std::size_t>(it - axis.begin()) - 1;
-  return {i, (x - axis[i]) / (axis[i + 1] - axis[i])};
-}
 
 }  // namespace
 
@@ -69,8 +62,8 @@ MakiFrictionMatrix::MakiFrictionMatrix(std::vector<double> loads_N, std::vector<
 
 template <class F>
 double MakiFrictionMatrix::blend(double temp_C, double load_N, F&& f) const {
-  const auto [it, wt] = bracket(temps_C_, temp_C);
-  const auto [il, wl] = bracket(loads_N_, load_N);
+  const auto [it, wt] = axis_bracket(temps_C_, temp_C);
+  const auto [il, wl] = axis_bracket(loads_N_, load_N);
   const std::size_t it1 = std::min(it + 1, temps_C_.size() - 1);
   const std::size_t il1 = std::min(il + 1, loads_N_.size() - 1);
   const double lo = (1.0 - wl) * f(set(it, il)) + wl * f(set(it, il1));
@@ -85,8 +78,8 @@ double MakiFrictionMatrix::mu(double speed_mm_s, double temp_C, double load_N) c
   // once; a tanh whose rate equals the previous set's is reused; a set of weight zero (an
   // operating point on an axis or clamped beyond it) is skipped, which drops the exact zero
   // (1 - w) * f or w * f would have added.
-  const auto [it, wt] = bracket(temps_C_, temp_C);
-  const auto [il, wl] = bracket(loads_N_, load_N);
+  const auto [it, wt] = axis_bracket(temps_C_, temp_C);
+  const auto [il, wl] = axis_bracket(loads_N_, load_N);
   const std::size_t it1 = std::min(it + 1, temps_C_.size() - 1);
   const std::size_t il1 = std::min(il + 1, loads_N_.size() - 1);
   const double v_pow = std::pow(v, 0.1);
@@ -123,8 +116,8 @@ double MakiFrictionMatrix::dmu_dv_per_mm_s(double speed_mm_s, double temp_C,
 namespace shudder::clutch {
 
 bool MakiFrictionMatrix::speed_curve(double temp_C, double load_N, SpeedCurve& out) const {
-  const auto [it, wt] = bracket(temps_C_, temp_C);
-  const auto [il, wl] = bracket(loads_N_, load_N);
+  const auto [it, wt] = axis_bracket(temps_C_, temp_C);
+  const auto [il, wl] = axis_bracket(loads_N_, load_N);
   const std::size_t it1 = std::min(it + 1, temps_C_.size() - 1);
   const std::size_t il1 = std::min(il + 1, loads_N_.size() - 1);
   out = SpeedCurve{};

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "clutch/axis_bracket.hpp"
+
 namespace shudder::clutch {
 
 namespace {
@@ -19,15 +21,6 @@ void require_axis(const std::vector<double>& axis, const char* what) {
   }
 }
 
-// Index i and weight w with x between axis[i] and axis[i+1] after clamping (a single-point
-// axis gives (0, 0)); the same rule as the Mäki matrix' bracket.
-std::pair<std::size_t, double> bracket(const std::vector<double>& axis, double x) {
-  if (axis.size() == 1 || x <= axis.front()) return {0, 0.0};
-  if (x >= axis.back()) return {axis.size() - 2, 1.0};
-  const auto it = std::upper_bound(axis.begin(), axis.end(), x);
-  const std::size_t i = static_cast<std::size_t>(it - axis.begin()) - 1;
-  return {i, (x - axis[i]) / (axis[i + 1] - axis[i])};
-}
 
 }  // namespace
 
@@ -49,8 +42,8 @@ TableFriction::TableFriction(std::vector<double> speeds_mm_s, std::vector<double
 
 template <class F>
 double TableFriction::blend(double temp_C, double load_N, F&& f) const {
-  const auto [it, wt] = bracket(temps_, temp_C);
-  const auto [il, wl] = bracket(loads_, load_N);
+  const auto [it, wt] = axis_bracket(temps_, temp_C);
+  const auto [il, wl] = axis_bracket(loads_, load_N);
   const std::size_t it1 = std::min(it + 1, temps_.size() - 1);
   const std::size_t il1 = std::min(il + 1, loads_.size() - 1);
   const double lo = (1.0 - wl) * f(it, il) + wl * f(it, il1);
