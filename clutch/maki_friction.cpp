@@ -78,8 +78,12 @@ double MakiFrictionMatrix::mu(double speed_mm_s, double temp_C, double load_N) c
   // once; a tanh whose rate equals the previous set's is reused; a set of weight zero (an
   // operating point on an axis or clamped beyond it) is skipped, which drops the exact zero
   // (1 - w) * f or w * f would have added.
-  const auto [it, wt] = axis_bracket(temps_C_, temp_C);
-  const auto [il, wl] = axis_bracket(loads_N_, load_N);
+  // Plain variables, not structured bindings: the lambdas below capture them (clang 14, the
+  // sanitizer build's compiler, does not capture structured bindings).
+  const std::pair<std::size_t, double> at_temp = axis_bracket(temps_C_, temp_C);
+  const std::pair<std::size_t, double> at_load = axis_bracket(loads_N_, load_N);
+  const std::size_t it = at_temp.first, il = at_load.first;
+  const double wt = at_temp.second, wl = at_load.second;
   const std::size_t it1 = std::min(it + 1, temps_C_.size() - 1);
   const std::size_t il1 = std::min(il + 1, loads_N_.size() - 1);
   const double v_pow = std::pow(v, 0.1);
