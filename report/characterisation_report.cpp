@@ -105,19 +105,10 @@ Report write_characterisation_report(const std::string& dir, const analysis::Cha
   plots.emplace_back("residuals.png", residuals);
   const bool gnuplot = gnuplot_on_path();
   for (auto& [file, plot] : plots) {
-    if (!gnuplot) {
-      report.skipped.push_back(file + ": gnuplot not found; install gnuplot (Debian: gnuplot-nox)");
-      continue;
-    }
-    try {
-      write_plot(path(file), plot);
-    } catch (const io::InputError&) {
-      throw;
-    } catch (const std::exception& e) {
-      report.skipped.push_back(file + ": " + e.what());
-      continue;
-    }
-    report.files.push_back(path(file));
+    if (gnuplot)
+      add_report_plot(report, dir, file, plot);
+    else
+      report.skipped.push_back(file + ": " + kGnuplotMissing);
   }
   return report;
 }

@@ -67,7 +67,7 @@ Report write_comparison_report(const std::string& dir, const rig_models::Compari
   for (double t : c.temps_C) {
     const std::string file = "mu_v_" + f("%.4g", t) + "C.png";
     if (!gnuplot) {
-      report.skipped.push_back(file + ": gnuplot not found; install gnuplot (Debian: gnuplot-nox)");
+      report.skipped.push_back(file + ": " + kGnuplotMissing);
       continue;
     }
     Plot p;
@@ -83,15 +83,7 @@ Report write_comparison_report(const std::string& dir, const rig_models::Compari
       }
       p.series.push_back(s);
     }
-    try {
-      write_plot(path(file), p);
-    } catch (const io::InputError&) {
-      throw;
-    } catch (const std::exception& e) {
-      report.skipped.push_back(file + ": " + e.what());
-      continue;
-    }
-    report.files.push_back(path(file));
+    add_report_plot(report, dir, file, p);
   }
   return report;
 }

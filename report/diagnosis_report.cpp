@@ -216,7 +216,7 @@ Report write_diagnosis_report(const std::string& dir, const analysis::DiagnosisR
     used.insert(stem);
     const std::string files = stem + "_{torque,temp,residuals}.png";
     if (!gnuplot) {
-      report.skipped.push_back(files + ": gnuplot not found; install gnuplot (Debian: gnuplot-nox)");
+      report.skipped.push_back(files + ": " + kGnuplotMissing);
       continue;
     }
     if (tr.time_s.empty()) {
@@ -235,15 +235,7 @@ Report write_diagnosis_report(const std::string& dir, const analysis::DiagnosisR
                                  std::to_string(tr.time_s.size()) + " time samples");
         continue;
       }
-      try {
-        write_plot(path(file), plots[i]);
-      } catch (const io::InputError&) {
-        throw;  // the directory is unwritable: the caller's problem, as for the text files
-      } catch (const std::exception& e) {
-        report.skipped.push_back(file + ": " + e.what());
-        continue;
-      }
-      report.files.push_back(path(file));
+      add_report_plot(report, dir, file, plots[i]);
     }
   }
   return report;

@@ -693,4 +693,17 @@ void make_report_dir(const std::string& dir) {
     throw io::InputError(dir, 0, "", "cannot create the report directory: " + ec.message());
 }
 
+void add_report_plot(Report& report, const std::string& dir, const std::string& file, const Plot& plot) {
+  const std::string path = (fs::path(dir) / file).string();
+  try {
+    write_plot(path, plot);
+  } catch (const io::InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    report.skipped.push_back(file + ": " + e.what());
+    return;
+  }
+  report.files.push_back(path);
+}
+
 }  // namespace shudder::report

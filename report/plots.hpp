@@ -68,6 +68,15 @@ void plot_file(const std::string& h5_path, PlotKind kind, const std::string& out
 /// Creates the report directory `dir` (and its parents); io::InputError naming it when it cannot.
 void make_report_dir(const std::string& dir);
 
+struct Report;
+/// Writes `plot` to `dir`/`file` and lists it in `report.files`; a plot gnuplot fails to draw is
+/// listed in `report.skipped` with gnuplot's reason instead. An unwritable destination stays an
+/// io::InputError (the caller's problem, as for the report's text files).
+void add_report_plot(Report& report, const std::string& dir, const std::string& file, const Plot& plot);
+
+/// The `report.skipped` reason for plots when gnuplot is not on PATH.
+inline constexpr const char* kGnuplotMissing = "gnuplot not found; install gnuplot (Debian: gnuplot-nox)";
+
 struct Report {
   std::vector<std::string> files;    // written, in order
   std::vector<std::string> skipped;  // "spectrum.png: <why>" for plots the data do not support
