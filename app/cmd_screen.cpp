@@ -176,7 +176,7 @@ void print_stability(const rig_models::ScreeningReport& rep) {
 int screen_command(const ScreenOptions& opt) {
   return guarded(opt.fluid, "screening", [&]() -> int {
     // Inputs: fluid, options, optional rig scenario.
-    if (!std::filesystem::is_regular_file(opt.fluid))
+    if (std::error_code ec; !std::filesystem::is_regular_file(opt.fluid, ec))
       throw io::InputError(opt.fluid, 0, "",
                            "no such fluid file; give a fluid TOML (docs/fluid_format.md), "
                            "e.g. scenarios/fluids/lsc_fluid_c.toml");

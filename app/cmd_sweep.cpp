@@ -190,7 +190,7 @@ int sweep_command(const SweepOptions& opt) {
       std::snprintf(name, sizeof name, "case_%05zu.h5", k);
       part_paths.push_back((parts / name).string());
       bool finished = false;
-      if (fs::exists(part_paths.back())) {
+      if (std::error_code ec; fs::exists(part_paths.back(), ec)) {
         try {
           finished = io::read_run_attribute(part_paths.back(), "scenario") == texts[k];
         } catch (const io::InputError&) {

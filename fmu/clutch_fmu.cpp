@@ -103,7 +103,7 @@ struct Instance {
     if (!(num(v::kPistonArea) >= 0.0)) throw std::invalid_argument("piston_area_m2 must be >= 0");
     const std::filesystem::path fluid(texts[index(v::kFluidFile)]);
     const std::filesystem::path path = fluid.is_absolute() ? fluid : resources / fluid;
-    if (!std::filesystem::is_regular_file(path))
+    if (std::error_code ec; !std::filesystem::is_regular_file(path, ec))
       throw std::invalid_argument("fluid_file: '" + path.string() + "' is not a readable file; give a fluid TOML "
                                   "(absolute, or relative to the FMU's resources/)");
     clutch = std::make_unique<clutch::WetClutch>(p, io::load_fluid(path.string()));

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <system_error>
 
 #include "core/units.hpp"
 #include "io/fluid_loader.hpp"
@@ -73,8 +74,14 @@ void read_clutch(TomlTable& root, Draft& s) {
   auto& th = p.thermal;
   const std::string fluid = c.string("fluid");
   s.fluid_path = (fs::path(s.path).parent_path() / fluid).string();
-  if (!fs::exists(s.fluid_path)) c.fail("fluid", "file '" + s.fluid_path + "' does not exist");
-  if (!fs::is_regular_file(s.fluid_path))
+  // The non-throwing status: a name the OS refuses (too long, bad component) is bad input too.
+  std::error_code status_error;
+  const fs::file_status status = fs::status(s.fluid_path, status_error);
+  if (!fs::exists(status)) {
+    const bool odd = status_error && status_error != std::errc::no_such_file_or_directory;
+    c.fail("fluid", "file '" + s.fluid_path + "' does not exist" + (odd ? " (" + status_error.message() + ")" : ""));
+  }
+  if (!fs::is_regular_file(status))
     c.fail("fluid", "'" + s.fluid_path + "' is not a regular file; expected a fluid TOML file");
   // The fluid is parsed from the very text stored in the outputs (reproducibility).
   s.fluid_text = read_text(s.fluid_path);

@@ -8,6 +8,7 @@
 
 #include "core/model_kind.hpp"
 #include "core/overloaded.hpp"
+#include "io/input_error.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/model.hpp"
 
@@ -68,6 +69,28 @@ TEST(ScenarioModel, BearingDragAndStickTimeReachTheKindsTheyActOn) {
   const std::string stick = "\n[effects.stick_time_static_friction]\nenabled = true\n";
   const io::Scenario dl = io::load_scenario_text(minimal_text(ModelKind::kDriveline) + stick, kPath);
   EXPECT_TRUE(std::get<rig_models::DrivelineModel>(dl.model).params.stick_time.enabled);
+}
+
+}  // namespace
+}  // namespace shudder
+
+namespace shudder {
+namespace {
+
+// Found by fuzz_scenario (stop 19): a fluid name with a component longer than the OS allows
+// (255 bytes) made std::filesystem::exists throw filesystem_error, which escaped the loader as
+// something other than bad input. It must be an InputError naming the key and the OS's reason.
+TEST(ScenarioFuzzRegression, FluidPathTheOsRefusesIsBadInput) {
+  std::string text = minimal_text(ModelKind::kPrescribedSlip);
+  const std::string good = "fluids/lsc_fluid_c.toml";
+  text.replace(text.find(good), good.size(), "fluids/" + std::string(300, 'x') + ".toml");
+  try {
+    (void)io::load_scenario_text(text, kPath);
+    FAIL() << "a 300-byte file name loaded";
+  } catch (const io::InputError& e) {
+    EXPECT_THAT(e.what(), testing::HasSubstr("fluid"));
+    EXPECT_THAT(e.what(), testing::HasSubstr("does not exist (File name too long)"));
+  }
 }
 
 }  // namespace
