@@ -8,7 +8,8 @@ Model (Paper G eq. 13, PHYSICS.md §1), v = local sliding speed in mm/s:
 Paper G Table 2 publishes only the -40, 70 and 200 °C rows (loads 10, 15, 20, 25 kN). The rows
 -20, -10, 0, ..., 60, 80, 90 °C are reconstructed here (docs/fluid_c_reconstruction.md):
 
-  * C1, C2 are those of the published 70 °C set of the same load (curve shape);
+  * C1, C2 are those of the published 70 °C set of the same load (curve shape), C1 scaled by the
+    largest lambda in [0, 1] that keeps dmu/dv >= 0 over 6..590 mm/s (no dip the data lack);
   * C3, C4 solve the 2x2 linear system mu(4.82 mm/s) = target1, mu(241 mm/s) = target50
     (1 rpm and 50 rpm at the 46 mm mean radius);
   * targets at 20 kN are fluid C's Paper E lines
@@ -53,6 +54,7 @@ LINE50 = (-1.72e-4, 0.1108)  # fluid C mu50 line, Paper E Table 3
 BLEND_TOP_C = 30.0      # at and above: load ratio of the published 70 °C sets
 BLEND_BOTTOM_C = -40.0  # load ratio of the published -40 °C sets
 SHIFT_PER_C = 2.1e-4    # Paper G rule for rows beyond -20..90 °C
+SLOPE_CHECK_MM_S = [6.0 + 584.0 * k / 2000 for k in range(2001)]  # the law's speed range
 SIG_DIGITS = 6          # reconstructed C3, C4 are written with this many significant digits
 
 
@@ -90,23 +92,52 @@ def round_sig(x, digits=SIG_DIGITS):
     return float(f"{x:.{digits}g}")
 
 
-def solve_set(i_load, t):
-    """Keep C1, C2 of the 70 °C set; solve C3*v^0.1 + C4 = target - C1*tanh(C2*v) at 2 speeds."""
-    c1, c2, _, _ = PUBLISHED[70.0][i_load]
+def fit_c3_c4(c1, c2, i_load, t):
+    """Solve C3*v^0.1 + C4 = target - C1*tanh(C2*v) at 1 and 50 rpm."""
     m1, m50 = targets(i_load, t)
     y1 = m1 - c1 * math.tanh(c2 * V1_MM_S)
     y50 = m50 - c1 * math.tanh(c2 * V50_MM_S)
     a1, a50 = V1_MM_S ** 0.1, V50_MM_S ** 0.1
     c3 = (y50 - y1) / (a50 - a1)
-    c4 = y1 - c3 * a1
-    return (c1, c2, round_sig(c3), round_sig(c4))
+    return c3, y1 - c3 * a1
+
+
+def min_slope(c1, c2, i_load, t):
+    c3, c4 = fit_c3_c4(c1, c2, i_load, t)
+    return min(dmu_dv((c1, c2, c3, c4), v) for v in SLOPE_CHECK_MM_S)
+
+
+def solve_set(i_load, t):
+    """C1, C2 of the 70 °C set of the same load, C1 scaled by the largest lambda in [0, 1] that
+    keeps dmu/dv >= 0 over the law's speed range (6..590 mm/s); C3, C4 then hit the two targets.
+
+    Why the scaling: with the full 70 °C shape the cold rows, whose mu1 and mu50 lie close, turn
+    to a negative slope above 80-160 mm/s -- a dip no measurement shows (the published -40 °C /
+    20 kN set rises everywhere; the thesis: the fluids kept acceptable anti-shudder properties
+    down to -20 °C and the 175/378 Hz bars did not initiate shudder). lambda = 1 wherever the
+    70 °C shape already rises, so those rows are unchanged."""
+    c1, c2, _, _ = PUBLISHED[70.0][i_load]
+    lam = 1.0
+    if min_slope(c1, c2, i_load, t) < 0.0:
+        lo, hi = 0.0, 1.0  # min_slope(lo) >= 0 (pure power law, C3 > 0), min_slope(hi) < 0
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            if min_slope(mid * c1, c2, i_load, t) >= 0.0:
+                lo = mid
+            else:
+                hi = mid
+        lam = round_sig(lo, 4)
+        while min_slope(lam * c1, c2, i_load, t) < 0.0:  # rounding must not cross zero
+            lam = round_sig(lam - 1e-4, 4)
+    c3, c4 = fit_c3_c4(lam * c1, c2, i_load, t)
+    return (round_sig(lam * c1), c2, round_sig(c3), round_sig(c4))
 
 
 def build_matrix():
     """Sorted list of (temp, origin, [set per load])."""
     rows = [(t, "published: Paper G Table 2", list(sets)) for t, sets in PUBLISHED.items()]
     for t in RECONSTRUCTED_TEMPS:
-        rows.append((t, "reconstructed: C1,C2 of published 70 °C set; C3,C4 fit to fluid C "
+        rows.append((t, "reconstructed: C1 (scaled for dmu/dv >= 0),C2 of published 70 °C set; C3,C4 fit to fluid C "
                         "mu1/mu50 lines (Paper E) x load ratio",
                      [solve_set(i, t) for i in range(len(LOADS_N))]))
     rows.sort(key=lambda r: r[0])
@@ -135,7 +166,8 @@ def write_toml(rows, path):
         "# Mäki friction matrix, Paper G eq. 13: mu = C1*tanh(C2*v) + C3*v^0.1 + C4, v in mm/s.",
         "# Rows -40, 70 and 200 °C are Paper G Table 2 exactly as printed (15 kN / 70 °C",
         "# C1 = -0.338 kept as printed). All other rows are RECONSTRUCTED: C1, C2 of the published",
-        "# 70 °C set of the same load; C3, C4 solved so that mu(4.82 mm/s) and mu(241 mm/s) equal",
+        "# 70 °C set of the same load (C1 scaled down where needed so that mu never falls with speed",
+        "# over 6-590 mm/s); C3, C4 solved so that mu(4.82 mm/s) and mu(241 mm/s) equal",
         "# fluid C's Paper E lines mu1 = -4.45e-4*T + 0.1004, mu50 = -1.72e-4*T + 0.1108 at 20 kN,",
         "# times the load ratio of the published sets at other loads. Method and error tables:",
         "# docs/fluid_c_reconstruction.md.",

@@ -61,7 +61,7 @@ TEST(ValidationTargets, ShippedFileCarriesThePaperBands) {
   const auto spec = load_validation_spec(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/validation.toml");
   ASSERT_EQ(spec.cases.size(), 6u);
   EXPECT_EQ(spec.cases[spec.ramp_case].scenario, "paper_g_case2_15kN");
-  ASSERT_EQ(spec.targets.size(), 10u);
+  ASSERT_EQ(spec.targets.size(), 11u);
   // Paper G Fig. 8: 10.4 kN torque 40–50 N m at 10 s.
   const auto& t0 = spec.targets[0];
   EXPECT_EQ(spec.cases[t0.case_index].scenario, "paper_g_case1_10kN");
@@ -77,6 +77,11 @@ TEST(ValidationTargets, ShippedFileCarriesThePaperBands) {
   EXPECT_EQ(rise.kind, TargetKind::kRise);
   EXPECT_EQ(rise.from_s, 10.0);
   EXPECT_EQ(rise.to_s, 20.0);
+  // Paper D: the sump stays within its thermocouple's ±0.67 °C over Case 2.
+  const auto& sump = spec.targets[10];
+  EXPECT_EQ(sump.kind, TargetKind::kRise);
+  EXPECT_EQ(sump.signal, "sump_temp_C");
+  EXPECT_EQ(*sump.max, 0.67);
   EXPECT_EQ(spec.comparison.size(), 3u);
 }
 
