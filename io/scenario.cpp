@@ -251,6 +251,11 @@ void read_driveline(TomlTable& root, Draft& s) {
           e->number_or("idle_governor_gain_Nms_per_rad", ep.idle_governor_gain_Nms_per_rad, Range::closed(0.0, 1000.0));
       ep.loss_torque_idle_Nm = e->number_or("loss_torque_idle_Nm", ep.loss_torque_idle_Nm, Range::closed(0.0, 500.0));
       ep.loss_torque_max_Nm = e->number_or("loss_torque_max_Nm", ep.loss_torque_max_Nm, Range::closed(0.0, 500.0));
+      // Firing pulsation, the driveline's seed (rig_models/engine_pulsation.hpp). Up to 100 N m:
+      // the undamped 2nd-order gas torque of a car engine; more is not a pulsation. 1–16 cylinders.
+      auto& fp = p.engine_pulsation;
+      fp.amplitude_Nm = e->number_or("firing_pulsation_Nm", fp.amplitude_Nm, Range::closed(0.0, 100.0));
+      fp.cylinders = static_cast<int>(e->integer_or("cylinders", fp.cylinders, 1, 16));
       e->finish();
     }
     if (auto h = d->optional_table("hydraulics")) {

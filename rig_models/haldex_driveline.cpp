@@ -158,6 +158,12 @@ dynamics::TorsionalNetwork HaldexDriveline::build(std::shared_ptr<const dynamics
   for (std::size_t w = 0; w < 4; ++w)
     n.add_force_element(dynamics::ForceElement{tyre_names[w], wheel_nodes[w], kVehicle, path_ratios_[w], tyres_[w]});
   n.add_force_element(dynamics::ForceElement{"road_load", kVehicle, dynamics::kGround, 1.0, road_load_});
+  // The engine's firing pulsation, the driveline's physical seed (engine_pulsation.hpp).
+  if (p_.engine_pulsation.amplitude_Nm > 0)
+    n.add_force_element(dynamics::ForceElement{
+        "engine_firing_pulsation", kEngine, dynamics::kGround, 1.0,
+        std::make_shared<const EnginePulsationLaw>(p_.engine_pulsation, units::rpm_to_rad_s(p_.engine.stall_speed_rpm),
+                                                   units::rpm_to_rad_s(p_.engine.idle_speed_rpm))});
 
   n.add_contact(dynamics::FrictionContact{"haldex_coupling", kCouplingIn, kCouplingOut, std::move(law)});
   if (throttle_) {

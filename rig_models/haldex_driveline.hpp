@@ -40,6 +40,7 @@
 #include "rig_models/clutch_contact.hpp"
 #include "rig_models/drive_cycle.hpp"
 #include "rig_models/engine.hpp"
+#include "rig_models/engine_pulsation.hpp"
 #include "rig_models/haldex_hydraulics.hpp"
 #include "rig_models/tyre.hpp"
 
@@ -79,6 +80,7 @@ struct DrivelineParams {
   HaldexHydraulicsParams hydraulics;
   EngineParams engine;                      // used when the manoeuvre gives a throttle
   StickTimeFriction stick_time;             // the `stick_time_static_friction` effect
+  EnginePulsation engine_pulsation;         // firing-order torque pulsation (engine_pulsation.hpp); 0 N m: none
   // Tolerances as for the rig: speeds of ~1–100 rad/s, twists of ~1e-2 rad.
   dynamics::IntegratorSettings integrator{1e-6, 1e-6, 1e-3, 1e-6, 1e-10};
 };

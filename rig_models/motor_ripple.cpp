@@ -28,9 +28,13 @@ double MotorRippleTorque::revolutions(double t) const {
   return rev + 0.5 * (speed_rpm_(a) + speed_rpm_(t)) * (t - a) / 60.0;
 }
 
+double motor_ripple_at_Nm(const MotorRipple& ripple, double revolutions) {
+  return ripple.amplitude_Nm * std::sin(units::kTwoPi * ripple.periods_per_rev * revolutions);
+}
+
 double MotorRippleTorque::operator()(double t) const {
   if (r_.amplitude_Nm == 0.0) return 0.0;
-  return r_.amplitude_Nm * std::sin(units::kTwoPi * r_.periods_per_rev * revolutions(t));
+  return motor_ripple_at_Nm(r_, revolutions(t));
 }
 
 }  // namespace shudder::rig_models

@@ -11,8 +11,7 @@
 //      on its reference to well under 1 % of a revolution, so the reference angle stands in for
 //      the measured one and T_r stays a known function of time (a torque source).
 //
-// Values (estimates; the thesis gives neither the motor nor its ripple; A is off by default, see
-// MotorRipple):
+// Values (estimates; the thesis gives neither the motor nor its ripple):
 //   A = 1 N m = 0.2 % of the 500 N m rated torque. Permanent-magnet servo motors are specified
 //       with cogging plus commutation ripple of roughly 0.5–2 % of rated torque; a geared drive's
 //       speed loop and the gearbox's compliance filter part of it, so a fraction of a percent at
@@ -28,12 +27,14 @@
 namespace shudder::rig_models {
 
 struct MotorRipple {
-  // Off by default for now: with it on, docs/diagnosis.md's stick-time example degrades (held-out
-  // misfit 11 → 244: the replay's stick-slip phase follows the ripple). 1 N m is the estimate to
-  // set ([rig.motor] torque_ripple_Nm = 1.0) until the diagnosis handles it.
-  double amplitude_Nm = 0.0;
+  // On by default (the estimate, see header). The diagnosis' replay models it too: its set-point
+  // recovery subtracts the ripple before inverting the speed loop (rig_models/speed_setpoint.hpp).
+  double amplitude_Nm = 1.0;
   double periods_per_rev = 576.0;  // estimate, see header
 };
+
+/// A sin(2π N rev): the ripple at `revolutions` of the drive speed reference (no check of A, N).
+double motor_ripple_at_Nm(const MotorRipple& ripple, double revolutions);
 
 /// T_r(t) for the drive speed reference `speed_rpm` (constant before its first and after its
 /// last point, as PiecewiseLinear is). Throws std::invalid_argument if amplitude < 0 or

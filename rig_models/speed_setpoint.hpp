@@ -9,11 +9,16 @@
 // point makes the model's loop lag a second time.
 //
 // Equations, on the recorded samples:
-//   drive          J ω' = T_m − T_c,      T_c ≈ T_cell  (the housing's inertia term J_h ω_h' is
+//   drive          J ω' = T_m + T_r − T_c,  T_c ≈ T_cell  (the housing's inertia term J_h ω_h' is
 //                                          left out: it oscillates about zero with the bar; estimate)
 //   PI loop        T_m = kp e + ki E,     E' = e,  e = ω_ref − ω
-// With y = ki E and u = T_m = J ω' + T_cell:  τ y' + y = u,  τ = kp / ki.  Substituting
-// y = v + (J/τ) ω removes the derivative from the filter:  τ v' + v = T_cell − (J/τ) ω,
+// T_r is the motor's torque ripple (motor_ripple.hpp), a known function of the set point's angle
+// ∫ω_ref dt, which is integrated along as the set point is recovered. Without it in u, the loop
+// inversion reads the ripple as a speed error of T_r / kp (0.13 rpm for 1 N m), at 4.8 Hz on a
+// 0.5 rpm run — inside the replay's 0.05 s windows' pass band, so the replayed set point wobbles
+// by a fifth of its value and the replayed stick-slip drifts from the measured one.
+// With y = ki E and u = T_m = J ω' + T_cell − T_r:  τ y' + y = u,  τ = kp / ki.  Substituting
+// y = v + (J/τ) ω removes the derivative from the filter:  τ v' + v = T_cell − T_r − (J/τ) ω,
 // solved exactly for inputs linear between samples; then
 //   e = (J ω' + T_cell − y) / kp,   ω_ref = ω + e,
 // with ω' by central differences. Everything is linear, so the replay's window means of the

@@ -191,10 +191,9 @@ INSTANTIATE_TEST_SUITE_P(
 std::string stick_probe_text(const std::string& extra, double speed_rpm) {
   std::string s = test::shipped_scenario_text("rig_stick_time_probe.toml");
   s = replace(s, "speed_rpm = [0.5, 0.5]", "speed_rpm = [" + std::to_string(speed_rpm) + ", " + std::to_string(speed_rpm) + "]");
-  // The motor's torque ripple (issue 14) is switched off: at 0.5-1.5 rpm it runs at 5-15 Hz, in
-  // the stick-slip band, and the replay's set point recovered from the loop (without the ripple's
-  // torque) then drifts from the measured run's; this test is about naming the friction effect.
-  return s + "\n[rig.motor]\ntorque_ripple_Nm = 0.0\n" + extra;
+  // The motor's torque ripple (issue 14) is on, as by default: at 0.5-1.5 rpm it runs at 5-15 Hz,
+  // in the stick-slip band; the replay models it (its set-point recovery subtracts it).
+  return s + "\n" + extra;
 }
 
 const char* const kHiddenStickTime =

@@ -123,8 +123,8 @@ std::string stick_probe(double speed_rpm) {
   std::string s = test::shipped_scenario_text("rig_stick_time_probe.toml");
   s = replace(s, "speed_rpm = [0.5, 0.5]",
               "speed_rpm = [" + std::to_string(speed_rpm) + ", " + std::to_string(speed_rpm) + "]");
-  // Ripple off as in DiagnoseStickTime (the replay's set point does not model it).
-  return s + "\n[rig.motor]\ntorque_ripple_Nm = 0.0\n";
+  // The motor's torque ripple on, as by default (the replay models it).
+  return s;
 }
 
 class TrueRigModel : public ::testing::TestWithParam<unsigned> {};

@@ -6,7 +6,8 @@
 //   * a simulated stick-slip run on the 100 Hz bar at 0.5 rpm, from 1 kHz recordings averaged
 //     over 0.05 s windows as the replay does: the drive crawls at ~0.12 rpm while stuck and
 //     races to ~1.6 rpm after breakaway, yet the estimate stays within 0.1 rpm of the true
-//     0.5 rpm and averages to it within 0.01 rpm.
+//     0.5 rpm and averages to it within 0.01 rpm — with the motor's torque ripple on, which the
+//     estimate subtracts (blind to it, the windows are off by more than 0.1 rpm).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,14 +24,22 @@ namespace shudder::rig_models {
 namespace {
 
 
+// The closed forms below are for a loop without the motor's torque ripple (their inputs carry
+// none), so the estimator is told there is none.
+RigParams without_ripple() {
+  RigParams rig;
+  rig.motor_ripple.amplitude_Nm = 0.0;
+  return rig;
+}
+
 TEST(SpeedSetpoint, SteadySlidingGivesTheDriveSpeed) {
-  const RigParams rig;  // steady start
+  const RigParams rig = without_ripple();  // steady start
   const std::vector<double> t{0.0, 0.001, 0.002, 0.004}, speed(4, 10.0), torque(4, 80.0);
   for (double v : estimate_speed_setpoint(t, speed, torque, rig)) EXPECT_NEAR(v, 10.0, 1e-12);
 }
 
 TEST(SpeedSetpoint, LoadRampAddsTheLoopsLag) {
-  const RigParams rig;
+  const RigParams rig = without_ripple();
   const SpeedLoopGains g = speed_loop_gains(rig);
   const double rate_Nm_s = 95.0, set_rpm = 0.5;  // the stuck phase of the 0.5 rpm probe
   const double lag_rpm = units::rad_s_to_rpm(rate_Nm_s / g.ki_Nm_per_rad);
@@ -76,9 +85,9 @@ PiecewiseLinear window_means(const std::vector<double>& t, const std::vector<dou
 
 TEST(SpeedSetpoint, RecoversTheSetPointOfAStickSlipRun) {
   io::Scenario sc = io::load_scenario(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/rig_stick_time_probe.toml");
-  // The estimate inverts the speed loop, which does not know the motor's torque ripple (issue 14):
-  // switched off, as the loop's closed form assumes.
-  shudder::test::rig_model(sc).params.motor_ripple.amplitude_Nm = 0.0;
+  // The motor's torque ripple is on (default 1 N m, 576/rev: 4.8 Hz at 0.5 rpm); the estimate
+  // subtracts it before inverting the loop (issue 14).
+  ASSERT_EQ(shudder::test::rig_model(sc).params.motor_ripple.amplitude_Nm, 1.0);
   shudder::test::rig_model(sc).params.stick_time.enabled = true;
   shudder::test::rig_model(sc).params.stick_time.max_increase = 0.15;
   shudder::test::rig_model(sc).params.stick_time.time_constant_s = 0.05;
@@ -107,6 +116,18 @@ TEST(SpeedSetpoint, RecoversTheSetPointOfAStickSlipRun) {
   // stuck windows are exact to 1e-3 rpm.
   EXPECT_LT(worst_estimate, 0.1);
   EXPECT_NEAR(mean, 0.5, 0.01);
+
+  // The same inversion blind to the ripple (the code before issue 14's replay change) reads the
+  // ripple as a speed error of T_r / kp = 0.13 rpm, which the 0.05 s windows (a quarter of the
+  // ripple's period) do not average away: the windows wobble by about that much.
+  RigParams blind = shudder::test::rig_model(sc).params;
+  blind.motor_ripple.amplitude_Nm = 0.0;
+  const auto sp_blind = window_means(t, estimate_speed_setpoint(t, drive, test::signal(rec, "torque_Nm"), blind));
+  double worst_blind = 0;
+  for (std::size_t k = 0; k < sp_blind.values().size(); ++k)
+    if (sp_blind.times_s()[k] >= 0.1) worst_blind = std::max(worst_blind, std::abs(sp_blind.values()[k] - 0.5));
+  std::printf("blind to the ripple: estimate off by up to %.3f rpm\n", worst_blind);
+  EXPECT_GT(worst_blind, 0.1);
 }
 
 }  // namespace
