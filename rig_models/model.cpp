@@ -17,11 +17,7 @@ constexpr const char* kNoSweep =
     "sweeps judge rig and prescribed_slip cases (stability, shudder); a driveline scenario runs with "
     "`shudder run`";
 constexpr const char* kNoReplay = "measured runs are rig runs; diagnose needs a prescribed_slip or rig model";
-constexpr const char* kNoNetwork = "\" has no torsional network; modes needs type = \"rig\"";
-// The driveline has a network, but `modes` reports the rig's bar-and-housing shapes only.
-constexpr const char* kDrivelineModes =
-    "\": modes analyses a rig's torsion bar and housing; a driveline's modes are not reported yet "
-    "(issue 13); give a scenario with type = \"rig\"";
+constexpr const char* kNoNetwork = "\" has no torsional network; modes needs type = \"rig\" or \"driveline\"";
 constexpr const char* kNotARig = "\" is not a rig; --rig needs a scenario with type = \"rig\"";
 
 // Judges the run, adds the kind's prediction at its operating point (`predict`: OperatingWindow
@@ -86,7 +82,7 @@ ReplayModel replay_model(const PrescribedSlipModel& model, const StickTimeFricti
   return m;
 }
 
-const RigModel& modal_rig(const PrescribedSlipModel& model) { refuse_quoting_kind(kind(model), kNoNetwork); }
+ModalSubject modal_subject(const PrescribedSlipModel& model) { refuse_quoting_kind(kind(model), kNoNetwork); }
 
 const RigParams& screening_rig(const PrescribedSlipModel& model) { refuse_quoting_kind(kind(model), kNotARig); }
 
@@ -130,7 +126,7 @@ ReplayModel replay_model(const RigModel& model, const StickTimeFriction&) {
   return m;
 }
 
-const RigModel& modal_rig(const RigModel& model) { return model; }
+ModalSubject modal_subject(const RigModel& model) { return &model; }
 
 const RigParams& screening_rig(const RigModel& model) { return model.params; }
 
@@ -160,7 +156,7 @@ CaseOutcome evaluate_case(const DrivelineModel&, const clutch::WetClutch&, dynam
 
 ReplayModel replay_model(const DrivelineModel&, const StickTimeFriction&) { throw KindNotSupported(kNoReplay); }
 
-const RigModel& modal_rig(const DrivelineModel& model) { refuse_quoting_kind(kind(model), kDrivelineModes); }
+ModalSubject modal_subject(const DrivelineModel& model) { return &model; }
 
 const RigParams& screening_rig(const DrivelineModel& model) { refuse_quoting_kind(kind(model), kNotARig); }
 
