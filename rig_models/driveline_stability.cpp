@@ -53,7 +53,8 @@ double tyre_deflection_m(const BrushTyre& tyre, double force_N) {
 }  // namespace
 
 DrivelineOperatingPoint quasi_static_operating_point(const HaldexDriveline& dl, const clutch::WetClutch& clutch,
-                                                     const DrivelineInputs& inputs, double min_slip_rpm) {
+                                                     const DrivelineInputs& inputs, double min_slip_rpm,
+                                                     double clamp_force_N) {
   const DrivelineParams& p = dl.params();
   DrivelineOperatingPoint op;
   op.t_s = 0.0;
@@ -85,7 +86,7 @@ DrivelineOperatingPoint quasi_static_operating_point(const HaldexDriveline& dl, 
     const double hold_s = 100.0;
     const double p_bar = dl.hydraulics().step_pressure_bar(0.0, std::abs(op.coupling_slip_rad_s) * hold_s, hold_s,
                                                            inputs.valve_pressure_bar(0.0));
-    op.clamp_force_N = dl.hydraulics().clamp_force_N(p_bar);
+    op.clamp_force_N = std::isfinite(clamp_force_N) ? clamp_force_N : dl.hydraulics().clamp_force_N(p_bar);
     ctx->set_normal_force(PiecewiseLinear({0.0}, {op.clamp_force_N}));
     const double m_c = std::copysign(
         net.contacts()[D::kCoupling].law->kinetic_torque_Nm(std::abs(op.coupling_slip_rad_s), 0.0), op.coupling_slip_rad_s);
@@ -260,28 +261,26 @@ CouplingMode least_damped_mode_with_thermal(const HaldexDriveline& dl, const clu
   return mode;
 }
 
-double onset_valve_pressure_bar(const DrivelineParams& params, const clutch::WetClutch& clutch,
-                                DrivelineInputs inputs, double lo_bar, double hi_bar, bool thermal) {
-  const auto growth = [&](double p_bar) {
-    inputs.valve_pressure_bar = PiecewiseLinear({0.0}, {p_bar});
-    const HaldexDriveline dl(params, clutch, inputs);
-    const auto op = quasi_static_operating_point(dl, clutch, inputs);
+double onset_clamp_force_N(const HaldexDriveline& dl, const clutch::WetClutch& clutch, const DrivelineInputs& inputs,
+                           double lo_N, double hi_N, bool thermal) {
+  const auto growth = [&](double force_N) {
+    const auto op = quasi_static_operating_point(dl, clutch, inputs, 1.0, force_N);
     return (thermal ? least_damped_mode_with_thermal(dl, clutch, op)
                     : least_damped_mode(driveline_stability(dl, clutch, op, false))).growth_per_s;
   };
-  double g_lo = growth(lo_bar);
-  const double g_hi = growth(hi_bar);
+  double g_lo = growth(lo_N);
+  const double g_hi = growth(hi_N);
   if (!(g_lo * g_hi < 0)) return std::numeric_limits<double>::quiet_NaN();
-  while (hi_bar - lo_bar > 1e-6) {
-    const double mid = 0.5 * (lo_bar + hi_bar), g = growth(mid);
+  while (hi_N - lo_N > 1e-6 * hi_N) {
+    const double mid = 0.5 * (lo_N + hi_N), g = growth(mid);
     if ((g < 0) == (g_lo < 0)) {
-      lo_bar = mid;
+      lo_N = mid;
       g_lo = g;
     } else {
-      hi_bar = mid;
+      hi_N = mid;
     }
   }
-  return 0.5 * (lo_bar + hi_bar);
+  return 0.5 * (lo_N + hi_N);
 }
 
 }  // namespace shudder::rig_models

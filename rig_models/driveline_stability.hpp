@@ -22,6 +22,7 @@
 
 #include <array>
 #include <complex>
+#include <limits>
 #include <vector>
 
 #include "analysis/stability.hpp"
@@ -47,8 +48,10 @@ struct DrivelineOperatingPoint {
 /// that slip for 100 s against the valve's setting at t = 0 (the pump–leak balance or the valve),
 /// the clutch's start temperature, and tyre forces from each group's torque balance with the car
 /// accelerating as one body (engine torque at t = 0 and the coupling's kinetic torque there).
+/// A finite `clamp_force_N` replaces the hydraulics' (an onset search over the clamp force).
 DrivelineOperatingPoint quasi_static_operating_point(const HaldexDriveline& dl, const clutch::WetClutch& clutch,
-                                                     const DrivelineInputs& inputs, double min_slip_rpm = 1.0);
+                                                     const DrivelineInputs& inputs, double min_slip_rpm = 1.0,
+                                                     double clamp_force_N = std::numeric_limits<double>::quiet_NaN());
 
 /// The operating point of a simulated sample (its node speeds, tyre torques and time) with the
 /// clamp force and interface temperature held at that time.
@@ -107,10 +110,11 @@ ThermalFeedback coupling_thermal_feedback(const HaldexDriveline& dl, const clutc
 CouplingMode least_damped_mode_with_thermal(const HaldexDriveline& dl, const clutch::WetClutch& clutch,
                                             const DrivelineOperatingPoint& op);
 
-/// The constant valve pressure (bar) in [lo_bar, hi_bar] at which the least-damped slipping
-/// mode of the quasi-static operating point crosses zero growth, by bisection to 1e-6 bar
-/// (isothermal, or with the thermal feedback). NaN if the growth has the same sign at both ends.
-double onset_valve_pressure_bar(const DrivelineParams& params, const clutch::WetClutch& clutch,
-                                DrivelineInputs inputs, double lo_bar, double hi_bar, bool thermal = false);
+/// The clamp force (N) in [lo_N, hi_N] at which the least-damped slipping mode of the
+/// manoeuvre's quasi-static operating point (at that clamp force) crosses zero growth, by
+/// bisection to 1e-6 relative (isothermal, or with the thermal feedback). NaN if the growth has
+/// the same sign at both ends.
+double onset_clamp_force_N(const HaldexDriveline& dl, const clutch::WetClutch& clutch, const DrivelineInputs& inputs,
+                           double lo_N, double hi_N, bool thermal = false);
 
 }  // namespace shudder::rig_models
