@@ -283,4 +283,28 @@ double onset_clamp_force_N(const HaldexDriveline& dl, const clutch::WetClutch& c
   return 0.5 * (lo_N + hi_N);
 }
 
+Prediction predict_driveline(const DrivelineParams& params, const clutch::WetClutch& clutch,
+                             const DrivelineInputs& inputs, const dynamics::Recording& rec, const OperatingWindow& w) {
+  try {
+    const DrivelineOperatingPoint op = recorded_operating_point(rec, w.from_s, w.to_s);
+    if (!(std::abs(units::rad_s_to_rpm(op.coupling_slip_rad_s)) >= 0.1))
+      return Prediction::none("the coupling was stuck over the judged window");
+    if (!(op.clamp_force_N > 0)) return Prediction::none("the coupling is not clamped over the judged window");
+    const HaldexDriveline dl(params, clutch, inputs);
+    const DrivelineStability st = driveline_stability(dl, clutch, op, false);
+    const CouplingMode least = least_damped_mode(st);
+    Prediction out;
+    out.made = true;
+    out.method =
+        "driveline linear stability at the window's mean point (coupling slipping, isothermal friction slope, "
+        "tyre relaxation; rig_models/driveline_stability.hpp)";
+    out.margin_per_s = st.point.margin_per_s;
+    out.oscillatory_margin_per_s = least.growth_per_s;
+    out.frequency_Hz = least.frequency_Hz;
+    return out;
+  } catch (const std::invalid_argument& e) {
+    return Prediction::none(e.what());
+  }
+}
+
 }  // namespace shudder::rig_models

@@ -30,6 +30,7 @@
 #include "dynamics/recording.hpp"
 #include "dynamics/simulation.hpp"
 #include "rig_models/haldex_driveline.hpp"
+#include "rig_models/run_verdict.hpp"
 
 namespace shudder::rig_models {
 
@@ -116,5 +117,11 @@ CouplingMode least_damped_mode_with_thermal(const HaldexDriveline& dl, const clu
 /// the same sign at both ends.
 double onset_clamp_force_N(const HaldexDriveline& dl, const clutch::WetClutch& clutch, const DrivelineInputs& inputs,
                            double lo_N, double hi_N, bool thermal = false);
+
+/// The run's prediction (run_verdict.hpp) at the judged window's mean operating point of a
+/// driveline recording: the coupling slipping, isothermal slope. "not predicted" if the coupling
+/// was stuck over the window (|mean slip| < 0.1 rpm), unloaded, or the point is not finite.
+Prediction predict_driveline(const DrivelineParams& params, const clutch::WetClutch& clutch,
+                             const DrivelineInputs& inputs, const dynamics::Recording& rec, const OperatingWindow& w);
 
 }  // namespace shudder::rig_models

@@ -1,5 +1,6 @@
 #include "rig_models/model.hpp"
 
+#include "rig_models/driveline_stability.hpp"
 #include "rig_models/run_stability_map.hpp"
 #include "rig_models/run_verdict.hpp"
 
@@ -138,11 +139,9 @@ dynamics::Recording simulate(const DrivelineModel& model, const clutch::WetClutc
   return run_driveline(model.params, clutch, model.manoeuvre, model.settings);
 }
 
-std::vector<std::string> add_run_analysis(const DrivelineModel&, const clutch::WetClutch&, double,
+std::vector<std::string> add_run_analysis(const DrivelineModel& model, const clutch::WetClutch& clutch, double,
                                           dynamics::Recording& rec) {
-  add_verdict(rec, [](const OperatingWindow&) {
-    return Prediction::none("the driveline has no linear stability analysis yet");
-  });
+  add_verdict(rec, [&](const OperatingWindow& w) { return predict_driveline(model.params, clutch, model.manoeuvre, rec, w); });
   return {};
 }
 
