@@ -283,6 +283,47 @@ double onset_clamp_force_N(const HaldexDriveline& dl, const clutch::WetClutch& c
   return 0.5 * (lo_N + hi_N);
 }
 
+std::vector<dynamics::Map2D> coupling_stability_maps(const HaldexDriveline& dl, const clutch::WetClutch& clutch,
+                                                     const DrivelineOperatingPoint& op,
+                                                     const std::vector<double>& slips_rpm,
+                                                     const std::vector<double>& temps_C,
+                                                     const std::vector<double>& forces_N) {
+  if (slips_rpm.size() < 2 || temps_C.size() < 2 || forces_N.empty())
+    throw std::invalid_argument("coupling stability map: at least 2 slips, 2 temperatures and 1 force");
+  std::vector<dynamics::Map2D> maps;
+  const auto n_s = static_cast<Eigen::Index>(slips_rpm.size()), n_t = static_cast<Eigen::Index>(temps_C.size());
+  for (std::size_t k = 0; k < forces_N.size(); ++k) {
+    dynamics::Map2D m;
+    m.name = "coupling_stability_map_" + std::to_string(k + 1);
+    m.description = "driveline: least-damped oscillatory mode of the slipping coupling over slip x interface "
+                    "temperature at one clamp force (isothermal slope; rig_models/driveline_stability.hpp)";
+    m.x_name = "slip_rpm";
+    m.x_units = "rpm";
+    m.x = slips_rpm;
+    m.y_name = "interface_temp_C";
+    m.y_units = "degC";
+    m.y = temps_C;
+    Eigen::MatrixXd growth(n_s, n_t), freq(n_s, n_t), zeta(n_s, n_t);
+    for (Eigen::Index i = 0; i < n_s; ++i)
+      for (Eigen::Index j = 0; j < n_t; ++j) {
+        DrivelineOperatingPoint p = op;
+        p.node_speeds_rad_s = Eigen::VectorXd();
+        p.coupling_slip_rad_s = std::copysign(units::rpm_to_rad_s(slips_rpm[static_cast<std::size_t>(i)]),
+                                              op.coupling_slip_rad_s == 0.0 ? 1.0 : op.coupling_slip_rad_s);
+        p.interface_temp_C = temps_C[static_cast<std::size_t>(j)];
+        p.clamp_force_N = forces_N[k];
+        const CouplingMode mode = least_damped_mode(driveline_stability(dl, clutch, p, false));
+        growth(i, j) = mode.growth_per_s;
+        freq(i, j) = mode.frequency_Hz;
+        zeta(i, j) = mode.damping_ratio;
+      }
+    m.layers = {{"growth_per_s", "1/s", growth}, {"frequency_Hz", "Hz", freq}, {"damping_ratio", "1", zeta}};
+    m.scalars = {{"normal_force_N", "N", forces_N[k]}, {"vehicle_speed_km_h", "km/h", op.vehicle_speed_m_s * 3.6}};
+    maps.push_back(std::move(m));
+  }
+  return maps;
+}
+
 Prediction predict_driveline(const DrivelineParams& params, const clutch::WetClutch& clutch,
                              const DrivelineInputs& inputs, const dynamics::Recording& rec, const OperatingWindow& w) {
   try {

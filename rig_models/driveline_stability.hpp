@@ -118,6 +118,17 @@ CouplingMode least_damped_mode_with_thermal(const HaldexDriveline& dl, const clu
 double onset_clamp_force_N(const HaldexDriveline& dl, const clutch::WetClutch& clutch, const DrivelineInputs& inputs,
                            double lo_N, double hi_N, bool thermal = false);
 
+/// Stability maps of the slipping coupling over slip × interface temperature, one per clamp
+/// force (named `coupling_stability_map_<k>`, k = 1, 2, ... with the scalar normal_force_N):
+/// the least-damped oscillatory mode's growth rate (1/s, > 0 judder) and frequency at the
+/// operating point `op` with its slip, temperature and clamp force replaced (every part rolling
+/// with V, the tyre forces of `op`). Layers: growth_per_s, frequency_Hz, damping_ratio.
+std::vector<dynamics::Map2D> coupling_stability_maps(const HaldexDriveline& dl, const clutch::WetClutch& clutch,
+                                                     const DrivelineOperatingPoint& op,
+                                                     const std::vector<double>& slips_rpm,
+                                                     const std::vector<double>& temps_C,
+                                                     const std::vector<double>& forces_N);
+
 /// The run's prediction (run_verdict.hpp) at the judged window's mean operating point of a
 /// driveline recording: the coupling slipping, isothermal slope. "not predicted" if the coupling
 /// was stuck over the window (|mean slip| < 0.1 rpm), unloaded, or the point is not finite.

@@ -139,9 +139,24 @@ dynamics::Recording simulate(const DrivelineModel& model, const clutch::WetClutc
   return run_driveline(model.params, clutch, model.manoeuvre, model.settings);
 }
 
-std::vector<std::string> add_run_analysis(const DrivelineModel& model, const clutch::WetClutch& clutch, double,
-                                          dynamics::Recording& rec) {
+std::vector<std::string> add_run_analysis(const DrivelineModel& model, const clutch::WetClutch& clutch,
+                                          double start_temp_C, dynamics::Recording& rec) {
   add_verdict(rec, [&](const OperatingWindow& w) { return predict_driveline(model.params, clutch, model.manoeuvre, rec, w); });
+  // Coupling stability maps about the manoeuvre's quasi-static point (12 x 9 x 3 cells, ~0.25 ms
+  // each): slip 1–60 rpm, the start
+  // temperature −20 … +80 °C, at half, once and twice that point's clamp force.
+  try {
+    const HaldexDriveline dl(model.params, clutch, model.manoeuvre);
+    const DrivelineOperatingPoint op = quasi_static_operating_point(dl, clutch, model.manoeuvre);
+    std::vector<double> slips, temps;
+    for (int i = 0; i < 12; ++i) slips.push_back(1.0 + 59.0 * i / 11.0);
+    for (int j = 0; j < 9; ++j) temps.push_back(start_temp_C - 20.0 + 12.5 * j);
+    for (auto& m : coupling_stability_maps(dl, clutch, op, slips, temps,
+                                           {0.5 * op.clamp_force_N, op.clamp_force_N, 2.0 * op.clamp_force_N}))
+      rec.maps.push_back(std::move(m));
+  } catch (const std::invalid_argument& e) {
+    return {std::string("no coupling stability map stored: ") + e.what()};
+  }
   return {};
 }
 

@@ -189,3 +189,40 @@ TEST(DrivelineStability, SlippingHasOneDegreeOfFreedomMoreThanLocked) {
 
 }  // namespace
 }  // namespace shudder::rig_models
+
+namespace shudder::rig_models {
+namespace {
+
+// Each map cell is the linearisation at that cell's point; with the negative-slope fluid the
+// growth rate rises with the clamp force (the negative damping n r F dμ/dv ∝ F) at every slip
+// on the falling branch, and the rising branch below 10 rpm is stable.
+TEST(DrivelineStability, CouplingMapsAreTheLinearisationAtEachCell) {
+  const io::Scenario sc = tight_turn();
+  const auto& model = std::get<DrivelineModel>(sc.model);
+  const clutch::WetClutch clutch(sc.clutch, io::load_fluid(std::string(SHUDDER_SOURCE_DIR) +
+                                                           "/scenarios/fluids/schematic_negative_slope.toml"));
+  DrivelineInputs in = model.manoeuvre;
+  in.start_speed_km_h = 10.0;
+  const HaldexDriveline dl(model.params, clutch, in);
+  const auto op = quasi_static_operating_point(dl, clutch, in);
+  const std::vector<double> slips{5.0, 20.0, 40.0}, temps{30.0, 60.0}, forces{300.0, 3000.0};
+  const auto maps = coupling_stability_maps(dl, clutch, op, slips, temps, forces);
+  ASSERT_EQ(maps.size(), 2u);
+  EXPECT_EQ(maps[1].name, "coupling_stability_map_2");
+  DrivelineOperatingPoint p = op;
+  p.node_speeds_rad_s = Eigen::VectorXd();
+  p.coupling_slip_rad_s = std::copysign(40.0 * std::numbers::pi / 30.0, op.coupling_slip_rad_s);
+  p.interface_temp_C = 60.0;
+  p.clamp_force_N = 3000.0;
+  const CouplingMode direct = least_damped_mode(driveline_stability(dl, clutch, p, false));
+  EXPECT_DOUBLE_EQ(maps[1].find("growth_per_s")->values(2, 1), direct.growth_per_s);
+  for (Eigen::Index j = 0; j < 2; ++j) {
+    EXPECT_LT(maps[0].find("growth_per_s")->values(0, j), 0.0);  // 5 rpm: rising branch
+    EXPECT_LT(maps[1].find("growth_per_s")->values(0, j), 0.0);
+    for (Eigen::Index i = 1; i < 3; ++i)
+      EXPECT_GT(maps[1].find("growth_per_s")->values(i, j), maps[0].find("growth_per_s")->values(i, j));
+  }
+}
+
+}  // namespace
+}  // namespace shudder::rig_models
