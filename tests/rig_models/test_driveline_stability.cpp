@@ -226,3 +226,49 @@ TEST(DrivelineStability, CouplingMapsAreTheLinearisationAtEachCell) {
 
 }  // namespace
 }  // namespace shudder::rig_models
+
+namespace shudder::rig_models {
+namespace {
+
+// Two-inertia reduction of the locked, straight driveline at rest, in the axle's speed:
+//
+//   J1 = engine side: J_e (i_g i_f)² + front diff + (ptu, coupling halves) i_ptu² + rear diff
+//        + side gears                                       (all turn with the axles)
+//   J2 = car m r² + the four wheels (held to the road by the stiff tyres relative to the shafts)
+//   k  = front: 2 k_h ⊕ 2 k_t;  rear: k_p i_r² ⊕ 2 k_h ⊕ 2 k_t (the propshaft seen at the axle); in parallel
+//        (⊕: springs in series; k_t = C_κ r²/σ the tyre's spring at rest)
+//   f  = √(k (J1 + J2)/(J1 J2)) / 2π
+// The full linearisation's shuffle mode lies within 2 % (the reduction lumps the wheels with the
+// car and ignores the side gears' own motion).
+TEST(DrivelineStability, LockedShuffleMatchesATwoInertiaReduction) {
+  const io::Scenario sc = tight_turn();
+  const auto& model = std::get<DrivelineModel>(sc.model);
+  const DrivelineParams& p = model.params;
+  const clutch::WetClutch clutch = sc.make_clutch();
+  DrivelineInputs in;  // straight, at rest
+  const HaldexDriveline dl(p, clutch, in);
+  DrivelineOperatingPoint op;
+  op.clamp_force_N = 1000.0;
+  const auto st = driveline_stability(dl, clutch, op, true);
+  double shuffle = 0;
+  for (const auto& m : st.modes)
+    if (m.frequency_Hz > 0.5) {
+      shuffle = m.frequency_Hz;
+      break;
+    }
+  const double ig = p.gear_ratio * p.final_drive_ratio, ip = p.ptu_ratio, ir = p.rear_diff_ratio;
+  const double j1 = p.engine_inertia_kg_m2 * ig * ig + p.front_diff_inertia_kg_m2 +
+                    (p.ptu_inertia_kg_m2 + 2 * p.coupling_half_inertia_kg_m2) * ip * ip + p.rear_diff_inertia_kg_m2 +
+                    4 * p.side_gear_inertia_kg_m2;
+  const double r = p.wheel_radius_m;
+  const double j2 = p.vehicle_mass_kg * r * r + 4 * p.wheel_inertia_kg_m2;
+  const double k_t = dl.tyre(0).modal_stiffness_Nm_per_rad();
+  const auto series = [](double a, double b) { return a * b / (a + b); };
+  const double k_front = series(2 * p.halfshaft_stiffness_Nm_per_rad, 2 * k_t);
+  const double k_rear = series(series(p.propshaft_stiffness_Nm_per_rad * ir * ir, 2 * p.halfshaft_stiffness_Nm_per_rad), 2 * k_t);
+  const double f2 = std::sqrt((k_front + k_rear) * (j1 + j2) / (j1 * j2)) / (2 * std::numbers::pi);
+  EXPECT_NEAR(shuffle, f2, 0.02 * f2) << "two-inertia " << f2 << " Hz";
+}
+
+}  // namespace
+}  // namespace shudder::rig_models
