@@ -1,5 +1,7 @@
 // `shudder modes`: natural frequencies, mode shapes and damped eigenvalues of a rig scenario's
-// torsional network, with the clutch slipping (no stiffness through the contact) and stuck.
+// torsional network, with the clutch slipping (no stiffness through the contact) and stuck; for
+// a driveline, its linearisation about the manoeuvre's quasi-static operating point with the
+// coupling slipping and locked (rig_models/driveline_stability.hpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -9,11 +11,14 @@
 
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
+#include "core/overloaded.hpp"
 #include "core/units.hpp"
 #include "io/input_error.hpp"
 #include "io/kind_refusal.hpp"
 #include "io/scenario.hpp"
+#include "rig_models/driveline_stability.hpp"
 #include "rig_models/lsctr_rig.hpp"
+#include "rig_models/model.hpp"
 
 namespace shudder::app {
 
@@ -53,16 +58,57 @@ void print_rig_modes(const io::Scenario& sc, const rig_models::RigModel& model) 
   std::printf("\nClutch-side mode (slipping): %.3f Hz\n", rig.clutch_side_frequency_Hz());
 }
 
+// One driveline mode per line: eigenvalue, frequency, damping ratio and the parts that move
+// (|speed| ≥ 0.1 of the largest; a sign for parts in or against phase, else the phase in degrees).
+void print_driveline_modes(const rig_models::DrivelineStability& st, const char* title) {
+  std::printf("%s\n     real [1/s]      imag [1/s]   frequency [Hz]   damping ratio   shape (node speed / largest)\n",
+              title);
+  for (const auto& m : st.modes) {
+    std::printf("  %12.4f  %14.4f   %14.3f   %13.5f  ", m.eigenvalue.real(), m.eigenvalue.imag(), m.frequency_Hz,
+                m.damping_ratio);
+    for (Eigen::Index i = 0; i < m.node_amplitude.size(); ++i) {
+      if (m.node_amplitude[i] < 0.1) continue;
+      const double deg = m.node_phase_rad[i] * 180.0 / 3.141592653589793;
+      if (std::abs(deg) < 20.0) std::printf(" %s %+.2f", st.node_names[static_cast<std::size_t>(i)].c_str(), m.node_amplitude[i]);
+      else if (std::abs(deg) > 160.0) std::printf(" %s %+.2f", st.node_names[static_cast<std::size_t>(i)].c_str(), -m.node_amplitude[i]);
+      else std::printf(" %s %.2f@%.0fdeg", st.node_names[static_cast<std::size_t>(i)].c_str(), m.node_amplitude[i], deg);
+    }
+    std::printf("\n");
+  }
+}
+
+void print_driveline(const io::Scenario& sc, const rig_models::DrivelineModel& model) {
+  const clutch::WetClutch clutch = sc.make_clutch();
+  const rig_models::HaldexDriveline dl(model.params, clutch, model.manoeuvre);
+  const auto op = rig_models::quasi_static_operating_point(dl, clutch, model.manoeuvre);
+  const auto slipping = rig_models::driveline_stability(dl, clutch, op, false);
+  const auto locked = rig_models::driveline_stability(dl, clutch, op, true);
+  std::printf("Scenario %s: driveline linearised at %.3g km/h, coupling slip %.4g rpm, clamp force %.5g N, "
+              "interface %.4g degC; tyre forces FL/FR/RL/RR %.4g/%.4g/%.4g/%.4g N\n",
+              sc.name.c_str(), op.vehicle_speed_m_s * 3.6, units::rad_s_to_rpm(op.coupling_slip_rad_s),
+              op.clamp_force_N, op.interface_temp_C, op.tyre_force_N[0], op.tyre_force_N[1], op.tyre_force_N[2],
+              op.tyre_force_N[3]);
+  std::printf("Coupling friction slope (isothermal) dM/d|dw| = %.5g N m s/rad\n\n", slipping.coupling_slope_Nms);
+  print_driveline_modes(slipping, "Coupling slipping:");
+  std::printf("\n");
+  print_driveline_modes(locked, "Coupling locked:");
+  const auto least = rig_models::least_damped_mode(slipping);
+  std::printf("\nLeast-damped oscillatory mode (slipping): %.3f Hz, growth rate %.4g 1/s, damping ratio %.4g: %s\n",
+              least.frequency_Hz, least.growth_per_s, least.damping_ratio,
+              least.growth_per_s > 0 ? "UNSTABLE (judder predicted)" : "stable");
+}
+
 }  // namespace
 
 int modes_command(const ModesOptions& opt) {
   return guarded(opt.scenario, "modal analysis", [&]() -> int {
     const io::Scenario sc = io::load_scenario(opt.scenario);
     for (const auto& w : sc.warnings) std::cerr << "shudder: warning: " << w << "\n";
-    const rig_models::RigModel& rig = io::visit_kind(
-        opt.scenario, "scenario.type", sc.model,
-        [](const auto& m) -> const rig_models::RigModel& { return rig_models::modal_rig(m); });
-    print_rig_modes(sc, rig);
+    const rig_models::ModalSubject subject = io::visit_kind(
+        opt.scenario, "scenario.type", sc.model, [](const auto& m) { return rig_models::modal_subject(m); });
+    std::visit(overloaded{[&](const rig_models::RigModel* rig) { print_rig_modes(sc, *rig); },
+                          [&](const rig_models::DrivelineModel* dl) { print_driveline(sc, *dl); }},
+               subject);
     return 0;
   });
 }

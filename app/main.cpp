@@ -44,8 +44,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1e-7, 1.0));  // a step from 0.1 µs to 1 s
 
   ModesOptions modes;
-  auto* modes_cmd = app.add_subcommand("modes", "Natural frequencies and mode shapes of a rig scenario");
-  modes_cmd->add_option("scenario", modes.scenario, "Scenario file (TOML, type = \"rig\")")->required();
+  auto* modes_cmd = app.add_subcommand("modes", "Natural frequencies and mode shapes of a rig or driveline scenario");
+  modes_cmd->add_option("scenario", modes.scenario, "Scenario file (TOML, type = \"rig\" or \"driveline\")")->required();
 
   SweepOptions sweep;
   auto* sweep_cmd = app.add_subcommand("sweep", "Run a scenario over a grid of key values, in parallel");

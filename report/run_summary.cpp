@@ -106,6 +106,23 @@ void print_section(std::ostream& os, const rig_models::DrivelineModel& model, co
                 scalar(rec, "shuffle_damping_ratio"), scalar(rec, "mechanical_energy_relative_error"),
                 scalar(rec, "integrator_steps"));
   os << line;
+  // The coupling's stability maps (docs/driveline_stability.md): unstable cells and the worst one.
+  for (const auto& m : rec.maps) {
+    if (m.name.rfind("coupling_stability_map_", 0) != 0) continue;
+    const auto* growth = m.find("growth_per_s");
+    const auto* freq = m.find("frequency_Hz");
+    const auto* force = m.find_scalar("normal_force_N");
+    if (!growth || !freq || !force) continue;
+    Eigen::Index i = 0, j = 0;
+    const double worst = growth->values.maxCoeff(&i, &j);
+    const long unstable = (growth->values.array() > 0).count();
+    std::snprintf(line, sizeof line,
+                  "Coupling stability map at %.0f N: %ld of %ld cells unstable; least damped %+.3g 1/s at %.1f Hz "
+                  "(slip %.1f rpm, %.1f C)\n",
+                  force->value, unstable, static_cast<long>(growth->values.size()), worst, freq->values(i, j),
+                  m.x[static_cast<std::size_t>(i)], m.y[static_cast<std::size_t>(j)]);
+    os << line;
+  }
 }
 
 // The rig and prescribed slip: the drive over each fifth of the run, temperatures and the heat

@@ -1,5 +1,6 @@
 #include "rig_models/model.hpp"
 
+#include "rig_models/driveline_stability.hpp"
 #include "rig_models/run_stability_map.hpp"
 #include "rig_models/run_verdict.hpp"
 
@@ -17,11 +18,7 @@ constexpr const char* kNoSweep =
     "sweeps judge rig and prescribed_slip cases (stability, shudder); a driveline scenario runs with "
     "`shudder run`";
 constexpr const char* kNoReplay = "measured runs are rig runs; diagnose needs a prescribed_slip or rig model";
-constexpr const char* kNoNetwork = "\" has no torsional network; modes needs type = \"rig\"";
-// The driveline has a network, but `modes` reports the rig's bar-and-housing shapes only.
-constexpr const char* kDrivelineModes =
-    "\": modes analyses a rig's torsion bar and housing; a driveline's modes are not reported yet "
-    "(issue 13); give a scenario with type = \"rig\"";
+constexpr const char* kNoNetwork = "\" has no torsional network; modes needs type = \"rig\" or \"driveline\"";
 constexpr const char* kNotARig = "\" is not a rig; --rig needs a scenario with type = \"rig\"";
 
 // Judges the run, adds the kind's prediction at its operating point (`predict`: OperatingWindow
@@ -86,7 +83,7 @@ ReplayModel replay_model(const PrescribedSlipModel& model, const StickTimeFricti
   return m;
 }
 
-const RigModel& modal_rig(const PrescribedSlipModel& model) { refuse_quoting_kind(kind(model), kNoNetwork); }
+ModalSubject modal_subject(const PrescribedSlipModel& model) { refuse_quoting_kind(kind(model), kNoNetwork); }
 
 const RigParams& screening_rig(const PrescribedSlipModel& model) { refuse_quoting_kind(kind(model), kNotARig); }
 
@@ -130,7 +127,7 @@ ReplayModel replay_model(const RigModel& model, const StickTimeFriction&) {
   return m;
 }
 
-const RigModel& modal_rig(const RigModel& model) { return model; }
+ModalSubject modal_subject(const RigModel& model) { return &model; }
 
 const RigParams& screening_rig(const RigModel& model) { return model.params; }
 
@@ -142,11 +139,24 @@ dynamics::Recording simulate(const DrivelineModel& model, const clutch::WetClutc
   return run_driveline(model.params, clutch, model.manoeuvre, model.settings);
 }
 
-std::vector<std::string> add_run_analysis(const DrivelineModel&, const clutch::WetClutch&, double,
-                                          dynamics::Recording& rec) {
-  add_verdict(rec, [](const OperatingWindow&) {
-    return Prediction::none("the driveline has no linear stability analysis yet");
-  });
+std::vector<std::string> add_run_analysis(const DrivelineModel& model, const clutch::WetClutch& clutch,
+                                          double start_temp_C, dynamics::Recording& rec) {
+  add_verdict(rec, [&](const OperatingWindow& w) { return predict_driveline(model.params, clutch, model.manoeuvre, rec, w); });
+  // Coupling stability maps about the manoeuvre's quasi-static point (12 x 9 x 3 cells, ~0.25 ms
+  // each): slip 1–60 rpm, the start
+  // temperature −20 … +80 °C, at half, once and twice that point's clamp force.
+  try {
+    const HaldexDriveline dl(model.params, clutch, model.manoeuvre);
+    const DrivelineOperatingPoint op = quasi_static_operating_point(dl, clutch, model.manoeuvre);
+    std::vector<double> slips, temps;
+    for (int i = 0; i < 12; ++i) slips.push_back(1.0 + 59.0 * i / 11.0);
+    for (int j = 0; j < 9; ++j) temps.push_back(start_temp_C - 20.0 + 12.5 * j);
+    for (auto& m : coupling_stability_maps(dl, clutch, op, slips, temps,
+                                           {0.5 * op.clamp_force_N, op.clamp_force_N, 2.0 * op.clamp_force_N}))
+      rec.maps.push_back(std::move(m));
+  } catch (const std::invalid_argument& e) {
+    return {std::string("no coupling stability map stored: ") + e.what()};
+  }
   return {};
 }
 
@@ -160,7 +170,7 @@ CaseOutcome evaluate_case(const DrivelineModel&, const clutch::WetClutch&, dynam
 
 ReplayModel replay_model(const DrivelineModel&, const StickTimeFriction&) { throw KindNotSupported(kNoReplay); }
 
-const RigModel& modal_rig(const DrivelineModel& model) { refuse_quoting_kind(kind(model), kDrivelineModes); }
+ModalSubject modal_subject(const DrivelineModel& model) { return &model; }
 
 const RigParams& screening_rig(const DrivelineModel& model) { refuse_quoting_kind(kind(model), kNotARig); }
 

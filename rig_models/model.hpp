@@ -126,11 +126,13 @@ ReplayModel replay_model(const DrivelineModel& model, const StickTimeFriction& s
 
 // ---- shudder modes, shudder screen --rig ----------------------------------------------------
 
-/// The rig whose torsional network `shudder modes` analyses; throws KindNotSupported for kinds
-/// without one.
-const RigModel& modal_rig(const PrescribedSlipModel& model);
-const RigModel& modal_rig(const RigModel& model);
-const RigModel& modal_rig(const DrivelineModel& model);
+/// What `shudder modes` analyses: a rig's torsional network (bar and housing), or a driveline
+/// linearised about its manoeuvre's operating point (rig_models/driveline_stability.hpp).
+/// Throws KindNotSupported for kinds without a network.
+using ModalSubject = std::variant<const RigModel*, const DrivelineModel*>;
+ModalSubject modal_subject(const PrescribedSlipModel& model);
+ModalSubject modal_subject(const RigModel& model);
+ModalSubject modal_subject(const DrivelineModel& model);
 
 /// The rig `shudder screen --rig` screens a fluid on; throws KindNotSupported for kinds that are
 /// not a rig.

@@ -70,15 +70,6 @@ TEST(CliMessages, UnknownOptionalKeySuggestsTheNearestAllowedKey) {
   expect_rejected(o, {"key 'clutch.sump_strat_temp_C': unknown key; did you mean 'sump_start_temp_C'? allowed keys here:"});
 }
 
-// Old: "\"driveline\" has no torsional network" — false: the driveline has one.
-TEST(CliMessages, ModesOnADrivelineSaysWhatItAnalyses) {
-  const auto dir = scratch_dir("msg_modes");
-  const auto r = run_cli("modes '" + source_path("scenarios/driveline_tight_turn.toml") + "'", dir);
-  expect_rejected(r, {"scenario.type", "modes analyses a rig's torsion bar and housing",
-                      "a driveline's modes are not reported yet"});
-  EXPECT_THAT(r.err, ::testing::Not(HasSubstr("no torsional network")));
-}
-
 // Old: sweep_cases grew the 1e15-row grid row by row until memory ran out, then reported
 // "shudder: sweep failed: std::bad_alloc" with exit 1 (a numerical failure). Now the grid is
 // reserved at once and the failure is bad input naming its size. The 2 GB address-space limit

@@ -160,8 +160,9 @@ TEST(CliVerdict, SteadyRigRunSaysNoneAndIsPredictedStable) {
   expect_json_matches_block(test::parse(test::slurp(dir / "rep" / "verdict.json")), *b);
 }
 
-// The driveline stores the same block; it has no predictor yet and says so.
-TEST(CliVerdict, DrivelineRunHasTheSameBlockAndSaysNotPredicted) {
+// The driveline stores the same block, with its own linear prediction (issue 13 part 4:
+// rig_models/driveline_stability.hpp) at the judged window's mean point.
+TEST(CliVerdict, DrivelineRunHasTheSameBlockWithTheDrivelinePrediction) {
   const auto dir = scratch_dir("cli_verdict_driveline");
   write_file(dir / "s.toml", test::shipped_scenario_text("driveline_tight_turn.toml"));
   const auto r = run_cli("run s.toml -o s.h5 --report rep", dir);
@@ -173,9 +174,12 @@ TEST(CliVerdict, DrivelineRunHasTheSameBlockAndSaysNotPredicted) {
   EXPECT_EQ(block_text(*b, "verdict"), "none");
   EXPECT_EQ(block_scalar(*b, "verdict_code"), test::scalar(rec, "coupling_verdict_code"));
   EXPECT_EQ(block_text(*b, "judged_signals"), "coupling_torque_Nm, coupling_slip_rpm");
-  EXPECT_EQ(block_text(*b, "prediction"), "not predicted: the driveline has no linear stability analysis yet");
-  for (const char* p : {"predicted_margin_per_s", "predicted_oscillatory_margin_per_s", "predicted_frequency_Hz"})
-    EXPECT_TRUE(std::isnan(block_scalar(*b, p))) << p;
+  EXPECT_THAT(block_text(*b, "prediction"), HasSubstr("driveline linear stability at the window's mean point"));
+  // Fluid C damps: every mode decays; the least-damped oscillatory one is the slipping
+  // shuffle mode near 2.75 Hz (docs/driveline_stability.md), the slip drift's real root ~0.
+  EXPECT_LT(block_scalar(*b, "predicted_oscillatory_margin_per_s"), 0.0);
+  EXPECT_NEAR(block_scalar(*b, "predicted_frequency_Hz"), 2.75, 0.1);
+  EXPECT_LE(block_scalar(*b, "predicted_margin_per_s"), 0.0);
   // The operating point's force is the coupling's clamp force, averaged over the run.
   double mean_clamp = 0;
   for (double f : test::signal(rec, "clamp_force_N")) mean_clamp += f;
@@ -189,7 +193,7 @@ TEST(CliVerdict, DrivelineRunHasTheSameBlockAndSaysNotPredicted) {
   EXPECT_NEAR(block_scalar(*b, "peak_frequency_Hz"), 3.1, 0.05);
   EXPECT_GT(block_scalar(*b, "amplitude_Nm"), block_scalar(*b, "threshold_Nm"));
   EXPECT_THAT(r.out, HasSubstr("Coupling judder: none (an oscillation of 4.72 N m at 3.10 Hz dies out"));
-  EXPECT_THAT(r.out, HasSubstr("Predicted there: not predicted: the driveline has no linear stability analysis yet"));
+  EXPECT_THAT(r.out, HasSubstr("Predicted there: stable"));
   expect_json_matches_block(test::parse(test::slurp(dir / "rep" / "verdict.json")), *b);
 }
 
