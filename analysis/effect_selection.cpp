@@ -8,6 +8,64 @@
 
 namespace shudder::analysis {
 
+namespace {
+
+// The backward check after the greedy search. An effect added early can be a stand-in for one
+// added later that explains more (a torque-cell gain takes the torque share of a load-cell gain
+// in round 1; the load gain, which also moves the heat, comes later and makes it redundant).
+// So each added effect is taken out in turn, the others refitted alone on the fit set, and the
+// one whose removal costs the least held-out misfit is withdrawn if that cost is below what it
+// would need to be accepted now ((min_gain + penalty·k)·s, the forward test's threshold).
+// Repeated until every added effect pays for itself. Cost: one refit per added effect and pass,
+// only when two or more effects were added.
+void withdraw_redundant(Selection& sel, Config& fold, const CandidateFitter& fitter, const MisfitModel& misfit,
+                        const DiagnosisOptions& opt) {
+  while (fold.size() >= 2) {
+    const double j_with = misfit.misfit(misfit.holdout(), sel.fold_predictions);
+    const double s = std::max(1.0, j_with);
+    std::size_t weakest = fold.size();
+    double weakest_margin = 0.0;
+    Config weakest_config;
+    Predictions weakest_pred;
+    for (std::size_t i = 0; i < fold.size(); ++i) {
+      Config without = fold;
+      without.erase(without.begin() + static_cast<std::ptrdiff_t>(i));
+      Predictions pred = sel.fold_predictions;
+      Config refit = fitter.refit_fold(without, pred);
+      const double k = static_cast<double>(fold[i].values.size());
+      const double cost = misfit.misfit(misfit.holdout(), pred) - j_with;
+      const double margin = cost - (opt.min_gain + opt.penalty_per_parameter * k) * s;
+      if (margin < 0.0 && (weakest == fold.size() || margin < weakest_margin)) {
+        weakest = i;
+        weakest_margin = margin;
+        weakest_config = std::move(refit);
+        weakest_pred = std::move(pred);
+      }
+    }
+    if (weakest == fold.size()) return;
+    const std::string name = fold[weakest].effect;
+    fold = std::move(weakest_config);
+    sel.fold_predictions = std::move(weakest_pred);
+    // The full (all-runs) configuration without it, refitted jointly from its values.
+    Config full;
+    for (const auto& e : sel.full)
+      if (e.effect != name) full.push_back(e);
+    const Config base(full.begin(), full.end() - 1);
+    sel.full = fitter.refit_all(base, full, sel.full_predictions);
+    sel.steps.erase(std::remove_if(sel.steps.begin(), sel.steps.end(),
+                                   [&](const DiagnosisStep& st) { return st.effect == name; }),
+                    sel.steps.end());
+    for (auto& st : sel.steps)
+      for (const auto& e : sel.full)
+        if (e.effect == st.effect)
+          for (std::size_t j = 0; j < st.parameters.size() && j < e.values.size(); ++j)
+            st.parameters[j].second = e.values[j];
+    sel.withdrawn.push_back(name);
+  }
+}
+
+}  // namespace
+
 Selection select_effects(const std::vector<DiagnosisRun>& runs, const std::vector<EffectCandidate>& candidates,
                          const CandidateFitter& fitter, const MisfitModel& misfit,
                          const DiagnosisOptions& opt, const Predictions& baseline) {
@@ -109,6 +167,7 @@ Selection select_effects(const std::vector<DiagnosisRun>& runs, const std::vecto
     step.temp_tracking_before = pooled_tracking(runs, before, false);
     sel.steps.push_back(std::move(step));
   }
+  withdraw_redundant(sel, fold, fitter, misfit, opt);
   return sel;
 }
 

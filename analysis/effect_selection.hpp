@@ -4,6 +4,7 @@
 // far, adds the best if it lowers the hold-out misfit by more than min_gain + penalty·k, and
 // refits all added effects jointly on all runs. It stops when every channel is within
 // noise_tolerance·σ, at max_effects, when every candidate is added, or when none gains enough.
+// Then a backward check withdraws any added effect the others make redundant (effect_selection.cpp).
 
 #include <string>
 #include <vector>
@@ -21,6 +22,9 @@ struct Selection {
   Config full;                  // added effects, last joint refit on all runs
   Predictions fold_predictions;  // fit/hold-out predictions of the last accepted fold
   Predictions full_predictions;  // all runs with `full`
+  // Added in the greedy search, then taken out by the backward check (a stand-in for an
+  // effect added later); their steps are removed from `steps`.
+  std::vector<std::string> withdrawn;
 };
 
 Selection select_effects(const std::vector<DiagnosisRun>& runs, const std::vector<EffectCandidate>& candidates,

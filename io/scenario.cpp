@@ -315,7 +315,10 @@ void read_driveline(TomlTable& root, Draft& s) {
 }
 
 // The scenario's structs that effects write into (the registry's EffectTarget).
-rig_models::EffectTarget effect_target(Draft& s) { return {s.clutch, s.settings.bearing_drag, s.rig.stick_time, s.settings.torque_cell}; }
+rig_models::EffectTarget effect_target(Draft& s) {
+  return {s.clutch, s.settings.bearing_drag, s.rig.stick_time, s.settings.torque_cell, s.settings.load_cell,
+          s.settings.friction_drift};
+}
 
 Range toml_range(const rig_models::ValueRange& r) { return {r.min, r.max, r.min_exclusive, r.max_exclusive}; }
 
@@ -392,6 +395,7 @@ rig_models::Model make_model(const Draft& d) {
     case ModelKind::kRig: {
       rig_models::RigModel m{d.rig, d.cycle, {}};
       m.params.bearing_drag = d.settings.bearing_drag;
+      m.params.load_cell = d.settings.load_cell;
       m.settings.duration_s = d.settings.duration_s;
       m.settings.thermal_step_s = d.settings.thermal_step_s;
       m.settings.sample_rate_Hz = d.settings.sample_rate_Hz;

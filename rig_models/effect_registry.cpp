@@ -113,6 +113,15 @@ std::vector<EffectDefinition> build() {
        {},
        {{ModelKind::kRig, "the rig's torque cell also drives its speed loop; not modelled there yet"},
         {ModelKind::kDriveline, "it is the rig's torque cell"}}},
+      // Acts in the recorded normal force (prescribed slip and rig, rig_models/prescribed_slip.hpp);
+      // a replay drives the model with F_rec / g_F (rig_models/replay.cpp). Bounds as the torque
+      // cell's.
+      {"load_sensor_gain", "the load cell reads a fixed fraction high or low",
+       [](auto& t) -> auto& { return t.load_cell.gain_fault; },
+       {{"gain", "-", kSameUnit, R::positive(), [](auto& t) -> auto& { return t.load_cell.gain; },
+         FitSpec{0.5, 2.0, {0.97, 1.03, 1.1}}}},
+       {},
+       {{ModelKind::kDriveline, "it is the rig's load cell"}}},
       // Acts in clutch::ThermalModel (the reading of the thermocouple); in a replay the discs
       // then start at the sump's measured temperature (rig_models/replay.hpp).
       {"thermocouple_offset", "the thermocouple reads a constant temperature too much",
@@ -121,6 +130,20 @@ std::vector<EffectDefinition> build() {
          [](auto& t) -> auto& { return t.clutch.thermal.thermocouple_offset_K; },
          FitSpec{-10.0, 10.0, {0.5, -0.5, 2.0}, true}}},
        {}, {}},
+      // Acts in the prescribed-slip runner (rig_models/prescribed_slip.hpp), which accumulates
+      // the sliding distance. Bounds: an estimate; a drift beyond ±50 % within a test is a
+      // different friction pair, and s0 from 0.1 m (a few revolutions) to 10 km (a life test).
+      {"friction_drift", "friction drifts with the sliding distance (running-in, ageing)",
+       [](auto& t) -> auto& { return t.friction_drift.enabled; },
+       {
+           {"change", "-", kSameUnit, R::closed(-0.9, 1.0), [](auto& t) -> auto& { return t.friction_drift.change; },
+            FitSpec{-0.5, 0.5, {-0.05, 0.05, -0.15}, true}},
+           {"distance_m", "m", kSameUnit, R::positive(),
+            [](auto& t) -> auto& { return t.friction_drift.distance_m; }, FitSpec{0.1, 1e4, {10.0, 3.0, 30.0}}},
+       },
+       {},
+       {{ModelKind::kRig, "the rig's contact law does not accumulate the sliding distance yet"},
+        {ModelKind::kDriveline, "the driveline's clutch does not accumulate the sliding distance yet"}}},
   };
 }
 

@@ -34,6 +34,8 @@ struct ConstEffectTarget {
   const BearingDrag& bearing_drag;
   const StickTimeFriction& stick_time;
   const TorqueCell& torque_cell;
+  const LoadCell& load_cell;
+  const FrictionDrift& friction_drift;
 };
 
 /// The parameter structs effects write into. A scenario builds it from its clutch, bearing drag
@@ -43,8 +45,12 @@ struct EffectTarget {
   BearingDrag& bearing_drag;
   StickTimeFriction& stick_time;
   TorqueCell& torque_cell;
+  LoadCell& load_cell;
+  FrictionDrift& friction_drift;
 
-  operator ConstEffectTarget() const { return {clutch, bearing_drag, stick_time, torque_cell}; }  // NOLINT: a view
+  operator ConstEffectTarget() const {  // NOLINT: a view
+    return {clutch, bearing_drag, stick_time, torque_cell, load_cell, friction_drift};
+  }  // NOLINT: a view
 };
 
 /// A member of the effect structs, named once by a stateless lambda that serves both

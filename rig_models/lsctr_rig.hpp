@@ -47,6 +47,7 @@ struct RigParams {
                                // cycle's first speed with the bar carrying the friction torque
   MotorRipple motor_ripple;  // the drive's torque ripple (motor_ripple.hpp); amplitude 0: none
   BearingDrag bearing_drag;
+  LoadCell load_cell;  // records g_F * F as normal_force_N (prescribed_slip.hpp)
   StickTimeFriction stick_time;
   // Tolerances: the bar twist is ~1e-3 rad and the slip ~0.1–10 rad/s, so 1e-6 absolute and
   // 1e-5 relative per step keep torques to ~0.1 % while the 100–500 Hz bar mode, not accuracy,

@@ -123,6 +123,7 @@ ReplayModel replay_model(const RigModel& model, const StickTimeFriction&) {
   m.settings.sample_rate_Hz = model.settings.sample_rate_Hz;
   m.settings.snapshot_times_s = model.settings.snapshot_times_s;
   m.settings.bearing_drag = model.params.bearing_drag;
+  m.settings.load_cell = model.params.load_cell;
   m.rig_params = model.params;
   return m;
 }

@@ -26,21 +26,22 @@ struct Probe {
 // evaluated once for the torque and the heat (WetClutch::torque_Nm and ring_heat_W would each
 // evaluate them, with the same numbers).
 Probe measure(const clutch::WetClutch& clutch, const clutch::ThermalState& s,
-              const DriveCycle& cycle, const BearingDrag& drag, const TorqueCell& cell, double t,
-              Eigen::VectorXd& heat) {
+              const DriveCycle& cycle, const BearingDrag& drag, const TorqueCell& cell,
+              const LoadCell& load_cell, double drift, double t, Eigen::VectorXd& heat) {
   const auto& th = clutch.thermal();
   const double slip_rpm = cycle.slip_speed_rpm(t);
   const double slip = units::rpm_to_rad_s(slip_rpm);
   const double force = cycle.normal_force_N(t);
   const Eigen::VectorXd ring_T = th.interface_temps_C(s);
   clutch.ring_torque_Nm(slip, force, ring_T, heat);
+  heat *= drift;
   const double m = std::copysign(clutch.params().sliding_interfaces * heat.sum(), slip);
   heat *= std::abs(slip);
   const double drag_Nm = drag.enabled ? std::copysign(drag.equivalent_mu * force * drag.radius_m, slip) : 0.0;
   const double n = clutch.params().sliding_interfaces;
   const double denom = n * force * clutch.mean_radius_m();
   return Probe{slip_rpm,
-               force,
+               load_cell.reading_N(force),
                cell.reading_Nm(m + drag_Nm),
                m,
                s.sensor_temp_C,
@@ -96,7 +97,12 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
   long next_sample = 0;
   recorder.sample(0.0);
   Eigen::VectorXd h0, hm, h1;  // ring heat at a step's start, middle and end
-  recorder.start(measure(clutch, state, cycle, cfg.bearing_drag, cfg.torque_cell, 0.0, h0));
+  // Sliding distance at the mean radius (friction_drift), by the same Simpson rule as the heat.
+  const double r_m = clutch.mean_radius_m();
+  const auto sliding_speed = [&](double t) { return r_m * std::abs(units::rpm_to_rad_s(cycle.slip_speed_rpm(t))); };
+  double sliding_m = 0.0;
+  recorder.start(measure(clutch, state, cycle, cfg.bearing_drag, cfg.torque_cell, cfg.load_cell,
+                         cfg.friction_drift.factor(sliding_m), 0.0, h0));
   next_sample = 1;
 
   std::vector<double> snaps = cfg.snapshot_times_s;
@@ -124,12 +130,17 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
     // h0 (at t0 with the temperatures at t0) is the previous measure()'s.
     heat_at(tm, hm);
     heat_at(t1, h1);
+    const double v0 = sliding_speed(t0), vm = sliding_speed(tm), v1 = sliding_speed(t1);
+    hm *= cfg.friction_drift.factor(sliding_m + 0.25 * dt * (v0 + vm));
+    sliding_m += dt * (v0 + 4.0 * vm + v1) / 6.0;
+    h1 *= cfg.friction_drift.factor(sliding_m);
     const Eigen::VectorXd mean_heat = (h0 + 4.0 * hm + h1) / 6.0;
     th.step(state, workspace, dt, mean_heat, units::rpm_to_rad_s(cycle.slip_speed_rpm(tm)));
     data_range.add(dt, units::rpm_to_rad_s(cycle.slip_speed_rpm(tm)), th.ring_radius_m(), ring_T, cycle.normal_force_N(tm));
     state.time_s = t1;  // exact end time, free of accumulated round-off
 
-    const Probe after = measure(clutch, state, cycle, cfg.bearing_drag, cfg.torque_cell, t1, h0);
+    const Probe after = measure(clutch, state, cycle, cfg.bearing_drag, cfg.torque_cell, cfg.load_cell,
+                                cfg.friction_drift.factor(sliding_m), t1, h0);
     while (next_sample < n_samples) {
       const double ts = static_cast<double>(next_sample) / cfg.sample_rate_Hz;
       if (ts > t1 + 1e-12) break;

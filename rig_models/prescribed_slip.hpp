@@ -14,7 +14,13 @@
 // Torque-cell faults (`torque_sensor_gain`, `torque_sensor_offset` effects; measurement only,
 // the physics is unchanged): the recorded torque is M_rec = g * M_cell + M_0 [N m]. Source:
 // estimate — a mis-calibrated cell's linear error; bounds in rig_models/effect_registry.cpp.
+//
+// Load-cell fault (`load_sensor_gain`; measurement only): the recorded normal force is
+// F_rec = g_F * F [N]. The clutch is pressed with F, so a replay of a recorded run drives the
+// model with F_rec / g_F: torque and heat both follow the true force (a torque-cell gain moves
+// the torque alone). Source: estimate, as for the torque cell.
 
+#include <cmath>
 #include <vector>
 
 #include "clutch/wet_clutch.hpp"
@@ -39,6 +45,31 @@ struct TorqueCell {
   }
 };
 
+// Friction drift (`friction_drift`; running-in or ageing of the friction pair): the interface
+// torque and its heat are scaled by
+//   f(s) = 1 + Δ (1 − exp(−s / s0)),    s = r_m ∫ |Δω| dt   [m], sliding distance at the mean radius,
+// an exponential approach to a new level (Δ = −0.05: 5 % down). Source: estimate. The thesis
+// reports that μ–v characteristics change over a clutch's life through wear of the plates and
+// degradation of the fluid (Ward et al., Kugimiya et al., thesis introduction) and that the
+// steady-state data are taken after run-in; the exponential approach in sliding distance is the
+// simplest form that starts at the fresh value and saturates. The factor scales the whole
+// interface torque (the viscous film's too, when on): the drift is not split between them.
+struct FrictionDrift {
+  bool enabled = false;
+  double change = -0.05;     // Δ, relative change approached (estimate: the 5 % down)
+  double distance_m = 10.0;  // s0, sliding distance of the approach (estimate)
+  double factor(double sliding_m) const {
+    return enabled ? 1.0 + change * -std::expm1(-sliding_m / distance_m) : 1.0;
+  }
+};
+
+struct LoadCell {
+  bool gain_fault = false;
+  double gain = 1.0;  // g_F, recorded / true
+  double reading_N(double true_N) const { return gain_fault ? gain * true_N : true_N; }
+  double true_N(double reading_N) const { return gain_fault ? reading_N / gain : reading_N; }
+};
+
 struct PrescribedSlipSettings {
   double duration_s = 10.0;
   double thermal_step_s = 0.01;
@@ -46,6 +77,8 @@ struct PrescribedSlipSettings {
   std::vector<double> snapshot_times_s;  // thermal-field snapshots (nearest step end)
   BearingDrag bearing_drag;
   TorqueCell torque_cell;
+  LoadCell load_cell;
+  FrictionDrift friction_drift;
 };
 
 /// Runs the cycle and returns the recording: signals named as FORMATS.md (time_s, speed_rpm,

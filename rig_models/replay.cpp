@@ -105,7 +105,10 @@ ReplayOutput replay(const ReplayModel& model, const ReplayInputs& in) {
   cycle.slip_speed_rpm = window_means(
       t, setpoint ? estimate_speed_setpoint(t, in.speed_rpm, in.torque_Nm, rp) : in.speed_rpm, t0,
       in.input_window_s);
-  cycle.normal_force_N = window_means(t, in.normal_force_N, t0, in.input_window_s);
+  // A load cell reading g_F too much: the clutch was pressed with F_rec / g_F.
+  std::vector<double> force_N = in.normal_force_N;
+  for (auto& f : force_N) f = model.settings.load_cell.true_N(f);
+  cycle.normal_force_N = window_means(t, force_N, t0, in.input_window_s);
 
   dynamics::Recording rec;
   const double duration = t.back() - t0;
@@ -148,10 +151,14 @@ ModelKind model_kind(const ReplayModel& m) { return m.rig ? ModelKind::kRig : Mo
 
 }  // namespace
 
-EffectTarget effect_target(ReplayModel& m) { return {m.clutch, m.settings.bearing_drag, m.rig_params.stick_time, m.settings.torque_cell}; }
+EffectTarget effect_target(ReplayModel& m) {
+  return {m.clutch, m.settings.bearing_drag, m.rig_params.stick_time, m.settings.torque_cell, m.settings.load_cell,
+          m.settings.friction_drift};
+}
 
 ConstEffectTarget effect_target(const ReplayModel& m) {
-  return {m.clutch, m.settings.bearing_drag, m.rig_params.stick_time, m.settings.torque_cell};
+  return {m.clutch, m.settings.bearing_drag, m.rig_params.stick_time, m.settings.torque_cell, m.settings.load_cell,
+          m.settings.friction_drift};
 }
 
 bool effect_enabled(const ReplayModel& m, std::string_view name) {

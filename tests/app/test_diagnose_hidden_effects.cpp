@@ -92,16 +92,17 @@ void expect_gap_shrinks(const analysis::DiagnosisResult& r) {
       << "temp " << r.baseline.temp_rms_C << " -> " << r.final.temp_rms_C << " noise " << r.noise_temp_C;
 }
 
+// A parameter is named by its key, or "effect/key" where two effects share the key (`gain`).
 void expect_parameters(const analysis::DiagnosisResult& r, const Case& c) {
   for (const auto& [name, hidden] : c.parameters) {
     bool found = false;
     for (const auto& st : r.steps)
       for (const auto& [k, v] : st.parameters)
-        if (k == name && !found) {
+        if ((k == name || st.effect + "/" + k == name) && !found) {
           found = true;
           // The issue's identifiability target: within 20 % of the hidden value; for a sensor
           // gain (near 1, where 20 % would pass a fit that found nothing) 20 % of its error g - 1.
-          if (name == "gain")
+          if (name.ends_with("gain"))
             EXPECT_NEAR((v - 1.0) / (hidden - 1.0), 1.0, 0.2) << name << " fitted " << v << ", hidden " << hidden;
           else
             EXPECT_NEAR(v / hidden, 1.0, 0.2) << name << " fitted " << v << ", hidden " << hidden;
@@ -167,6 +168,14 @@ const char* const kTorqueOffset = "[effects.torque_sensor_offset]\nenabled = tru
 const char* const kThermocouple = "[effects.thermocouple_offset]\nenabled = true\noffset_K = 2.0\n";
 const char* const kLag = "[effects.temperature_sensor_lag]\nenabled = true\ntime_constant_s = 1.0\n";
 const char* const kDrag = "[effects.bearing_drag]\nenabled = true\nequivalent_mu = 0.005\n";
+// A load cell 5 % low (a cell calibrated against a wrong reference or a drifted amplifier): the
+// replay's force is 5 % low, so are its torque and heat (the temperature rise is ~1.5 K low at
+// the hold, 4-5 sigma), which no torque-cell gain reproduces.
+// Friction 5 % down over 2 m of sliding (the probe slides ~3.8 m at the mean radius, most of it in
+// the 100 rpm hold): the issue's "friction drifting 5 % down"; at the final 1 rpm rest the
+// torque is ~4 % (2-3 N m, 3-4 sigma) below the fresh model's.
+const char* const kDrift = "[effects.friction_drift]\nenabled = true\nchange = -0.05\ndistance_m = 2.0\n";
+const char* const kLoadGain = "[effects.load_sensor_gain]\nenabled = true\ngain = 0.95\n";
 
 INSTANTIATE_TEST_SUITE_P(
     DiagnoseRigFaults, HiddenEffect,
@@ -179,7 +188,23 @@ INSTANTIATE_TEST_SUITE_P(
              {"temperature_sensor_lag", "torque_sensor_offset"}, {{"offset_Nm", 3.0}, {"time_constant_s", 1.0}}},
         Case{"thermocouple_offset", kThermocouple, "", {"thermocouple_offset"}, {{"offset_K", 2.0}}},
         Case{"thermocouple_offset_and_drag", std::string(kThermocouple) + kDrag, "",
-             {"bearing_drag", "thermocouple_offset"}, {{"offset_K", 2.0}, {"equivalent_mu", 0.005}}}),
+             {"bearing_drag", "thermocouple_offset"}, {{"offset_K", 2.0}, {"equivalent_mu", 0.005}}},
+        Case{"load_sensor_gain", kLoadGain, "", {"load_sensor_gain"}, {{"gain", 0.95}}},
+        Case{"load_sensor_gain_high", "[effects.load_sensor_gain]\nenabled = true\ngain = 1.08\n", "",
+             {"load_sensor_gain"}, {{"gain", 1.08}}},
+        Case{"load_sensor_gain_and_lag", std::string(kLoadGain) + kLag, "",
+             {"temperature_sensor_lag", "load_sensor_gain"}, {{"gain", 0.95}, {"time_constant_s", 1.0}}},
+        Case{"load_sensor_gain_and_torque_offset", std::string(kLoadGain) + kTorqueOffset, "",
+             {"torque_sensor_offset", "load_sensor_gain"}, {{"gain", 0.95}, {"offset_Nm", 3.0}}},
+        // Both gains: only the heat tells them apart (the load gain moves it, the torque gain not).
+        // Both are named; their values are not identifiable to 20 % from these two runs (seen:
+        // g_F 0.924 for 0.95; the temperature carries g_F only through ~1.5 K of heat), so only
+        // the names are checked (docs/diagnosis.md).
+        Case{"load_and_torque_sensor_gains", std::string(kLoadGain) + kGain, "",
+             {"load_sensor_gain", "torque_sensor_gain"}, {}},
+        Case{"friction_drift", kDrift, "", {"friction_drift"}, {{"change", -0.05}, {"distance_m", 2.0}}},
+        Case{"friction_drift_and_lag", std::string(kDrift) + kLag, "",
+             {"temperature_sensor_lag", "friction_drift"}, {{"change", -0.05}, {"time_constant_s", 1.0}}}),
     [](const ::testing::TestParamInfo<Case>& i) { return i.param.name; });
 
 // Stick-time static friction acts only where the surfaces stick, so it is hidden in rig runs of

@@ -146,6 +146,23 @@ TEST_P(TrueRigModel, NamesNothingAndIsExplained) {
 
 INSTANTIATE_TEST_SUITE_P(Seeds, TrueRigModel, ::testing::Values(61u, 71u, 81u));
 
+// The five seeds for "nothing named": two more. Seed 101's first breakaway from rest
+// leaves 3.1 x the torque scale (a.csv 0.7-0.9 s, block means +2.9 / -5.1 N m; seed 91 stays
+// within 1.5 x), the open reproduction problem of docs/diagnosis.md; nothing is named on
+// either, which is what is asserted here.
+class TrueRigModelNamesNothing : public ::testing::TestWithParam<unsigned> {};
+
+TEST_P(TrueRigModelNamesNothing, OnMoreSeeds) {
+  const unsigned seed = GetParam();
+  const auto dir = scratch_dir("diag_true_rig_more_" + std::to_string(seed));
+  const auto a = make_run(dir, "a", stick_probe(0.7), seed, "");
+  const auto b = make_run(dir, "b", stick_probe(1.3), seed + 1, "");
+  const auto r = diagnose_files({a, b}, stick_probe(0.7), "scenarios/rig_stick_time_probe.toml", true);
+  EXPECT_TRUE(r.missing_effects.empty()) << describe(r);
+}
+
+INSTANTIATE_TEST_SUITE_P(Seeds, TrueRigModelNamesNothing, ::testing::Values(91u, 101u));
+
 // ---- the same physics on another discretisation ---------------------------------------------
 
 // 60 radial cells and a 2.5 ms thermal step against the model's 20 cells and 10 ms.

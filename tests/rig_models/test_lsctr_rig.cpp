@@ -205,6 +205,28 @@ TEST(RigBar, GivenStiffnessIsUsedAsIs) {
 // record in speed adds ~1e-5).
 // Tolerances: the spec's 1 % (torque) and 0.5 °C (thermocouple, both see the same heat).
 // ---------------------------------------------------------------------------------------------
+// A load cell reading g_F F on the rig (`load_sensor_gain`): the recorded normal force is
+// g_F times the cylinder's (exactly: the recorder multiplies the cycle's value), the dynamics
+// and the torque cell untouched (bit-identical: the cell's reading enters nothing else).
+TEST(RigLoadCell, GainChangesOnlyTheRecordedForce) {
+  const Scenario sc = scenario("rig_case1_25kN_378Hz.toml");
+  auto params = without_ripple(shudder::test::rig_model(sc).params);
+  params.load_cell = {true, 1.05};
+  auto settings = shudder::test::rig_model(sc).settings;
+  settings.duration_s = 1.0;
+  const auto& cycle = shudder::test::rig_model(sc).cycle;
+  const WetClutch clutch = sc.make_clutch();
+  const Recording faulty = run_rig(params, clutch, cycle, settings);
+  params.load_cell.gain_fault = false;
+  const Recording plain = run_rig(params, clutch, cycle, settings);
+  const auto& t = signal(faulty, "time_s");
+  const auto& f = signal(faulty, "normal_force_N");
+  for (std::size_t k = 0; k < t.size(); ++k)
+    EXPECT_NEAR(f[k], 1.05 * cycle.normal_force_N(t[k]), 1e-9 * cycle.normal_force_N(t[k])) << "sample " << k;
+  EXPECT_EQ(signal(faulty, "torque_Nm"), signal(plain, "torque_Nm"));
+  EXPECT_EQ(signal(faulty, "temp_C"), signal(plain, "temp_C"));
+}
+
 TEST(RigQuasiStatic, Case1TorqueCellEqualsPrescribedSlipTorque) {
   const Recording& rig = rig_case1();
   const Scenario ps_sc = scenario("paper_g_case1_25kN.toml");

@@ -212,6 +212,43 @@ TEST(PrescribedSlip, SensorFaultsChangeOnlyTheRecordedChannel) {
   EXPECT_EQ(signal(hot, "interface_max_temp_C"), signal(plain, "interface_max_temp_C"));
 }
 
+// A load cell reading g_F F: only the recorded force changes (exactly, 1e-9 N of interpolation
+// round-off); the clutch is pressed with F, so torque and heat are those of the plain run.
+TEST(PrescribedSlip, LoadCellGainChangesOnlyTheRecordedForce) {
+  const WetClutch clutch = case1_clutch();
+  PrescribedSlipSettings faulty = settings(0.01);
+  faulty.load_cell = {true, 0.95};
+  const Recording plain = run_prescribed_slip(clutch, case1_cycle(), settings(0.01));
+  const Recording cell = run_prescribed_slip(clutch, case1_cycle(), faulty);
+  for (const double f : signal(cell, "normal_force_N")) EXPECT_NEAR(f, 0.95 * kForce, 1e-9);
+  EXPECT_EQ(signal(cell, "torque_Nm"), signal(plain, "torque_Nm"));
+  EXPECT_EQ(scalar(cell, "heat_generated_J"), scalar(plain, "heat_generated_J"));
+  EXPECT_NEAR(faulty.load_cell.true_N(faulty.load_cell.reading_N(kForce)), kForce, 1e-9);
+}
+
+// Friction drift against its closed form: with friction independent of temperature (and a
+// constant force) the clutch torque of the drifting run over the fresh one is
+// f(s) = 1 + Δ (1 − e^(−s/s0)), s = r_m ∫ ω dt = r_m (π/30) (t + 4.95 t²) for the 1 → 100 rpm
+// ramp in 10 s. Samples fall on thermal-step ends, where the Simpson sliding distance is exact
+// for a linear ramp: 1e-9 relative is round-off. The heat follows the torque: lower with Δ < 0.
+TEST(PrescribedSlip, FrictionDriftFollowsTheSlidingDistance) {
+  const WetClutch clutch = case1_clutch(false);
+  PrescribedSlipSettings drift = settings(0.01);
+  drift.friction_drift = {true, -0.05, 1.5};
+  const Recording plain = run_prescribed_slip(clutch, case1_cycle(), settings(0.01));
+  const Recording drifted = run_prescribed_slip(clutch, case1_cycle(), drift);
+  const auto& t = signal(drifted, "time_s");
+  const auto& m = signal(drifted, "clutch_torque_Nm");
+  const auto& m0 = signal(plain, "clutch_torque_Nm");
+  const double r_m = clutch.mean_radius_m();
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    const double s_m = r_m * std::numbers::pi / 30.0 * (t[k] + 4.95 * t[k] * t[k]);
+    EXPECT_NEAR(m[k] / m0[k], 1.0 - 0.05 * (1.0 - std::exp(-s_m / 1.5)), 1e-9) << "sample " << k;
+  }
+  EXPECT_LT(m.back() / m0.back(), 0.96);  // ~3.9 m slid: most of the 5 % reached
+  EXPECT_LT(scalar(drifted, "heat_generated_J"), scalar(plain, "heat_generated_J"));
+}
+
 TEST(PrescribedSlip, RejectsBadSettingsNamingTheQuantity) {
   const WetClutch clutch = case1_clutch();
   PrescribedSlipSettings s = settings(0.0);
