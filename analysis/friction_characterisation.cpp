@@ -20,7 +20,6 @@ const char* compensation_name(Compensation c) {
     case Compensation::kNone: return "none";
     case Compensation::kLinear: return "linear";
     case Compensation::kQuadratic: return "quadratic";
-    case Compensation::kModel: return "model";
   }
   return "?";
 }
@@ -89,29 +88,23 @@ double interp_log(const std::vector<double>& xs, const std::vector<double>& ys, 
 
 struct Sample {
   double v_mm_s, mu, temp_C;
-  double model_correction = 0.0;  // Compensation::kModel: L(v, T_row, F_row) − mu_sim
-};
-
-struct NodeMean {
-  double mu, temp_C, model_correction;
 };
 
 // A ramp's (mu, T) at a node speed: the means over its samples within ±5 % of the node speed
 // (a single sample would carry the torque cell's full noise, ~1e-3 in mu at 15 kN; a 10 s
 // ramp at 50 S/s puts ~5 samples in the window at 50 rpm, ~50 at 100 rpm of a 1–20 s ramp).
 // nullopt if the ramp does not reach the node.
-std::optional<NodeMean> at_node(const std::vector<Sample>& s, double speed_mm_s) {
-  double sm = 0.0, st = 0.0, sc = 0.0;
+std::optional<std::pair<double, double>> at_node(const std::vector<Sample>& s, double speed_mm_s) {
+  double sm = 0.0, st = 0.0;
   int n = 0;
   for (const Sample& p : s)
     if (std::abs(p.v_mm_s - speed_mm_s) <= 0.05 * speed_mm_s) {
       sm += p.mu;
       st += p.temp_C;
-      sc += p.model_correction;
       ++n;
     }
   if (n == 0) return std::nullopt;
-  return NodeMean{sm / n, st / n, sc / n};
+  return std::pair{sm / n, st / n};
 }
 
 // Weighted linear least squares; returns coefficients and (if cov) the unscaled covariance
@@ -287,9 +280,6 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
   const std::size_t nl = out.loads_N.size(), nt = out.temps_C.size();
 
   // 3. Samples: mu from torque, speed at the effective radius.
-  const bool model = s.compensation == Compensation::kModel;
-  if (model && (!s.model_law || s.model_mu.size() != runs.size()))
-    throw std::invalid_argument("model compensation needs the replay law and one simulated mu series per run");
   const double r_m = r_mm / 1000.0;
   std::vector<std::vector<Sample>> samples(out.used.size());
   out.min_temp_C = std::numeric_limits<double>::infinity();
@@ -304,16 +294,7 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
       if (!(f > 0)) continue;
       const double mu = std::copysign(1.0, rpm) * run.torque_Nm[k] / (s.conversion.interfaces * f * r_m) -
                         s.conversion.bearing_drag_mu;
-      const double v = std::abs(rpm) * mm_s_per_rpm;
-      double model_correction = 0.0;
-      if (model) {
-        const auto& sim = s.model_mu[ramp.run];
-        if (sim.size() != run.time_s.size())
-          throw std::invalid_argument("model compensation: the simulated series of " + run.name + " has the wrong length");
-        model_correction = s.model_law->mu(v, out.temps_C[std::size_t(temp_group[i])],
-                                           out.loads_N[std::size_t(load_group[i])]) - sim[k];
-      }
-      samples[i].push_back({v, mu, run.temp_C[k], model_correction});
+      samples[i].push_back({std::abs(rpm) * mm_s_per_rpm, mu, run.temp_C[k]});
       out.min_temp_C = std::min(out.min_temp_C, run.temp_C[k]);
       out.max_temp_C = std::max(out.max_temp_C, run.temp_C[k]);
     }
@@ -388,8 +369,8 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
         for (std::size_t i = 0; i < out.used.size(); ++i) {
           if (std::size_t(load_group[i]) != l) continue;
           if (auto p = at_node(samples[i], out.node_speeds_mm_s[k])) {
-            ms.push_back(p->mu);
-            ts.push_back(p->temp_C);
+            ms.push_back(p->first);
+            ts.push_back(p->second);
           }
         }
         const auto [tmin, tmax] = std::minmax_element(ts.begin(), ts.end());
@@ -464,7 +445,7 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
         const bool up = out.used[i].direction == RampDirection::kUp;
         (up ? row.ramps_up : row.ramps_down)++;
         for (const Sample& p : samples[i]) {
-          const double mc = p.mu + p.model_correction + correct(load_group[i], p.v_mm_s, p.temp_C, row.temp_C);
+          const double mc = p.mu + correct(load_group[i], p.v_mm_s, p.temp_C, row.temp_C);
           const int b = std::clamp(int((std::log(p.v_mm_s) - l0) / (l1 - l0) * kBins), 0, kBins - 1);
           if (p.v_mm_s < vmin * 0.999 || p.v_mm_s > vmax * 1.001) continue;
           const auto bb = std::size_t(b);
@@ -476,9 +457,8 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
         }
         for (std::size_t k = 0; k < nn; ++k)
           if (auto p = at_node(samples[i], out.node_speeds_mm_s[k])) {
-            const double mc = p->mu + p->model_correction +
-                              correct(load_group[i], out.node_speeds_mm_s[k], p->temp_C, row.temp_C);
-            (up ? up_r : dn_r)[k] += p->mu;
+            const double mc = p->first + correct(load_group[i], out.node_speeds_mm_s[k], p->second, row.temp_C);
+            (up ? up_r : dn_r)[k] += p->first;
             (up ? up_c : dn_c)[k] += mc;
             (up ? up_n : dn_n)[k] += 1;
           }

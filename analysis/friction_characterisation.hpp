@@ -22,12 +22,6 @@
 //                         node speed k (Paper D: 1, 5, 10, …, 100 rpm) over all ramps of the load
 //                         (value and temperature read where each ramp crosses the node), linear
 //                         in ln v between nodes.
-//              model      mu − (mu_sim − L(v, T_row, F_row)): mu_sim is the torque of the clutch
-//                         and thermal model replaying the run with the law L (converted to mu
-//                         like the measurement), so mu_sim − L(v, T_row, F_row) is what the
-//                         simulated interface field and the radial spread of speed add to the
-//                         row's curve. A fixed point of fit ∘ replay has mu_sim = mu measured
-//                         (rig_models/inverse_characterisation: --method inverse).
 //   5. fit     maki:   Paper G eq. 13 per row, weighted least squares on the row's speed-binned
 //                      means by variable projection: C2 searched on a log grid and refined by
 //                      golden section, C1, C3, C4 linear least squares for each C2 (exact
@@ -63,9 +57,9 @@ class CharacterisationInputError : public std::invalid_argument {
 };
 
 enum class RadiusRule { kUniformWear, kUniformPressure };
-enum class Compensation { kNone, kLinear, kQuadratic, kModel };
+enum class Compensation { kNone, kLinear, kQuadratic };
 enum class LawKind { kMaki, kLinear, kTable };
-const char* compensation_name(Compensation c);  // "none", "linear", "quadratic", "model"
+const char* compensation_name(Compensation c);  // "none", "linear", "quadratic"
 const char* law_name(LawKind k);                // "maki", "linear", "table"
 
 struct FrictionConversion {
@@ -91,10 +85,6 @@ struct CharacterisationSettings {
   std::vector<double> row_temps_C;    // empty: the clusters of the data
   double linear_load_N = 20000.0;     // the linear law's load (Paper E: 20 kN); nearest row
   int speed_bins = 48;                // log-spaced bins per row for the fit
-  // Compensation::kModel: the law the runs were replayed with and, per run and sample, the
-  // replay's torque as mu (M_sim / (n F r_eff), no bearing drag: the model has none).
-  std::shared_ptr<const clutch::FrictionLaw> model_law;
-  std::vector<std::vector<double>> model_mu;
 };
 
 struct QuadraticNode {

@@ -146,7 +146,7 @@ int characterise_command(const CharacteriseOptions& o) {
         throw io::InputError(e.file(), 0, "", e.what());
       }
       c = inverse->inverse;
-      written.compensation = analysis::Compensation::kModel;
+      written = inverse->settings;
     }
 
     io::FluidIdentity id;

@@ -200,14 +200,12 @@ std::string method_json(const analysis::Characterisation& c, const analysis::Cha
 
 std::string characterisation_json(const rig_models::InverseCharacterisation& r, const analysis::CharacterisationSettings& s,
                                   const std::vector<std::string>& runs, const std::string& fluid_path) {
-  analysis::CharacterisationSettings model = s;
-  model.compensation = analysis::Compensation::kModel;
-  std::string doc = characterisation_json(r.inverse, model, runs, fluid_path);
+  std::string doc = characterisation_json(r.inverse, r.settings, runs, fluid_path);
   doc.resize(doc.size() - 3);  // "\n}\n": the document continues
   std::ostringstream o;
-  o << doc << ",\n  \"method\": \"inverse\",\n  \"methods\": {\n    \"node_rpm\": " << nums(r.inverse.node_rpm)
+  o << doc << ",\n  \"method\": \"inverse\",\n  \"temperature\": \"model_interface_mean\",\n  \"methods\": {\n    \"node_rpm\": " << nums(r.inverse.node_rpm)
     << ",\n    \"sensor\": " << method_json(r.sensor, s, r.torque_rms_sensor_Nm)
-    << ",\n    \"inverse\": " << method_json(r.inverse, model, r.torque_rms_Nm)
+    << ",\n    \"inverse\": " << method_json(r.inverse, r.settings, r.torque_rms_Nm)
     << ",\n    \"thermal_calibration\": {\"oil_flow_e\": [" << num(r.oil_flow_start.e) << ", " << num(r.oil_flow.e)
     << "], \"oil_flow_a\": [" << num(r.oil_flow_start.a) << ", " << num(r.oil_flow.a)
     << "], \"oil_flow_b\": " << num(r.oil_flow.b) << ", \"temp_rms_C\": [" << num(r.temp_rms_start_C) << ", "

@@ -69,7 +69,8 @@ std::string method_comparison_summary(const rig_models::InverseCharacterisation&
   const auto& nodes = r.inverse.node_speeds_mm_s;
   const std::size_t mid = nodes.size() / 2;
   o << "methods: sensor (" << analysis::compensation_name(sensor_settings.compensation)
-    << " compensation with the temperature channel) vs inverse (replayed through the clutch and thermal model)\n"
+    << " compensation with the temperature channel) vs inverse (the same compensation with the interface\n"
+    << "  temperature of the clutch and thermal model, replayed with the runs' inputs and calibrated on their temperature)\n"
     << "  row (kN, °C)   rms resid sensor / inverse   max resid sensor / inverse   mu at " << f("%.3g", r.inverse.node_rpm.front())
     << "/" << f("%.3g", r.inverse.node_rpm[mid]) << "/" << f("%.3g", r.inverse.node_rpm.back())
     << " rpm sensor -> inverse\n";

@@ -159,12 +159,11 @@ TEST(CliCharacterise, InverseMethodReportsBothMethods) {
   const std::string runs = write_runs(dir);
   const auto r = test::run_cli("characterise" + runs + " -o inv.toml --json fit.json --method inverse" + kFluidArgs, dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_THAT(r.out, ::testing::HasSubstr("compensation: model"));
   EXPECT_THAT(r.out, ::testing::HasSubstr("methods: sensor (quadratic compensation"));
   EXPECT_THAT(r.out, ::testing::HasSubstr("replayed torque vs measured (rms): sensor law"));
   const auto json = test::parse(test::slurp(dir / "fit.json"));
   EXPECT_EQ(json["method"].str(), "inverse");
-  EXPECT_EQ(json["compensation"].str(), "model");
+  EXPECT_EQ(json["temperature"].str(), "model_interface_mean");
   const auto& m = json["methods"];
   ASSERT_EQ(m["sensor"]["rows"].items.size(), 6u);
   ASSERT_EQ(m["inverse"]["rows"].items.size(), 6u);
