@@ -1,11 +1,14 @@
 // `shudder characterise RUN... -o FLUID.toml`: measured speed ramps -> a fluid file
 // (docs/characterisation.md). Parsing, file checks and printing only: the ramps, compensation
 // and fits are analysis::characterise; the files come from io/characterisation_output.
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "analysis/friction_characterisation.hpp"
@@ -13,11 +16,14 @@
 #include "app/guarded.hpp"
 #include "io/atomic_file.hpp"
 #include "io/characterisation_output.hpp"
+#include "io/diagnosis_inputs.hpp"
 #include "io/fluid_loader.hpp"
 #include "io/input_error.hpp"
 #include "io/measured_run.hpp"
 #include "io/output_safety.hpp"
+#include "io/scenario.hpp"
 #include "report/characterisation_report.hpp"
+#include "rig_models/inverse_characterisation.hpp"
 
 namespace shudder::app {
 
@@ -89,9 +95,10 @@ int characterise_command(const CharacteriseOptions& o) {
 
     // Read every run; the runs must come from one rig.
     std::vector<analysis::RampRun> runs;
+    std::vector<io::MeasuredRun> measured;
     std::string rig, rig_file;
     for (const auto& path : o.runs) {
-      const io::MeasuredRun m = io::read_measured_run(path);
+      const io::MeasuredRun& m = measured.emplace_back(io::read_measured_run(path));
       const std::string this_rig = m.meta("rig").value_or("");
       if (runs.empty()) {
         rig = this_rig;
@@ -111,6 +118,37 @@ int characterise_command(const CharacteriseOptions& o) {
       throw io::InputError(e.file(), 0, "", e.what());
     }
 
+    // --method inverse: the same settings, replayed through the clutch and thermal model; the
+    // written law is the inverse one, the sensor fit is reported beside it.
+    std::optional<rig_models::InverseCharacterisation> inverse;
+    analysis::CharacterisationSettings written = s;
+    if (o.method == "inverse") {
+      rig_models::InverseSettings is;
+      if (o.model.empty()) {
+        is.model.clutch.sliding_interfaces = o.interfaces;
+        is.model.fluid.nu40_cSt = o.nu40_cSt;
+        is.model.fluid.nu100_cSt = o.nu100_cSt;
+        is.model.settings.thermal_step_s = 0.02;  // the ramps last seconds; 20 ms resolves the heating
+      } else {
+        const io::Scenario scenario = io::load_scenario(o.model);
+        is.model = io::replay_model(scenario);
+        if (is.model.clutch.sliding_interfaces != o.interfaces)
+          throw io::InputError(o.model, 0, "clutch.sliding_interfaces",
+                               "is " + std::to_string(is.model.clutch.sliding_interfaces) + " but --interfaces is " +
+                                   std::to_string(o.interfaces) + "; the model must be the clutch the runs measured");
+      }
+      is.jobs = std::max(1u, std::thread::hardware_concurrency());
+      is.max_iterations = o.inverse_iterations;
+      const io::DiagnosisData data = io::diagnosis_data(measured);
+      try {
+        inverse = rig_models::characterise_inverse(runs, data.inputs, s, o.temperature_channel, is);
+      } catch (const analysis::CharacterisationInputError& e) {
+        throw io::InputError(e.file(), 0, "", e.what());
+      }
+      c = inverse->inverse;
+      written = inverse->settings;
+    }
+
     io::FluidIdentity id;
     id.name = o.name.empty() ? std::filesystem::path(o.output).stem().string() : o.name;
     id.description = "characterised by shudder from " + std::to_string(o.runs.size()) + " measured run(s)";
@@ -119,15 +157,18 @@ int characterise_command(const CharacteriseOptions& o) {
     id.breakaway_ratio = o.breakaway_ratio;
     id.breakaway_source = o.breakaway_ratio == 1.0 ? "not measured: mu_s = mu_k(v_min) assumed"
                                                    : "given on the command line (--breakaway-ratio)";
-    const std::string toml = io::characterised_fluid_toml(c, s, id, o.runs);
+    const std::string toml = io::characterised_fluid_toml(c, written, id, o.runs);
     // The file must load as every command loads it; a failure here is ours (exit 1).
     try {
       io::load_fluid_text(toml, o.output);
     } catch (const io::InputError& e) {
       throw std::runtime_error(std::string("the fitted fluid file would not load: ") + e.what());
     }
-    const std::string summary = report::characterisation_summary(c, s, o.output);
-    const std::string json = o.json.empty() ? "" : io::characterisation_json(c, s, o.runs, o.output);
+    const std::string summary = report::characterisation_summary(c, written, o.output) +
+                                (inverse ? report::method_comparison_summary(*inverse, s) : std::string());
+    const std::string json = o.json.empty() ? ""
+                             : inverse    ? io::characterisation_json(*inverse, s, o.runs, o.output)
+                                          : io::characterisation_json(c, s, o.runs, o.output);
     if (!o.report.empty()) {
       const report::Report rep = report::write_characterisation_report(o.report, c, summary);
       for (const auto& why : rep.skipped) std::cerr << "shudder: note: report: skipped " << why << "\n";

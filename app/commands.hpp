@@ -97,6 +97,9 @@ struct CharacteriseOptions {
   std::string row_temps, node_rpm;        // comma lists; empty = from the data / Paper D nodes
   std::string name;                       // fluid name; empty = output file stem
   double nu40_cSt = 0.0, nu100_cSt = 0.0, breakaway_ratio = 1.0;
+  std::string method = "sensor";          // sensor | inverse (replayed through the model)
+  std::string model;                      // inverse: scenario whose clutch is replayed; empty = Paper G defaults
+  int inverse_iterations = 8;             // inverse: law updates per pass before "did not converge"
 };
 int characterise_command(const CharacteriseOptions& options);
 

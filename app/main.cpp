@@ -146,6 +146,15 @@ int main(int argc, char** argv) {
   char_cmd->add_option("--nu100-cSt", characterise.nu100_cSt, "Kinematic viscosity at 100 degC, cSt")->required();
   char_cmd->add_option("--breakaway-ratio", characterise.breakaway_ratio, "mu_s / mu_k(v_min) (default 1)")
       ->check(CLI::Range(0.5, 3.0));
+  char_cmd->add_option("--method", characterise.method,
+                       "sensor (compensate with the temperature channel) or inverse (replay through the clutch and "
+                       "thermal model; both reported)")
+      ->check(CLI::IsMember({"sensor", "inverse"}));
+  char_cmd->add_option("--model", characterise.model, "--method inverse: scenario whose clutch and thermal model replay "
+                                                      "the runs (default: Paper G's clutch)");
+  char_cmd->add_option("--inverse-iterations", characterise.inverse_iterations,
+                       "--method inverse: law updates per pass before it counts as not converged (default 8)")
+      ->check(CLI::Range(1, 100));
 
   CompareOptions compare;
   auto* cmp_cmd = app.add_subcommand("compare", "Compare fluids: indices, equal viscosity, breakaway, rig margins, ranking");

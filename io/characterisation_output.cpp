@@ -1,5 +1,6 @@
 #include "io/characterisation_output.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -154,6 +155,62 @@ std::string characterisation_json(const analysis::Characterisation& c, const ana
     o << "\n  ]";
   }
   o << "\n}\n";
+  return o.str();
+}
+
+namespace {
+
+// One method's rows: residuals of its law against its own (compensated) bin means, and its parameters.
+std::string method_json(const analysis::Characterisation& c, const analysis::CharacterisationSettings& s,
+                        double torque_rms_Nm) {
+  std::ostringstream o;
+  double worst_rms = 0.0, worst_max = 0.0;
+  for (const auto& r : c.rows) {
+    worst_rms = std::max(worst_rms, r.rms_residual);
+    worst_max = std::max(worst_max, r.max_residual);
+  }
+  o << "{\"compensation\": \"" << analysis::compensation_name(s.compensation)
+    << "\", \"replayed_torque_rms_Nm\": " << num(torque_rms_Nm) << ", \"max_rms_residual\": " << num(worst_rms)
+    << ", \"max_residual\": " << num(worst_max) << ", \"rows\": [";
+  for (std::size_t i = 0; i < c.rows.size(); ++i) {
+    const auto& r = c.rows[i];
+    o << (i ? "," : "") << "\n      {\"load_N\": " << num(r.load_N) << ", \"temp_C\": " << num(r.temp_C)
+      << ", \"rms_residual\": " << num(r.rms_residual) << ", \"max_residual\": " << num(r.max_residual);
+    if (s.law == analysis::LawKind::kMaki)
+      o << ", \"maki\": " << nums({r.maki[0], r.maki[1], r.maki[2], r.maki[3]}) << ", \"maki_standard_error\": "
+        << nums({r.maki_se[0], r.maki_se[1], r.maki_se[2], r.maki_se[3]});
+    std::vector<double> law_mu;
+    for (double v : c.node_speeds_mm_s) law_mu.push_back(c.law->mu(v, r.temp_C, r.load_N));
+    o << ", \"law_node_mu\": " << nums(law_mu) << "}";
+  }
+  o << "\n    ]";
+  if (!c.lines.empty()) {
+    std::vector<double> a, b;
+    for (const auto& l : c.lines) {
+      a.push_back(l.alpha_per_C);
+      b.push_back(l.beta);
+    }
+    o << ", \"alpha_per_C\": " << nums(a) << ", \"beta\": " << nums(b);
+  }
+  o << "}";
+  return o.str();
+}
+
+}  // namespace
+
+std::string characterisation_json(const rig_models::InverseCharacterisation& r, const analysis::CharacterisationSettings& s,
+                                  const std::vector<std::string>& runs, const std::string& fluid_path) {
+  std::string doc = characterisation_json(r.inverse, r.settings, runs, fluid_path);
+  doc.resize(doc.size() - 3);  // "\n}\n": the document continues
+  std::ostringstream o;
+  o << doc << ",\n  \"method\": \"inverse\",\n  \"temperature\": \"model_interface_mean\",\n  \"methods\": {\n    \"node_rpm\": " << nums(r.inverse.node_rpm)
+    << ",\n    \"sensor\": " << method_json(r.sensor, s, r.torque_rms_sensor_Nm)
+    << ",\n    \"inverse\": " << method_json(r.inverse, r.settings, r.torque_rms_Nm)
+    << ",\n    \"thermal_calibration\": {\"oil_flow_e\": [" << num(r.oil_flow_start.e) << ", " << num(r.oil_flow.e)
+    << "], \"oil_flow_a\": [" << num(r.oil_flow_start.a) << ", " << num(r.oil_flow.a)
+    << "], \"oil_flow_b\": " << num(r.oil_flow.b) << ", \"temp_rms_C\": [" << num(r.temp_rms_start_C) << ", "
+    << num(r.temp_rms_C) << "]},\n    \"law_updates\": " << r.iterations << ", \"replays\": " << r.replays
+    << ", \"last_change_mu\": " << num(r.last_change_mu) << "\n  }\n}\n";
   return o.str();
 }
 

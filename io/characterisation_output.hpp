@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "analysis/friction_characterisation.hpp"
+#include "rig_models/inverse_characterisation.hpp"
 
 namespace shudder::io {
 
@@ -31,6 +32,14 @@ std::string characterised_fluid_toml(const analysis::Characterisation& c, const 
 
 /// FIT.json's text.
 std::string characterisation_json(const analysis::Characterisation& c, const analysis::CharacterisationSettings& s,
+                                  const std::vector<std::string>& runs, const std::string& fluid_path);
+
+/// FIT.json of `--method inverse`: the document above for the inverse fit, plus "method":
+/// "inverse", "temperature": "model_interface_mean" and "methods": both methods side by side — per row the
+/// RMS and max residual and the parameters (Mäki sets or node mu), the replayed torque's RMS
+/// misfit with each method's law, the thermal calibration (oil flow before/after, temperature
+/// RMS) and the iteration count. `s` are the sensor method's settings.
+std::string characterisation_json(const rig_models::InverseCharacterisation& r, const analysis::CharacterisationSettings& s,
                                   const std::vector<std::string>& runs, const std::string& fluid_path);
 
 }  // namespace shudder::io

@@ -63,6 +63,38 @@ std::string characterisation_summary(const analysis::Characterisation& c, const 
   return o.str();
 }
 
+std::string method_comparison_summary(const rig_models::InverseCharacterisation& r,
+                                      const analysis::CharacterisationSettings& sensor_settings) {
+  std::ostringstream o;
+  const auto& nodes = r.inverse.node_speeds_mm_s;
+  const std::size_t mid = nodes.size() / 2;
+  o << "methods: sensor (" << analysis::compensation_name(sensor_settings.compensation)
+    << " compensation with the temperature channel) vs inverse (the same compensation with the interface\n"
+    << "  temperature of the clutch and thermal model, replayed with the runs' inputs and calibrated on their temperature)\n"
+    << "  row (kN, °C)   rms resid sensor / inverse   max resid sensor / inverse   mu at " << f("%.3g", r.inverse.node_rpm.front())
+    << "/" << f("%.3g", r.inverse.node_rpm[mid]) << "/" << f("%.3g", r.inverse.node_rpm.back())
+    << " rpm sensor -> inverse\n";
+  for (std::size_t i = 0; i < r.inverse.rows.size() && i < r.sensor.rows.size(); ++i) {
+    const auto& a = r.sensor.rows[i];
+    const auto& b = r.inverse.rows[i];
+    const auto mu = [&](const analysis::Characterisation& c, std::size_t k) {
+      return f("%.4f", c.law->mu(nodes[k], b.temp_C, b.load_N));
+    };
+    o << "  " << f("%6.3g", b.load_N / 1000.0) << f(" %7.3g", b.temp_C) << "      " << f("%.2e", a.rms_residual) << " / "
+      << f("%.2e", b.rms_residual) << "          " << f("%.2e", a.max_residual) << " / " << f("%.2e", b.max_residual)
+      << "        " << mu(r.sensor, 0) << "/" << mu(r.sensor, mid) << "/" << mu(r.sensor, nodes.size() - 1) << " -> "
+      << mu(r.inverse, 0) << "/" << mu(r.inverse, mid) << "/" << mu(r.inverse, nodes.size() - 1) << "\n";
+  }
+  o << "  replayed torque vs measured (rms): sensor law " << f("%.3g", r.torque_rms_sensor_Nm) << " N m, inverse law "
+    << f("%.3g", r.torque_rms_Nm) << " N m\n"
+    << "  thermal calibration (Paper G eq. 12 oil flow): e " << f("%.4g", r.oil_flow_start.e) << " -> "
+    << f("%.4g", r.oil_flow.e) << ", a " << f("%.4g", r.oil_flow_start.a) << " -> " << f("%.4g", r.oil_flow.a)
+    << "; temperature rms " << f("%.3g", r.temp_rms_start_C) << " -> " << f("%.3g", r.temp_rms_C) << " °C\n"
+    << "  converged after " << r.iterations << " law updates (" << r.replays << " replays of every run), last change "
+    << f("%.2g", r.last_change_mu) << " in mu\n";
+  return o.str();
+}
+
 Report write_characterisation_report(const std::string& dir, const analysis::Characterisation& c,
                                      const std::string& summary_text) {
   make_report_dir(dir);

@@ -15,12 +15,19 @@
 
 #include "analysis/friction_characterisation.hpp"
 #include "report/plots.hpp"
+#include "rig_models/inverse_characterisation.hpp"
 
 namespace shudder::report {
 
 /// The summary printed by the command: ramps, rows and their residuals, up/down agreement.
 std::string characterisation_summary(const analysis::Characterisation& c, const analysis::CharacterisationSettings& s,
                                      const std::string& fluid_path);
+
+/// `--method inverse`: both methods side by side — per row the RMS/max residual of each law
+/// against its own compensated data and mu at the first, middle and last node — the replayed
+/// torque's RMS misfit with each law, the thermal calibration and the iterations.
+std::string method_comparison_summary(const rig_models::InverseCharacterisation& r,
+                                      const analysis::CharacterisationSettings& sensor_settings);
 
 Report write_characterisation_report(const std::string& dir, const analysis::Characterisation& c,
                                      const std::string& summary_text);

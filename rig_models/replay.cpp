@@ -134,6 +134,7 @@ ReplayOutput replay(const ReplayModel& model, const ReplayInputs& in) {
   out.sump_temp_C = interpolate(time, signal(rec, sn::kSumpTemp), tq);
   out.ir_temp_C = interpolate(time, signal(rec, sn::kIrTemp), tq);
   out.speed_rpm = interpolate(time, signal(rec, sn::kSpeed), tq);
+  out.interface_mean_temp_C = interpolate(time, signal(rec, sn::kInterfaceMeanTemp), tq);
   return out;
 }
 

@@ -56,6 +56,7 @@ struct ReplayInputs {
 struct ReplayOutput {
   std::vector<double> torque_Nm, temp_C, sump_temp_C, ir_temp_C;  // at ReplayInputs::time_s
   std::vector<double> speed_rpm;  // the model's drive speed (prescribed slip: the imposed one)
+  std::vector<double> interface_mean_temp_C;  // area-mean interface temperature (no sensor can read it)
 };
 
 /// Throws std::invalid_argument if the model cannot be built or run on these inputs.

@@ -152,4 +152,39 @@ TEST(CliCharacterise, FitWithoutAPlausibleLawIsANumericalFailure) {
   expect_nothing_written(dir);
 }
 
+// --method inverse: the runs replayed through the clutch and thermal model; the fluid file holds
+// the inverse law, FIT.json and the printout both methods side by side.
+TEST(CliCharacterise, InverseMethodReportsBothMethods) {
+  const auto dir = test::scratch_dir("characterise_inverse");
+  const std::string runs = write_runs(dir);
+  const auto r = test::run_cli("characterise" + runs + " -o inv.toml --json fit.json --method inverse" + kFluidArgs, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, ::testing::HasSubstr("methods: sensor (quadratic compensation"));
+  EXPECT_THAT(r.out, ::testing::HasSubstr("replayed torque vs measured (rms): sensor law"));
+  const auto json = test::parse(test::slurp(dir / "fit.json"));
+  EXPECT_EQ(json["method"].str(), "inverse");
+  EXPECT_EQ(json["temperature"].str(), "model_interface_mean");
+  const auto& m = json["methods"];
+  ASSERT_EQ(m["sensor"]["rows"].items.size(), 6u);
+  ASSERT_EQ(m["inverse"]["rows"].items.size(), 6u);
+  EXPECT_EQ(m["sensor"]["compensation"].str(), "quadratic");
+  // The inverse law is the one whose replay reproduces the measured torque: its misfit must be
+  // below the sensor law's (both replayed with the same calibrated thermal model).
+  EXPECT_LT(m["inverse"]["replayed_torque_rms_Nm"].num(), m["sensor"]["replayed_torque_rms_Nm"].num());
+  EXPECT_EQ(m["thermal_calibration"]["temp_rms_C"].items.size(), 2u);
+  EXPECT_NO_THROW(io::load_fluid((dir / "inv.toml").string()));
+}
+
+TEST(CliCharacterise, InverseMethodThatDoesNotConvergeIsANumericalFailure) {
+  // One law update per pass cannot meet the 1e-4 tolerance from the sensor law's start.
+  const auto dir = test::scratch_dir("characterise_inverse_nc");
+  const std::string runs = write_runs(dir);
+  const auto r = test::run_cli(
+      "characterise" + runs + " -o out.toml --json fit.json --method inverse --inverse-iterations 1" + kFluidArgs, dir);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_THAT(r.err, ::testing::HasSubstr("did not converge: after 1 replays"));
+  expect_nothing_written(dir);
+}
+
 }  // namespace
