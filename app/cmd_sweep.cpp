@@ -46,7 +46,10 @@ namespace fs = std::filesystem;
 
 // Signals kept per case in the sweep file (the full record stays in the part while running).
 namespace sn = dynamics::signal_names;
-constexpr std::string_view kKeptSignals[] = {sn::kTime, sn::kSpeed, sn::kSlip, sn::kTorque, sn::kTemp};
+// A driveline case keeps its coupling's instead (time, slip, torque, mean interface temperature).
+constexpr std::string_view kKeptSignals[] = {sn::kTime,          sn::kSpeed,          sn::kSlip,
+                                             sn::kTorque,        sn::kTemp,           sn::kCouplingSlip,
+                                             sn::kCouplingTorque, sn::kInterfaceMeanTemp};
 // The verdict as the number the part files store (analysis::kVerdicts' order).
 double verdict_code(const std::string& v) { return static_cast<double>(analysis::verdict_from_string(v)); }
 // The /cases verdict of a case whose run threw (not an analysis verdict: nothing was classified).

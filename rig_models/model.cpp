@@ -13,9 +13,6 @@ namespace {
 }
 
 constexpr const char* kNoMeasuredRun = "a measured run is a rig log; give a prescribed_slip or rig scenario";
-constexpr const char* kNoSweep =
-    "sweeps judge rig and prescribed_slip cases (stability, shudder); a driveline scenario runs with "
-    "`shudder run`";
 constexpr const char* kNoReplay = "measured runs are rig runs; diagnose needs a prescribed_slip or rig model";
 constexpr const char* kNoNetwork = "\" has no torsional network; modes needs type = \"rig\"";
 // The driveline has a network, but `modes` reports the rig's bar-and-housing shapes only.
@@ -152,10 +149,10 @@ std::vector<std::string> add_run_analysis(const DrivelineModel&, const clutch::W
 
 void require_measured_run_export(const DrivelineModel&) { throw KindNotSupported(kNoMeasuredRun); }
 
-void require_sweep(const DrivelineModel&) { throw KindNotSupported(kNoSweep); }
+void require_sweep(const DrivelineModel&) {}
 
-CaseOutcome evaluate_case(const DrivelineModel&, const clutch::WetClutch&, dynamics::Recording&) {
-  throw KindNotSupported(kNoSweep);
+CaseOutcome evaluate_case(const DrivelineModel& model, const clutch::WetClutch& clutch, dynamics::Recording& rec) {
+  return evaluate_driveline_case(model.params, clutch, model.manoeuvre, model.settings, rec);
 }
 
 ReplayModel replay_model(const DrivelineModel&, const StickTimeFriction&) { throw KindNotSupported(kNoReplay); }
