@@ -47,6 +47,9 @@ namespace fs = std::filesystem;
 // Signals kept per case in the sweep file (the full record stays in the part while running).
 namespace sn = dynamics::signal_names;
 constexpr std::string_view kKeptSignals[] = {sn::kTime, sn::kSpeed, sn::kSlip, sn::kTorque, sn::kTemp};
+// A driveline case (it records the coupling) keeps its coupling's signals instead.
+constexpr std::string_view kKeptCouplingSignals[] = {sn::kTime, sn::kCouplingSlip, sn::kCouplingTorque,
+                                                     sn::kInterfaceMeanTemp};
 // The verdict as the number the part files store (analysis::kVerdicts' order).
 double verdict_code(const std::string& v) { return static_cast<double>(analysis::verdict_from_string(v)); }
 // The /cases verdict of a case whose run threw (not an analysis verdict: nothing was classified).
@@ -67,8 +70,13 @@ void run_case(const std::string& text, const std::string& path, const std::strin
     // A case whose energy accounts do not close is a numerical failure, not a result.
     if (const std::string bad = rig_models::energy_balance_violation(rec); !bad.empty())
       throw std::runtime_error("numerical failure: " + bad);
-    for (const std::string_view name : kKeptSignals)
-      if (const auto* s = rec.find(name)) kept.signals.push_back(*s);
+    if (rec.find(sn::kCouplingSlip)) {
+      for (const std::string_view name : kKeptCouplingSignals)
+        if (const auto* s = rec.find(name)) kept.signals.push_back(*s);
+    } else {
+      for (const std::string_view name : kKeptSignals)
+        if (const auto* s = rec.find(name)) kept.signals.push_back(*s);
+    }
     kept.scalars = {{"predicted_stable", "1", o.predicted_stable ? 1.0 : 0.0},
                     {"predicted_margin_per_s", "1/s", o.predicted_margin_per_s},
                     {"predicted_frequency_Hz", "Hz", o.predicted_frequency_Hz},

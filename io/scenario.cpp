@@ -38,6 +38,7 @@ struct Draft {
   rig_models::RigParams rig;                    // rig (stick-time friction: every kind)
   rig_models::DrivelineParams driveline;        // driveline
   rig_models::DrivelineInputs manoeuvre;        // driveline
+  bool oil_volume_given = false, oil_flow_given = false;  // [clutch.oil]: else the driveline's pack oil
   std::vector<std::string> warnings;
 };
 
@@ -97,6 +98,8 @@ void read_clutch(TomlTable& root, Draft& s) {
   read_layer(c, "lining", th.lining);
   read_layer(c, "core", th.core);
   if (auto oil = c.optional_table("oil")) {
+    s.oil_volume_given = oil->has("sump_volume_ml");
+    s.oil_flow_given = oil->has("supply_flow_ml_min");
     th.oil_density_kg_m3 = oil->number_or("density_kg_m3", th.oil_density_kg_m3, Range::positive());
     th.oil_specific_heat_J_per_kgK =
         oil->number_or("specific_heat_J_per_kgK", th.oil_specific_heat_J_per_kgK, Range::positive());
@@ -205,7 +208,9 @@ void read_driveline(TomlTable& root, Draft& s) {
   if (root.has("drive"))
     root.fail("drive", "[drive] belongs to prescribed_slip and rig scenarios; a driveline scenario is "
                        "driven by [manoeuvre] (time_s, engine_torque_Nm, valve_pressure_bar)");
+  bool controller_given = false;
   if (auto d = root.optional_table("driveline")) {
+    controller_given = d->has("controller");
     const auto positive = [&](const char* key, double& v) { v = d->number_or(key, v, Range::positive()); };
     positive("engine_inertia_kg_m2", p.engine_inertia_kg_m2);
     positive("gear_ratio", p.gear_ratio);
@@ -258,13 +263,43 @@ void read_driveline(TomlTable& root, Draft& s) {
       fp.cylinders = static_cast<int>(e->integer_or("cylinders", fp.cylinders, 1, 16));
       e->finish();
     }
+    p.pack_oil_volume_ml = d->number_or("pack_oil_volume_ml", p.pack_oil_volume_ml, Range{0.0, 1e5, true, false});
+    p.pack_cooling_flow_ml_min = d->number_or("pack_cooling_flow_ml_min", p.pack_cooling_flow_ml_min, Range::closed(0.0, 1e5));
     if (auto h = d->optional_table("hydraulics")) {
+      // A first-generation coupling (rig_models/haldex_hydraulics.hpp); the old lumped keys of a
+      // generation-mixing model are refused with what replaces them.
+      if (h->has("torque_per_bar_Nm"))
+        h->fail("torque_per_bar_Nm", "was a later generation's figure; the Gen I coupling's torque per bar follows "
+                                     "from piston_area_cm2 and the pack ([clutch] interfaces and radii)");
+      if (h->has("leak_time_constant_s"))
+        h->fail("leak_time_constant_s", "is replaced by the throttle valve (valve_area_mm2, the controller's opening) "
+                                        "and the leakage leak_cm3_s_per_bar over the compliance");
       auto& hp = p.hydraulics;
+      const auto positive = [&](const char* key, double& v) { v = h->number_or(key, v, Range::positive()); };
       hp.relief_pressure_bar = h->number_or("relief_pressure_bar", hp.relief_pressure_bar, Range::closed(1.0, 200.0));
-      hp.leak_time_constant_s = h->number_or("leak_time_constant_s", hp.leak_time_constant_s, Range::positive());
-      hp.torque_per_bar_Nm = h->number_or("torque_per_bar_Nm", hp.torque_per_bar_Nm, Range::positive());
+      positive("piston_area_cm2", hp.piston_area_cm2);
+      positive("pump_displacement_cm3_per_rev", hp.pump_displacement_cm3_per_rev);
+      positive("chamber_volume_cm3", hp.chamber_volume_cm3);
+      positive("bulk_modulus_bar", hp.bulk_modulus_bar);
+      positive("pack_stiffness_N_per_mm", hp.pack_stiffness_N_per_mm);
+      hp.valve_area_mm2 = h->number_or("valve_area_mm2", hp.valve_area_mm2, Range::non_negative());
+      hp.discharge_coefficient = h->number_or("discharge_coefficient", hp.discharge_coefficient, Range{0.0, 1.0, true, false});
+      hp.leak_cm3_s_per_bar = h->number_or("leak_cm3_s_per_bar", hp.leak_cm3_s_per_bar, Range::non_negative());
+      positive("oil_density_kg_m3", hp.oil_density_kg_m3);
       hp.preload_torque_Nm = h->number_or("preload_torque_Nm", hp.preload_torque_Nm, Range::non_negative());
       h->finish();
+    }
+    if (auto c = d->optional_table("controller")) {
+      // rig_models/haldex_controller.hpp; speeds in km/h, slip in axle rpm.
+      auto& cp = p.controller;
+      cp.lock_slip_rpm = c->number_or("lock_slip_rpm", cp.lock_slip_rpm, Range::positive());
+      cp.pedal_gain = c->number_or("pedal_gain", cp.pedal_gain, Range::closed(0.0, 1.0));
+      cp.parking_speed_km_h = c->number_or("parking_speed_km_h", cp.parking_speed_km_h, Range::closed(0.0, 300.0));
+      cp.parking_turn_ratio = c->number_or("parking_turn_ratio", cp.parking_turn_ratio, Range::positive());
+      cp.fast_speed_km_h = c->number_or("fast_speed_km_h", cp.fast_speed_km_h, Range::closed(0.0, 400.0));
+      cp.top_speed_km_h = c->number_or("top_speed_km_h", cp.top_speed_km_h, Range{cp.fast_speed_km_h, 500.0, true, false});
+      cp.fast_demand = c->number_or("fast_demand", cp.fast_demand, Range::closed(0.0, 1.0));
+      c->finish();
     }
     d->finish();
   }
@@ -280,6 +315,14 @@ void read_driveline(TomlTable& root, Draft& s) {
   } else {
     s.manoeuvre.engine_torque_Nm = read_schedule(m, "engine_torque_Nm", times, Range::closed(-1000.0, 1000.0));
   }
+  // The throttle valve: raw schedules (an opening, a pressure setting, or both) instead of the
+  // controller model of [driveline.controller]; without them the controller decides.
+  const bool raw_valve = m.has("valve_opening") || m.has("valve_pressure_bar");
+  if (raw_valve && controller_given)
+    m.fail(m.has("valve_opening") ? "valve_opening" : "valve_pressure_bar",
+           "is a raw valve schedule and [driveline.controller] is given too; give either the schedule or the controller");
+  if (m.has("valve_opening"))
+    s.manoeuvre.valve_opening = read_schedule(m, "valve_opening", times, Range::closed(0.0, 1.0));
   if (m.has("valve_pressure_bar"))
     // The valve cannot hold more than the relief valve lets through.
     s.manoeuvre.valve_pressure_bar =
@@ -312,6 +355,11 @@ void read_driveline(TomlTable& root, Draft& s) {
     s.manoeuvre.grade_percent = road->number_or("grade_percent", 0.0, Range::closed(-50.0, 50.0));
     road->finish();
   }
+  // The disc pack sits in the coupling's own oil unless [clutch.oil] says otherwise.
+  clutch::ThermalParams pack = s.clutch.thermal;
+  rig_models::apply_pack_oil(p, s.clutch.sliding_interfaces, pack);
+  if (!s.oil_volume_given) s.clutch.thermal.sump_volume_m3 = pack.sump_volume_m3;
+  if (!s.oil_flow_given) s.clutch.thermal.supply_flow_m3_s = pack.supply_flow_m3_s;
 }
 
 // The scenario's structs that effects write into (the registry's EffectTarget).

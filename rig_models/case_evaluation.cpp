@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "analysis/shudder_detection.hpp"
+#include "rig_models/recording_detection.hpp"
 #include "rig_models/rig_stability.hpp"
 
 namespace shudder::rig_models {
@@ -71,6 +72,21 @@ CaseOutcome evaluate_prescribed_case(const clutch::WetClutch& clutch, const Driv
   rec = run_prescribed_slip(clutch, cycle, settings);
   CaseOutcome o;
   o.amplitude_Nm = 0.0;
+  return o;
+}
+
+CaseOutcome evaluate_driveline_case(const DrivelineParams& params, const clutch::WetClutch& clutch,
+                                    const DrivelineInputs& inputs, const DrivelineSettings& settings,
+                                    dynamics::Recording& rec) {
+  rec = run_driveline(params, clutch, inputs, settings);
+  CaseOutcome o;
+  // The run's own verdict (coupling_verdict_code), with the onset from the same judgement.
+  const auto verdict = static_cast<analysis::Verdict>(static_cast<int>(rec.find_scalar("coupling_verdict_code")->value));
+  o.simulated_verdict = std::string(analysis::to_string(verdict));
+  if (verdict == analysis::Verdict::kNone) return o;
+  o.simulated_frequency_Hz = rec.find_scalar("coupling_oscillation_frequency_Hz")->value;
+  o.amplitude_Nm = rec.find_scalar("coupling_oscillation_amplitude_Nm")->value;
+  o.onset_time_s = judge_recording(*recording_detection(rec)).onset_time_s;
   return o;
 }
 

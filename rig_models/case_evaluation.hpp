@@ -11,6 +11,7 @@
 #include "clutch/wet_clutch.hpp"
 #include "dynamics/recording.hpp"
 #include "rig_models/drive_cycle.hpp"
+#include "rig_models/haldex_driveline.hpp"
 #include "rig_models/lsctr_rig.hpp"
 #include "rig_models/prescribed_slip.hpp"
 
@@ -35,5 +36,12 @@ CaseOutcome evaluate_rig_case(const RigParams& params, const clutch::WetClutch& 
 /// Prescribed slip has no torsional dynamics: nothing can vibrate, the prediction is empty.
 CaseOutcome evaluate_prescribed_case(const clutch::WetClutch& clutch, const DriveCycle& cycle,
                                      const PrescribedSlipSettings& settings, dynamics::Recording& rec);
+
+/// The driveline: the run and its coupling judged as `shudder run` judges it (the driveline's own
+/// rule: an oscillation counts only if it lasts to the end of the record). No linear prediction
+/// yet: predicted_stable stays true with NaN margin and frequency, as for prescribed slip.
+CaseOutcome evaluate_driveline_case(const DrivelineParams& params, const clutch::WetClutch& clutch,
+                                    const DrivelineInputs& inputs, const DrivelineSettings& settings,
+                                    dynamics::Recording& rec);
 
 }  // namespace shudder::rig_models

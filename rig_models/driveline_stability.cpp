@@ -1,9 +1,11 @@
 #include "rig_models/driveline_stability.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
+#include "clutch/fluid.hpp"
 #include "clutch/interface_thermal_impedance.hpp"
 #include "core/units.hpp"
 #include "dynamics/signal_names.hpp"
@@ -80,12 +82,17 @@ DrivelineOperatingPoint quasi_static_operating_point(const HaldexDriveline& dl, 
   // speeds → slip (the tyres' slip takes part of the turn's kinematic slip; converges in a few
   // rounds because the tyres' slip per newton is small).
   Eigen::VectorXd w = s * wv;
+  const clutch::WaltherViscosity viscosity(clutch.fluid().nu40_cSt, clutch.fluid().nu100_cSt);
   op.coupling_slip_rad_s = floor_slip((s[D::kCouplingIn] - s[D::kCouplingOut]) * wv);
   for (int round = 0; round < 50; ++round) {
-    // The pressure after holding that slip for 100 s: the pump–leak balance or the valve's cap.
-    const double hold_s = 100.0;
-    const double p_bar = dl.hydraulics().step_pressure_bar(0.0, std::abs(op.coupling_slip_rad_s) * hold_s, hold_s,
-                                                           inputs.valve_pressure_bar(0.0));
+    // The steady pressure at that slip: the pump–valve–leak balance at the valve's opening (the
+    // manoeuvre's or the controller's at these speeds), below the valve's setting or relief.
+    dynamics::Sample at;
+    at.omega_rad_s = w;
+    const double leak_scale = viscosity.kinematic_cSt(40.0) / viscosity.kinematic_cSt(op.interface_temp_C);
+    const double p_bar = std::min(dl.hydraulics().steady_pressure_bar(std::abs(op.coupling_slip_rad_s),
+                                                                      dl.valve_opening(at), leak_scale),
+                                  dl.valve_setting_bar(0.0));
     op.clamp_force_N = std::isfinite(clamp_force_N) ? clamp_force_N : dl.hydraulics().clamp_force_N(p_bar);
     ctx->set_normal_force(PiecewiseLinear({0.0}, {op.clamp_force_N}));
     const double m_c = std::copysign(

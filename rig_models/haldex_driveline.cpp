@@ -8,6 +8,7 @@
 #include <string>
 
 #include "analysis/shudder_detection.hpp"
+#include "clutch/fluid.hpp"
 #include "core/units.hpp"
 #include "dynamics/signal_names.hpp"
 #include "rig_models/channel_recorder.hpp"
@@ -48,6 +49,9 @@ HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::We
                                  const DrivelineInputs& inputs)
     : p_(params),
       hydraulics_(params.hydraulics, pack_torque_per_newton(params, clutch)),
+      controller_(params.controller),
+      valve_opening_(inputs.valve_opening),
+      valve_pressure_bar_(inputs.valve_pressure_bar),
       contact_(clutch, BearingDrag{}, params.stick_time),
       engine_torque_Nm_(inputs.engine_torque_Nm),
       throttle_(inputs.throttle),
@@ -80,7 +84,16 @@ HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::We
   if (!std::isfinite(inputs.grade_percent) || std::abs(inputs.grade_percent) > 100)
     throw std::invalid_argument("driveline: grade must be within ±100 %");
 
+  if (valve_opening_)
+    for (double u : valve_opening_->values())
+      if (!std::isfinite(u) || u < 0 || u > 1)
+        throw std::invalid_argument("driveline: valve_opening must be within [0, 1] (0 shut, 1 open)");
+  if (valve_pressure_bar_)
+    for (double v : valve_pressure_bar_->values())
+      if (!std::isfinite(v) || v < 0 || v > p_.hydraulics.relief_pressure_bar)
+        throw std::invalid_argument("driveline: valve_pressure_bar must be within [0, relief_pressure_bar]");
   path_ratios_ = wheel_path_ratios(p_, inputs);
+  turn_axle_ratio_ = (path_ratios_[kFL] + path_ratios_[kFR]) / (path_ratios_[kRL] + path_ratios_[kRR]);
   const double theta = std::atan(inputs.grade_percent / 100.0);
   const double weight_N = p_.vehicle_mass_kg * kGravity_m_s2;
   const double r = p_.wheel_radius_m;
@@ -187,6 +200,29 @@ double HaldexDriveline::engine_torque_Nm(double t, double w) const {
   return throttle_ ? engine_.torque_Nm(w, (*throttle_)(t)) : engine_torque_Nm_(t);
 }
 
+double HaldexDriveline::pedal(double t) const {
+  if (throttle_) return std::clamp((*throttle_)(t), 0.0, 1.0);
+  const auto& full = engine_.params().full_load_torque_Nm.values();
+  const double peak = *std::max_element(full.begin(), full.end());
+  return peak > 0 ? std::clamp(engine_torque_Nm_(t) / peak, 0.0, 1.0) : 0.0;
+}
+
+double HaldexDriveline::valve_opening(const dynamics::Sample& s) const {
+  if (valve_opening_) return (*valve_opening_)(s.t_s);
+  if (valve_pressure_bar_) return 0.0;  // a raw pressure setting: shut below it
+  ControllerReading r;
+  r.vehicle_speed_km_h = s.omega_rad_s[kVehicle] * p_.wheel_radius_m * 3.6;
+  r.front_axle_rpm = units::rad_s_to_rpm(s.omega_rad_s[kFrontDiff]);
+  r.rear_axle_rpm = units::rad_s_to_rpm(s.omega_rad_s[kRearDiff]);
+  r.turn_axle_ratio = turn_axle_ratio_;
+  r.pedal = pedal(s.t_s);
+  return controller_.valve_opening(r);
+}
+
+double HaldexDriveline::valve_setting_bar(double t) const {
+  return valve_pressure_bar_ ? (*valve_pressure_bar_)(t) : p_.hydraulics.relief_pressure_bar;
+}
+
 double HaldexDriveline::engine_slope_Nms_per_rad(double t, double w) const {
   return throttle_ ? engine_.torque_speed_slope_Nms_per_rad(w, (*throttle_)(t)) : 0.0;
 }
@@ -206,6 +242,15 @@ Eigen::VectorXd HaldexDriveline::rolling_speed_ratios() const {
   s[kPtu] = s[kCouplingIn] = p_.ptu_ratio * s[kFrontDiff];
   s[kCouplingOut] = p_.rear_diff_ratio * s[kRearDiff];
   return s;
+}
+
+void apply_pack_oil(const DrivelineParams& params, int sliding_interfaces, clutch::ThermalParams& thermal) {
+  if (sliding_interfaces < 1) throw std::invalid_argument("driveline: the pack needs at least one sliding interface");
+  if (!std::isfinite(params.pack_oil_volume_ml) || !(params.pack_oil_volume_ml > 0) ||
+      !std::isfinite(params.pack_cooling_flow_ml_min) || params.pack_cooling_flow_ml_min < 0)
+    throw std::invalid_argument("driveline: pack_oil_volume_ml must be > 0 and pack_cooling_flow_ml_min >= 0");
+  thermal.sump_volume_m3 = params.pack_oil_volume_ml * 1e-6 / sliding_interfaces;
+  thermal.supply_flow_m3_s = params.pack_cooling_flow_ml_min * 1e-6 / 60.0 / sliding_interfaces;
 }
 
 dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::WetClutch& clutch,
@@ -233,6 +278,10 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
   using dynamics::Sample;
   using clutch::ThermalState;
   double pressure_bar = 0.0;
+  double opening = dl.valve_opening(sim.sample());
+  // Laminar leakage scales with 1/ν of the coupling's oil (its sump temperature), Walther's law.
+  const clutch::WaltherViscosity viscosity(clutch.fluid().nu40_cSt, clutch.fluid().nu100_cSt);
+  const double nu40_cSt = viscosity.kinematic_cSt(40.0);
   dynamics::Recording rec;
   Recorder recorder(rec, {
       Recorder::sampled(sn::kTime, "s", [](const Sample& s) { return s.t_s; }),
@@ -263,6 +312,7 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
                           return static_cast<double>(s.modes[D::kCoupling] == dynamics::ContactMode::kStuck);
                         }),
       Recorder::sampled(sn::kPressure, "bar", [&](const Sample&) { return pressure_bar; }),
+      Recorder::sampled(sn::kValveOpening, "1", [&](const Sample&) { return opening; }),
       Recorder::sampled(sn::kClampForce, "N",
                         [&](const Sample&) { return dl.hydraulics().clamp_force_N(pressure_bar); }),
       Recorder::sampled(sn::kWheelSpeedFL, "rpm", [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kFrontLeftWheel]); }),
@@ -304,8 +354,11 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
                     return s.theta_rad[D::kCouplingIn] - s.theta_rad[D::kCouplingOut];
                   };
                   pressure_bar = dl.hydraulics().step_pressure_bar(
-                      pressure_bar, std::abs(twist(step.after) - twist(step.before)), step.tb_s - step.ta_s,
-                      inputs.valve_pressure_bar(step.tb_s));
+                      pressure_bar, std::abs(twist(step.after) - twist(step.before)), step.tb_s - step.ta_s, opening,
+                      dl.valve_setting_bar(step.tb_s), nu40_cSt / viscosity.kinematic_cSt(ts.sump_temp_C));
+                  // The control unit reads the wheel speeds at the end of the step and sets the
+                  // valve for the next (a 10 ms control period).
+                  opening = dl.valve_opening(step.after);
                   coupling_context->set_normal_force(PiecewiseLinear({0.0}, {dl.hydraulics().clamp_force_N(pressure_bar)}));
                   peak_C = std::max(peak_C, th.interface_temps_C(ts).maxCoeff());
                   recorder.step(ts, step.ta_s, step.tb_s);

@@ -21,8 +21,12 @@
 //     `turn_ratio` ρ puts both front wheels on ρ and both rear on 1.)
 //   Vertical loads: static, F_z = m g cos θ × the axle's share / 2 (no load transfer yet).
 //   the coupling: the wet clutch of clutch/ (WetClutch as a ClutchContactLaw) clamped by
-//     F = F_preload + A p from HaldexHydraulics, p advanced per slow step with the coupling's
-//     relative rotation and held over the next (as the disc temperatures are).
+//     F = F_preload + A p from HaldexHydraulics (a Gen I coupling: pump ∝ |Δω|, throttle valve on
+//     the return, relief valve, oil and pack compliance), p advanced per slow step with the
+//     coupling's relative rotation and held over the next (as the disc temperatures are); the
+//     valve's opening from HaldexController (rig_models/haldex_controller.hpp) at every slow step,
+//     or a raw schedule. The pack's own oil (volume, cooling flow) replaces the rig's sump and
+//     forced flow: apply_pack_oil().
 //
 // Parameters are not in the thesis: every default below is an ESTIMATE for a mid-size AWD car of
 // the thesis' era (1.7 t, 1st gear; wheelbase and track of a VW Golf IV 4motion, the first
@@ -41,6 +45,7 @@
 #include "rig_models/drive_cycle.hpp"
 #include "rig_models/engine.hpp"
 #include "rig_models/engine_pulsation.hpp"
+#include "rig_models/haldex_controller.hpp"
 #include "rig_models/haldex_hydraulics.hpp"
 #include "rig_models/tyre.hpp"
 
@@ -76,8 +81,13 @@ struct DrivelineParams {
   double rear_diff_ratio = 2.6;             // estimate; = ptu_ratio: front and rear axles match
   double rear_diff_inertia_kg_m2 = 0.03;    // estimate
   double turn_ratio = 1.0;                  // legacy ρ of the front axle, see header
-  double nominal_friction = 0.12;           // μ_nom for the piston area (estimate: wet clutch)
+  double nominal_friction = 0.12;           // μ_nom for the preload's force (estimate: wet clutch)
+  // The coupling's own oil (estimates: a Gen I unit holds ~0.6 l; the pack is splash- and
+  // pump-washed, no forced cooling circuit): shared by the pack's interfaces, see apply_pack_oil().
+  double pack_oil_volume_ml = 600.0;
+  double pack_cooling_flow_ml_min = 300.0;
   HaldexHydraulicsParams hydraulics;
+  HaldexControllerParams controller;        // used unless the manoeuvre gives a raw valve schedule
   EngineParams engine;                      // used when the manoeuvre gives a throttle
   StickTimeFriction stick_time;             // the `stick_time_static_friction` effect
   EnginePulsation engine_pulsation;         // firing-order torque pulsation (engine_pulsation.hpp); 0 N m: none
@@ -88,7 +98,10 @@ struct DrivelineParams {
 struct DrivelineInputs {
   PiecewiseLinear engine_torque_Nm{{0.0}, {0.0}};  // raw schedule, used without a throttle
   std::optional<PiecewiseLinear> throttle;         // 0–1: the engine map of rig_models/engine.hpp
-  PiecewiseLinear valve_pressure_bar{{0.0}, {30.0}};  // the controller's setting
+  // The throttle valve: a raw opening schedule (0 shut – 1 open) and/or a raw pressure setting
+  // (an ideal cap, the valve shut below it); neither: the controller model decides.
+  std::optional<PiecewiseLinear> valve_opening;
+  std::optional<PiecewiseLinear> valve_pressure_bar;
   double start_speed_km_h = 0.0;  // vehicle speed at t = 0, every part rolling with it
   double turn_radius_m = 0.0;     // R of the rear axle centre, left turn; 0 = straight
   std::array<double, 4> road_friction{1.0, 1.0, 1.0, 1.0};  // μ per wheel: FL, FR, RL, RR (dry asphalt ≈ 1)
@@ -115,6 +128,14 @@ class HaldexDriveline {
   /// The network bound to a fresh context at start_inputs() (for inspection and modes).
   dynamics::TorsionalNetwork network() const;
   const HaldexHydraulics& hydraulics() const { return hydraulics_; }
+  const HaldexController& controller() const { return controller_; }
+  /// The throttle valve's opening at time t for the axle speeds of `s` (the controller's, or the
+  /// raw schedule's), and the pressure setting (the relief pressure unless a raw one is given).
+  double valve_opening(const dynamics::Sample& s) const;
+  double valve_setting_bar(double t_s) const;
+  /// The accelerator pedal the controller reads: the throttle, or the raw torque over the
+  /// full-load curve's peak (0–1).
+  double pedal(double t_s) const;
   const DrivelineParams& params() const { return p_; }
   /// Speed of every node per unit vehicle speed (rad/s per rad/s) when all rolls together.
   Eigen::VectorXd rolling_speed_ratios() const;
@@ -145,6 +166,9 @@ class HaldexDriveline {
   dynamics::TorsionalNetwork build(std::shared_ptr<const dynamics::ContactLaw> coupling_law) const;
   DrivelineParams p_;
   HaldexHydraulics hydraulics_;
+  HaldexController controller_;
+  std::optional<PiecewiseLinear> valve_opening_, valve_pressure_bar_;
+  double turn_axle_ratio_ = 1.0;
   ClutchContact contact_;
   PiecewiseLinear engine_torque_Nm_;
   std::optional<PiecewiseLinear> throttle_;
@@ -154,6 +178,11 @@ class HaldexDriveline {
   std::shared_ptr<const RoadLoad> road_load_;
   double grade_torque_Nm_ = 0;
 };
+
+/// The coupling's own oil in the disc pack's thermal model: each of the n interfaces' domains gets
+/// 1/n of the pack's oil volume as its sump and 1/n of its cooling flow (the rig's disc has its
+/// own 0.5 l sump and 200 ml/min forced flow per interface).
+void apply_pack_oil(const DrivelineParams& params, int sliding_interfaces, clutch::ThermalParams& thermal);
 
 /// Simulates the driveline with the coupling's thermal model and hydraulics (multi-rate) and
 /// records speeds, torques, pressure and temperatures; judges the coupling's judder from its

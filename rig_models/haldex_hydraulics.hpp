@@ -1,58 +1,95 @@
 #pragma once
-// The Haldex coupling's hydraulics: what clamps the disc pack (PHYSICS.md §8; thesis
-// Introduction; public workshop manuals and patents, medium reliability).
+// The hydraulics of a first-generation Haldex limited-slip coupling (Gen I, VW Golf IV 4motion /
+// Audi TT quattro, 1998; the same principle in Gen II): what clamps the disc pack. Generation I
+// only — no electric pre-charge pressure, no accumulator, no preload spring of the later ones.
 //
-// A cam on the rear side of the coupling strokes piston pumps whenever the front and rear axles
-// turn at different speeds, so the pump delivers in proportion to the relative speed |Δω|; the
-// pressure reaches its full value after about 90° of relative rotation. An electronically
-// controlled throttle valve sets the pressure the pack gets (and spills above it); oil leaks
-// back through the throttle, so the pressure decays once the axles turn together. A spring
-// preloads the pack.
+// Sources (public, medium reliability; docs/driveline.md):
+//   [P1] US 5,405,293 (Haldex): an annular control piston driven through control pins by a cam
+//        curve on the other shaft oscillates "with a frequency directly proportional to the
+//        rotational speed differential": the pump delivers a fixed volume per relative turn.
+//   [P2] US 5,979,631 (Haldex): ring-shaped pistons, check valves, oil removed via an overflow valve.
+//   [S1] VW Self-Study Programme 206 "Four-wheel drive with Haldex coupling" (1998): the control
+//        unit sets the pressure through a throttle (regulating) valve on the return to the
+//        reservoir, from wheel speeds and the accelerator pedal; a pressure-limiting valve;
+//        "no strain on the clutch when parking and manoeuvring".
+//   [W1] awdwiki.com "Haldex": Gen I–II are reactive: the pump needs slip, the electronics can
+//        only lower the pressure, "just 1/4 of a wheel turn is needed to engage".
 //
-//   dp/dt = (p_relief / φ_full) |Δω| − p / τ_leak,        0 <= p <= p_valve(t) <= p_relief
-//   F_clamp = F_preload + A_piston p
+// The pressure chamber behind the clutch piston (one lumped volume):
 //
-//   p_relief   relief pressure, 30 bar (public: "order 10–30 bar"; a Volvo variant 27.5 bar)
-//   φ_full     π/2: full pressure after 90° of relative rotation (public)
-//   τ_leak     0.5 s (estimate: the coupling lets go within about a second once the slip stops)
-//   A_piston   from the public 59 N m/bar (17 bar ≈ 1000 N m): A = 59 N m/bar /
-//              (n μ_nom r_eff · 1e5 Pa/bar) for the pack's n interfaces, nominal friction μ_nom
-//              and mean radius r_eff — the area that makes the pack's torque per bar right
-//   F_preload  the preload torque (public: up to ~80 N m; 50 N m here) over n μ_nom r_eff
+//   C dp/dt = D |Δω| − C_d u a_max √(2 p/ρ) − G(T) p,     0 <= p <= min(p_relief, p_set)
+//   C = V/β + A²/k_pack                                     (oil and pack compliance)
+//   F_clamp = F_preload + A p
+//
+//   D        pump displacement per radian of relative rotation of the coupling's halves [P1]
+//   u        throttle-valve opening 0..1 from the controller [S1]; a_max its full flow area;
+//            the sharp-edged orifice equation with discharge coefficient C_d
+//   G(T)     laminar leakage (piston seals, check valves), G_40 ν(40 °C)/ν(T) (laminar flow ∝ 1/ν)
+//   p_relief the pressure-limiting valve [S1, P2]: ideal, it passes whatever would exceed it
+//   p_set    an optional raw pressure setting (scenario key valve_pressure_bar), an ideal cap
+//   V, β     chamber volume and effective bulk modulus of the oil (air and housing included)
+//   A        piston area; k_pack the pack's axial stiffness: the piston's travel as the pressure
+//            squeezes the discs' waviness and linings displaces A²/k_pack per pascal
+//
+// The defaults (each an estimate, reasoning in docs/driveline.md) give full pressure after a
+// quarter turn of the WHEEL ([W1]): the coupling turns i_r = 2.6 times the rear wheel, so the pump
+// sweeps D i_r π/2 = C p_relief (test). Units: SI inside; bar, cm³, mm² at the interface.
 //
 // Multi-rate (DESIGN.md): the pressure changes over tens of milliseconds, like the disc
-// temperatures, so it is advanced once per slow step with the step's relative rotation φ and
-// held over the next. For a constant pumping rate over the step h the update is exact:
-//   p(t+h) = p_ss + (p(t) − p_ss) e^(−h/τ_leak),  p_ss = (p_relief/φ_full)(φ/h) τ_leak,
-// then clamped to [0, p_valve].
+// temperatures, so it is advanced once per slow step with the step's relative rotation (a
+// constant pumping rate over the step) and held over the next. Within the step: backward Euler
+// in sub-steps of at most 0.5 ms, each solved in closed form (a quadratic in √p), so the orifice's
+// infinite slope at p = 0 cannot make it oscillate.
 
 namespace shudder::rig_models {
 
 struct HaldexHydraulicsParams {
-  double relief_pressure_bar = 30.0;       // public figure, see header
-  double full_pressure_rotation_rad = 1.5707963267948966;  // 90°, public
-  double leak_time_constant_s = 0.5;       // estimate
-  double torque_per_bar_Nm = 59.0;         // public: 17 bar ≈ 1000 N m
-  double preload_torque_Nm = 50.0;         // public: up to ~80 N m
+  double relief_pressure_bar = 30.0;            // [S1]-type pressure-limiting valve; "order 10–30 bar" (public)
+  double piston_area_cm2 = 60.0;                // estimate: annulus under the discs' 38–56 mm friction ring
+  double pump_displacement_cm3_per_rev = 2.5;   // estimate: 2 annular pistons × 5 cm² × 1.25 mm × 2 cam lobes
+  double chamber_volume_cm3 = 40.0;             // estimate: piston chamber (60 cm² × ~5 mm) and passages
+  double bulk_modulus_bar = 10000.0;            // estimate: mineral oil 1.5 GPa, ~1 GPa with air and housing
+  double pack_stiffness_N_per_mm = 72000.0;     // estimate: set so the quarter wheel turn [W1] holds (header)
+  double valve_area_mm2 = 0.3;                  // estimate: fully open throttle, a ~0.6 mm orifice
+  double discharge_coefficient = 0.7;           // sharp-edged orifice, 0.6–0.7 (textbook)
+  double leak_cm3_s_per_bar = 0.005;            // estimate at 40 °C: holds the pressure ~10 s with the valve shut
+  double oil_density_kg_m3 = 870.0;             // mineral ATF/Haldex oil
+  double preload_torque_Nm = 0.0;               // Gen I has no preload spring [W1]; later generations ~80 N m
 };
 
 class HaldexHydraulics {
  public:
-  /// `pack_torque_per_newton_m` = n μ_nom r_eff of the disc pack (N m per N of clamp force).
+  /// `pack_torque_per_newton_m` = n μ_nom r_eff of the disc pack (N m per N of clamp force),
+  /// used only to turn the preload torque into a force.
   /// Throws std::invalid_argument for non-positive or non-finite parameters.
   HaldexHydraulics(const HaldexHydraulicsParams& params, double pack_torque_per_newton_m);
 
-  /// Pressure after a slow step of `step_s` in which the coupling turned by `rotation_rad`
-  /// (>= 0, the integral of |Δω|), with the valve set to `valve_bar` (clamped to the relief).
-  double step_pressure_bar(double pressure_bar, double rotation_rad, double step_s, double valve_bar) const;
+  /// Pressure after a slow step of `step_s` in which the coupling's halves turned by
+  /// `rotation_rad` relative to each other (the integral of |Δω|), the throttle valve open by
+  /// `opening` (0–1), the pressure capped at `setting_bar` (≥ relief: no cap but the relief
+  /// valve), the leakage scaled by `leak_scale` (ν(40 °C)/ν(T) of the oil).
+  double step_pressure_bar(double pressure_bar, double rotation_rad, double step_s, double opening,
+                           double setting_bar, double leak_scale = 1.0) const;
+  /// The steady pressure at a constant |Δω| and valve opening (no leakage change), below the caps:
+  /// the root of D|Δω| = C_d u a_max √(2p/ρ) + G p.
+  double steady_pressure_bar(double slip_rad_s, double opening, double leak_scale = 1.0) const;
   double clamp_force_N(double pressure_bar) const;
   double piston_area_m2() const { return area_m2_; }
   double preload_force_N() const { return preload_N_; }
+  /// D: pump delivery per radian of relative rotation, m³/rad.
+  double displacement_m3_per_rad() const { return displacement_m3_per_rad_; }
+  /// C = V/β + A²/k_pack, m³/Pa.
+  double compliance_m3_per_Pa() const { return compliance_m3_per_Pa_; }
+  /// Laminar leakage at 40 °C, m³/s per Pa.
+  double leak_m3_s_per_Pa() const { return leak_m3_s_per_Pa_; }
+  /// C_d a_max √(2/ρ): the fully open valve's flow per √Pa.
+  double valve_flow_coefficient() const { return valve_k_; }
   const HaldexHydraulicsParams& params() const { return p_; }
 
  private:
   HaldexHydraulicsParams p_;
-  double area_m2_ = 0, preload_N_ = 0;
+  double area_m2_ = 0, preload_N_ = 0, displacement_m3_per_rad_ = 0, compliance_m3_per_Pa_ = 0;
+  double leak_m3_s_per_Pa_ = 0, valve_k_ = 0;
 };
 
 }  // namespace shudder::rig_models

@@ -14,9 +14,6 @@ namespace {
 }
 
 constexpr const char* kNoMeasuredRun = "a measured run is a rig log; give a prescribed_slip or rig scenario";
-constexpr const char* kNoSweep =
-    "sweeps judge rig and prescribed_slip cases (stability, shudder); a driveline scenario runs with "
-    "`shudder run`";
 constexpr const char* kNoReplay = "measured runs are rig runs; diagnose needs a prescribed_slip or rig model";
 constexpr const char* kNoNetwork = "\" has no torsional network; modes needs type = \"rig\" or \"driveline\"";
 constexpr const char* kNotARig = "\" is not a rig; --rig needs a scenario with type = \"rig\"";
@@ -163,10 +160,10 @@ std::vector<std::string> add_run_analysis(const DrivelineModel& model, const clu
 
 void require_measured_run_export(const DrivelineModel&) { throw KindNotSupported(kNoMeasuredRun); }
 
-void require_sweep(const DrivelineModel&) { throw KindNotSupported(kNoSweep); }
+void require_sweep(const DrivelineModel&) {}
 
-CaseOutcome evaluate_case(const DrivelineModel&, const clutch::WetClutch&, dynamics::Recording&) {
-  throw KindNotSupported(kNoSweep);
+CaseOutcome evaluate_case(const DrivelineModel& model, const clutch::WetClutch& clutch, dynamics::Recording& rec) {
+  return evaluate_driveline_case(model.params, clutch, model.manoeuvre, model.settings, rec);
 }
 
 ReplayModel replay_model(const DrivelineModel&, const StickTimeFriction&) { throw KindNotSupported(kNoReplay); }

@@ -230,15 +230,18 @@ TEST(HaldexDriveline, OpenCouplingDrivesTheFrontAxleOnly) {
 
 // The shipped tight turn (scenarios/driveline_tight_turn.toml) with fluid C and with a fluid
 // whose static friction is 1.3 × its kinetic (schematic_stick_slip): only the second may make
-// the coupling stick-slip, and the frequency the FFT finds must agree with the stick-slip
-// events counted in the time domain. The count is over the whole oscillating part while the
-// pressure (and so the cycle) still changes, the FFT peak weights the strongest stretch: 15 %.
+// the coupling stick-slip, and the frequency the FFT finds must agree with the time domain.
 dynamics::Recording tight_turn(const Pack& pack) {
   DrivelineParams p;
   p.turn_ratio = 1.04;
+  // A later generation's 50 N m preload spring: it holds the pack stuck at the start. The Gen I
+  // pack (no preload) takes up through the slip-pumped pressure alone and slides smoothly even
+  // with this fluid (measured: 0 stick events; docs/driveline.md).
+  p.hydraulics.preload_torque_Nm = 50.0;
   DrivelineInputs in;
   in.engine_torque_Nm = PiecewiseLinear({0.0, 0.5, 5.0}, {0.0, 30.0, 30.0});
   in.start_speed_km_h = 5.0;
+  in.valve_pressure_bar = PiecewiseLinear({0.0}, {30.0});  // raw: the valve shut up to the relief
   DrivelineSettings s;
   s.duration_s = 5.0;
   return run_driveline(p, pack.clutch, in, s);
@@ -261,8 +264,16 @@ TEST(HaldexDriveline, TightTurnStickSlipsOnlyWithAHighStaticFriction) {
       last_t = t[i];
     }
   ASSERT_GT(breakaways, 10);
+  // With the Gen I hydraulics the pressure keeps rising (no leakage balance), the cycle is the
+  // driveline's shuffle: the FFT peak sits at the locked shuffle mode (3.50 against 3.71 Hz
+  // measured: the pack is not locked throughout, 10 %), while the pack breaks away about twice
+  // per shuffle cycle (6.17 Hz measured: between one and two per cycle).
   const double event_rate_Hz = (breakaways - 1) / (last_t - first);
-  EXPECT_NEAR(test::scalar(rough, "coupling_oscillation_frequency_Hz"), event_rate_Hz, 0.15 * event_rate_Hz);
+  const double shuffle_Hz = test::scalar(rough, "shuffle_frequency_Hz");
+  const double fft_Hz = test::scalar(rough, "coupling_oscillation_frequency_Hz");
+  EXPECT_NEAR(fft_Hz, shuffle_Hz, 0.1 * shuffle_Hz);
+  EXPECT_GE(event_rate_Hz, fft_Hz);
+  EXPECT_LE(event_rate_Hz, 2.0 * fft_Hz);
 }
 
 TEST(HaldexDriveline, RejectsNonPhysicalParameters) {
@@ -301,10 +312,13 @@ TEST(HaldexDriveline, ShippedLaunchesDriveTheRearAxle) {
   EXPECT_GT(last(split, "wheel_fl_speed_rpm"), 1.03 * last(split, "wheel_fr_speed_rpm"));
   EXPECT_GT(last(split, "rear_axle_torque_Nm"), 2.0 * last(split, "front_axle_torque_Nm"));
   EXPECT_LT(test::scalar(split, "mechanical_energy_relative_error"), 1e-6);
-  // Parking at full lock with the valve open: the pack slips on its preload, no wind-up.
+  // Parking at full lock: the controller opens the valve (a parking turn), the pump's flow passes
+  // the open throttle at a few hundredths of a bar and the Gen I pack (no preload) slips freely.
   const auto park = shipped("driveline_parking_turn.toml");
-  EXPECT_EQ(last(park, "pressure_bar"), 0.0);
-  EXPECT_LT(last(park, "coupling_torque_Nm"), 60.0);
+  // (The front tyres' driving slip reads as up to ~2 rpm of excess slip: ≥ 0.85 throughout.)
+  for (double u : test::signal(park, "valve_opening")) ASSERT_GE(u, 0.85);
+  EXPECT_LT(last(park, "pressure_bar"), 0.2);
+  EXPECT_LT(last(park, "coupling_torque_Nm"), 10.0);
   EXPECT_GT(last(park, "coupling_slip_rpm"), 5.0);
   const auto uphill = shipped("driveline_low_mu_uphill.toml");
   EXPECT_GT(last(uphill, "vehicle_speed_km_h"), 5.0);
