@@ -31,10 +31,14 @@ void WetClutch::ring_mu(double slip_rad_s, double force_N, const Eigen::VectorXd
                         Eigen::VectorXd& mu, RingScratch* scratch) const {
   const auto& r = thermal_.ring_radius_m();
   const double load = friction_load_N(force_N);
-  RingScratch local;
-  RingScratch& w = scratch ? *scratch : local;
-  const auto n = static_cast<std::size_t>(r.size());
   mu.resize(r.size());
+  if (!scratch) {  // point by point: allocates nothing (the real-time step relies on that)
+    for (Eigen::Index i = 0; i < r.size(); ++i)
+      mu[i] = fluid_.friction->mu(r[i] * std::abs(slip_rad_s) * 1e3, friction_temp_C(ring_temp_C[i]), load);
+    return;
+  }
+  RingScratch& w = *scratch;
+  const auto n = static_cast<std::size_t>(r.size());
   w.speed_mm_s.resize(n);
   w.temp_C.resize(n);
   for (std::size_t i = 0; i < n; ++i) {

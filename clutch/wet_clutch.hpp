@@ -66,7 +66,7 @@ class WetClutch {
 
   /// What a caller keeps across ring_mu / ring_torque_Nm / ring_heat_W calls so that calls at
   /// the same slip reuse the friction law's speed-only work (FrictionLaw::mu_at_load); the
-  /// results are the same bit for bit with or without it.
+  /// results are the same bit for bit with or without it. Without it nothing is allocated.
   struct RingScratch {
     std::vector<double> speed_mm_s, temp_C;
     SpeedTerms terms;
