@@ -9,9 +9,41 @@ namespace shudder::clutch {
 
 namespace {
 
-// out[0..len) -= a[0..len) * s; the two never overlap (a is the factor, out the vector).
-void subtract_scaled(double* __restrict out, const double* __restrict a, double s, int len) {
-  for (int t = 0; t < len; ++t) out[t] -= a[t] * s;
+// Both triangular sweeps on the padded vector y (`lanes` slots of padding each side, lanes a
+// multiple of 4). Column updates are whole blocks of four independent `y -= a * s`, which the
+// compiler turns into vector operations; built twice (AVX2 and baseline x86-64) and picked at
+// load time, so the package runs on any x86-64 and uses the wider registers where they exist.
+// No FMA: the multiply and the subtraction round separately in both builds (bit-identical).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__SANITIZE_ADDRESS__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void sweep(double* __restrict y, const double* __restrict lower, const double* __restrict upper,
+           const double* __restrict diag, int n, int lanes) {
+  // L y = x (unit lower), column by column: y[k+1..k+lanes] -= L(.., k) * y[k].
+  for (int k = 0; k < n; ++k) {
+    const double s = y[k];
+    double* out = y + k + 1;
+    const double* a = lower + static_cast<std::size_t>(k) * lanes;
+    for (int t = 0; t < lanes; t += 4) {
+      out[t] -= a[t] * s;
+      out[t + 1] -= a[t + 1] * s;
+      out[t + 2] -= a[t + 2] * s;
+      out[t + 3] -= a[t + 3] * s;
+    }
+  }
+  // U x = y, column by column from the last: x[k] = y[k] / U(k,k); y[k-lanes..k-1] -= U(.., k) x[k].
+  for (int k = n - 1; k >= 0; --k) {
+    y[k] /= diag[k];
+    const double s = y[k];
+    double* out = y + k - lanes;
+    const double* a = upper + static_cast<std::size_t>(k) * lanes;
+    for (int t = 0; t < lanes; t += 4) {
+      out[t] -= a[t] * s;
+      out[t + 1] -= a[t + 1] * s;
+      out[t + 2] -= a[t + 2] * s;
+      out[t + 3] -= a[t + 3] * s;
+    }
+  }
 }
 
 }  // namespace
@@ -19,8 +51,12 @@ void subtract_scaled(double* __restrict out, const double* __restrict a, double 
 BandedLu::BandedLu(int n, int half_band)
     : n_(n), b_(half_band), width_(static_cast<std::size_t>(2 * half_band + 1)) {
   if (n < 1 || half_band < 0) throw std::invalid_argument("band matrix needs n >= 1 and b >= 0");
+  lanes_ = std::max(4, (half_band + 3) / 4 * 4);
   data_.assign(static_cast<std::size_t>(n) * width_, 0.0);
-  padded_.assign(static_cast<std::size_t>(n + 2 * half_band), 0.0);
+  lower_.assign(static_cast<std::size_t>(n) * lanes_, 0.0);
+  upper_.assign(static_cast<std::size_t>(n) * lanes_, 0.0);
+  diag_.assign(static_cast<std::size_t>(n), 0.0);
+  padded_.assign(static_cast<std::size_t>(n + 2 * lanes_), 0.0);
 }
 
 bool BandedLu::factorize(const Eigen::SparseMatrix<double>& a) {
@@ -45,27 +81,28 @@ bool BandedLu::factorize(const Eigen::SparseMatrix<double>& a) {
       for (int i = k + 1; i <= last; ++i) at(i, j) -= at(i, k) * u;
     }
   }
+  // The solve's padded copies (zeros where the band or the matrix ends).
+  std::fill(lower_.begin(), lower_.end(), 0.0);
+  std::fill(upper_.begin(), upper_.end(), 0.0);
+  for (int k = 0; k < n_; ++k) {
+    diag_[static_cast<std::size_t>(k)] = at(k, k);
+    double* lo = &lower_[static_cast<std::size_t>(k) * lanes_];
+    double* up = &upper_[static_cast<std::size_t>(k) * lanes_];
+    for (int t = 0; t < b_; ++t) {
+      if (k + 1 + t < n_) lo[t] = at(k + 1 + t, k);
+      if (k - b_ + t >= 0) up[lanes_ - b_ + t] = at(k - b_ + t, k);
+    }
+  }
   return true;
 }
 
 void BandedLu::solve_in_place(Eigen::VectorXd& x) {
-  // The vector sits in a scratch copy with b slots of padding at both ends, so every column
-  // update has exactly b entries: near the ends the extra ones multiply band slots that lie
-  // outside the matrix and land in the padding, which is never read. Without the tail lengths
-  // the loop ran ~30 % faster (2.5 instead of 3.6 µs for 240 unknowns, b = 12).
-  std::copy(x.data(), x.data() + n_, padded_.begin() + b_);
-  double* y = padded_.data() + b_;
-  // L y = x (unit lower), column by column: y[k+1..k+b] -= L(k+1..k+b, k) * y[k]. The factor and
-  // the vector never overlap (__restrict), so the update vectorises without a run-time
-  // aliasing check.
-  for (int k = 0; k < n_; ++k)
-    subtract_scaled(y + k + 1, &data_[static_cast<std::size_t>(k) * width_ + b_ + 1], y[k], b_);
-  // U x = y, column by column from the last: x[k] = y[k] / U(k,k); y[k-b..k-1] -= U(.., k) x[k].
-  for (int k = n_ - 1; k >= 0; --k) {
-    const double* diag = &data_[static_cast<std::size_t>(k) * width_ + b_];
-    y[k] /= diag[0];
-    subtract_scaled(y + k - b_, diag - b_, y[k], b_);
-  }
+  // The vector sits in a scratch copy with `lanes` slots of padding at both ends, so every
+  // column update has exactly `lanes` entries: near the ends the extra ones multiply zero factor
+  // entries and land in the padding, which is never read.
+  std::copy(x.data(), x.data() + n_, padded_.begin() + lanes_);
+  double* y = padded_.data() + lanes_;
+  sweep(y, lower_.data(), upper_.data(), diag_.data(), n_, lanes_);
   std::copy(y, y + n_, x.data());
 }
 

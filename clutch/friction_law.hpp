@@ -7,6 +7,7 @@
 // construction and safe to share between threads.
 
 #include <limits>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -23,12 +24,26 @@ struct SpeedCurve {
   double min_speed_mm_s = 0.0, max_speed_mm_s = 0.0;
 };
 
+/// What a law may keep between calls at the same speeds (the rings of a clutch at one slip:
+/// a thermal step's end is evaluated with the old and then with the new temperatures). The
+/// law owns the meaning of `values`; callers only keep one object per sequence of calls.
+struct SpeedTerms {
+  std::vector<double> speed_mm_s;  // the speeds `values` belong to
+  std::vector<double> values;
+};
+
 class FrictionLaw {
  public:
   virtual ~FrictionLaw() = default;
 
   /// Kinetic friction coefficient (dimensionless).
   virtual double mu(double speed_mm_s, double temp_C, double load_N) const = 0;
+  /// mu at several points of one load: out[i] = mu(speed_mm_s[i], temp_C[i], load_N), the same
+  /// numbers bit for bit. A law may reuse speed-only work in `terms` while the speeds repeat.
+  virtual void mu_at_load(std::span<const double> speed_mm_s, std::span<const double> temp_C,
+                          double load_N, std::span<double> out, SpeedTerms& /*terms*/) const {
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = mu(speed_mm_s[i], temp_C[i], load_N);
+  }
 
   /// Partial derivative of mu with respect to sliding speed at constant T and F, in 1/(mm/s).
   /// This is the isothermal slope that governs friction-induced vibration (PHYSICS.md §6).

@@ -48,6 +48,10 @@ class MakiFrictionMatrix final : public FrictionLaw {
                      double max_speed_mm_s = 590.0);
 
   double mu(double speed_mm_s, double temp_C, double load_N) const override;
+  /// The load is bracketed once; v^0.1 and tanh(C2 v) are kept in `terms` per speed (and per
+  /// distinct C2), so a repeated call at the same speeds only blends.
+  void mu_at_load(std::span<const double> speed_mm_s, std::span<const double> temp_C, double load_N,
+                  std::span<double> out, SpeedTerms& terms) const override;
   double dmu_dv_per_mm_s(double speed_mm_s, double temp_C, double load_N) const override;
   double min_speed_mm_s() const override { return min_speed_mm_s_; }
   double max_speed_mm_s() const override { return max_speed_mm_s_; }
@@ -72,6 +76,8 @@ class MakiFrictionMatrix final : public FrictionLaw {
   std::vector<double> loads_N_;  // (n_load) strictly increasing
   std::vector<double> temps_C_;  // (n_temp) strictly increasing
   std::vector<MakiSet> sets_;    // (n_temp * n_load) row-major
+  std::vector<double> rates_;    // the distinct C2 of the sets
+  std::vector<std::size_t> rate_of_set_;  // index into rates_ per set
   double min_speed_mm_s_;
   double max_speed_mm_s_;
 };

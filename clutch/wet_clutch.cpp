@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <stdexcept>
 
 namespace shudder::clutch {
@@ -27,19 +28,33 @@ double WetClutch::mean_radius_m() const {
 }
 
 void WetClutch::ring_mu(double slip_rad_s, double force_N, const Eigen::VectorXd& ring_temp_C,
-                        Eigen::VectorXd& mu) const {
+                        Eigen::VectorXd& mu, RingScratch* scratch) const {
   const auto& r = thermal_.ring_radius_m();
   const double load = friction_load_N(force_N);
   mu.resize(r.size());
-  for (Eigen::Index i = 0; i < r.size(); ++i)
-    mu[i] = fluid_.friction->mu(r[i] * std::abs(slip_rad_s) * 1e3, friction_temp_C(ring_temp_C[i]), load);
+  if (!scratch) {  // point by point: allocates nothing (the real-time step relies on that)
+    for (Eigen::Index i = 0; i < r.size(); ++i)
+      mu[i] = fluid_.friction->mu(r[i] * std::abs(slip_rad_s) * 1e3, friction_temp_C(ring_temp_C[i]), load);
+    return;
+  }
+  RingScratch& w = *scratch;
+  const auto n = static_cast<std::size_t>(r.size());
+  w.speed_mm_s.resize(n);
+  w.temp_C.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto k = static_cast<Eigen::Index>(i);
+    w.speed_mm_s[i] = r[k] * std::abs(slip_rad_s) * 1e3;
+    w.temp_C[i] = friction_temp_C(ring_temp_C[k]);
+  }
+  fluid_.friction->mu_at_load(w.speed_mm_s, w.temp_C, load, std::span<double>(mu.data(), n), w.terms);
 }
 
 void WetClutch::ring_torque_Nm(double slip_rad_s, double force_N,
-                               const Eigen::VectorXd& ring_temp_C, Eigen::VectorXd& torque) const {
+                               const Eigen::VectorXd& ring_temp_C, Eigen::VectorXd& torque,
+                               RingScratch* scratch) const {
   const auto& r = thermal_.ring_radius_m();
   const auto& a = thermal_.ring_area_m2();
-  ring_mu(slip_rad_s, force_N, ring_temp_C, torque);
+  ring_mu(slip_rad_s, force_N, ring_temp_C, torque, scratch);
   torque = torque.cwiseProduct(r).cwiseProduct(a) * pressure_Pa(force_N);
   if (p_.viscous_shear) {
     const double w = std::abs(slip_rad_s);
@@ -58,8 +73,8 @@ double WetClutch::torque_Nm(double slip_rad_s, double force_N,
 }
 
 void WetClutch::ring_heat_W(double slip_rad_s, double force_N, const Eigen::VectorXd& ring_temp_C,
-                            Eigen::VectorXd& heat) const {
-  ring_torque_Nm(slip_rad_s, force_N, ring_temp_C, heat);
+                            Eigen::VectorXd& heat, RingScratch* scratch) const {
+  ring_torque_Nm(slip_rad_s, force_N, ring_temp_C, heat, scratch);
   heat *= std::abs(slip_rad_s);
 }
 

@@ -20,6 +20,7 @@
 // The thermal ones (oil cooling, sump, rig mass, sensor lag) live in ThermalModel.
 
 #include <Eigen/Dense>
+#include <vector>
 
 #include "clutch/fluid.hpp"
 #include "clutch/thermal_model.hpp"
@@ -63,14 +64,21 @@ class WetClutch {
   /// Area-weighted mean radius r_eff = sum(r_i A_i) / sum(A_i), m.
   double mean_radius_m() const;
 
+  /// What a caller keeps across ring_mu / ring_torque_Nm / ring_heat_W calls so that calls at
+  /// the same slip reuse the friction law's speed-only work (FrictionLaw::mu_at_load); the
+  /// results are the same bit for bit with or without it. Without it nothing is allocated.
+  struct RingScratch {
+    std::vector<double> speed_mm_s, temp_C;
+    SpeedTerms terms;
+  };
   /// Friction coefficient per ring (n_r) at the given slip, force and ring temperatures.
   void ring_mu(double slip_rad_s, double force_N, const Eigen::VectorXd& ring_temp_C,
-               Eigen::VectorXd& mu) const;
+               Eigen::VectorXd& mu, RingScratch* scratch = nullptr) const;
   /// Total torque of all sliding interfaces, signed like slip_rad_s, N m.
   double torque_Nm(double slip_rad_s, double force_N, const Eigen::VectorXd& ring_temp_C) const;
   /// Heat power into each ring of one interface's domain (n_r), W, >= 0.
   void ring_heat_W(double slip_rad_s, double force_N, const Eigen::VectorXd& ring_temp_C,
-                   Eigen::VectorXd& heat) const;
+                   Eigen::VectorXd& heat, RingScratch* scratch = nullptr) const;
 
   /// Freezes the friction of every ring at the given temperatures and force.
   FrozenFriction freeze(const Eigen::VectorXd& ring_temp_C, double force_N) const;
@@ -90,7 +98,7 @@ class WetClutch {
   /// Torque per ring of ONE interface (n_r), N m, for |slip| (>= 0 whatever slip's sign):
   /// torque_Nm is copysign(sliding_interfaces * sum, slip) of it, ring_heat_W it times |slip|.
   void ring_torque_Nm(double slip_rad_s, double force_N, const Eigen::VectorXd& ring_temp_C,
-                      Eigen::VectorXd& torque) const;
+                      Eigen::VectorXd& torque, RingScratch* scratch = nullptr) const;
 
  private:
   WetClutchParams p_;

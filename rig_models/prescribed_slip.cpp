@@ -27,13 +27,14 @@ struct Probe {
 // evaluate them, with the same numbers).
 Probe measure(const clutch::WetClutch& clutch, const clutch::ThermalState& s,
               const DriveCycle& cycle, const BearingDrag& drag, const TorqueCell& cell,
-              const LoadCell& load_cell, double drift, double t, Eigen::VectorXd& heat) {
+              const LoadCell& load_cell, double drift, double t, Eigen::VectorXd& heat,
+              clutch::WetClutch::RingScratch& scratch) {
   const auto& th = clutch.thermal();
   const double slip_rpm = cycle.slip_speed_rpm(t);
   const double slip = units::rpm_to_rad_s(slip_rpm);
   const double force = cycle.normal_force_N(t);
   const Eigen::VectorXd ring_T = th.interface_temps_C(s);
-  clutch.ring_torque_Nm(slip, force, ring_T, heat);
+  clutch.ring_torque_Nm(slip, force, ring_T, heat, &scratch);
   heat *= drift;
   const double m = std::copysign(clutch.params().sliding_interfaces * heat.sum(), slip);
   heat *= std::abs(slip);
@@ -101,8 +102,11 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
   const double r_m = clutch.mean_radius_m();
   const auto sliding_speed = [&](double t) { return r_m * std::abs(units::rpm_to_rad_s(cycle.slip_speed_rpm(t))); };
   double sliding_m = 0.0;
+  // A step's end is evaluated twice at the same slip (old temperatures for the step's heat,
+  // new ones for the probe): the friction law's speed-only work is kept between the two.
+  clutch::WetClutch::RingScratch scratch;
   recorder.start(measure(clutch, state, cycle, cfg.bearing_drag, cfg.torque_cell, cfg.load_cell,
-                         cfg.friction_drift.factor(sliding_m), 0.0, h0));
+                         cfg.friction_drift.factor(sliding_m), 0.0, h0, scratch));
   next_sample = 1;
 
   std::vector<double> snaps = cfg.snapshot_times_s;
@@ -125,7 +129,7 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
     // Ring heat over the step with temperatures held at t0 (Simpson's rule).
     const Eigen::VectorXd ring_T = th.interface_temps_C(state);
     const auto heat_at = [&](double t, Eigen::VectorXd& h) {
-      clutch.ring_heat_W(units::rpm_to_rad_s(cycle.slip_speed_rpm(t)), cycle.normal_force_N(t), ring_T, h);
+      clutch.ring_heat_W(units::rpm_to_rad_s(cycle.slip_speed_rpm(t)), cycle.normal_force_N(t), ring_T, h, &scratch);
     };
     // h0 (at t0 with the temperatures at t0) is the previous measure()'s.
     heat_at(tm, hm);
@@ -140,7 +144,7 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
     state.time_s = t1;  // exact end time, free of accumulated round-off
 
     const Probe after = measure(clutch, state, cycle, cfg.bearing_drag, cfg.torque_cell, cfg.load_cell,
-                                cfg.friction_drift.factor(sliding_m), t1, h0);
+                                cfg.friction_drift.factor(sliding_m), t1, h0, scratch);
     while (next_sample < n_samples) {
       const double ts = static_cast<double>(next_sample) / cfg.sample_rate_Hz;
       if (ts > t1 + 1e-12) break;

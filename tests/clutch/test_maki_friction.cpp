@@ -229,3 +229,34 @@ TEST(MakiFrictionMatrix, FastBlendEqualsTheBlendOfSetValuesBitForBit) {
       }
   EXPECT_EQ(checked, 8 * 9 * 7);
 }
+
+// mu_at_load() keeps v^0.1 and tanh(C2 v) per speed between calls at the same speeds; every
+// call must still give mu()'s numbers bit for bit: the same speeds with new temperatures (the
+// cached terms reused), new speeds (the cache renewed, including its length), clamped speeds,
+// and points whose four sets have other C2 than the previous call's (tanh taken on first use).
+TEST(MakiFrictionMatrix, BatchAtOneLoadEqualsPointwiseMuBitForBitWhileSpeedsRepeat) {
+  const MakiFrictionMatrix m({10000.0, 15000.0, 25000.0}, {-40.0, 20.0, 70.0, 200.0},
+                             {{-0.031, 0.0014, 0.057, 0.035}, {-0.026, 0.0037, 0.035, 0.07},
+                              {-0.0024, 0.0098, 0.012, 0.101}, {-0.024, 0.0024, 0.047, 0.05},
+                              {-0.024, 0.0024, 0.020, 0.084}, {-0.038, 0.002, 0.037, 0.068},
+                              {-0.039, 0.001, 0.077, -0.024}, {-0.039, 0.001, 0.05, 0.01},
+                              {-0.038, 0.002, 0.03, 0.02}, {-0.031, 0.0014, 0.057, 0.035},
+                              {-0.026, 0.0037, 0.035, 0.07}, {-0.0024, 0.0098, 0.012, 0.101}});
+  const shudder::clutch::FrictionLaw& law = m;
+  shudder::clutch::SpeedTerms terms;
+  const std::vector<std::vector<double>> speed_sets{
+      {3.0, 17.3, 241.0, 590.0, 900.0}, {3.0, 17.3, 241.0, 590.0, 900.0}, {-55.0, 6.0, 100.0},
+      {-55.0, 6.0, 100.0}, {0.0, 6.0, 100.0, 300.0, 1e4, 42.0}};
+  const std::vector<std::vector<double>> temp_sets{
+      {-60.0, 20.0, 45.5, 133.3, 250.0}, {200.0, 70.0, 0.0, -40.0, 21.0}, {45.5, 133.3, -10.0},
+      {-40.0, 199.0, 70.0}, {20.0, 20.0, 75.0, 150.0, -45.0, 69.0}};
+  int checked = 0;
+  for (double load : {12345.0, 25300.0, 10000.0})
+    for (std::size_t c = 0; c < speed_sets.size(); ++c) {
+      std::vector<double> out(speed_sets[c].size());
+      law.mu_at_load(speed_sets[c], temp_sets[c], load, out, terms);
+      for (std::size_t i = 0; i < out.size(); ++i, ++checked)
+        EXPECT_EQ(out[i], m.mu(speed_sets[c][i], temp_sets[c][i], load)) << "call " << c << ", point " << i;
+    }
+  EXPECT_EQ(checked, 3 * 22);
+}
