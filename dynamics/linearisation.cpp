@@ -30,7 +30,8 @@ Eigen::VectorXcd LinearSystem::node_speeds(const Eigen::VectorXcd& eigenvector) 
 LinearSystem linearise_network(const TorsionalNetwork& net, const LinearOperatingPoint& op) {
   const int n = net.nodes();
   int m_states = 0;
-  for (const auto& e : net.force_elements()) m_states += e.law->states();
+  for (const auto& e : net.force_elements())
+    if (!e.law->is_periodic_forcing()) m_states += e.law->states();
   if (op.omega_rad_s.size() != n || !op.omega_rad_s.allFinite())
     throw std::invalid_argument("linearisation: node speeds must be " + std::to_string(n) + " finite values");
   if (op.element_states.size() != m_states || !op.element_states.allFinite())
@@ -91,6 +92,7 @@ LinearSystem linearise_network(const TorsionalNetwork& net, const LinearOperatin
   // Force elements: partial derivatives of T and ż by central differences.
   int z_off = 0;
   for (const auto& e : net.force_elements()) {
+    if (e.law->is_periodic_forcing()) continue;  // no linear part about the mean motion
     const int ns = e.law->states();
     const double wa = op.omega_rad_s[e.a];
     const double wb = e.b == kGround ? 0.0 : e.ratio * op.omega_rad_s[e.b];

@@ -40,7 +40,7 @@ namespace shudder::dynamics {
 struct LinearOperatingPoint {
   double t_s = 0.0;
   Eigen::VectorXd omega_rad_s;     // (n) node speeds
-  Eigen::VectorXd element_states;  // (Σ states of the force elements, in element order)
+  Eigen::VectorXd element_states;  // (Σ states of the force elements, in element order; periodic forcings left out)
   std::vector<bool> stuck;         // (n_contacts) or empty = all slipping
   /// Extra node damping (n x n, may be empty), e.g. a thermal admittance's equivalent damper.
   Eigen::MatrixXd extra_damping;

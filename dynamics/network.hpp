@@ -72,6 +72,9 @@ class ForceLaw {
   virtual double stored_energy_J(const double* z) const = 0;
   /// The element as a linear spring between a and b for small motions (modes): dT/dθ at rest.
   virtual double modal_stiffness_Nm_per_rad() const = 0;
+  /// True for a disturbance prescribed along the motion (e.g. an engine's firing pulsation): it has
+  /// no linear part about the mean motion, so linearisation leaves it and its states out.
+  virtual bool is_periodic_forcing() const { return false; }
 };
 struct ForceElement {
   std::string name;

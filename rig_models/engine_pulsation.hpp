@@ -45,6 +45,7 @@ class EnginePulsationLaw final : public dynamics::ForceLaw {
   Output evaluate(double omega_engine, double, const double* z, double* dzdt) const override;
   double stored_energy_J(const double* z) const override { return -z[1]; }
   double modal_stiffness_Nm_per_rad() const override { return 0.0; }
+  bool is_periodic_forcing() const override { return true; }
   /// T_p on the engine at crank angle θ and speed ω.
   double torque_Nm(double theta_rad, double omega_rad_s) const;
 
