@@ -57,6 +57,9 @@ Eigen::VectorXd nonlinear_rhs(const dynamics::TorsionalNetwork& net, const dynam
   Eigen::VectorXd zdot(sys.element_states);
   int off = 0;
   for (const auto& e : net.force_elements()) {
+    // A periodic forcing (the engine's firing pulsation) is a disturbance along the motion, not
+    // part of the mean motion being linearised (dynamics/network.hpp).
+    if (e.law->is_periodic_forcing()) continue;
     const double tq = e.law->evaluate(w[e.a], e.ratio * at(w, e.b), z.data() + off, zdot.data() + off).torque_Nm;
     apply(e.a, e.b, -tq, e.ratio * tq);
     off += e.law->states();
