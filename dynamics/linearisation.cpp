@@ -9,15 +9,6 @@ namespace shudder::dynamics {
 
 namespace {
 
-// Adds a two-node spring/damper of strength g (or node-to-ground) to a symmetric matrix.
-void stamp(Eigen::MatrixXd& m, int a, int b, double g) {
-  m(a, a) += g;
-  if (b == kGround) return;
-  m(b, b) += g;
-  m(a, b) -= g;
-  m(b, a) -= g;
-}
-
 // Central-difference step for a speed x (see the header); states use max(1e-9, 1e-6 |z|).
 double fd_step(double x) { return std::max(1e-7, 1e-6 * std::abs(x)); }
 
@@ -53,7 +44,7 @@ LinearSystem linearise_network(const TorsionalNetwork& net, const LinearOperatin
 
   // Springs: shafts and motors only (force elements enter through their states).
   Eigen::MatrixXd k = Eigen::MatrixXd::Zero(n, n);
-  for (const auto& s : net.shafts()) stamp(k, s.a, s.b, s.stiffness_Nm_per_rad);
+  for (const auto& s : net.shafts()) stamp_coupling(k, s.a, s.b, s.stiffness_Nm_per_rad);
   for (const auto& mo : net.motors()) k(mo.node, mo.node) += mo.ki_Nm_per_rad;
   Eigen::MatrixXd c = net.damping_matrix();
   if (op.extra_damping.size() != 0) c += op.extra_damping;
@@ -68,7 +59,7 @@ LinearSystem linearise_network(const TorsionalNetwork& net, const LinearOperatin
     if (!std::isfinite(s))
       throw std::invalid_argument("linearisation: friction slope of contact '" + ct.name + "' is not finite");
     sys.contact_slope_Nms[i] = s;
-    stamp(c, ct.a, ct.b, s);
+    stamp_coupling(c, ct.a, ct.b, s);
   }
   // Torque sources that depend on speed: δT = (∂T/∂ω) δω is a damper −∂T/∂ω.
   for (const auto& src : net.torque_sources()) {

@@ -110,20 +110,17 @@ Eigen::MatrixXd TorsionalNetwork::mass_matrix() const {
   return m;
 }
 
-namespace {
-// Adds a two-node coupling of strength g (or node-to-ground) to a symmetric matrix.
-void stamp(Eigen::MatrixXd& m, int a, int b, double g) {
+void stamp_coupling(Eigen::MatrixXd& m, int a, int b, double g) {
   m(a, a) += g;
   if (b == kGround) return;
   m(b, b) += g;
   m(a, b) -= g;
   m(b, a) -= g;
 }
-}  // namespace
 
 Eigen::MatrixXd TorsionalNetwork::stiffness_matrix() const {
   Eigen::MatrixXd k = Eigen::MatrixXd::Zero(nodes(), nodes());
-  for (const auto& s : shafts_) stamp(k, s.a, s.b, s.stiffness_Nm_per_rad);
+  for (const auto& s : shafts_) stamp_coupling(k, s.a, s.b, s.stiffness_Nm_per_rad);
   for (const auto& m : motors_) k(m.node, m.node) += m.ki_Nm_per_rad;
   // T = k_e (θ_a − ρ θ_b): K += k_e v vᵀ with v = e_a − ρ e_b.
   for (const auto& e : force_elements_) {
@@ -139,7 +136,7 @@ Eigen::MatrixXd TorsionalNetwork::stiffness_matrix() const {
 
 Eigen::MatrixXd TorsionalNetwork::damping_matrix() const {
   Eigen::MatrixXd c = Eigen::MatrixXd::Zero(nodes(), nodes());
-  for (const auto& s : shafts_) stamp(c, s.a, s.b, s.damping_Nms_per_rad);
+  for (const auto& s : shafts_) stamp_coupling(c, s.a, s.b, s.damping_Nms_per_rad);
   for (const auto& m : motors_) c(m.node, m.node) += m.kp_Nms_per_rad;
   return c;
 }

@@ -58,6 +58,10 @@ struct Differential {
   int carrier = kGround, left = kGround, right = kGround;
 };
 
+/// Adds a two-node coupling of strength g (a spring's stiffness or a damper's coefficient)
+/// between nodes a and b (b may be kGround) to a symmetric n×n matrix.
+void stamp_coupling(Eigen::MatrixXd& m, int a, int b, double g);
+
 /// The constitutive law of a ForceElement (see the header).
 class ForceLaw {
  public:
