@@ -154,6 +154,18 @@ std::vector<clutch::MakiSet> read_sets(TomlTable& row, const toml::table& raw_ro
   return out;
 }
 
+// A Mäki or table row's temperature (strictly above the previous row's, appended to `temps`)
+// and its optional `origin` note.
+double read_row_temp(TomlTable& row, std::vector<double>& temps) {
+  const double t = row.number("temp_C", Range::closed(-273.15, 1000.0));
+  if (!temps.empty() && !(t > temps.back()))
+    row.fail("temp_C", "value " + num(t) + " is not above the previous row's " + num(temps.back()) +
+                           "; rows must be strictly increasing in temp_C");
+  temps.push_back(t);
+  row.string_or("origin", "");
+  return t;
+}
+
 std::shared_ptr<const clutch::FrictionLaw> read_maki(TomlTable& maki, const toml::table& raw) {
   const double vmin = maki.number_or("min_speed_mm_s", kDefaultMinSpeed_mm_s, Range::positive());
   const double vmax = maki.number_or("max_speed_mm_s", kDefaultMaxSpeed_mm_s, Range::positive());
@@ -172,12 +184,7 @@ std::shared_ptr<const clutch::FrictionLaw> read_maki(TomlTable& maki, const toml
   MakiSpeedSamples speeds(vmin, vmax);
   for (std::size_t i = 0; i < rows.size(); ++i) {
     TomlTable& row = rows[i];
-    const double t = row.number("temp_C", Range::closed(-273.15, 1000.0));
-    if (!temps.empty() && !(t > temps.back()))
-      row.fail("temp_C", "value " + num(t) + " is not above the previous row's " +
-                             num(temps.back()) + "; rows must be strictly increasing in temp_C");
-    temps.push_back(t);
-    row.string_or("origin", "");
+    const double t = read_row_temp(row, temps);
     const auto row_sets = read_sets(row, *raw_rows.get(i)->as_table(), loads, t);
     for (std::size_t j = 0; j < row_sets.size(); ++j)
       check_maki_set(row, row_sets[j], j, loads[j], t, speeds);
@@ -277,12 +284,7 @@ std::shared_ptr<const clutch::FrictionLaw> read_table(TomlTable& tab, const toml
   std::vector<double> temps, mu;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     TomlTable& row = rows[i];
-    const double t = row.number("temp_C", Range::closed(-273.15, 1000.0));
-    if (!temps.empty() && !(t > temps.back()))
-      row.fail("temp_C", "value " + num(t) + " is not above the previous row's " +
-                             num(temps.back()) + "; rows must be strictly increasing in temp_C");
-    temps.push_back(t);
-    row.string_or("origin", "");
+    read_row_temp(row, temps);
     const std::vector<std::vector<double>> grid = read_mu_grid(row, *raw_rows.get(i)->as_table());
     if (grid.size() != loads.size())
       row.fail("mu", "has " + std::to_string(grid.size()) + " arrays; expected one per load in "

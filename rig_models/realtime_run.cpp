@@ -36,6 +36,17 @@ struct Columns {
   dynamics::Recording& rec;
   std::size_t first;
   void add(std::string_view name, std::string_view units) { rec.add_signal(std::string(name), std::string(units)); }
+  /// The channels a measured run carries (FORMATS.md), first in both runners' lists, in this order:
+  /// time, speed, normal force, torque, thermocouple, IR, sump.
+  void add_measured_channels() {
+    add(sn::kTime, "s");
+    add(sn::kSpeed, "rpm");
+    add(sn::kNormalForce, "N");
+    add(sn::kTorque, "N m");
+    add(sn::kTemp, "degC");
+    add(sn::kIrTemp, "degC");
+    add(sn::kSumpTemp, "degC");
+  }
   void push(std::initializer_list<double> values) {
     std::size_t c = first;
     for (double v : values) rec.signals[c++].values.push_back(v);
@@ -65,13 +76,7 @@ dynamics::Recording run_fixed_step(const PrescribedSlipModel& model, const clutc
 
   dynamics::Recording rec;
   Columns col{rec, 0};
-  col.add(sn::kTime, "s");
-  col.add(sn::kSpeed, "rpm");
-  col.add(sn::kNormalForce, "N");
-  col.add(sn::kTorque, "N m");
-  col.add(sn::kTemp, "degC");
-  col.add(sn::kIrTemp, "degC");
-  col.add(sn::kSumpTemp, "degC");
+  col.add_measured_channels();
   col.add(sn::kClutchTorque, "N m");
   col.add(sn::kInterfaceMeanTemp, "degC");
   col.add(sn::kInterfaceMaxTemp, "degC");
@@ -111,13 +116,7 @@ dynamics::Recording run_fixed_step(const RigModel& model, const clutch::WetClutc
 
   dynamics::Recording rec;
   Columns col{rec, 0};
-  col.add(sn::kTime, "s");
-  col.add(sn::kSpeed, "rpm");
-  col.add(sn::kNormalForce, "N");
-  col.add(sn::kTorque, "N m");
-  col.add(sn::kTemp, "degC");
-  col.add(sn::kIrTemp, "degC");
-  col.add(sn::kSumpTemp, "degC");
+  col.add_measured_channels();
   col.add(sn::kSlip, "rpm");
   col.add(sn::kClutchTorque, "N m");
   col.add(sn::kMotorTorque, "N m");
