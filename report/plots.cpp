@@ -670,8 +670,7 @@ Report write_run_report(const std::string& dir, const Recording& rec, const std:
       report.skipped.push_back(std::string(item.file) + ": " + e.what());
       continue;
     }
-    write_plot(path(item.file), plot);
-    report.files.push_back(path(item.file));
+    add_report_plot(report, dir, item.file, plot);  // a gnuplot failure skips the plot, as elsewhere
   }
   return report;
 }

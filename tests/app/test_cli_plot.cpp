@@ -19,6 +19,7 @@
 using namespace shudder;
 using namespace shudder::test;
 using ::testing::HasSubstr;
+using ::testing::Not;
 namespace fs = std::filesystem;
 
 namespace {
@@ -223,6 +224,33 @@ TEST(CliPlot, RunReportHoldsTheSummaryAndTheKeyPlots) {
     EXPECT_TRUE(fs::exists(pdir / "rep" / f)) << f;
   EXPECT_FALSE(fs::exists(pdir / "rep" / "spectrogram.png"));
   EXPECT_FALSE(fs::exists(pdir / "rep" / "stability_map.png"));
+}
+
+// A gnuplot that fails (here a stand-in that exits 1) costs the run report its plots, not the
+// report: summary.txt and verdict.json are written, each plot is listed as skipped with gnuplot's
+// cause, exit 0 -- as the characterisation, comparison and diagnosis reports already did. Before,
+// the first plot's failure ended the report ("shudder: report failed") after the summary.
+TEST(CliPlot, RunReportSkipsPlotsWhenGnuplotFails) {
+  const auto dir = scratch_dir("plot_report_gnuplot_fails");
+  const auto bin = dir / "fakebin";
+  fs::create_directories(bin);
+  write_file(bin / "gnuplot", "#!/bin/sh\necho \"\\\"$1\\\" line 3: cannot open output\"\nexit 1\n");
+  fs::permissions(bin / "gnuplot", fs::perms::owner_all);
+  write_file(dir / "rig.toml", short_rig_scenario());
+  const char* old = std::getenv("PATH");
+  const std::string saved = old ? old : "";
+  ::setenv("PATH", (bin.string() + ":" + saved).c_str(), 1);
+  const auto r = run_cli("run rig.toml -o rig.h5 --report rep", dir);
+  ::setenv("PATH", saved.c_str(), 1);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("Report: rep (2 files)"));  // summary.txt and verdict.json
+  EXPECT_TRUE(fs::exists(dir / "rep" / "summary.txt"));
+  EXPECT_TRUE(fs::exists(dir / "rep" / "verdict.json"));
+  EXPECT_THAT(r.err, HasSubstr("shudder: warning: report: torque.png: gnuplot could not draw"));
+  EXPECT_THAT(r.err, HasSubstr("cannot open output"));
+  EXPECT_THAT(r.err, Not(HasSubstr("report failed")));
+  EXPECT_FALSE(fs::exists(dir / "rep" / "torque.png"));
+  EXPECT_FALSE(fs::exists(dir / "rep" / "torque.png.tmp"));
 }
 
 TEST(CliPlot, SweepReportHoldsTheSummaryAndTheSweepPlot) {
