@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "analysis/fftw_wisdom.hpp"
 #include "core/units.hpp"
 
 namespace shudder::analysis {
@@ -20,6 +21,22 @@ using units::kTwoPi;
 std::mutex& planner_mutex() {
   static std::mutex m;
   return m;
+}
+
+// Every FftPlan's flags, and the flags the shipped wisdom was made with (fftw_wisdom.hpp):
+// FFTW_ESTIMATE does not touch the arrays; FFTW_UNALIGNED lets execute() run on any arrays.
+constexpr unsigned kPlannerFlags = FFTW_ESTIMATE | FFTW_UNALIGNED;
+
+// Whether the shipped wisdom was offered to FFTW / accepted (guarded by planner_mutex()).
+bool wisdom_offered = false;
+bool wisdom_accepted = false;
+
+// Imports the shipped wisdom before the process' first plan. Caller holds planner_mutex().
+void offer_shipped_wisdom() {
+  if (wisdom_offered) return;
+  wisdom_offered = true;
+  // 0: another FFTW build made it; FFTW then plans as it would without wisdom.
+  wisdom_accepted = fftw_import_wisdom_from_string(kShippedFftwWisdom) != 0;
 }
 
 void require(bool ok, const std::string& what) {
@@ -123,11 +140,11 @@ double window_transform_magnitude(Window window, std::size_t n, double offset_bi
 
 FftPlan::FftPlan(std::size_t n) : n_(n) {
   require(n >= 2, "an FFT needs at least 2 samples, got " + std::to_string(n));
-  // FFTW_ESTIMATE does not touch the arrays; FFTW_UNALIGNED lets execute() run on any arrays.
   std::lock_guard<std::mutex> lock(planner_mutex());
+  offer_shipped_wisdom();
   double* in = fftw_alloc_real(n);
   fftw_complex* out = fftw_alloc_complex(n / 2 + 1);
-  plan_ = fftw_plan_dft_r2c_1d(static_cast<int>(n), in, out, FFTW_ESTIMATE | FFTW_UNALIGNED);
+  plan_ = fftw_plan_dft_r2c_1d(static_cast<int>(n), in, out, kPlannerFlags);
   fftw_free(in);
   fftw_free(out);
   if (plan_ == nullptr) throw std::runtime_error("FFTW could not plan a transform of length " + std::to_string(n));
@@ -169,6 +186,33 @@ void FftPlan::execute(std::span<const double> in, std::span<std::complex<double>
   // fftw_complex (FFTW manual §4.1.1).
   fftw_execute_dft_r2c(static_cast<fftw_plan>(plan_), const_cast<double*>(in.data()),
                        reinterpret_cast<fftw_complex*>(out.data()));
+}
+
+std::string fftw_wisdom_for_lengths(std::span<const std::size_t> lengths) {
+  std::lock_guard<std::mutex> lock(planner_mutex());
+  fftw_forget_wisdom();
+  wisdom_offered = true;  // forgotten on purpose: later plans plan afresh
+  wisdom_accepted = false;
+  for (std::size_t n : lengths) {
+    require(n >= 2, "an FFT needs at least 2 samples, got " + std::to_string(n));
+    double* in = fftw_alloc_real(n);
+    fftw_complex* out = fftw_alloc_complex(n / 2 + 1);
+    const fftw_plan plan = fftw_plan_dft_r2c_1d(static_cast<int>(n), in, out, kPlannerFlags);
+    fftw_free(in);
+    fftw_free(out);
+    if (plan == nullptr) throw std::runtime_error("FFTW could not plan a transform of length " + std::to_string(n));
+    fftw_destroy_plan(plan);
+  }
+  char* text = fftw_export_wisdom_to_string();
+  if (text == nullptr) throw std::runtime_error("FFTW could not export its wisdom");
+  std::string wisdom(text);
+  fftw_free(text);
+  return wisdom;
+}
+
+bool shipped_fftw_wisdom_in_use() {
+  std::lock_guard<std::mutex> lock(planner_mutex());
+  return wisdom_accepted;
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <charconv>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -60,7 +61,24 @@ void remove_stale_temp_files(const std::string& path) noexcept {
 
 void discard_temp_file(const std::string& tmp) noexcept { std::remove(tmp.c_str()); }
 
+bool output_fsync_requested() {
+  const char* value = std::getenv("SHUDDER_FSYNC");
+  const std::string v = value ? value : "";
+  if (v.empty() || v == "0") return false;
+  if (v == "1") return true;
+  throw InputError("environment", 0, "SHUDDER_FSYNC",
+                   "'" + v + "' is not 0 or 1; 1 flushes every output file to disk before its rename, " +
+                       "0 or unset does not");
+}
+
 void commit_temp_file(const std::string& tmp, const std::string& path) {
+  bool flush = false;
+  try {
+    flush = output_fsync_requested();
+  } catch (...) {
+    discard_temp_file(tmp);
+    throw;
+  }
   const auto fail = [&](const char* step) {
     const int err = errno;
     discard_temp_file(tmp);
@@ -69,12 +87,14 @@ void commit_temp_file(const std::string& tmp, const std::string& path) {
                          "': " + std::strerror(err) + "; check the directory is writable and " +
                          "the target is not a directory");
   };
-  // Data on disk before the rename, so a crash cannot leave a short file at `path`.
-  const int fd = ::open(tmp.c_str(), O_RDONLY);
-  if (fd < 0) fail("open");
-  const int synced = ::fsync(fd);
-  ::close(fd);
-  if (synced != 0) fail("flush");
+  if (flush) {
+    // Data on disk before the rename, so an OS crash cannot leave a short file at `path`.
+    const int fd = ::open(tmp.c_str(), O_RDONLY);
+    if (fd < 0) fail("open");
+    const int synced = ::fsync(fd);
+    ::close(fd);
+    if (synced != 0) fail("flush");
+  }
   if (std::rename(tmp.c_str(), path.c_str()) != 0) fail("rename");
 }
 

@@ -1,8 +1,15 @@
 #pragma once
 // Temp-file-then-rename for output files (FORMATS.md: "a reader never sees half a file").
 // A writer fills `temp_path_for(path)`, closes it, then calls commit_temp_file(); on any failure
-// before that it calls discard_temp_file(). commit flushes the data to disk (fsync) before the
-// rename, so even a crash leaves either the old file or the complete new one at `path`.
+// before that it calls discard_temp_file(). The rename is atomic, so a reader, and a crash of
+// shudder itself, sees either the old file or the complete new one at `path`.
+//
+// Durability against a power cut or an operating-system crash needs more: the data on disk
+// (fsync) before the rename. That costs 0.5–12 ms of wall time per file on this machine (the
+// disk's flush, longer while others write), from a tenth to all of a short run's time, so it is
+// off by default (a simulation's output can be made again; ext4 with its default auto_da_alloc
+// flushes a file that replaces another before the rename anyway). SHUDDER_FSYNC=1 in the
+// environment turns it on (docs/run_output.md).
 
 #include <string>
 
@@ -19,8 +26,13 @@ std::string temp_path_for(const std::string& path);
 /// are left alone. Called at the start of every atomic write of `path`; never throws.
 void remove_stale_temp_files(const std::string& path) noexcept;
 
-/// fsync()s `tmp` and renames it to `path` (replacing an existing file). On failure removes
-/// `tmp` and throws InputError naming `path` and the system's reason.
+/// Whether outputs are flushed to disk before their rename: SHUDDER_FSYNC=1 yes; unset, empty or
+/// 0 no. Any other value is an InputError naming the variable and the allowed values.
+bool output_fsync_requested();
+
+/// Renames `tmp` to `path` (replacing an existing file), after fsync()ing it if
+/// output_fsync_requested(). On failure removes `tmp` and throws InputError naming `path` and
+/// the system's reason (or the bad SHUDDER_FSYNC value).
 void commit_temp_file(const std::string& tmp, const std::string& path);
 
 /// Removes `tmp` if it exists; never throws.
