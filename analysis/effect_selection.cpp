@@ -67,7 +67,9 @@ Removal try_removal(std::size_t i, const Config& fold, const Predictions& fold_p
       r.finding.stand_in = r.refit[e].effect;
       r.finding.stand_in_move = text;
     }
-    if (const std::string p = fitter.parameter_at_bound(c, r.refit[e].values); !p.empty() && r.finding.kept_because.empty())
+    // Pushed to a bound by the removal (one already there before is no evidence either way).
+    const std::string p = fitter.parameter_at_bound(c, r.refit[e].values);
+    if (!p.empty() && fitter.parameter_at_bound(c, fold[f].values).empty() && r.finding.kept_because.empty())
       r.finding.kept_because = "without it " + r.refit[e].effect + "'s " + p + " goes to its bound";
   }
   if (r.finding.kept_because.empty() && !r.finding.stand_in.empty()) {
