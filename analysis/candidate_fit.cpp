@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "analysis/log_parameter_fit.hpp"
@@ -48,8 +49,21 @@ Config CandidateFitter::FlatConfig::with(const std::vector<double>& v) const {
   return out;
 }
 
+Predictions CandidateFitter::complete(const Config& config, Predictions known, const std::vector<std::size_t>& which,
+                                     unsigned jobs) const {
+  std::vector<std::size_t> lacking;
+  for (std::size_t k : which)
+    if (!known[k]) lacking.push_back(k);
+  if (lacking.empty()) return known;
+  Predictions more = predict(config, lacking, jobs);
+  for (std::size_t k : lacking) known[k] = std::move(more[k]);
+  return known;
+}
+
 std::optional<Config> CandidateFitter::fit_config(const FlatConfig& flat, std::vector<std::vector<double>> starts,
-                                                  const SampleSet& set, unsigned jobs, int& evaluations) const {
+                                                  const SampleSet& set, unsigned jobs, int& evaluations,
+                                                  Predictions& at_best) const {
+  at_best.assign(runs_.size(), std::nullopt);
   if (flat.slots.empty()) return flat.config;
   LogParameterProblem problem;
   problem.lower = flat.lower;
@@ -59,12 +73,25 @@ std::optional<Config> CandidateFitter::fit_config(const FlatConfig& flat, std::v
   problem.residuals = static_cast<int>(misfit_.residual_count(set));
   problem.max_evaluations = opt_.max_evaluations;
   const auto runs = set.runs();
+  // The predictions at the lowest cost so far: the solver returns that point (the same strict
+  // comparison), so its runs need not be simulated again.
+  double best_cost = std::numeric_limits<double>::infinity();
+  std::vector<double> best_values;
+  Predictions best;
   problem.evaluate = [&](const std::vector<double>& v, Eigen::VectorXd& r) {
-    return misfit_.residual_vector(set, predict(flat.with(v), runs, jobs), r);
+    Predictions p = predict(flat.with(v), runs, jobs);
+    const bool ok = misfit_.residual_vector(set, p, r);
+    if (ok && r.squaredNorm() < best_cost) {
+      best_cost = r.squaredNorm();
+      best_values = v;
+      best = std::move(p);
+    }
+    return ok;
   };
   const LogParameterFit fit = fit_log_parameters(problem);
   evaluations += fit.evaluations;
   if (!fit.feasible) return std::nullopt;
+  if (fit.values == best_values) at_best = std::move(best);
   return flat.with(fit.values);
 }
 
@@ -85,13 +112,14 @@ CandidateOutcome CandidateFitter::fit_candidate(const EffectCandidate& c, const 
     starts.back().insert(starts.back().end(), start.begin(), start.end());
   }
   try {
-    const auto fitted = fit_config(flat, std::move(starts), misfit_.fit(), 1, o.score.evaluations);
+    Predictions at_best;
+    const auto fitted = fit_config(flat, std::move(starts), misfit_.fit(), 1, o.score.evaluations, at_best);
     if (!fitted) {
       o.score.failure = "no parameter values could be simulated";
       return o;
     }
     o.config = *fitted;
-    o.predictions = predict(o.config, union_runs(misfit_.fit(), misfit_.holdout()), 1);
+    o.predictions = complete(o.config, std::move(at_best), union_runs(misfit_.fit(), misfit_.holdout()), 1);
     ++o.score.evaluations;
   } catch (const std::exception& e) {
     o.score.failure = e.what();
@@ -117,25 +145,51 @@ CandidateOutcome CandidateFitter::fit_candidate(const EffectCandidate& c, const 
 // min_gain · s is within what a flexible term finds in any systematic gap.
 std::string CandidateFitter::rejection(const EffectCandidate& c, const std::vector<double>& values,
                                        const CandidateScore& score, double s) const {
+  if (const std::string name = parameter_at_bound(c, values); !name.empty()) return name + " at its bound";
+  if (score.signature_correlation < opt_.min_signature) return "signature does not follow the residual";
+  if (score.gain < opt_.min_gain * s) return "gain too small";
+  return {};
+}
+
+std::string CandidateFitter::parameter_at_bound(const EffectCandidate& c, const std::vector<double>& values) const {
   for (std::size_t j = 0; j < values.size(); ++j) {
     // The margin is a fraction of the range in the space the parameter is fitted in.
     const bool linear = !c.linear.empty() && c.linear[j];
     const auto space = [linear](double v) { return linear ? v : std::log(v); };
     const double margin = opt_.bound_margin * (space(c.upper[j]) - space(c.lower[j]));
     if (space(values[j]) - space(c.lower[j]) < margin || space(c.upper[j]) - space(values[j]) < margin)
-      return c.parameter_names[j] + " at its bound";
+      return c.parameter_names[j];
   }
-  if (score.signature_correlation < opt_.min_signature) return "signature does not follow the residual";
-  if (score.gain < opt_.min_gain * s) return "gain too small";
   return {};
+}
+
+double CandidateFitter::relative_move(const EffectCandidate& c, const std::vector<double>& before,
+                                      const std::vector<double>& after, std::size_t& which) const {
+  double largest = 0.0;
+  for (std::size_t j = 0; j < before.size() && j < after.size(); ++j) {
+    const bool linear = !c.linear.empty() && c.linear[j];
+    // Log parameters by their ratio; signed ones by the change against their size (at least
+    // bound_margin of the range, so that a move near zero is not made huge by dividing by ~0).
+    const double move =
+        linear ? std::abs(after[j] - before[j]) /
+                     (opt_.stand_in_shift * std::max(std::abs(before[j]), opt_.bound_margin * (c.upper[j] - c.lower[j])))
+               : std::abs(std::log(after[j] / before[j])) / std::log1p(opt_.stand_in_shift);
+    if (move > largest) {
+      largest = move;
+      which = j;
+    }
+  }
+  return largest;
 }
 
 Config CandidateFitter::refit_fold(const Config& fold, Predictions& out) const {
   const FlatConfig flat = flatten(fold);
   int evaluations = 0;
   Config cfg = fold;
-  if (auto fitted = fit_config(flat, {flat.values}, misfit_.fit(), opt_.jobs, evaluations)) cfg = std::move(*fitted);
-  out = predict(cfg, union_runs(misfit_.fit(), misfit_.holdout()), opt_.jobs);
+  Predictions at_best;
+  if (auto fitted = fit_config(flat, {flat.values}, misfit_.fit(), opt_.jobs, evaluations, at_best))
+    cfg = std::move(*fitted);
+  out = complete(cfg, std::move(at_best), union_runs(misfit_.fit(), misfit_.holdout()), opt_.jobs);
   return cfg;
 }
 
@@ -145,9 +199,10 @@ Config CandidateFitter::refit_all(const Config& full, const Config& fold_added, 
   start.push_back(fold_added.back());
   const FlatConfig flat = flatten(start);
   int evaluations = 0;
-  if (auto fitted = fit_config(flat, {flat.values}, misfit_.all(), opt_.jobs, evaluations)) start = std::move(*fitted);
-  const auto all_runs = misfit_.all().runs();
-  out = predict(start, all_runs, opt_.jobs);
+  Predictions at_best;
+  if (auto fitted = fit_config(flat, {flat.values}, misfit_.all(), opt_.jobs, evaluations, at_best))
+    start = std::move(*fitted);
+  out = complete(start, std::move(at_best), misfit_.all().runs(), opt_.jobs);
   return start;
 }
 

@@ -44,6 +44,13 @@ class CandidateFitter {
   /// values; `out` gets the predictions of all runs.
   Config refit_all(const Config& full, const Config& fold_added, Predictions& out) const;
   const EffectCandidate& candidate(const std::string& name) const;
+  /// The first of `values` (parameters of `c`) within bound_margin of its range from a bound,
+  /// "" if all are interior.
+  std::string parameter_at_bound(const EffectCandidate& c, const std::vector<double>& values) const;
+  /// How far `after` moved from `before` (parameters of `c`) relative to stand_in_shift: > 1
+  /// means a move beyond it (DiagnosisOptions::stand_in_shift); `which` gets the parameter.
+  double relative_move(const EffectCandidate& c, const std::vector<double>& before, const std::vector<double>& after,
+                       std::size_t& which) const;
 
  private:
   // The fitted parameters of a configuration as one vector, with their bounds, for the solver.
@@ -56,8 +63,14 @@ class CandidateFitter {
   };
   FlatConfig flatten(const Config& config) const;
   /// Least squares on `set` from the starts; nullopt when no start could be simulated.
+  /// `at_best` gets the predictions of the set's runs at the returned values (simulated
+  /// during the fit: they are not simulated again).
   std::optional<Config> fit_config(const FlatConfig& flat, std::vector<std::vector<double>> starts,
-                                   const SampleSet& set, unsigned jobs, int& evaluations) const;
+                                   const SampleSet& set, unsigned jobs, int& evaluations,
+                                   Predictions& at_best) const;
+  /// `known` completed by simulating the runs of `which` it lacks, with `config`.
+  Predictions complete(const Config& config, Predictions known, const std::vector<std::size_t>& which,
+                       unsigned jobs) const;
   double signature_correlation(const Predictions& current, const Predictions& candidate) const;
   std::string rejection(const EffectCandidate& c, const std::vector<double>& values, const CandidateScore& score,
                         double s) const;

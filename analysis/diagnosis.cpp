@@ -144,6 +144,8 @@ DiagnosisResult run_diagnosis(const std::vector<DiagnosisRun>& runs, const std::
   for (const auto& st : sel.steps) r.missing_effects.push_back(st.effect);
   r.steps = std::move(sel.steps);
   r.last_round = std::move(sel.last_round);
+  r.withdrawn = std::move(sel.withdrawn);
+  r.indistinguishable = std::move(sel.indistinguishable);
   r.stop = std::move(sel.stop);
 
   r.final = misfit.rms(misfit.all(), full_pred);

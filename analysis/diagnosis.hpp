@@ -102,6 +102,13 @@ struct DiagnosisOptions {
   double penalty_per_parameter = 0.02;  // per fitted parameter, same units (× s)
   double bound_margin = 0.02;
   double min_signature = 0.3;
+  // Backward check (docs/diagnosis.md "Backward check and its tie rule"): when an added effect
+  // can be taken out at a held-out cost below the gain it would need, the remaining effect whose
+  // parameters move most in the refit is its stand-in if one moves by more than this fraction
+  // (log parameters: a factor 1 + stand_in_shift; signed ones: that fraction of their value, at
+  // least bound_margin of their range). 0.2 is the accuracy the tests ask of an identified
+  // parameter: a smaller move is the refit's own scatter, not a change of role.
+  double stand_in_shift = 0.2;
   // At most this many effects added; the default is no limit (`shudder diagnose` passes the
   // registry's effect count, rig_models/effect_registry.hpp, which is also no limit).
   int max_effects = std::numeric_limits<int>::max();
@@ -197,6 +204,21 @@ struct DiagnosisStep {
   std::vector<std::pair<std::string, double>> torque_tracking_before, temp_tracking_before;
 };
 
+/// The backward check's finding on one added effect that the others can do without: the
+/// held-out misfit J rises by less than the gain the effect would need to be added now. Either
+/// it was withdrawn, or it was kept by the tie rule (its stand-in has more parameters or came
+/// later, or sits at a bound): the data cannot separate the two.
+struct BackwardFinding {
+  std::string effect;
+  std::vector<std::pair<std::string, double>> parameters;  // its values on all runs before the check
+  double holdout_cost = 0.0;  // hold-out J without it (the others refitted on the fit set) − J with it
+  double needed_gain = 0.0;   // (min_gain + penalty · its parameters) · s
+  bool withdrawn = false;
+  std::string stand_in;       // the effect that took over its share ("" if none moved)
+  std::string stand_in_move;  // e.g. "heat_capacity_J_per_K 306.9 -> 2510" ("" if none)
+  std::string kept_because;   // withdrawn == false: the tie rule's reason
+};
+
 /// Why the greedy search stopped (report/diagnosis_narrative.hpp puts it in words).
 struct StopReason {
   enum class Kind { kWithinNoise, kEffectLimit, kAllAdded, kNoGain, kNoFit };
@@ -243,6 +265,9 @@ struct DiagnosisResult {
   // parameters are those when it was added; later effects may have moved them).
   std::vector<FittedEffect> final_effects;
   std::vector<CandidateScore> last_round;         // the round that stopped the search
+  // The backward check: effects withdrawn (their steps are not in `steps`), in the order
+  // withdrawn, and effects kept by its tie rule although the others could stand in for them.
+  std::vector<BackwardFinding> withdrawn, indistinguishable;
   StopReason stop;
   std::vector<RunTraces> traces;
   // Cost split, CPU seconds over all threads: inside the Simulator vs. the rest (fitting,

@@ -24,11 +24,21 @@ struct Tracker {
     for (std::size_t j = 0; j < v.size(); ++j) v[j] = std::clamp(v[j], problem.lower[j], problem.upper[j]);
     return v;
   }
+  // The best start's residual: the LM run's first call asks for it again.
+  std::vector<double> origin;
+  Eigen::VectorXd origin_residual;
+
   // Returns false when the budget is spent (the LM run then stops).
   bool evaluate(const std::vector<double>& raw, Eigen::VectorXd& r) {
     if (evaluations >= problem.max_evaluations) return false;
     ++evaluations;
     const auto values = clamp(raw);
+    // The same point again (the LM run's start): the stored residual, no second simulation.
+    // Still counted against the budget, so a fit takes the same steps as when it was simulated.
+    if (!origin.empty() && values == origin) {
+      r = origin_residual;
+      return true;
+    }
     r.resize(problem.residuals);
     bool ok = false;
     try {
@@ -106,7 +116,7 @@ LogParameterFit fit_log_parameters(const LogParameterProblem& p) {
     if (!((is_linear(p, j) || p.lower[j] > 0) && p.upper[j] > p.lower[j]))
       throw std::invalid_argument("fit_log_parameters: bounds must satisfy 0 < lower < upper");
 
-  Tracker tracker{p, 0, {}};
+  Tracker tracker{p, 0, {}, {}, {}};
   // Pick the best start by one evaluation each.
   std::vector<double> origin;
   double origin_cost = std::numeric_limits<double>::infinity();
@@ -119,8 +129,10 @@ LogParameterFit fit_log_parameters(const LogParameterProblem& p) {
     if (c < origin_cost) {
       origin_cost = c;
       origin = v;
+      tracker.origin_residual = r;
     }
   }
+  tracker.origin = origin;
   if (!origin.empty() && tracker.evaluations < p.max_evaluations) {
     Functor f(tracker, origin, static_cast<int>(n), p.residuals);
     Eigen::LevenbergMarquardt<Functor> lm(f);

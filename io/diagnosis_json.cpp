@@ -157,6 +157,14 @@ std::string remaining(const analysis::DiagnosisResult& r) {
   });
 }
 
+std::string backward_finding(const analysis::BackwardFinding& f) {
+  Object o;
+  o.str("effect", f.effect).raw("parameters", object_of(f.parameters)).num("holdout_cost", f.holdout_cost)
+      .num("needed_gain", f.needed_gain).str("stand_in", f.stand_in).str("stand_in_move", f.stand_in_move);
+  if (!f.withdrawn) o.str("kept_because", f.kept_because);
+  return o.text();
+}
+
 std::string fitted_effect(const analysis::FittedEffect& f) {
   return Object().str("effect", f.effect).raw("parameters", object_of(f.parameters)).text();
 }
@@ -181,6 +189,8 @@ std::string diagnosis_json(const analysis::DiagnosisResult& r, const DiagnosisSe
       .raw("tracking", list(r.tracking, "    ", tracking))
       .raw("steps", list(steps, "    ", [](const std::string& text) { return text; }))
       .raw("missing_effects", strings(r.missing_effects))
+      .raw("withdrawn_effects", list(r.withdrawn, "    ", backward_finding))
+      .raw("indistinguishable_effects", list(r.indistinguishable, "    ", backward_finding))
       .raw("last_round", list(r.last_round, "    ", candidate))
       .raw("final", misfit(r.final, r.final_holdout_misfit))
       .raw("final_effects", list(r.final_effects, "    ", fitted_effect))

@@ -131,6 +131,18 @@ std::string diagnosis_conclusion(const analysis::DiagnosisResult& r) {
   return concl.str();
 }
 
+std::string backward_finding_text(const analysis::BackwardFinding& f) {
+  std::ostringstream os;
+  os << f.effect << ": without it the held-out misfit rises by " << fmt(f.holdout_cost) << ", below the "
+     << fmt(f.needed_gain) << " it would need";
+  if (!f.stand_in.empty()) os << "; " << f.stand_in << " takes over (" << f.stand_in_move << ")";
+  if (f.withdrawn)
+    os << "; withdrawn";
+  else
+    os << "; kept: " << f.kept_because << " (the data cannot separate the two)";
+  return os.str();
+}
+
 io::DiagnosisSentences diagnosis_sentences(const analysis::DiagnosisResult& r) {
   io::DiagnosisSentences words{holdout_text(r.holdout), {}, diagnosis_conclusion(r), verdict_sentence(r)};
   for (const auto& st : r.steps) words.step_reasons.push_back(step_reason(st));

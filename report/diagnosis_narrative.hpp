@@ -24,6 +24,9 @@ std::string verdict_words(analysis::DiagnosisVerdict v);
 std::string verdict_sentence(const analysis::DiagnosisResult& result);
 /// One paragraph: what is missing, the RMS before and after against the noise, why it stopped.
 std::string diagnosis_conclusion(const analysis::DiagnosisResult& result);
+/// One backward-check finding in words: withdrawn (the others stand in for it) or kept by the
+/// tie rule (the data cannot separate it from its stand-in), with the held-out cost.
+std::string backward_finding_text(const analysis::BackwardFinding& f);
 /// All of the above for the JSON file.
 io::DiagnosisSentences diagnosis_sentences(const analysis::DiagnosisResult& result);
 

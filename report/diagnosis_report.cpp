@@ -189,6 +189,14 @@ std::string diagnosis_candidates_markdown(const analysis::DiagnosisResult& r) {
     md << "Why: " << cell(step_reason(st)) << "\n\n";
     candidate_table(md, st.candidates);
   }
+  if (!r.withdrawn.empty() || !r.indistinguishable.empty()) {
+    md << "## Backward check\n\n"
+       << "Each added effect taken out in turn, the others refitted on the fit set; an effect whose removal costs "
+          "less held-out misfit than it would need to be added is withdrawn, unless the tie rule keeps it.\n\n";
+    for (const auto& f : r.withdrawn) md << "* Withdrawn: " << cell(backward_finding_text(f)) << "\n";
+    for (const auto& f : r.indistinguishable) md << "* Kept, not separable: " << cell(backward_finding_text(f)) << "\n";
+    md << "\n";
+  }
   md << "## Last round (stopped the search)\n\n";
   if (r.last_round.empty())
     md << "No round without an addition (every signal within noise, or the effect limit reached).\n\n";

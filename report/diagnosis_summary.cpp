@@ -72,6 +72,8 @@ std::string diagnosis_summary(const io::Scenario& s, const analysis::DiagnosisRe
   os << "Missing effects: ";
   for (std::size_t i = 0; i < r.missing_effects.size(); ++i) os << (i ? ", " : "") << r.missing_effects[i];
   os << (r.missing_effects.empty() ? "none" : "") << "\n";
+  for (const auto& f : r.withdrawn) os << "Withdrawn by the backward check: " << backward_finding_text(f) << "\n";
+  for (const auto& f : r.indistinguishable) os << "Not separable on these data: " << backward_finding_text(f) << "\n";
   if (!r.final_effects.empty()) {
     os << "Final model, refitted on all runs:";
     for (const auto& f : r.final_effects)

@@ -47,6 +47,7 @@ struct Case {
   std::string model;    // [effects.*] tables of the diagnosis model
   std::vector<std::string> expected;           // missing effects, in order
   std::map<std::string, double> parameters;    // identifiable: name -> hidden value
+  std::vector<std::string> withdrawn = {};     // added, then withdrawn by the backward check
 };
 
 void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
@@ -117,6 +118,13 @@ TEST_P(HiddenEffect, IsNamedFittedAndClosesTheGap) {
   const Case& c = GetParam();
   const auto r = diagnose_case(c);
   EXPECT_EQ(r.missing_effects, c.expected) << describe(r);
+  // A withdrawn effect is reported as such, with a held-out cost below the gain it would need.
+  std::vector<std::string> withdrawn;
+  for (const auto& f : r.withdrawn) {
+    withdrawn.push_back(f.effect);
+    EXPECT_LT(f.holdout_cost, f.needed_gain) << f.effect;
+  }
+  EXPECT_EQ(withdrawn, c.withdrawn) << describe(r);
   if (!c.expected.empty()) expect_gap_shrinks(r);
   expect_parameters(r, c);
 }
@@ -193,9 +201,11 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"load_sensor_gain_high", "[effects.load_sensor_gain]\nenabled = true\ngain = 1.08\n", "",
              {"load_sensor_gain"}, {{"gain", 1.08}}},
         Case{"load_sensor_gain_and_lag", std::string(kLoadGain) + kLag, "",
-             {"temperature_sensor_lag", "load_sensor_gain"}, {{"gain", 0.95}, {"time_constant_s", 1.0}}},
+             {"temperature_sensor_lag", "load_sensor_gain"}, {{"gain", 0.95}, {"time_constant_s", 1.0}},
+             {"torque_sensor_gain"}},
         Case{"load_sensor_gain_and_torque_offset", std::string(kLoadGain) + kTorqueOffset, "",
-             {"torque_sensor_offset", "load_sensor_gain"}, {{"gain", 0.95}, {"offset_Nm", 3.0}}},
+             {"torque_sensor_offset", "load_sensor_gain"}, {{"gain", 0.95}, {"offset_Nm", 3.0}},
+             {"torque_sensor_gain"}},
         // Both gains: only the heat tells them apart (the load gain moves it, the torque gain not).
         // Both are named; their values are not identifiable to 20 % from these two runs (seen:
         // g_F 0.924 for 0.95; the temperature carries g_F only through ~1.5 K of heat), so only

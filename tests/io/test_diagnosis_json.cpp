@@ -169,7 +169,8 @@ TEST(DiagnosisJson, ARealDiagnosisIsWrittenAsStrictJsonWithEveryKey) {
   const Json j = parse(diagnosis_json(r));
   const std::vector<std::string> keys{"format", "shudder_version", "verdict", "verdict_text", "runs", "noise",
                                       "holdout", "baseline", "disagreements", "tracking", "steps",
-                                      "missing_effects", "last_round", "final", "final_effects", "channels",
+                                      "missing_effects", "withdrawn_effects", "indistinguishable_effects",
+                                      "last_round", "final", "final_effects", "channels",
                                       "final_disagreements", "remaining", "conclusion", "timing"};
   ASSERT_EQ(j.members.size(), keys.size());
   for (std::size_t i = 0; i < keys.size(); ++i) EXPECT_EQ(j.members[i].first, keys[i]);
@@ -295,9 +296,44 @@ TEST(DiagnosisJson, OptionalFieldsAreWritten) {
   EXPECT_THAT(diagnosis_json(sample_result()), HasSubstr("\"simulations\": 1234}"));
 }
 
+TEST(DiagnosisJson, BackwardCheckFindingsAreWrittenWithTheirCosts) {
+  // docs/diagnosis_format.md: `withdrawn_effects` without `kept_because`, an effect kept by the
+  // tie rule under `indistinguishable_effects` with it; the summary and report say the same.
+  DiagnosisResult r;
+  shudder::analysis::BackwardFinding w{"torque_sensor_gain", {{"gain", 1.004}}, 0.0031, 0.0452, true, "", "", ""};
+  shudder::analysis::BackwardFinding k{"interface_oil_cooling", {{"e", 0.0164}}, 0.0113, 0.0464, false,
+                                       "rig_heat_capacity", "heat_capacity_J_per_K 290 -> 2510",
+                                       "rig_heat_capacity could stand in but has more parameters"};
+  r.withdrawn.push_back(w);
+  r.indistinguishable.push_back(k);
+  const Json j = parse(diagnosis_json(r));
+  ASSERT_EQ(j["withdrawn_effects"].items.size(), 1u);
+  const Json& jw = j["withdrawn_effects"][0];
+  EXPECT_EQ(jw["effect"].str(), "torque_sensor_gain");
+  EXPECT_DOUBLE_EQ(jw["parameters"]["gain"].num(), 1.004);
+  EXPECT_DOUBLE_EQ(jw["holdout_cost"].num(), 0.0031);
+  EXPECT_DOUBLE_EQ(jw["needed_gain"].num(), 0.0452);
+  EXPECT_EQ(jw["stand_in"].str(), "");
+  EXPECT_FALSE(jw.has("kept_because"));
+  ASSERT_EQ(j["indistinguishable_effects"].items.size(), 1u);
+  const Json& jk = j["indistinguishable_effects"][0];
+  EXPECT_EQ(jk["stand_in"].str(), "rig_heat_capacity");
+  EXPECT_EQ(jk["stand_in_move"].str(), "heat_capacity_J_per_K 290 -> 2510");
+  EXPECT_EQ(jk["kept_because"].str(), "rig_heat_capacity could stand in but has more parameters");
+  EXPECT_EQ(shudder::report::backward_finding_text(w),
+            "torque_sensor_gain: without it the held-out misfit rises by 0.0031, below the 0.0452 it would need; "
+            "withdrawn");
+  EXPECT_EQ(shudder::report::backward_finding_text(k),
+            "interface_oil_cooling: without it the held-out misfit rises by 0.0113, below the 0.0464 it would "
+            "need; rig_heat_capacity takes over (heat_capacity_J_per_K 290 -> 2510); kept: rig_heat_capacity "
+            "could stand in but has more parameters (the data cannot separate the two)");
+  EXPECT_THAT(shudder::report::diagnosis_candidates_markdown(r), HasSubstr("* Withdrawn: torque_sensor_gain: "));
+}
+
 TEST(DiagnosisJson, EmptyResultIsValidWithEmptyArrays) {
   const Json j = parse(diagnosis_json(DiagnosisResult{}));
-  for (const char* k : {"runs", "disagreements", "steps", "missing_effects", "last_round",
+  for (const char* k : {"runs", "disagreements", "steps", "missing_effects", "withdrawn_effects",
+                        "indistinguishable_effects", "last_round",
                         "final_disagreements", "tracking", "channels"}) {
     EXPECT_EQ(j[k].type, Json::Type::kArray) << k;
     EXPECT_TRUE(j[k].items.empty()) << k;
