@@ -12,6 +12,7 @@
 #include "clutch/linear_friction.hpp"
 #include "clutch/maki_friction.hpp"
 #include "clutch/table_friction.hpp"
+#include "analysis/temperature_surface.hpp"
 
 namespace shudder::analysis {
 
@@ -20,6 +21,7 @@ const char* compensation_name(Compensation c) {
     case Compensation::kNone: return "none";
     case Compensation::kLinear: return "linear";
     case Compensation::kQuadratic: return "quadratic";
+    case Compensation::kPiecewise: return "piecewise";
   }
   return "?";
 }
@@ -287,7 +289,17 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
   for (std::size_t i = 0; i < out.used.size(); ++i) {
     const Ramp& ramp = out.used[i];
     const RampRun& run = runs[ramp.run];
-    for (std::size_t k = ramp.first; k <= ramp.last; ++k) {
+    // The hold at the ramp's low end (Paper D's N0 before an up-ramp, the hold after a
+    // down-ramp) joins it for up to 1 s: at 1 rpm a 10 s ramp leaves one or two samples within
+    // ±5 % of the node (the torque cell's noise: 1 % in mu each at 10 kN), the hold ~50 at the
+    // same temperature.
+    std::size_t first = ramp.first, last = ramp.last;
+    const auto at_low_end = [&](std::size_t k) { return std::abs(std::abs(run.speed_rpm[k]) - ramp.min_rpm) <= 0.02 * ramp.min_rpm; };
+    if (ramp.direction == RampDirection::kUp)
+      while (first > 0 && at_low_end(first - 1) && run.time_s[ramp.first] - run.time_s[first - 1] <= 1.0) --first;
+    else
+      while (last + 1 < run.time_s.size() && at_low_end(last + 1) && run.time_s[last + 1] - run.time_s[ramp.last] <= 1.0) ++last;
+    for (std::size_t k = first; k <= last; ++k) {
       const double rpm = run.speed_rpm[k];
       if (std::abs(rpm) < 0.5) continue;  // below half an rpm the sign of slip is uncertain
       const double f = run.normal_force_N[k];
@@ -332,6 +344,7 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
 
   // 4. Temperature compensation: correction(load group, v, T_from -> T_to).
   std::function<double(int, double, double, double)> correct = [](int, double, double, double) { return 0.0; };
+  std::vector<std::shared_ptr<const TemperatureSurface>> surfaces;  // piecewise: one per load
   if (s.compensation == Compensation::kLinear) {
     out.alpha_fitted = !s.alpha_per_C;
     if (s.alpha_per_C) {
@@ -403,6 +416,46 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
         d[k] = q.b * (to - from) + q.c * (to * to - from * from);
       }
       return interp_log(node_v, d, v);
+    };
+  } else if (s.compensation == Compensation::kPiecewise) {
+    // Per load: one surface mu(v, T), piecewise linear in T between knots at the rows, fitted to
+    // every sample of the load's ramps at once (analysis/temperature_surface.hpp).
+    surfaces.resize(nl);
+    for (std::size_t l = 0; l < nl; ++l) {
+      std::vector<SurfaceSample> pts;
+      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      for (std::size_t i = 0; i < out.used.size(); ++i) {
+        if (std::size_t(load_group[i]) != l) continue;
+        for (const Sample& p : samples[i]) {
+          if (p.v_mm_s < vmin * 0.999 || p.v_mm_s > vmax * 1.001) continue;
+          pts.push_back({p.v_mm_s, p.temp_C, p.mu});
+          lo = std::min(lo, p.temp_C);
+          hi = std::max(hi, p.temp_C);
+        }
+      }
+      std::vector<double> rows_at_load;
+      for (std::size_t i = 0; i < out.used.size(); ++i)
+        if (std::size_t(load_group[i]) == l) rows_at_load.push_back(out.temps_C[std::size_t(temp_group[i])]);
+      std::sort(rows_at_load.begin(), rows_at_load.end());
+      rows_at_load.erase(std::unique(rows_at_load.begin(), rows_at_load.end()), rows_at_load.end());
+      auto knots = temperature_knots(rows_at_load, lo, hi);
+      if (knots.size() < 2 || pts.size() < 4 * knots.size())
+        throw CharacterisationInputError(runs.front().name,
+                                         "piecewise compensation at " + g(out.loads_N[l] / 1000.0) + " kN: " +
+                                             std::to_string(pts.size()) + " samples over " + g(hi - lo, 3) +
+                                             " °C; it needs ramps that span a temperature range (use "
+                                             "--compensation quadratic, linear or none)");
+      try {
+        surfaces[l] = std::make_shared<TemperatureSurface>(out.node_speeds_mm_s, std::move(knots), pts);
+      } catch (const std::invalid_argument& e) {
+        throw CharacterisationInputError(runs.front().name, "piecewise compensation at " +
+                                                                g(out.loads_N[l] / 1000.0) + " kN: " + e.what());
+      }
+      out.piecewise.push_back({out.loads_N[l], surfaces[l]->temp_knots_C(), surfaces[l]->rms_residual()});
+    }
+    correct = [surfaces](int l, double v, double from, double to) {
+      const TemperatureSurface& f = *surfaces[std::size_t(l)];
+      return f(v, to) - f(v, from);
     };
   }
 

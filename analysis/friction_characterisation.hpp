@@ -21,7 +21,10 @@
 //              quadratic  mu + q_k(T_row) − q_k(T) with q_k(T) = a + bT + cT² fitted at every
 //                         node speed k (Paper D: 1, 5, 10, …, 100 rpm) over all ramps of the load
 //                         (value and temperature read where each ramp crosses the node), linear
-//                         in ln v between nodes.
+//                         in ln v between nodes;
+//              piecewise  mu + f(v, T_row) − f(v, T), f the load's surface piecewise linear in T
+//                         between knots at the rows, fitted to all its samples at once
+//                         (analysis/temperature_surface.hpp: follows a matrix law's kinks).
 //   5. fit     maki:   Paper G eq. 13 per row, weighted least squares on the row's speed-binned
 //                      means by variable projection: C2 searched on a log grid and refined by
 //                      golden section, C1, C3, C4 linear least squares for each C2 (exact
@@ -57,9 +60,9 @@ class CharacterisationInputError : public std::invalid_argument {
 };
 
 enum class RadiusRule { kUniformWear, kUniformPressure };
-enum class Compensation { kNone, kLinear, kQuadratic };
+enum class Compensation { kNone, kLinear, kQuadratic, kPiecewise };
 enum class LawKind { kMaki, kLinear, kTable };
-const char* compensation_name(Compensation c);  // "none", "linear", "quadratic"
+const char* compensation_name(Compensation c);  // "none", "linear", "quadratic", "piecewise"
 const char* law_name(LawKind k);                // "maki", "linear", "table"
 
 struct FrictionConversion {
@@ -94,6 +97,12 @@ struct QuadraticNode {
   double rms = 0.0;                  // residual of the ramps' node values
 };
 
+struct PiecewiseSurfaceInfo {  // --compensation piecewise, per load
+  double load_N = 0.0;
+  std::vector<double> temp_knots_C;
+  double rms = 0.0;  // surface against the samples
+};
+
 struct RowFit {
   std::size_t i_temp = 0, i_load = 0;
   double load_N = 0.0, temp_C = 0.0;
@@ -123,6 +132,7 @@ struct Characterisation {
   double alpha_per_C = 0.0;                       // linear compensation
   bool alpha_fitted = false;
   std::vector<QuadraticNode> quadratic;
+  std::vector<PiecewiseSurfaceInfo> piecewise;
   std::vector<LinearLine> lines;                  // linear law
   double linear_load_N = 0.0;
   double min_speed_mm_s = 0.0, max_speed_mm_s = 0.0;  // the law's speed range
