@@ -438,13 +438,15 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
         if (std::size_t(load_group[i]) == l) rows_at_load.push_back(out.temps_C[std::size_t(temp_group[i])]);
       std::sort(rows_at_load.begin(), rows_at_load.end());
       rows_at_load.erase(std::unique(rows_at_load.begin(), rows_at_load.end()), rows_at_load.end());
-      auto knots = temperature_knots(rows_at_load, lo, hi);
-      if (knots.size() < 2 || pts.size() < 4 * knots.size())
+      // One start temperature: along a ramp speed and temperature rise together, so the
+      // surface could not tell them apart (only the smoothing would decide).
+      if (rows_at_load.size() < 2)
         throw CharacterisationInputError(runs.front().name,
-                                         "piecewise compensation at " + g(out.loads_N[l] / 1000.0) + " kN: " +
-                                             std::to_string(pts.size()) + " samples over " + g(hi - lo, 3) +
-                                             " °C; it needs ramps that span a temperature range (use "
-                                             "--compensation quadratic, linear or none)");
+                                         "piecewise compensation at " + g(out.loads_N[l] / 1000.0) +
+                                             " kN: ramps start at 1 row temperature; it needs ramps from 2 or more "
+                                             "row temperatures per load to separate speed from temperature (use "
+                                             "--compensation linear or none)");
+      auto knots = temperature_knots(rows_at_load, lo, hi);
       try {
         surfaces[l] = std::make_shared<TemperatureSurface>(out.node_speeds_mm_s, std::move(knots), pts);
       } catch (const std::invalid_argument& e) {

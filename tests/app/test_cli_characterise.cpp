@@ -140,6 +140,11 @@ TEST(CliCharacterise, QuadraticCompensationWithOneTemperatureIsBadInput) {
   const auto r = test::run_cli("characterise a.csv -o out.toml --json fit.json" + kFluidArgs, dir);
   test::expect_rejected(r, {"a.csv", "quadratic compensation at 10 kN", "--compensation linear or none"});
   expect_nothing_written(dir);
+  // Piecewise: one ramp's speed and temperature rise together; no second row to separate them.
+  const auto p = test::run_cli("characterise a.csv -o out.toml --json fit.json --compensation piecewise" + kFluidArgs, dir);
+  test::expect_rejected(p, {"a.csv", "piecewise compensation at 10 kN: ramps start at 1 row temperature",
+                            "--compensation linear or none"});
+  expect_nothing_written(dir);
 }
 
 TEST(CliCharacterise, FitWithoutAPlausibleLawIsANumericalFailure) {
