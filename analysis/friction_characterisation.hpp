@@ -31,7 +31,9 @@
 //                      optimum of the separable problem; no start values needed);
 //              linear: mu_k(T) = alpha_k T + beta_k per node over the rows at one load
 //                      (Paper E: 20 kN);
-//              table:  the rows' compensated curves at the node speeds.
+//              table:  the rows' compensated curves at the node speeds (each a quadratic in
+//                      ln v over the row's bin means within ±30 % of the node, read at it).
+//              A ramp's samples include up to 1 s of the hold at its low end (Paper D's N0).
 //
 // Errors: bad input (a run without a usable ramp, a row with too few ramps, a missing cell of
 // the grid, a requested temperature no ramp reaches) throws CharacterisationInputError naming

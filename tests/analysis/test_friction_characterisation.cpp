@@ -197,7 +197,8 @@ TEST(CharacteriseRoundTrip, FluidCMatrixPiecewiseTableWithinOnePercentWhereTheRa
                     analysis::law_name(law), passed[ch][ic][il], e.mu, e.gap_raw, e.gap_comp);
         if (ch == 0 && ic == 1 && il == 1) {
           // The torque cell's noise (sigma 1.3 % of mu per sample at 10 kN) averaged over a row's
-          // bins leaves ~0.3 %; the thermocouple's offset from the interface the rest.
+          // bins around a node leaves ~0.3 %; the thermocouple's offset from the interface and the
+          // matrix's clamp below 6 mm/s (1.2 rpm) at the first node the rest (measured 0.91 %).
           EXPECT_LT(passed[ch][ic][il], 0.01);  // the 1 %
           EXPECT_LT(e.gap_comp, 0.6 * e.gap_raw);
           analysis::IndexSettings is;

@@ -128,12 +128,12 @@ TEST(InverseCharacterisation, FluidCMatrixRecoversTheOilFlowAndTheLaw) {
   EXPECT_LE(r.iterations, 6);  // the law enters the temperature field only through the heat
   EXPECT_LT(r.torque_rms_Nm, r.torque_rms_sensor_Nm);
   // Piecewise compensation + table law follow the matrix's kinks with either temperature; what
-  // remains is the torque cell's noise in the rows' bins (measured on these seeds: sensor 1.27 %,
-  // inverse 1.38 % where the ramps passed; 0.91 % for the sensor on the seeds of
+  // remains is the torque cell's noise in the rows' bins (measured on these seeds: sensor 0.71 %,
+  // inverse 0.81 % where the ramps passed; 0.91 % for the sensor on the seeds of
   // test_friction_characterisation.cpp). The inverse method removes the thermocouple's offset
-  // but not the noise, so it is held to the noise's bound, not to beat the sensor.
-  EXPECT_LT(pi, 0.02);
-  EXPECT_LT(ei, 0.02);
+  // but not the noise, so it is held to the 1 %, not to beat the sensor.
+  EXPECT_LT(pi, 0.01);
+  EXPECT_LT(ei, 0.015);  // at the rows, incl. the coldest row's extrapolated high speeds (0.89 %)
 
   // Indices and screening from the inverse law.
   analysis::IndexSettings idx;
