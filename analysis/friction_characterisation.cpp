@@ -12,6 +12,7 @@
 #include "clutch/linear_friction.hpp"
 #include "clutch/maki_friction.hpp"
 #include "clutch/table_friction.hpp"
+#include "analysis/temperature_surface.hpp"
 
 namespace shudder::analysis {
 
@@ -20,6 +21,7 @@ const char* compensation_name(Compensation c) {
     case Compensation::kNone: return "none";
     case Compensation::kLinear: return "linear";
     case Compensation::kQuadratic: return "quadratic";
+    case Compensation::kPiecewise: return "piecewise";
   }
   return "?";
 }
@@ -89,6 +91,36 @@ double interp_log(const std::vector<double>& xs, const std::vector<double>& ys, 
 struct Sample {
   double v_mm_s, mu, temp_C;
 };
+
+// A row's compensated mu at a node: a quadratic in ln v fitted (weights = sample counts) to the
+// bin means within ±30 % in speed of the node, read at the node. A bin at 5 rpm holds ~3
+// samples of a 10 s ramp (the torque cell's noise: 1.3 % of mu per sample at 10 kN); the
+// window pools ~5 bins, and a quadratic leaves only the curve's third-order change over it.
+// Fewer than 3 bins in the window: linear interpolation between the bins around the node.
+double node_value(const std::vector<double>& v, const std::vector<double>& mu, const std::vector<double>& count,
+                  double node) {
+  constexpr double kHalfWidth = 0.3;  // in ln v: ±30 % (estimate: the nodes are 5 rpm apart at 20 rpm, ±25 %)
+  std::vector<double> x, y, w;
+  for (std::size_t b = 0; b < v.size(); ++b)
+    if (std::abs(std::log(v[b] / node)) <= kHalfWidth) {
+      x.push_back(std::log(v[b] / node));
+      y.push_back(mu[b]);
+      w.push_back(count[b]);
+    }
+  if (x.size() < 3) return interp_log(v, mu, node);
+  Eigen::MatrixXd a(long(x.size()), 3);
+  Eigen::VectorXd yy(long(x.size())), ww(long(x.size()));
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    a(long(i), 0) = 1.0;
+    a(long(i), 1) = x[i];
+    a(long(i), 2) = x[i] * x[i];
+    yy(long(i)) = y[i];
+    ww(long(i)) = w[i];
+  }
+  const Eigen::VectorXd sw = ww.array().sqrt();
+  const Eigen::VectorXd q = (sw.asDiagonal() * a).colPivHouseholderQr().solve(sw.cwiseProduct(yy));
+  return std::isfinite(q(0)) ? q(0) : interp_log(v, mu, node);
+}
 
 // A ramp's (mu, T) at a node speed: the means over its samples within ±5 % of the node speed
 // (a single sample would carry the torque cell's full noise, ~1e-3 in mu at 15 kN; a 10 s
@@ -287,7 +319,17 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
   for (std::size_t i = 0; i < out.used.size(); ++i) {
     const Ramp& ramp = out.used[i];
     const RampRun& run = runs[ramp.run];
-    for (std::size_t k = ramp.first; k <= ramp.last; ++k) {
+    // The hold at the ramp's low end (Paper D's N0 before an up-ramp, the hold after a
+    // down-ramp) joins it for up to 1 s: at 1 rpm a 10 s ramp leaves one or two samples within
+    // ±5 % of the node (the torque cell's noise: 1 % in mu each at 10 kN), the hold ~50 at the
+    // same temperature.
+    std::size_t first = ramp.first, last = ramp.last;
+    const auto at_low_end = [&](std::size_t k) { return std::abs(std::abs(run.speed_rpm[k]) - ramp.min_rpm) <= 0.02 * ramp.min_rpm; };
+    if (ramp.direction == RampDirection::kUp)
+      while (first > 0 && at_low_end(first - 1) && run.time_s[ramp.first] - run.time_s[first - 1] <= 1.0) --first;
+    else
+      while (last + 1 < run.time_s.size() && at_low_end(last + 1) && run.time_s[last + 1] - run.time_s[ramp.last] <= 1.0) ++last;
+    for (std::size_t k = first; k <= last; ++k) {
       const double rpm = run.speed_rpm[k];
       if (std::abs(rpm) < 0.5) continue;  // below half an rpm the sign of slip is uncertain
       const double f = run.normal_force_N[k];
@@ -332,6 +374,7 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
 
   // 4. Temperature compensation: correction(load group, v, T_from -> T_to).
   std::function<double(int, double, double, double)> correct = [](int, double, double, double) { return 0.0; };
+  std::vector<std::shared_ptr<const TemperatureSurface>> surfaces;  // piecewise: one per load
   if (s.compensation == Compensation::kLinear) {
     out.alpha_fitted = !s.alpha_per_C;
     if (s.alpha_per_C) {
@@ -403,6 +446,48 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
         d[k] = q.b * (to - from) + q.c * (to * to - from * from);
       }
       return interp_log(node_v, d, v);
+    };
+  } else if (s.compensation == Compensation::kPiecewise) {
+    // Per load: one surface mu(v, T), piecewise linear in T between knots at the rows, fitted to
+    // every sample of the load's ramps at once (analysis/temperature_surface.hpp).
+    surfaces.resize(nl);
+    for (std::size_t l = 0; l < nl; ++l) {
+      std::vector<SurfaceSample> pts;
+      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      for (std::size_t i = 0; i < out.used.size(); ++i) {
+        if (std::size_t(load_group[i]) != l) continue;
+        for (const Sample& p : samples[i]) {
+          if (p.v_mm_s < vmin * 0.999 || p.v_mm_s > vmax * 1.001) continue;
+          pts.push_back({p.v_mm_s, p.temp_C, p.mu});
+          lo = std::min(lo, p.temp_C);
+          hi = std::max(hi, p.temp_C);
+        }
+      }
+      std::vector<double> rows_at_load;
+      for (std::size_t i = 0; i < out.used.size(); ++i)
+        if (std::size_t(load_group[i]) == l) rows_at_load.push_back(out.temps_C[std::size_t(temp_group[i])]);
+      std::sort(rows_at_load.begin(), rows_at_load.end());
+      rows_at_load.erase(std::unique(rows_at_load.begin(), rows_at_load.end()), rows_at_load.end());
+      // One start temperature: along a ramp speed and temperature rise together, so the
+      // surface could not tell them apart (only the smoothing would decide).
+      if (rows_at_load.size() < 2)
+        throw CharacterisationInputError(runs.front().name,
+                                         "piecewise compensation at " + g(out.loads_N[l] / 1000.0) +
+                                             " kN: ramps start at 1 row temperature; it needs ramps from 2 or more "
+                                             "row temperatures per load to separate speed from temperature (use "
+                                             "--compensation linear or none)");
+      auto knots = temperature_knots(rows_at_load, lo, hi);
+      try {
+        surfaces[l] = std::make_shared<TemperatureSurface>(out.node_speeds_mm_s, std::move(knots), pts);
+      } catch (const std::invalid_argument& e) {
+        throw CharacterisationInputError(runs.front().name, "piecewise compensation at " +
+                                                                g(out.loads_N[l] / 1000.0) + " kN: " + e.what());
+      }
+      out.piecewise.push_back({out.loads_N[l], surfaces[l]->temp_knots_C(), surfaces[l]->rms_residual()});
+    }
+    correct = [surfaces](int l, double v, double from, double to) {
+      const TemperatureSurface& f = *surfaces[std::size_t(l)];
+      return f(v, to) - f(v, from);
     };
   }
 
@@ -484,7 +569,7 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
           row.up_down_gap_comp += std::abs(row.up_comp[k] - row.down_comp[k]);
           ++gaps;
         }
-        row.node_mu.push_back(interp_log(row.bin_speed_mm_s, row.bin_mu, out.node_speeds_mm_s[k]));
+        row.node_mu.push_back(node_value(row.bin_speed_mm_s, row.bin_mu, row.bin_count, out.node_speeds_mm_s[k]));
       }
       if (gaps > 0) {
         row.up_down_gap_raw /= gaps;

@@ -21,14 +21,19 @@
 //              quadratic  mu + q_k(T_row) − q_k(T) with q_k(T) = a + bT + cT² fitted at every
 //                         node speed k (Paper D: 1, 5, 10, …, 100 rpm) over all ramps of the load
 //                         (value and temperature read where each ramp crosses the node), linear
-//                         in ln v between nodes.
+//                         in ln v between nodes;
+//              piecewise  mu + f(v, T_row) − f(v, T), f the load's surface piecewise linear in T
+//                         between knots at the rows, fitted to all its samples at once
+//                         (analysis/temperature_surface.hpp: follows a matrix law's kinks).
 //   5. fit     maki:   Paper G eq. 13 per row, weighted least squares on the row's speed-binned
 //                      means by variable projection: C2 searched on a log grid and refined by
 //                      golden section, C1, C3, C4 linear least squares for each C2 (exact
 //                      optimum of the separable problem; no start values needed);
 //              linear: mu_k(T) = alpha_k T + beta_k per node over the rows at one load
 //                      (Paper E: 20 kN);
-//              table:  the rows' compensated curves at the node speeds.
+//              table:  the rows' compensated curves at the node speeds (each a quadratic in
+//                      ln v over the row's bin means within ±30 % of the node, read at it).
+//              A ramp's samples include up to 1 s of the hold at its low end (Paper D's N0).
 //
 // Errors: bad input (a run without a usable ramp, a row with too few ramps, a missing cell of
 // the grid, a requested temperature no ramp reaches) throws CharacterisationInputError naming
@@ -57,9 +62,9 @@ class CharacterisationInputError : public std::invalid_argument {
 };
 
 enum class RadiusRule { kUniformWear, kUniformPressure };
-enum class Compensation { kNone, kLinear, kQuadratic };
+enum class Compensation { kNone, kLinear, kQuadratic, kPiecewise };
 enum class LawKind { kMaki, kLinear, kTable };
-const char* compensation_name(Compensation c);  // "none", "linear", "quadratic"
+const char* compensation_name(Compensation c);  // "none", "linear", "quadratic", "piecewise"
 const char* law_name(LawKind k);                // "maki", "linear", "table"
 
 struct FrictionConversion {
@@ -94,6 +99,12 @@ struct QuadraticNode {
   double rms = 0.0;                  // residual of the ramps' node values
 };
 
+struct PiecewiseSurfaceInfo {  // --compensation piecewise, per load
+  double load_N = 0.0;
+  std::vector<double> temp_knots_C;
+  double rms = 0.0;  // surface against the samples
+};
+
 struct RowFit {
   std::size_t i_temp = 0, i_load = 0;
   double load_N = 0.0, temp_C = 0.0;
@@ -123,6 +134,7 @@ struct Characterisation {
   double alpha_per_C = 0.0;                       // linear compensation
   bool alpha_fitted = false;
   std::vector<QuadraticNode> quadratic;
+  std::vector<PiecewiseSurfaceInfo> piecewise;
   std::vector<LinearLine> lines;                  // linear law
   double linear_load_N = 0.0;
   double min_speed_mm_s = 0.0, max_speed_mm_s = 0.0;  // the law's speed range

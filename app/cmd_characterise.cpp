@@ -11,6 +11,7 @@
 #include <thread>
 #include <vector>
 
+#include "analysis/breakaway.hpp"
 #include "analysis/friction_characterisation.hpp"
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
@@ -76,6 +77,7 @@ int characterise_command(const CharacteriseOptions& o) {
                                : analysis::LawKind::kMaki;
     s.compensation = o.compensation == "none"     ? analysis::Compensation::kNone
                      : o.compensation == "linear" ? analysis::Compensation::kLinear
+                     : o.compensation == "piecewise" ? analysis::Compensation::kPiecewise
                                                   : analysis::Compensation::kQuadratic;
     if (std::isfinite(o.alpha_per_C)) s.alpha_per_C = o.alpha_per_C;
     s.conversion.rule = o.radius == "uniform_pressure" ? analysis::RadiusRule::kUniformPressure
@@ -154,9 +156,19 @@ int characterise_command(const CharacteriseOptions& o) {
     id.description = "characterised by shudder from " + std::to_string(o.runs.size()) + " measured run(s)";
     id.nu40_cSt = o.nu40_cSt;
     id.nu100_cSt = o.nu100_cSt;
-    id.breakaway_ratio = o.breakaway_ratio;
-    id.breakaway_source = o.breakaway_ratio == 1.0 ? "not measured: mu_s = mu_k(v_min) assumed"
-                                                   : "given on the command line (--breakaway-ratio)";
+    // Breakaway: given, else measured from the runs' starts from rest against the written law.
+    const analysis::BreakawayMeasurement breakaway = analysis::measure_breakaway(runs, s.conversion, *c.law);
+    if (std::isfinite(o.breakaway_ratio)) {
+      id.breakaway_ratio = o.breakaway_ratio;
+      id.breakaway_source = "given on the command line (--breakaway-ratio)";
+    } else if (breakaway.ratio) {
+      id.breakaway_ratio = *breakaway.ratio;
+      id.breakaway_source = "measured: median peak/kinetic friction over " + std::to_string(breakaway.events.size()) +
+                            " start(s) from rest (" + report::breakaway_range(breakaway) + ")";
+    } else {
+      id.breakaway_ratio = 1.0;
+      id.breakaway_source = "not measured: " + breakaway.not_measured + "; mu_s = mu_k(v_min) assumed";
+    }
     const std::string toml = io::characterised_fluid_toml(c, written, id, o.runs);
     // The file must load as every command loads it; a failure here is ours (exit 1).
     try {
@@ -165,10 +177,13 @@ int characterise_command(const CharacteriseOptions& o) {
       throw std::runtime_error(std::string("the fitted fluid file would not load: ") + e.what());
     }
     const std::string summary = report::characterisation_summary(c, written, o.output) +
-                                (inverse ? report::method_comparison_summary(*inverse, s) : std::string());
-    const std::string json = o.json.empty() ? ""
-                             : inverse    ? io::characterisation_json(*inverse, s, o.runs, o.output)
-                                          : io::characterisation_json(c, s, o.runs, o.output);
+                                (inverse ? report::method_comparison_summary(*inverse, s) : std::string()) +
+                                report::breakaway_summary(breakaway, id.breakaway_ratio, id.breakaway_source);
+    const std::string json =
+        o.json.empty() ? ""
+                       : io::with_breakaway_json(inverse ? io::characterisation_json(*inverse, s, o.runs, o.output)
+                                                         : io::characterisation_json(c, s, o.runs, o.output),
+                                                 breakaway, id.breakaway_ratio, id.breakaway_source);
     if (!o.report.empty()) {
       const report::Report rep = report::write_characterisation_report(o.report, c, summary);
       for (const auto& why : rep.skipped) std::cerr << "shudder: note: report: skipped " << why << "\n";

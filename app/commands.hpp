@@ -84,7 +84,7 @@ struct CharacteriseOptions {
   std::string json;                       // FIT.json; empty = none
   std::string report;                     // report directory; empty = none
   std::string law = "maki";               // maki | linear | table
-  std::string compensation = "quadratic"; // none | linear | quadratic
+  std::string compensation = "quadratic"; // none | linear | quadratic | piecewise
   double alpha_per_C = NAN;               // linear compensation: given alpha (NaN = fit it)
   std::string temperature_channel = "temp_C";
   std::string radius = "uniform_wear";    // uniform_wear | uniform_pressure
@@ -96,7 +96,8 @@ struct CharacteriseOptions {
   double linear_load_N = 20000.0;
   std::string row_temps, node_rpm;        // comma lists; empty = from the data / Paper D nodes
   std::string name;                       // fluid name; empty = output file stem
-  double nu40_cSt = 0.0, nu100_cSt = 0.0, breakaway_ratio = 1.0;
+  double nu40_cSt = 0.0, nu100_cSt = 0.0;
+  double breakaway_ratio = NAN;           // NaN: measured from ramps that start at rest, else 1
   std::string method = "sensor";          // sensor | inverse (replayed through the model)
   std::string model;                      // inverse: scenario whose clutch is replayed; empty = Paper G defaults
   int inverse_iterations = 8;             // inverse: law updates per pass before "did not converge"

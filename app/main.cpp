@@ -112,8 +112,8 @@ int main(int argc, char** argv) {
   char_cmd->add_option("--law", characterise.law, "maki (Paper G eq. 13), linear (Papers B/C/E) or table")
       ->check(CLI::IsMember({"maki", "linear", "table"}));
   char_cmd->add_option("--compensation", characterise.compensation,
-                       "Temperature compensation: none, linear (Papers B/C) or quadratic (Paper D)")
-      ->check(CLI::IsMember({"none", "linear", "quadratic"}));
+                       "Temperature compensation: none, linear (Papers B/C), quadratic (Paper D) or piecewise (linear in T between the rows, all samples at once)")
+      ->check(CLI::IsMember({"none", "linear", "quadratic", "piecewise"}));
   char_cmd->add_option("--alpha", characterise.alpha_per_C, "Linear compensation's alpha, 1/degC (default: fitted)")
       ->check(CLI::Range(-0.1, 0.1));
   char_cmd->add_option("--temperature-channel", characterise.temperature_channel, "temp_C or ir_temp_C")
@@ -144,7 +144,7 @@ int main(int argc, char** argv) {
   char_cmd->add_option("--name", characterise.name, "Fluid name (default: the output's stem)");
   char_cmd->add_option("--nu40-cSt", characterise.nu40_cSt, "Kinematic viscosity at 40 degC, cSt")->required();
   char_cmd->add_option("--nu100-cSt", characterise.nu100_cSt, "Kinematic viscosity at 100 degC, cSt")->required();
-  char_cmd->add_option("--breakaway-ratio", characterise.breakaway_ratio, "mu_s / mu_k(v_min) (default 1)")
+  char_cmd->add_option("--breakaway-ratio", characterise.breakaway_ratio, "mu_s / mu_k(v_min) (default: measured from ramps that start at rest, else 1)")
       ->check(CLI::Range(0.5, 3.0));
   char_cmd->add_option("--method", characterise.method,
                        "sensor (compensate with the temperature channel) or inverse (replay through the clutch and "

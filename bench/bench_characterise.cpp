@@ -8,7 +8,8 @@
 // 100 Hz: 48 simulations, each written as a measured run with sensor noise under ~18 seeds
 // (io/measurement_csv) to give 875 runs = 1,750 ramps, 3.4 million samples.
 //
-//   BM_Characterise_1750Ramps/law   Arg 0: Mäki law, 1: table law; quadratic compensation.
+//   BM_Characterise_1750Ramps/case  Arg 0: Mäki law, 1: table law, quadratic compensation;
+//                                   Arg 2: Mäki law, 3: table law, piecewise compensation.
 // Counters: ramps, rows, wall_s.
 //   ./build/bench/shudder_bench --benchmark_filter=Characterise
 #include <benchmark/benchmark.h>
@@ -59,7 +60,8 @@ const std::vector<analysis::RampRun>& runs_1750() {
 void BM_Characterise_1750Ramps(benchmark::State& state) {
   const auto& runs = runs_1750();
   analysis::CharacterisationSettings s;
-  s.law = state.range(0) == 0 ? analysis::LawKind::kMaki : analysis::LawKind::kTable;
+  s.law = state.range(0) % 2 == 0 ? analysis::LawKind::kMaki : analysis::LawKind::kTable;
+  s.compensation = state.range(0) >= 2 ? analysis::Compensation::kPiecewise : analysis::Compensation::kQuadratic;
   analysis::Characterisation c;
   double wall = 0;
   for (auto _ : state) {
@@ -72,6 +74,6 @@ void BM_Characterise_1750Ramps(benchmark::State& state) {
   state.counters["rows"] = double(c.rows.size());
   state.counters["wall_s"] = wall;
 }
-BENCHMARK(BM_Characterise_1750Ramps)->Arg(0)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_Characterise_1750Ramps)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace

@@ -144,6 +144,14 @@ std::string characterisation_json(const analysis::Characterisation& c, const ana
     }
     o << "\n  ]";
   }
+  if (!c.piecewise.empty()) {
+    o << ",\n  \"piecewise\": [";
+    for (std::size_t i = 0; i < c.piecewise.size(); ++i)
+      o << (i ? "," : "") << "\n    {\"load_N\": " << num(c.piecewise[i].load_N)
+        << ", \"temp_knots_C\": " << nums(c.piecewise[i].temp_knots_C) << ", \"rms\": " << num(c.piecewise[i].rms)
+        << "}";
+    o << "\n  ]";
+  }
   if (!c.lines.empty()) {
     o << ",\n  \"linear_load_N\": " << num(c.linear_load_N) << ",\n  \"lines\": [";
     for (std::size_t i = 0; i < c.lines.size(); ++i) {
@@ -211,6 +219,25 @@ std::string characterisation_json(const rig_models::InverseCharacterisation& r, 
     << "], \"oil_flow_b\": " << num(r.oil_flow.b) << ", \"temp_rms_C\": [" << num(r.temp_rms_start_C) << ", "
     << num(r.temp_rms_C) << "]},\n    \"law_updates\": " << r.iterations << ", \"replays\": " << r.replays
     << ", \"last_change_mu\": " << num(r.last_change_mu) << "\n  }\n}\n";
+  return o.str();
+}
+
+std::string with_breakaway_json(std::string doc, const analysis::BreakawayMeasurement& m, double written_ratio,
+                                const std::string& source) {
+  doc.resize(doc.size() - 3);  // "\n}\n": the document continues
+  std::ostringstream o;
+  o << doc << ",\n  \"breakaway\": {\"ratio\": " << num(written_ratio) << ", \"source\": " << json_string(source)
+    << ", \"measured\": " << (m.ratio ? "true" : "false");
+  if (!m.ratio) o << ", \"not_measured\": " << json_string(m.not_measured);
+  o << ", \"starts_from_rest\": [";
+  for (std::size_t i = 0; i < m.events.size(); ++i) {
+    const auto& e = m.events[i];
+    o << (i ? "," : "") << "\n    {\"run\": " << e.run << ", \"t_peak_s\": " << num(e.t_peak_s)
+      << ", \"speed_rpm\": " << num(e.speed_rpm) << ", \"temp_C\": " << num(e.temp_C) << ", \"load_N\": "
+      << num(e.load_N) << ", \"mu_peak\": " << num(e.mu_peak) << ", \"mu_kinetic\": " << num(e.mu_kinetic)
+      << ", \"ratio\": " << num(e.ratio) << "}";
+  }
+  o << "]}\n}\n";
   return o.str();
 }
 

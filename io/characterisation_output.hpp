@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/breakaway.hpp"
 #include "analysis/friction_characterisation.hpp"
 #include "rig_models/inverse_characterisation.hpp"
 
@@ -41,5 +42,11 @@ std::string characterisation_json(const analysis::Characterisation& c, const ana
 /// RMS) and the iteration count. `s` are the sensor method's settings.
 std::string characterisation_json(const rig_models::InverseCharacterisation& r, const analysis::CharacterisationSettings& s,
                                   const std::vector<std::string>& runs, const std::string& fluid_path);
+
+/// FIT.json `doc` (either form above) with a "breakaway" object appended: the ratio written, its
+/// source, and each start from rest (run index from 0, peak time, speed, temperature, load, peak mu,
+/// kinetic mu, ratio); "measured" false and "not_measured" with the reason when none was found.
+std::string with_breakaway_json(std::string doc, const analysis::BreakawayMeasurement& m, double written_ratio,
+                                const std::string& source);
 
 }  // namespace shudder::io

@@ -63,6 +63,26 @@ std::string characterisation_summary(const analysis::Characterisation& c, const 
   return o.str();
 }
 
+std::string breakaway_range(const analysis::BreakawayMeasurement& m) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "%.3f–%.3f", m.min_ratio, m.max_ratio);
+  return buf;
+}
+
+std::string breakaway_summary(const analysis::BreakawayMeasurement& m, double written_ratio, const std::string& source) {
+  std::ostringstream o;
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "breakaway ratio (mu_s / mu_k(v_min), written): %.4g — ", written_ratio);
+  o << buf << source << "\n";
+  for (const auto& e : m.events) {
+    std::snprintf(buf, sizeof buf,
+                  "  start from rest: run %zu at %.3f s, %.2f rpm, %.1f °C, %.4g kN: peak mu %.4f / mu_k %.4f = %.4f\n",
+                  e.run + 1, e.t_peak_s, e.speed_rpm, e.temp_C, e.load_N / 1000.0, e.mu_peak, e.mu_kinetic, e.ratio);
+    o << buf;
+  }
+  return o.str();
+}
+
 std::string method_comparison_summary(const rig_models::InverseCharacterisation& r,
                                       const analysis::CharacterisationSettings& sensor_settings) {
   std::ostringstream o;

@@ -13,6 +13,7 @@
 
 #include <string>
 
+#include "analysis/breakaway.hpp"
 #include "analysis/friction_characterisation.hpp"
 #include "report/plots.hpp"
 #include "rig_models/inverse_characterisation.hpp"
@@ -28,6 +29,13 @@ std::string characterisation_summary(const analysis::Characterisation& c, const 
 /// torque's RMS misfit with each law, the thermal calibration and the iterations.
 std::string method_comparison_summary(const rig_models::InverseCharacterisation& r,
                                       const analysis::CharacterisationSettings& sensor_settings);
+
+/// "1.28–1.31 over 3 starts" style range of the measured events (for the fluid file's source).
+std::string breakaway_range(const analysis::BreakawayMeasurement& m);
+
+/// The breakaway lines of the printout: the ratio written, its source, and each start from rest
+/// (run, time, peak mu, kinetic mu at the peak's speed, ratio).
+std::string breakaway_summary(const analysis::BreakawayMeasurement& m, double written_ratio, const std::string& source);
 
 Report write_characterisation_report(const std::string& dir, const analysis::Characterisation& c,
                                      const std::string& summary_text);

@@ -102,6 +102,7 @@ double max_rel_error(const clutch::FrictionLaw& law, const clutch::FrictionLaw& 
 
 struct RoundTrip {
   std::vector<analysis::RampRun> runs;
+  std::vector<std::vector<double>> interface_C;  // the model's area-mean interface temperature per run
   clutch::Fluid truth;
 };
 
@@ -113,8 +114,11 @@ const RoundTrip& fluid_c_round_trip() {
     r.truth = io::load_fluid(SHUDDER_SOURCE_DIR "/scenarios/fluids/lsc_fluid_c.toml");
     unsigned seed = 1;
     for (double load : {10000.0, 15000.0, 20000.0})
-      for (double t0 : {30.0, 40.0, 50.0, 60.0, 70.0})
-        r.runs.push_back(test::simulated_ramp_run(r.truth, test::paper_d_cycle(load), t0, seed++, 50.0));
+      for (double t0 : {30.0, 40.0, 50.0, 60.0, 70.0}) {
+        r.interface_C.emplace_back();
+        r.runs.push_back(test::simulated_ramp_run(r.truth, test::paper_d_cycle(load), t0, seed++, 50.0, "temp_C", {},
+                                                  &r.interface_C.back()));
+      }
     return r;
   }();
   return rt;
@@ -142,6 +146,101 @@ Errors errors_of(const Characterisation& c, const clutch::FrictionLaw& truth) {
     e.gap_comp += row.up_down_gap_comp / double(c.rows.size());
   }
   return e;
+}
+
+// Max |mu_fit/mu_true − 1| where the ramps passed: at every node speed each used ramp crosses
+// (samples within ±5 % of it), at the model's mean interface temperature there and the run's
+// load: the states the data hold. The law's value at a row temperature and a speed no ramp
+// reaches at that temperature (the coldest row at 100 rpm: every ramp is warmer there) is an
+// extrapolation, reported separately by errors_of.
+double max_error_where_passed(const Characterisation& c, const clutch::FrictionLaw& truth, const RoundTrip& rt) {
+  double e = 0.0;
+  for (const auto& ramp : c.used) {
+    const analysis::RampRun& run = rt.runs[ramp.run];
+    for (std::size_t k = 0; k < c.node_rpm.size(); ++k) {
+      double t = 0.0;
+      int n = 0;
+      for (std::size_t i = ramp.first; i <= ramp.last; ++i)
+        if (std::abs(run.speed_rpm[i] - c.node_rpm[k]) <= 0.05 * c.node_rpm[k]) {
+          t += rt.interface_C[ramp.run][i];
+          ++n;
+        }
+      if (n == 0 || t / n > c.temps_C.back() || t / n < c.temps_C.front()) continue;
+      const double v = c.node_speeds_mm_s[k];
+      e = std::max(e, std::abs(c.law->mu(v, t / n, ramp.load_N) / truth.mu(v, t / n, ramp.load_N) - 1.0));
+    }
+  }
+  return e;
+}
+
+// The 1 % on the matrix: compensation piecewise linear in T between the rows
+// (analysis/temperature_surface.hpp) with the table law (linear in T between the rows, as the
+// matrix itself) from the separator thermocouple. Judged where the ramps passed; the figures at
+// the rows (including the coldest row at speeds every ramp passes warmer) are printed beside.
+TEST(CharacteriseRoundTrip, FluidCMatrixPiecewiseTableWithinOnePercentWhereTheRampsPassed) {
+  const RoundTrip& rt = fluid_c_round_trip();
+  RoundTrip at_interface = rt;  // the model's mean interface temperature instead of the sensor
+  for (std::size_t r = 0; r < rt.runs.size(); ++r) at_interface.runs[r].temp_C = rt.interface_C[r];
+  double passed[2][2][2] = {};  // [sensor|interface][quadratic|piecewise][maki|table]
+  for (int ch = 0; ch < 2; ++ch)
+    for (int ic = 0; ic < 2; ++ic)
+      for (int il = 0; il < 2; ++il) {
+        const RoundTrip& data = ch == 0 ? rt : at_interface;
+        const auto comp = ic == 0 ? Compensation::kQuadratic : Compensation::kPiecewise;
+        const auto law = il == 0 ? LawKind::kMaki : LawKind::kTable;
+        const Characterisation c = analysis::characterise(data.runs, round_trip_settings(comp, law));
+        const Errors e = errors_of(c, *rt.truth.friction);
+        passed[ch][ic][il] = max_error_where_passed(c, *rt.truth.friction, rt);
+        std::printf("[ figures  ] fluid C matrix, %s temperature, %s + %s: max |mu/mu_true - 1| where the ramps "
+                    "passed %.4f, at the rows %.4f; up-down gap %.5f -> %.5f\n",
+                    ch == 0 ? "thermocouple" : "interface (model)", analysis::compensation_name(comp),
+                    analysis::law_name(law), passed[ch][ic][il], e.mu, e.gap_raw, e.gap_comp);
+        if (ch == 0 && ic == 1 && il == 1) {
+          // The torque cell's noise (sigma 1.3 % of mu per sample at 10 kN) averaged over a row's
+          // bins around a node leaves ~0.3 %; the thermocouple's offset from the interface and the
+          // matrix's clamp below 6 mm/s (1.2 rpm) at the first node the rest (measured 0.91 %).
+          EXPECT_LT(passed[ch][ic][il], 0.01);  // the 1 %
+          EXPECT_LT(e.gap_comp, 0.6 * e.gap_raw);
+          analysis::IndexSettings is;
+          is.load_N = 15000.0;
+          double worst = 0.0;
+          for (double t : {40.0, 60.0}) {
+            const auto a = analysis::anti_shudder_indices(*c.law, t, is);
+            const auto b = analysis::anti_shudder_indices(*rt.truth.friction, t, is);
+            worst = std::max(worst, std::abs(a[analysis::Index::kMu1OverMu50].value /
+                                                 b[analysis::Index::kMu1OverMu50].value - 1.0));
+          }
+          std::printf("[ figures  ] piecewise + table: mu1/mu50 at 15 kN, 40 and 60 °C within %.4f of the truth\n", worst);
+          EXPECT_LT(worst, 0.02);  // the 2 % on the indices (a ratio of two values within 1 %)
+        }
+      }
+  // Without the piecewise form the quadratic cannot follow the matrix's kinks: it misses more.
+  EXPECT_LT(passed[0][1][1], passed[0][0][1]);
+}
+
+// The matrix through another thermal model (40 radial cells, oil flow growing with slip, a
+// thermocouple lagging 0.5 s), 20 kN: the 2 % for data from a model not the method's own.
+TEST(CharacteriseRoundTrip, FluidCMatrixOtherThermalModelWithinTwoPercent) {
+  RoundTrip rt;
+  rt.truth = io::load_fluid(SHUDDER_SOURCE_DIR "/scenarios/fluids/lsc_fluid_c.toml");
+  const auto vary = [](clutch::WetClutchParams& p) {
+    p.thermal.radial_cells = 40;
+    p.thermal.oil_flow.a = 0.002;
+    p.thermal.oil_flow.e = 0.010;
+    p.thermal.temperature_sensor_lag = true;
+    p.thermal.sensor_time_constant_s = 0.5;
+  };
+  unsigned seed = 900;
+  for (double t0 : {30.0, 40.0, 50.0, 60.0, 70.0}) {
+    rt.interface_C.emplace_back();
+    rt.runs.push_back(test::simulated_ramp_run(rt.truth, test::paper_d_cycle(20000.0), t0, seed++, 50.0, "temp_C", vary,
+                                               &rt.interface_C.back()));
+  }
+  const Characterisation c = analysis::characterise(rt.runs, round_trip_settings(Compensation::kPiecewise, LawKind::kTable));
+  const double passed = max_error_where_passed(c, *rt.truth.friction, rt);
+  std::printf("[ figures  ] fluid C matrix through another thermal model, 20 kN, piecewise + table: where the ramps "
+              "passed %.4f, at the rows %.4f\n", passed, errors_of(c, *rt.truth.friction).mu);
+  EXPECT_LT(passed, 0.02);
 }
 
 TEST(CharacteriseRoundTrip, FluidCMatrixQuadraticCompensationBeatsNone) {
@@ -189,6 +288,13 @@ TEST(CharacteriseRoundTrip, PaperELinearLawWithinOnePercentAtTheInterfaceTempera
     err[channel][0] = errors_of(none, *truth.friction).mu;
     err[channel][1] = errors_of(quad, *truth.friction).mu;
     err[channel][2] = errors_of(table, *truth.friction).mu;
+    // Piecewise compensation on a law smooth in T (rows 15 °C apart, knots there): no worse.
+    const Characterisation pw = analysis::characterise(runs, round_trip_settings(Compensation::kPiecewise, LawKind::kLinear));
+    const Characterisation pwt = analysis::characterise(runs, round_trip_settings(Compensation::kPiecewise, LawKind::kTable));
+    std::printf("[ figures  ] Paper E fluid C, %s: piecewise + linear law %.4f, piecewise + table %.4f\n",
+                channel == 0 ? "interface" : "thermocouple", errors_of(pw, *truth.friction).mu,
+                errors_of(pwt, *truth.friction).mu);
+    EXPECT_LT(errors_of(pw, *truth.friction).mu, 0.01);
   }
   std::printf("[ figures  ] Paper E fluid C (linear law) round trip, max |mu/mu_true - 1|: interface temperature: "
               "none %.4f, quadratic+linear law %.4f, quadratic+table %.4f; thermocouple: none %.4f, quadratic+linear "
@@ -221,9 +327,12 @@ TEST(CharacteriseRoundTrip, OtherThermalModelWithinTwoPercent) {
                                 *truth.friction).mu;
   const double quad = errors_of(analysis::characterise(runs, round_trip_settings(Compensation::kQuadratic, LawKind::kLinear)),
                                 *truth.friction).mu;
+  const double pw = errors_of(analysis::characterise(runs, round_trip_settings(Compensation::kPiecewise, LawKind::kLinear)),
+                              *truth.friction).mu;
   std::printf("[ figures  ] Paper E fluid C through another thermal model (finer grid, slip-dependent oil flow, "
-              "0.5 s sensor lag): none %.4f, quadratic+linear law %.4f\n", none, quad);
+              "0.5 s sensor lag): none %.4f, quadratic+linear law %.4f, piecewise+linear law %.4f\n", none, quad, pw);
   EXPECT_LT(quad, 0.02);  // the bound for data from another thermal model
+  EXPECT_LT(pw, 0.02);
 }
 
 TEST(CharacteriseRoundTrip, IndicesFollowTheTruth) {

@@ -59,6 +59,25 @@ TEST(CliCharacterise, WritesAFluidThatScreenAndRunAcceptPlusJsonAndReport) {
   EXPECT_EQ(json["rows"].items.size(), 6u);
   EXPECT_EQ(json["ramps_used"].items.size(), 12u);
   EXPECT_TRUE(fs::exists(dir / "rep" / "summary.txt"));
+  // Paper D's cycles start at N0 = 1 rpm, never at rest: no breakaway to measure, and it says so.
+  EXPECT_FALSE(json["breakaway"]["measured"].boolean);
+  EXPECT_EQ(json["breakaway"]["ratio"].num(), 1.0);
+  EXPECT_THAT(json["breakaway"]["not_measured"].str(), ::testing::HasSubstr("no run starts an up-ramp from rest"));
+  EXPECT_THAT(r.out, ::testing::HasSubstr("breakaway ratio (mu_s / mu_k(v_min), written): 1 — not measured: no run "
+                                          "starts an up-ramp from rest"));
+  EXPECT_THAT(test::slurp(dir / "fitted.toml"), ::testing::HasSubstr("source = \"not measured: no run starts"));
+  // Piecewise compensation: one surface per load, its knots at the rows (40, 60, 80 °C) and on.
+  const auto pw = test::run_cli("characterise" + runs + " -o pw.toml --law table --compensation piecewise --json pw.json" +
+                                    kFluidArgs, dir);
+  ASSERT_EQ(pw.exit_code, 0) << pw.err;
+  const auto pj = test::parse(test::slurp(dir / "pw.json"));
+  EXPECT_EQ(pj["compensation"].str(), "piecewise");
+  ASSERT_EQ(pj["piecewise"].items.size(), 2u);  // 10 and 20 kN
+  for (const auto& row_temp : pj["temps_C"].items) {
+    bool is_knot = false;
+    for (const auto& knot : pj["piecewise"].items[0]["temp_knots_C"].items) is_knot |= knot.num() == row_temp.num();
+    EXPECT_TRUE(is_knot) << row_temp.num();
+  }
   const auto screen = test::run_cli("screen fitted.toml --load-N 15000", dir);
   EXPECT_EQ(screen.exit_code, 0) << screen.err;
   // The same runs as a table law; a Paper G Case 2 run with it.
@@ -120,6 +139,11 @@ TEST(CliCharacterise, QuadraticCompensationWithOneTemperatureIsBadInput) {
   write_runs(dir);
   const auto r = test::run_cli("characterise a.csv -o out.toml --json fit.json" + kFluidArgs, dir);
   test::expect_rejected(r, {"a.csv", "quadratic compensation at 10 kN", "--compensation linear or none"});
+  expect_nothing_written(dir);
+  // Piecewise: one ramp's speed and temperature rise together; no second row to separate them.
+  const auto p = test::run_cli("characterise a.csv -o out.toml --json fit.json --compensation piecewise" + kFluidArgs, dir);
+  test::expect_rejected(p, {"a.csv", "piecewise compensation at 10 kN: ramps start at 1 row temperature",
+                            "--compensation linear or none"});
   expect_nothing_written(dir);
 }
 

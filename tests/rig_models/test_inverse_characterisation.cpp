@@ -45,10 +45,10 @@ std::vector<rig_models::ReplayInputs> replay_inputs(const std::vector<analysis::
   return in;
 }
 
-CharacterisationSettings settings(LawKind law) {
+CharacterisationSettings settings(LawKind law, Compensation comp = Compensation::kQuadratic) {
   CharacterisationSettings s;
   s.law = law;
-  s.compensation = Compensation::kQuadratic;  // the sensor method the inverse one starts from
+  s.compensation = comp;  // the sensor method the inverse one starts from
   s.conversion.rule = analysis::RadiusRule::kUniformPressure;
   return s;
 }
@@ -63,8 +63,29 @@ rig_models::InverseSettings inverse_settings(const clutch::Fluid& any_fluid) {
 
 struct Set {
   std::vector<analysis::RampRun> runs;
+  std::vector<std::vector<double>> interface_C;  // the data model's mean interface temperature
   clutch::Fluid truth;
 };
+
+// Max |mu_fit/mu_true − 1| where the ramps passed: at each node speed a used ramp crosses, at the
+// data model's mean interface temperature there (within the law's rows) and the run's load.
+double max_error_where_passed(const Characterisation& c, const clutch::FrictionLaw& truth, const Set& set) {
+  double e = 0.0;
+  for (const auto& ramp : c.used)
+    for (std::size_t k = 0; k < c.node_rpm.size(); ++k) {
+      double t = 0.0;
+      int n = 0;
+      for (std::size_t i = ramp.first; i <= ramp.last; ++i)
+        if (std::abs(set.runs[ramp.run].speed_rpm[i] - c.node_rpm[k]) <= 0.05 * c.node_rpm[k]) {
+          t += set.interface_C[ramp.run][i];
+          ++n;
+        }
+      if (n == 0 || t / n > c.temps_C.back() || t / n < c.temps_C.front()) continue;
+      const double v = c.node_speeds_mm_s[k];
+      e = std::max(e, std::abs(c.law->mu(v, t / n, ramp.load_N) / truth.mu(v, t / n, ramp.load_N) - 1.0));
+    }
+  return e;
+}
 
 // 10, 15, 20 kN x 5 start temperatures, Paper D cycles (10 s ramps), 50 S/s, sensor noise.
 Set round_trip(const std::string& fluid_file, std::vector<double> temps_C) {
@@ -72,21 +93,30 @@ Set round_trip(const std::string& fluid_file, std::vector<double> temps_C) {
   s.truth = io::load_fluid(std::string(SHUDDER_SOURCE_DIR "/scenarios/fluids/") + fluid_file);
   unsigned seed = 500;
   for (double load : {10000.0, 15000.0, 20000.0})
-    for (double t0 : temps_C) s.runs.push_back(test::simulated_ramp_run(s.truth, test::paper_d_cycle(load), t0, seed++, 50.0));
+    for (double t0 : temps_C) {
+      s.interface_C.emplace_back();
+      s.runs.push_back(test::simulated_ramp_run(s.truth, test::paper_d_cycle(load), t0, seed++, 50.0, "temp_C", {},
+                                                &s.interface_C.back()));
+    }
   return s;
 }
 
-// Fluid C's matrix (kinks in mu(T) between its 10 °C rows): the inverse method must converge
-// in a few replays, recover the oil flow the data were made with from a wrong start, reduce the
-// temperature misfit and the replayed-torque misfit, and be at least as close to the truth as
-// the sensor method. The 1 % target is not reached by either (docs/characterisation.md §2).
-TEST(InverseCharacterisation, FluidCMatrixRecoversTheOilFlowAndBeatsTheSensor) {
+// Fluid C's matrix (kinks in mu(T) between its 10 °C rows), piecewise compensation and table
+// law: the inverse method must converge in a few replays, recover the oil flow the data were
+// made with from a wrong start, reduce the temperature misfit and the replayed-torque misfit,
+// and stay within the noise's bound of the truth (docs/characterisation.md §2b).
+TEST(InverseCharacterisation, FluidCMatrixRecoversTheOilFlowAndTheLaw) {
   const Set set = round_trip("lsc_fluid_c.toml", {30.0, 40.0, 50.0, 60.0, 70.0});
   auto is = inverse_settings(set.truth);
   is.model.clutch.thermal.oil_flow.e = 0.03;  // the data were made with 0.016 (Paper G defaults)
-  const auto r = rig_models::characterise_inverse(set.runs, replay_inputs(set.runs), settings(LawKind::kMaki), "temp_C", is);
+  const auto r = rig_models::characterise_inverse(set.runs, replay_inputs(set.runs),
+                                                  settings(LawKind::kTable, Compensation::kPiecewise), "temp_C", is);
   const double es = max_error(r.sensor, *set.truth.friction), ei = max_error(r.inverse, *set.truth.friction);
-  std::printf("[ figures  ] fluid C matrix, maki law: max |mu/mu_true - 1| sensor (quadratic) %.4f, inverse %.4f; "
+  const double ps = max_error_where_passed(r.sensor, *set.truth.friction, set),
+               pi = max_error_where_passed(r.inverse, *set.truth.friction, set);
+  std::printf("[ figures  ] fluid C matrix, piecewise + table: max |mu/mu_true - 1| where the ramps passed: sensor %.4f, "
+              "inverse %.4f\n", ps, pi);
+  std::printf("[ figures  ] fluid C matrix, piecewise + table: max |mu/mu_true - 1| at the rows: sensor %.4f, inverse %.4f; "
               "%d law updates, %d replays, last change %.2g; oil flow e 0.03 -> %.4g (truth 0.016), a %.3g; "
               "temp rms %.3f -> %.3f C; replayed torque rms sensor law %.4f, inverse law %.4f N m\n",
               es, ei, r.iterations, r.replays, r.last_change_mu, r.oil_flow.e, r.oil_flow.a, r.temp_rms_start_C,
@@ -97,8 +127,13 @@ TEST(InverseCharacterisation, FluidCMatrixRecoversTheOilFlowAndBeatsTheSensor) {
   EXPECT_LT(r.temp_rms_C, 0.2 * r.temp_rms_start_C);  // 5 °C with e = 0.03; the noise floor is 0.4 °C
   EXPECT_LE(r.iterations, 6);  // the law enters the temperature field only through the heat
   EXPECT_LT(r.torque_rms_Nm, r.torque_rms_sensor_Nm);
-  EXPECT_LT(ei, es);
-  EXPECT_LT(ei, 0.035);  // measured 2.6 %: the quadratic's form against the matrix's kinks
+  // Piecewise compensation + table law follow the matrix's kinks with either temperature; what
+  // remains is the torque cell's noise in the rows' bins (measured on these seeds: sensor 0.71 %,
+  // inverse 0.81 % where the ramps passed; 0.91 % for the sensor on the seeds of
+  // test_friction_characterisation.cpp). The inverse method removes the thermocouple's offset
+  // but not the noise, so it is held to the 1 %, not to beat the sensor.
+  EXPECT_LT(pi, 0.01);
+  EXPECT_LT(ei, 0.015);  // at the rows, incl. the coldest row's extrapolated high speeds (0.89 %)
 
   // Indices and screening from the inverse law.
   analysis::IndexSettings idx;

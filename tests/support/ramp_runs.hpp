@@ -37,14 +37,16 @@ inline rig_models::DriveCycle paper_e_cycle(double load_N, int ramps = 5) {
 
 /// One simulated run of `cycle` from `start_temp_C` (discs and sump), sampled at `rate_Hz` with
 /// sensor noise (seed), as the characterisation reads it. `temp_channel` may also name a model
-/// signal the measured run does not carry; `vary` changes the clutch and thermal parameters
+/// signal the measured run does not carry; `interface_mean_C` (if given) gets the model's
+/// area-mean interface temperature at the same samples (where the ramps passed); `vary` changes the clutch and thermal parameters
 /// (another thermal model than the one the characterisation is judged by). `temp_channel` may name a model
 /// signal the measured run does not carry (e.g. interface_mean_temp_C: the temperature a
 /// sensor would need to read for exact compensation), taken noise-free from the recording.
 inline analysis::RampRun simulated_ramp_run(const clutch::Fluid& fluid, const rig_models::DriveCycle& cycle,
                                             double start_temp_C, unsigned seed, double rate_Hz = 100.0,
                                             const std::string& temp_channel = "temp_C",
-                                            const std::function<void(clutch::WetClutchParams&)>& vary = {}) {
+                                            const std::function<void(clutch::WetClutchParams&)>& vary = {},
+                                            std::vector<double>* interface_mean_C = nullptr) {
   clutch::WetClutchParams p;  // Paper G thermal defaults, one sliding interface
   if (vary) vary(p);
   p.start_temp_C = start_temp_C;
@@ -61,6 +63,7 @@ inline analysis::RampRun simulated_ramp_run(const clutch::Fluid& fluid, const ri
   const io::MeasuredRun m = io::make_measurement("synthetic_" + std::to_string(seed), rec, mo);
   const std::vector<double>* temp = m.column(temp_channel);
   if (!temp) temp = &rec.find(temp_channel)->values;  // same samples: no resampling asked for
+  if (interface_mean_C) *interface_mean_C = rec.find("interface_mean_temp_C")->values;
   return {m.path, m.required("time_s"), m.required("speed_rpm"), m.required("normal_force_N"),
           m.required("torque_Nm"), *temp};
 }
