@@ -265,9 +265,10 @@ const Simulation::Constraints& Simulation::constraints() const {
   }
   // The pseudo-inverse from a complete orthogonal decomposition: the minimum-norm solution stays
   // defined when rows are dependent (several contacts locking one loop); accelerations are
-  // unique regardless. Applying it as a matrix (instead of the decomposition's Householder
-  // steps per right-hand side: 60 % of a driveline run when refactorised, ~15 % when only
-  // re-solved) rounds differently, at the level of a backward-stable solve (cond(KKT) · eps).
+  // unique regardless. Applied as a matrix (a 20 × 20 product for the driveline) instead of the
+  // decomposition's Householder steps per right-hand side (≈ 16 k instructions each, 860 M of a
+  // 5 s tight turn; refactorising each time cost 3.8 G more), it rounds differently, at the
+  // level of a backward-stable solve (cond(KKT) · ε): docs/performance.md, session 20.
   if (m > 0) {
     k.kkt_pinv = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(kkt).pseudoInverse();
     ++counters_.constraint_factorisations;
