@@ -129,8 +129,8 @@ LinearSystem linearise_network(const TorsionalNetwork& net, const LinearOperatin
   return sys;
 }
 
-std::vector<LinearMode> linear_modes(const LinearSystem& sys) {
-  Eigen::EigenSolver<Eigen::MatrixXd> es(sys.a, true);
+std::vector<LinearMode> linear_modes(const LinearSystem& sys, bool shapes) {
+  Eigen::EigenSolver<Eigen::MatrixXd> es(sys.a, shapes);
   const Eigen::VectorXcd ev = es.eigenvalues();
   // The rigid-body zeros: the `rigid_body_modes` eigenvalues of smallest modulus.
   std::vector<Eigen::Index> order(static_cast<std::size_t>(ev.size()));
@@ -147,6 +147,10 @@ std::vector<LinearMode> linear_modes(const LinearSystem& sys) {
     md.eigenvalue = l;
     md.frequency_Hz = l.imag() / (2.0 * std::numbers::pi);
     md.damping_ratio = std::abs(l) > 0 ? -l.real() / std::abs(l) : 0.0;
+    if (!shapes) {
+      out.push_back(std::move(md));
+      continue;
+    }
     const Eigen::VectorXcd w = sys.node_speeds(es.eigenvectors().col(i));
     Eigen::Index imax = 0;
     w.cwiseAbs().maxCoeff(&imax);

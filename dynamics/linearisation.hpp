@@ -71,7 +71,9 @@ struct LinearMode {
 };
 
 /// The eigenvalues of A (each oscillatory pair once, Im λ > 0; real roots all, except the
-/// rigid-body zeros), sorted by frequency then real part.
-std::vector<LinearMode> linear_modes(const LinearSystem& sys);
+/// rigid-body zeros), sorted by frequency then real part. Without `shapes` the eigenvectors are
+/// not computed (node_amplitude and node_phase_rad stay empty; about half the work): the
+/// eigenvalues are the same to the bit (the same Hessenberg and Schur steps on A).
+std::vector<LinearMode> linear_modes(const LinearSystem& sys, bool shapes = true);
 
 }  // namespace shudder::dynamics

@@ -24,7 +24,9 @@
 // (e.g. clutch rings, handed to a thermal step), each contact's total friction work, the work
 // of all sources and the damper losses.
 
+#include <Eigen/Dense>
 #include <boost/numeric/odeint.hpp>
+#include <deque>
 #include <functional>
 #include <vector>
 
@@ -69,6 +71,7 @@ struct EnergyAccount {
 
 struct Counters {
   long steps = 0, rhs_calls = 0, stick_events = 0, breakaway_events = 0, reversal_events = 0;
+  long constraint_factorisations = 0;  // KKT factorisations: one per stuck set met (cached)
 };
 
 class Simulation {
@@ -107,6 +110,19 @@ class Simulation {
   using State = std::vector<double>;
   struct Forces;
   struct System;
+  /// One row of the constraint system: the stuck contact it locks or the speed source it
+  /// prescribes (its right-hand side, the source's acceleration), else -1.
+  struct ConstraintRow {
+    int contact = -1, speed_source = -1;
+  };
+  /// The constraint rows and the KKT matrix's pseudo-inverse for one set of stuck contacts: the
+  /// matrix depends on nothing else, so each set is factorised once per run and every
+  /// right-hand side costs one matrix–vector product.
+  struct Constraints {
+    std::vector<bool> modes_stuck;
+    std::vector<ConstraintRow> rows;
+    Eigen::MatrixXd kkt_pinv;  // (n + rows)²
+  };
 
   Sample evaluate(const State& x, double t) const;
   void compute(const State& x, double t, Forces& f) const;
@@ -116,6 +132,7 @@ class Simulation {
   double project_velocities(State& x, double t);
   void resolve_contacts(State& x, double t, std::vector<int> sticking, std::vector<int> releasing);
   void equalise_stuck_groups(double* v) const;
+  const Constraints& constraints() const;
 
   const TorsionalNetwork& net_;
   IntegratorSettings cfg_;
@@ -136,6 +153,8 @@ class Simulation {
           boost::numeric::odeint::runge_kutta_dopri5<State>>>;
   Stepper stepper_;
   double last_dt_ = 0.0;
+  // Factorised constraint systems, one per stuck set met so far (a handful per run).
+  mutable std::deque<Constraints> constraint_cache_;
 };
 
 }  // namespace shudder::dynamics

@@ -180,9 +180,12 @@ DrivelineOperatingPoint recorded_operating_point(const dynamics::Recording& rec,
   return op;
 }
 
-DrivelineStability driveline_stability(const HaldexDriveline& dl, const clutch::WetClutch& clutch,
-                                       const DrivelineOperatingPoint& op, bool coupling_locked,
-                                       const Eigen::MatrixXd& extra_damping) {
+namespace {
+
+// The linear system of driveline_stability (see there), with the network's node names.
+dynamics::LinearSystem linearise_driveline(const HaldexDriveline& dl, const clutch::WetClutch& clutch,
+                                           const DrivelineOperatingPoint& op, bool coupling_locked,
+                                           const Eigen::MatrixXd& extra_damping, std::vector<std::string>* node_names) {
   if (!std::isfinite(op.clamp_force_N) || !(op.clamp_force_N > 0))
     throw std::invalid_argument("driveline stability: the clamp force must be a finite value > 0 N");
   if (!std::isfinite(op.interface_temp_C) || !std::isfinite(op.vehicle_speed_m_s) ||
@@ -208,15 +211,31 @@ DrivelineStability driveline_stability(const HaldexDriveline& dl, const clutch::
   for (int w = 0; w < 4; ++w) lop.element_states[w] = tyre_deflection_m(dl.tyre(w), op.tyre_force_N[static_cast<std::size_t>(w)]);
   lop.stuck = {coupling_locked};
   lop.extra_damping = extra_damping;
+  if (node_names)
+    for (const auto& in : net.inertias()) node_names->push_back(in.name);
+  return dynamics::linearise_network(net, lop);
+}
 
+}  // namespace
+
+DrivelineStability driveline_stability(const HaldexDriveline& dl, const clutch::WetClutch& clutch,
+                                       const DrivelineOperatingPoint& op, bool coupling_locked,
+                                       const Eigen::MatrixXd& extra_damping) {
   DrivelineStability st;
-  st.system = dynamics::linearise_network(net, lop);
+  st.system = linearise_driveline(dl, clutch, op, coupling_locked, extra_damping, &st.node_names);
   st.modes = dynamics::linear_modes(st.system);
   st.coupling_slope_Nms = st.system.contact_slope_Nms[D::kCoupling];
   Eigen::EigenSolver<Eigen::MatrixXd> es(st.system.a, false);
   st.point = analysis::stability_from_eigenvalues(es.eigenvalues(), st.system.rigid_body_modes);
-  for (const auto& in : net.inertias()) st.node_names.push_back(in.name);
   return st;
+}
+
+CouplingMode least_damped_slipping_mode(const HaldexDriveline& dl, const clutch::WetClutch& clutch,
+                                        const DrivelineOperatingPoint& op, const Eigen::MatrixXd& extra_damping) {
+  DrivelineStability st;
+  st.system = linearise_driveline(dl, clutch, op, false, extra_damping, nullptr);
+  st.modes = dynamics::linear_modes(st.system, false);
+  return least_damped_mode(st);
 }
 
 CouplingMode least_damped_mode(const DrivelineStability& st) {
@@ -257,13 +276,13 @@ ThermalFeedback coupling_thermal_feedback(const HaldexDriveline& dl, const clutc
 
 CouplingMode least_damped_mode_with_thermal(const HaldexDriveline& dl, const clutch::WetClutch& clutch,
                                             const DrivelineOperatingPoint& op) {
-  CouplingMode mode = least_damped_mode(driveline_stability(dl, clutch, op, false));
+  CouplingMode mode = least_damped_slipping_mode(dl, clutch, op);
   for (int round = 0; round < 2 && std::isfinite(mode.frequency_Hz) && mode.frequency_Hz > 0; ++round) {
     const double added = coupling_thermal_feedback(dl, clutch, op, mode.frequency_Hz).added_damping_Nms;
     Eigen::MatrixXd extra = Eigen::MatrixXd::Zero(D::kNodes, D::kNodes);
     extra(D::kCouplingIn, D::kCouplingIn) = extra(D::kCouplingOut, D::kCouplingOut) = added;
     extra(D::kCouplingIn, D::kCouplingOut) = extra(D::kCouplingOut, D::kCouplingIn) = -added;
-    mode = least_damped_mode(driveline_stability(dl, clutch, op, false, extra));
+    mode = least_damped_slipping_mode(dl, clutch, op, extra);
   }
   return mode;
 }
@@ -273,7 +292,7 @@ double onset_clamp_force_N(const HaldexDriveline& dl, const clutch::WetClutch& c
   const auto growth = [&](double force_N) {
     const auto op = quasi_static_operating_point(dl, clutch, inputs, 1.0, force_N);
     return (thermal ? least_damped_mode_with_thermal(dl, clutch, op)
-                    : least_damped_mode(driveline_stability(dl, clutch, op, false))).growth_per_s;
+                    : least_damped_slipping_mode(dl, clutch, op)).growth_per_s;
   };
   double g_lo = growth(lo_N);
   const double g_hi = growth(hi_N);
@@ -319,7 +338,7 @@ std::vector<dynamics::Map2D> coupling_stability_maps(const HaldexDriveline& dl, 
                                               op.coupling_slip_rad_s == 0.0 ? 1.0 : op.coupling_slip_rad_s);
         p.interface_temp_C = temps_C[static_cast<std::size_t>(j)];
         p.clamp_force_N = forces_N[k];
-        const CouplingMode mode = least_damped_mode(driveline_stability(dl, clutch, p, false));
+        const CouplingMode mode = least_damped_slipping_mode(dl, clutch, p);
         growth(i, j) = mode.growth_per_s;
         freq(i, j) = mode.frequency_Hz;
         zeta(i, j) = mode.damping_ratio;

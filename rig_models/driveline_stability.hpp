@@ -85,6 +85,11 @@ struct CouplingMode {
   double growth_per_s = 0.0, frequency_Hz = 0.0, damping_ratio = 0.0;
 };
 CouplingMode least_damped_mode(const DrivelineStability& st);
+/// least_damped_mode(driveline_stability(dl, clutch, op, false, extra_damping)) to the bit,
+/// without the mode shapes and the stability point it does not read (about half the work; the
+/// stability maps, the onset search and the thermal rounds call it per point).
+CouplingMode least_damped_slipping_mode(const HaldexDriveline& dl, const clutch::WetClutch& clutch,
+                                        const DrivelineOperatingPoint& op, const Eigen::MatrixXd& extra_damping = {});
 
 /// The interface temperature's feedback on the coupling's torque at an oscillation of angular
 /// frequency ω (issue 13 part 4; the isothermal slope leaves it out). Per interface (n of them,

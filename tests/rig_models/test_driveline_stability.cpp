@@ -199,6 +199,49 @@ namespace {
 // Each map cell is the linearisation at that cell's point; with the negative-slope fluid the
 // growth rate rises with the clamp force (the negative damping n r F dμ/dv ∝ F) at every slip
 // on the falling branch, and the rising branch below 10 rpm is stable.
+// The maps' and the onset search's shortcut (no mode shapes, no stability point) gives the
+// least-damped slipping mode of the full analysis to the bit, with and without extra damping,
+// on the rising and the falling branch, at low and high clamp force; and the shape-free modes
+// are the full modes' eigenvalues in the same order. Exact: the same Hessenberg and Schur steps.
+TEST(DrivelineStability, ShapeFreeLeastDampedModeEqualsTheFullAnalysisBitForBit) {
+  const io::Scenario sc = tight_turn();
+  const auto& model = std::get<DrivelineModel>(sc.model);
+  const clutch::WetClutch clutch(sc.clutch, io::load_fluid(std::string(SHUDDER_SOURCE_DIR) +
+                                                           "/scenarios/fluids/schematic_negative_slope.toml"));
+  DrivelineInputs in = model.manoeuvre;
+  in.start_speed_km_h = 10.0;
+  const HaldexDriveline dl(model.params, clutch, in);
+  const auto op = quasi_static_operating_point(dl, clutch, in);
+  Eigen::MatrixXd extra = Eigen::MatrixXd::Zero(D::kNodes, D::kNodes);
+  extra(D::kCouplingIn, D::kCouplingIn) = extra(D::kCouplingOut, D::kCouplingOut) = -0.3;
+  extra(D::kCouplingIn, D::kCouplingOut) = extra(D::kCouplingOut, D::kCouplingIn) = 0.3;
+  int compared = 0;
+  for (const double slip_rpm : {2.0, 30.0})
+    for (const double force_N : {400.0, 20000.0})
+      for (const bool with_extra : {false, true}) {
+        DrivelineOperatingPoint p = op;
+        p.node_speeds_rad_s = Eigen::VectorXd();
+        p.coupling_slip_rad_s = slip_rpm * std::numbers::pi / 30.0;
+        p.clamp_force_N = force_N;
+        const Eigen::MatrixXd damping = with_extra ? extra : Eigen::MatrixXd();
+        const DrivelineStability full = driveline_stability(dl, clutch, p, false, damping);
+        const CouplingMode a = least_damped_mode(full);
+        const CouplingMode b = least_damped_slipping_mode(dl, clutch, p, damping);
+        ASSERT_TRUE(std::isfinite(a.growth_per_s));
+        EXPECT_EQ(a.growth_per_s, b.growth_per_s);
+        EXPECT_EQ(a.frequency_Hz, b.frequency_Hz);
+        EXPECT_EQ(a.damping_ratio, b.damping_ratio);
+        const auto bare = dynamics::linear_modes(full.system, false);
+        ASSERT_EQ(bare.size(), full.modes.size());
+        for (std::size_t k = 0; k < bare.size(); ++k) {
+          EXPECT_EQ(bare[k].eigenvalue, full.modes[k].eigenvalue);
+          EXPECT_TRUE(bare[k].node_amplitude.size() == 0);
+        }
+        ++compared;
+      }
+  EXPECT_EQ(compared, 8);
+}
+
 TEST(DrivelineStability, CouplingMapsAreTheLinearisationAtEachCell) {
   const io::Scenario sc = tight_turn();
   const auto& model = std::get<DrivelineModel>(sc.model);
