@@ -39,6 +39,10 @@ namespace shudder::rig_models {
 
 struct ReplayModel {
   bool rig = false;  // the LSCTR rig; else prescribed slip
+  // A driveline's Haldex coupling replayed alone: the measured slip and clamp force imposed on
+  // its pack (prescribed slip; rig_models/coupling_measurement.hpp has the run's columns). Its
+  // candidates are the effects that act in a driveline and in the replay.
+  bool driveline = false;
   clutch::WetClutchParams clutch;
   clutch::Fluid fluid;
   PrescribedSlipSettings settings;  // solver steps, sampling; bearing drag for both models
@@ -83,7 +87,8 @@ analysis::Simulator replay_simulator(ReplayModel model, std::vector<ReplayInputs
 analysis::Reproducer replay_reproducer(ReplayModel model, std::vector<ReplayInputs> inputs);
 
 /// Every registry effect the model has off, as a diagnosis candidate. Effects inert in this
-/// model's kind (stick-time friction with imposed slip) are left out, with a note in `skipped`.
+/// model's kind (stick-time friction with imposed slip; for a driveline's coupling, also those
+/// inert in a driveline) are left out, with a note in `skipped`.
 std::vector<analysis::EffectCandidate> replay_candidates(const ReplayModel& model,
                                                          std::vector<std::string>* skipped);
 
