@@ -17,6 +17,8 @@ namespace shudder::rig_models {
 
 namespace {
 
+constexpr int kCouplingStepsPerHold = 10;
+
 // Mean of `x` over consecutive windows of `window_s`, at the windows' mean times.
 PiecewiseLinear window_means(const std::vector<double>& t, const std::vector<double>& x, double t0,
                              double window_s) {
@@ -35,6 +37,29 @@ PiecewiseLinear window_means(const std::vector<double>& t, const std::vector<dou
       times.push_back(tm);
       values.push_back(sx / n);
     }
+    b = e;
+  }
+  return {times, values};
+}
+
+// Mean of `x` over the windows (t0 + k w, t0 + (k+1) w], held over each window: the clamp force
+// of a coupling, which its hydraulic step w holds between updates (the sample at a step's end
+// still carries the old force, hence the window closed on the right). Empty windows are
+// bridged linearly. A continuous force is followed within half its change over w.
+PiecewiseLinear window_holds(const std::vector<double>& t, const std::vector<double>& x, double t0, double w) {
+  std::vector<double> times, values;
+  const double eps = 1e-3 * w;  // the hold's edge: steep, yet strictly increasing times
+  for (std::size_t b = 0; b < t.size();) {
+    const double k = std::ceil((t[b] - t0) / w - 1e-9) - 1.0;
+    const double end = t0 + (k + 1.0) * w;
+    std::size_t e = b;
+    double sx = 0;
+    for (; e < t.size() && t[e] <= end + 1e-9 * w; ++e) sx += x[e];
+    const double mean = sx / static_cast<double>(e - b);
+    times.push_back(k * w + eps);
+    values.push_back(mean);
+    times.push_back((k + 1.0) * w);
+    values.push_back(mean);
     b = e;
   }
   return {times, values};
@@ -100,8 +125,9 @@ ReplayOutput replay(const ReplayModel& model, const ReplayInputs& in) {
   const clutch::WetClutch clutch(cp, model.fluid);
 
   DriveCycle cycle;
-  // A coupling's clamp force moves in steps of its hydraulic step (rig_models/haldex_driveline.hpp):
-  // windows of that length follow them, where 0.05 s would smear the take-up's step over 50 ms.
+  // A coupling's clamp force moves in steps of its hydraulic step (rig_models/haldex_driveline.hpp),
+  // which the replay holds as the driveline does; 0.05 s windows joined linearly would smear the
+  // take-up's step over 50 ms and every later step into a saw-tooth.
   const double window_s = model.driveline ? model.settings.thermal_step_s : in.input_window_s;
   // On the rig the measured speed is the drive's; its loop's set point is what drives the model.
   const bool setpoint = model.rig && in.torque_Nm.size() == t.size();
@@ -112,7 +138,8 @@ ReplayOutput replay(const ReplayModel& model, const ReplayInputs& in) {
   // A load cell reading g_F too much: the clutch was pressed with F_rec / g_F.
   std::vector<double> force_N = in.normal_force_N;
   for (auto& f : force_N) f = model.settings.load_cell.true_N(f);
-  cycle.normal_force_N = window_means(t, force_N, t0, window_s);
+  cycle.normal_force_N =
+      model.driveline ? window_holds(t, force_N, t0, window_s) : window_means(t, force_N, t0, window_s);
 
   dynamics::Recording rec;
   const double duration = t.back() - t0;
@@ -125,6 +152,9 @@ ReplayOutput replay(const ReplayModel& model, const ReplayInputs& in) {
   } else {
     PrescribedSlipSettings ps = model.settings;
     ps.duration_s = duration;
+    // Prescribed slip records its step ends and interpolates between them; a coupling's held
+    // force steps every thermal step, so ten steps per hold put the recorded torque on the steps.
+    if (model.driveline) ps.thermal_step_s = model.settings.thermal_step_s / kCouplingStepsPerHold;
     ps.snapshot_times_s.clear();
     rec = run_prescribed_slip(clutch, cycle, ps);
   }
