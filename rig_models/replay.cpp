@@ -48,7 +48,10 @@ PiecewiseLinear window_means(const std::vector<double>& t, const std::vector<dou
 // bridged linearly. A continuous force is followed within half its change over w.
 PiecewiseLinear window_holds(const std::vector<double>& t, const std::vector<double>& x, double t0, double w) {
   std::vector<double> times, values;
-  const double eps = 1e-3 * w;  // the hold's edge: steep, yet strictly increasing times
+  // The hold ends eps after its window and the next starts 2 eps after: a steep edge, strictly
+  // increasing times, and a step end that the thermal steps' summed times reach a few ulps late
+  // still reads the old force, as the driveline's sample there does.
+  const double eps = 1e-3 * w;
   for (std::size_t b = 0; b < t.size();) {
     const double k = std::ceil((t[b] - t0) / w - 1e-9) - 1.0;
     const double end = t0 + (k + 1.0) * w;
@@ -56,9 +59,9 @@ PiecewiseLinear window_holds(const std::vector<double>& t, const std::vector<dou
     double sx = 0;
     for (; e < t.size() && t[e] <= end + 1e-9 * w; ++e) sx += x[e];
     const double mean = sx / static_cast<double>(e - b);
-    times.push_back(k * w + eps);
+    times.push_back(k * w + 2.0 * eps);
     values.push_back(mean);
-    times.push_back((k + 1.0) * w);
+    times.push_back((k + 1.0) * w + eps);
     values.push_back(mean);
     b = e;
   }
