@@ -245,9 +245,9 @@ analysis::Reproducer replay_reproducer(ReplayModel model, std::vector<ReplayInpu
     // A coupling's pack turns clamp-force noise into torque n_interfaces times as strongly as
     // the rig's single disc (16 x: 37.5 N of load-cell noise reads ~3 N m), so its replay error
     // counts it: the force gets fresh noise of the sigma the measured force shows.
-    if (model.driveline) {
+    if (const double sigma_N = analysis::estimate_noise_sigma(in.normal_force_N); model.driveline && sigma_N > 0) {
       std::mt19937_64 rng(2000 + run);
-      std::normal_distribution<double> unit(0.0, analysis::estimate_noise_sigma(in.normal_force_N));
+      std::normal_distribution<double> unit(0.0, sigma_N);
       for (double& f : in.normal_force_N) f = std::max(0.0, f + unit(rng));
     }
     ReplayOutput o = replay(model, in);
