@@ -66,7 +66,7 @@ int diagnose_command(const DiagnoseOptions& opt) {
     scenario.make_clutch();  // fails early, naming the scenario, if the clutch is inconsistent
     std::vector<io::MeasuredRun> runs;
     for (const auto& path : opt.runs) runs.push_back(io::read_measured_run(path));
-    io::DiagnosisData data = io::diagnosis_data(runs);
+    io::DiagnosisData data = io::diagnosis_data(runs, model);
     const analysis::DiagnosisOptions defaults;
     io::check_plausibility(runs, model, defaults.statistics_block_s, data.warnings);
     for (const auto& w : data.warnings) std::cerr << "shudder: warning: " << w << "\n";

@@ -50,9 +50,6 @@ int run_command(const RunOptions& opt) {
                             opt.force);
 
     const auto t0 = std::chrono::steady_clock::now();
-    if (!opt.measurement.empty())
-      io::visit_kind(opt.scenario, "--measurement", scenario.model,
-                     [](const auto& m) { rig_models::require_measured_run_export(m); });
     dynamics::Recording rec =
         opt.fixed_step_s > 0
             ? io::visit_kind(opt.scenario, "--fixed-step", scenario.model,
@@ -67,7 +64,11 @@ int run_command(const RunOptions& opt) {
 
     io::write_run_hdf5(out, rec, scenario.text, scenario.fluid_text);
     if (!opt.measurement.empty()) {
+      // The rig's log, or a driveline coupling's sensors (rig_models/model.hpp).
+      const rig_models::MeasuredExport exported =
+          std::visit([&](const auto& km) { return rig_models::measured_run_export(km, rec); }, scenario.model);
       io::MeasurementOptions m;
+      m.rig = exported.rig;
       m.sample_rate_Hz = opt.measurement_rate_Hz;
       m.noise = opt.noise;
       m.seed = opt.seed;
@@ -78,7 +79,7 @@ int run_command(const RunOptions& opt) {
                     scenario.clutch.thermal.thermocouple_r_m * 1e3,
                     scenario.clutch.thermal.thermocouple_z_m * 1e3);
       m.temp_sensor = sensor;
-      io::write_measurement(opt.measurement, rec, m);
+      io::write_measurement(opt.measurement, exported.channels(rec), m);
     }
     // Energy accounts that do not close mean the numbers are wrong: a numerical failure (exit
     // 1), reported after the files are written so the user can inspect what went wrong.

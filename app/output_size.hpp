@@ -14,8 +14,9 @@ namespace shudder::app {
 
 /// Channels the rig and prescribed-slip runners record (docs/run_output.md: 15).
 constexpr std::uint64_t kRecordedChannels = 15;
-/// Channels the driveline records: its 15 and per wheel speed and tyre force, and the road load.
-constexpr std::uint64_t kDrivelineRecordedChannels = 25;
+/// Channels the driveline records: its 15 and per wheel speed and tyre force, the road load, and
+/// the coupling's thermocouple and oil temperatures.
+constexpr std::uint64_t kDrivelineRecordedChannels = 27;
 /// The channels a run of this scenario records.
 std::uint64_t recorded_channels(const io::Scenario& scenario);
 /// Signals a sweep keeps per case (time, speed, slip, torque, temperature; cmd_sweep.cpp).

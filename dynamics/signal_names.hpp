@@ -46,6 +46,9 @@ inline constexpr std::string_view kEngineTorque = "engine_torque_Nm";
 inline constexpr std::string_view kPressure = "pressure_bar";
 inline constexpr std::string_view kClampForce = "clamp_force_N";
 inline constexpr std::string_view kValveOpening = "valve_opening";  // the Haldex throttle valve, 0 shut – 1 open
+// The instrumented coupling's thermocouple (at the clutch's thermocouple place) and its pack oil.
+inline constexpr std::string_view kCouplingTemp = "coupling_temp_C";
+inline constexpr std::string_view kCouplingOilTemp = "coupling_oil_temp_C";
 // Per wheel (fl, fr, rl, rr): speed and the tyre's longitudinal force.
 inline constexpr std::string_view kWheelSpeedFL = "wheel_fl_speed_rpm";
 inline constexpr std::string_view kWheelSpeedFR = "wheel_fr_speed_rpm";

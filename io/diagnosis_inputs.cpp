@@ -7,6 +7,7 @@
 #include "dynamics/signal_names.hpp"
 #include "io/input_error.hpp"
 #include "io/kind_refusal.hpp"
+#include "rig_models/coupling_measurement.hpp"
 
 namespace shudder::io {
 
@@ -19,7 +20,9 @@ rig_models::ReplayModel replay_model(const Scenario& s) {
   return m;
 }
 
-DiagnosisData diagnosis_data(const std::vector<MeasuredRun>& runs) {
+namespace {
+
+DiagnosisData read_runs(const std::vector<MeasuredRun>& runs) {
   DiagnosisData d;
   std::string rig_source;
   for (const auto& run : runs) {
@@ -84,8 +87,26 @@ DiagnosisData diagnosis_data(const std::vector<MeasuredRun>& runs) {
     d.runs.push_back(std::move(dr));
     d.inputs.push_back(std::move(in));
   }
-  if (!d.rig.empty() && d.rig != "lsctr")
+  return d;
+}
+
+}  // namespace
+
+DiagnosisData diagnosis_data(const std::vector<MeasuredRun>& runs) {
+  rig_models::ReplayModel lsctr;
+  return diagnosis_data(runs, lsctr);
+}
+
+DiagnosisData diagnosis_data(const std::vector<MeasuredRun>& runs, const rig_models::ReplayModel& model) {
+  DiagnosisData d = read_runs(runs);
+  if (d.rig.empty()) return d;
+  if (model.driveline) {
+    if (d.rig != rig_models::kCouplingRig)
+      d.warnings.push_back("the runs come from rig '" + d.rig + "'; the model is a driveline's Haldex coupling ('" +
+                           std::string(rig_models::kCouplingRig) + "')");
+  } else if (d.rig != "lsctr") {
     d.warnings.push_back("the runs come from rig '" + d.rig + "'; the model is of the LSCTR");
+  }
   return d;
 }
 

@@ -29,6 +29,9 @@ struct DiagnosisData {
 
 /// Throws InputError (exit 2) naming the file: runs whose `rig` metadata differ, a run too
 /// short to fit (see above), a temp_sensor/oil_flow_ml_min value that is not understood.
+/// Warns when the runs' `rig` is not the model's (`model`: the replay model's kind of data,
+/// "lsctr" or a driveline's rig_models::kCouplingRig).
 DiagnosisData diagnosis_data(const std::vector<MeasuredRun>& runs);
+DiagnosisData diagnosis_data(const std::vector<MeasuredRun>& runs, const rig_models::ReplayModel& model);
 
 }  // namespace shudder::io

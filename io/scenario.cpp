@@ -436,7 +436,8 @@ Scenario load_scenario(const std::string& path) { return load_scenario_text(read
 namespace {
 
 // The typed model of the draft's kind, with the effects that live outside the clutch applied
-// (bearing drag: prescribed slip and rig; stick-time friction: rig and driveline).
+// (bearing drag: prescribed slip and rig; stick-time friction: rig and driveline; the torque
+// and load cells: prescribed slip, the rig's load cell, the driveline's measured coupling).
 rig_models::Model make_model(const Draft& d) {
   switch (d.kind) {
     case ModelKind::kPrescribedSlip: return rig_models::PrescribedSlipModel{d.cycle, d.settings};
@@ -451,7 +452,7 @@ rig_models::Model make_model(const Draft& d) {
       return m;
     }
     case ModelKind::kDriveline: {
-      rig_models::DrivelineModel m{d.driveline, d.manoeuvre, {}};
+      rig_models::DrivelineModel m{d.driveline, d.manoeuvre, {}, d.settings.torque_cell, d.settings.load_cell};
       m.params.stick_time = d.rig.stick_time;
       m.settings.duration_s = d.settings.duration_s;
       m.settings.slow_step_s = d.settings.thermal_step_s;

@@ -98,30 +98,28 @@ std::vector<EffectDefinition> build() {
       // channel. Bounds are estimates: a gain beyond [0.5, 2] or a torque offset beyond ±50 N m
       // is a wrong cell or unit rather than a calibration error (the plausibility checks catch
       // those); ±10 K is over four times a type K junction's standard tolerance (±2.2 K).
-      // Acts in the prescribed-slip torque cell (rig_models/prescribed_slip.hpp).
+      // Acts in the prescribed-slip torque cell (rig_models/prescribed_slip.hpp) and in a
+      // driveline's measured coupling torque (rig_models/coupling_measurement.hpp).
       {"torque_sensor_gain", "the torque cell reads a fixed fraction high or low",
        [](auto& t) -> auto& { return t.torque_cell.gain_fault; },
        {{"gain", "-", kSameUnit, R::positive(), [](auto& t) -> auto& { return t.torque_cell.gain; },
          FitSpec{0.5, 2.0, {0.97, 1.03, 1.1}}}},
        {},
-       {{ModelKind::kRig, "the rig's torque cell also drives its speed loop; not modelled there yet"},
-        {ModelKind::kDriveline, "it is the rig's torque cell"}}},
+       {{ModelKind::kRig, "the rig's torque cell also drives its speed loop; not modelled there yet"}}},
       {"torque_sensor_offset", "the torque cell reads a constant torque too much",
        [](auto& t) -> auto& { return t.torque_cell.offset_fault; },
        {{"offset_Nm", "N m", kSameUnit, R::closed(-50.0, 50.0), [](auto& t) -> auto& { return t.torque_cell.offset_Nm; },
          FitSpec{-50.0, 50.0, {1.0, -1.0, 5.0}, true}}},
        {},
-       {{ModelKind::kRig, "the rig's torque cell also drives its speed loop; not modelled there yet"},
-        {ModelKind::kDriveline, "it is the rig's torque cell"}}},
-      // Acts in the recorded normal force (prescribed slip and rig, rig_models/prescribed_slip.hpp);
-      // a replay drives the model with F_rec / g_F (rig_models/replay.cpp). Bounds as the torque
-      // cell's.
+       {{ModelKind::kRig, "the rig's torque cell also drives its speed loop; not modelled there yet"}}},
+      // Acts in the recorded normal force (prescribed slip and rig, rig_models/prescribed_slip.hpp;
+      // a driveline's measured clamp force, rig_models/coupling_measurement.hpp); a replay drives
+      // the model with F_rec / g_F (rig_models/replay.cpp). Bounds as the torque cell's.
       {"load_sensor_gain", "the load cell reads a fixed fraction high or low",
        [](auto& t) -> auto& { return t.load_cell.gain_fault; },
        {{"gain", "-", kSameUnit, R::positive(), [](auto& t) -> auto& { return t.load_cell.gain; },
          FitSpec{0.5, 2.0, {0.97, 1.03, 1.1}}}},
-       {},
-       {{ModelKind::kDriveline, "it is the rig's load cell"}}},
+       {}, {}},
       // Acts in clutch::ThermalModel (the reading of the thermocouple); in a replay the discs
       // then start at the sump's measured temperature (rig_models/replay.hpp).
       {"thermocouple_offset", "the thermocouple reads a constant temperature too much",

@@ -329,6 +329,9 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
                              [&](const ThermalState& state) { return th.mean_interface_temp_C(state); }),
       Recorder::interpolated(sn::kInterfaceMaxTemp, "degC",
                              [&](const ThermalState& state) { return th.interface_temps_C(state).maxCoeff(); }),
+      // What an instrumented coupling's sensors read (a measured vehicle run, coupling_measurement.hpp).
+      Recorder::interpolated(sn::kCouplingTemp, "degC", [](const ThermalState& state) { return state.sensor_temp_C; }),
+      Recorder::interpolated(sn::kCouplingOilTemp, "degC", [](const ThermalState& state) { return state.sump_temp_C; }),
   });
 
   // Stall: the mapped engine's speed below its stall speed (the first sample that shows it).

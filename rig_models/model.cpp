@@ -1,5 +1,6 @@
 #include "rig_models/model.hpp"
 
+#include "rig_models/coupling_measurement.hpp"
 #include "rig_models/driveline_stability.hpp"
 #include "rig_models/run_stability_map.hpp"
 #include "rig_models/run_verdict.hpp"
@@ -13,8 +14,6 @@ namespace {
   throw KindNotSupported(std::string("\"").append(model_kind_name(k)).append(rest));
 }
 
-constexpr const char* kNoMeasuredRun = "a measured run is a rig log; give a prescribed_slip or rig scenario";
-constexpr const char* kNoReplay = "measured runs are rig runs; diagnose needs a prescribed_slip or rig model";
 constexpr const char* kNoNetwork = "\" has no torsional network; modes needs type = \"rig\" or \"driveline\"";
 constexpr const char* kNotARig = "\" is not a rig; --rig needs a scenario with type = \"rig\"";
 
@@ -63,7 +62,7 @@ std::vector<std::string> add_run_analysis(const PrescribedSlipModel&, const clut
   return {};
 }
 
-void require_measured_run_export(const PrescribedSlipModel&) {}
+MeasuredExport measured_run_export(const PrescribedSlipModel&, const dynamics::Recording&) { return {"lsctr", {}}; }
 
 void require_sweep(const PrescribedSlipModel&) {}
 
@@ -103,7 +102,7 @@ std::vector<std::string> add_run_analysis(const RigModel& model, const clutch::W
   return {};
 }
 
-void require_measured_run_export(const RigModel&) {}
+MeasuredExport measured_run_export(const RigModel&, const dynamics::Recording&) { return {"lsctr", {}}; }
 
 void require_sweep(const RigModel&) {}
 
@@ -158,7 +157,9 @@ std::vector<std::string> add_run_analysis(const DrivelineModel& model, const clu
   return {};
 }
 
-void require_measured_run_export(const DrivelineModel&) { throw KindNotSupported(kNoMeasuredRun); }
+MeasuredExport measured_run_export(const DrivelineModel& model, const dynamics::Recording& rec) {
+  return {std::string(kCouplingRig), coupling_measurement(rec, model.torque_cell, model.load_cell)};
+}
 
 void require_sweep(const DrivelineModel&) {}
 
@@ -166,7 +167,21 @@ CaseOutcome evaluate_case(const DrivelineModel& model, const clutch::WetClutch& 
   return evaluate_driveline_case(model.params, clutch, model.manoeuvre, model.settings, rec);
 }
 
-ReplayModel replay_model(const DrivelineModel&, const StickTimeFriction&) { throw KindNotSupported(kNoReplay); }
+// The coupling alone: its measured slip and clamp force imposed on the pack (prescribed slip),
+// the pack's oil already in the clutch's thermal parameters (io/scenario.cpp), the pack's
+// thermal step; the instrumented coupling's sensors as the prescribed-slip cells.
+ReplayModel replay_model(const DrivelineModel& model, const StickTimeFriction&) {
+  ReplayModel m;
+  m.rig = false;
+  m.driveline = true;
+  m.settings.duration_s = model.settings.duration_s;
+  m.settings.thermal_step_s = model.settings.slow_step_s;
+  m.settings.sample_rate_Hz = model.settings.sample_rate_Hz;
+  m.settings.torque_cell = model.torque_cell;
+  m.settings.load_cell = model.load_cell;
+  m.rig_params.stick_time = model.params.stick_time;
+  return m;
+}
 
 ModalSubject modal_subject(const DrivelineModel& model) { return &model; }
 

@@ -13,6 +13,7 @@
 // reason, which the command turns into its input error (io/kind_refusal.hpp: exit 2, naming the
 // scenario file and key). Adding a kind: docs/architecture_kinds.md.
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <variant>
@@ -48,6 +49,9 @@ struct DrivelineModel {
   DrivelineParams params;  // stick-time friction included
   DrivelineInputs manoeuvre;
   DrivelineSettings settings;
+  // The instrumented coupling's sensors: they act on its measured run only (coupling_measurement.hpp).
+  TorqueCell torque_cell;
+  LoadCell load_cell;
 };
 
 using Model = std::variant<PrescribedSlipModel, RigModel, DrivelineModel>;
@@ -93,11 +97,17 @@ constexpr bool has_rig_plots(const PrescribedSlipModel&) { return false; }
 constexpr bool has_rig_plots(const RigModel&) { return true; }
 constexpr bool has_rig_plots(const DrivelineModel&) { return false; }
 
-/// `run --measurement`: a measured run (io/measurement_csv.hpp) is a rig log, so only kinds
-/// that model the rig's sensors may export one. Throws KindNotSupported for the others.
-void require_measured_run_export(const PrescribedSlipModel& model);
-void require_measured_run_export(const RigModel& model);
-void require_measured_run_export(const DrivelineModel& model);
+/// `run --measurement`: what the measured run (io/measurement_csv.hpp) is written from. The rig
+/// and prescribed slip: their own recording, a log of the LSCTR's sensors (rig "lsctr"); the
+/// driveline: its coupling's sensors (rig "haldex_coupling", rig_models/coupling_measurement.hpp).
+struct MeasuredExport {
+  std::string rig;                              // the file's `rig` metadata
+  std::optional<dynamics::Recording> coupling;  // the driveline's coupling channels; empty: the run's own
+  const dynamics::Recording& channels(const dynamics::Recording& run) const { return coupling ? *coupling : run; }
+};
+MeasuredExport measured_run_export(const PrescribedSlipModel& model, const dynamics::Recording& rec);
+MeasuredExport measured_run_export(const RigModel& model, const dynamics::Recording& rec);
+MeasuredExport measured_run_export(const DrivelineModel& model, const dynamics::Recording& rec);
 
 // ---- shudder sweep --------------------------------------------------------------------------
 
@@ -119,7 +129,7 @@ CaseOutcome evaluate_case(const DrivelineModel& model, const clutch::WetClutch& 
 /// The model a measured run is replayed on (rig_models/replay.hpp), without its clutch and
 /// fluid, which the caller sets. `stick_time` is the scenario's [effects.stick_time_static_friction]
 /// as read: a prescribed-slip model has no rig to hold it, but the candidate list must still
-/// know whether that effect is on. Throws KindNotSupported for kinds measured runs cannot come from.
+/// know whether that effect is on. A driveline replays its coupling alone (ReplayModel::driveline).
 ReplayModel replay_model(const PrescribedSlipModel& model, const StickTimeFriction& stick_time);
 ReplayModel replay_model(const RigModel& model, const StickTimeFriction& stick_time);
 ReplayModel replay_model(const DrivelineModel& model, const StickTimeFriction& stick_time);

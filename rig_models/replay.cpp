@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <regex>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 
+#include "analysis/noise_estimate.hpp"
 #include "core/units.hpp"
 #include "dynamics/signal_names.hpp"
 #include "rig_models/speed_setpoint.hpp"
@@ -14,6 +16,8 @@
 namespace shudder::rig_models {
 
 namespace {
+
+constexpr int kCouplingStepsPerHold = 10;
 
 // Mean of `x` over consecutive windows of `window_s`, at the windows' mean times.
 PiecewiseLinear window_means(const std::vector<double>& t, const std::vector<double>& x, double t0,
@@ -33,6 +37,32 @@ PiecewiseLinear window_means(const std::vector<double>& t, const std::vector<dou
       times.push_back(tm);
       values.push_back(sx / n);
     }
+    b = e;
+  }
+  return {times, values};
+}
+
+// Mean of `x` over the windows (t0 + k w, t0 + (k+1) w], held over each window: the clamp force
+// of a coupling, which its hydraulic step w holds between updates (the sample at a step's end
+// still carries the old force, hence the window closed on the right). Empty windows are
+// bridged linearly. A continuous force is followed within half its change over w.
+PiecewiseLinear window_holds(const std::vector<double>& t, const std::vector<double>& x, double t0, double w) {
+  std::vector<double> times, values;
+  // The hold ends eps after its window and the next starts 2 eps after: a steep edge, strictly
+  // increasing times, and a step end that the thermal steps' summed times reach a few ulps late
+  // still reads the old force, as the driveline's sample there does.
+  const double eps = 1e-3 * w;
+  for (std::size_t b = 0; b < t.size();) {
+    const double k = std::ceil((t[b] - t0) / w - 1e-9) - 1.0;
+    const double end = t0 + (k + 1.0) * w;
+    std::size_t e = b;
+    double sx = 0;
+    for (; e < t.size() && t[e] <= end + 1e-9 * w; ++e) sx += x[e];
+    const double mean = sx / static_cast<double>(e - b);
+    times.push_back(k * w + 2.0 * eps);
+    values.push_back(mean);
+    times.push_back((k + 1.0) * w + eps);
+    values.push_back(mean);
     b = e;
   }
   return {times, values};
@@ -98,17 +128,21 @@ ReplayOutput replay(const ReplayModel& model, const ReplayInputs& in) {
   const clutch::WetClutch clutch(cp, model.fluid);
 
   DriveCycle cycle;
+  // A coupling's clamp force moves in steps of its hydraulic step (rig_models/haldex_driveline.hpp),
+  // which the replay holds as the driveline does; 0.05 s windows joined linearly would smear the
+  // take-up's step over 50 ms and every later step into a saw-tooth.
+  const double window_s = model.driveline ? model.settings.thermal_step_s : in.input_window_s;
   // On the rig the measured speed is the drive's; its loop's set point is what drives the model.
   const bool setpoint = model.rig && in.torque_Nm.size() == t.size();
   RigParams rp = model.rig_params;
   rp.bearing_drag = model.settings.bearing_drag;
   cycle.slip_speed_rpm = window_means(
-      t, setpoint ? estimate_speed_setpoint(t, in.speed_rpm, in.torque_Nm, rp) : in.speed_rpm, t0,
-      in.input_window_s);
+      t, setpoint ? estimate_speed_setpoint(t, in.speed_rpm, in.torque_Nm, rp) : in.speed_rpm, t0, window_s);
   // A load cell reading g_F too much: the clutch was pressed with F_rec / g_F.
   std::vector<double> force_N = in.normal_force_N;
   for (auto& f : force_N) f = model.settings.load_cell.true_N(f);
-  cycle.normal_force_N = window_means(t, force_N, t0, in.input_window_s);
+  cycle.normal_force_N =
+      model.driveline ? window_holds(t, force_N, t0, window_s) : window_means(t, force_N, t0, window_s);
 
   dynamics::Recording rec;
   const double duration = t.back() - t0;
@@ -121,6 +155,9 @@ ReplayOutput replay(const ReplayModel& model, const ReplayInputs& in) {
   } else {
     PrescribedSlipSettings ps = model.settings;
     ps.duration_s = duration;
+    // Prescribed slip records its step ends and interpolates between them; a coupling's held
+    // force steps every thermal step, so ten steps per hold put the recorded torque on the steps.
+    if (model.driveline) ps.thermal_step_s = model.settings.thermal_step_s / kCouplingStepsPerHold;
     ps.snapshot_times_s.clear();
     rec = run_prescribed_slip(clutch, cycle, ps);
   }
@@ -148,7 +185,16 @@ const EffectDefinition& known_effect(std::string_view name) {
                               effect_names_list());
 }
 
-ModelKind model_kind(const ReplayModel& m) { return m.rig ? ModelKind::kRig : ModelKind::kPrescribedSlip; }
+ModelKind model_kind(const ReplayModel& m) {
+  return m.rig ? ModelKind::kRig : m.driveline ? ModelKind::kDriveline : ModelKind::kPrescribedSlip;
+}
+
+// Why the effect cannot be a candidate: inert in the model's kind, or, for a driveline's
+// coupling, inert in the prescribed slip it is replayed with (nothing sticks).
+std::optional<std::string_view> candidate_inert_reason(const EffectDefinition& effect, const ReplayModel& m) {
+  if (const auto why = inert_reason(effect, model_kind(m))) return why;
+  return m.driveline ? inert_reason(effect, ModelKind::kPrescribedSlip) : std::nullopt;
+}
 
 }  // namespace
 
@@ -196,6 +242,14 @@ analysis::Reproducer replay_reproducer(ReplayModel model, std::vector<ReplayInpu
     in.temp_C = pseudo.temp_C;
     if (!in.torque_Nm.empty()) in.torque_Nm = pseudo.torque_Nm;
     if (!in.sump_temp_C.empty()) in.sump_temp_C = pseudo.sump_temp_C;
+    // A coupling's pack turns clamp-force noise into torque n_interfaces times as strongly as
+    // the rig's single disc (16 x: 37.5 N of load-cell noise reads ~3 N m), so its replay error
+    // counts it: the force gets fresh noise of the sigma the measured force shows.
+    if (const double sigma_N = analysis::estimate_noise_sigma(in.normal_force_N); model.driveline && sigma_N > 0) {
+      std::mt19937_64 rng(2000 + run);
+      std::normal_distribution<double> unit(0.0, sigma_N);
+      for (double& f : in.normal_force_N) f = std::max(0.0, f + unit(rng));
+    }
     ReplayOutput o = replay(model, in);
     return analysis::Prediction{std::move(o.torque_Nm), std::move(o.temp_C), std::move(o.sump_temp_C),
                                 std::move(o.ir_temp_C), std::move(o.speed_rpm)};
@@ -208,7 +262,7 @@ std::vector<analysis::EffectCandidate> replay_candidates(const ReplayModel& mode
   std::vector<analysis::EffectCandidate> out;
   for (const auto& effect : effect_registry()) {
     if (effect.enabled(target)) continue;
-    if (const auto why = inert_reason(effect, model_kind(model))) {
+    if (const auto why = candidate_inert_reason(effect, model)) {
       if (skipped) skipped->push_back(effect.name + ": " + std::string(*why));
       continue;
     }

@@ -9,6 +9,9 @@
 //     centres. On the rig the speed is the loop's set point, recovered from the drive speed and
 //     torque cell by inverting the loop (rig_models/speed_setpoint.hpp): under a rising
 //     load, and in stick-slip, the drive lags its set point.
+//   * a driveline's coupling (ReplayModel::driveline): the clamp force held per hydraulic step
+//     (the scenario's thermal step, 10 ms) instead, and the pack stepped ten times per hold
+//     (docs/driveline.md "Measured vehicle runs").
 //   * start temperatures: discs and inner boundary at the mean temp_C of the first 0.1 s (at
 //     least 5 samples); sump at the mean sump_temp_C there when measured, else the same. With
 //     `thermocouple_offset` on, the discs start at the sump's mean instead (the offset shows
@@ -39,6 +42,10 @@ namespace shudder::rig_models {
 
 struct ReplayModel {
   bool rig = false;  // the LSCTR rig; else prescribed slip
+  // A driveline's Haldex coupling replayed alone: the measured slip and clamp force imposed on
+  // its pack (prescribed slip; rig_models/coupling_measurement.hpp has the run's columns). Its
+  // candidates are the effects that act in a driveline and in the replay.
+  bool driveline = false;
   clutch::WetClutchParams clutch;
   clutch::Fluid fluid;
   PrescribedSlipSettings settings;  // solver steps, sampling; bearing drag for both models
@@ -83,7 +90,8 @@ analysis::Simulator replay_simulator(ReplayModel model, std::vector<ReplayInputs
 analysis::Reproducer replay_reproducer(ReplayModel model, std::vector<ReplayInputs> inputs);
 
 /// Every registry effect the model has off, as a diagnosis candidate. Effects inert in this
-/// model's kind (stick-time friction with imposed slip) are left out, with a note in `skipped`.
+/// model's kind (stick-time friction with imposed slip; for a driveline's coupling, also those
+/// inert in a driveline) are left out, with a note in `skipped`.
 std::vector<analysis::EffectCandidate> replay_candidates(const ReplayModel& model,
                                                          std::vector<std::string>* skipped);
 

@@ -38,8 +38,8 @@ TEST(CliDriveline, RunsTheTightTurnAndWritesItsSignals) {
   EXPECT_TRUE(std::filesystem::exists(dir / "rep" / "coupling.png"));
   EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;  // no rig plot attempted
   const auto rec = io::read_run_hdf5((dir / "turn.h5").string());
-  // The size guard's count (app/output_size.hpp, docs/run_output.md): 25 channels.
-  EXPECT_EQ(rec.signals.size(), 25u);
+  // The size guard's count (app/output_size.hpp, docs/run_output.md): 27 channels.
+  EXPECT_EQ(rec.signals.size(), 27u);
   // At the start the car rolls at 5 km/h and the axles differ by the turn: the coupling slips at
   // i_ptu (ρ̄_f − ρ̄_r) ω_v, ρ̄_f the front wheels' mean path ratio on R = 9 m (wheelbase 2.51 m,
   // track 1.51 m), ρ̄_r = 1.
@@ -106,10 +106,14 @@ TEST(CliDriveline, RejectsARigDriveCycle) {
                   {"s.toml", "drive", "[manoeuvre]"});
 }
 
-TEST(CliDriveline, RefusesToWriteAMeasuredRun) {
+// Issue 13 part 5: a driveline writes its coupling's measured run (was refused: "a measured run
+// is a rig log"); tests/app/test_diagnose_driveline.cpp checks its columns.
+TEST(CliDriveline, WritesTheCouplingsMeasuredRun) {
   const auto dir = scratch_dir("cli_driveline_measurement");
   write_file(dir / "turn.toml", tight_turn());
-  expect_rejected(run_cli("run turn.toml --measurement m.csv", dir), {"--measurement", "rig"});
+  const auto r = run_cli("run turn.toml --measurement m.csv", dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(test::slurp(dir / "m.csv"), ::testing::HasSubstr("# rig: haldex_coupling\n"));
 }
 
 }  // namespace

@@ -45,8 +45,8 @@ concept HasRunAnalysis = requires(const M& m, Args a) {
   { rig_models::has_rig_plots(m) } -> std::same_as<bool>;
 };
 template <class M>
-concept SaysMeasuredRunExport = requires(const M& m) {
-  { rig_models::require_measured_run_export(m) } -> std::same_as<void>;
+concept SaysMeasuredRunExport = requires(const M& m, Args a) {
+  { rig_models::measured_run_export(m, a.rec) } -> std::same_as<rig_models::MeasuredExport>;
 };
 template <class M>
 concept SaysSweep = requires(const M& m, Args a) {
@@ -109,20 +109,29 @@ std::string refusal(const std::string& path, const std::string& key, Capability&
 
 // The refusal texts below are the commands' messages before the capabilities moved to the
 // kinds (app/cmd_*.cpp at 6fc3277); they must stay byte-identical.
-TEST(ModelCapabilities, DrivelineRefusesMeasuredRunSweepAndReplayWithTheCommandsTexts) {
-  EXPECT_EQ(refusal(kDriveline, "--measurement",
-                    [](const auto& m) { rig_models::require_measured_run_export(m); }),
-            kDriveline + ": key '--measurement': a measured run is a rig log; give a prescribed_slip or rig scenario");
+TEST(ModelCapabilities, DrivelineExportsItsCouplingAndReplaysItAlone) {
   // Sweeps accept driveline cases now (issue 13): the capability passes and a case evaluates.
   EXPECT_EQ(refusal(kDriveline, "scenario.type", [](const auto& m) { rig_models::require_sweep(m); }), "(accepted)");
+  // Issue 13 part 5: a measured run of the coupling, replayed through the pack alone.
   const io::Scenario sc = io::load_scenario(kDriveline);
-  try {
-    (void)io::replay_model(sc);
-    ADD_FAILURE() << "a driveline scenario was accepted for replay";
-  } catch (const io::InputError& e) {
-    EXPECT_EQ(std::string(e.what()), kDriveline + ": key 'scenario.type': measured runs are rig runs; diagnose "
-                                                  "needs a prescribed_slip or rig model");
-  }
+  const auto& dl = std::get<rig_models::DrivelineModel>(sc.model);
+  const rig_models::ReplayModel m = io::replay_model(sc);
+  EXPECT_TRUE(m.driveline);
+  EXPECT_FALSE(m.rig);
+  EXPECT_EQ(m.settings.thermal_step_s, dl.settings.slow_step_s);
+  EXPECT_EQ(m.clutch.thermal.sump_volume_m3, sc.clutch.thermal.sump_volume_m3);  // the pack's own oil
+  dynamics::Recording rec;
+  for (const char* name : {"time_s", "coupling_slip_rpm", "clamp_force_N", "coupling_torque_Nm", "coupling_temp_C",
+                           "coupling_oil_temp_C"})
+    rec.add_signal(name, "").values = {0.0, 1.0};
+  const rig_models::MeasuredExport e = rig_models::measured_run_export(dl, rec);
+  EXPECT_EQ(e.rig, "haldex_coupling");
+  ASSERT_TRUE(e.coupling.has_value());
+  EXPECT_EQ(&e.channels(rec), &*e.coupling);
+  const io::Scenario ps = io::load_scenario(kPrescribed);
+  const auto ps_export = rig_models::measured_run_export(std::get<rig_models::PrescribedSlipModel>(ps.model), rec);
+  EXPECT_EQ(ps_export.rig, "lsctr");
+  EXPECT_EQ(&ps_export.channels(rec), &rec);  // the run's own recording, not a copy
 }
 
 TEST(ModelCapabilities, KindsWithoutATorsionalNetworkRefuseModesAndScreeningNamingTheirType) {
