@@ -443,6 +443,12 @@ MeasuredRun read_hdf5(const std::string& path, hid_t file, std::uintmax_t max_fi
       const H5T_class_t cls = H5Tget_class(type);
       if (cls != H5T_FLOAT && cls != H5T_INTEGER)
         bad(key, "dataset is not numeric; columns must be 1-D float64 (integers are accepted)");
+      // A damaged datatype can claim numbers of any size, and libhdf5 sizes its conversion
+      // buffer by it before reading (found by fuzz/fuzz_measured_hdf5: a 4 GiB allocation for a
+      // 10 kB file). No number libhdf5 can convert to a double is wider than 16 bytes.
+      if (const std::size_t bytes = H5Tget_size(type); bytes == 0 || bytes > 16)
+        bad(key, "dataset's type claims " + std::to_string(bytes) + "-byte numbers; the file is "
+                 "damaged (columns are float64; integers and floats of 1 to 16 bytes are accepted)");
     }
     const Handle space = own(H5Dget_space(dset), H5Sclose, "read shape of " + key);
     const int rank = H5Sget_simple_extent_ndims(space);

@@ -529,4 +529,46 @@ TEST(MeasuredRunFuzzRegression, Hdf5DatasetClaimingMoreRowsThanTheFileCanHoldIsR
   std::filesystem::remove(path);
 }
 
+
+// Fuzzing finding (session 20, fuzz/fuzz_measured_hdf5): a damaged datatype message claiming
+// numbers of 2^30 bytes made libhdf5 allocate a conversion buffer of that size inside H5Dread
+// (an out-of-memory abort under the fuzzer; old behaviour in a plain build: the 1 GiB buffer
+// was allocated and cleared, 9.3 s on a shared machine, before the read failed with "addr
+// overflow"; the file is 9 kB). The file is a valid
+// run whose float64 datatype messages (size field 8 followed by the IEEE double's bit layout:
+// offset 0, precision 64, exponent at 52 of 11 bits, mantissa at 0 of 52 bits, bias 1023) are
+// patched to claim 2^30-byte numbers.
+TEST(MeasuredRunFuzzRegression, Hdf5DatasetTypeClaimingHugeNumbersIsRejected) {
+  const auto path = (std::filesystem::temp_directory_path() /
+                     ("shudder_fuzz_type_" + std::to_string(::getpid()) + ".h5")).string();
+  MeasuredRun run;
+  run.metadata = {{"format", "shudder-measurement/1"}};
+  for (const char* name : {"time_s", "speed_rpm", "normal_force_N", "torque_Nm", "temp_C"})
+    run.columns.push_back({name, shudder::io::measured_run_units(name), {}});
+  for (std::size_t k = 0; k < 20; ++k) {
+    const double row[] = {0.01 * static_cast<double>(k), 1.0, 15000.0, 80.0, 60.0};
+    for (std::size_t c = 0; c < 5; ++c) run.columns[c].values.push_back(row[c]);
+  }
+  shudder::io::write_measured_run_hdf5(path, run);
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const std::string layout("\x00\x00\x40\x00\x34\x0b\x00\x34\xff\x03\x00\x00", 12);
+  const std::string from = std::string("\x08\x00\x00\x00", 4) + layout;
+  const std::string to = std::string("\x00\x00\x00\x40", 4) + layout;
+  int patched = 0;
+  for (auto at = bytes.find(from); at != std::string::npos; at = bytes.find(from, at + 1), ++patched)
+    bytes.replace(at, from.size(), to);
+  ASSERT_GE(patched, 1);
+  {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out << bytes;
+  }
+  EXPECT_THAT([&] { shudder::io::read_measured_run_hdf5(path); },
+              ThrowsMessage<InputError>(HasSubstr("dataset's type claims 1073741824-byte numbers")));
+  std::filesystem::remove(path);
+}
+
 }  // namespace
