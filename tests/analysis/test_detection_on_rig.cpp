@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <unistd.h>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -124,7 +125,7 @@ TEST(DetectionOnRig, NegativeSlopeFluidIsVibrationAtTheClutchSideFrequency) {
 
   // Through the run file: write and read back (io/hdf5_run, the layout `shudder run` writes);
   // the same detection, bit for bit.
-  const auto path = std::filesystem::temp_directory_path() / "shudder_test_detection_on_rig.h5";
+  const auto path = std::filesystem::temp_directory_path() / ("shudder_test_detection_on_rig_" + std::to_string(::getpid()) + ".h5");
   shudder::io::write_run_hdf5(path.string(), rec, sc.text);
   const Recording back = shudder::io::read_run_hdf5(path.string());
   std::filesystem::remove(path);

@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <vector>
@@ -30,7 +31,9 @@ inline std::string slurp(const std::filesystem::path& p) {
 
 /// A fresh, empty directory under the system temp dir, unique per name.
 inline std::filesystem::path scratch_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("shudder_test_" + name);
+  // The process id keeps concurrent test runs (two checkouts, CI beside a developer) apart.
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("shudder_test_" + name + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
