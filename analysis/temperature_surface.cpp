@@ -95,7 +95,10 @@ TemperatureSurface::TemperatureSurface(std::vector<double> speed_knots_mm_s, std
 double TemperatureSurface::operator()(double v_mm_s, double temp_C) const {
   const std::size_t nv = speeds_.size();
   const auto [it, wt] = locate(temps_, temp_C);
-  const auto [j, u] = locate(lnv_, std::log(v_mm_s));
+  // Plain copies: C++17 lambdas may not capture structured bindings (clang rejects it).
+  const auto speed_cell = locate(lnv_, std::log(v_mm_s));
+  const std::size_t j = speed_cell.first;
+  const double u = speed_cell.second;
   const auto at = [&](std::size_t i) { return (1 - u) * theta_[i * nv + j] + u * theta_[i * nv + j + 1]; };
   return (1 - wt) * at(it) + wt * at(it + 1);
 }
