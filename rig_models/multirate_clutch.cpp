@@ -20,10 +20,22 @@ void run_multirate(dynamics::Simulation& sim, ClutchContext& context, const clut
   const int nr = th.radial_cells();
   Eigen::VectorXd heat_before(nr), heat_now(nr);
   for (int i = 0; i < nr; ++i) heat_before[i] = sim.channel_heat_J(contact, i);
-  while (sim.time_s() < duration_s - 1e-12) {
+  // Step k ends at t0 + k·step (a product, not a running sum), moved onto a sample time or the
+  // duration when round-off is all that separates them (header).
+  const double t0 = sim.time_s();
+  const double snap_s = 1e-9 * slow_step_s;
+  const auto step_end = [&](long k) {
+    double tb = std::min(t0 + static_cast<double>(k) * slow_step_s, duration_s);
+    if (duration_s - tb < snap_s) return duration_s;
+    const double nearest = std::round(tb * sample_rate_Hz);
+    if (nearest >= 1 && nearest <= static_cast<double>(n_samples) &&
+        std::abs(nearest / sample_rate_Hz - tb) < snap_s)
+      tb = nearest / sample_rate_Hz;
+    return tb;
+  };
+  for (long k = 1; sim.time_s() < duration_s - 1e-12; ++k) {
     const double ta = sim.time_s();
-    double tb = std::min(ta + slow_step_s, duration_s);
-    if (duration_s - tb < 1e-9 * slow_step_s) tb = duration_s;
+    const double tb = step_end(k);
     const auto sa = sim.sample();
     sim.advance(tb, sample_times, on_sample);
     const auto sb = sim.sample();

@@ -7,8 +7,12 @@
 // contact law reads) gets the new ring temperatures, the caller may update other held inputs
 // (a clamp force), and the stepper restarts. The thermal solver's workspace lives here, one
 // per run.
-// Slow steps end exactly on the duration: summed steps fall short of it by round-off
-// (1000 × 10 ms gives 9.99999999999983 s), which would lose the last sample.
+// Slow steps end exactly on the duration and on the sample times they meet: summed steps drift
+// by round-off (1000 × 10 ms gives 9.99999999999983 s, which would lose the last sample; from
+// ~2 s a step ended just before the sample meant to close it, so that sample came after the
+// step's update — the driveline's next clamp force — while earlier ones came before it). Step k
+// ends at t0 + k·step, moved onto the duration or the sample k'/rate when within 1e-9 of a step;
+// a sample at a step's end is always delivered before that step's update.
 
 #include <functional>
 
