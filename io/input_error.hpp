@@ -15,6 +15,9 @@ class InputError : public std::runtime_error {
   InputError(const std::string& file, long line, const std::string& key,
              const std::string& message)
       : std::runtime_error(compose(file, line, key, message)) {}
+  /// An error composed elsewhere, passed on unchanged (io/isolated_read: from a child process).
+  struct Verbatim {};
+  InputError(Verbatim, const std::string& what) : std::runtime_error(what) {}
 
  private:
   static std::string compose(const std::string& file, long line, const std::string& key,

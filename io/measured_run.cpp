@@ -20,6 +20,7 @@
 
 #include "io/hdf5_util.hpp"
 #include "io/input_error.hpp"
+#include "io/isolated_read.hpp"
 
 namespace shudder::io {
 
@@ -559,7 +560,7 @@ MeasuredRun read_measured_run(const std::string& path) {
   in.read(head, sizeof head);
   if (static_cast<std::size_t>(in.gcount()) == signature.size() &&
       std::string_view(head, sizeof head) == signature)
-    return read_measured_run_hdf5(path);
+    return read_measured_run_hdf5_isolated(path);  // libhdf5 can crash or hang on damaged files
   return read_measured_run_csv(path);
 }
 

@@ -51,14 +51,16 @@ struct MeasuredRun {
 std::string measured_run_units(std::string_view column_name);
 
 /// Reads `path` as HDF5 if it starts with the HDF5 signature (\x89HDF\r\n\x1a\n), else as CSV.
+/// The HDF5 form is read in a child process (io/isolated_read.hpp): a damaged file that crashes
+/// or hangs libhdf5 is an InputError. Call before starting threads.
 MeasuredRun read_measured_run(const std::string& path);
 
 /// CSV: `# key: value` metadata lines, one header line, comma-separated rows; \r\n accepted,
 /// blank lines only at the end, a UTF-8 byte-order mark at the start ignored.
 MeasuredRun read_measured_run_csv(const std::string& path);
 
-/// HDF5 form (file comment). Integer datasets are read as double; a dataset without `units`
-/// gets measured_run_units(name).
+/// HDF5 form (file comment), in this process. Integer datasets are read as double; a dataset
+/// without `units` gets measured_run_units(name).
 MeasuredRun read_measured_run_hdf5(const std::string& path);
 
 /// Writes `run` in the HDF5 form to `path + ".tmp"`, renamed to `path` when complete. Refuses
