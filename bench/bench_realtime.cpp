@@ -98,8 +98,14 @@ void time_steps(benchmark::State& state, long pacing, Step&& step) {
   const bool locked = mlockall(MCL_CURRENT | MCL_FUTURE) == 0;
   for (auto _ : state) {
     const auto start = clock::now();
+    // The sleeping grid starts at the next whole second plus half a step: the kernel's tick
+    // (CONFIG_HZ, aligned to multiples of its period on CLOCK_MONOTONIC) and the thermal
+    // worker's polls (multiples of 2.5 ms) then fire half a step after a release, while the
+    // stepping thread sleeps, instead of inside a step (docs/realtime.md: measured, a grid that
+    // happens to sit just behind the tick puts a 20-40 µs interrupt into every 40th step).
     timespec start_ts{};
     clock_gettime(CLOCK_MONOTONIC, &start_ts);  // steady_clock's clock on Linux
+    if (pacing == kSleeping) start_ts = {start_ts.tv_sec + 1, static_cast<long>(kStep_s * 0.5e9)};
     for (long k = 0; k < kSteps; ++k) {
       if (pacing == kSpinning) {
         const auto release = start + std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(k * kStep_s));
