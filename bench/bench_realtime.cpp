@@ -185,7 +185,30 @@ void BM_RealtimeRig(benchmark::State& state) {
   });
 }
 
+// What one slow thermal window costs the worker (rig_models::ThermalTask::run_job's work): the
+// backward-Euler step of Case 1's field (20 rings x 12 axial cells) with a fresh factorisation
+// and the friction frozen at the new ring temperatures.
+// Spread over the 100 fast steps of a window it would add this / 100 to every step.
+void BM_RealtimeThermalWindow(benchmark::State& state) {
+  const auto sc = io::load_scenario(SHUDDER_SOURCE_DIR "/scenarios/paper_g_case1_25kN.toml");
+  const auto clutch = sc.make_clutch();
+  const auto& th = clutch.thermal();
+  clutch::ThermalState s = clutch.initial_state();
+  clutch::ThermalWorkspace ws(th);
+  const Eigen::VectorXd heat_W = Eigen::VectorXd::Constant(th.radial_cells(), 50.0);
+  double slip = 1.0;
+  long k = 0;
+  for (auto _ : state) {
+    slip += 1e-3;
+    // The step length alternates in its last digits so every window re-factorises (the worst
+    // case: a flow law that follows the slip does so every window of a ramp).
+    th.step(s, ws, (++k % 2 == 0) ? 0.01 : 0.01 * (1.0 + 1e-12), heat_W, slip);
+    benchmark::DoNotOptimize(clutch.freeze(th.interface_temps_C(s), 25300.0));
+  }
+}
+
 }  // namespace
 
+BENCHMARK(BM_RealtimeThermalWindow)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_RealtimeCoupling)->ArgName("paced")->Arg(kUnpaced)->Arg(kSpinning)->Arg(kSleeping)->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_RealtimeRig)->ArgName("paced")->Arg(kUnpaced)->Arg(kSpinning)->Arg(kSleeping)->Iterations(1)->Unit(benchmark::kMillisecond);
