@@ -55,10 +55,18 @@ void ThermalTask::post(const Eigen::VectorXd& ring_heat_J, double dt_s, double t
   force_N_ = force_N;
   posted_ = true;
   pending_.store(true, std::memory_order_release);  // no wake-up: the worker polls
+  if (wake_on_post_) {
+    // The last collect() had to wait: the steps run faster than real time, where a system call
+    // costs nothing that matters and starting the job at once saves the next wait.
+    std::lock_guard lock(mutex_);
+    urgent_ = true;
+    cv_.notify_all();
+  }
 }
 
 void ThermalTask::wait_for_job() {
-  if (done_.load(std::memory_order_acquire)) return;  // the worker kept up: no lock, no system call
+  wake_on_post_ = !done_.load(std::memory_order_acquire);
+  if (!wake_on_post_) return;  // the worker kept up: no lock, no system call
   ++waited_;
   std::unique_lock lock(mutex_);
   urgent_ = true;

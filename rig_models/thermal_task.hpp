@@ -21,7 +21,9 @@
 // measured 4 µs median, 12 µs worst per handover step at SCHED_FIFO on this VM, the costliest
 // kind of step (docs/performance.md). Only when collect() finds the job unfinished (steps run
 // back to back, faster than real time: `shudder run --fixed-step`, tests) does it lock, wake the
-// worker and wait; the result is the same either way, so the run stays deterministic.
+// worker and wait, and the next post() then wakes the worker at once (as before, a futex call
+// that costs nothing that matters off a real-time loop); the result is the same either way, so
+// the run stays deterministic.
 
 #include <Eigen/Dense>
 #include <atomic>
@@ -94,6 +96,7 @@ class ThermalTask {
   double dt_s_ = 0.0, t_end_s_ = 0.0, slip_rad_s_ = 0.0, force_N_ = 0.0;
   bool posted_ = false;  // fast side's view: a job is out
   long waited_ = 0;
+  bool wake_on_post_ = false;  // the last wait for a job was not free: wake the worker on post()
 
   // Handover flags: pending_ raised by post() (release) and lowered by the worker when it takes
   // the job; done_ raised by the worker when the result (or error_) is written (release) and

@@ -41,7 +41,7 @@ TEST(ThermalTask, PacedHandoverNeverWaitsAndEqualsTheWaitedOneExactly) {
   run_windows(paced, n_r, true);
   run_windows(back_to_back, n_r, false);
   EXPECT_EQ(paced.waited_collects(), 0);
-  EXPECT_EQ(back_to_back.waited_collects(), 10);
+  EXPECT_GE(back_to_back.waited_collects(), 1);  // then post() wakes it: later jobs may be done in time
   EXPECT_DOUBLE_EQ(paced.latest().time_s, 0.1);
   EXPECT_GT(paced.latest().interface_max_C, clutch.initial_state().temp_C.maxCoeff());  // heat went in
   EXPECT_EQ(paced.latest().ring_temp_C, back_to_back.latest().ring_temp_C);
