@@ -86,7 +86,7 @@ void kind_counters(benchmark::State& state, const std::vector<double>& us, const
 }
 
 template <class Step>
-void time_steps(benchmark::State& state, long pacing, Step&& step) {
+void time_steps(benchmark::State& state, long pacing, const rig_models::RealtimeClutch& clutch, Step&& step) {
   using clock = std::chrono::steady_clock;
   std::vector<double> us(kSteps), cpu_us(kSteps);
   std::vector<int> kind(kSteps);
@@ -153,6 +153,7 @@ void time_steps(benchmark::State& state, long pacing, Step&& step) {
       static_cast<double>(std::count_if(cpu_us.begin(), cpu_us.end(), [](double u) { return u > 20.0; }));
   state.counters["over20us"] = static_cast<double>(sorted.end() - std::upper_bound(sorted.begin(), sorted.end(), 20.0));
   state.counters["median_us"] = percentile(sorted, 0.5);
+  state.counters["thermal_waits"] = static_cast<double>(clutch.thermal_waits());  // slow-path handovers
   kind_counters(state, us, cpu_us, kind);
 }
 
@@ -163,7 +164,7 @@ void BM_RealtimeCoupling(benchmark::State& state) {
   rig_models::RealtimeCoupling c(clutch, m.settings.bearing_drag, {kStep_s, m.settings.thermal_step_s},
                                  m.cycle.normal_force_N(0.0));
   const long per_window = rig_models::steps_per_thermal_step(c.clutch().settings());
-  time_steps(state, state.range(0), [&](long k) {
+  time_steps(state, state.range(0), c.clutch(), [&](long k) {
     const double t = static_cast<double>(k) * kStep_s;
     c.step(m.cycle.slip_speed_rpm(t) * 0.10471975511965977, m.cycle.normal_force_N(t));
     return window_kind(k, per_window);
@@ -176,7 +177,7 @@ void BM_RealtimeRig(benchmark::State& state) {
   const auto& m = std::get<rig_models::RigModel>(sc.model);
   rig_models::RealtimeRig rig(m.params, clutch, m.cycle, {kStep_s, m.settings.thermal_step_s});
   const long per_window = rig_models::steps_per_thermal_step(rig.clutch().settings());
-  time_steps(state, state.range(0), [&](long k) {
+  time_steps(state, state.range(0), rig.clutch(), [&](long k) {
     const long events = rig.stick_events() + rig.breakaway_events() + rig.reversal_events();
     rig.step();
     if (rig.stick_events() + rig.breakaway_events() + rig.reversal_events() != events) return kEvent;
