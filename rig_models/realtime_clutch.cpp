@@ -23,7 +23,8 @@ RealtimeClutch::RealtimeClutch(const clutch::WetClutch& clutch, const BearingDra
       drag_(drag),
       cfg_(settings),
       steps_per_window_(steps_per_thermal_step(settings)),
-      task_(clutch, force_N),
+      // The worker looks for the posted window four times per window (rig_models/thermal_task.hpp).
+      task_(clutch, force_N, 0.25 * settings.thermal_step_s),
       ring_torque_(Eigen::VectorXd::Zero(clutch.thermal().radial_cells())),
       mu_(Eigen::VectorXd::Zero(clutch.thermal().radial_cells())),
       window_heat_J_(Eigen::VectorXd::Zero(clutch.thermal().radial_cells())) {}

@@ -45,6 +45,8 @@ class RealtimeClutch {
   void end_step(const Eigen::VectorXd& ring_heat_J, double slip_angle_rad, double t_end_s, double force_N);
 
   const ThermalOutputs& thermal() const { return task_.latest(); }
+  /// Handovers that found the thermal job unfinished and waited for it (0 in a paced loop).
+  long thermal_waits() const { return task_.waited_collects(); }
   /// Waits for an outstanding thermal job and latches it (the end of a run).
   void finish() { task_.collect(); }
   /// The thermal state (energy account); call finish() first.
