@@ -255,6 +255,7 @@ CasesOutcome run_cases(Session& session, const std::vector<std::size_t>& todo,
 
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <system_error>
 
@@ -270,12 +271,17 @@ namespace {
 }  // namespace
 
 void relaunch_with_mpi(char** argv) {
+  // Once only: a `shudder-mpi` that is itself built without MPI (a copy of shudder) must refuse,
+  // not hand over to itself forever.
+  if (std::getenv("SHUDDER_MPI_HANDED_OVER") != nullptr) return;
   std::error_code ec;
   const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
   if (ec) return;
   const std::string mpi_build = (self.parent_path() / "shudder-mpi").string();
   if (::access(mpi_build.c_str(), X_OK) != 0) return;
+  ::setenv("SHUDDER_MPI_HANDED_OVER", "1", 1);
   ::execv(mpi_build.c_str(), argv);  // returns only on failure: then refused as without MPI
+  ::unsetenv("SHUDDER_MPI_HANDED_OVER");
 }
 
 // Session() refuses, so nothing below is ever reached in this build.

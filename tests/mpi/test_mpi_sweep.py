@@ -121,3 +121,9 @@ def test_shudder_without_mpi_hands_over_or_refuses(tmp_path):
     assert p.stderr.startswith("shudder: error: --mpi: this shudder has no MPI and found no shudder-mpi beside it"), p.stderr
     assert len(p.stderr.strip().splitlines()) == 1, p.stderr
     assert not (tmp_path / "m.h5").exists()
+    # A shudder-mpi that is itself a shudder without MPI refuses too (hands over once, no loop).
+    (lone.parent / "shudder-mpi").write_bytes(lone.read_bytes())
+    (lone.parent / "shudder-mpi").chmod(0o755)
+    p = subprocess.run([str(lone), "sweep", "s.toml", "--set", GRID, "-o", "m.h5", "--mpi"], cwd=tmp_path,
+                       capture_output=True, text=True, env=ENV, timeout=60)
+    assert p.returncode == 2 and "--mpi: this shudder has no MPI" in p.stderr, p.stderr
