@@ -5,6 +5,7 @@
 #include <string>
 
 #include "app/commands.hpp"
+#include "app/mpi_sweep.hpp"
 
 namespace {
 
@@ -186,6 +187,7 @@ int main(int argc, char** argv) {
   if (*run_cmd) return run_command(run);
   if (*val_cmd) return validate_command(validate);
   if (*modes_cmd) return modes_command(modes);
+  if (*sweep_cmd && sweep.mpi) mpi::relaunch_with_mpi(argv);  // shudder-mpi (app/mpi_sweep.hpp)
   if (*sweep_cmd) return sweep_command(sweep);
   if (*screen_cmd) return screen_command(screen);
   if (*plot_cmd) return plot_command(plot);

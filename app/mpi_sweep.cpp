@@ -1,5 +1,6 @@
 // Distributed sweeps on MPI (mpi_sweep.hpp). Built with MPI when SHUDDER_HAS_MPI is defined
-// (cmake -DSHUDDER_MPI=ON, the default); otherwise `--mpi` is refused as an input error.
+// (into `shudder-mpi`, with cmake -DSHUDDER_MPI=ON, the default); otherwise (`shudder`) `--mpi`
+// hands the process over to `shudder-mpi` beside it, or is refused as an input error.
 #include "app/mpi_sweep.hpp"
 
 #include "io/input_error.hpp"
@@ -93,6 +94,8 @@ struct Dispatcher {
     return n;
   }
 };
+
+void relaunch_with_mpi(char**) {}
 
 Session::Session() {
   int provided = 0;
@@ -250,15 +253,36 @@ CasesOutcome run_cases(Session& session, const std::vector<std::size_t>& todo,
 
 #else  // built without MPI
 
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <system_error>
+
 namespace shudder::app::mpi {
 
 namespace {
 [[noreturn]] void no_mpi() {
   throw io::InputError("--mpi", 0, "",
-                       "this shudder was built without MPI; rebuild with cmake -DSHUDDER_MPI=ON "
-                       "(needs libopenmpi-dev; docs/mpi.md) or drop --mpi to sweep on threads");
+                       "this shudder has no MPI and found no shudder-mpi beside it; build it with "
+                       "cmake -DSHUDDER_MPI=ON (needs libopenmpi-dev; docs/mpi.md) or drop --mpi to "
+                       "sweep on threads");
 }
 }  // namespace
+
+void relaunch_with_mpi(char** argv) {
+  // Once only: a `shudder-mpi` that is itself built without MPI (a copy of shudder) must refuse,
+  // not hand over to itself forever.
+  if (std::getenv("SHUDDER_MPI_HANDED_OVER") != nullptr) return;
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) return;
+  const std::string mpi_build = (self.parent_path() / "shudder-mpi").string();
+  if (::access(mpi_build.c_str(), X_OK) != 0) return;
+  ::setenv("SHUDDER_MPI_HANDED_OVER", "1", 1);
+  ::execv(mpi_build.c_str(), argv);  // returns only on failure: then refused as without MPI
+  ::unsetenv("SHUDDER_MPI_HANDED_OVER");
+}
 
 // Session() refuses, so nothing below is ever reached in this build.
 Session::Session() { no_mpi(); }

@@ -14,10 +14,19 @@
 
 namespace shudder::app::mpi {
 
+/// `shudder` itself is built without MPI, so that the commands that do not use it (every one but
+/// `sweep --mpi`) do not load libmpi and its five companions at start-up (≈ 0.5 ms of every
+/// process; docs/performance.md); the same program linked with MPI is `shudder-mpi`, installed
+/// beside it. In `shudder`, this replaces the process (execv: same process id, environment and
+/// arguments, so mpirun's and srun's rank setup carries over) with `shudder-mpi` from the
+/// directory of the running executable, when that file exists. In `shudder-mpi` it does nothing.
+/// If it returns, Session() refuses --mpi as an input error.
+void relaunch_with_mpi(char** argv);
+
 /// MPI for the life of one `sweep --mpi` (MPI_Init_thread .. MPI_Finalize). Rank 0 (the
 /// coordinator) stops, on destruction, every worker it has not stopped yet, so that an input
 /// error on rank 0 ends the whole job instead of leaving workers waiting.
-/// Throws io::InputError (key --mpi) when this shudder was built without MPI.
+/// Throws io::InputError (key --mpi) in a program built without MPI.
 class Session {
  public:
   Session();

@@ -17,6 +17,7 @@
 #include <variant>
 #include <vector>
 
+#include "clutch/banded_lu.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/model.hpp"
 #include "rig_models/prescribed_slip.hpp"
@@ -93,6 +94,30 @@ void BM_Scaling_CliHelp(benchmark::State& state) {
   state.counters["peak_RSS_kB"] = static_cast<double>(peak_kB);
 }
 
+// The thermal step's band solve at Case 1's grid (20 rings x 12 nodes: 240 unknowns, half band
+// 12), once per 10 ms step, 1000 per run (docs/performance.md: 3.5 -> 2.0 µs when the sweeps
+// went row by row). A diagonally dominant band matrix like the thermal system's.
+void BM_Scaling_ThermalBandSolve(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0)), b = static_cast<int>(state.range(1));
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < n; ++i) {
+    for (int j = std::max(0, i - b); j <= std::min(n - 1, i + b); ++j)
+      if (j != i) t.emplace_back(i, j, -1.0 / (1.0 + std::abs(i - j)));
+    t.emplace_back(i, i, 2.0 * b + 1.0);
+  }
+  Eigen::SparseMatrix<double> a(n, n);
+  a.setFromTriplets(t.begin(), t.end());
+  clutch::BandedLu lu(n, b);
+  if (!lu.factorize(a)) throw std::runtime_error("band benchmark: factorisation failed");
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(n, 1.0, 2.0);
+  Eigen::VectorXd x(n);
+  for (auto _ : state) {
+    x = rhs;
+    lu.solve_in_place(x);
+    benchmark::DoNotOptimize(x.data());
+  }
+}
+
 // A sweep's memory against its case count: Case 1 over range(0) normal forces, --jobs 2.
 // peak_RSS_kB should not grow with the count (the cases are written to part files as they
 // finish and merged one at a time). Wall time per case: the sweep's overhead per case.
@@ -125,4 +150,5 @@ BENCHMARK(BM_Scaling_Case1Grid)
 BENCHMARK(BM_Scaling_Case1Duration)->Arg(5)->Arg(10)->Arg(20)->Arg(40)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Scaling_Case1WholeProcess)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(20);
 BENCHMARK(BM_Scaling_CliHelp)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(20);
+BENCHMARK(BM_Scaling_ThermalBandSolve)->Args({240, 12})->Args({480, 12})->Args({240, 24})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Scaling_SweepCases)->Arg(10)->Arg(40)->UseManualTime()->Unit(benchmark::kSecond)->Iterations(1);

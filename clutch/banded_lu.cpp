@@ -9,40 +9,45 @@ namespace shudder::clutch {
 
 namespace {
 
-// Both triangular sweeps on the padded vector y (`lanes` slots of padding each side, lanes a
-// multiple of 4). Column updates are whole blocks of four independent `y -= a * s`, which the
-// compiler turns into vector operations; built twice (AVX2 and baseline x86-64) and picked at
-// load time, so the package runs on any x86-64 and uses the wider registers where they exist.
-// No FMA: the multiply and the subtraction round separately in both builds (bit-identical).
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__SANITIZE_ADDRESS__)
-__attribute__((target_clones("avx2", "default")))
-#endif
+// Both triangular sweeps, row by row, on the vector y (b slots of zero padding each side).
+// Row m of L y = x subtracts L(m, k) y[k] for k = m-b .. m-1 in increasing k, and row m of
+// U x = y subtracts U(m, k) x[k] for k = m+b .. m+1 in decreasing k, then divides by U(m, m):
+// exactly the operations, in exactly the order, that the column-oriented band substitution
+// (Golub & Van Loan Alg. 4.3.2/4.3.3) applies to each entry, so the result is the same bit for
+// bit (the padded terms subtract 0·0). Why rows: the column form stores each finished entry
+// and reloads it for the next column, so every unknown waits for a store, a reload, a
+// multiply and a subtraction in turn; here the terms of the older entries are computed while
+// the previous entry is still being finished, and that entry is carried in a register, so the
+// chain from one unknown to the next is one multiply and one subtraction (forward) or one
+// multiply, one subtraction and the division (backward). Built for baseline x86-64, which has
+// no FMA, so the multiply and the subtraction round separately, as in the reference.
 void sweep(double* __restrict y, const double* __restrict lower, const double* __restrict upper,
-           const double* __restrict diag, int n, int lanes) {
-  // L y = x (unit lower), column by column: y[k+1..k+lanes] -= L(.., k) * y[k].
-  for (int k = 0; k < n; ++k) {
-    const double s = y[k];
-    double* out = y + k + 1;
-    const double* a = lower + static_cast<std::size_t>(k) * lanes;
-    for (int t = 0; t < lanes; t += 4) {
-      out[t] -= a[t] * s;
-      out[t + 1] -= a[t + 1] * s;
-      out[t + 2] -= a[t + 2] * s;
-      out[t + 3] -= a[t + 3] * s;
-    }
+           const double* __restrict diag, int n, int b) {
+  if (b == 0) {
+    for (int m = 0; m < n; ++m) y[m] /= diag[m];
+    return;
   }
-  // U x = y, column by column from the last: x[k] = y[k] / U(k,k); y[k-lanes..k-1] -= U(.., k) x[k].
-  for (int k = n - 1; k >= 0; --k) {
-    y[k] /= diag[k];
-    const double s = y[k];
-    double* out = y + k - lanes;
-    const double* a = upper + static_cast<std::size_t>(k) * lanes;
-    for (int t = 0; t < lanes; t += 4) {
-      out[t] -= a[t] * s;
-      out[t + 1] -= a[t + 1] * s;
-      out[t + 2] -= a[t + 2] * s;
-      out[t + 3] -= a[t + 3] * s;
-    }
+  const std::size_t width = static_cast<std::size_t>(b);
+  double prev = 0.0;  // y[m-1]: the padding's zero before the first row
+  for (int m = 0; m < n; ++m) {
+    const double* l = lower + static_cast<std::size_t>(m) * width;  // L(m, m-b .. m-1)
+    const double* yk = y + m - b;
+    double acc = y[m];
+    for (int t = 0; t < b - 1; ++t) acc -= l[t] * yk[t];
+    acc -= l[b - 1] * prev;
+    y[m] = acc;
+    prev = acc;
+  }
+  prev = 0.0;  // x[m+1]: the padding's zero after the last row
+  for (int m = n - 1; m >= 0; --m) {
+    const double* u = upper + static_cast<std::size_t>(m) * width;  // U(m, m+b .. m+1)
+    const double* yk = y + m + b;
+    double acc = y[m];
+    for (int t = 0; t < b - 1; ++t) acc -= u[t] * yk[-t];
+    acc -= u[b - 1] * prev;
+    acc /= diag[m];
+    y[m] = acc;
+    prev = acc;
   }
 }
 
@@ -51,12 +56,11 @@ void sweep(double* __restrict y, const double* __restrict lower, const double* _
 BandedLu::BandedLu(int n, int half_band)
     : n_(n), b_(half_band), width_(static_cast<std::size_t>(2 * half_band + 1)) {
   if (n < 1 || half_band < 0) throw std::invalid_argument("band matrix needs n >= 1 and b >= 0");
-  lanes_ = std::max(4, (half_band + 3) / 4 * 4);
   data_.assign(static_cast<std::size_t>(n) * width_, 0.0);
-  lower_.assign(static_cast<std::size_t>(n) * lanes_, 0.0);
-  upper_.assign(static_cast<std::size_t>(n) * lanes_, 0.0);
+  lower_.assign(static_cast<std::size_t>(n) * half_band, 0.0);
+  upper_.assign(static_cast<std::size_t>(n) * half_band, 0.0);
   diag_.assign(static_cast<std::size_t>(n), 0.0);
-  padded_.assign(static_cast<std::size_t>(n + 2 * lanes_), 0.0);
+  padded_.assign(static_cast<std::size_t>(n + 2 * half_band), 0.0);
 }
 
 bool BandedLu::factorize(const Eigen::SparseMatrix<double>& a) {
@@ -81,28 +85,29 @@ bool BandedLu::factorize(const Eigen::SparseMatrix<double>& a) {
       for (int i = k + 1; i <= last; ++i) at(i, j) -= at(i, k) * u;
     }
   }
-  // The solve's padded copies (zeros where the band or the matrix ends).
+  // The solve's rows, zeros where the band reaches past the matrix' ends.
   std::fill(lower_.begin(), lower_.end(), 0.0);
   std::fill(upper_.begin(), upper_.end(), 0.0);
-  for (int k = 0; k < n_; ++k) {
-    diag_[static_cast<std::size_t>(k)] = at(k, k);
-    double* lo = &lower_[static_cast<std::size_t>(k) * lanes_];
-    double* up = &upper_[static_cast<std::size_t>(k) * lanes_];
+  const std::size_t b = static_cast<std::size_t>(b_);
+  for (int m = 0; m < n_; ++m) {
+    diag_[static_cast<std::size_t>(m)] = at(m, m);
+    double* lo = &lower_[static_cast<std::size_t>(m) * b];  // L(m, m-b+t)
+    double* up = &upper_[static_cast<std::size_t>(m) * b];  // U(m, m+b-t)
     for (int t = 0; t < b_; ++t) {
-      if (k + 1 + t < n_) lo[t] = at(k + 1 + t, k);
-      if (k - b_ + t >= 0) up[lanes_ - b_ + t] = at(k - b_ + t, k);
+      if (m - b_ + t >= 0) lo[t] = at(m, m - b_ + t);
+      if (m + b_ - t < n_) up[t] = at(m, m + b_ - t);
     }
   }
   return true;
 }
 
 void BandedLu::solve_in_place(Eigen::VectorXd& x) {
-  // The vector sits in a scratch copy with `lanes` slots of padding at both ends, so every
-  // column update has exactly `lanes` entries: near the ends the extra ones multiply zero factor
-  // entries and land in the padding, which is never read.
-  std::copy(x.data(), x.data() + n_, padded_.begin() + lanes_);
-  double* y = padded_.data() + lanes_;
-  sweep(y, lower_.data(), upper_.data(), diag_.data(), n_, lanes_);
+  // The vector sits in a scratch copy with b slots of zero padding at both ends, so every row
+  // has exactly b terms: near the ends the extra ones multiply zero factor entries by the
+  // padding's zeros, which the sweeps never write.
+  std::copy(x.data(), x.data() + n_, padded_.begin() + b_);
+  double* y = padded_.data() + b_;
+  sweep(y, lower_.data(), upper_.data(), diag_.data(), n_, b_);
   std::copy(y, y + n_, x.data());
 }
 

@@ -15,10 +15,10 @@
 // Storage is column-major within the band — entry (i, k) at data[k·(2b+1) + (i - k + b)] — so
 // the inner loops of the factorisation and of both solves are axpy updates on contiguous
 // memory, independent of each other (no serial dot-product chain).
-// After factorising, the solve's factors are copied into two column arrays whose columns are
-// padded with zeros to a multiple of 4 entries: every column update is then whole blocks of
-// four (one AVX2 or two SSE2 operations each, chosen at run time), with no tail loop. The padded
-// terms subtract 0·x, so the results are the same bit for bit as the unpadded update.
+// After factorising, the solve's factors are copied by rows (L(m, m-b .. m-1) and
+// U(m, m+b .. m+1), zeros past the matrix' ends) and both triangular solves run row by row in
+// the column algorithm's operation order: the same result bit for bit, with the chain from one
+// unknown to the next cut to a multiply and a subtraction (banded_lu.cpp says why).
 // Neither factorize() nor solve_in_place() allocates: fit for a real-time step.
 
 #include <Eigen/Core>
@@ -49,11 +49,10 @@ class BandedLu {
   int n_ = 0, b_ = 0;
   std::size_t width_ = 1;
   std::vector<double> data_;
-  int lanes_ = 0;               // b rounded up to a multiple of 4: the solve's column length
-  std::vector<double> lower_;   // column k: L(k+1 .. k+lanes, k), zeros beyond the band / matrix
-  std::vector<double> upper_;   // column k: U(k-lanes .. k-1, k), zeros before the band / matrix
-  std::vector<double> diag_;    // U(k, k)
-  std::vector<double> padded_;  // solve scratch: the vector with `lanes` slots of padding each side
+  std::vector<double> lower_;   // row m: L(m, m-b .. m-1), zeros before the matrix' start
+  std::vector<double> upper_;   // row m: U(m, m+b .. m+1), zeros past the matrix' end
+  std::vector<double> diag_;    // U(m, m)
+  std::vector<double> padded_;  // solve scratch: the vector with b zero slots each side
 };
 
 }  // namespace shudder::clutch

@@ -1,6 +1,6 @@
 # `cmake --install build [--prefix P]` and the .deb (`cpack -G DEB` in build/): the CLI, the
 # Python module, the scenarios and the docs, in GNUInstallDirs places, one component each:
-#   cli      bin/shudder
+#   cli      bin/shudder (and bin/shudder-mpi, `sweep --mpi`)
 #   python   lib/python3/dist-packages/shudder.*.so  (Debian's path for the system python3;
 #            -DSHUDDER_INSTALL_PYTHONDIR=... for another)
 #   data     share/shudder/scenarios/  (the scenario files and fluids, as in the source tree)
@@ -11,6 +11,10 @@ set(SHUDDER_INSTALL_PYTHONDIR "lib/python3/dist-packages" CACHE STRING
     "Where the Python module is installed, relative to the prefix")
 
 install(TARGETS shudder RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT cli)
+if(SHUDDER_MPI)
+  # `shudder sweep --mpi` runs the shudder-mpi beside shudder (app/mpi_sweep.hpp): same directory.
+  install(TARGETS shudder-mpi RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT cli)
+endif()
 if(SHUDDER_PYTHON)
   install(TARGETS shudder_python LIBRARY DESTINATION ${SHUDDER_INSTALL_PYTHONDIR} COMPONENT python)
 endif()

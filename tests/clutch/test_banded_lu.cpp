@@ -80,11 +80,11 @@ TEST(BandedLu, RejectsEntriesOutsideTheBandAndReportsAZeroPivot) {
   EXPECT_THROW(BandedLu(0, 1), std::invalid_argument);
 }
 
-// The solve runs on columns padded with zeros to a multiple of four (and, where the CPU has
-// it, on AVX2). The padding adds only exact zeros, so the result must equal, bit for bit, the
-// plain band substitution on the unpadded factors: Golub & Van Loan Alg. 4.3.2/4.3.3 written
-// out here on a dense copy of A, in the same operation order. A padding slot
-// read from the wrong column, or a missed band entry at the matrix' ends, changes the last bits.
+// The solve runs row by row on zero-padded rows, in the column algorithm's operation order
+// (banded_lu.cpp). The result must equal, bit for bit, the plain column-oriented band
+// substitution on the unpadded factors: Golub & Van Loan Alg. 4.3.2/4.3.3 written out here on
+// a dense copy of A. A term taken in another order, a padding slot read from the wrong row, or
+// a missed band entry at the matrix' ends changes the last bits.
 TEST(BandedLu, PaddedSolveEqualsThePlainBandSubstitutionBitForBit) {
   std::mt19937 rng(3);
   for (const auto& [n, b] : std::vector<std::pair<int, int>>{{1, 0}, {6, 1}, {17, 4}, {240, 12}, {50, 13}}) {

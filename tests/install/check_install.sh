@@ -11,6 +11,9 @@ version=$(grep -m1 -oE 'project\(shudder VERSION [0-9.]+' "$(dirname "$0")/../..
 out=$(cd / && "$prefix/bin/shudder" --version)
 echo "installed: $out"
 case "$out" in "shudder $version"*) ;; *) echo "FAIL: --version printed '$out', expected 'shudder $version...'"; exit 1;; esac
+if [ -x "$build/app/shudder-mpi" ]; then  # `sweep --mpi` looks for it beside shudder (app/mpi_sweep.hpp)
+  test -x "$prefix/bin/shudder-mpi" || { echo "FAIL: shudder-mpi not installed beside shudder"; exit 1; }
+fi
 test -f "$prefix/share/shudder/scenarios/paper_g_case1_10kN.toml" || { echo "FAIL: scenarios not installed"; exit 1; }
 test -f "$prefix/share/doc/shudder/python.md" || { echo "FAIL: docs not installed"; exit 1; }
 test -f "$prefix/share/doc/shudder/README.md" || { echo "FAIL: README not installed"; exit 1; }

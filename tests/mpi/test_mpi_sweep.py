@@ -102,3 +102,28 @@ def test_input_error_ends_every_rank(tmp_path):
     assert not (tmp_path / "bad.h5").exists()
     code, _, err = run(["sweep", "s.toml", "--set", GRID, "--jobs", "2", "-o", "j.h5"], tmp_path, mpi_ranks=2)
     assert code != 0 and "shudder: error: --jobs: not with --mpi" in err
+
+
+# `shudder` itself does not load libmpi (start-up of every other command; docs/performance.md):
+# `sweep --mpi` hands the process to the shudder-mpi beside it (the tests above go through that).
+# A shudder copied without its shudder-mpi refuses --mpi with the CLI's one line, exit 2.
+def test_shudder_without_mpi_hands_over_or_refuses(tmp_path):
+    maps = subprocess.run(["ldd", CLI], capture_output=True, text=True).stdout
+    assert "libmpi" not in maps, maps
+    lone = tmp_path / "bin" / "shudder"
+    lone.parent.mkdir()
+    lone.write_bytes(pathlib.Path(CLI).read_bytes())
+    lone.chmod(0o755)
+    scenario(tmp_path)
+    p = subprocess.run([str(lone), "sweep", "s.toml", "--set", GRID, "-o", "m.h5", "--mpi"], cwd=tmp_path,
+                       capture_output=True, text=True, env=ENV, timeout=60)
+    assert p.returncode == 2, p.stderr
+    assert p.stderr.startswith("shudder: error: --mpi: this shudder has no MPI and found no shudder-mpi beside it"), p.stderr
+    assert len(p.stderr.strip().splitlines()) == 1, p.stderr
+    assert not (tmp_path / "m.h5").exists()
+    # A shudder-mpi that is itself a shudder without MPI refuses too (hands over once, no loop).
+    (lone.parent / "shudder-mpi").write_bytes(lone.read_bytes())
+    (lone.parent / "shudder-mpi").chmod(0o755)
+    p = subprocess.run([str(lone), "sweep", "s.toml", "--set", GRID, "-o", "m.h5", "--mpi"], cwd=tmp_path,
+                       capture_output=True, text=True, env=ENV, timeout=60)
+    assert p.returncode == 2 and "--mpi: this shudder has no MPI" in p.stderr, p.stderr
