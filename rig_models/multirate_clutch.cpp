@@ -20,10 +20,17 @@ void run_multirate(dynamics::Simulation& sim, ClutchContext& context, const clut
   const int nr = th.radial_cells();
   Eigen::VectorXd heat_before(nr), heat_now(nr);
   for (int i = 0; i < nr; ++i) heat_before[i] = sim.channel_heat_J(contact, i);
+  const auto step_end = [&](double ta) {
+    const double tb = std::min(ta + slow_step_s, duration_s);
+    return duration_s - tb < 1e-9 * slow_step_s ? duration_s : tb;
+  };
+  // The first-order hold (header): the friction's temperatures over the coming step go from
+  // where they ended (`seen_C`) to the extrapolation of the last two thermal updates.
+  Eigen::VectorXd seen_C = context.held().ring_temp_C, seen_end_C = seen_C;
+  Eigen::VectorXd last_C = th.interface_temps_C(ts), now_C(nr);
   while (sim.time_s() < duration_s - 1e-12) {
     const double ta = sim.time_s();
-    double tb = std::min(ta + slow_step_s, duration_s);
-    if (duration_s - tb < 1e-9 * slow_step_s) tb = duration_s;
+    const double tb = step_end(ta);
     const auto sa = sim.sample();
     sim.advance(tb, sample_times, on_sample);
     const auto sb = sim.sample();
@@ -34,13 +41,20 @@ void run_multirate(dynamics::Simulation& sim, ClutchContext& context, const clut
       return angle(c.a) - angle(c.b);
     };
     const double mean_slip = (twist(sb) - twist(sa)) / dt;
-    if (data_range)  // the inputs the friction was evaluated at over this step
-      data_range->add(dt, mean_slip, th.ring_radius_m(), context.held().ring_temp_C,
+    if (data_range)  // the inputs the friction was evaluated at over this step (mid-step temperatures)
+      data_range->add(dt, mean_slip, th.ring_radius_m(), 0.5 * (seen_C + seen_end_C),
                       context.held().normal_force_N(0.5 * (ta + tb)));
     th.step(ts, workspace, dt, (heat_now - heat_before) / dt, mean_slip);
     ts.time_s = tb;
     heat_before = heat_now;
-    context.set_ring_temperatures(th.interface_temps_C(ts));
+    now_C = th.interface_temps_C(ts);
+    const double next_dt = step_end(tb) - tb;
+    if (next_dt > 0) {
+      seen_C = seen_end_C;
+      seen_end_C = now_C + (now_C - last_C) * (next_dt / dt);
+      context.set_ring_temperature_ramp(seen_C, seen_end_C, tb, tb + next_dt);
+    }
+    last_C = now_C;
     after_step(SlowStep{ta, tb, sa, sb});
     sim.restart();
   }
