@@ -2,8 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace shudder::rig_models {
+
+namespace {
+constexpr double kDivergedTemp_C = 1e4;
+}  // namespace
 
 void run_multirate(dynamics::Simulation& sim, ClutchContext& context, const clutch::WetClutch& clutch,
                    clutch::ThermalState& ts, int contact, double duration_s, double slow_step_s,
@@ -48,6 +54,14 @@ void run_multirate(dynamics::Simulation& sim, ClutchContext& context, const clut
     ts.time_s = tb;
     heat_before = heat_now;
     now_C = th.interface_temps_C(ts);
+    // A thermal state far outside any physical range is a numerical failure, as a non-finite
+    // mechanical state is (dynamics/simulation.cpp). Without this check the hold would feed
+    // friction at such temperatures to the integrator, which then creeps on with ever smaller
+    // steps instead of failing (seen: a diagnosis candidate with a 1 J/K rig part behind a
+    // 1000 W/K conductance diverges to 1e94 °C within 0.5 s). 1e4 °C: far above any disc or oil.
+    if (!now_C.allFinite() || now_C.cwiseAbs().maxCoeff() > kDivergedTemp_C)
+      throw std::runtime_error("thermal step diverged at t = " + std::to_string(tb) +
+                               " s: interface temperature " + std::to_string(now_C.cwiseAbs().maxCoeff()) + " degC");
     const double next_dt = step_end(tb) - tb;
     if (next_dt > 0) {
       seen_C = seen_end_C;

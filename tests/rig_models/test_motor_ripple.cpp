@@ -12,12 +12,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
 #include <numbers>
 #include <string>
 
 #include "analysis/shudder_detection.hpp"
 #include "io/input_error.hpp"
 #include "io/scenario.hpp"
+#include "rig_models/energy_guard.hpp"
 #include "rig_models/lsctr_rig.hpp"
 #include "rig_models/motor_ripple.hpp"
 #include "rig_models/recording_detection.hpp"
@@ -177,6 +181,9 @@ TEST_P(ShippedRigOnset, ChangesLessThanFivePercentWhenTheThermalStepIsHalved) {
     auto& m = shudder::test::rig_model(sc);
     m.settings.thermal_step_s *= step_factor;
     const auto rec = shudder::rig_models::run_rig(m.params, sc.make_clutch(), m.cycle, m.settings);
+    // The hold changes what the friction reads, not the energy accounts: the run's guard
+    // (thermal 1e-6, mechanical 1e-3, rig_models/energy_guard.hpp) passes at every step size.
+    EXPECT_EQ(shudder::rig_models::energy_balance_violation(rec), "") << step_factor;
     const auto det = shudder::rig_models::recording_detection(rec);
     EXPECT_TRUE(det.has_value());
     return shudder::rig_models::judge_recording(*det);
@@ -197,5 +204,32 @@ INSTANTIATE_TEST_SUITE_P(MotorRipple, ShippedRigOnset,
                                            "rig_ramp_thermal", "sweep_torsion_bar", "rig_stick_slip",
                                            "rig_stick_time_probe", "rig_case2_15kN_175Hz", "rig_case2_15kN_378Hz",
                                            "rig_case1_25kN_378Hz"));
+
+}  // namespace
+
+namespace {
+
+// A thermal state that diverges is a numerical failure, not a run that creeps on: a rig part of
+// 1 J/K behind 1000 W/K (values a diagnosis fit may try) makes the thermal update blow up
+// within half a second (1e94 °C on the stick-time probe). Held temperatures gave a non-finite
+// state and an exception there; the first-order hold fed the integrator friction at such
+// temperatures and it crept on for minutes. Now run_multirate throws once a temperature leaves
+// ±1e4 °C.
+TEST(MultirateHold, ADivergingThermalStateIsANumericalFailure) {
+  const std::string path = std::string(SHUDDER_SOURCE_DIR) + "/scenarios/rig_stick_time_probe.toml";
+  std::ifstream in(path);
+  std::stringstream buf;
+  buf << in.rdbuf();
+  std::string text = buf.str();
+  text += "\n[effects.rig_heat_capacity]\nenabled = true\nheat_capacity_J_per_K = 1.0\nconductance_W_per_K = 1000.0\n";
+  auto sc = shudder::io::load_scenario_text(text, path);
+  auto& m = shudder::test::rig_model(sc);
+  try {
+    shudder::rig_models::run_rig(m.params, sc.make_clutch(), m.cycle, m.settings);
+    ADD_FAILURE() << "the diverging run finished";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("thermal step diverged at t = "), std::string::npos) << e.what();
+  }
+}
 
 }  // namespace
