@@ -25,6 +25,9 @@
 // temperature the friction read; so the mechanical account (source work = Δkinetic + Δelastic +
 // friction heat + losses) and the thermal one (heat in = stored + to sump + to rig) close as
 // before (rig_models/energy_guard.hpp bounds 1e-3 and 1e-6).
+// A thermal update that leaves ±1e4 °C (or is not finite) throws std::runtime_error, a numerical
+// failure like a non-finite mechanical state: the hold would otherwise hand the integrator
+// friction at such temperatures and it would creep on with ever smaller steps.
 // Slow steps end exactly on the duration: summed steps fall short of it by round-off
 // (1000 × 10 ms gives 9.99999999999983 s), which would lose the last sample.
 
