@@ -323,6 +323,22 @@ ShudderResult ShudderDetector::detect(const DetectionInput& in) const {
     }
   }
 
+  // 8e: the last upward crossing of the verdict's threshold (as band power: a²/2) before the
+  // oscillating part, the level capped at the oscillating part's.
+  if (cfg.onset_definition == OnsetDefinition::kThresholdCrossing) {
+    const double level_e = std::min(to_dB(0.5 * r.threshold_Nm * r.threshold_Nm), b_max - cfg.oscillating_part_dB);
+    std::size_t j_e = frames;
+    for (std::size_t j = 0; j < ja; ++j)
+      if (b[j] <= level_e) j_e = j;
+    r.growth_observed = j_e < frames;
+    r.onset_time_s = t0;
+    r.growth_acceleration_per_s2 = kNaN;
+    if (r.growth_observed) {  // frame j_e + 1 <= ja lies above the level
+      const double w = std::clamp((level_e - b[j_e]) / (b[j_e + 1] - b[j_e]), 0.0, 1.0);
+      r.onset_time_s = spec.times_s[j_e] + w * (spec.times_s[j_e + 1] - spec.times_s[j_e]);
+    }
+  }
+
   // 9. Operating point: means over one period centred at the onset.
   const double u = (r.onset_time_s - t0) * fs;
   const auto p0 = static_cast<std::size_t>(std::clamp(std::lround(u - 0.5 * period), 0L, static_cast<long>(n - 1)));

@@ -68,6 +68,24 @@
 //         by ~√(P_floor/P): at 45 dB under the fitted frames the onset is good to ~10 % of the
 //         extrapolation, and at 25 dB it is lost (tests/analysis). A deterministic floor of a
 //         simulation is smoother. The system must be quasi-static: σ changes little over a frame.
+//      e. OnsetDefinition::kThresholdCrossing (what a run reports: rig_models/recording_detection)
+//         instead places the onset where the oscillation's amplitude in the band, a_j = √(2 B_j)
+//         (a sinusoid's amplitude from its mean square), last rises through the verdict's
+//         threshold (definition 7) before the oscillating part, interpolated in dB between frame
+//         centres; the level is capped at the oscillating part's, b_max − oscillating_part_dB,
+//         so an oscillation judged on its half peak-to-peak but weaker in its fundamental still
+//         has a crossing. t_0 (growth_observed false) if the band never lies under that level
+//         before the oscillating part (oscillating from the start). Why (issue 14): 8c measures
+//         from the start level, the first frames' band power. Where the operating point is
+//         unstable from t = 0 the growth leaves the start at once, and 8c's onset is t_0 plus a
+//         fraction of a frame, set by what fills the band in the first frames (the start, the
+//         thermal steps' numerical floor), not by physics: rig_shudder_negative_slope gave
+//         0.028–0.040 s at thermal steps of 1–10 ms with no trend. 8e is the instant the
+//         oscillation becomes what the verdict calls shudder (the smallest oscillation that
+//         counts): it is set by the seed and the growth rate, not by the floor below the
+//         threshold; a start transient above the threshold that decays again is skipped (the
+//         LAST upward crossing counts). It shares 8c's assumption that what crosses is the
+//         growing oscillation. growth_rate_per_s is still 8c's fitted σ.
 //   9. Operating point at onset: the means of slip (rpm, signed), interface temperature (°C)
 //      and normal force (N) over one period P centred at the onset time.
 // For `none`, frequency, onset, growth rate and operating point are NaN (peak_frequency_Hz
@@ -93,6 +111,7 @@ inline constexpr std::array<Verdict, 3> kVerdicts = {Verdict::kNone, Verdict::kV
 enum class OnsetDefinition {
   kGrowthLine,      // 8c: the fitted exponential growth extrapolated down to the start level
   kGrowthRateZero,  // 8d (ramps): where the growth rate, fitted as linear in time, crosses zero
+  kThresholdCrossing,  // 8e (runs' verdicts): the band amplitude's last rise through the verdict threshold
 };
 
 /// "none", "vibration", "stick_slip" (the names written to outputs).
@@ -137,7 +156,8 @@ struct DetectionSettings {
   // quarter frame (2 periods) per hop.
   double periods_per_frame = 8.0;
   double periods_per_block = 4.0;
-  // Onset definition 8c (constant operating point) or 8d (slow ramp into instability).
+  // Onset definition 8c (constant operating point), 8d (slow ramp into instability) or 8e (the
+  // oscillation reaching the verdict's threshold; what runs report).
   OnsetDefinition onset_definition = OnsetDefinition::kGrowthLine;
 };
 
@@ -166,7 +186,7 @@ struct ShudderResult {
   double frequency_Hz = 0.0;       // dominant frequency f_d; NaN for none
   double peak_frequency_Hz = 0.0;  // strongest peak examined (f_d, also for none)
   double onset_time_s = 0.0;       // definition 8; NaN for none
-  bool growth_observed = false;    // the band power rose from its starting level
+  bool growth_observed = false;    // the band power rose from its starting level (8e: through the threshold)
   double growth_rate_per_s = 0.0;  // σ of the fitted growth (definition 8c); NaN if not fitted
   // dσ/dt of the parabola of definition 8d, 1/s²; NaN unless that definition placed the onset.
   double growth_acceleration_per_s2 = 0.0;

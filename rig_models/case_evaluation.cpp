@@ -22,8 +22,9 @@ double at(const dynamics::Signal& time, const dynamics::Signal& sig, double t) {
 }
 
 void fill_simulated(const dynamics::Recording& rec, CaseOutcome& o) {
-  const analysis::ShudderDetector detector;
-  const analysis::ShudderResult r = detector.detect(rec);
+  // The run's own judgement (recording_detection.hpp), so a sweep's case and `shudder run` of
+  // the same scenario report the same onset.
+  const analysis::ShudderResult r = judge_recording(*recording_detection(rec));
   o.simulated_verdict = std::string(analysis::to_string(r.verdict));
   o.amplitude_Nm = r.amplitude_Nm;
   o.simulated_frequency_Hz = r.verdict == analysis::Verdict::kNone ? CaseOutcome::kNaN : r.frequency_Hz;

@@ -1,19 +1,49 @@
 #include "rig_models/clutch_contact.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <utility>
 
 namespace shudder::rig_models {
 
 void ClutchContext::set_ring_temperatures(const Eigen::VectorXd& ring_temp_C) {
   held_.ring_temp_C = ring_temp_C;
   frozen_valid_ = false;
+  ramp_ = false;
+  frozen_end_valid_ = false;
+  cached_slip_ = -1.0;
+}
+
+void ClutchContext::set_ring_temperature_ramp(const Eigen::VectorXd& start_C, const Eigen::VectorXd& end_C,
+                                              double t0_s, double t1_s) {
+  if (!(t1_s > t0_s)) throw std::invalid_argument("clutch context: a temperature ramp needs t1 > t0");
+  // The new start is the old far end (the multi-rate runs' continuous hold): its friction is
+  // already frozen, at the same load.
+  if (ramp_ && frozen_end_valid_ && start_C.size() == ring_temp_end_C_.size() && start_C == ring_temp_end_C_) {
+    std::swap(frozen_, frozen_end_);
+    frozen_valid_ = true;
+  } else {
+    frozen_valid_ = false;
+  }
+  held_.ring_temp_C = start_C;
+  ring_temp_end_C_ = end_C;
+  ramp_t0_s_ = t0_s;
+  ramp_t1_s_ = t1_s;
+  ramp_ = end_C != start_C;
+  frozen_end_valid_ = false;
   cached_slip_ = -1.0;
 }
 
 void ClutchContext::set_normal_force(PiecewiseLinear normal_force_N) {
   held_.normal_force_N = std::move(normal_force_N);
   frozen_valid_ = false;
+  frozen_end_valid_ = false;
   cached_slip_ = -1.0;
+}
+
+double ClutchContext::ramp_weight(double t_s) const {
+  return ramp_ ? std::clamp((t_s - ramp_t0_s_) / (ramp_t1_s_ - ramp_t0_s_), 0.0, 1.0) : 0.0;
 }
 
 ClutchHeldInputs ClutchContact::start_inputs(PiecewiseLinear normal_force_N) const {
@@ -28,8 +58,18 @@ void ClutchContact::update(ClutchContext& c, double abs_slip, double t) const {
   if (!c.frozen_valid_ || std::abs(load - c.frozen_.load_N) > 1e-4 * std::abs(load)) {
     c.frozen_ = clutch_->freeze(c.held_.ring_temp_C, force);
     c.frozen_valid_ = true;
+    c.frozen_end_valid_ = false;
   }
   clutch_->ring_torque_Nm(c.frozen_, abs_slip, force, c.ring_torque_);
+  if (c.ramp_) {
+    if (!c.frozen_end_valid_) {
+      c.frozen_end_ = clutch_->freeze(c.ring_temp_end_C_, force);
+      c.frozen_end_valid_ = true;
+    }
+    clutch_->ring_torque_Nm(c.frozen_end_, abs_slip, force, c.ring_torque_end_);
+    const double s = c.ramp_weight(t);
+    c.ring_torque_ += s * (c.ring_torque_end_ - c.ring_torque_);
+  }
   c.cached_slip_ = abs_slip;
   c.cached_t_ = t;
 }
@@ -47,13 +87,18 @@ double ClutchContact::static_capacity_Nm(const ClutchContext& c, double t, doubl
   const double force = c.held_.normal_force_N(t);
   const auto& p = clutch_->params();
   const auto& th = clutch_->thermal();
-  const Eigen::VectorXd& ring_temp_C = c.held_.ring_temp_C;
-  // mu_s per ring at the held temperatures (the ratio to mu_k at the law's lowest speed).
+  // mu_s per ring at the held temperatures (the ratio to mu_k at the law's lowest speed), on a
+  // ramp the same linear blend of its two ends as the kinetic torque.
   const double load = clutch_->friction_load_N(force);
-  double sum = 0.0;
-  for (Eigen::Index i = 0; i < ring_temp_C.size(); ++i)
-    sum += th.ring_radius_m()[i] * th.ring_area_m2()[i] *
-           clutch_->fluid().mu_static(clutch_->friction_temp_C(ring_temp_C[i]), load);
+  const auto weighted_sum = [&](const Eigen::VectorXd& ring_temp_C) {
+    double sum = 0.0;
+    for (Eigen::Index i = 0; i < ring_temp_C.size(); ++i)
+      sum += th.ring_radius_m()[i] * th.ring_area_m2()[i] *
+             clutch_->fluid().mu_static(clutch_->friction_temp_C(ring_temp_C[i]), load);
+    return sum;
+  };
+  double sum = weighted_sum(c.held_.ring_temp_C);
+  if (c.ramp_) sum += c.ramp_weight(t) * (weighted_sum(c.ring_temp_end_C_) - sum);
   double growth = 1.0;
   if (stick_.enabled) growth += stick_.max_increase * (1.0 - std::exp(-stick_time / stick_.time_constant_s));
   return p.sliding_interfaces * clutch_->pressure_Pa(force) * sum * growth + drag_torque_Nm(c, t);

@@ -13,8 +13,16 @@
 //   ClutchContext     what a run changes: the HELD inputs (ring temperatures T_i, clamp force
 //                     F(t)) and the frozen-friction cache built from them. Owned by the run.
 //   ClutchContactLaw  a ClutchContact bound to one ClutchContext: what the integrator calls.
-// Ring temperatures are held between thermal steps (DESIGN.md multi-rate coupling): the run sets
-// new ones into its context after each thermal step and restarts the stepper.
+// Ring temperatures between thermal steps (DESIGN.md multi-rate coupling): either held
+// (set_ring_temperatures: linearisation, real-time mode) or on a first-order hold across the slow
+// step (set_ring_temperature_ramp: the multi-rate runs, rig_models/multirate_clutch.hpp). On the
+// hold each ring's friction moves linearly in time between its values at the two end
+// temperatures, T_i(t) = T_i0 + s (T_i1 − T_i0), s = (t − t0)/(t1 − t0) clamped to [0, 1]:
+//   M_i(|Δω|, t) = (1 − s) M_i(|Δω|, T_i0) + s M_i(|Δω|, T_i1)   (kinetic; mu_s alike)
+// This equals friction at the linearly moving temperature to second order, ½ ∂²M/∂T² ΔT² s(1−s)
+// with ΔT the ring's change over one step (< 1 K on the shipped scenarios); it is continuous in
+// time, so the torque has no step at the slow-step boundaries. Energy is unaffected: the heat
+// channels are this same M_i |Δω|, integrated alongside the motion.
 // The stick-time growth law (saturating, Δ_s and τ_s) is an estimate after Paper A's review
 // (static friction grows with time at rest, Gao et al.); defaults in StickTimeFriction.
 
@@ -46,7 +54,13 @@ class ClutchContext {
  public:
   explicit ClutchContext(ClutchHeldInputs held) : held_(std::move(held)) {}
 
+  /// Holds every ring at `ring_temp_C` (no ramp).
   void set_ring_temperatures(const Eigen::VectorXd& ring_temp_C);
+  /// Friction moves linearly in time from its value at `start_C` (time t0_s) to its value at
+  /// `end_C` (t1_s > t0_s); before t0 and after t1 the nearer end holds. held().ring_temp_C is
+  /// `start_C`. A ramp that starts where the previous one ended reuses its frozen friction.
+  void set_ring_temperature_ramp(const Eigen::VectorXd& start_C, const Eigen::VectorXd& end_C, double t0_s,
+                                 double t1_s);
   /// Replaces the clamp force (a coupling whose force comes from a slow hydraulic state).
   void set_normal_force(PiecewiseLinear normal_force_N);
   const ClutchHeldInputs& held() const { return held_; }
@@ -62,6 +76,15 @@ class ClutchContext {
   bool frozen_valid_ = false;
   double cached_slip_ = -1.0, cached_t_ = 0.0;
   Eigen::VectorXd ring_torque_;  // (n_r) per interface at the cached arguments
+  // The ramp's far end (set_ring_temperature_ramp): temperatures, times, frozen friction there.
+  bool ramp_ = false;
+  Eigen::VectorXd ring_temp_end_C_;
+  double ramp_t0_s_ = 0.0, ramp_t1_s_ = 0.0;
+  clutch::FrozenFriction frozen_end_;
+  bool frozen_end_valid_ = false;
+  Eigen::VectorXd ring_torque_end_;  // (n_r) at the far end, cached arguments
+  /// Weight s of the far end at time t (0 without a ramp).
+  double ramp_weight(double t_s) const;
 };
 
 /// The contact's model: every evaluation reads the held inputs from a context.

@@ -2,8 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace shudder::rig_models {
+
+namespace {
+constexpr double kDivergedTemp_C = 1e4;
+}  // namespace
 
 void run_multirate(dynamics::Simulation& sim, ClutchContext& context, const clutch::WetClutch& clutch,
                    clutch::ThermalState& ts, int contact, double duration_s, double slow_step_s,
@@ -33,6 +39,10 @@ void run_multirate(dynamics::Simulation& sim, ClutchContext& context, const clut
       tb = nearest / sample_rate_Hz;
     return tb;
   };
+  // The first-order hold (header): the friction's temperatures over the coming step go from
+  // where they ended (`seen_C`) to the extrapolation of the last two thermal updates.
+  Eigen::VectorXd seen_C = context.held().ring_temp_C, seen_end_C = seen_C;
+  Eigen::VectorXd last_C = th.interface_temps_C(ts), now_C(nr);
   for (long k = 1; sim.time_s() < duration_s - 1e-12; ++k) {
     const double ta = sim.time_s();
     const double tb = step_end(k);
@@ -46,13 +56,28 @@ void run_multirate(dynamics::Simulation& sim, ClutchContext& context, const clut
       return angle(c.a) - angle(c.b);
     };
     const double mean_slip = (twist(sb) - twist(sa)) / dt;
-    if (data_range)  // the inputs the friction was evaluated at over this step
-      data_range->add(dt, mean_slip, th.ring_radius_m(), context.held().ring_temp_C,
+    if (data_range)  // the inputs the friction was evaluated at over this step (mid-step temperatures)
+      data_range->add(dt, mean_slip, th.ring_radius_m(), 0.5 * (seen_C + seen_end_C),
                       context.held().normal_force_N(0.5 * (ta + tb)));
     th.step(ts, workspace, dt, (heat_now - heat_before) / dt, mean_slip);
     ts.time_s = tb;
     heat_before = heat_now;
-    context.set_ring_temperatures(th.interface_temps_C(ts));
+    now_C = th.interface_temps_C(ts);
+    // A thermal state far outside any physical range is a numerical failure, as a non-finite
+    // mechanical state is (dynamics/simulation.cpp). Without this check the hold would feed
+    // friction at such temperatures to the integrator, which then creeps on with ever smaller
+    // steps instead of failing (seen: a diagnosis candidate with a 1 J/K rig part behind a
+    // 1000 W/K conductance diverges to 1e94 °C within 0.5 s). 1e4 °C: far above any disc or oil.
+    if (!now_C.allFinite() || now_C.cwiseAbs().maxCoeff() > kDivergedTemp_C)
+      throw std::runtime_error("thermal step diverged at t = " + std::to_string(tb) +
+                               " s: interface temperature " + std::to_string(now_C.cwiseAbs().maxCoeff()) + " degC");
+    const double next_dt = step_end(k + 1) - tb;
+    if (next_dt > 0) {
+      seen_C = seen_end_C;
+      seen_end_C = now_C + (now_C - last_C) * (next_dt / dt);
+      context.set_ring_temperature_ramp(seen_C, seen_end_C, tb, tb + next_dt);
+    }
+    last_C = now_C;
     after_step(SlowStep{ta, tb, sa, sb});
     sim.restart();
   }

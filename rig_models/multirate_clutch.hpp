@@ -4,9 +4,30 @@
 // of each slow step, sampled on the way; then the clutch's thermal model is advanced over the
 // step with the exact friction energy per ring the integrator accumulated, and the mean slip
 // (relative rotation / step) for the oil flow; the run's clutch context (the held inputs the
-// contact law reads) gets the new ring temperatures, the caller may update other held inputs
-// (a clamp force), and the stepper restarts. The thermal solver's workspace lives here, one
-// per run.
+// contact law reads) gets the ring temperatures for the next step, the caller may update other
+// held inputs (a clamp force), and the stepper restarts. The thermal solver's workspace lives
+// here, one per run.
+//
+// Ring temperatures across a slow step: a continuous first-order hold (issue 14). Holding each
+// ring's thermal-update value over the step (a zero-order hold, before) made the friction torque
+// a staircase with a step at every update: a numerical forcing at 1/Δt_th and its harmonics (the
+// 10 ms step's third harmonic, 300 Hz, sat on the 300 Hz bar mode and set the onset of shudder).
+// Now, with T_k the interface temperatures of the update at t_k, the friction over
+// [t_k, t_k+1] sees each ring move linearly (ClutchContext::set_ring_temperature_ramp) from
+//   S_k = E_k (where the previous step's ramp ended: no jump at t_k)   to
+//   E_k+1 = T_k + (T_k − T_k−1) Δt_k+1 / Δt_k   (linear extrapolation of the last two updates).
+// Exact for a linear warming; otherwise E_k+1 − T(t_k+1) = O(Δt² T''), and the next ramp is
+// re-anchored on the new update, so the error does not accumulate. The first step holds the
+// start temperatures (no history). The remaining forcing is a slope change per step, ~Δt T''
+// instead of a step ~T' (its harmonics fall as 1/n², not 1/n).
+// Energy: unchanged bookkeeping. The heat handed to the thermal step is the ring heat the
+// integrator accumulated, the integral of the same M_i |Δω| the motion felt, whatever
+// temperature the friction read; so the mechanical account (source work = Δkinetic + Δelastic +
+// friction heat + losses) and the thermal one (heat in = stored + to sump + to rig) close as
+// before (rig_models/energy_guard.hpp bounds 1e-3 and 1e-6).
+// A thermal update that leaves ±1e4 °C (or is not finite) throws std::runtime_error, a numerical
+// failure like a non-finite mechanical state: the hold would otherwise hand the integrator
+// friction at such temperatures and it would creep on with ever smaller steps.
 // Slow steps end exactly on the duration and on the sample times they meet: summed steps drift
 // by round-off (1000 × 10 ms gives 9.99999999999983 s, which would lose the last sample; from
 // ~2 s a step ended just before the sample meant to close it, so that sample came after the

@@ -59,6 +59,9 @@ std::optional<RecordingDetection> recording_detection(const dynamics::Recording&
   if (const auto* s = rec.find(sn::kStuck)) d.input.stuck = s->values;
   if (const auto* s = rec.find(sn::kInterfaceMeanTemp)) d.input.interface_temp_C = s->values;
   if (const auto* s = rec.find(driveline ? sn::kClampForce : sn::kNormalForce)) d.input.normal_force_N = s->values;
+  // A run's onset: the oscillation reaching the verdict's threshold (detector definition 8e),
+  // not set by the start transient (issue 14).
+  d.settings.onset_definition = analysis::OnsetDefinition::kThresholdCrossing;
   if (driveline) {
     d.settings.min_frequency_Hz = 2.0;
     d.sustained_only = true;

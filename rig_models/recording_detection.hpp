@@ -11,6 +11,9 @@
 // the record's last two periods (or last tenth, if longer). A ringing that dies out is the car
 // answering the manoeuvre (a torque step rings the shuffle mode), not judder.
 // Stuck flags, interface temperature and normal force are used when recorded.
+// The onset reported is detector definition 8e (analysis/shudder_detection.hpp): the time the
+// oscillation's amplitude last rose through the verdict's threshold, independent of the start
+// transient and of the thermal step (issue 14; docs/rig_model.md).
 
 #include <optional>
 #include <string_view>

@@ -133,6 +133,59 @@ TEST(DetectionSynthetic, GrowingSaturatingSineOnSteadySlipIsVibrationWithItsFreq
   EXPECT_NEAR(r.oscillating_from_s, t_g + std::log(0.1 / eps) / sigma, 0.05);
 }
 
+// Onset definition 8e (kThresholdCrossing, what runs report): a growing saturating sine as
+// above (A = 50 N m on 300 N m, threshold max(0.5, 1 % of the mean |T|) ≈ 3 N m, under the
+// oscillating part's 5 N m) behind a start transient above the threshold: a ringing at the same
+// frequency, 4 e^{−10 t} N m, under the threshold after 29 ms. The amplitude A e(t) reaches
+// 3 N m where g = 0.06/√(1 − 0.06²): t = t_g + ln(g/ε)/σ (0.8267 s). 8e must skip the decaying
+// start (the LAST upward crossing counts) and not depend on what lies under the threshold:
+// without the transient, or with 10 times the noise (σ_n 0.1 → 1 N m, ~0.2 N m in the band),
+// it stays put, while 8c's start level is the transient's (its onset moves with it).
+// Tolerances: onset 5 ms = 7 % of amplitude at σ = 15 1/s (the Hann band ±2 bins holds the
+// sine's power to < 1 %; the interpolation in dB between frame centres is exact for an
+// exponential; the saturation bends the curve by 0.2 % at 6 % of A). Noise: its cross term
+// with the sine, ~25 dB under it at the threshold, moves the band power there by ~±6 %, i.e.
+// ±2 ms at this growth rate (2.3 ms measured): 5 ms. Without the transient: 1 ms (the
+// transient is 10⁻⁴ of its start by 0.8 s).
+TEST(DetectionSynthetic, ThresholdCrossingOnsetSkipsTheStartTransientAndIgnoresTheFloor) {
+  const double fs = 20000.0, f = 378.3, A = 50.0, sigma = 15.0, eps = 1e-4, t_g = 0.4;
+  const auto make = [&](double noise, double transient_Nm) {
+    Signals s = base(fs, 2.0);
+    std::mt19937_64 rng(11);
+    std::normal_distribution<double> g(0.0, noise);
+    for (std::size_t i = 0; i < s.t.size(); ++i) {
+      const double t = s.t[i];
+      const double gr = t < t_g ? 0.0 : eps * std::exp(sigma * (t - t_g));
+      const double e = gr / std::sqrt(1.0 + gr * gr);
+      s.T[i] = 300.0 + (A * e + transient_Nm * std::exp(-10.0 * t)) * std::sin(kTwoPi * f * t) + g(rng);
+      s.slip[i] = 30.0;
+    }
+    return s;
+  };
+  DetectionSettings crossing;
+  crossing.onset_definition = OnsetDefinition::kThresholdCrossing;
+  const Signals quiet = make(0.1, 4.0), noisy = make(1.0, 4.0), clean = make(0.1, 0.0);
+  const ShudderResult r = detect_shudder(quiet.input(), crossing);
+  const ShudderResult r_noisy = detect_shudder(noisy.input(), crossing);
+  const ShudderResult r_clean = detect_shudder(clean.input(), crossing);
+  const ShudderResult line = detect_shudder(quiet.input()), line_clean = detect_shudder(clean.input());
+  const double gc = 0.06 / std::sqrt(1.0 - 0.06 * 0.06);
+  const double expected = t_g + std::log(gc / eps) / sigma;
+  record("threshold_onset",
+         "8e onset %.4f s (expected %.4f s), noise x10 %.4f s, no transient %.4f s; 8c onset %.4f s, no transient %.4f s",
+         r.onset_time_s, expected, r_noisy.onset_time_s, r_clean.onset_time_s, line.onset_time_s,
+         line_clean.onset_time_s);
+  ASSERT_EQ(r.verdict, Verdict::kVibration);
+  EXPECT_NEAR(r.threshold_Nm, 3.0, 0.01);
+  EXPECT_TRUE(r.growth_observed);
+  EXPECT_NEAR(r.onset_time_s, expected, 0.005);
+  EXPECT_NEAR(r_noisy.onset_time_s, r.onset_time_s, 0.005);
+  EXPECT_NEAR(r_clean.onset_time_s, r.onset_time_s, 0.001);
+  EXPECT_GT(std::abs(line.onset_time_s - line_clean.onset_time_s), 0.05);  // 8c follows the start
+  EXPECT_LT(r.onset_time_s, r.oscillating_from_s);
+  EXPECT_NEAR(r.at_onset.slip_rpm, 30.0, 1e-9);
+}
+
 // A ramp into instability: the growth rate rises linearly through zero at t_c, σ(t) = σ' (t − t_c),
 // so the amplitude is e(t) = g/√(1 + g²) with g = ε e^{σ' (t − t_c)²/2} after t_c. It is held at
 // ε before t_c, as a forced floor would hold it. Onset definition 8d (kGrowthRateZero) fits a

@@ -11,9 +11,12 @@
 // 1e-4). Ring by ring (the grid's r_i, A_i) the law must agree to round-off: 1e-12 relative.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <stdexcept>
+#include <vector>
 
 #include "clutch/linear_friction.hpp"
 #include "clutch/wet_clutch.hpp"
@@ -111,6 +114,51 @@ TEST(ClutchContact, NewHeldTemperaturesAndTheTemperatureSwitchReachTheTorque) {
   ClutchContext hot({Eigen::VectorXd::Constant(n, 100.0), kForce});
   EXPECT_NEAR(law_off.kinetic_torque_Nm(hot, 1.0, kT) / at40, 1.0, 1e-12);
   EXPECT_NEAR(law_off.static_capacity_Nm(hot, kT, 0.0) / (kRatio * at40), 1.0, 1e-12);
+}
+
+// The first-order hold across a thermal step (ClutchContext::set_ring_temperature_ramp, used by
+// rig_models/multirate_clutch): each ring's friction moves linearly in time between its values
+// at the ramp's two end temperatures. With this law mu_k is linear in T, so the blend is exactly
+// friction at the linearly moving temperature: at the ramp's middle the torque, capacity and
+// heat are those at the mean temperature (1e-12); before t0 / after t1 the nearer end holds.
+// The next ramp starts where this one ended, so the torque has no step at the boundary (what
+// removed the thermal step's staircase, issue 14).
+TEST(ClutchContact, TemperatureRampBlendsFrictionLinearlyInTimeAndIsContinuousAtItsEnds) {
+  const WetClutch c = clutch();
+  const ClutchContact law(c, BearingDrag{}, StickTimeFriction{true, 0.15, 1.0});
+  const int n = c.thermal().radial_cells();
+  Eigen::VectorXd start(n), end(n), mid(n);
+  for (int i = 0; i < n; ++i) {
+    start[i] = 40.0 + i;
+    end[i] = 100.0 - 2.0 * i;
+  }
+  mid = 0.5 * (start + end);
+  const auto held_at = [&](const Eigen::VectorXd& temps, double t) {
+    ClutchContext h({temps, kForce});
+    return std::array<double, 2>{law.kinetic_torque_Nm(h, 1.0, t), law.static_capacity_Nm(h, t, 0.3)};
+  };
+  const double t0 = 0.55, t1 = 0.65;  // kT = 0.6 is the middle
+  ClutchContext ramp({start, kForce});
+  ramp.set_ring_temperature_ramp(start, end, t0, t1);
+  const auto at_mid = held_at(mid, kT);
+  EXPECT_NEAR(law.kinetic_torque_Nm(ramp, 1.0, kT), at_mid[0], 1e-12 * at_mid[0]);
+  EXPECT_NEAR(law.static_capacity_Nm(ramp, kT, 0.3), at_mid[1], 1e-12 * at_mid[1]);
+  std::vector<double> q(static_cast<std::size_t>(n)), q_mid(static_cast<std::size_t>(n));
+  law.channel_heat_W(ramp, 1.0, kT, q.data());
+  ClutchContext h_mid({mid, kForce});
+  law.channel_heat_W(h_mid, 1.0, kT, q_mid.data());
+  for (std::size_t i = 0; i < q.size(); ++i) EXPECT_NEAR(q[i], q_mid[i], 1e-12 * q_mid[i]) << "ring " << i;
+  // Outside the ramp the nearer end holds (force at 0.5 / 0.7 s differs: compare at equal t).
+  EXPECT_NEAR(law.kinetic_torque_Nm(ramp, 1.0, 0.5), held_at(start, 0.5)[0], 1e-12 * held_at(start, 0.5)[0]);
+  EXPECT_NEAR(law.kinetic_torque_Nm(ramp, 1.0, 0.7), held_at(end, 0.7)[0], 1e-12 * held_at(end, 0.7)[0]);
+  // The next ramp starts at this one's end: equal torque at the boundary t1 from both sides.
+  const double before = law.kinetic_torque_Nm(ramp, 1.0, t1);
+  ramp.set_ring_temperature_ramp(end, end + (end - start), t1, t1 + (t1 - t0));
+  EXPECT_NEAR(law.kinetic_torque_Nm(ramp, 1.0, t1), before, 1e-12 * before);
+  // A held setting cancels the ramp.
+  ramp.set_ring_temperatures(mid);
+  EXPECT_NEAR(law.kinetic_torque_Nm(ramp, 1.0, kT), at_mid[0], 1e-12 * at_mid[0]);
+  EXPECT_THROW(ramp.set_ring_temperature_ramp(start, end, 0.6, 0.6), std::invalid_argument);
 }
 
 }  // namespace

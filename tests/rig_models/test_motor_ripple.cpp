@@ -12,12 +12,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
 #include <numbers>
 #include <string>
 
 #include "analysis/shudder_detection.hpp"
 #include "io/input_error.hpp"
 #include "io/scenario.hpp"
+#include "rig_models/energy_guard.hpp"
 #include "rig_models/lsctr_rig.hpp"
 #include "rig_models/motor_ripple.hpp"
 #include "rig_models/recording_detection.hpp"
@@ -159,9 +163,16 @@ TEST(MotorRipple, ScenarioKeysSetTheRippleWithinTheirBounds) {
 namespace {
 
 // The issue's criterion on every shipped rig scenario, as shipped (the defaults: ripple on):
-// halving the thermal step moves the detector's onset by < 5 %. Scenarios judged "none" have no
-// onset; those that shudder or stick-slip must agree in verdict and onset. Each is run for at
-// most 3 s (every onset here comes within its first 2 s, measured).
+// halving the thermal step (10 -> 5 ms) moves the reported onset (the run's judgement:
+// detector definition 8e, the oscillation reaching the verdict's threshold) by < 5 %, and a
+// further halving (2.5 ms) agrees with 5 ms to < 5 % as well (convergence). Scenarios judged
+// "none" have no onset; the others must agree in verdict and onset.
+// Fails on the code before issue 14 part 6 (docs/rig_model.md, "Onset and the thermal step"):
+// with the ring temperatures held over the thermal step, the 10 ms staircase's 3rd harmonic
+// sits on the 300 Hz bars (rig_ramp_peak10 2.739 / 2.992 s, +9.2 %; rig_ramp_thermal +8.0 %;
+// sweep_torsion_bar 0.582 / 1.072 s, +84 %); with the first-order hold but the old onset (8c,
+// from the start level) the two growths from the start scatter (rig_shudder_negative_slope
+// 0.028 / 0.035 s, +25 %; sweep_torsion_bar 0.151 / 0.120 s, −20 %).
 class ShippedRigOnset : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(ShippedRigOnset, ChangesLessThanFivePercentWhenTheThermalStepIsHalved) {
@@ -170,27 +181,55 @@ TEST_P(ShippedRigOnset, ChangesLessThanFivePercentWhenTheThermalStepIsHalved) {
     auto& m = shudder::test::rig_model(sc);
     m.settings.thermal_step_s *= step_factor;
     const auto rec = shudder::rig_models::run_rig(m.params, sc.make_clutch(), m.cycle, m.settings);
+    // The hold changes what the friction reads, not the energy accounts: the run's guard
+    // (thermal 1e-6, mechanical 1e-3, rig_models/energy_guard.hpp) passes at every step size.
+    EXPECT_EQ(shudder::rig_models::energy_balance_violation(rec), "") << step_factor;
     const auto det = shudder::rig_models::recording_detection(rec);
     EXPECT_TRUE(det.has_value());
     return shudder::rig_models::judge_recording(*det);
   };
-  const auto a = judge(1.0), b = judge(0.5);
-  std::printf("%s: verdict %s / %s, onset %.4f / %.4f s\n", GetParam(), std::string(to_string(a.verdict)).c_str(),
-              std::string(to_string(b.verdict)).c_str(), a.onset_time_s, b.onset_time_s);
+  const auto a = judge(1.0), b = judge(0.5), c = judge(0.25);
+  std::printf("%s: verdict %s / %s / %s, onset %.4f / %.4f / %.4f s\n", GetParam(),
+              std::string(to_string(a.verdict)).c_str(), std::string(to_string(b.verdict)).c_str(),
+              std::string(to_string(c.verdict)).c_str(), a.onset_time_s, b.onset_time_s, c.onset_time_s);
   ASSERT_EQ(a.verdict, b.verdict);
+  ASSERT_EQ(b.verdict, c.verdict);
   if (a.verdict == shudder::analysis::Verdict::kNone) return;
   EXPECT_LT(std::abs(b.onset_time_s / a.onset_time_s - 1.0), 0.05);
+  EXPECT_LT(std::abs(c.onset_time_s / b.onset_time_s - 1.0), 0.05);
 }
 
-// Left out, measured (docs/rig_model.md "The physical seed"): rig_ramp_peak10 (onset 2.043 s
-// at 10 ms, 2.276 s at 5 ms: 11 %), rig_ramp_thermal (2.834 / 3.118 s: 10 %) and
-// sweep_torsion_bar (0.000 / 0.112 s). All three sit on a 300 Hz bar, and the 10 ms thermal
-// step's torque staircase has its 3rd harmonic at exactly 300 Hz: a numerical resonance that
-// outgrows the ripple (5 N m of ripple moves those onsets by < 0.1 s). Off that resonance the
-// onset converges: 8 / 4 ms give 2.365 / 2.360 s on rig_ramp_peak10.
 INSTANTIATE_TEST_SUITE_P(MotorRipple, ShippedRigOnset,
-                         ::testing::Values("rig_shudder_negative_slope", "rig_ramp_peak20", "rig_stick_slip",
+                         ::testing::Values("rig_shudder_negative_slope", "rig_ramp_peak10", "rig_ramp_peak20",
+                                           "rig_ramp_thermal", "sweep_torsion_bar", "rig_stick_slip",
                                            "rig_stick_time_probe", "rig_case2_15kN_175Hz", "rig_case2_15kN_378Hz",
                                            "rig_case1_25kN_378Hz"));
+
+}  // namespace
+
+namespace {
+
+// A thermal state that diverges is a numerical failure, not a run that creeps on: a rig part of
+// 1 J/K behind 1000 W/K (values a diagnosis fit may try) makes the thermal update blow up
+// within half a second (1e94 °C on the stick-time probe). Held temperatures gave a non-finite
+// state and an exception there; the first-order hold fed the integrator friction at such
+// temperatures and it crept on for minutes. Now run_multirate throws once a temperature leaves
+// ±1e4 °C.
+TEST(MultirateHold, ADivergingThermalStateIsANumericalFailure) {
+  const std::string path = std::string(SHUDDER_SOURCE_DIR) + "/scenarios/rig_stick_time_probe.toml";
+  std::ifstream in(path);
+  std::stringstream buf;
+  buf << in.rdbuf();
+  std::string text = buf.str();
+  text += "\n[effects.rig_heat_capacity]\nenabled = true\nheat_capacity_J_per_K = 1.0\nconductance_W_per_K = 1000.0\n";
+  auto sc = shudder::io::load_scenario_text(text, path);
+  auto& m = shudder::test::rig_model(sc);
+  try {
+    shudder::rig_models::run_rig(m.params, sc.make_clutch(), m.cycle, m.settings);
+    ADD_FAILURE() << "the diverging run finished";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("thermal step diverged at t = "), std::string::npos) << e.what();
+  }
+}
 
 }  // namespace
