@@ -300,10 +300,10 @@ TEST(DiagnosisJson, BackwardCheckFindingsAreWrittenWithTheirCosts) {
   // docs/diagnosis_format.md: `withdrawn_effects` without `kept_because`, an effect kept by the
   // tie rule under `indistinguishable_effects` with it; the summary and report say the same.
   DiagnosisResult r;
-  shudder::analysis::BackwardFinding w{"torque_sensor_gain", {{"gain", 1.004}}, 0.0031, 0.0452, true, "", "", ""};
+  shudder::analysis::BackwardFinding w{"torque_sensor_gain", {{"gain", 1.004}}, 0.0031, 0.0452, true, "", "", "", {}};
   shudder::analysis::BackwardFinding k{"interface_oil_cooling", {{"e", 0.0164}}, 0.0113, 0.0464, false,
                                        "rig_heat_capacity", "heat_capacity_J_per_K 290 -> 2510",
-                                       "rig_heat_capacity could stand in but has more parameters"};
+                                       "rig_heat_capacity could stand in but has more parameters", {}};
   r.withdrawn.push_back(w);
   r.indistinguishable.push_back(k);
   const Json j = parse(diagnosis_json(r));
