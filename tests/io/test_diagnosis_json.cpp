@@ -486,3 +486,44 @@ TEST(DiagnosisJson, AReasonPerStepIsRequired) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(DiagnosisJson, AJointStepNamesItsMembersInJointWith) {
+  // docs/diagnosis_format.md: a joint step (analysis/joint_step.hpp) is one step whose `effect`
+  // is the first member and `joint_with` the others; `missing_effects` lists both; a finding of
+  // the backward check on it names them too; the words say "a + b".
+  DiagnosisResult r;
+  shudder::analysis::DiagnosisStep st;
+  st.effect = "temperature_dependent_friction";
+  st.joint_with = {"load_dependent_friction"};
+  shudder::analysis::CandidateScore pair;
+  pair.effect = st.effect;
+  pair.joint_with = st.joint_with;
+  shudder::analysis::CandidateScore single;
+  single.effect = "load_sensor_gain";
+  single.parameters = {{"gain", 1.011}};
+  st.candidates = {pair, single};
+  r.steps.push_back(st);
+  r.missing_effects = {"temperature_dependent_friction", "load_dependent_friction"};
+  shudder::analysis::BackwardFinding f;
+  f.effect = st.effect;
+  f.joint_with = st.joint_with;
+  r.indistinguishable.push_back(f);
+  const Json j = parse(diagnosis_json(r));
+  ASSERT_EQ(j["steps"].items.size(), 1u);
+  EXPECT_EQ(j["steps"][0]["effect"].str(), "temperature_dependent_friction");
+  ASSERT_EQ(j["steps"][0]["joint_with"].items.size(), 1u);
+  EXPECT_EQ(j["steps"][0]["joint_with"][0].str(), "load_dependent_friction");
+  EXPECT_EQ(j["steps"][0]["candidates"][0]["joint_with"][0].str(), "load_dependent_friction");
+  EXPECT_FALSE(j["steps"][0]["candidates"][1].has("joint_with"));  // only on joint candidates
+  EXPECT_EQ(j["missing_effects"].items.size(), 2u);
+  EXPECT_EQ(j["indistinguishable_effects"][0]["joint_with"][0].str(), "load_dependent_friction");
+  EXPECT_THAT(shudder::report::step_reason(st),
+              HasSubstr("temperature_dependent_friction + load_dependent_friction, switched on together in one "
+                        "joint step"));
+  EXPECT_THAT(shudder::report::diagnosis_candidates_markdown(r),
+              HasSubstr("## Step 1: added temperature_dependent_friction + load_dependent_friction"));
+}
+
+}  // namespace
