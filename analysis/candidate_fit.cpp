@@ -62,9 +62,12 @@ Predictions CandidateFitter::complete(const Config& config, Predictions known, c
 
 std::optional<Config> CandidateFitter::fit_config(const FlatConfig& flat, std::vector<std::vector<double>> starts,
                                                   const SampleSet& set, unsigned jobs, int& evaluations,
-                                                  Predictions& at_best) const {
+                                                  Predictions& at_best, const Predictions* at_start) const {
   at_best.assign(runs_.size(), std::nullopt);
-  if (flat.slots.empty()) return flat.config;
+  if (flat.slots.empty()) {
+    if (at_start) at_best = *at_start;
+    return flat.config;
+  }
   LogParameterProblem problem;
   problem.lower = flat.lower;
   problem.upper = flat.upper;
@@ -79,7 +82,7 @@ std::optional<Config> CandidateFitter::fit_config(const FlatConfig& flat, std::v
   std::vector<double> best_values;
   Predictions best;
   problem.evaluate = [&](const std::vector<double>& v, Eigen::VectorXd& r) {
-    Predictions p = predict(flat.with(v), runs, jobs);
+    Predictions p = at_start && v == flat.values ? *at_start : predict(flat.with(v), runs, jobs);
     const bool ok = misfit_.residual_vector(set, p, r);
     if (ok && r.squaredNorm() < best_cost) {
       best_cost = r.squaredNorm();
@@ -125,27 +128,64 @@ CandidateOutcome CandidateFitter::fit_candidate(const EffectCandidate& c, const 
     o.score.failure = e.what();
     return o;
   }
-  for (std::size_t j = 0; j < k; ++j)
-    o.score.parameters.emplace_back(c.parameter_names[j], o.config.back().values[j]);
+  score_outcome(o, 1, current);
+  return o;
+}
+
+CandidateOutcome CandidateFitter::fit_joint(const Config& start, std::size_t members, const Predictions& at_start,
+                                            const Predictions& current) const {
+  CandidateOutcome o;
+  o.score.effect = start[start.size() - members].effect;
+  for (std::size_t m = start.size() - members + 1; m < start.size(); ++m) o.score.joint_with.push_back(start[m].effect);
+  const FlatConfig flat = flatten(start);
+  try {
+    Predictions at_best;
+    const auto fitted =
+        fit_config(flat, {flat.values}, misfit_.fit(), 1, o.score.evaluations, at_best, &at_start);
+    if (!fitted) {
+      o.score.failure = "no parameter values could be simulated";
+      return o;
+    }
+    o.config = *fitted;
+    o.predictions = complete(o.config, std::move(at_best), union_runs(misfit_.fit(), misfit_.holdout()), 1);
+  } catch (const std::exception& e) {
+    o.score.failure = e.what();
+    return o;
+  }
+  score_outcome(o, members, current);
+  return o;
+}
+
+void CandidateFitter::score_outcome(CandidateOutcome& o, std::size_t members, const Predictions& current) const {
+  const Config own(o.config.end() - static_cast<std::ptrdiff_t>(members), o.config.end());
+  std::size_t k = 0;
+  for (const auto& e : own) {
+    const auto& c = candidate(e.effect);
+    for (std::size_t j = 0; j < e.values.size(); ++j) o.score.parameters.emplace_back(c.parameter_names[j], e.values[j]);
+    k += e.values.size();
+  }
   o.score.fit_misfit = misfit_.misfit(misfit_.fit(), o.predictions);
   o.score.holdout_misfit = misfit_.misfit(misfit_.holdout(), o.predictions);
   const double j_ref = misfit_.misfit(misfit_.holdout(), current);
   const double s = std::max(1.0, j_ref);
-  o.score.score = o.score.holdout_misfit + opt_.penalty_per_parameter * static_cast<double>(k) * s;
+  // Each member beyond the first pays min_gain · s, the gain it would need as an effect of its
+  // own (effect_selection.cpp "joint step"), so a joint candidate and a single compare by score.
+  o.score.score = o.score.holdout_misfit + opt_.penalty_per_parameter * static_cast<double>(k) * s +
+                  opt_.min_gain * static_cast<double>(members - 1) * s;
   o.score.gain = j_ref - o.score.score;
   o.score.signature_correlation = signature_correlation(current, o.predictions);
-  o.score.rejection = rejection(c, o.config.back().values, o.score, s);
+  o.score.rejection = rejection(own, o.score, s);
   o.ok = true;
-  return o;
 }
 
 // The acceptance tests beyond the score (DiagnosisOptions): a parameter pinned at a bound
 // says the effect's shape does not fit and it is only being stretched to absorb something
 // else; a change that does not follow the residual is not what is missing; and a gain below
 // min_gain · s is within what a flexible term finds in any systematic gap.
-std::string CandidateFitter::rejection(const EffectCandidate& c, const std::vector<double>& values,
-                                       const CandidateScore& score, double s) const {
-  if (const std::string name = parameter_at_bound(c, values); !name.empty()) return name + " at its bound";
+std::string CandidateFitter::rejection(const Config& members, const CandidateScore& score, double s) const {
+  for (const auto& e : members)
+    if (const std::string name = parameter_at_bound(candidate(e.effect), e.values); !name.empty())
+      return name + " at its bound";
   if (score.signature_correlation < opt_.min_signature) return "signature does not follow the residual";
   if (score.gain < opt_.min_gain * s) return "gain too small";
   return {};
@@ -193,10 +233,10 @@ Config CandidateFitter::refit_fold(const Config& fold, Predictions& out) const {
   return cfg;
 }
 
-Config CandidateFitter::refit_all(const Config& full, const Config& fold_added, Predictions& out) const {
+Config CandidateFitter::refit_all(const Config& full, const Config& added, Predictions& out) const {
   // Joint refit of every added effect's parameters on all runs, from the current values.
   Config start = full;
-  start.push_back(fold_added.back());
+  start.insert(start.end(), added.begin(), added.end());
   const FlatConfig flat = flatten(start);
   int evaluations = 0;
   Predictions at_best;

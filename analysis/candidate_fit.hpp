@@ -37,12 +37,19 @@ class CandidateFitter {
   Predictions predict(const Config& config, const std::vector<std::size_t>& which, unsigned jobs) const;
   /// Fits `c` on top of `fold` (the effects added so far) and scores it against `current`.
   CandidateOutcome fit_candidate(const EffectCandidate& c, const Config& fold, const Predictions& current) const;
+  /// A joint candidate (effect_selection.cpp "joint step"): the last `members` effects of
+  /// `start` switched on together on top of the others (the effects added so far); every
+  /// parameter of `start` is fitted from its value there. `at_start` holds the predictions of
+  /// the fit and hold-out runs at `start` (the screen's): the solver's first evaluation reuses
+  /// them. Scored as fit_candidate, plus min_gain · s per member beyond the first.
+  CandidateOutcome fit_joint(const Config& start, std::size_t members, const Predictions& at_start,
+                             const Predictions& current) const;
   /// Refits the effects of `fold` alone on the fit set from their values (the fair reference of
   /// a round); `out` gets their fit and hold-out predictions. Returns the refitted config.
   Config refit_fold(const Config& fold, Predictions& out) const;
-  /// Jointly refits `full` plus the newest effect of `fold_added` on all runs from their current
+  /// Jointly refits `full` plus the effects `added` (appended) on all runs from their current
   /// values; `out` gets the predictions of all runs.
-  Config refit_all(const Config& full, const Config& fold_added, Predictions& out) const;
+  Config refit_all(const Config& full, const Config& added, Predictions& out) const;
   const EffectCandidate& candidate(const std::string& name) const;
   /// The first of `values` (parameters of `c`) within bound_margin of its range from a bound,
   /// "" if all are interior.
@@ -64,16 +71,19 @@ class CandidateFitter {
   FlatConfig flatten(const Config& config) const;
   /// Least squares on `set` from the starts; nullopt when no start could be simulated.
   /// `at_best` gets the predictions of the set's runs at the returned values (simulated
-  /// during the fit: they are not simulated again).
+  /// during the fit: they are not simulated again). `at_start`, if given, holds the
+  /// predictions at flat.values (used instead of simulating that point).
   std::optional<Config> fit_config(const FlatConfig& flat, std::vector<std::vector<double>> starts,
                                    const SampleSet& set, unsigned jobs, int& evaluations,
-                                   Predictions& at_best) const;
+                                   Predictions& at_best, const Predictions* at_start = nullptr) const;
+  /// Fills the scores of `o` (o.config fitted, o.predictions of fit and hold-out runs) for the
+  /// last `members` effects of o.config, against `current`.
+  void score_outcome(CandidateOutcome& o, std::size_t members, const Predictions& current) const;
   /// `known` completed by simulating the runs of `which` it lacks, with `config`.
   Predictions complete(const Config& config, Predictions known, const std::vector<std::size_t>& which,
                        unsigned jobs) const;
   double signature_correlation(const Predictions& current, const Predictions& candidate) const;
-  std::string rejection(const EffectCandidate& c, const std::vector<double>& values, const CandidateScore& score,
-                        double s) const;
+  std::string rejection(const Config& members, const CandidateScore& score, double s) const;
 
   const std::vector<DiagnosisRun>& runs_;
   const std::vector<EffectCandidate>& candidates_;

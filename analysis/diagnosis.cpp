@@ -141,7 +141,10 @@ DiagnosisResult run_diagnosis(const std::vector<DiagnosisRun>& runs, const std::
 
   Selection sel = select_effects(runs, candidates, fitter, misfit, opt, baseline);
   const Predictions& full_pred = sel.full_predictions;
-  for (const auto& st : sel.steps) r.missing_effects.push_back(st.effect);
+  for (const auto& st : sel.steps) {
+    r.missing_effects.push_back(st.effect);
+    r.missing_effects.insert(r.missing_effects.end(), st.joint_with.begin(), st.joint_with.end());
+  }
   r.steps = std::move(sel.steps);
   r.last_round = std::move(sel.last_round);
   r.withdrawn = std::move(sel.withdrawn);

@@ -181,14 +181,17 @@ struct CandidateScore {
   std::vector<std::pair<std::string, double>> parameters;  // fitted on the fit set
   double fit_misfit = 0.0;      // J on the fit set
   double holdout_misfit = 0.0;  // J on the hold-out
-  double score = 0.0;           // holdout_misfit + penalty × parameters
-  double gain = 0.0;            // current hold-out J − holdout_misfit − penalty × parameters
+  double score = 0.0;           // holdout_misfit + penalty × parameters (+ min_gain × extra members)
+  double gain = 0.0;            // current hold-out J − score
   double signature_correlation = 0.0;  // r(current residual, change this effect makes)
   int evaluations = 0;          // model evaluations used by the fit
   std::string failure;          // non-empty if every simulation failed
   // Why the candidate may not be added although fitted (empty: it may): a parameter at its
   // bound, a signature that does not follow the residual, or a gain below the needed one.
   std::string rejection;
+  // A joint candidate (analysis/joint_step.hpp): the effects switched on together with
+  // `effect`, in order; empty for a single effect. `parameters` then holds every member's.
+  std::vector<std::string> joint_with;
 };
 
 struct DiagnosisStep {
@@ -202,6 +205,7 @@ struct DiagnosisStep {
   // Features the torque and temp_C residuals followed before this effect (pooled over the
   // runs, strongest first): the evidence the report's "why" sentence names.
   std::vector<std::pair<std::string, double>> torque_tracking_before, temp_tracking_before;
+  std::vector<std::string> joint_with;  // added in the same joint step, after `effect`
 };
 
 /// The backward check's finding on one added effect that the others can do without: the
@@ -217,6 +221,7 @@ struct BackwardFinding {
   std::string stand_in;       // the effect that took over its share ("" if none moved)
   std::string stand_in_move;  // e.g. "heat_capacity_J_per_K 306.9 -> 2510" ("" if none)
   std::string kept_because;   // withdrawn == false: the tie rule's reason
+  std::vector<std::string> joint_with;  // a joint step's other members: tried and withdrawn together
 };
 
 /// Why the greedy search stopped (report/diagnosis_narrative.hpp puts it in words).

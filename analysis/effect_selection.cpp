@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "analysis/joint_step.hpp"
 #include "analysis/residual_tracking.hpp"
 #include "core/parallel_for.hpp"
 
@@ -30,37 +31,70 @@ namespace {
 // held-out cost the simpler explanation is the one the data support (the AIC idea behind the
 // forward penalty); why earlier next: it won a round on its own. One pass refits each added
 // effect's removal once; passes repeat until nothing is withdrawn. Only with two or more effects.
+//
+// Joint steps (analysis/joint_step.hpp). The effects added together in one step are one unit
+// here: taken out together, expendable when that costs less than the pair's own threshold
+// ((2·min_gain + penalty·k)·s), withdrawn together. One member alone is never taken out: the
+// pair was admitted because neither member did as well alone in that round, so removing one
+// (say temperature-dependent friction, whose load-dependent partner then looks like a 1 %
+// load-cell gain) would test a model the search had already rejected.
+std::vector<std::string> members_of(const DiagnosisStep& st) {
+  std::vector<std::string> m{st.effect};
+  m.insert(m.end(), st.joint_with.begin(), st.joint_with.end());
+  return m;
+}
+
+struct Unit {
+  std::size_t first = 0, size = 1;  // fold[first, first + size): one step's effects
+};
+
+// The units of `fold`, in its order (= the order of the steps).
+std::vector<Unit> units_of(const Config& fold, const std::vector<DiagnosisStep>& steps) {
+  std::vector<Unit> units;
+  for (const auto& st : steps)
+    for (std::size_t f = 0; f < fold.size(); ++f)
+      if (fold[f].effect == st.effect) units.push_back({f, 1 + st.joint_with.size()});
+  std::sort(units.begin(), units.end(), [](const Unit& a, const Unit& b) { return a.first < b.first; });
+  return units;
+}
+
 struct Removal {
-  std::size_t index = 0;  // in fold (= order of admission)
+  Unit unit;
   double cost = 0.0, needed = 0.0;
+  std::size_t parameters = 0;  // the unit's
   Config refit;
   Predictions predictions;
   BackwardFinding finding;
 };
 
-Removal try_removal(std::size_t i, const Config& fold, const Predictions& fold_pred, double j_with, double s,
+Removal try_removal(const Unit& u, const Config& fold, const Predictions& fold_pred, double j_with, double s,
                     const CandidateFitter& fitter, const MisfitModel& misfit, const DiagnosisOptions& opt) {
   Removal r;
-  r.index = i;
+  r.unit = u;
   Config without = fold;
-  without.erase(without.begin() + static_cast<std::ptrdiff_t>(i));
+  const auto from = without.begin() + static_cast<std::ptrdiff_t>(u.first);
+  without.erase(from, from + static_cast<std::ptrdiff_t>(u.size));
   r.predictions = fold_pred;
   r.refit = fitter.refit_fold(without, r.predictions);
-  const double k = static_cast<double>(fold[i].values.size());
+  for (std::size_t m = u.first; m < u.first + u.size; ++m) r.parameters += fold[m].values.size();
   r.cost = misfit.misfit(misfit.holdout(), r.predictions) - j_with;
-  r.needed = (opt.min_gain + opt.penalty_per_parameter * k) * s;
-  r.finding.effect = fold[i].effect;
+  r.needed = (opt.min_gain * static_cast<double>(u.size) +
+              opt.penalty_per_parameter * static_cast<double>(r.parameters)) * s;
+  r.finding.effect = fold[u.first].effect;
+  for (std::size_t m = u.first + 1; m < u.first + u.size; ++m) r.finding.joint_with.push_back(fold[m].effect);
   r.finding.holdout_cost = r.cost;
   r.finding.needed_gain = r.needed;
   // The stand-in: the remaining effect whose parameters moved most (refit keeps fold's order).
   double largest = 1.0;
+  std::size_t stand_in_at = 0;
   for (std::size_t e = 0; e < r.refit.size(); ++e) {
-    const std::size_t f = e < i ? e : e + 1;
+    const std::size_t f = e < u.first ? e : e + u.size;
     const auto& c = fitter.candidate(r.refit[e].effect);
     std::size_t j = 0;
     const double move = fitter.relative_move(c, fold[f].values, r.refit[e].values, j);
     if (move > largest) {
       largest = move;
+      stand_in_at = f;
       char text[160];
       std::snprintf(text, sizeof text, "%s %.4g -> %.4g", c.parameter_names[j].c_str(), fold[f].values[j],
                     r.refit[e].values[j]);
@@ -73,12 +107,10 @@ Removal try_removal(std::size_t i, const Config& fold, const Predictions& fold_p
       r.finding.kept_because = "without it " + r.refit[e].effect + "'s " + p + " goes to its bound";
   }
   if (r.finding.kept_because.empty() && !r.finding.stand_in.empty()) {
-    std::size_t f = 0;
-    while (fold[f].effect != r.finding.stand_in) ++f;
-    const std::size_t k_stand_in = fold[f].values.size();
-    if (k_stand_in > fold[i].values.size())
+    const std::size_t k_stand_in = fold[stand_in_at].values.size();
+    if (k_stand_in > r.parameters)
       r.finding.kept_because = r.finding.stand_in + " could stand in but has more parameters";
-    else if (k_stand_in == fold[i].values.size() && f > i)
+    else if (k_stand_in == r.parameters && stand_in_at > u.first)
       r.finding.kept_because = r.finding.stand_in + " could stand in but was added later, with as many parameters";
   }
   return r;
@@ -86,56 +118,63 @@ Removal try_removal(std::size_t i, const Config& fold, const Predictions& fold_p
 
 void withdraw_redundant(Selection& sel, Config& fold, const CandidateFitter& fitter, const MisfitModel& misfit,
                         const DiagnosisOptions& opt) {
-  while (fold.size() >= 2) {
+  while (true) {
+    const std::vector<Unit> units = units_of(fold, sel.steps);
+    if (units.size() < 2) return;
     const double j_with = misfit.misfit(misfit.holdout(), sel.fold_predictions);
     const double s = std::max(1.0, j_with);
     std::vector<Removal> expendable;
-    for (std::size_t i = 0; i < fold.size(); ++i) {
-      Removal r = try_removal(i, fold, sel.fold_predictions, j_with, s, fitter, misfit, opt);
+    for (const auto& u : units) {
+      Removal r = try_removal(u, fold, sel.fold_predictions, j_with, s, fitter, misfit, opt);
       if (r.cost < r.needed) expendable.push_back(std::move(r));
     }
     // Most parameters first, then the last added.
     std::stable_sort(expendable.begin(), expendable.end(), [&](const Removal& a, const Removal& b) {
-      const std::size_t ka = fold[a.index].values.size(), kb = fold[b.index].values.size();
-      return ka != kb ? ka > kb : a.index > b.index;
+      return a.parameters != b.parameters ? a.parameters > b.parameters : a.unit.first > b.unit.first;
     });
     const auto chosen = std::find_if(expendable.begin(), expendable.end(),
                                      [](const Removal& r) { return r.finding.kept_because.empty(); });
-    const auto parameters_of = [&](const std::string& effect) {
+    const auto parameters_of = [&](const BackwardFinding& f) {
       std::vector<std::pair<std::string, double>> p;
       for (const auto& e : sel.full)
-        if (e.effect == effect)
+        if (e.effect == f.effect || std::count(f.joint_with.begin(), f.joint_with.end(), e.effect))
           for (std::size_t j = 0; j < e.values.size(); ++j)
-            p.emplace_back(fitter.candidate(effect).parameter_names[j], e.values[j]);
+            p.emplace_back(fitter.candidate(e.effect).parameter_names[j], e.values[j]);
       return p;
     };
     if (chosen == expendable.end()) {
       for (auto& r : expendable) {
-        r.finding.parameters = parameters_of(r.finding.effect);
+        r.finding.parameters = parameters_of(r.finding);
         sel.indistinguishable.push_back(std::move(r.finding));
       }
       return;
     }
-    const std::string name = chosen->finding.effect;
+    const BackwardFinding& f = chosen->finding;
+    const std::string name = f.effect;
+    const auto in_unit = [&](const std::string& effect) {
+      return effect == f.effect || std::count(f.joint_with.begin(), f.joint_with.end(), effect) > 0;
+    };
     chosen->finding.withdrawn = true;
-    chosen->finding.parameters = parameters_of(name);
-    sel.withdrawn.push_back(std::move(chosen->finding));
-    fold = std::move(chosen->refit);
-    sel.fold_predictions = std::move(chosen->predictions);
+    chosen->finding.parameters = parameters_of(f);
     // The full (all-runs) configuration without it, refitted jointly from its values.
     Config full;
     for (const auto& e : sel.full)
-      if (e.effect != name) full.push_back(e);
-    const Config base(full.begin(), full.end() - 1);
-    sel.full = fitter.refit_all(base, full, sel.full_predictions);
+      if (!in_unit(e.effect)) full.push_back(e);
+    sel.withdrawn.push_back(std::move(chosen->finding));
+    fold = std::move(chosen->refit);
+    sel.fold_predictions = std::move(chosen->predictions);
+    sel.full = fitter.refit_all(full, {}, sel.full_predictions);
     sel.steps.erase(std::remove_if(sel.steps.begin(), sel.steps.end(),
                                    [&](const DiagnosisStep& st) { return st.effect == name; }),
                     sel.steps.end());
-    for (auto& st : sel.steps)
-      for (const auto& e : sel.full)
-        if (e.effect == st.effect)
-          for (std::size_t j = 0; j < st.parameters.size() && j < e.values.size(); ++j)
-            st.parameters[j].second = e.values[j];
+    for (auto& st : sel.steps) {
+      std::size_t at = 0;  // a joint step's parameters are its members', in order
+      for (const auto& member : members_of(st))
+        for (const auto& e : sel.full)
+          if (e.effect == member)
+            for (std::size_t j = 0; j < e.values.size() && at < st.parameters.size(); ++j)
+              st.parameters[at++].second = e.values[j];
+    }
   }
 }
 
@@ -194,10 +233,17 @@ Selection select_effects(const std::vector<DiagnosisRun>& runs, const std::vecto
     std::vector<CandidateOutcome> outcomes(open.size());
     parallel_for(open.size(), opt.jobs,
                  [&](std::size_t i) { outcomes[i] = fitter.fit_candidate(*open[i], fold, fold_pred); });
-    std::stable_sort(outcomes.begin(), outcomes.end(), [](const CandidateOutcome& a, const CandidateOutcome& b) {
+    const auto by_score = [](const CandidateOutcome& a, const CandidateOutcome& b) {
       if (a.ok != b.ok) return a.ok;
       return a.score.score < b.score.score;
-    });
+    };
+    std::stable_sort(outcomes.begin(), outcomes.end(), by_score);
+    // The joint step (analysis/joint_step.hpp): a pair of switches, or a switch with the best
+    // single, competes as one candidate.
+    if (auto joint = joint_candidate(open, outcomes, fold, fold_pred, fitter, misfit, opt)) {
+      outcomes.push_back(std::move(*joint));
+      std::stable_sort(outcomes.begin(), outcomes.end(), by_score);
+    }
     std::vector<CandidateScore> scores;
     for (const auto& o : outcomes) scores.push_back(o.score);
     // The best-scored candidate that passes every acceptance test.
@@ -207,13 +253,15 @@ Selection select_effects(const std::vector<DiagnosisRun>& runs, const std::vecto
     if (!chosen) {
       const CandidateOutcome& best = outcomes.front();
       const double k = static_cast<double>(best.score.parameters.size());
+      const double extra = static_cast<double>(best.score.joint_with.size());
       const double s = std::max(1.0, misfit.misfit(misfit.holdout(), fold_pred));
       sel.last_round = scores;
       if (best.ok) {
         stop.kind = StopReason::Kind::kNoGain;
-        stop.needed_gain = (opt.min_gain + opt.penalty_per_parameter * k) * s;
+        stop.needed_gain = (opt.min_gain * (1.0 + extra) + opt.penalty_per_parameter * k) * s;
         stop.best_effect = best.score.effect;
-        stop.best_gain = best.score.gain + opt.penalty_per_parameter * k * s;
+        for (const auto& m : best.score.joint_with) stop.best_effect += " + " + m;
+        stop.best_gain = best.score.gain + (opt.penalty_per_parameter * k + opt.min_gain * extra) * s;
         stop.best_rejection = best.score.rejection;
       } else {
         stop.kind = StopReason::Kind::kNoFit;
@@ -223,6 +271,7 @@ Selection select_effects(const std::vector<DiagnosisRun>& runs, const std::vecto
     const CandidateOutcome& best = *chosen;
     DiagnosisStep step;
     step.effect = best.score.effect;
+    step.joint_with = best.score.joint_with;
     // The added candidate first (the step's reason speaks of it), the others best first.
     step.candidates.push_back(best.score);
     for (const auto& o : outcomes)
@@ -231,15 +280,18 @@ Selection select_effects(const std::vector<DiagnosisRun>& runs, const std::vecto
     step.holdout_misfit_after = best.score.holdout_misfit;
     step.holdout = misfit.rms(misfit.holdout(), best.predictions);
     const Predictions before = full_pred;
+    const std::size_t members = 1 + best.score.joint_with.size();
     fold = best.config;
     for (std::size_t kk = 0; kk < runs.size(); ++kk)
       if (best.predictions[kk]) fold_pred[kk] = best.predictions[kk];
-    full = fitter.refit_all(full, fold, full_pred);
-    const auto& c = fitter.candidate(step.effect);
-    for (std::size_t j = 0; j < c.parameter_names.size(); ++j)
-      step.parameters.emplace_back(c.parameter_names[j], full.back().values[j]);
+    full = fitter.refit_all(full, Config(fold.end() - static_cast<std::ptrdiff_t>(members), fold.end()), full_pred);
+    for (std::size_t m = full.size() - members; m < full.size(); ++m) {
+      const auto& c = fitter.candidate(full[m].effect);
+      for (std::size_t j = 0; j < c.parameter_names.size(); ++j)
+        step.parameters.emplace_back(c.parameter_names[j], full[m].values[j]);
+      step.description += (step.description.empty() ? "" : "; ") + c.description;
+    }
     step.misfit = misfit.rms(misfit.all(), full_pred);
-    step.description = c.description;
     step.torque_tracking_before = pooled_tracking(runs, before, true);
     step.temp_tracking_before = pooled_tracking(runs, before, false);
     sel.steps.push_back(std::move(step));

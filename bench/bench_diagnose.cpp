@@ -13,10 +13,12 @@
 // listed last, so the diagnosis holds it out: fitted on the outer loads, scored on the
 // thesis' own case (interpolation, not extrapolation).
 //
-//   BM_Diagnose_Case2_AllOff   baseline with all nine [effects] off; stick-time friction cannot
-//                              act with imposed slip, so 8 candidates; the diagnosis should re-add
-//                              temperature dependence, oil cooling, sump heating, load dependence
-//                              and the rig heat capacity (five rounds). The main figure.
+//   BM_Diagnose_Case2_AllOff   baseline with every [effects] table off; stick-time friction cannot
+//                              act with imposed slip, so 13 candidates; the diagnosis should re-add
+//                              oil cooling, the rig heat capacity and temperature and load
+//                              dependence of friction (the shipped Case 2 holds the sump; the two
+//                              friction switches only together, in a joint step:
+//                              analysis/joint_step.hpp). The main figure.
 //                              Arg = max_effects: the registry's effect count (the CLI default:
 //                              no limit) and 4
 //                              (a search cut short).
@@ -161,19 +163,21 @@ void run_diagnosis(benchmark::State& state, const std::string& model_text, const
   for (const auto& s : skipped) std::cerr << " (skipped " << s << ")";
   std::cerr << "\n";
   for (const auto& st : r.steps) {
-    std::cerr << "  + " << st.effect;
+    std::cerr << "  + " << shudder::report::effects_label(st.effect, st.joint_with);
     for (const auto& [k, v] : st.parameters) std::cerr << " " << k << "=" << v;
     std::cerr << "  held-out J " << st.holdout_misfit_before << " -> " << st.holdout_misfit_after
               << ", torque RMS " << st.misfit.torque_rms_Nm << " Nm, temp RMS " << st.misfit.temp_rms_C
               << " C\n    round:";
     for (const auto& c : st.candidates)
-      std::cerr << " " << c.effect << " (J " << c.holdout_misfit << ", gain " << c.gain << ")";
+      std::cerr << " " << shudder::report::effects_label(c.effect, c.joint_with) << " (J " << c.holdout_misfit
+                << ", gain " << c.gain << ")";
     std::cerr << "\n";
   }
   if (!r.last_round.empty()) {
     std::cerr << "    last round:";
     for (const auto& c : r.last_round)
-      std::cerr << " " << c.effect << " (J " << c.holdout_misfit << ", gain " << c.gain << ")";
+      std::cerr << " " << shudder::report::effects_label(c.effect, c.joint_with) << " (J " << c.holdout_misfit
+                << ", gain " << c.gain << ")";
     std::cerr << "\n";
   }
   std::cerr << "  final model:";

@@ -110,7 +110,9 @@ std::string tracking(const Tracking& t) {
 
 std::string candidate(const CandidateScore& c) {
   Object o;
-  o.str("effect", c.effect).raw("parameters", object_of(c.parameters)).num("fit_misfit", c.fit_misfit)
+  o.str("effect", c.effect);
+  if (!c.joint_with.empty()) o.raw("joint_with", strings(c.joint_with));
+  o.raw("parameters", object_of(c.parameters)).num("fit_misfit", c.fit_misfit)
       .num("holdout_misfit", c.holdout_misfit).num("score", c.score).num("gain", c.gain)
       .num("signature_correlation", c.signature_correlation)
       .raw("evaluations", std::to_string(c.evaluations));
@@ -123,7 +125,9 @@ std::string candidate(const CandidateScore& c) {
 // Steps are large: one member per line, the candidates one per line below.
 std::string step(const DiagnosisStep& st, const std::string& reason) {
   Object o(",\n      ");
-  o.str("effect", st.effect).raw("parameters", object_of(st.parameters))
+  o.str("effect", st.effect);
+  if (!st.joint_with.empty()) o.raw("joint_with", strings(st.joint_with));
+  o.raw("parameters", object_of(st.parameters))
       .num("torque_rms_Nm", st.misfit.torque_rms_Nm).num("temp_rms_C", st.misfit.temp_rms_C)
       .num("holdout_torque_rms_Nm", st.holdout.torque_rms_Nm)
       .num("holdout_temp_rms_C", st.holdout.temp_rms_C)
@@ -159,7 +163,9 @@ std::string remaining(const analysis::DiagnosisResult& r) {
 
 std::string backward_finding(const analysis::BackwardFinding& f) {
   Object o;
-  o.str("effect", f.effect).raw("parameters", object_of(f.parameters)).num("holdout_cost", f.holdout_cost)
+  o.str("effect", f.effect);
+  if (!f.joint_with.empty()) o.raw("joint_with", strings(f.joint_with));
+  o.raw("parameters", object_of(f.parameters)).num("holdout_cost", f.holdout_cost)
       .num("needed_gain", f.needed_gain).str("stand_in", f.stand_in).str("stand_in_move", f.stand_in_move);
   if (!f.withdrawn) o.str("kept_because", f.kept_because);
   return o.text();

@@ -49,27 +49,35 @@ std::string stop_reason_text(const analysis::StopReason& stop) {
   return {};
 }
 
+std::string effects_label(const std::string& effect, const std::vector<std::string>& joint_with) {
+  std::string s = effect;
+  for (const auto& m : joint_with) s += " + " + m;
+  return s;
+}
+
 std::string step_reason(const analysis::DiagnosisStep& step) {
   std::ostringstream os;
-  os << step.effect;
+  os << effects_label(step.effect, step.joint_with);
+  if (!step.joint_with.empty()) os << ", switched on together in one joint step,";
   if (!step.description.empty()) os << " (" << step.description << ")";
   os << ": ";
   const auto tr = [](const std::vector<std::pair<std::string, double>>& r) {
     return r.empty() ? std::string("nothing") : r.front().first + " (" + fmt(r.front().second, "%.2f") + ")";
   };
   os << "before it, the torque error tracked " << tr(step.torque_tracking_before) << " and the temperature error "
-     << tr(step.temp_tracking_before) << ". The change this effect makes matches that residual (signature r = "
+     << tr(step.temp_tracking_before) << ". The change "
+     << (step.joint_with.empty() ? "this effect makes" : "they make together") << " matches that residual (signature r = "
      << fmt(step.candidates.empty() ? 0.0 : step.candidates.front().signature_correlation, "%.2f") << ")";
   if (!step.parameters.empty()) {
     os << " with ";
     for (std::size_t j = 0; j < step.parameters.size(); ++j)
       os << (j ? ", " : "") << step.parameters[j].first << " = " << fmt(step.parameters[j].second, "%.4g");
   }
-  os << ", and it lowers the held-out misfit from " << fmt(step.holdout_misfit_before) << " to "
+  os << ", and " << (step.joint_with.empty() ? "it lowers" : "they lower") << " the held-out misfit from " << fmt(step.holdout_misfit_before) << " to "
      << fmt(step.holdout_misfit_after) << " (1 = noise level)";
   if (step.candidates.size() > 1) {
     const auto& next = step.candidates[1];
-    os << "; the next best, " << next.effect << ", reached " << fmt(next.holdout_misfit);
+    os << "; the next best, " << effects_label(next.effect, next.joint_with) << ", reached " << fmt(next.holdout_misfit);
   }
   os << ".";
   return os.str();
@@ -133,7 +141,8 @@ std::string diagnosis_conclusion(const analysis::DiagnosisResult& r) {
 
 std::string backward_finding_text(const analysis::BackwardFinding& f) {
   std::ostringstream os;
-  os << f.effect << ": without it the held-out misfit rises by " << fmt(f.holdout_cost) << ", below the "
+  os << effects_label(f.effect, f.joint_with) << ": without "
+     << (f.joint_with.empty() ? "it" : "them") << " the held-out misfit rises by " << fmt(f.holdout_cost) << ", below the "
      << fmt(f.needed_gain) << " it would need";
   if (!f.stand_in.empty()) os << "; " << f.stand_in << " takes over (" << f.stand_in_move << ")";
   if (f.withdrawn)

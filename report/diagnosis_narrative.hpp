@@ -4,6 +4,7 @@
 // the JSON writer, the Markdown report and the terminal summary, so all say the same.
 
 #include <string>
+#include <vector>
 
 #include "analysis/diagnosis.hpp"
 #include "io/diagnosis_json.hpp"
@@ -27,6 +28,9 @@ std::string diagnosis_conclusion(const analysis::DiagnosisResult& result);
 /// One backward-check finding in words: withdrawn (the others stand in for it) or kept by the
 /// tie rule (the data cannot separate it from its stand-in), with the held-out cost.
 std::string backward_finding_text(const analysis::BackwardFinding& f);
+/// An added effect or joint candidate by name: "a", or "a + b" for effects switched on
+/// together in one joint step (analysis/joint_step.hpp).
+std::string effects_label(const std::string& effect, const std::vector<std::string>& joint_with);
 /// All of the above for the JSON file.
 io::DiagnosisSentences diagnosis_sentences(const analysis::DiagnosisResult& result);
 

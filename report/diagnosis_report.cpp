@@ -63,7 +63,7 @@ void candidate_table(std::ostringstream& md, const std::vector<CandidateScore>& 
         "| evaluations | note |\n"
      << "|---|---|---:|---:|---:|---:|---:|---:|---|\n";
   for (const auto& c : cands)
-    md << "| " << cell(c.effect) << " | " << cell(parameters_text(c.parameters)) << " | "
+    md << "| " << cell(effects_label(c.effect, c.joint_with)) << " | " << cell(parameters_text(c.parameters)) << " | "
        << fixed(c.fit_misfit) << " | " << fixed(c.holdout_misfit) << " | " << fixed(c.score) << " | "
        << fixed(c.gain, "%+.4g") << " | " << fixed(c.signature_correlation, "%+.3f") << " | "
        << c.evaluations << " | " << cell(c.failure.empty() ? "" : "failed: " + c.failure) << " |\n";
@@ -181,7 +181,7 @@ std::string diagnosis_candidates_markdown(const analysis::DiagnosisResult& r) {
      << fixed(r.final_holdout_misfit) << ".\n\n";
   for (std::size_t k = 0; k < r.steps.size(); ++k) {
     const auto& st = r.steps[k];
-    md << "## Step " << k + 1 << ": added " << st.effect << "\n\n";
+    md << "## Step " << k + 1 << ": added " << effects_label(st.effect, st.joint_with) << "\n\n";
     md << "Parameters (refitted on all runs): " << parameters_text(st.parameters) << ". Hold-out misfit "
        << fixed(st.holdout_misfit_before) << " → " << fixed(st.holdout_misfit_after)
        << "; torque RMS " << fixed(st.misfit.torque_rms_Nm) << " N m, temp RMS "

@@ -21,11 +21,12 @@ std::string parameters(const std::vector<std::pair<std::string, double>>& p) {
 void print_candidates(std::ostream& os, const std::vector<analysis::CandidateScore>& cs) {
   os << "    effect                          held-out J  gain     signature r  parameters\n";
   for (const auto& c : cs) {
-    char line[160];
+    char line[256];
+    const std::string name = effects_label(c.effect, c.joint_with);
     if (!c.failure.empty()) {
-      std::snprintf(line, sizeof line, "    %-31s failed: %s\n", c.effect.c_str(), c.failure.c_str());
+      std::snprintf(line, sizeof line, "    %-31s failed: %s\n", name.c_str(), c.failure.c_str());
     } else {
-      std::snprintf(line, sizeof line, "    %-31s %-11.4g %-8.3g %-12.2f ", c.effect.c_str(),
+      std::snprintf(line, sizeof line, "    %-31s %-11.4g %-8.3g %-12.2f ", name.c_str(),
                     c.holdout_misfit, c.gain, c.signature_correlation);
     }
     os << line << (c.failure.empty() ? parameters(c.parameters) + "\n" : "");
@@ -61,7 +62,7 @@ std::string diagnosis_summary(const io::Scenario& s, const analysis::DiagnosisRe
     const auto& st = r.steps[i];
     os << "Round " << i + 1 << " candidates (fitted on the fit set, scored on the hold-out; J = 1 is noise):\n";
     print_candidates(os, st.candidates);
-    os << "  -> added " << st.effect << " (" << parameters(st.parameters) << "): torque RMS "
+    os << "  -> added " << effects_label(st.effect, st.joint_with) << " (" << parameters(st.parameters) << "): torque RMS "
        << num(st.misfit.torque_rms_Nm) << " Nm, temp RMS " << num(st.misfit.temp_rms_C) << " C\n";
     os << "     why: " << step_reason(st) << "\n";
   }

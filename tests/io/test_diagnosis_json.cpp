@@ -300,10 +300,10 @@ TEST(DiagnosisJson, BackwardCheckFindingsAreWrittenWithTheirCosts) {
   // docs/diagnosis_format.md: `withdrawn_effects` without `kept_because`, an effect kept by the
   // tie rule under `indistinguishable_effects` with it; the summary and report say the same.
   DiagnosisResult r;
-  shudder::analysis::BackwardFinding w{"torque_sensor_gain", {{"gain", 1.004}}, 0.0031, 0.0452, true, "", "", ""};
+  shudder::analysis::BackwardFinding w{"torque_sensor_gain", {{"gain", 1.004}}, 0.0031, 0.0452, true, "", "", "", {}};
   shudder::analysis::BackwardFinding k{"interface_oil_cooling", {{"e", 0.0164}}, 0.0113, 0.0464, false,
                                        "rig_heat_capacity", "heat_capacity_J_per_K 290 -> 2510",
-                                       "rig_heat_capacity could stand in but has more parameters"};
+                                       "rig_heat_capacity could stand in but has more parameters", {}};
   r.withdrawn.push_back(w);
   r.indistinguishable.push_back(k);
   const Json j = parse(diagnosis_json(r));
@@ -483,6 +483,47 @@ TEST(DiagnosisJson, AReasonPerStepIsRequired) {
   EXPECT_THROW(shudder::io::diagnosis_json(r, words), std::logic_error);
   words.step_reasons.push_back("second");
   EXPECT_THAT(shudder::io::diagnosis_json(r, words), HasSubstr("\"reason\": \"second\""));
+}
+
+}  // namespace
+
+namespace {
+
+TEST(DiagnosisJson, AJointStepNamesItsMembersInJointWith) {
+  // docs/diagnosis_format.md: a joint step (analysis/joint_step.hpp) is one step whose `effect`
+  // is the first member and `joint_with` the others; `missing_effects` lists both; a finding of
+  // the backward check on it names them too; the words say "a + b".
+  DiagnosisResult r;
+  shudder::analysis::DiagnosisStep st;
+  st.effect = "temperature_dependent_friction";
+  st.joint_with = {"load_dependent_friction"};
+  shudder::analysis::CandidateScore pair;
+  pair.effect = st.effect;
+  pair.joint_with = st.joint_with;
+  shudder::analysis::CandidateScore single;
+  single.effect = "load_sensor_gain";
+  single.parameters = {{"gain", 1.011}};
+  st.candidates = {pair, single};
+  r.steps.push_back(st);
+  r.missing_effects = {"temperature_dependent_friction", "load_dependent_friction"};
+  shudder::analysis::BackwardFinding f;
+  f.effect = st.effect;
+  f.joint_with = st.joint_with;
+  r.indistinguishable.push_back(f);
+  const Json j = parse(diagnosis_json(r));
+  ASSERT_EQ(j["steps"].items.size(), 1u);
+  EXPECT_EQ(j["steps"][0]["effect"].str(), "temperature_dependent_friction");
+  ASSERT_EQ(j["steps"][0]["joint_with"].items.size(), 1u);
+  EXPECT_EQ(j["steps"][0]["joint_with"][0].str(), "load_dependent_friction");
+  EXPECT_EQ(j["steps"][0]["candidates"][0]["joint_with"][0].str(), "load_dependent_friction");
+  EXPECT_FALSE(j["steps"][0]["candidates"][1].has("joint_with"));  // only on joint candidates
+  EXPECT_EQ(j["missing_effects"].items.size(), 2u);
+  EXPECT_EQ(j["indistinguishable_effects"][0]["joint_with"][0].str(), "load_dependent_friction");
+  EXPECT_THAT(shudder::report::step_reason(st),
+              HasSubstr("temperature_dependent_friction + load_dependent_friction, switched on together in one "
+                        "joint step"));
+  EXPECT_THAT(shudder::report::diagnosis_candidates_markdown(r),
+              HasSubstr("## Step 1: added temperature_dependent_friction + load_dependent_friction"));
 }
 
 }  // namespace

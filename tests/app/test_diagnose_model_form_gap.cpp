@@ -1,0 +1,92 @@
+// Model-form mismatch with a larger gap (issue 12: the held-out set's independent simulator,
+// with another oil-flow calibration, left a 3.2 °C RMS gap with nothing hidden). Here the "other
+// simulator" is our own model with a deliberately different calibration and discretisation:
+// oil flow e = 0.020 against the model's 0.016 (25 % more flow through the interface), 60 radial
+// cells and a 2.5 ms thermal step against 20 and 10 ms. On the probe runs at 14 kN / 70 °C and
+// 26 kN / 90 °C (100 Hz, sensor noise) that leaves temp_C 2.93 °C, ir_temp_C 3.0 °C and torque
+// 0.81 N m RMS with nothing hidden (measured with `--max-effects 0`). Without a tolerance the
+// diagnosis names stand-ins for the mismatch (thermocouple_offset and rig_heat_capacity, "partly
+// explained"). The tolerance is chosen as docs/diagnosis.md "Choosing a tolerance" says: the
+// final RMS per channel of a run where the model is trusted, here the mismatch alone.
+#include <gtest/gtest.h>
+
+#include "analysis/diagnosis.hpp"
+#include "io/diagnosis_inputs.hpp"
+#include "io/measured_run.hpp"
+#include "io/scenario.hpp"
+#include "report/diagnosis_narrative.hpp"
+#include "rig_models/replay.hpp"
+#include "tests/support/cli.hpp"
+
+namespace shudder {
+namespace {
+
+using test::replace;
+using test::run_cli;
+using test::scratch_dir;
+using test::source_path;
+using test::write_file;
+
+const char* const kOtherSimulator =
+    "[solver]\nradial_cells = 60\nthermal_step_ms = 2.5\n"
+    "[effects.interface_oil_cooling]\nenabled = true\ne = 0.020\n";
+
+std::string probe(const std::string& extra, double force_N, double temp_C) {
+  std::string s = test::shipped_scenario_text("diagnosis_probe.toml");
+  s = replace(s, "start_temp_C = 75.0", "start_temp_C = " + std::to_string(temp_C));
+  s = replace(s, "normal_force_N = 12000.0", "normal_force_N = " + std::to_string(force_N));
+  return s + "\n" + extra;
+}
+
+analysis::DiagnosisResult diagnose_other_simulator(const std::string& name, const std::string& hidden) {
+  const auto dir = scratch_dir(name);
+  std::vector<io::MeasuredRun> runs;
+  const struct { double force, temp; unsigned seed; const char* stem; } spec[] = {{14000, 70, 91, "a"},
+                                                                                {26000, 90, 92, "b"}};
+  for (const auto& r : spec) {
+    const std::string stem = r.stem;
+    write_file(dir / (stem + ".toml"), probe(std::string(kOtherSimulator) + hidden, r.force, r.temp));
+    const auto out = run_cli("run " + stem + ".toml -o " + stem + ".h5 --measurement " + stem +
+                                 ".csv --sample-rate 100 --noise --seed " + std::to_string(r.seed),
+                             dir);
+    EXPECT_EQ(out.exit_code, 0) << out.err;
+    runs.push_back(io::read_measured_run((dir / (stem + ".csv")).string()));
+  }
+  const auto scenario = io::load_scenario_text(probe("", 14000, 70), source_path("scenarios/diagnosis_probe.toml"));
+  auto data = io::diagnosis_data(runs);
+  const auto model = io::replay_model(scenario);
+  analysis::DiagnosisOptions o;
+  o.jobs = 1;  // ctest runs the cases in parallel
+  o.tolerance = {{"torque_Nm", 0.81}, {"temp_C", 2.93}, {"ir_temp_C", 3.0}};
+  const auto reproduce = rig_models::replay_reproducer(model, data.inputs);
+  return analysis::diagnose(data.runs, rig_models::replay_candidates(model, nullptr),
+                            rig_models::replay_simulator(model, std::move(data.inputs)), o, reproduce);
+}
+
+std::string describe(const analysis::DiagnosisResult& r) {
+  std::string s = report::verdict_sentence(r) + "\n" + report::diagnosis_conclusion(r) + "\n";
+  for (const auto& c : r.last_round) s += "  last round " + c.effect + " gain " + std::to_string(c.gain) + "\n";
+  return s;
+}
+
+TEST(DiagnoseLargerModelFormGap, TheMismatchAloneNamesNothingWithinTheTolerance) {
+  const auto r = diagnose_other_simulator("diag_form_gap", "");
+  EXPECT_TRUE(r.missing_effects.empty()) << describe(r);
+  EXPECT_EQ(r.verdict, analysis::DiagnosisVerdict::kExplained) << describe(r);
+  // The gap is the one the tolerance was read from: 2-4 °C, as the issue's simulator left.
+  EXPECT_GT(r.final.temp_rms_C, 2.0);
+  EXPECT_LT(r.final.temp_rms_C, 4.0);
+}
+
+TEST(DiagnoseLargerModelFormGap, ABearingDragOnTopIsStillNamed) {
+  // The thesis' μ = 0.005 adds μ·F·r ≈ 2.3-4.3 N m at 14 and 26 kN, several times the 0.81 N m
+  // torque tolerance. (A 1 s temperature-sensor lag on top is not named here: docs/diagnosis.md
+  // "A larger model-form gap" says why.)
+  const auto r = diagnose_other_simulator("diag_form_gap_drag", "[effects.bearing_drag]\nenabled = true\nequivalent_mu = 0.005\n");
+  EXPECT_EQ(r.missing_effects, std::vector<std::string>{"bearing_drag"}) << describe(r);
+  ASSERT_FALSE(r.final_effects.empty());
+  EXPECT_NEAR(r.final_effects[0].parameters[0].second / 0.005, 1.0, 0.2);  // the issue's 20 %
+}
+
+}  // namespace
+}  // namespace shudder
