@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
 namespace shudder::io {
@@ -61,8 +62,11 @@ TomlTable::TomlTable(const toml::table& table, std::string file, std::string pat
     : table_(&table), file_(std::move(file)), path_(std::move(path)) {}
 
 toml::table TomlTable::parse_file(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream text;
+  if (in && (text << in.rdbuf())) return parse_text(text.str(), file);  // the same checks as text
   try {
-    return toml::parse_file(file);
+    return toml::parse_file(file);  // unreadable: toml++ says why
   } catch (const toml::parse_error& e) {
     const auto& src = e.source();
     // toml++ reports an unreadable file as a parse error at line 0.

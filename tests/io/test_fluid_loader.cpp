@@ -149,6 +149,16 @@ TEST(LoadFluid, MissingSetsOfARow) {
               fails_with(path, "maki.row[0].sets", "missing; expected an array of 4 sets"));
 }
 
+// Found by fuzz_fluid under UBSan (session 21): a bare key running into "°" ("mean_°C") made
+// toml++ 3.3.0 reach __builtin_unreachable while reading a file (io/toml_reader.cpp). A file is
+// checked as text is: rejected with the line, before toml++ parses it.
+TEST(LoadFluid, NonAsciiCharacterInABareKeyIsRejectedWithItsLine) {
+  const auto path = write(with(kMaki, "nu40_cSt = 35.0\n", "nu40_cSt = 35.0\nmean_\xC2\xB0" "C = 1\n"));
+  EXPECT_THAT([&] { load_fluid(path); },
+              ThrowsMessage<InputError>(AllOf(HasSubstr(path + ":"),
+                                              HasSubstr("non-ASCII character outside a string or comment"))));
+}
+
 TEST(LoadFluid, UnknownKey) {
   const auto path = write(with(kMaki, "nu40_cSt = 35.0\n", "nu40_cSt = 35.0\ncolour = \"red\"\n"));
   EXPECT_THAT([&] { load_fluid(path); },
