@@ -25,7 +25,7 @@ constexpr std::uint64_t kSweepKeptChannels = 5;
 /// Samples the recording will hold: floor(duration x rate) + 1.
 std::uint64_t estimated_samples(const io::Scenario& scenario);
 
-/// Bytes of a run file's data: samples x kRecordedChannels x 8 + snapshots.
+/// Bytes of a run file's data: samples x recorded_channels(scenario) x 8 + snapshots.
 std::uint64_t estimated_run_bytes(const io::Scenario& scenario);
 
 /// Bytes of a sweep file's data: for each case, samples x kSweepKeptChannels x 8.

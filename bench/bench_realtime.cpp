@@ -143,8 +143,8 @@ void time_steps(benchmark::State& state, long pacing, const rig_models::Realtime
   for (double u : us) sum += u;
   state.counters["worst_us"] = sorted.back();
   state.counters["mean_us"] = sum / kSteps;
-  state.counters["p999_us"] = sorted[static_cast<std::size_t>(0.999 * kSteps)];
-  state.counters["p9999_us"] = sorted[static_cast<std::size_t>(0.9999 * kSteps)];
+  state.counters["p999_us"] = percentile(sorted, 0.999);
+  state.counters["p9999_us"] = percentile(sorted, 0.9999);
   double cpu_sum = 0.0;
   for (double u : cpu_us) cpu_sum += u;
   state.counters["cpu_worst_us"] = *std::max_element(cpu_us.begin(), cpu_us.end());

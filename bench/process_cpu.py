@@ -31,7 +31,7 @@ def main():
             _, status, ru = os.wait4(pid, 0)
             wall[b].append((time.perf_counter() - t0) * 1e3)
             if status != 0:
-                sys.exit(f"{b} exited with status {status}")
+                sys.exit(f"{b} exited with status {os.waitstatus_to_exitcode(status)}")
             cpu[b].append((ru.ru_utime + ru.ru_stime) * 1e3)
     for b in bins:
         print(f"{b}: CPU median {statistics.median(cpu[b]):.2f} min {min(cpu[b]):.2f} ms | "

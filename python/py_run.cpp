@@ -30,7 +30,7 @@ RunOutcome run(const io::Scenario& scenario, const std::string& output, bool for
     io::require_output_directory(output);
     io::require_output_size(output, app::estimated_run_bytes(scenario),
                             std::to_string(app::estimated_samples(scenario)) + " samples x " +
-                                std::to_string(app::kRecordedChannels) + " channels x 8 bytes + snapshots",
+                                std::to_string(app::recorded_channels(scenario)) + " channels x 8 bytes + snapshots",
                             force);
   }
   const auto t0 = std::chrono::steady_clock::now();

@@ -126,12 +126,7 @@ TEST(JointStep, TheBackwardCheckNeverWithdrawsOneMemberOfAPair) {
   // Both switches and the gain hidden: after the pair is in, taking one switch out would be
   // answered by the gain; the pair is tried out only as a whole (effect_selection.cpp).
   const auto r = diagnose_hidden({{"warm", {}}, {"load", {}}, {"gain", {1.02}}});
-  for (const auto& f : r.withdrawn) {
-    EXPECT_NE(f.effect, "load") << "a pair member withdrawn alone";
-    if (f.effect == "warm") {
-      EXPECT_EQ(f.joint_with, Names{"load"});
-    }
-  }
+  for (const auto& f : r.withdrawn) EXPECT_TRUE(f.effect != "load" && f.effect != "warm") << f.effect;
   Names named = r.missing_effects;
   std::sort(named.begin(), named.end());
   EXPECT_EQ(named, (Names{"gain", "load", "warm"}));

@@ -21,7 +21,7 @@ fi
 # Every shared library the CLI and the module need comes from a package the .deb depends on
 # (directly, or through hdf5/openmpi, whose packages pull the rest).
 depends=$(dpkg-deb -f "$deb" Depends)
-for p in libhdf5-103-1 libfftw3-double3 libtomlplusplus3 python3-numpy; do
+for p in libhdf5-103-1 libfftw3-double3 python3-numpy; do
   grep -q "$p" <<<"$depends" || { echo "FAIL: Depends lacks $p: $depends"; exit 1; }
 done
 echo "ok: $deb ($(wc -l <<<"$contents") entries); Depends: $depends"

@@ -196,9 +196,6 @@ TEST(DrivelineStability, SlippingHasOneDegreeOfFreedomMoreThanLocked) {
 namespace shudder::rig_models {
 namespace {
 
-// Each map cell is the linearisation at that cell's point; with the negative-slope fluid the
-// growth rate rises with the clamp force (the negative damping n r F dμ/dv ∝ F) at every slip
-// on the falling branch, and the rising branch below 10 rpm is stable.
 // The maps' and the onset search's shortcut (no mode shapes, no stability point) gives the
 // least-damped slipping mode of the full analysis to the bit, with and without extra damping,
 // on the rising and the falling branch, at low and high clamp force; and the shape-free modes
@@ -215,7 +212,6 @@ TEST(DrivelineStability, ShapeFreeLeastDampedModeEqualsTheFullAnalysisBitForBit)
   Eigen::MatrixXd extra = Eigen::MatrixXd::Zero(D::kNodes, D::kNodes);
   extra(D::kCouplingIn, D::kCouplingIn) = extra(D::kCouplingOut, D::kCouplingOut) = -0.3;
   extra(D::kCouplingIn, D::kCouplingOut) = extra(D::kCouplingOut, D::kCouplingIn) = 0.3;
-  int compared = 0;
   for (const double slip_rpm : {2.0, 30.0})
     for (const double force_N : {400.0, 20000.0})
       for (const bool with_extra : {false, true}) {
@@ -237,11 +233,12 @@ TEST(DrivelineStability, ShapeFreeLeastDampedModeEqualsTheFullAnalysisBitForBit)
           EXPECT_EQ(bare[k].eigenvalue, full.modes[k].eigenvalue);
           EXPECT_TRUE(bare[k].node_amplitude.size() == 0);
         }
-        ++compared;
       }
-  EXPECT_EQ(compared, 8);
 }
 
+// Each map cell is the linearisation at that cell's point; with the negative-slope fluid the
+// growth rate rises with the clamp force (the negative damping n r F dμ/dv ∝ F) at every slip
+// on the falling branch, and the rising branch below 10 rpm is stable.
 TEST(DrivelineStability, CouplingMapsAreTheLinearisationAtEachCell) {
   const io::Scenario sc = tight_turn();
   const auto& model = std::get<DrivelineModel>(sc.model);
