@@ -42,6 +42,7 @@ void check_axis(const std::vector<double>& xs, const char* what) {
 
 std::vector<double> temperature_knots(std::vector<double> rows_C, double min_C, double max_C) {
   std::sort(rows_C.begin(), rows_C.end());
+  rows_C.erase(std::unique(rows_C.begin(), rows_C.end()), rows_C.end());  // equal rows: h = 0 never ends
   double h = 10.0;  // one row: the spacing of Paper G's matrix
   if (rows_C.size() > 1) {
     h = rows_C[1] - rows_C[0];

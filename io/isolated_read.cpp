@@ -211,7 +211,14 @@ MeasuredRun run_isolated(const std::string& path, double time_limit_s,
     pollfd p{fds[0], POLLIN, 0};
     const int ready = ::poll(&p, 1, static_cast<int>(std::min<long long>(left_ms, 1000)));
     if (ready < 0 && errno == EINTR) continue;
-    if (ready <= 0) continue;
+    if (ready < 0) {
+      const int err = errno;
+      ::kill(pid, SIGKILL);
+      wait_for(pid);
+      ::close(fds[0]);
+      throw std::runtime_error("cannot wait for the process reading " + path + ": " + std::strerror(err));
+    }
+    if (ready == 0) continue;
     const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) break;  // end of file: the child is done

@@ -69,8 +69,9 @@ void run_multirate(dynamics::Simulation& sim, ClutchContext& context, const clut
     // steps instead of failing (seen: a diagnosis candidate with a 1 J/K rig part behind a
     // 1000 W/K conductance diverges to 1e94 °C within 0.5 s). 1e4 °C: far above any disc or oil.
     if (!now_C.allFinite() || now_C.cwiseAbs().maxCoeff() > kDivergedTemp_C)
-      throw std::runtime_error("thermal step diverged at t = " + std::to_string(tb) +
-                               " s: interface temperature " + std::to_string(now_C.cwiseAbs().maxCoeff()) + " degC");
+      throw std::runtime_error("thermal step diverged at t = " + std::to_string(tb) + " s: interface temperature " +
+                               (now_C.allFinite() ? std::to_string(now_C.cwiseAbs().maxCoeff()) + " degC"
+                                                  : std::string("not finite")));
     const double next_dt = step_end(k + 1) - tb;
     if (next_dt > 0) {
       seen_C = seen_end_C;

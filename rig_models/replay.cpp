@@ -52,12 +52,15 @@ PiecewiseLinear window_holds(const std::vector<double>& t, const std::vector<dou
   // increasing times, and a step end that the thermal steps' summed times reach a few ulps late
   // still reads the old force, as the driveline's sample there does.
   const double eps = 1e-3 * w;
+  // A sample's window by one expression, for the first sample and its followers alike: a second
+  // test (t <= window end + tolerance) rounded differently at the edge, so that a time such as
+  // 0.030000000010000003 s (w = 10 ms) fell in no window and the loop never moved on.
+  const auto window_of = [&](double ti) { return std::ceil((ti - t0) / w - 1e-9) - 1.0; };
   for (std::size_t b = 0; b < t.size();) {
-    const double k = std::ceil((t[b] - t0) / w - 1e-9) - 1.0;
-    const double end = t0 + (k + 1.0) * w;
+    const double k = window_of(t[b]);
     std::size_t e = b;
     double sx = 0;
-    for (; e < t.size() && t[e] <= end + 1e-9 * w; ++e) sx += x[e];
+    for (; e < t.size() && window_of(t[e]) == k; ++e) sx += x[e];
     const double mean = sx / static_cast<double>(e - b);
     times.push_back(k * w + 2.0 * eps);
     values.push_back(mean);
@@ -245,7 +248,7 @@ analysis::Reproducer replay_reproducer(ReplayModel model, std::vector<ReplayInpu
     // A coupling's pack turns clamp-force noise into torque n_interfaces times as strongly as
     // the rig's single disc (16 x: 37.5 N of load-cell noise reads ~3 N m), so its replay error
     // counts it: the force gets fresh noise of the sigma the measured force shows.
-    if (const double sigma_N = analysis::estimate_noise_sigma(in.normal_force_N); model.driveline && sigma_N > 0) {
+    if (const double sigma_N = model.driveline ? analysis::estimate_noise_sigma(in.normal_force_N) : 0.0; sigma_N > 0) {
       std::mt19937_64 rng(2000 + run);
       std::normal_distribution<double> unit(0.0, sigma_N);
       for (double& f : in.normal_force_N) f = std::max(0.0, f + unit(rng));

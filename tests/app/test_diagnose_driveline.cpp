@@ -153,6 +153,24 @@ TEST(DiagnoseDriveline, ReplayOfTheCouplingReproducesItsTorqueAndTemperature) {
             << std::sqrt(late_ss / static_cast<double>(late)) << "), temp RMS " << std::sqrt(temp_ss / n) << " C\n";
 }
 
+// A sample a hair after a hydraulic step's end (0.030000000010000003 s, 1e-9 steps past
+// 0.03 s: what another logger's clock may write) once fell in no hold window: the window's first
+// sample and its followers were tested by two expressions that rounded apart there, and the
+// replay never finished. It now replays, and that sample reads what its neighbours in time do.
+TEST(DiagnoseDriveline, ReplayFinishesOnASampleJustPastAStepEnd) {
+  const auto run = measured_run("clean", "", "");
+  const auto model = io::replay_model(io::load_scenario_text(coupling_scenario(), "car.toml"));
+  auto in = io::diagnosis_data({run}, model).inputs.front();
+  ASSERT_EQ(in.time_s.front(), 0.0);
+  ASSERT_NEAR(in.time_s[30], 0.03, 1e-12);  // 1 kHz rows
+  in.time_s[30] = 0.030000000010000003;
+  const auto out = rig_models::replay(model, in);
+  const auto ref = rig_models::replay(model, io::diagnosis_data({run}, model).inputs.front());
+  // The moved sample is 1e-11 s later: the replayed torque there moves by far less than the
+  // 0.02 N m the replay reproduces the driveline to.
+  EXPECT_NEAR(out.torque_Nm[30], ref.torque_Nm[30], 0.02);
+}
+
 // The true model on its own noisy runs names nothing. Its torque sits at 1.0–1.15 × the error
 // scale: the clamp-force noise (37.5 N × 16 interfaces' gain ≈ 0.09 N m/N, over 10-sample holds)
 // is counted in the replay error only as far as the estimate of it goes; 1.3 × leaves room.
