@@ -4,7 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <numbers>
+
+#include "core/units.hpp"
 
 namespace shudder::analysis {
 
@@ -12,7 +13,7 @@ BreakawayMeasurement measure_breakaway(const std::vector<RampRun>& runs, const F
                                        const clutch::FrictionLaw& law, const BreakawaySettings& s) {
   BreakawayMeasurement out;
   const double r_mm = conversion.effective_radius_mm();
-  const double mm_s_per_rpm = r_mm * 2.0 * std::numbers::pi / 60.0;
+  const double mm_s_per_rpm = units::mm_s_per_rpm(r_mm);
   const double v_min = law.min_speed_mm_s();
   const double end_rpm = s.window_factor * v_min / mm_s_per_rpm;
   for (std::size_t ir = 0; ir < runs.size(); ++ir) {

@@ -6,10 +6,10 @@
 #include <cstdio>
 #include <functional>
 #include <limits>
-#include <numbers>
 #include <numeric>
 
 #include "clutch/linear_friction.hpp"
+#include "core/units.hpp"
 #include "clutch/maki_friction.hpp"
 #include "clutch/table_friction.hpp"
 #include "analysis/temperature_surface.hpp"
@@ -232,7 +232,7 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
   out.effective_radius_mm = r_mm;
   if (!(r_mm > 0) || s.conversion.interfaces < 1)
     throw std::invalid_argument("the friction radius and the number of interfaces must be positive");
-  const double mm_s_per_rpm = 2.0 * std::numbers::pi / 60.0 * r_mm;
+  const double mm_s_per_rpm = units::mm_s_per_rpm(r_mm);
 
   // 1. Ramps, and each ramp's reference temperature.
   for (std::size_t r = 0; r < runs.size(); ++r) {

@@ -15,6 +15,8 @@ inline constexpr double kMlPerMinPerM3PerS = 6e7;
 
 constexpr double rpm_to_rad_s(double speed_rpm) { return speed_rpm * kRadPerSPerRpm; }
 constexpr double rad_s_to_rpm(double speed_rad_s) { return speed_rad_s / kRadPerSPerRpm; }
+/// Sliding speed at radius r: v [mm/s] = ω [rad/s] · r [mm].
+constexpr double mm_s_per_rpm(double radius_mm) { return kRadPerSPerRpm * radius_mm; }
 constexpr double ml_min_to_m3_s(double flow_ml_min) { return flow_ml_min / kMlPerMinPerM3PerS; }
 constexpr double m3_s_to_ml_min(double flow_m3_s) { return flow_m3_s * kMlPerMinPerM3PerS; }
 

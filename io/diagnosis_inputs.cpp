@@ -8,6 +8,7 @@
 #include "io/input_error.hpp"
 #include "io/kind_refusal.hpp"
 #include "rig_models/coupling_measurement.hpp"
+#include "rig_models/rig_names.hpp"
 
 namespace shudder::io {
 
@@ -104,7 +105,7 @@ DiagnosisData diagnosis_data(const std::vector<MeasuredRun>& runs, const rig_mod
     if (d.rig != rig_models::kCouplingRig)
       d.warnings.push_back("the runs come from rig '" + d.rig + "'; the model is a driveline's Haldex coupling ('" +
                            std::string(rig_models::kCouplingRig) + "')");
-  } else if (d.rig != "lsctr") {
+  } else if (d.rig != rig_models::kLsctrRig) {
     d.warnings.push_back("the runs come from rig '" + d.rig + "'; the model is of the LSCTR");
   }
   return d;

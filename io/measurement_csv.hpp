@@ -25,6 +25,7 @@
 
 #include "dynamics/recording.hpp"
 #include "io/measured_run.hpp"
+#include "rig_models/rig_names.hpp"
 
 namespace shudder::io {
 
@@ -47,7 +48,7 @@ struct MeasurementOptions {
   double sample_rate_Hz = 0;  // 0 = the recording's own samples; else (0, 1e6] Hz
   bool noise = false;         // add Gaussian sensor noise (see SensorAccuracy)
   unsigned seed = 1;          // noise generator seed
-  std::string rig = "lsctr";  // metadata `rig` (omitted when empty)
+  std::string rig = std::string(rig_models::kLsctrRig);  // metadata `rig` (omitted when empty)
   std::string fluid;          // metadata `fluid` (omitted when empty)
   std::string temp_sensor = "separator_thermocouple r_mm=48 z_mm=0.5";  // metadata `temp_sensor`
   double oil_flow_ml_min = 200;  // metadata `oil_flow_ml_min`, >= 0

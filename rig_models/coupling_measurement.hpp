@@ -20,15 +20,12 @@
 // tap and an oil temperature sensor; torque flanges and plate thermocouples are what a
 // development vehicle adds). Units as FORMATS.md.
 
-#include <string_view>
 
 #include "dynamics/recording.hpp"
 #include "rig_models/prescribed_slip.hpp"
+#include "rig_models/rig_names.hpp"
 
 namespace shudder::rig_models {
-
-/// The `rig` metadata of a measured vehicle run of the coupling.
-inline constexpr std::string_view kCouplingRig = "haldex_coupling";
 
 /// The measured-run channels of a driveline recording (rig_models/haldex_driveline.hpp), named
 /// as the format's columns (file comment), with the sensors' faults applied. Throws

@@ -3,6 +3,7 @@
 #include "rig_models/coupling_measurement.hpp"
 #include "rig_models/driveline_stability.hpp"
 #include "rig_models/run_stability_map.hpp"
+#include "rig_models/rig_names.hpp"
 #include "rig_models/run_verdict.hpp"
 
 namespace shudder::rig_models {
@@ -62,7 +63,7 @@ std::vector<std::string> add_run_analysis(const PrescribedSlipModel&, const clut
   return {};
 }
 
-MeasuredExport measured_run_export(const PrescribedSlipModel&, const dynamics::Recording&) { return {"lsctr", {}}; }
+MeasuredExport measured_run_export(const PrescribedSlipModel&, const dynamics::Recording&) { return {std::string(kLsctrRig), {}}; }
 
 void require_sweep(const PrescribedSlipModel&) {}
 
@@ -102,7 +103,7 @@ std::vector<std::string> add_run_analysis(const RigModel& model, const clutch::W
   return {};
 }
 
-MeasuredExport measured_run_export(const RigModel&, const dynamics::Recording&) { return {"lsctr", {}}; }
+MeasuredExport measured_run_export(const RigModel&, const dynamics::Recording&) { return {std::string(kLsctrRig), {}}; }
 
 void require_sweep(const RigModel&) {}
 
