@@ -23,6 +23,7 @@
 #include "io/scenario.hpp"
 #include "rig_models/replay.hpp"
 #include "tests/support/cli.hpp"
+#include "tests/support/diagnosis_probe.hpp"
 
 namespace shudder {
 namespace {
@@ -33,13 +34,6 @@ using test::scratch_dir;
 using test::slurp;
 using test::source_path;
 using test::write_file;
-
-std::string probe_text(const std::string& extra, double force_N, double temp_C) {
-  std::string s = test::shipped_scenario_text("diagnosis_probe.toml");
-  s = replace(s, "start_temp_C = 75.0", "start_temp_C = " + std::to_string(temp_C));
-  s = replace(s, "normal_force_N = 12000.0", "normal_force_N = " + std::to_string(force_N));
-  return s + "\n" + extra;
-}
 
 struct Case {
   std::string name;
@@ -58,14 +52,14 @@ analysis::DiagnosisResult diagnose_case(const Case& c) {
   const struct { double force, temp; unsigned seed; } runs_spec[] = {{12000, 75, 11}, {24000, 85, 12}};
   for (const auto& r : runs_spec) {
     const std::string stem = "run_" + std::to_string(static_cast<int>(r.force / 1000)) + "kN";
-    write_file(dir / (stem + ".toml"), probe_text(c.hidden, r.force, r.temp));
+    write_file(dir / (stem + ".toml"), test::probe_scenario_text(c.hidden, r.force, r.temp));
     const auto out = run_cli("run " + stem + ".toml -o " + stem + ".h5 --measurement " + stem +
                                  ".csv --sample-rate 100 --noise --seed " + std::to_string(r.seed),
                              dir);
     EXPECT_EQ(out.exit_code, 0) << out.err;
     runs.push_back(io::read_measured_run((dir / (stem + ".csv")).string()));
   }
-  const auto scenario = io::load_scenario_text(probe_text(c.model, 12000, 75),
+  const auto scenario = io::load_scenario_text(test::probe_scenario_text(c.model, 12000, 75),
                                                source_path("scenarios/diagnosis_probe.toml"));
   auto data = io::diagnosis_data(runs);
   const auto model = io::replay_model(scenario);
@@ -73,14 +67,6 @@ analysis::DiagnosisResult diagnose_case(const Case& c) {
   o.jobs = 1;  // ctest runs the cases in parallel
   return analysis::diagnose(data.runs, rig_models::replay_candidates(model, nullptr),
                             rig_models::replay_simulator(model, std::move(data.inputs)), o);
-}
-
-std::string describe(const analysis::DiagnosisResult& r) {
-  std::string s = shudder::report::diagnosis_conclusion(r) + "\n";
-  for (const auto& st : r.steps) s += "  step " + st.effect + ": " + shudder::report::step_reason(st) + "\n";
-  for (const auto& c : r.last_round)
-    s += "  last round " + c.effect + " holdout J " + std::to_string(c.holdout_misfit) + "\n";
-  return s;
 }
 
 void expect_gap_shrinks(const analysis::DiagnosisResult& r) {
@@ -117,14 +103,14 @@ class HiddenEffect : public ::testing::TestWithParam<Case> {};
 TEST_P(HiddenEffect, IsNamedFittedAndClosesTheGap) {
   const Case& c = GetParam();
   const auto r = diagnose_case(c);
-  EXPECT_EQ(r.missing_effects, c.expected) << describe(r);
+  EXPECT_EQ(r.missing_effects, c.expected) << test::describe_diagnosis(r);
   // A withdrawn effect is reported as such, with a held-out cost below the gain it would need.
   std::vector<std::string> withdrawn;
   for (const auto& f : r.withdrawn) {
     withdrawn.push_back(f.effect);
     EXPECT_LT(f.holdout_cost, f.needed_gain) << f.effect;
   }
-  EXPECT_EQ(withdrawn, c.withdrawn) << describe(r);
+  EXPECT_EQ(withdrawn, c.withdrawn) << test::describe_diagnosis(r);
   if (!c.expected.empty()) expect_gap_shrinks(r);
   expect_parameters(r, c);
 }
@@ -258,7 +244,7 @@ analysis::DiagnosisResult diagnose_stick_slip(const std::string& dir_name, const
 
 TEST(DiagnoseStickTime, IsNamedFromRigStickSlipRuns) {
   const auto r = diagnose_stick_slip("diag_stick_time", "");
-  EXPECT_EQ(r.missing_effects, std::vector<std::string>{"stick_time_static_friction"}) << describe(r);
+  EXPECT_EQ(r.missing_effects, std::vector<std::string>{"stick_time_static_friction"}) << test::describe_diagnosis(r);
   expect_gap_shrinks(r);
   expect_parameters(r, Case{"", "", "", {}, {{"max_increase", 0.15}, {"time_constant_s", 0.05}}});
 }
@@ -267,7 +253,7 @@ TEST(DiagnoseStickTime, TheTrueModelNeedsNothingAdded) {
   // The replay of stick-slip itself (set point recovered from the loop, block statistics)
   // must not invent an effect when the model is the one that made the data.
   const auto r = diagnose_stick_slip("diag_stick_time_truth", kHiddenStickTime);
-  EXPECT_TRUE(r.missing_effects.empty()) << describe(r);
+  EXPECT_TRUE(r.missing_effects.empty()) << test::describe_diagnosis(r);
   EXPECT_LT(r.baseline.torque_rms_Nm, 1.5 * r.noise_torque_Nm);
 }
 

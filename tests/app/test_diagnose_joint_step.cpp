@@ -16,6 +16,7 @@
 #include "report/diagnosis_narrative.hpp"
 #include "rig_models/replay.hpp"
 #include "tests/support/cli.hpp"
+#include "tests/support/diagnosis_probe.hpp"
 
 namespace shudder {
 namespace {
@@ -27,12 +28,7 @@ using test::source_path;
 using test::write_file;
 using Names = std::vector<std::string>;
 
-std::string probe(const std::string& extra, double force_N) {
-  std::string s = test::shipped_scenario_text("diagnosis_probe.toml");
-  s = replace(s, "start_temp_C = 75.0", "start_temp_C = 80.0");
-  s = replace(s, "normal_force_N = 12000.0", "normal_force_N = " + std::to_string(force_N));
-  return s + "\n" + extra;
-}
+std::string probe(const std::string& extra, double force_N) { return test::probe_scenario_text(extra, force_N, 80.0); }
 
 std::string off(const std::string& effect) { return "[effects." + effect + "]\nenabled = false\n"; }
 const std::string kSwitchesOff = off("temperature_dependent_friction") + off("load_dependent_friction");
@@ -62,16 +58,6 @@ analysis::DiagnosisResult diagnose_three_loads(const std::string& name, const st
                             rig_models::replay_simulator(model, std::move(data.inputs)), o, reproduce);
 }
 
-std::string describe(const analysis::DiagnosisResult& r) {
-  std::string s = report::verdict_sentence(r) + "\n";
-  for (const auto& st : r.steps) s += "  step " + report::step_reason(st) + "\n";
-  for (const auto& c : r.last_round)
-    s += "  last round " + report::effects_label(c.effect, c.joint_with) + " J " + std::to_string(c.holdout_misfit) +
-         " " + c.rejection + "\n";
-  for (const auto& f : r.withdrawn) s += "  withdrawn " + report::backward_finding_text(f) + "\n";
-  return s;
-}
-
 Names sorted(Names v) {
   std::sort(v.begin(), v.end());
   return v;
@@ -80,17 +66,17 @@ Names sorted(Names v) {
 TEST(DiagnoseJointStep, BothFrictionSwitchesHiddenAreNamedTogether) {
   const auto r = diagnose_three_loads("both", "");
   EXPECT_EQ(sorted(r.missing_effects), sorted({"temperature_dependent_friction", "load_dependent_friction"}))
-      << describe(r);
+      << test::describe_diagnosis(r);
   // Added in one joint step (one step for two effects).
-  ASSERT_EQ(r.steps.size(), 1u) << describe(r);
+  ASSERT_EQ(r.steps.size(), 1u) << test::describe_diagnosis(r);
   EXPECT_EQ(r.steps[0].joint_with.size(), 1u);
-  EXPECT_EQ(r.verdict, analysis::DiagnosisVerdict::kExplained) << describe(r);
+  EXPECT_EQ(r.verdict, analysis::DiagnosisVerdict::kExplained) << test::describe_diagnosis(r);
 }
 
 TEST(DiagnoseJointStep, OneSwitchHiddenIsNamedWithoutAPartner) {
   // Only temperature-dependent friction in the data (its load dependence off there too).
   const auto r = diagnose_three_loads("temperature_only", off("load_dependent_friction"));
-  EXPECT_EQ(r.missing_effects, Names{"temperature_dependent_friction"}) << describe(r);
+  EXPECT_EQ(r.missing_effects, Names{"temperature_dependent_friction"}) << test::describe_diagnosis(r);
 }
 
 TEST(DiagnoseJointStep, WhereThePairDoesNotHelpNeitherSwitchIsNamed) {
@@ -98,7 +84,7 @@ TEST(DiagnoseJointStep, WhereThePairDoesNotHelpNeitherSwitchIsNamed) {
   // friction changes are not in the data, the gain is.
   const auto r = diagnose_three_loads(
       "load_gain", kSwitchesOff + "[effects.load_sensor_gain]\nenabled = true\ngain = 0.95\n");
-  EXPECT_EQ(r.missing_effects, Names{"load_sensor_gain"}) << describe(r);
+  EXPECT_EQ(r.missing_effects, Names{"load_sensor_gain"}) << test::describe_diagnosis(r);
 }
 
 }  // namespace

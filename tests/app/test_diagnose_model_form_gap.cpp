@@ -17,6 +17,7 @@
 #include "report/diagnosis_narrative.hpp"
 #include "rig_models/replay.hpp"
 #include "tests/support/cli.hpp"
+#include "tests/support/diagnosis_probe.hpp"
 
 namespace shudder {
 namespace {
@@ -31,13 +32,6 @@ const char* const kOtherSimulator =
     "[solver]\nradial_cells = 60\nthermal_step_ms = 2.5\n"
     "[effects.interface_oil_cooling]\nenabled = true\ne = 0.020\n";
 
-std::string probe(const std::string& extra, double force_N, double temp_C) {
-  std::string s = test::shipped_scenario_text("diagnosis_probe.toml");
-  s = replace(s, "start_temp_C = 75.0", "start_temp_C = " + std::to_string(temp_C));
-  s = replace(s, "normal_force_N = 12000.0", "normal_force_N = " + std::to_string(force_N));
-  return s + "\n" + extra;
-}
-
 analysis::DiagnosisResult diagnose_other_simulator(const std::string& name, const std::string& hidden) {
   const auto dir = scratch_dir(name);
   std::vector<io::MeasuredRun> runs;
@@ -45,14 +39,14 @@ analysis::DiagnosisResult diagnose_other_simulator(const std::string& name, cons
                                                                                 {26000, 90, 92, "b"}};
   for (const auto& r : spec) {
     const std::string stem = r.stem;
-    write_file(dir / (stem + ".toml"), probe(std::string(kOtherSimulator) + hidden, r.force, r.temp));
+    write_file(dir / (stem + ".toml"), test::probe_scenario_text(std::string(kOtherSimulator) + hidden, r.force, r.temp));
     const auto out = run_cli("run " + stem + ".toml -o " + stem + ".h5 --measurement " + stem +
                                  ".csv --sample-rate 100 --noise --seed " + std::to_string(r.seed),
                              dir);
     EXPECT_EQ(out.exit_code, 0) << out.err;
     runs.push_back(io::read_measured_run((dir / (stem + ".csv")).string()));
   }
-  const auto scenario = io::load_scenario_text(probe("", 14000, 70), source_path("scenarios/diagnosis_probe.toml"));
+  const auto scenario = io::load_scenario_text(test::probe_scenario_text("", 14000, 70), source_path("scenarios/diagnosis_probe.toml"));
   auto data = io::diagnosis_data(runs);
   const auto model = io::replay_model(scenario);
   analysis::DiagnosisOptions o;
@@ -63,16 +57,10 @@ analysis::DiagnosisResult diagnose_other_simulator(const std::string& name, cons
                             rig_models::replay_simulator(model, std::move(data.inputs)), o, reproduce);
 }
 
-std::string describe(const analysis::DiagnosisResult& r) {
-  std::string s = report::verdict_sentence(r) + "\n" + report::diagnosis_conclusion(r) + "\n";
-  for (const auto& c : r.last_round) s += "  last round " + c.effect + " gain " + std::to_string(c.gain) + "\n";
-  return s;
-}
-
 TEST(DiagnoseLargerModelFormGap, TheMismatchAloneNamesNothingWithinTheTolerance) {
   const auto r = diagnose_other_simulator("diag_form_gap", "");
-  EXPECT_TRUE(r.missing_effects.empty()) << describe(r);
-  EXPECT_EQ(r.verdict, analysis::DiagnosisVerdict::kExplained) << describe(r);
+  EXPECT_TRUE(r.missing_effects.empty()) << test::describe_diagnosis(r);
+  EXPECT_EQ(r.verdict, analysis::DiagnosisVerdict::kExplained) << test::describe_diagnosis(r);
   // The gap is the one the tolerance was read from: 2-4 °C, as the simulator left.
   EXPECT_GT(r.final.temp_rms_C, 2.0);
   EXPECT_LT(r.final.temp_rms_C, 4.0);
@@ -83,7 +71,7 @@ TEST(DiagnoseLargerModelFormGap, ABearingDragOnTopIsStillNamed) {
   // torque tolerance. (A 1 s temperature-sensor lag on top is not named here: docs/diagnosis.md
   // "A larger model-form gap" says why.)
   const auto r = diagnose_other_simulator("diag_form_gap_drag", "[effects.bearing_drag]\nenabled = true\nequivalent_mu = 0.005\n");
-  EXPECT_EQ(r.missing_effects, std::vector<std::string>{"bearing_drag"}) << describe(r);
+  EXPECT_EQ(r.missing_effects, std::vector<std::string>{"bearing_drag"}) << test::describe_diagnosis(r);
   ASSERT_FALSE(r.final_effects.empty());
   EXPECT_NEAR(r.final_effects[0].parameters[0].second / 0.005, 1.0, 0.2);  // the 20 %
 }

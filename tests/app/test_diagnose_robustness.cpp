@@ -17,6 +17,7 @@
 #include "report/diagnosis_narrative.hpp"
 #include "rig_models/replay.hpp"
 #include "tests/support/cli.hpp"
+#include "tests/support/diagnosis_probe.hpp"
 
 namespace shudder {
 namespace {
@@ -28,13 +29,6 @@ using test::slurp;
 using test::source_path;
 using test::write_file;
 using ::testing::HasSubstr;
-
-std::string probe(const std::string& extra, double force_N, double temp_C) {
-  std::string s = test::shipped_scenario_text("diagnosis_probe.toml");
-  s = replace(s, "start_temp_C = 75.0", "start_temp_C = " + std::to_string(temp_C));
-  s = replace(s, "normal_force_N = 12000.0", "normal_force_N = " + std::to_string(force_N));
-  return s + "\n" + extra;
-}
 
 // Makes a measured run from scenario text; returns its CSV path inside dir.
 std::filesystem::path make_run(const std::filesystem::path& dir, const std::string& stem, const std::string& text,
@@ -109,14 +103,6 @@ analysis::DiagnosisResult diagnose_files(const std::vector<std::filesystem::path
                             rig_models::replay_simulator(model, std::move(data.inputs)), o, reproduce);
 }
 
-std::string describe(const analysis::DiagnosisResult& r) {
-  std::string s = report::verdict_sentence(r) + "\n" + report::diagnosis_conclusion(r) + "\n";
-  for (const auto& c : r.last_round)
-    s += "  last round " + c.effect + " gain " + std::to_string(c.gain) + " r " +
-         std::to_string(c.signature_correlation) + " " + c.rejection + "\n";
-  return s;
-}
-
 // ---- the true model on rig stick-slip runs ------------------------------------------------
 
 std::string stick_probe(double speed_rpm) {
@@ -137,11 +123,11 @@ TEST_P(TrueRigModel, NamesNothingAndIsExplained) {
   const auto a = make_run(dir, "a", stick_probe(0.7), seed, "");
   const auto b = make_run(dir, "b", stick_probe(1.3), seed + 1, "");
   const auto r = diagnose_files({a, b}, stick_probe(0.7), "scenarios/rig_stick_time_probe.toml", true);
-  EXPECT_TRUE(r.missing_effects.empty()) << describe(r);
+  EXPECT_TRUE(r.missing_effects.empty()) << test::describe_diagnosis(r);
   // What is left is the first breakaway from rest (the first second): 1.1-1.2 x the scale on
   // the seeds tried, so "within 1.5 x", not the verdict's 1.1 x.
   ASSERT_FALSE(r.channels.empty());
-  EXPECT_LE(r.channels[0].final_misfit, 1.5 * 1.5) << describe(r);
+  EXPECT_LE(r.channels[0].final_misfit, 1.5 * 1.5) << test::describe_diagnosis(r);
 }
 
 INSTANTIATE_TEST_SUITE_P(Seeds, TrueRigModel, ::testing::Values(61u, 71u, 81u));
@@ -158,7 +144,7 @@ TEST_P(TrueRigModelNamesNothing, OnMoreSeeds) {
   const auto a = make_run(dir, "a", stick_probe(0.7), seed, "");
   const auto b = make_run(dir, "b", stick_probe(1.3), seed + 1, "");
   const auto r = diagnose_files({a, b}, stick_probe(0.7), "scenarios/rig_stick_time_probe.toml", true);
-  EXPECT_TRUE(r.missing_effects.empty()) << describe(r);
+  EXPECT_TRUE(r.missing_effects.empty()) << test::describe_diagnosis(r);
 }
 
 INSTANTIATE_TEST_SUITE_P(Seeds, TrueRigModelNamesNothing, ::testing::Values(91u, 101u));
@@ -170,25 +156,25 @@ const char* const kFinerGrid = "[solver]\nradial_cells = 60\nthermal_step_ms = 2
 
 std::vector<std::filesystem::path> mismatch_runs(const std::string& name, const std::string& extra) {
   const auto dir = scratch_dir(name);
-  return {make_run(dir, "a", probe(std::string(kFinerGrid) + extra, 14000, 70), 91),
-          make_run(dir, "b", probe(std::string(kFinerGrid) + extra, 26000, 90), 92)};
+  return {make_run(dir, "a", test::probe_scenario_text(std::string(kFinerGrid) + extra, 14000, 70), 91),
+          make_run(dir, "b", test::probe_scenario_text(std::string(kFinerGrid) + extra, 26000, 90), 92)};
 }
 
 TEST(DiagnoseModelForm, FinerDiscretisationAloneNamesNothingAndIsExplainedWithinTheTolerance) {
   // Tolerance: the 0.3 °C the two discretisations differ by in temperature (measured; the
   // grid changes the surface-to-thermocouple delay of a 100 rpm slip), 0.1 N m in torque.
   const auto runs = mismatch_runs("diag_form", "");
-  const auto r = diagnose_files(runs, probe("", 14000, 70), "scenarios/diagnosis_probe.toml", false,
+  const auto r = diagnose_files(runs, test::probe_scenario_text("", 14000, 70), "scenarios/diagnosis_probe.toml", false,
                                 {{"torque_Nm", 0.1}, {"temp_C", 0.3}});
-  EXPECT_TRUE(r.missing_effects.empty()) << describe(r);
-  EXPECT_EQ(r.verdict, analysis::DiagnosisVerdict::kExplained) << describe(r);
+  EXPECT_TRUE(r.missing_effects.empty()) << test::describe_diagnosis(r);
+  EXPECT_EQ(r.verdict, analysis::DiagnosisVerdict::kExplained) << test::describe_diagnosis(r);
 }
 
 TEST(DiagnoseModelForm, AHiddenEffectOnTopIsStillNamed) {
   const auto runs = mismatch_runs("diag_form_hidden", "[effects.bearing_drag]\nenabled = true\nequivalent_mu = 0.004\n");
-  const auto r = diagnose_files(runs, probe("", 14000, 70), "scenarios/diagnosis_probe.toml", false,
+  const auto r = diagnose_files(runs, test::probe_scenario_text("", 14000, 70), "scenarios/diagnosis_probe.toml", false,
                                 {{"torque_Nm", 0.1}, {"temp_C", 0.3}});
-  EXPECT_EQ(r.missing_effects, std::vector<std::string>{"bearing_drag"}) << describe(r);
+  EXPECT_EQ(r.missing_effects, std::vector<std::string>{"bearing_drag"}) << test::describe_diagnosis(r);
   ASSERT_FALSE(r.final_effects.empty());
   EXPECT_NEAR(r.final_effects[0].parameters[0].second / 0.004, 1.0, 0.2);
 }
@@ -206,16 +192,16 @@ class OutOfCatalogue : public ::testing::TestWithParam<Fault> {};
 TEST_P(OutOfCatalogue, LeavesAGapAndNamesNothingAtABound) {
   const Fault& f = GetParam();
   const auto dir = scratch_dir("diag_ooc_" + f.name);
-  const auto a = make_run(dir, "a", probe("", 13000, 72), 101);
-  const auto b = make_run(dir, "b", probe("", 25000, 88), 102);
+  const auto a = make_run(dir, "a", test::probe_scenario_text("", 13000, 72), 101);
+  const auto b = make_run(dir, "b", test::probe_scenario_text("", 25000, 88), 102);
   transform_column(a, f.column, f.apply);
   transform_column(b, f.column, f.apply);
-  const auto r = diagnose_files({a, b}, probe("", 13000, 72), "scenarios/diagnosis_probe.toml", false);
-  EXPECT_NE(r.verdict, analysis::DiagnosisVerdict::kExplained) << describe(r);
+  const auto r = diagnose_files({a, b}, test::probe_scenario_text("", 13000, 72), "scenarios/diagnosis_probe.toml", false);
+  EXPECT_NE(r.verdict, analysis::DiagnosisVerdict::kExplained) << test::describe_diagnosis(r);
   // The added candidate (first of its step) passed the interior test: no parameter at a bound.
   for (const auto& st : r.steps) {
     ASSERT_FALSE(st.candidates.empty());
-    EXPECT_THAT(st.candidates.front().rejection, ::testing::IsEmpty()) << describe(r);
+    EXPECT_THAT(st.candidates.front().rejection, ::testing::IsEmpty()) << test::describe_diagnosis(r);
   }
 }
 
@@ -270,7 +256,7 @@ class Plausibility : public ::testing::TestWithParam<Implausible> {};
 TEST_P(Plausibility, WrongUnitsExitTwoWithOneLine) {
   const Implausible& c = GetParam();
   const auto dir = scratch_dir("diag_plaus_" + c.name);
-  const auto a = make_run(dir, "a", probe("", 16000, 78), 111);
+  const auto a = make_run(dir, "a", test::probe_scenario_text("", 16000, 78), 111);
   transform_column(a, c.column, [&](const std::vector<double>&, const std::vector<double>& x) {
     std::vector<double> y(x);
     for (double& v : y) v = v * c.scale + c.offset;
@@ -292,7 +278,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(Plausibility, TheSameRunTwiceExitsTwo) {
   const auto dir = scratch_dir("diag_plaus_twice");
-  make_run(dir, "a", probe("", 16000, 78), 112);
+  make_run(dir, "a", test::probe_scenario_text("", 16000, 78), 112);
   std::filesystem::copy_file(dir / "a.csv", dir / "copy.csv", std::filesystem::copy_options::overwrite_existing);
   const auto out =
       run_cli("diagnose " + source_path("scenarios/diagnosis_probe.toml") + " a.csv copy.csv --jobs 1", dir);
@@ -303,7 +289,7 @@ TEST(Plausibility, TheSameRunTwiceExitsTwo) {
 TEST(Plausibility, ARunShorterThanTwentyThermalStepsExitsTwo) {
   // 0.1 s steps: 20 of them are 2 s; the run lasts 1.5 s (long enough for the row checks).
   const auto dir = scratch_dir("diag_plaus_short");
-  std::string s = probe("[solver]\nthermal_step_ms = 100\n", 16000, 78);
+  std::string s = test::probe_scenario_text("[solver]\nthermal_step_ms = 100\n", 16000, 78);
   make_run(dir, "a", replace(s, "duration_s = 20.0", "duration_s = 1.5"), 113);
   write_file(dir / "model.toml", s);
   const auto out = run_cli("diagnose model.toml a.csv --jobs 1", dir);
@@ -340,9 +326,9 @@ TEST(DiagnoseWriteModel, RunningTheFixedModelReproducesTheFinalGap) {
   const auto dir = scratch_dir("diag_write_model");
   const std::string hidden =
       "[effects.rig_heat_capacity]\nenabled = true\nheat_capacity_J_per_K = 250.0\nconductance_W_per_K = 15.0\n";
-  make_run(dir, "a", probe(hidden, 13000, 72), 121);
-  make_run(dir, "b", probe(hidden, 23000, 84), 122);
-  write_file(dir / "model.toml", probe("", 13000, 72));
+  make_run(dir, "a", test::probe_scenario_text(hidden, 13000, 72), 121);
+  make_run(dir, "b", test::probe_scenario_text(hidden, 23000, 84), 122);
+  write_file(dir / "model.toml", test::probe_scenario_text("", 13000, 72));
   std::filesystem::create_directories(dir / "out");  // written elsewhere: the fluid path is rewritten
   auto out = run_cli("diagnose model.toml a.csv b.csv --jobs 1 --write-model out/fixed.toml --json d.json", dir);
   ASSERT_EQ(out.exit_code, 0) << out.err;
