@@ -187,6 +187,24 @@ def verdict_json(p):
         j.get("verdict"), fmt(j.get("frequency_Hz", float("nan"))), fmt(j.get("amplitude_Nm", float("nan"))), ok)
 
 
+def driveline_verdict(p):
+    """The driveline's run stores the same block, with its own linear prediction."""
+    d = p.dir("driveline_verdict")
+    r = p.run(["run", "driveline_tight_turn.toml", "-o", "d.h5"], d)
+    if r.code != 0:
+        return False, r.seen()
+    with h5py.File(os.path.join(d, "d.h5"), "r") as f:
+        if "analysis/verdict" not in f:
+            return False, "summary line %r; no /analysis/verdict (groups: %s)" % (
+                next((l for l in r.out.splitlines() if "judder" in l), ""), sorted(f["analysis"].keys()))
+        g = f["analysis/verdict"]
+        verdict, prediction = str(g.attrs.get("verdict")), str(g.attrs.get("prediction", ""))
+        margin = float(g["predicted_margin_per_s"][()]) if "predicted_margin_per_s" in g else float("nan")
+    ok = verdict in ("none", "vibration", "stick_slip") and "driveline linear stability" in prediction and (
+        "Predicted there:" in r.out)
+    return ok, "/analysis/verdict: %s; prediction '%s', margin %s 1/s" % (verdict, prediction[:60], fmt(margin))
+
+
 def summary_min_max(p):
     """The last fifth's row must show the torque's true min and max over 1.6-2.0 s, not a sample."""
     d, r = shudder_run(p)
@@ -335,8 +353,16 @@ def compressed(p):
         raw = sum(f["signals"][k].size * 8 for k in f["signals"].keys())
         chunks, comp = ds.chunks, ds.compression
     size = os.path.getsize(os.path.join(d, "c.h5"))
-    return chunks is not None and comp == "gzip" and size < raw, "/signals/torque_Nm chunks %s, filter %s; file %.2f MB, signals raw %.2f MB" % (
-        chunks, comp, size / 1e6, raw / 1e6)
+    # The sweep file's case signals too (the audit's 41-case sweep wrote 164 MB plain).
+    w = p.run(["sweep", s, "--set", "drive.normal_force_N=15000", "--quiet", "-o", "sw.h5"], d)
+    if w.code != 0:
+        return False, "sweep: " + w.seen()
+    with h5py.File(os.path.join(d, "sw.h5"), "r") as f:
+        sw = f["case_00000/signals/torque_Nm"]
+        sw_chunks, sw_comp = sw.chunks, sw.compression
+    ok = chunks is not None and comp == "gzip" and size < raw and sw_chunks is not None and sw_comp == "gzip"
+    return ok, "run /signals/torque_Nm chunks %s, filter %s, file %.2f MB for %.2f MB of signals; sweep case signal chunks %s, filter %s" % (
+        chunks, comp, size / 1e6, raw / 1e6, sw_chunks, sw_comp)
 
 
 def rerun_from_file(p):
@@ -500,6 +526,15 @@ def seed_without_noise(p):
     return ok and not os.path.exists(os.path.join(d, "out.h5")), seen
 
 
+def os_refused_path(p):
+    """Found by fuzz_scenario (part 7): a fluid path the OS refuses (a 300-byte name) escaped
+    the scenario loader as a filesystem_error."""
+    d = p.dir("long_path")
+    edit(os.path.join(d, "rig_shudder_negative_slope.toml"), os.path.join(d, "s.toml"),
+         ("fluids/schematic_negative_slope.toml", "fluids/" + "a" * 300 + ".toml"))
+    return rejected(p.run(["run", "s.toml", "-o", "out.h5"], d), "clutch.fluid", "File name too long")
+
+
 # ---- onset and the thermal step ----------------------------------------------------------------
 
 def onset_thermal_step(p):
@@ -538,6 +573,7 @@ PROBES = [
     ("verdict in the run summary", verdict_summary),
     ("verdict in HDF5 /analysis/verdict", verdict_hdf5),
     ("verdict in --report verdict.json", verdict_json),
+    ("driveline verdict stored with its prediction", driveline_verdict),
     ("summary min/max/RMS, not aliased samples", summary_min_max),
     ("fluid with beta < 0 rejected when loaded", negative_beta),
     ("film_thickness_um = 1e-300 bounded", tiny_film),
@@ -557,6 +593,7 @@ PROBES = [
     ("modes on a driveline", driveline_modes),
     ("--seed without --noise refused", seed_without_noise),
     ("size estimate, refusal, --force", huge_output),
+    ("fuzz: fluid path the OS refuses is bad input", os_refused_path),
     ("datasets chunked and compressed", compressed),
     ("fluid text stored, re-run from the file alone", rerun_from_file),
     ("onset vs thermal step (10 -> 5 ms) < 5 %", onset_thermal_step),
