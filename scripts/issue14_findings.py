@@ -16,14 +16,15 @@ needs a build of the old commit. Takes about two minutes per binary on a quiet m
 """
 
 import argparse
+import io
 import json
 import os
 import re
+import resource
 import shutil
 import subprocess
 import sys
 import tarfile
-import io
 import tempfile
 import time
 
@@ -64,8 +65,6 @@ class Probe:
         cmd = [self.binary] + args
         pre = None
         if vmem_kb is not None:
-            import resource
-
             def pre():
                 resource.setrlimit(resource.RLIMIT_AS, (vmem_kb * 1024, vmem_kb * 1024))
 
