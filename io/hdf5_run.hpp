@@ -16,7 +16,7 @@
 //                              scalars, all with `units`              [if maps]
 //   root attributes            `scenario`, `fluid` (the fluid file's text; omitted when
 //                              not given), `shudder_version`, `created_utc` (ISO 8601, UTC)
-// Datasets of >= 256 values are chunked (<= 16384 values per chunk, along the first axis),
+// Datasets of >= 65536 values are chunked (<= 16384 values per chunk, along the first axis),
 // shuffled and deflated (level 4); readers decompress transparently.
 // Strings are variable-length UTF-8 (h5py reads them as str). Groups track link creation
 // order, so the reader returns signals and scalars in the order they were written.
