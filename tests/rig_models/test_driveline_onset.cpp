@@ -62,6 +62,9 @@ TEST(DrivelineOnset, CoastDownOnsetChangesLessThanFivePercentWhenTheThermalStepI
               b.verdict.frequency_Hz, c.verdict.frequency_Hz, a.verdict.amplitude_Nm, b.verdict.amplitude_Nm,
               c.verdict.amplitude_Nm);
   for (const CoastDown* r : {&a, &b, &c}) {
+    auto old_onset = *recording_detection(r->rec);  // the figure quoted above, printed only
+    old_onset.settings.onset_definition = analysis::OnsetDefinition::kGrowthLine;
+    std::printf("  onset by definition 8c: %.4f s\n", analysis::detect_shudder(old_onset.input, old_onset.settings).onset_time_s);
     EXPECT_EQ(r->verdict.verdict, analysis::Verdict::kVibration);
     // The coupling mode the linear analysis finds at the run's point (31.4 Hz); the limit cycle
     // runs 2 % below it (its slip swings onto the damping branch): 5 %.
