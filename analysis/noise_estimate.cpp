@@ -3,28 +3,17 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/median.hpp"
+
 namespace shudder::analysis {
-
-namespace {
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  double m = *mid;
-  if (v.size() % 2 == 0) m = 0.5 * (m + *std::max_element(v.begin(), mid));
-  return m;
-}
-
-}  // namespace
 
 double estimate_noise_sigma(const std::vector<double>& x) {
   if (x.size() < 3) return 0.0;
   std::vector<double> d2(x.size() - 2);
   for (std::size_t i = 1; i + 1 < x.size(); ++i) d2[i - 1] = x[i + 1] - 2.0 * x[i] + x[i - 1];
-  const double m = median(d2);
+  const double m = core::median(d2);
   for (double& d : d2) d = std::abs(d - m);
-  return 1.4826 * median(std::move(d2)) / std::sqrt(6.0);
+  return 1.4826 * core::median(std::move(d2)) / std::sqrt(6.0);
 }
 
 double pooled_noise_sigma(const std::vector<const std::vector<double>*>& runs, double floor) {

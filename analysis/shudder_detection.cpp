@@ -8,6 +8,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/median.hpp"
 #include "dynamics/signal_names.hpp"
 
 namespace shudder::analysis {
@@ -41,14 +42,6 @@ std::size_t nice_length(std::size_t n) {
     for (std::size_t p3 = p5; p3 <= n; p3 *= 3)
       best = std::max(best, p3 * prev_pow2(n / p3));
   return best;
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return kNaN;
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  if (v.size() % 2 == 1) return *mid;
-  return 0.5 * (*mid + *std::max_element(v.begin(), mid));
 }
 
 // Centred moving mean over a window of `width` samples (real, >= 1) of the zero-order-hold
@@ -222,7 +215,7 @@ ShudderResult ShudderDetector::detect(const DetectionInput& in) const {
     std::vector<double> strong;
     for (double v : blocks)
       if (v >= 0.8 * largest) strong.push_back(v);
-    r.amplitude_Nm = median(strong);
+    r.amplitude_Nm = core::median(strong);
   }
 
   // 7. Verdict none below the amplitude threshold.

@@ -4,18 +4,13 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/median.hpp"
 #include "dynamics/signal_names.hpp"
 #include "io/input_error.hpp"
 
 namespace shudder::io {
 
 namespace {
-
-double median(std::vector<double> v) {
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
 
 std::string fmt(double v) {
   char buf[32];
@@ -28,7 +23,7 @@ void check_units(const MeasuredRun& run, std::vector<std::string>& warnings) {
   for (const auto name : {sn::kTemp, sn::kSumpTemp, sn::kIrTemp}) {
     const auto* c = run.column(name);
     if (!c || c->empty()) continue;
-    const double m = median(*c);
+    const double m = core::median(*c);
     if (m > 200.0)
       throw InputError(run.path, 0, std::string(name),
                        "the temperatures have a median of " + fmt(m) +
