@@ -45,7 +45,7 @@ bool names_a_dead_writer(std::string_view rest) {
 void remove_stale_temp_files(const std::string& path) noexcept {
   // A plain readdir with the prefix compared on d_name: the output directory may hold thousands
   // of other files (a shared /tmp: 5,000), and a std::filesystem iteration built a path (two
-  // allocations and a parse) for every one of them, 0.6-1.4 ms of a 9 ms run there
+  // allocations and a parse) for every one of them, ≈ 1.3 ms CPU of a 12 ms run there
   // (docs/performance.md). Only the few names that match are stat()ed and removed.
   const std::size_t slash = path.rfind('/');
   const std::string dir = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
