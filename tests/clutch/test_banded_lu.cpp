@@ -89,7 +89,9 @@ TEST(BandedLu, RejectsEntriesOutsideTheBandAndReportsAZeroPivot) {
 // the reciprocal is meant changes the last bits.
 TEST(BandedLu, PaddedSolveEqualsThePlainBandSubstitutionBitForBit) {
   std::mt19937 rng(3);
-  for (const auto& [n, b] : std::vector<std::pair<int, int>>{{1, 0}, {6, 1}, {17, 4}, {240, 12}, {50, 13}}) {
+  // Sizes: b = 0 and 1, b = 2 (no term before the last two), b past n, odd and even n.
+  for (const auto& [n, b] : std::vector<std::pair<int, int>>{
+           {1, 0}, {6, 1}, {2, 2}, {3, 2}, {7, 2}, {4, 6}, {17, 4}, {240, 12}, {241, 12}, {50, 13}}) {
     const Eigen::SparseMatrix<double> a = random_band(n, b, rng);
     // Plain band LU without pivoting, the same operation order as BandedLu::factorize.
     Eigen::MatrixXd f = Eigen::MatrixXd(a);
