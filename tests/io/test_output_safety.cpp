@@ -113,6 +113,39 @@ TEST_F(OutputSafety, StaleTemporariesOfTheSameOutputAreRemovedOnTheNextWrite) {
   EXPECT_TRUE(fs::exists(dir_ / "run.h5.tmp.notes"));
 }
 
+TEST_F(OutputSafety, StaleScanRemovesOnlyRegularFilesAndLinksNotTheirTargetsNorDirectories) {
+  // The scan reads the directory itself (readdir, names compared as bytes): a directory named
+  // like a stale temporary is not a file and stays; a symbolic link to a regular file is
+  // judged by its target (as std::filesystem's is_regular_file did) and the link, not the
+  // target, is removed; a name that only starts like the prefix ("run.h5.tmpx") stays; a
+  // crowd of unrelated names around them changes nothing.
+  const std::string dead = std::to_string(dead_pid());
+  fs::create_directory(dir_ / ("run.h5.tmp." + dead + ".1"));
+  touch("target.bin");
+  fs::create_symlink(dir_ / "target.bin", dir_ / ("run.h5.tmp." + dead + ".2"));
+  touch("run.h5.tmpx");
+  touch("run.h5.tmp." + dead + ".3");
+  for (int k = 0; k < 300; ++k) touch("crowd_" + std::to_string(k));
+  shudder::io::remove_stale_temp_files(path("run.h5"));
+  EXPECT_TRUE(fs::is_directory(dir_ / ("run.h5.tmp." + dead + ".1")));
+  EXPECT_FALSE(fs::exists(fs::symlink_status(dir_ / ("run.h5.tmp." + dead + ".2"))));
+  EXPECT_TRUE(fs::exists(dir_ / "target.bin"));
+  EXPECT_TRUE(fs::exists(dir_ / "run.h5.tmpx"));
+  EXPECT_FALSE(fs::exists(dir_ / ("run.h5.tmp." + dead + ".3")));
+  EXPECT_TRUE(fs::exists(dir_ / "crowd_299"));
+  // A path without a directory part scans the working directory; a path naming a directory
+  // (trailing slash) has no temporaries and touches nothing.
+  const fs::path cwd = fs::current_path();
+  fs::current_path(dir_);
+  touch("bare.h5.tmp");
+  shudder::io::remove_stale_temp_files("bare.h5");
+  fs::current_path(cwd);
+  EXPECT_FALSE(fs::exists(dir_ / "bare.h5.tmp"));
+  touch(".tmp");
+  shudder::io::remove_stale_temp_files(dir_.string() + "/");
+  EXPECT_TRUE(fs::exists(dir_ / ".tmp"));
+}
+
 TEST_F(OutputSafety, TemporaryNamesAreUniquePerWrite) {
   // Old code: always `path + ".tmp"`.
   const std::string a = shudder::io::temp_path_for("x.h5"), b = shudder::io::temp_path_for("x.h5");
