@@ -9,27 +9,22 @@ namespace shudder::clutch {
 
 namespace {
 
-// Both triangular sweeps, row by row, on the vector y (b slots of zero padding each side), with
-// U = D Ũ (D its diagonal, Ũ unit upper):
-//
-//     L y = x;   z = D⁻¹ y;   Ũ x = z
-//
-// Row m of L y = x subtracts L(m, k) y[k] for k = m-b .. m-1 in increasing k; z[m] = y[m] ·
-// (1 / U(m, m)); row m of Ũ x = z subtracts Ũ(m, k) x[k] for k = m+b .. m+1 in decreasing k,
-// Ũ(m, k) = U(m, k) / U(m, m) rounded once when factorising. Why rows and why Ũ: the solve is
-// bound by the latency of the chain from one unknown to the next (each row's last term needs the
-// unknown just finished). Rows let the older terms be computed while that unknown is still being
-// finished and carry it in a register, so the forward chain is one multiply and one subtraction
-// per unknown. Dividing by U(m, m) in the backward sweep added a division (≈ 14 cycles) to every
-// link of its chain; with Ũ the scaling moves out of the chain (a multiply per row between the
-// sweeps, all independent), so the backward chain is one multiply and one subtraction too.
-// The price is rounding: the quotients are rounded into Ũ and z instead of at each unknown, a
-// change of the last bits (backward error still ≈ n·b·ε, see banded_lu.hpp). Built for baseline
-// x86-64, which has no FMA, so every machine rounds the same way.
+// Both triangular sweeps, row by row, on the vector y (b slots of zero padding each side).
+// Row m of L y = x subtracts L(m, k) y[k] for k = m-b .. m-1 in increasing k, and row m of
+// U x = y subtracts U(m, k) x[k] for k = m+b .. m+1 in decreasing k, then divides by U(m, m):
+// exactly the operations, in exactly the order, that the column-oriented band substitution
+// (Golub & Van Loan Alg. 4.3.2/4.3.3) applies to each entry, so the result is the same bit for
+// bit (the padded terms subtract 0·0). Why rows: the column form stores each finished entry
+// and reloads it for the next column, so every unknown waits for a store, a reload, a
+// multiply and a subtraction in turn; here the terms of the older entries are computed while
+// the previous entry is still being finished, and that entry is carried in a register, so the
+// chain from one unknown to the next is one multiply and one subtraction (forward) or one
+// multiply, one subtraction and the division (backward). Built for baseline x86-64, which has
+// no FMA, so the multiply and the subtraction round separately, as in the reference.
 void sweep(double* __restrict y, const double* __restrict lower, const double* __restrict upper,
-           const double* __restrict inv_diag, int n, int b) {
+           const double* __restrict diag, int n, int b) {
   if (b == 0) {
-    for (int m = 0; m < n; ++m) y[m] *= inv_diag[m];
+    for (int m = 0; m < n; ++m) y[m] /= diag[m];
     return;
   }
   const std::size_t width = static_cast<std::size_t>(b);
@@ -43,14 +38,14 @@ void sweep(double* __restrict y, const double* __restrict lower, const double* _
     y[m] = acc;
     prev = acc;
   }
-  for (int m = 0; m < n; ++m) y[m] *= inv_diag[m];
   prev = 0.0;  // x[m+1]: the padding's zero after the last row
   for (int m = n - 1; m >= 0; --m) {
-    const double* u = upper + static_cast<std::size_t>(m) * width;  // Ũ(m, m+b .. m+1)
+    const double* u = upper + static_cast<std::size_t>(m) * width;  // U(m, m+b .. m+1)
     const double* yk = y + m + b;
     double acc = y[m];
     for (int t = 0; t < b - 1; ++t) acc -= u[t] * yk[-t];
     acc -= u[b - 1] * prev;
+    acc /= diag[m];
     y[m] = acc;
     prev = acc;
   }
@@ -64,7 +59,7 @@ BandedLu::BandedLu(int n, int half_band)
   data_.assign(static_cast<std::size_t>(n) * width_, 0.0);
   lower_.assign(static_cast<std::size_t>(n) * half_band, 0.0);
   upper_.assign(static_cast<std::size_t>(n) * half_band, 0.0);
-  inv_diag_.assign(static_cast<std::size_t>(n), 0.0);
+  diag_.assign(static_cast<std::size_t>(n), 0.0);
   padded_.assign(static_cast<std::size_t>(n + 2 * half_band), 0.0);
 }
 
@@ -95,13 +90,12 @@ bool BandedLu::factorize(const Eigen::SparseMatrix<double>& a) {
   std::fill(upper_.begin(), upper_.end(), 0.0);
   const std::size_t b = static_cast<std::size_t>(b_);
   for (int m = 0; m < n_; ++m) {
-    const double d = at(m, m);
-    inv_diag_[static_cast<std::size_t>(m)] = 1.0 / d;
+    diag_[static_cast<std::size_t>(m)] = at(m, m);
     double* lo = &lower_[static_cast<std::size_t>(m) * b];  // L(m, m-b+t)
-    double* up = &upper_[static_cast<std::size_t>(m) * b];  // Ũ(m, m+b-t) = U(m, m+b-t) / U(m, m)
+    double* up = &upper_[static_cast<std::size_t>(m) * b];  // U(m, m+b-t)
     for (int t = 0; t < b_; ++t) {
       if (m - b_ + t >= 0) lo[t] = at(m, m - b_ + t);
-      if (m + b_ - t < n_) up[t] = at(m, m + b_ - t) / d;
+      if (m + b_ - t < n_) up[t] = at(m, m + b_ - t);
     }
   }
   return true;
@@ -113,7 +107,7 @@ void BandedLu::solve_in_place(Eigen::VectorXd& x) {
   // padding's zeros, which the sweeps never write.
   std::copy(x.data(), x.data() + n_, padded_.begin() + b_);
   double* y = padded_.data() + b_;
-  sweep(y, lower_.data(), upper_.data(), inv_diag_.data(), n_, b_);
+  sweep(y, lower_.data(), upper_.data(), diag_.data(), n_, b_);
   std::copy(y, y + n_, x.data());
 }
 

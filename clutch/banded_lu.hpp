@@ -16,13 +16,9 @@
 // the inner loops of the factorisation and of both solves are axpy updates on contiguous
 // memory, independent of each other (no serial dot-product chain).
 // After factorising, the solve's factors are copied by rows (L(m, m-b .. m-1) and
-// Ũ(m, m+b .. m+1) = U(m, ·) / U(m, m), zeros past the matrix' ends, and 1 / U(m, m)) and the
-// solve is L y = x, z = D⁻¹ y, Ũ x = z (U = D Ũ), both triangular sweeps row by row in the
-// column algorithm's operation order, with the chain from one unknown to the next cut to a
-// multiply and a subtraction (banded_lu.cpp says why). Rounding the quotients into Ũ and z
-// once instead of dividing at every unknown changes the last bits only: each computed entry
-// carries one more rounding, so the backward error stays O(b·ε) relative per row, as for the
-// plain substitution (Higham, Accuracy and Stability, §8.1 and §9.3).
+// U(m, m+b .. m+1), zeros past the matrix' ends) and both triangular solves run row by row in
+// the column algorithm's operation order: the same result bit for bit, with the chain from one
+// unknown to the next cut to a multiply and a subtraction (banded_lu.cpp says why).
 // Neither factorize() nor solve_in_place() allocates: fit for a real-time step.
 
 #include <Eigen/Core>
@@ -54,8 +50,8 @@ class BandedLu {
   std::size_t width_ = 1;
   std::vector<double> data_;
   std::vector<double> lower_;   // row m: L(m, m-b .. m-1), zeros before the matrix' start
-  std::vector<double> upper_;     // row m: Ũ(m, m+b .. m+1) = U(m, ·) / U(m, m), zeros past the end
-  std::vector<double> inv_diag_;  // 1 / U(m, m)
+  std::vector<double> upper_;   // row m: U(m, m+b .. m+1), zeros past the matrix' end
+  std::vector<double> diag_;    // U(m, m)
   std::vector<double> padded_;  // solve scratch: the vector with b zero slots each side
 };
 
