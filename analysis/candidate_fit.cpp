@@ -19,7 +19,7 @@ Predictions CandidateFitter::predict(const Config& config, const std::vector<std
     Prediction p = sim_(config, k);
     const std::size_t n = runs_[k].time_s.size();
     bool ok = true;
-    for (const auto& c : misfit_.channels()) ok = ok && predicted(p, c.signal).size() == n;
+    for (const auto& c : misfit_.channels()) ok = ok && predicted_values(p, c.signal).size() == n;
     if (!ok)
       throw std::runtime_error("the simulator returned a prediction of the wrong length for run '" +
                                runs_[k].name + "'");

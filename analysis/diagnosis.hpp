@@ -127,7 +127,8 @@ struct DiagnosisOptions {
   bool torque_block_statistics = false;
   double statistics_block_s = 1.0;
   // Model-form tolerance per channel (signal unit; keys torque_Nm, temp_C, sump_temp_C,
-  // ir_temp_C), added in quadrature to every error scale of that channel: data from another
+  // ir_temp_C, temp_minus_ir_C), added in quadrature to every error scale of that channel (a
+  // temperature tolerance also adds the temp_minus_ir_C channel: misfit.hpp): data from another
   // simulator or a real rig differ from any model by more than their noise even when nothing
   // is missing (docs/diagnosis.md "Choosing a tolerance"). Default none.
   std::vector<std::pair<std::string, double>> tolerance;

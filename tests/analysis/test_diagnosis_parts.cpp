@@ -1,7 +1,8 @@
 // The diagnosis' parts on problems with known answers (fast: each well under a second):
 //   noise estimate   analysis/noise_estimate against white noise of known sigma;
 //   log-parameter fit analysis/log_parameter_fit recovering the parameters of a closed form;
-//   diagnose         with the linear fake model of tests/support/linear_diagnosis.hpp.
+//   diagnose         with the linear fake model of tests/support/linear_diagnosis.hpp;
+//   misfit           the thermocouple-against-IR channel (analysis/misfit.hpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,6 +12,7 @@
 
 #include "analysis/diagnosis.hpp"
 #include "analysis/log_parameter_fit.hpp"
+#include "analysis/misfit.hpp"
 #include "analysis/noise_estimate.hpp"
 #include "tests/support/linear_diagnosis.hpp"
 
@@ -170,6 +172,87 @@ TEST(DiagnoseLinear, NamesNothingWhenTheDataEqualTheBaseline) {
   EXPECT_TRUE(r.final_effects.empty());
   EXPECT_EQ(r.stop.kind, shudder::analysis::StopReason::Kind::kWithinNoise);
   EXPECT_EQ(r.simulations, 1);  // the baseline only: nothing to fit
+}
+
+// Two runs whose thermocouple and IR spot see the same smooth warming, each with its own white
+// noise; the model reads 2 °C hotter on both thermometers (a model-form gap of the heat balance),
+// or additionally 1 °C on the thermocouple alone (a sensor fault).
+struct ThermometerPair {
+  std::vector<DiagnosisRun> runs;
+  shudder::analysis::Predictions common_gap, sensor_fault;
+};
+
+ThermometerPair thermometer_pair() {
+  ThermometerPair t;
+  for (unsigned k = 0; k < 2; ++k) {
+    DiagnosisRun r;
+    r.name = "run" + std::to_string(k);
+    const std::size_t n = 5000;
+    const auto tc_noise = white_noise(n, 0.335, 10 + k), ir_noise = white_noise(n, 0.75, 20 + k);
+    shudder::analysis::Prediction gap, fault;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double time = 0.01 * static_cast<double>(i), warm = 80.0 + 20.0 * std::sin(0.05 * time);
+      r.time_s.push_back(time);
+      r.speed_rpm.push_back(50.0);
+      r.normal_force_N.push_back(15000.0);
+      r.torque_Nm.push_back(70.0);
+      r.temp_C.push_back(warm + tc_noise[i]);
+      r.ir_temp_C.push_back(warm + ir_noise[i]);
+      gap.torque_Nm.push_back(70.0);
+      gap.temp_C.push_back(warm + 2.0);
+      gap.ir_temp_C.push_back(warm + 2.0);
+    }
+    fault = gap;
+    for (double& v : fault.temp_C) v += 1.0;
+    t.runs.push_back(std::move(r));
+    t.common_gap.push_back(std::move(gap));
+    t.sensor_fault.push_back(std::move(fault));
+  }
+  return t;
+}
+
+const shudder::analysis::Channel* find_channel(const shudder::analysis::MisfitModel& m, const std::string& name) {
+  for (const auto& c : m.channels())
+    if (c.name == name) return &c;
+  return nullptr;
+}
+
+TEST(MisfitThermocoupleAgainstIr, OnlyATemperatureToleranceAddsTheChannel) {
+  const ThermometerPair t = thermometer_pair();
+  DiagnosisOptions plain;
+  EXPECT_EQ(find_channel(shudder::analysis::MisfitModel(t.runs, plain), "temp_minus_ir_C"), nullptr);
+  DiagnosisOptions torque_only;
+  torque_only.tolerance = {{"torque_Nm", 0.5}};
+  EXPECT_EQ(find_channel(shudder::analysis::MisfitModel(t.runs, torque_only), "temp_minus_ir_C"), nullptr);
+  DiagnosisOptions with;
+  with.tolerance = {{"temp_C", 2.0}};
+  const shudder::analysis::MisfitModel m(t.runs, with);
+  const auto* d = find_channel(m, "temp_minus_ir_C");
+  ASSERT_NE(d, nullptr);
+  EXPECT_EQ(d->tolerance, 0.0);                          // not temp_C's
+  EXPECT_EQ(find_channel(m, "ir_temp_C")->tolerance, 2.0);  // the IR spot keeps it
+  // Its noise is the difference's: √(0.335² + 0.75²) = 0.821 °C; 4 % as NoiseEstimate's bound.
+  EXPECT_NEAR(d->sigma / std::hypot(0.335, 0.75), 1.0, kNoiseRelTol);
+}
+
+TEST(MisfitThermocoupleAgainstIr, CancelsACommonGapAndKeepsAThermocoupleFault) {
+  const ThermometerPair t = thermometer_pair();
+  DiagnosisOptions with;
+  with.tolerance = {{"temp_C", 2.0}};
+  const shudder::analysis::MisfitModel m(t.runs, with);
+  const auto& d = *find_channel(m, "temp_minus_ir_C");
+  const auto& tc = *find_channel(m, "temp_C");
+  // A 2 °C gap on both thermometers: temp_C is at its widened scale, J_c = (σ² + 4)/(σ² + 4) ≈ 1
+  // (its residual is the 2 °C itself), and the difference sees only its noise, J_c ≈ 1; 10 %
+  // covers the sampling of 10,000 samples (≈ 1.4 % standard error of a mean square) and the
+  // sigma estimate's 4 %.
+  EXPECT_NEAR(m.channel_misfit(tc, m.all(), t.common_gap), 1.0, 0.1);
+  EXPECT_NEAR(m.channel_misfit(d, m.all(), t.common_gap), 1.0, 0.1);
+  // 1 °C more on the thermocouple alone: against its 2 °C tolerance temp_C reads it as
+  // (0.335² + 9)/(0.335² + 4) = 2.2, not far from a gap it already allows; the difference rises
+  // by 1/0.821² = 1.48 above its noise. 0.25 = the sigma estimate's 4 % bound, doubled in a
+  // square, on J ≈ 2.48.
+  EXPECT_NEAR(m.channel_misfit(d, m.all(), t.sensor_fault), 1.0 + 1.0 / (0.335 * 0.335 + 0.75 * 0.75), 0.25);
 }
 
 }  // namespace
