@@ -179,7 +179,7 @@ TEST(DiagnoseLinear, NamesNothingWhenTheDataEqualTheBaseline) {
 // or additionally 1 °C on the thermocouple alone (a sensor fault).
 struct ThermometerPair {
   std::vector<DiagnosisRun> runs;
-  shudder::analysis::Predictions common_gap, sensor_fault;
+  shudder::analysis::Predictions common_gap, sensor_fault, exact;
 };
 
 ThermometerPair thermometer_pair() {
@@ -204,6 +204,10 @@ ThermometerPair thermometer_pair() {
     }
     fault = gap;
     for (double& v : fault.temp_C) v += 1.0;
+    shudder::analysis::Prediction exact = gap;
+    for (double& v : exact.temp_C) v -= 2.0;
+    for (double& v : exact.ir_temp_C) v -= 2.0;
+    t.exact.push_back(std::move(exact));
     t.runs.push_back(std::move(r));
     t.common_gap.push_back(std::move(gap));
     t.sensor_fault.push_back(std::move(fault));
@@ -253,6 +257,20 @@ TEST(MisfitThermocoupleAgainstIr, CancelsACommonGapAndKeepsAThermocoupleFault) {
   // by 1/0.821² = 1.48 above its noise. 0.25 = the sigma estimate's 4 % bound, doubled in a
   // square, on J ≈ 2.48.
   EXPECT_NEAR(m.channel_misfit(d, m.all(), t.sensor_fault), 1.0 + 1.0 / (0.335 * 0.335 + 0.75 * 0.75), 0.25);
+}
+
+TEST(MisfitThermocoupleAgainstIr, ATolerancedChannelEarnsNothingBelowItsScale) {
+  // The noise-free truth: temp_C and ir_temp_C come out far inside their 2 °C tolerance
+  // (J_c = σ²/(σ² + 4) ≈ 0.03 and 0.12), the difference at its noise (≈ 1), the torque exact (0).
+  // J = ½·0 + ½·mean(1, 1, ≈ 1) ≈ 0.5 with the floor at J_c = 1 for toleranced channels; 0.19
+  // without it. 0.05: the difference's J_c within its sampling and sigma estimate (10 %) / 6.
+  const ThermometerPair t = thermometer_pair();
+  DiagnosisOptions with;
+  with.tolerance = {{"temp_C", 2.0}};
+  const shudder::analysis::MisfitModel m(t.runs, with);
+  EXPECT_NEAR(m.misfit(m.all(), t.exact), 0.5, 0.05);
+  // The per-channel J is not floored: it says how far inside the tolerance the model is.
+  EXPECT_LT(m.channel_misfit(*find_channel(m, "temp_C"), m.all(), t.exact), 0.1);
 }
 
 }  // namespace
