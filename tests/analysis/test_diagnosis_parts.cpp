@@ -166,6 +166,28 @@ TEST(DiagnoseLinear, NamesTheMissingEffectAndFitsItsParameter) {
   EXPECT_GT(r.baseline.torque_rms_Nm, 100 * r.noise_torque_Nm);
 }
 
+TEST(DiagnoseLinear, TwoEffectsTheDataCannotTellApartAreNeitherNamed) {
+  // `torque_twin` changes the model exactly as `torque_slope` does: any data give both the same
+  // held-out misfit. Naming the first in order would be a guess: the search stops on the tie,
+  // names neither, and says which two (before the tie rule: torque_slope was named).
+  const std::vector<DiagnosisRun> runs{shudder::test::linear_measured_run({{"torque_slope", {0.3}}})};
+  const auto simulate = [&](const std::vector<EffectSetting>& added, std::size_t k) {
+    std::vector<EffectSetting> as_slope = added;
+    for (auto& e : as_slope)
+      if (e.effect == "torque_twin") e.effect = "torque_slope";
+    return shudder::test::linear_prediction(runs[k], as_slope);
+  };
+  auto candidates = shudder::test::linear_candidates();
+  candidates.push_back(candidates[0]);
+  candidates.back().name = "torque_twin";
+  const auto r = shudder::analysis::diagnose(runs, candidates, simulate, DiagnosisOptions{});
+  EXPECT_TRUE(r.missing_effects.empty());
+  EXPECT_EQ(r.stop.kind, shudder::analysis::StopReason::Kind::kTie);
+  EXPECT_EQ(std::min(r.stop.best_effect, r.stop.tied_with), "torque_slope");
+  EXPECT_EQ(std::max(r.stop.best_effect, r.stop.tied_with), "torque_twin");
+  EXPECT_EQ(r.verdict, shudder::analysis::DiagnosisVerdict::kNotExplained);
+}
+
 TEST(DiagnoseLinear, NamesNothingWhenTheDataEqualTheBaseline) {
   const auto r = diagnose_linear({});
   EXPECT_TRUE(r.missing_effects.empty());
