@@ -118,8 +118,13 @@ std::string verdict_sentence(const analysis::DiagnosisResult& r) {
   if (gaps.empty()) {
     os << ": every channel within its error scale";
   } else {
-    os << (r.verdict == analysis::DiagnosisVerdict::kNotExplained ? ": no candidate closes the gap; " : "; a gap remains: ")
-       << gaps;
+    if (r.stop.kind == analysis::StopReason::Kind::kTie && r.missing_effects.empty())
+      os << ": " << r.stop.best_effect << " and " << r.stop.tied_with
+         << " close the gap equally, so neither is named; ";
+    else
+      os << (r.verdict == analysis::DiagnosisVerdict::kNotExplained ? ": no candidate closes the gap; "
+                                                                      : "; a gap remains: ");
+    os << gaps;
   }
   os << ".";
   return os.str();
