@@ -169,7 +169,7 @@ TEST(DiagnoseLinear, NamesTheMissingEffectAndFitsItsParameter) {
 TEST(DiagnoseLinear, TwoEffectsTheDataCannotTellApartAreNeitherNamed) {
   // `torque_twin` changes the model exactly as `torque_slope` does: any data give both the same
   // held-out misfit. Naming the first in order would be a guess: the search stops on the tie,
-  // names neither, and says which two (before the tie rule: torque_slope was named).
+  // names neither, and says which two (without the rule the first in order would be named).
   const std::vector<DiagnosisRun> runs{shudder::test::linear_measured_run({{"torque_slope", {0.3}}})};
   const auto simulate = [&](const std::vector<EffectSetting>& added, std::size_t k) {
     std::vector<EffectSetting> as_slope = added;
