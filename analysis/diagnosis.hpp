@@ -102,6 +102,12 @@ struct DiagnosisOptions {
   double penalty_per_parameter = 0.02;  // per fitted parameter, same units (× s)
   double bound_margin = 0.02;
   double min_signature = 0.3;
+  // Two accepted single candidates whose scores differ by less than tie_tolerance · s explain
+  // the data equally: neither is added and the search stops (StopReason::kTie). 1e-5: below what
+  // the fits resolve (LM stops at 0.1 % in the parameters, which moves J at its minimum by
+  // ~1e-6), far below the smallest real difference seen between two effects (2e-4 of J: a
+  // bearing drag against a torque offset on one constant-force run, docs/diagnosis.md section 6).
+  double tie_tolerance = 1e-5;
   // Backward check (docs/diagnosis.md "Backward check and its tie rule"): when an added effect
   // can be taken out at a held-out cost below the gain it would need, the remaining effect whose
   // parameters move most in the refit is its stand-in if one moves by more than this fraction
@@ -127,7 +133,8 @@ struct DiagnosisOptions {
   bool torque_block_statistics = false;
   double statistics_block_s = 1.0;
   // Model-form tolerance per channel (signal unit; keys torque_Nm, temp_C, sump_temp_C,
-  // ir_temp_C), added in quadrature to every error scale of that channel: data from another
+  // ir_temp_C, temp_minus_ir_C), added in quadrature to every error scale of that channel (a
+  // temperature tolerance also adds the temp_minus_ir_C channel: misfit.hpp): data from another
   // simulator or a real rig differ from any model by more than their noise even when nothing
   // is missing (docs/diagnosis.md "Choosing a tolerance"). Default none.
   std::vector<std::pair<std::string, double>> tolerance;
@@ -226,7 +233,7 @@ struct BackwardFinding {
 
 /// Why the greedy search stopped (report/diagnosis_narrative.hpp puts it in words).
 struct StopReason {
-  enum class Kind { kWithinNoise, kEffectLimit, kAllAdded, kNoGain, kNoFit };
+  enum class Kind { kWithinNoise, kEffectLimit, kAllAdded, kNoGain, kNoFit, kTie };
   Kind kind = Kind::kAllAdded;
   double noise_tolerance = 0.0;  // kWithinNoise: the tolerance, and per channel rms / noise
   std::vector<std::pair<std::string, double>> rms_over_noise;
@@ -235,6 +242,7 @@ struct StopReason {
   std::string best_effect;
   double best_gain = 0.0;
   std::string best_rejection;    // kNoGain: why the best-scored candidate was not added
+  std::string tied_with;         // kTie: best_effect and this one scored the same (best_gain: its gain)
 };
 
 /// Measured and modelled signals of one run, for plots (at the residual samples).

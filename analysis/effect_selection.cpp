@@ -268,6 +268,27 @@ Selection select_effects(const std::vector<DiagnosisRun>& runs, const std::vecto
       }
       break;
     }
+    // A tie (DiagnosisOptions::tie_tolerance): another single effect that passes every test
+    // scores the same. The data cannot tell the two apart — typically because all they differ in
+    // lies inside a model-form tolerance (a torque-cell gain and a load-cell gain, whose extra
+    // heat only moves the toleranced temperatures) — so naming the first in order would be a
+    // guess; stop and say so instead (the verdict then reports the gap as not closed).
+    const double s_now = std::max(1.0, misfit.misfit(misfit.holdout(), fold_pred));
+    const CandidateOutcome* twin = nullptr;
+    if (chosen->score.joint_with.empty())
+      for (const auto& o : outcomes)
+        if (!twin && &o != chosen && o.ok && o.score.rejection.empty() && o.score.joint_with.empty() &&
+            o.score.effect != chosen->score.effect &&
+            std::abs(o.score.score - chosen->score.score) <= opt.tie_tolerance * s_now)
+          twin = &o;
+    if (twin) {
+      sel.last_round = scores;
+      stop.kind = StopReason::Kind::kTie;
+      stop.best_effect = chosen->score.effect;
+      stop.tied_with = twin->score.effect;
+      stop.best_gain = chosen->score.gain;
+      break;
+    }
     const CandidateOutcome& best = *chosen;
     DiagnosisStep step;
     step.effect = best.score.effect;

@@ -4,6 +4,9 @@
 //
 //   channels   torque_Nm, temp_C always; sump_temp_C and ir_temp_C when every run has them.
 //              Each has a noise sigma pooled over the runs (analysis/noise_estimate.hpp).
+//              With a model-form tolerance on the temperatures and an IR spot in every run,
+//              also temp_minus_ir_C: the thermocouple less the IR spot, sample by sample,
+//              without temp_C's tolerance (choose_channels says why).
 //   J          = ½ J_torque + ½ mean of J_c over the temperature channels, J_c = mean((r/σ)²)
 //              over a sample set, r = model − measured. J ≈ 1 at the noise.
 //   blocks     torque compared by block statistics (DiagnosisOptions::torque_block_statistics):
@@ -17,6 +20,7 @@
 //              hold-out: the last run with several runs, odd tenths of the time with one.
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <utility>
@@ -29,9 +33,26 @@ namespace shudder::analysis {
 /// Per run: the prediction at the fitted values, empty where the run was not simulated.
 using Predictions = std::vector<std::optional<Prediction>>;
 
-enum class Signal { kTorque, kTemp, kSump, kIr };
+enum class Signal { kTorque, kTemp, kSump, kIr, kTempMinusIr };
+/// A stored column; std::logic_error for kTempMinusIr, which has none (use *_values).
 const std::vector<double>& measured(const DiagnosisRun& r, Signal s);
 const std::vector<double>& predicted(const Prediction& p, Signal s);
+
+/// One channel's values in a run or prediction: a stored column, or for kTempMinusIr the
+/// thermocouple less the IR spot, sample by sample.
+class SignalValues {
+ public:
+  explicit SignalValues(const std::vector<double>& a, const std::vector<double>* minus = nullptr)
+      : a_(&a), minus_(minus) {}
+  double operator[](std::size_t i) const { return minus_ ? (*a_)[i] - (*minus_)[i] : (*a_)[i]; }
+  std::size_t size() const { return minus_ ? std::min(a_->size(), minus_->size()) : a_->size(); }
+
+ private:
+  const std::vector<double>* a_;
+  const std::vector<double>* minus_;
+};
+SignalValues measured_values(const DiagnosisRun& r, Signal s);
+SignalValues predicted_values(const Prediction& p, Signal s);
 
 struct Channel {
   Signal signal;

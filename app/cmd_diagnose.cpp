@@ -28,9 +28,9 @@ namespace {
 // "torque_Nm=0.5,temp_C=2" -> {{"torque_Nm", 0.5}, {"temp_C", 2}}; InputError (exit 2) for an
 // unknown channel, a value that is not a number >= 0, or a channel given twice.
 std::vector<std::pair<std::string, double>> parse_tolerance(const std::string& text) {
-  static const char* const kChannels[] = {"torque_Nm", "temp_C", "sump_temp_C", "ir_temp_C"};
+  static const char* const kChannels[] = {"torque_Nm", "temp_C", "sump_temp_C", "ir_temp_C", "temp_minus_ir_C"};
   const std::string allowed = "give CHANNEL=VALUE[,CHANNEL=VALUE…] with CHANNEL one of torque_Nm, temp_C, "
-                              "sump_temp_C, ir_temp_C and VALUE >= 0 in the channel's unit";
+                              "sump_temp_C, ir_temp_C, temp_minus_ir_C and VALUE >= 0 in the channel's unit";
   std::vector<std::pair<std::string, double>> out;
   std::size_t pos = 0;
   while (!text.empty() && pos <= text.size()) {

@@ -45,6 +45,9 @@ std::string stop_reason_text(const analysis::StopReason& stop) {
              ", lowers it by " + fmt(stop.best_gain) + (stop.best_rejection.empty() ? "" : "; " + stop.best_rejection) +
              ")";
     case Kind::kNoFit: return "no candidate could be fitted";
+    case Kind::kTie:
+      return stop.best_effect + " and " + stop.tied_with + " explain the data equally (each lowers the held-out misfit by " +
+             fmt(stop.best_gain) + "): the data cannot tell them apart, so neither is named";
   }
   return {};
 }
@@ -115,8 +118,13 @@ std::string verdict_sentence(const analysis::DiagnosisResult& r) {
   if (gaps.empty()) {
     os << ": every channel within its error scale";
   } else {
-    os << (r.verdict == analysis::DiagnosisVerdict::kNotExplained ? ": no candidate closes the gap; " : "; a gap remains: ")
-       << gaps;
+    if (r.stop.kind == analysis::StopReason::Kind::kTie && r.missing_effects.empty())
+      os << ": " << r.stop.best_effect << " and " << r.stop.tied_with
+         << " close the gap equally, so neither is named; ";
+    else
+      os << (r.verdict == analysis::DiagnosisVerdict::kNotExplained ? ": no candidate closes the gap; "
+                                                                      : "; a gap remains: ");
+    os << gaps;
   }
   os << ".";
   return os.str();
@@ -125,7 +133,9 @@ std::string verdict_sentence(const analysis::DiagnosisResult& r) {
 std::string diagnosis_conclusion(const analysis::DiagnosisResult& r) {
   const std::string stop = stop_reason_text(r.stop);
   std::ostringstream concl;
-  if (r.missing_effects.empty()) {
+  if (r.missing_effects.empty() && r.stop.kind == analysis::StopReason::Kind::kTie) {
+    concl << "No effect is named: " << stop << ".";
+  } else if (r.missing_effects.empty()) {
     concl << "Nothing is missing that the candidates could explain: " << stop << ".";
   } else {
     concl << "Missing: ";

@@ -1,7 +1,8 @@
 // The diagnosis' parts on problems with known answers (fast: each well under a second):
 //   noise estimate   analysis/noise_estimate against white noise of known sigma;
 //   log-parameter fit analysis/log_parameter_fit recovering the parameters of a closed form;
-//   diagnose         with the linear fake model of tests/support/linear_diagnosis.hpp.
+//   diagnose         with the linear fake model of tests/support/linear_diagnosis.hpp;
+//   misfit           the thermocouple-against-IR channel (analysis/misfit.hpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,6 +12,7 @@
 
 #include "analysis/diagnosis.hpp"
 #include "analysis/log_parameter_fit.hpp"
+#include "analysis/misfit.hpp"
 #include "analysis/noise_estimate.hpp"
 #include "tests/support/linear_diagnosis.hpp"
 
@@ -164,12 +166,133 @@ TEST(DiagnoseLinear, NamesTheMissingEffectAndFitsItsParameter) {
   EXPECT_GT(r.baseline.torque_rms_Nm, 100 * r.noise_torque_Nm);
 }
 
+TEST(DiagnoseLinear, TwoEffectsTheDataCannotTellApartAreNeitherNamed) {
+  // `torque_twin` changes the model exactly as `torque_slope` does: any data give both the same
+  // held-out misfit. Naming the first in order would be a guess: the search stops on the tie,
+  // names neither, and says which two (without the rule the first in order would be named).
+  const std::vector<DiagnosisRun> runs{shudder::test::linear_measured_run({{"torque_slope", {0.3}}})};
+  const auto simulate = [&](const std::vector<EffectSetting>& added, std::size_t k) {
+    std::vector<EffectSetting> as_slope = added;
+    for (auto& e : as_slope)
+      if (e.effect == "torque_twin") e.effect = "torque_slope";
+    return shudder::test::linear_prediction(runs[k], as_slope);
+  };
+  auto candidates = shudder::test::linear_candidates();
+  candidates.push_back(candidates[0]);
+  candidates.back().name = "torque_twin";
+  const auto r = shudder::analysis::diagnose(runs, candidates, simulate, DiagnosisOptions{});
+  EXPECT_TRUE(r.missing_effects.empty());
+  EXPECT_EQ(r.stop.kind, shudder::analysis::StopReason::Kind::kTie);
+  EXPECT_EQ(std::min(r.stop.best_effect, r.stop.tied_with), "torque_slope");
+  EXPECT_EQ(std::max(r.stop.best_effect, r.stop.tied_with), "torque_twin");
+  EXPECT_EQ(r.verdict, shudder::analysis::DiagnosisVerdict::kNotExplained);
+}
+
 TEST(DiagnoseLinear, NamesNothingWhenTheDataEqualTheBaseline) {
   const auto r = diagnose_linear({});
   EXPECT_TRUE(r.missing_effects.empty());
   EXPECT_TRUE(r.final_effects.empty());
   EXPECT_EQ(r.stop.kind, shudder::analysis::StopReason::Kind::kWithinNoise);
   EXPECT_EQ(r.simulations, 1);  // the baseline only: nothing to fit
+}
+
+// Two runs whose thermocouple and IR spot see the same smooth warming, each with its own white
+// noise; the model reads 2 °C hotter on both thermometers (a model-form gap of the heat balance),
+// or additionally 1 °C on the thermocouple alone (a sensor fault).
+struct ThermometerPair {
+  std::vector<DiagnosisRun> runs;
+  shudder::analysis::Predictions common_gap, sensor_fault, exact;
+};
+
+ThermometerPair thermometer_pair() {
+  ThermometerPair t;
+  for (unsigned k = 0; k < 2; ++k) {
+    DiagnosisRun r;
+    r.name = "run" + std::to_string(k);
+    const std::size_t n = 5000;
+    const auto tc_noise = white_noise(n, 0.335, 10 + k), ir_noise = white_noise(n, 0.75, 20 + k);
+    shudder::analysis::Prediction gap, fault;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double time = 0.01 * static_cast<double>(i), warm = 80.0 + 20.0 * std::sin(0.05 * time);
+      r.time_s.push_back(time);
+      r.speed_rpm.push_back(50.0);
+      r.normal_force_N.push_back(15000.0);
+      r.torque_Nm.push_back(70.0);
+      r.temp_C.push_back(warm + tc_noise[i]);
+      r.ir_temp_C.push_back(warm + ir_noise[i]);
+      gap.torque_Nm.push_back(70.0);
+      gap.temp_C.push_back(warm + 2.0);
+      gap.ir_temp_C.push_back(warm + 2.0);
+    }
+    fault = gap;
+    for (double& v : fault.temp_C) v += 1.0;
+    shudder::analysis::Prediction exact = gap;
+    for (double& v : exact.temp_C) v -= 2.0;
+    for (double& v : exact.ir_temp_C) v -= 2.0;
+    t.exact.push_back(std::move(exact));
+    t.runs.push_back(std::move(r));
+    t.common_gap.push_back(std::move(gap));
+    t.sensor_fault.push_back(std::move(fault));
+  }
+  return t;
+}
+
+const shudder::analysis::Channel* find_channel(const shudder::analysis::MisfitModel& m, const std::string& name) {
+  for (const auto& c : m.channels())
+    if (c.name == name) return &c;
+  return nullptr;
+}
+
+TEST(MisfitThermocoupleAgainstIr, OnlyATemperatureToleranceAddsTheChannel) {
+  const ThermometerPair t = thermometer_pair();
+  DiagnosisOptions plain;
+  EXPECT_EQ(find_channel(shudder::analysis::MisfitModel(t.runs, plain), "temp_minus_ir_C"), nullptr);
+  DiagnosisOptions torque_only;
+  torque_only.tolerance = {{"torque_Nm", 0.5}};
+  EXPECT_EQ(find_channel(shudder::analysis::MisfitModel(t.runs, torque_only), "temp_minus_ir_C"), nullptr);
+  DiagnosisOptions with;
+  with.tolerance = {{"temp_C", 2.0}};
+  const shudder::analysis::MisfitModel m(t.runs, with);
+  const auto* d = find_channel(m, "temp_minus_ir_C");
+  ASSERT_NE(d, nullptr);
+  EXPECT_EQ(d->tolerance, 0.0);                          // not temp_C's
+  EXPECT_EQ(find_channel(m, "ir_temp_C")->tolerance, 2.0);  // the IR spot keeps it
+  // Its noise is the difference's: √(0.335² + 0.75²) = 0.821 °C; 4 % as NoiseEstimate's bound.
+  EXPECT_NEAR(d->sigma / std::hypot(0.335, 0.75), 1.0, kNoiseRelTol);
+}
+
+TEST(MisfitThermocoupleAgainstIr, CancelsACommonGapAndKeepsAThermocoupleFault) {
+  const ThermometerPair t = thermometer_pair();
+  DiagnosisOptions with;
+  with.tolerance = {{"temp_C", 2.0}};
+  const shudder::analysis::MisfitModel m(t.runs, with);
+  const auto& d = *find_channel(m, "temp_minus_ir_C");
+  const auto& tc = *find_channel(m, "temp_C");
+  // A 2 °C gap on both thermometers: temp_C is at its widened scale, J_c = (σ² + 4)/(σ² + 4) ≈ 1
+  // (its residual is the 2 °C itself), and the difference sees only its noise, J_c ≈ 1; 10 %
+  // covers the sampling of 10,000 samples (≈ 1.4 % standard error of a mean square) and the
+  // sigma estimate's 4 %.
+  EXPECT_NEAR(m.channel_misfit(tc, m.all(), t.common_gap), 1.0, 0.1);
+  EXPECT_NEAR(m.channel_misfit(d, m.all(), t.common_gap), 1.0, 0.1);
+  // 1 °C more on the thermocouple alone: against its 2 °C tolerance temp_C reads it as
+  // (0.335² + 9)/(0.335² + 4) = 2.2, not far from a gap it already allows; the difference rises
+  // by 1/0.821² = 1.48 above its noise. 0.25 = the sigma estimate's 4 % bound, doubled in a
+  // square, on J ≈ 2.48.
+  EXPECT_NEAR(m.channel_misfit(d, m.all(), t.sensor_fault), 1.0 + 1.0 / (0.335 * 0.335 + 0.75 * 0.75), 0.25);
+}
+
+TEST(MisfitThermocoupleAgainstIr, ATolerancedChannelEarnsNothingBelowItsScale) {
+  // The noise-free truth: temp_C and ir_temp_C come out far inside their 2 °C tolerance
+  // (J_c = σ²/(σ² + 4) ≈ 0.03 and 0.12), the difference at its noise (≈ 1), the torque exact (0).
+  // J = ½·0 + ½·mean(1, 1, ≈ 1) ≈ 0.5 with the floor at J_c = 1 for toleranced channels; 0.19
+  // without it. 0.05: the difference's J_c within its sampling and sigma estimate (10 %) / 6.
+  const ThermometerPair t = thermometer_pair();
+  DiagnosisOptions with;
+  with.tolerance = {{"temp_C", 2.0}};
+  const shudder::analysis::MisfitModel m(t.runs, with);
+  EXPECT_NEAR(m.misfit(m.all(), t.exact), 0.5, 0.05);
+  // The per-channel J is not floored: it says how far inside the tolerance the model is.
+  EXPECT_LT(m.channel_misfit(*find_channel(m, "temp_C"), m.all(), t.exact), 0.1);
 }
 
 }  // namespace

@@ -305,7 +305,8 @@ TEST(Plausibility, ToleranceValuesAreChecked) {
   EXPECT_EQ(out.exit_code, 2);
   EXPECT_EQ(out.err,
             "shudder: error: --tolerance: key 'torque_Nm': '-1' is not a tolerance; give CHANNEL=VALUE[,CHANNEL=VALUE…] "
-            "with CHANNEL one of torque_Nm, temp_C, sump_temp_C, ir_temp_C and VALUE >= 0 in the channel's unit\n");
+            "with CHANNEL one of torque_Nm, temp_C, sump_temp_C, ir_temp_C, temp_minus_ir_C and VALUE >= 0 in the "
+            "channel's unit\n");
 }
 
 // ---- the fixed model ------------------------------------------------------------------------
