@@ -83,7 +83,7 @@ TEST(DiagnoseLargerModelFormGap, ASensorLagOnTopIsNamedThroughTheThermocoupleAga
   // cancels the oil-flow gap and keeps the lag at its noise scale: the lag alone is named.
   const auto r = diagnose_other_simulator("diag_form_gap_lag",
                                           "[effects.temperature_sensor_lag]\nenabled = true\ntime_constant_s = 1.0\n");
-  EXPECT_EQ(r.missing_effects, std::vector<std::string>{"temperature_sensor_lag"}) << describe(r);
+  EXPECT_EQ(r.missing_effects, std::vector<std::string>{"temperature_sensor_lag"}) << test::describe_diagnosis(r);
   ASSERT_FALSE(r.final_effects.empty());
   EXPECT_NEAR(r.final_effects[0].parameters[0].second, 1.0, 0.2);  // the 20 %
   bool difference_compared = false;
