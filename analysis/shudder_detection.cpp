@@ -167,6 +167,7 @@ ShudderResult ShudderDetector::detect(const DetectionInput& in) const {
   SpectrogramSettings sg;
   sg.segment_length = std::clamp<std::size_t>(next_pow2(cfg.periods_per_frame * fs / f1), 16, prev_pow2(n));
   sg.hop = std::max<std::size_t>(1, sg.segment_length / 4);
+  sg.end_frame = true;  // a judder growing in the last hop of the record is seen too
   const Spectrogram spec = spectra_.spectrogram(x, fs, sg, t0);
   r.band_times_s = spec.times_s;
   r.band_power = band_power(spec, f1 - 2.0 * spec.bin_width_Hz, f1 + 2.0 * spec.bin_width_Hz);
@@ -180,7 +181,7 @@ ShudderResult ShudderDetector::detect(const DetectionInput& in) const {
   while (b[ja] < b_max - cfg.oscillating_part_dB) ++ja;
   for (std::size_t j = 0; j < frames; ++j)
     if (b[j] >= b_max - cfg.oscillating_part_dB) jb = j;
-  const std::size_t i_a = ja * sg.hop, i_b = std::min(n, jb * sg.hop + sg.segment_length);
+  const std::size_t i_a = spec.frame_start[ja], i_b = std::min(n, spec.frame_start[jb] + sg.segment_length);
   r.oscillating_from_s = in.time_s[i_a];
   r.oscillating_to_s = in.time_s[i_b - 1];
 

@@ -15,9 +15,12 @@
 //   1. Coarse detrend  x = T − M_W[T], M_W a centred moving mean over W = 2 / f_min, which
 //      removes drive-cycle trends (below f_min / 2) but passes every frequency searched.
 //   2. Preliminary frequency f_1: peak of the Welch PSD of x (Hann, 50 % overlap, segments of
-//      16 periods of f_min or the longest power of two the record holds) in [f_min, f_max].
+//      16 periods of f_min or the longest power of two the record holds; the last segment
+//      ends at the record's last sample, so a judder that starts late is in it) in
+//      [f_min, f_max].
 //   3. Spectrogram of x with frames of `periods_per_frame` periods of f_1 (rounded up to a
-//      power of two samples, hop a quarter frame); band power B_j (N² m²) in f_1 ± 2 bins (the
+//      power of two samples, hop a quarter frame, the last frame ending at the record's last
+//      sample); band power B_j (N² m²) in f_1 ± 2 bins (the
 //      Hann main lobe), in dB: b_j = 10 log10 B_j.
 //   4. Oscillating part: the frames with b_j >= max b − oscillating_part_dB (amplitude within
 //      a factor 10 of its largest), from the first such frame's start to the last one's end.

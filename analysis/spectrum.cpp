@@ -270,12 +270,17 @@ Psd welch_psd(const FftPlan& plan, std::span<const double> x, double fs, const W
   p.density.assign(plan.bins(), 0.0);
   std::vector<double> buf(L);
   std::vector<std::complex<double>> X(plan.bins());
-  for (std::size_t start = 0; start + L <= x.size(); start += step) {
+  const auto add_segment = [&](std::size_t start) {
     windowed_segment(x, start, w, cfg.remove_segment_mean, buf);
     plan.execute(buf, X);
     for (std::size_t k = 0; k < X.size(); ++k) p.density[k] += one_sided_factor(k, L) * std::norm(X[k]);
     ++p.segments;
-  }
+  };
+  std::size_t next = 0;  // start of the first regular segment not taken
+  for (; next + L <= x.size(); next += step) add_segment(next);
+  // The tail past the last regular segment (it ends at next − step + L): one more segment
+  // ending at the record's last sample, so every sample is in the estimate (see header).
+  if (next - step + L < x.size()) add_segment(x.size() - L);
   const double scale = 1.0 / (fs * s2 * static_cast<double>(p.segments));
   for (double& d : p.density) d *= scale;
   return p;
@@ -295,7 +300,9 @@ Spectrogram spectrogram(const FftPlan& plan, std::span<const double> x, double f
   const std::size_t L = plan.size();
   require(x.size() >= L, "spectrogram: signal of " + std::to_string(x.size()) +
                              " samples is shorter than one frame (" + std::to_string(L) + ")");
-  const std::size_t frames = 1 + (x.size() - L) / cfg.hop;
+  const std::size_t regular = 1 + (x.size() - L) / cfg.hop;
+  const bool tail = cfg.end_frame && (regular - 1) * cfg.hop + L < x.size();
+  const std::size_t frames = regular + (tail ? 1 : 0);
   const std::vector<double> w = window_coefficients(cfg.window, L);
   const double scale = 1.0 / (fs * sum_of_squares(w));
 
@@ -303,11 +310,13 @@ Spectrogram spectrogram(const FftPlan& plan, std::span<const double> x, double f
   s.bin_width_Hz = fs / static_cast<double>(L);
   s.frequency_Hz = bin_frequencies(L, fs);
   s.times_s.resize(frames);
+  s.frame_start.resize(frames);
   s.power.resize(static_cast<Eigen::Index>(frames), static_cast<Eigen::Index>(plan.bins()));
   std::vector<double> buf(L);
   std::vector<std::complex<double>> X(plan.bins());
   for (std::size_t j = 0; j < frames; ++j) {
-    const std::size_t start = j * cfg.hop;
+    const std::size_t start = j < regular ? j * cfg.hop : x.size() - L;
+    s.frame_start[j] = start;
     s.times_s[j] = t0_s + (static_cast<double>(start) + 0.5 * static_cast<double>(L - 1)) / fs;
     windowed_segment(x, start, w, cfg.remove_segment_mean, buf);
     plan.execute(buf, X);

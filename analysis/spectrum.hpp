@@ -22,6 +22,18 @@
 //     e_k = 2 for 0 < k < L/2, 1 at DC and (L even) Nyquist; df = fs/L.
 //   Parseval holds per segment exactly:  Σ_k P_k df = Σ_n (w_n x_n)² / S2, the window-weighted
 //   mean square, which for a stationary signal is the mean square Σ x_n²/N (in expectation).
+//   Segments start at 0, step, 2 step, … (step = round(L (1 − overlap))); when the last of
+//   these ends short of the record's end, one more segment ends at the last sample (it overlaps
+//   its neighbour by more than `overlap`). Why: the records judged here are transients, not
+//   stationary noise: a judder that grows late in a run lives in the tail, and the regular
+//   segments alone can leave up to L − 1 samples out (a 12.0 s record with 8.192 s segments
+//   put only its first 8.19 s into the estimate). Welch (1967) averages K segments placed
+//   anywhere: each modified periodogram has the same expectation for a stationary signal, so
+//   the average stays unbiased and its normalisation per segment is unchanged; only the
+//   variance reduction of the last pair is a little smaller (more overlap, more correlation).
+//   SciPy's welch (padded=False, boundary=None) drops the tail instead; zero-padding the tail
+//   (its stft with padded=True) would bias that segment's density low by the missing energy.
+//   A record whose regular segments already reach its end is analysed exactly as before.
 //
 //   Peak with sub-bin interpolation. A tone at f = (k + δ) df, |δ| ≤ ½, puts |X_k| ∝ |W(δ)| in
 //   its largest bin, with W(ν) = Σ_n w_n e^{-2πi ν n/N} the window's transform. From the ratio
@@ -40,7 +52,10 @@
 //
 //   Spectrogram: frames of length L every `hop` samples, frame j starting at sample j·hop,
 //   time centre t_0 + (j·hop + (L − 1)/2)/fs, each frame's one-sided PSD as above
-//   (n_frames x n_bins). Band power b_j = Σ_{f_lo ≤ f_k ≤ f_hi} P_jk df is the mean square of
+//   (n_frames x n_bins). With end_frame (the shudder detector's choice), when the last regular
+//   frame ends short of the record's end (by < hop samples) one more frame ends at the last
+//   sample, so an oscillation in the record's last samples is seen; frame times are then not
+//   uniform at the end (plots, which need a uniform grid, leave it off). Band power b_j = Σ_{f_lo ≤ f_k ≤ f_hi} P_jk df is the mean square of
 //   the part of the signal in that band (unit²), the quantity used to find when an
 //   oscillation starts.
 //
@@ -132,11 +147,13 @@ struct SpectrogramSettings {
   std::size_t hop = 256;  // samples between frame starts, >= 1
   Window window = Window::kHann;
   bool remove_segment_mean = true;
+  bool end_frame = false;  // one more frame ending at the last sample when hops stop short
 };
 
 struct Spectrogram {
   double bin_width_Hz = 0.0;
-  std::vector<double> times_s;       // (n_frames) frame centres
+  std::vector<double> times_s;          // (n_frames) frame centres
+  std::vector<std::size_t> frame_start;  // (n_frames) index of each frame's first sample
   std::vector<double> frequency_Hz;  // (n_bins)
   Eigen::MatrixXd power;             // (n_frames x n_bins) one-sided PSD, unit²/Hz
 };
@@ -150,7 +167,8 @@ Spectrum amplitude_spectrum(const FftPlan& plan, std::span<const double> x, doub
 /// std::invalid_argument if no bin lies in the band.
 Peak find_peak(const Spectrum& spectrum, double f_lo_Hz, double f_hi_Hz);
 
-/// Welch PSD with segments of plan.size() samples (settings.segment_length is ignored here).
+/// Welch PSD with segments of plan.size() samples (settings.segment_length is ignored here),
+/// the last one aligned to the record's end when the regular ones stop short (see header).
 /// Throws std::invalid_argument if x is shorter than one segment or the overlap is outside [0, 1).
 Psd welch_psd(const FftPlan& plan, std::span<const double> x, double sample_rate_Hz,
               const WelchSettings& settings = {});

@@ -185,14 +185,17 @@ TEST(CliVerdict, DrivelineRunHasTheSameBlockWithTheDrivelinePrediction) {
   for (double f : test::signal(rec, "clamp_force_N")) mean_clamp += f;
   mean_clamp /= static_cast<double>(test::signal(rec, "clamp_force_N").size());
   EXPECT_NEAR(block_scalar(*b, "normal_force_N"), mean_clamp, 1e-9 * mean_clamp);
-  // The ringing the sustained-oscillation rule discards keeps its size and peak (2.98 Hz,
-  // 3.1 N m with the Gen I hydraulics and the engine's firing pulsation: docs/driveline.md) but, being no verdict, no frequency or onset (judge_recording
-  // used to leave the detector's 3.1 Hz and onset 0 s on a `none`).
+  // The ringing the sustained-oscillation rule discards keeps its size and peak (2.92 Hz,
+  // 3.16 N m with the Gen I hydraulics and the engine's firing pulsation: docs/driveline.md) but, being no verdict, no frequency or onset (judge_recording
+  // used to leave the detector's 3.1 Hz and onset 0 s on a `none`). The ring drifts with the
+  // operating point; its Hann-FFT over 0–5 s has 0.2 Hz bins, and the first look's Welch
+  // spectrum sets the ±20 % band searched (2.98 Hz, 3.10 N m while that spectrum saw only
+  // 0–4.1 s of the record): 0.1 Hz, half a bin.
   EXPECT_TRUE(std::isnan(block_scalar(*b, "frequency_Hz")));
   EXPECT_TRUE(std::isnan(block_scalar(*b, "onset_time_s")));
-  EXPECT_NEAR(block_scalar(*b, "peak_frequency_Hz"), 3.0, 0.05);
+  EXPECT_NEAR(block_scalar(*b, "peak_frequency_Hz"), 2.95, 0.1);
   EXPECT_GT(block_scalar(*b, "amplitude_Nm"), block_scalar(*b, "threshold_Nm"));
-  EXPECT_THAT(r.out, HasSubstr("Coupling judder: none (an oscillation of 3.1 N m at 2.98 Hz dies out"));
+  EXPECT_THAT(r.out, HasSubstr("Coupling judder: none (an oscillation of 3.16 N m at 2.92 Hz dies out"));
   EXPECT_THAT(r.out, HasSubstr("Predicted there: stable"));
   expect_json_matches_block(test::parse(test::slurp(dir / "rep" / "verdict.json")), *b);
 }
