@@ -106,6 +106,22 @@ void check_input(const DetectionInput& in) {
                          std::to_string(dt) + " s; resample first");
 }
 
+// Stuck phases per second over samples [i_a, i_b) (header, step 5): the mean rate between the
+// first and the last sample where a stuck phase begins; 0 with fewer than min_stick_onsets.
+double stick_rate_Hz(const DetectionInput& in, std::size_t i_a, std::size_t i_b, const DetectionSettings& cfg) {
+  const auto stuck_at = [&](std::size_t i) {
+    return (!in.stuck.empty() && in.stuck[i] > 0.5) || std::abs(in.slip_rpm[i]) <= cfg.zero_slip_rpm;
+  };
+  std::size_t onsets = 0, first = 0, last = 0;
+  for (std::size_t i = std::max<std::size_t>(i_a, 1); i < i_b; ++i)
+    if (stuck_at(i) && !stuck_at(i - 1)) {
+      if (onsets++ == 0) first = i;
+      last = i;
+    }
+  if (onsets < static_cast<std::size_t>(cfg.min_stick_onsets)) return 0.0;
+  return static_cast<double>(onsets - 1) / (in.time_s[last] - in.time_s[first]);
+}
+
 }  // namespace
 
 std::string_view to_string(Verdict v) {
@@ -128,6 +144,7 @@ ShudderDetector::ShudderDetector(const DetectionSettings& s) : settings_(s) {
           "detection band needs 0 < min_frequency_Hz < max_frequency_Hz");
   require(s.min_amplitude_Nm >= 0 && s.min_relative_amplitude >= 0, "amplitude thresholds must be >= 0");
   require(s.zero_slip_rpm >= 0, "zero_slip_rpm must be >= 0");
+  require(s.min_stick_onsets >= 2, "min_stick_onsets must be >= 2 (a rate needs two stuck phases)");
   require(s.stick_cycle_fraction > 0 && s.stick_cycle_fraction <= 1, "stick_cycle_fraction must be in (0, 1]");
   require(s.oscillating_part_dB > 0 && s.onset_rise_dB > 0 && s.onset_below_max_dB > s.oscillating_part_dB,
           "oscillating_part_dB and onset_rise_dB must be > 0 and onset_below_max_dB > oscillating_part_dB");
@@ -191,8 +208,9 @@ ShudderResult ShudderDetector::detect(const DetectionInput& in) const {
   const double df = s.bin_width_Hz;
   const Peak peak = find_peak(s, std::max(cfg.min_frequency_Hz, std::min(0.8 * f1, f1 - 2 * df)),
                               std::min(f_max, std::max(1.2 * f1, f1 + 2 * df)));
-  const double fd = peak.frequency_Hz;
-  r.peak_frequency_Hz = fd;
+  r.peak_frequency_Hz = peak.frequency_Hz;
+  const double f_stick = stick_rate_Hz(in, i_a, i_b, cfg);
+  const double fd = f_stick > 0.0 && f_stick < peak.frequency_Hz / 1.5 ? f_stick : peak.frequency_Hz;
 
   // 6. Amplitude: half peak-to-peak of T minus its one-period moving mean, in blocks.
   const double period = fs / fd;  // samples

@@ -25,7 +25,14 @@
 //   4. Oscillating part: the frames with b_j >= max b − oscillating_part_dB (amplitude within
 //      a factor 10 of its largest), from the first such frame's start to the last one's end.
 //   5. Dominant frequency f_d: interpolated Hann-FFT peak (analysis/spectrum.hpp) of x over
-//      the oscillating part, searched within ±20 % of f_1.
+//      the oscillating part, searched within ±20 % of f_1. A stick-slip cycle is no sine and
+//      its harmonics can outweigh its fundamental (rig_stick_time_probe: 10 sticks per second,
+//      alternating 0.117 / 0.083 s, whose 25 Hz line is 7 % above the 10 Hz one). So if the
+//      contact sticks at least min_stick_onsets times in the oscillating part and at a rate
+//      f_s = (N − 1)/(t_N − t_1) (t_k the sample times where a stuck phase begins: stuck, or
+//      |slip| <= zero_slip_rpm, after a sliding sample) below f_d / 1.5, f_d = f_s: the cycle
+//      is one stick and one slip. A rate at or above f_d (several sticks per cycle, or chatter)
+//      leaves f_d; peak_frequency_Hz keeps the spectral peak.
 //   6. Amplitude A: r = T − M_P[T] with M_P a centred moving mean over exactly one period
 //      P = 1/f_d (fractional window), which removes the oscillation's fundamental and its
 //      harmonics from the mean whatever the trend; half peak-to-peak (max r − min r)/2 in
@@ -137,6 +144,9 @@ struct DetectionSettings {
   // |slip| at or below this counts as stuck, rpm: a fifth of the rig's slowest drive speed
   // (0.5 rpm), far below the slip excursions of a vibration at tens of rpm.
   double zero_slip_rpm = 0.1;
+  // Stuck phases needed before their rate may replace the spectral f_d (step 5): 4 onsets
+  // give 3 whole cycles, the fewest whose mean is a rate rather than one interval.
+  int min_stick_onsets = 4;
   // Fraction of the oscillation's cycles that must reach zero slip for stick_slip: "most
   // cycles" while tolerating a few cycles missed between samples.
   double stick_cycle_fraction = 0.5;

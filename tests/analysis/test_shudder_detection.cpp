@@ -260,6 +260,40 @@ TEST(DetectionSynthetic, SawtoothStickSlipWithSlipHittingZeroIsStickSlipAtItsFre
   EXPECT_EQ(r.onset_time_s, 0.0);
 }
 
+// Stick-slip whose torque is dominated by a harmonic: one stick per 0.1 s cycle (f = 10.3 Hz),
+// the torque's 3rd harmonic 2.5 times its fundamental, so the spectrum's largest line is at
+// 3f. The cycle's frequency is the stick rate, f; the spectral peak stays in
+// peak_frequency_Hz. Tolerance 0.5 %: the stick onsets fall on the sample grid (fs 2 kHz:
+// ±0.5 ms over the ~4 s between the first and last onset, ≤ 0.03 %), plus the interpolated
+// peak's own error for 3f.
+TEST(DetectionSynthetic, StickSlipWithAStrongHarmonicIsJudgedAtItsStickRate) {
+  const double fs = 2000.0, f = 10.3;
+  Signals s = base(fs, 4.0);
+  for (std::size_t i = 0; i < s.t.size(); ++i) {
+    const double w = kTwoPi * f * s.t[i];
+    s.T[i] = 60.0 + 4.0 * std::sin(w) + 10.0 * std::sin(3.0 * w);
+    s.slip[i] = std::fmod(s.t[i] * f, 1.0) < 0.2 ? 0.0 : 5.0;  // stuck the first fifth of a cycle
+  }
+  const ShudderResult r = detect_shudder(s.input());
+  record("harmonic_stick_slip", "f %.4f Hz, spectral peak %.4f Hz", r.frequency_Hz, r.peak_frequency_Hz);
+  ASSERT_EQ(r.verdict, Verdict::kStickSlip);
+  EXPECT_NEAR(r.frequency_Hz / f, 1.0, 0.005);
+  EXPECT_NEAR(r.peak_frequency_Hz / (3.0 * f), 1.0, 0.005);
+
+  // The same torque over a contact that keeps sliding: no stick rate, the spectral peak 3f.
+  for (double& v : s.slip) v = 5.0;
+  const ShudderResult sliding = detect_shudder(s.input());
+  ASSERT_EQ(sliding.verdict, Verdict::kVibration);
+  EXPECT_NEAR(sliding.frequency_Hz / (3.0 * f), 1.0, 0.005);
+
+  // Sticking three times per cycle (at or above the spectral peak's rate, not below it):
+  // the spectral peak stands.
+  for (std::size_t i = 0; i < s.t.size(); ++i) s.slip[i] = std::fmod(s.t[i] * 3.0 * f, 1.0) < 0.2 ? 0.0 : 5.0;
+  const ShudderResult thrice = detect_shudder(s.input());
+  ASSERT_EQ(thrice.verdict, Verdict::kStickSlip);
+  EXPECT_NEAR(thrice.frequency_Hz / (3.0 * f), 1.0, 0.005);
+}
+
 // A vibration whose slip swings through zero (reverses) without any stuck sample also reaches
 // zero each cycle: stick_slip by the definition (the contact does not keep sliding one way).
 TEST(DetectionSynthetic, SlipReversingEveryCycleCountsAsReachingZero) {
