@@ -146,26 +146,33 @@ void WetClutch::ring_torque_pair_Nm(const FrozenFriction& fa, const FrozenFricti
     const double v_raw = r[i] * abs_slip * 1e3;
     const double va = std::clamp(v_raw, ca.min_speed_mm_s, ca.max_speed_mm_s);
     const double va_pow = va == v_raw ? fa.radius_pow[i] * slip_pow : std::pow(va, 0.1);
+    const double vb = std::clamp(v_raw, cb.min_speed_mm_s, cb.max_speed_mm_s);
+    const double vb_pow = vb == v_raw ? fb.radius_pow[i] * slip_pow : vb == va ? va_pow : std::pow(vb, 0.1);
     double mu_a = ca.power_weight * va_pow + ca.offset;
-    const std::size_t na = ca.tanh_rate.size();
-    for (std::size_t j = 0; j < na; ++j) {
-      const double t = std::tanh(ca.tanh_rate[j] * va);
-      if (j < kKept) kept[j] = t;
-      mu_a += ca.tanh_weight[j] * t;
+    double mu_b = cb.power_weight * vb_pow + cb.offset;
+    const std::size_t na = ca.tanh_rate.size(), nb = cb.tanh_rate.size();
+    if (vb == va && na == nb && ca.tanh_rate == cb.tanh_rate) {
+      // The common case: both ends in one bracket of the matrix, the same rates in the same order.
+      for (std::size_t j = 0; j < na; ++j) {
+        const double t = std::tanh(ca.tanh_rate[j] * va);
+        mu_a += ca.tanh_weight[j] * t;
+        mu_b += cb.tanh_weight[j] * t;
+      }
+    } else {
+      for (std::size_t j = 0; j < na; ++j) {
+        const double t = std::tanh(ca.tanh_rate[j] * va);
+        if (j < kKept) kept[j] = t;
+        mu_a += ca.tanh_weight[j] * t;
+      }
+      const std::size_t shared = vb == va ? std::min(na, kKept) : 0;
+      for (std::size_t j = 0; j < nb; ++j) {
+        const double rate = cb.tanh_rate[j];
+        std::size_t k = 0;
+        while (k < shared && ca.tanh_rate[k] != rate) ++k;
+        mu_b += cb.tanh_weight[j] * (k < shared ? kept[k] : std::tanh(rate * vb));
+      }
     }
     torque_a[i] = r[i] * a[i] * p * mu_a + fa.viscous_Nms[i] * abs_slip;
-
-    const double vb = std::clamp(v_raw, cb.min_speed_mm_s, cb.max_speed_mm_s);
-    const bool same_v = vb == va;
-    const double vb_pow = vb == v_raw ? fb.radius_pow[i] * slip_pow : same_v ? va_pow : std::pow(vb, 0.1);
-    double mu_b = cb.power_weight * vb_pow + cb.offset;
-    for (std::size_t j = 0; j < cb.tanh_rate.size(); ++j) {
-      const double rate = cb.tanh_rate[j];
-      std::size_t k = 0;
-      const std::size_t shared = same_v ? std::min(na, kKept) : 0;
-      while (k < shared && ca.tanh_rate[k] != rate) ++k;
-      mu_b += cb.tanh_weight[j] * (k < shared ? kept[k] : std::tanh(rate * vb));
-    }
     torque_b[i] = r[i] * a[i] * p * mu_b + fb.viscous_Nms[i] * abs_slip;
   }
 }

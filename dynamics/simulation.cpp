@@ -74,11 +74,41 @@ double Simulation::stick_time(int c, double t) const {
   return modes_[c] == ContactMode::kStuck ? std::max(t - stick_start_s_[c], 0.0) : 0.0;
 }
 
-void Simulation::equalise_stuck_groups(const Constraints& k, double* v) const {
-  // Nothing stuck (a slipping driveline's every evaluation): nothing to equalise.
-  if (k.same_speed_as.empty()) return;
+std::vector<int> Simulation::stuck_groups() const {
+  if (std::none_of(modes_.begin(), modes_.end(), [](ContactMode m) { return m == ContactMode::kStuck; })) return {};
+  // Union–find over nodes plus ground (index n_); the root is the larger index, so ground roots
+  // every group it belongs to. Members take the first member's value.
+  std::vector<int> parent(n_ + 1);
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto find = [&](int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (std::size_t c = 0; c < net_.contacts().size(); ++c) {
+    if (modes_[c] != ContactMode::kStuck) continue;
+    const auto& k = net_.contacts()[c];
+    const int a = find(k.a), b = find(k.b == kGround ? n_ : k.b);
+    if (a != b) parent[std::min(a, b)] = std::max(a, b);
+  }
+  std::vector<int> first(n_ + 1, -1), same_speed_as(static_cast<std::size_t>(n_), -1);
   for (int i = 0; i < n_; ++i) {
-    const int s = k.same_speed_as[static_cast<std::size_t>(i)];
+    const int r = find(i);
+    if (r == n_) {
+      same_speed_as[static_cast<std::size_t>(i)] = n_;
+    } else if (first[r] < 0) {
+      first[r] = i;
+    } else {
+      same_speed_as[static_cast<std::size_t>(i)] = first[r];
+    }
+  }
+  return same_speed_as;
+}
+
+void Simulation::equalise_stuck_groups(const std::vector<int>& same_speed_as, double* v) const {
+  // Nothing stuck (a slipping driveline's every evaluation): nothing to equalise.
+  if (same_speed_as.empty()) return;
+  for (int i = 0; i < n_; ++i) {
+    const int s = same_speed_as[static_cast<std::size_t>(i)];
     if (s == n_) {
       v[i] = 0.0;
     } else if (s >= 0) {
@@ -194,7 +224,7 @@ void Simulation::compute(const State& x, double t, Forces& f) const {
     if (w.contact >= 0) f.contact_T[w.contact] = mu;
     if (w.speed_source >= 0) f.source_P += -mu * om[net_.speed_sources()[static_cast<std::size_t>(w.speed_source)].node];
   }
-  equalise_stuck_groups(k, f.acc.data());
+  equalise_stuck_groups(k.same_speed_as, f.acc.data());
 }
 
 const Simulation::Constraints& Simulation::constraints() const {
@@ -254,33 +284,7 @@ const Simulation::Constraints& Simulation::constraints() const {
     k.kkt_pinv = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(kkt).pseudoInverse();
     ++counters_.constraint_factorisations;
   }
-  // Stuck groups: union–find over nodes plus ground (index n_); the root is the larger index,
-  // so ground roots every group it belongs to. Members take the first member's value.
-  if (std::find(k.modes_stuck.begin(), k.modes_stuck.end(), true) != k.modes_stuck.end()) {
-    std::vector<int> parent(n_ + 1);
-    std::iota(parent.begin(), parent.end(), 0);
-    const auto find = [&](int i) {
-      while (parent[i] != i) i = parent[i] = parent[parent[i]];
-      return i;
-    };
-    for (std::size_t c = 0; c < contacts.size(); ++c) {
-      if (modes_[c] != ContactMode::kStuck) continue;
-      const int a = find(contacts[c].a), b = find(contacts[c].b == kGround ? n_ : contacts[c].b);
-      if (a != b) parent[std::min(a, b)] = std::max(a, b);
-    }
-    std::vector<int> first(n_ + 1, -1);
-    k.same_speed_as.assign(static_cast<std::size_t>(n_), -1);
-    for (int i = 0; i < n_; ++i) {
-      const int r = find(i);
-      if (r == n_) {
-        k.same_speed_as[static_cast<std::size_t>(i)] = n_;
-      } else if (first[r] < 0) {
-        first[r] = i;
-      } else {
-        k.same_speed_as[static_cast<std::size_t>(i)] = first[r];
-      }
-    }
-  }
+  k.same_speed_as = stuck_groups();
   constraint_cache_.push_back(std::move(k));
   return *(active_constraints_ = &constraint_cache_.back());
 }
@@ -346,7 +350,9 @@ double Simulation::project_velocities(State& x, double t) {
   const Eigen::VectorXd resid = G * om - Eigen::Map<const Eigen::VectorXd>(b.data(), static_cast<Eigen::Index>(b.size()));
   const Eigen::VectorXd y = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(gm * G.transpose()).solve(resid);
   om -= gm.transpose() * y;
-  equalise_stuck_groups(constraints(), om.data());
+  // Not constraints(): an event's projection must not factorise a KKT system (the counter counts
+  // those of the integration); the groups alone are cheap.
+  equalise_stuck_groups(stuck_groups(), om.data());
   // Kinetic energy taken out by the projection.
   double lost = 0.0;
   for (int i = 0; i < n_; ++i)

@@ -135,7 +135,9 @@ class Simulation {
   double stick_time(int c, double t) const;
   double project_velocities(State& x, double t);
   void resolve_contacts(State& x, double t, std::vector<int> sticking, std::vector<int> releasing);
-  void equalise_stuck_groups(const Constraints& k, double* v) const;
+  /// Constraints::same_speed_as of the current modes.
+  std::vector<int> stuck_groups() const;
+  void equalise_stuck_groups(const std::vector<int>& same_speed_as, double* v) const;
   /// The constraint system of the current modes: built (and factorised) the first time a stuck
   /// set is met, then found by pointer until a contact changes mode (set_mode).
   const Constraints& constraints() const;
