@@ -124,4 +124,57 @@ void WetClutch::ring_torque_Nm(const FrozenFriction& f, double abs_slip, double 
   }
 }
 
+void WetClutch::ring_torque_pair_Nm(const FrozenFriction& fa, const FrozenFriction& fb, double abs_slip,
+                                    double force_N, Eigen::VectorXd& torque_a, Eigen::VectorXd& torque_b) const {
+  if (fa.curves.empty() || fb.curves.empty()) {
+    ring_torque_Nm(fa, abs_slip, force_N, torque_a);
+    ring_torque_Nm(fb, abs_slip, force_N, torque_b);
+    return;
+  }
+  const auto& r = thermal_.ring_radius_m();
+  const auto& a = thermal_.ring_area_m2();
+  const double p = pressure_Pa(force_N);
+  const double slip_pow = std::pow(abs_slip, 0.1);
+  torque_a.resize(r.size());
+  torque_b.resize(r.size());
+  // The expressions are ring_torque_Nm's, term by term in the same order: the same numbers.
+  constexpr std::size_t kKept = 8;  // tanh values kept per ring (the Mäki matrix gives <= 4 rates)
+  double kept[kKept];
+  for (Eigen::Index i = 0; i < r.size(); ++i) {
+    const SpeedCurve& ca = fa.curves[static_cast<std::size_t>(i)];
+    const SpeedCurve& cb = fb.curves[static_cast<std::size_t>(i)];
+    const double v_raw = r[i] * abs_slip * 1e3;
+    const double va = std::clamp(v_raw, ca.min_speed_mm_s, ca.max_speed_mm_s);
+    const double va_pow = va == v_raw ? fa.radius_pow[i] * slip_pow : std::pow(va, 0.1);
+    const double vb = std::clamp(v_raw, cb.min_speed_mm_s, cb.max_speed_mm_s);
+    const double vb_pow = vb == v_raw ? fb.radius_pow[i] * slip_pow : vb == va ? va_pow : std::pow(vb, 0.1);
+    double mu_a = ca.power_weight * va_pow + ca.offset;
+    double mu_b = cb.power_weight * vb_pow + cb.offset;
+    const std::size_t na = ca.tanh_rate.size(), nb = cb.tanh_rate.size();
+    if (vb == va && na == nb && ca.tanh_rate == cb.tanh_rate) {
+      // The common case: both ends in one bracket of the matrix, the same rates in the same order.
+      for (std::size_t j = 0; j < na; ++j) {
+        const double t = std::tanh(ca.tanh_rate[j] * va);
+        mu_a += ca.tanh_weight[j] * t;
+        mu_b += cb.tanh_weight[j] * t;
+      }
+    } else {
+      for (std::size_t j = 0; j < na; ++j) {
+        const double t = std::tanh(ca.tanh_rate[j] * va);
+        if (j < kKept) kept[j] = t;
+        mu_a += ca.tanh_weight[j] * t;
+      }
+      const std::size_t shared = vb == va ? std::min(na, kKept) : 0;
+      for (std::size_t j = 0; j < nb; ++j) {
+        const double rate = cb.tanh_rate[j];
+        std::size_t k = 0;
+        while (k < shared && ca.tanh_rate[k] != rate) ++k;
+        mu_b += cb.tanh_weight[j] * (k < shared ? kept[k] : std::tanh(rate * vb));
+      }
+    }
+    torque_a[i] = r[i] * a[i] * p * mu_a + fa.viscous_Nms[i] * abs_slip;
+    torque_b[i] = r[i] * a[i] * p * mu_b + fb.viscous_Nms[i] * abs_slip;
+  }
+}
+
 }  // namespace shudder::clutch

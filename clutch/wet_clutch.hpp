@@ -95,6 +95,14 @@ class WetClutch {
   /// Torque per ring of ONE interface (n_r), N m, at |slip| with a frozen state.
   void ring_torque_Nm(const FrozenFriction& frozen, double abs_slip_rad_s, double force_N,
                       Eigen::VectorXd& torque) const;
+  /// The same for two frozen states at one force (the ends of a ring-temperature ramp):
+  /// `torque_a` of `a` and `torque_b` of `b`, each equal bit for bit to ring_torque_Nm of that
+  /// state. The work that depends on the speed only is done once per ring: v_i^0.1, and
+  /// tanh(C2 v_i) for every rate C2 both curves share (both ends of a ramp lie in one bracket of
+  /// the friction matrix almost always, and then share every rate). Allocates nothing once the
+  /// outputs have n_r entries.
+  void ring_torque_pair_Nm(const FrozenFriction& a, const FrozenFriction& b, double abs_slip_rad_s,
+                           double force_N, Eigen::VectorXd& torque_a, Eigen::VectorXd& torque_b) const;
   /// Torque per ring of ONE interface (n_r), N m, for |slip| (>= 0 whatever slip's sign):
   /// torque_Nm is copysign(sliding_interfaces * sum, slip) of it, ring_heat_W it times |slip|.
   void ring_torque_Nm(double slip_rad_s, double force_N, const Eigen::VectorXd& ring_temp_C,

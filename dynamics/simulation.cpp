@@ -74,35 +74,45 @@ double Simulation::stick_time(int c, double t) const {
   return modes_[c] == ContactMode::kStuck ? std::max(t - stick_start_s_[c], 0.0) : 0.0;
 }
 
-void Simulation::equalise_stuck_groups(double* v) const {
-  // Nothing stuck (a slipping driveline's every evaluation): nothing to allocate or equalise.
-  if (std::none_of(modes_.begin(), modes_.end(), [](ContactMode m) { return m == ContactMode::kStuck; })) return;
-  // Union–find over nodes plus ground (index n_): members of one stuck group get one value.
+std::vector<int> Simulation::stuck_groups() const {
+  if (std::none_of(modes_.begin(), modes_.end(), [](ContactMode m) { return m == ContactMode::kStuck; })) return {};
+  // Union–find over nodes plus ground (index n_); the root is the larger index, so ground roots
+  // every group it belongs to. Members take the first member's value.
   std::vector<int> parent(n_ + 1);
   std::iota(parent.begin(), parent.end(), 0);
   const auto find = [&](int i) {
     while (parent[i] != i) i = parent[i] = parent[parent[i]];
     return i;
   };
-  bool any = false;
   for (std::size_t c = 0; c < net_.contacts().size(); ++c) {
     if (modes_[c] != ContactMode::kStuck) continue;
     const auto& k = net_.contacts()[c];
     const int a = find(k.a), b = find(k.b == kGround ? n_ : k.b);
-    // The root is the larger index, so ground (n_) roots every group it belongs to.
     if (a != b) parent[std::min(a, b)] = std::max(a, b);
-    any = true;
   }
-  if (!any) return;
-  std::vector<int> first(n_ + 1, -1);
+  std::vector<int> first(n_ + 1, -1), same_speed_as(static_cast<std::size_t>(n_), -1);
   for (int i = 0; i < n_; ++i) {
     const int r = find(i);
     if (r == n_) {
-      v[i] = 0.0;
+      same_speed_as[static_cast<std::size_t>(i)] = n_;
     } else if (first[r] < 0) {
       first[r] = i;
     } else {
-      v[i] = v[first[r]];
+      same_speed_as[static_cast<std::size_t>(i)] = first[r];
+    }
+  }
+  return same_speed_as;
+}
+
+void Simulation::equalise_stuck_groups(const std::vector<int>& same_speed_as, double* v) const {
+  // Nothing stuck (a slipping driveline's every evaluation): nothing to equalise.
+  if (same_speed_as.empty()) return;
+  for (int i = 0; i < n_; ++i) {
+    const int s = same_speed_as[static_cast<std::size_t>(i)];
+    if (s == n_) {
+      v[i] = 0.0;
+    } else if (s >= 0) {
+      v[i] = v[s];
     }
   }
 }
@@ -214,15 +224,16 @@ void Simulation::compute(const State& x, double t, Forces& f) const {
     if (w.contact >= 0) f.contact_T[w.contact] = mu;
     if (w.speed_source >= 0) f.source_P += -mu * om[net_.speed_sources()[static_cast<std::size_t>(w.speed_source)].node];
   }
-  equalise_stuck_groups(f.acc.data());
+  equalise_stuck_groups(k.same_speed_as, f.acc.data());
 }
 
 const Simulation::Constraints& Simulation::constraints() const {
+  if (active_constraints_) return *active_constraints_;
   for (const auto& k : constraint_cache_)
     if (k.modes_stuck.size() == modes_.size() &&
         std::equal(modes_.begin(), modes_.end(), k.modes_stuck.begin(),
                    [](ContactMode m, bool stuck) { return (m == ContactMode::kStuck) == stuck; }))
-      return k;
+      return *(active_constraints_ = &k);
   // Rows G in a fixed order (gears, differentials, speed sources, stuck contacts), each
   //   g_a ω̇_a + g_b ω̇_b + g_c ω̇_c = b,  and the KKT system [M Gᵀ; G 0] [ω̇; λ] = [τ; b].
   Constraints k;
@@ -273,8 +284,9 @@ const Simulation::Constraints& Simulation::constraints() const {
     k.kkt_pinv = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(kkt).pseudoInverse();
     ++counters_.constraint_factorisations;
   }
+  k.same_speed_as = stuck_groups();
   constraint_cache_.push_back(std::move(k));
-  return constraint_cache_.back();
+  return *(active_constraints_ = &constraint_cache_.back());
 }
 
 void Simulation::derivative(const State& x, State& dxdt, double t) const {
@@ -338,7 +350,9 @@ double Simulation::project_velocities(State& x, double t) {
   const Eigen::VectorXd resid = G * om - Eigen::Map<const Eigen::VectorXd>(b.data(), static_cast<Eigen::Index>(b.size()));
   const Eigen::VectorXd y = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(gm * G.transpose()).solve(resid);
   om -= gm.transpose() * y;
-  equalise_stuck_groups(om.data());
+  // Not constraints(): an event's projection must not factorise a KKT system (the counter counts
+  // those of the integration); the groups alone are cheap.
+  equalise_stuck_groups(stuck_groups(), om.data());
   // Kinetic energy taken out by the projection.
   double lost = 0.0;
   for (int i = 0; i < n_; ++i)
@@ -351,11 +365,11 @@ void Simulation::resolve_contacts(State& x, double t, std::vector<int> sticking,
   Forces f;
   if (!releasing.empty()) compute(x, t, f);
   for (int c : releasing) {
-    modes_[c] = slip_mode(f.contact_T[c]);
+    set_mode(static_cast<std::size_t>(c), slip_mode(f.contact_T[c]));
     ++counters_.breakaway_events;
   }
   for (int c : sticking) {
-    modes_[c] = ContactMode::kStuck;
+    set_mode(static_cast<std::size_t>(c), ContactMode::kStuck);
     stick_start_s_[c] = t;
   }
   // The (tiny, root-tolerance sized) impact loss of a stick is heat of a contact that sticks.
@@ -375,7 +389,7 @@ void Simulation::resolve_contacts(State& x, double t, std::vector<int> sticking,
       }
     }
     if (worst < 0) break;
-    modes_[worst] = slip_mode(f.contact_T[worst]);
+    set_mode(static_cast<std::size_t>(worst), slip_mode(f.contact_T[worst]));
     const bool was_sticking = std::find(sticking.begin(), sticking.end(), worst) != sticking.end();
     ++(was_sticking ? counters_.reversal_events : counters_.breakaway_events);
     if (was_sticking) sticking.erase(std::find(sticking.begin(), sticking.end(), worst));
@@ -401,7 +415,7 @@ void Simulation::initialize(double t0, const Eigen::VectorXd& theta, const Eigen
   for (std::size_t c = 0; c < net_.contacts().size(); ++c) {
     const auto& k = net_.contacts()[c];
     const double dw = omega[k.a] - (k.b == kGround ? 0.0 : omega[k.b]);
-    modes_[c] = slip_mode(dw);
+    set_mode(c, slip_mode(dw));
     if (!(std::abs(dw) > stick_speed_tol)) sticking.push_back(static_cast<int>(c));
   }
   project_velocities(x_, t_);

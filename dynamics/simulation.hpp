@@ -122,6 +122,10 @@ class Simulation {
     std::vector<bool> modes_stuck;
     std::vector<ConstraintRow> rows;
     Eigen::MatrixXd kkt_pinv;  // (n + rows)²
+    // The stuck groups, which also depend on the stuck set only: per node, -1 (keeps its own
+    // value: free, or the first node of its group), n (held by ground: 0) or the group's first
+    // node, whose value it takes. Empty when nothing is stuck.
+    std::vector<int> same_speed_as;
   };
 
   Sample evaluate(const State& x, double t) const;
@@ -131,8 +135,16 @@ class Simulation {
   double stick_time(int c, double t) const;
   double project_velocities(State& x, double t);
   void resolve_contacts(State& x, double t, std::vector<int> sticking, std::vector<int> releasing);
-  void equalise_stuck_groups(double* v) const;
+  /// Constraints::same_speed_as of the current modes.
+  std::vector<int> stuck_groups() const;
+  void equalise_stuck_groups(const std::vector<int>& same_speed_as, double* v) const;
+  /// The constraint system of the current modes: built (and factorised) the first time a stuck
+  /// set is met, then found by pointer until a contact changes mode (set_mode).
   const Constraints& constraints() const;
+  void set_mode(std::size_t c, ContactMode m) {
+    modes_[c] = m;
+    active_constraints_ = nullptr;
+  }
 
   const TorsionalNetwork& net_;
   IntegratorSettings cfg_;
@@ -155,6 +167,7 @@ class Simulation {
   double last_dt_ = 0.0;
   // Factorised constraint systems, one per stuck set met so far (a handful per run).
   mutable std::deque<Constraints> constraint_cache_;
+  mutable const Constraints* active_constraints_ = nullptr;  // the entry of modes_ (deque: stable)
 };
 
 }  // namespace shudder::dynamics

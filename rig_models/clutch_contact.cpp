@@ -60,15 +60,17 @@ void ClutchContact::update(ClutchContext& c, double abs_slip, double t) const {
     c.frozen_valid_ = true;
     c.frozen_end_valid_ = false;
   }
-  clutch_->ring_torque_Nm(c.frozen_, abs_slip, force, c.ring_torque_);
   if (c.ramp_) {
     if (!c.frozen_end_valid_) {
       c.frozen_end_ = clutch_->freeze(c.ring_temp_end_C_, force);
       c.frozen_end_valid_ = true;
     }
-    clutch_->ring_torque_Nm(c.frozen_end_, abs_slip, force, c.ring_torque_end_);
+    // Both ends in one pass: they share the speed-only work (v^0.1, the tanh of shared rates).
+    clutch_->ring_torque_pair_Nm(c.frozen_, c.frozen_end_, abs_slip, force, c.ring_torque_, c.ring_torque_end_);
     const double s = c.ramp_weight(t);
     c.ring_torque_ += s * (c.ring_torque_end_ - c.ring_torque_);
+  } else {
+    clutch_->ring_torque_Nm(c.frozen_, abs_slip, force, c.ring_torque_);
   }
   c.cached_slip_ = abs_slip;
   c.cached_t_ = t;

@@ -22,6 +22,7 @@
 #include <memory>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
 
 #include "clutch/fluid.hpp"
 #include "clutch/friction_law.hpp"
@@ -263,4 +264,59 @@ TEST(WetClutch, FrozenFrictionEqualsDirectEvaluation) {
         EXPECT_NEAR(fast[i], direct[i], 1e-12 * std::abs(direct[i])) << "force " << force << " slip " << slip << " ring " << i;
     }
   }
+}
+
+// The two ends of a ring-temperature ramp in one pass (ring_torque_pair_Nm, the driveline's
+// first-order hold): each end's ring torques must be those of ring_torque_Nm of that end, bit
+// for bit (the pass only reuses v^0.1 and the tanh of rates both ends share, same operations in
+// the same order). Fluid C: ends 0.4 K apart (one matrix bracket, every rate shared: the common
+// case), ends in different rows (-30 vs 70-105 °C: some rates shared, some not) and at different
+// loads' brackets cannot happen (one force); slips below, inside and above the speed clamps and
+// 0; viscous shear on and off. A law without the SpeedCurve form falls back to two evaluations.
+TEST(WetClutch, PairEvaluationOfTwoFrozenStatesEqualsTwoSingleEvaluationsBitForBit) {
+  for (bool viscous : {false, true}) {
+    WetClutchParams p;
+    p.start_temp_C = 60.0;
+    p.viscous_shear = viscous;
+    const WetClutch clutch(p, shudder::io::load_fluid(SHUDDER_SOURCE_DIR "/scenarios/fluids/lsc_fluid_c.toml"));
+    const int n = clutch.thermal().radial_cells();
+    Eigen::VectorXd warm(n), warmer(n), cold(n);
+    for (int i = 0; i < n; ++i) {
+      warm[i] = 45.0 + 60.0 * i / (n - 1);
+      warmer[i] = warm[i] + 0.4;
+      cold[i] = -30.0 + 0.1 * i;
+    }
+    for (double force : {12000.0, 17500.0, 25300.0}) {
+      for (const auto& [a_C, b_C] : {std::pair{warm, warmer}, std::pair{warmer, warm}, std::pair{cold, warm}}) {
+        const auto fa = clutch.freeze(a_C, force);
+        const auto fb = clutch.freeze(b_C, force);
+        for (double slip : {0.0, 0.05, 0.2, 1.0, 5.0, 10.5, 14.0}) {
+          Eigen::VectorXd single_a, single_b, pair_a, pair_b;
+          clutch.ring_torque_Nm(fa, slip, force, single_a);
+          clutch.ring_torque_Nm(fb, slip, force, single_b);
+          clutch.ring_torque_pair_Nm(fa, fb, slip, force, pair_a, pair_b);
+          ASSERT_EQ(pair_a.size(), n);
+          ASSERT_EQ(pair_b.size(), n);
+          for (int i = 0; i < n; ++i) {
+            EXPECT_EQ(pair_a[i], single_a[i]) << "force " << force << " slip " << slip << " ring " << i;
+            EXPECT_EQ(pair_b[i], single_b[i]) << "force " << force << " slip " << slip << " ring " << i;
+          }
+        }
+      }
+    }
+  }
+  // No SpeedCurve form (an affine law): the two plain evaluations.
+  const WetClutch affine(clutch_params(), fluid_with(0.1, -2e-4));
+  const int n = affine.thermal().radial_cells();
+  const Eigen::VectorXd a_C = Eigen::VectorXd::Constant(n, 50.0), b_C = Eigen::VectorXd::Constant(n, 90.0);
+  const auto fa = affine.freeze(a_C, 8000.0);
+  const auto fb = affine.freeze(b_C, 8000.0);
+  ASSERT_TRUE(fa.curves.empty());
+  Eigen::VectorXd single_a, single_b, pair_a, pair_b;
+  affine.ring_torque_Nm(fa, 2.0, 8000.0, single_a);
+  affine.ring_torque_Nm(fb, 2.0, 8000.0, single_b);
+  affine.ring_torque_pair_Nm(fa, fb, 2.0, 8000.0, pair_a, pair_b);
+  EXPECT_EQ(pair_a, single_a);
+  EXPECT_EQ(pair_b, single_b);
+  EXPECT_LT(pair_b[0], pair_a[0]);  // the two ends really differ (mu falls with temperature)
 }
