@@ -30,6 +30,7 @@
 #include "tests/support/cli.hpp"
 #include "tests/support/models.hpp"
 #include "tests/support/recording.hpp"
+#include "tests/support/record_property.hpp"
 
 namespace {
 
@@ -38,12 +39,7 @@ using shudder::analysis::ShudderResult;
 using shudder::analysis::Verdict;
 using shudder::dynamics::Recording;
 
-template <typename... Args>
-void record(const std::string& key, const char* format, Args... args) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, format, args...);
-  ::testing::Test::RecordProperty(key, buf);
-}
+using shudder::test::record;
 
 shudder::io::Scenario scenario(const std::string& name) {
   return shudder::io::load_scenario(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/" + name);

@@ -22,18 +22,14 @@
 #include "analysis/shudder_detection.hpp"
 #include "analysis/spectrum.hpp"
 #include "core/units.hpp"
+#include "tests/support/record_property.hpp"
 
 namespace {
 
 using namespace shudder::analysis;
 using shudder::units::kTwoPi;
 
-template <typename... Args>
-void record(const std::string& key, const char* format, Args... args) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, format, args...);
-  ::testing::Test::RecordProperty(key, buf);
-}
+using shudder::test::record;
 
 struct LateJudder {
   double fs_Hz, duration_s;

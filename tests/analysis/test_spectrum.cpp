@@ -20,6 +20,7 @@
 
 #include "analysis/spectrum.hpp"
 #include "core/units.hpp"
+#include "tests/support/record_property.hpp"
 
 namespace {
 
@@ -28,12 +29,7 @@ using ::testing::HasSubstr;
 
 using shudder::units::kTwoPi;
 
-template <typename... Args>
-void record(const std::string& key, const char* format, Args... args) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, format, args...);
-  ::testing::Test::RecordProperty(key, buf);
-}
+using shudder::test::record;
 
 struct Tone {
   double f_Hz, amplitude, phase;

@@ -31,6 +31,7 @@
 #include "rig_models/prescribed_slip.hpp"
 #include "tests/support/models.hpp"
 #include "tests/support/recording.hpp"
+#include "tests/support/record_property.hpp"
 
 namespace {
 
@@ -53,12 +54,7 @@ using shudder::test::scalar;
 using shudder::test::signal;
 
 // Records a measured number in the test's XML output (--gtest_output=xml), printf-formatted.
-template <typename... Args>
-void record(const std::string& key, const char* format, Args... args) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, format, args...);
-  ::testing::Test::RecordProperty(key, buf);
-}
+using shudder::test::record;
 
 // The closed forms below describe the undisturbed rig, so the motor's torque ripple (issue 14,
 // tests/rig_models/test_motor_ripple.cpp) is switched off in every run of this file.

@@ -69,6 +69,7 @@
 #include "rig_models/rig_stability.hpp"
 #include "tests/support/cli.hpp"
 #include "tests/support/models.hpp"
+#include "tests/support/record_property.hpp"
 
 namespace {
 
@@ -80,12 +81,7 @@ using shudder::analysis::Verdict;
 using shudder::dynamics::Recording;
 using shudder::io::Scenario;
 
-template <typename... Args>
-void record(const std::string& key, const char* format, Args... args) {
-  char buf[768];
-  std::snprintf(buf, sizeof buf, format, args...);
-  ::testing::Test::RecordProperty(key, buf);
-}
+using shudder::test::record;
 
 Scenario scenario(const std::string& name) {
   return shudder::io::load_scenario(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/" + name);

@@ -37,6 +37,7 @@
 #include "rig_models/lsctr_rig.hpp"
 #include "rig_models/rig_stability.hpp"
 #include "tests/support/models.hpp"
+#include "tests/support/record_property.hpp"
 
 namespace {
 
@@ -59,12 +60,7 @@ Scenario scenario(const std::string& name) {
   return load_scenario(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/" + name);
 }
 
-template <typename... Args>
-void record(const std::string& key, const char* format, Args... args) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, format, args...);
-  ::testing::Test::RecordProperty(key, buf);
-}
+using shudder::test::record;
 
 // The rig at one operating point, with the clutch's rings at one temperature.
 struct Point {
