@@ -1,9 +1,11 @@
 #include "clutch/banded_lu.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
+#include <utility>
 
 namespace shudder::clutch {
 
@@ -21,8 +23,14 @@ namespace {
 // chain from one unknown to the next is one multiply and one subtraction (forward) or one
 // multiply, one subtraction and the division (backward). Built for baseline x86-64, which has
 // no FMA, so the multiply and the subtraction round separately, as in the reference.
+// kB > 0: the half band width as a compile-time constant, so the row loops unroll completely
+// (no loop counter or exit test among the terms: ≈ 5 % off a 240 × 12 solve, which is bound
+// by the number of instructions once the chain is short); kB = 0: the width b at run time.
+// The operations and their order are the same either way.
+template <int kB>
 void sweep(double* __restrict y, const double* __restrict lower, const double* __restrict upper,
-           const double* __restrict diag, int n, int b) {
+           const double* __restrict diag, int n, int run_time_b) {
+  const int b = kB > 0 ? kB : run_time_b;
   if (b == 0) {
     for (int m = 0; m < n; ++m) y[m] /= diag[m];
     return;
@@ -50,6 +58,21 @@ void sweep(double* __restrict y, const double* __restrict lower, const double* _
     prev = acc;
   }
 }
+
+using Sweep = void (*)(double*, const double*, const double*, const double*, int, int);
+
+// Widths 1 … kMaxFixedWidth get their own unrolled sweep (the thermal grid's nodes per ring are
+// 12 by default, Paper G Table 1); wider bands run the generic loop.
+constexpr int kMaxFixedWidth = 24;
+
+template <int... kWidths>
+constexpr std::array<Sweep, sizeof...(kWidths) + 1> make_sweeps(std::integer_sequence<int, kWidths...>) {
+  return {&sweep<0>, &sweep<kWidths + 1>...};
+}
+
+constexpr auto kSweeps = make_sweeps(std::make_integer_sequence<int, kMaxFixedWidth>{});
+
+Sweep sweep_for(int b) { return b >= 1 && b <= kMaxFixedWidth ? kSweeps[static_cast<std::size_t>(b)] : &sweep<0>; }
 
 }  // namespace
 
@@ -107,7 +130,7 @@ void BandedLu::solve_in_place(Eigen::VectorXd& x) {
   // padding's zeros, which the sweeps never write.
   std::copy(x.data(), x.data() + n_, padded_.begin() + b_);
   double* y = padded_.data() + b_;
-  sweep(y, lower_.data(), upper_.data(), diag_.data(), n_, b_);
+  sweep_for(b_)(y, lower_.data(), upper_.data(), diag_.data(), n_, b_);
   std::copy(y, y + n_, x.data());
 }
 
