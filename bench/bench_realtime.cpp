@@ -86,7 +86,7 @@ void kind_counters(benchmark::State& state, const std::vector<double>& us, const
 }
 
 template <class Step>
-void time_steps(benchmark::State& state, long pacing, const rig_models::RealtimeClutch& clutch, Step&& step) {
+void time_steps(benchmark::State& state, long pacing, const rig_models::RealtimeClutch* clutch, Step&& step) {
   using clock = std::chrono::steady_clock;
   std::vector<double> us(kSteps), cpu_us(kSteps);
   std::vector<int> kind(kSteps);
@@ -153,7 +153,7 @@ void time_steps(benchmark::State& state, long pacing, const rig_models::Realtime
       static_cast<double>(std::count_if(cpu_us.begin(), cpu_us.end(), [](double u) { return u > 20.0; }));
   state.counters["over20us"] = static_cast<double>(sorted.end() - std::upper_bound(sorted.begin(), sorted.end(), 20.0));
   state.counters["median_us"] = percentile(sorted, 0.5);
-  state.counters["thermal_waits"] = static_cast<double>(clutch.thermal_waits());  // slow-path handovers
+  if (clutch) state.counters["thermal_waits"] = static_cast<double>(clutch->thermal_waits());  // slow-path handovers
   kind_counters(state, us, cpu_us, kind);
 }
 
@@ -164,7 +164,7 @@ void BM_RealtimeCoupling(benchmark::State& state) {
   rig_models::RealtimeCoupling c(clutch, m.settings.bearing_drag, {kStep_s, m.settings.thermal_step_s},
                                  m.cycle.normal_force_N(0.0));
   const long per_window = rig_models::steps_per_thermal_step(c.clutch().settings());
-  time_steps(state, state.range(0), c.clutch(), [&](long k) {
+  time_steps(state, state.range(0), &c.clutch(), [&](long k) {
     const double t = static_cast<double>(k) * kStep_s;
     c.step(m.cycle.slip_speed_rpm(t) * 0.10471975511965977, m.cycle.normal_force_N(t));
     return window_kind(k, per_window);
@@ -177,12 +177,26 @@ void BM_RealtimeRig(benchmark::State& state) {
   const auto& m = std::get<rig_models::RigModel>(sc.model);
   rig_models::RealtimeRig rig(m.params, clutch, m.cycle, {kStep_s, m.settings.thermal_step_s});
   const long per_window = rig_models::steps_per_thermal_step(rig.clutch().settings());
-  time_steps(state, state.range(0), rig.clutch(), [&](long k) {
+  time_steps(state, state.range(0), &rig.clutch(), [&](long k) {
     const long events = rig.stick_events() + rig.breakaway_events() + rig.reversal_events();
     rig.step();
     if (rig.stick_events() + rig.breakaway_events() + rig.reversal_events() != events) return kEvent;
     const Kind w = window_kind(k, per_window);
     return w == kPlain && rig.stuck() ? kStuck : w;
+  });
+}
+
+// The control: the same loop, pacing, timing and locking, with a "step" that is a fixed chain
+// of 1,500 dependent multiply-adds (≈ 1.5 µs here, the rig step's median) on registers only —
+// no memory traffic, no branch that depends on data, nothing a simulation could make slower. A
+// step of it above 20 µs is the machine (interrupts, the hypervisor taking the vCPU), so its
+// worst case is the floor under any step code's worst case on that machine (docs/realtime.md).
+void BM_RealtimeNullStep(benchmark::State& state) {
+  double x = 1.0;
+  time_steps(state, state.range(0), nullptr, [&](long k) {
+    for (int i = 0; i < 1500; ++i) x = x * 0.9999999 + 1e-7;
+    benchmark::DoNotOptimize(x);
+    return window_kind(k, 100);
   });
 }
 
@@ -213,3 +227,4 @@ void BM_RealtimeThermalWindow(benchmark::State& state) {
 BENCHMARK(BM_RealtimeThermalWindow)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_RealtimeCoupling)->ArgName("paced")->Arg(kUnpaced)->Arg(kSpinning)->Arg(kSleeping)->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_RealtimeRig)->ArgName("paced")->Arg(kUnpaced)->Arg(kSpinning)->Arg(kSleeping)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RealtimeNullStep)->ArgName("paced")->Arg(kUnpaced)->Arg(kSpinning)->Arg(kSleeping)->Iterations(1)->Unit(benchmark::kMillisecond);
