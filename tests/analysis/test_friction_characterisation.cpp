@@ -16,6 +16,7 @@
 #include "clutch/maki_friction.hpp"
 #include "io/fluid_loader.hpp"
 #include "rig_models/fluid_screening.hpp"
+#include "tests/support/characterisation_errors.hpp"
 #include "tests/support/ramp_runs.hpp"
 
 namespace {
@@ -148,31 +149,6 @@ Errors errors_of(const Characterisation& c, const clutch::FrictionLaw& truth) {
   return e;
 }
 
-// Max |mu_fit/mu_true − 1| where the ramps passed: at every node speed each used ramp crosses
-// (samples within ±5 % of it), at the model's mean interface temperature there and the run's
-// load: the states the data hold. The law's value at a row temperature and a speed no ramp
-// reaches at that temperature (the coldest row at 100 rpm: every ramp is warmer there) is an
-// extrapolation, reported separately by errors_of.
-double max_error_where_passed(const Characterisation& c, const clutch::FrictionLaw& truth, const RoundTrip& rt) {
-  double e = 0.0;
-  for (const auto& ramp : c.used) {
-    const analysis::RampRun& run = rt.runs[ramp.run];
-    for (std::size_t k = 0; k < c.node_rpm.size(); ++k) {
-      double t = 0.0;
-      int n = 0;
-      for (std::size_t i = ramp.first; i <= ramp.last; ++i)
-        if (std::abs(run.speed_rpm[i] - c.node_rpm[k]) <= 0.05 * c.node_rpm[k]) {
-          t += rt.interface_C[ramp.run][i];
-          ++n;
-        }
-      if (n == 0 || t / n > c.temps_C.back() || t / n < c.temps_C.front()) continue;
-      const double v = c.node_speeds_mm_s[k];
-      e = std::max(e, std::abs(c.law->mu(v, t / n, ramp.load_N) / truth.mu(v, t / n, ramp.load_N) - 1.0));
-    }
-  }
-  return e;
-}
-
 // The 1 % on the matrix: compensation piecewise linear in T between the rows
 // (analysis/temperature_surface.hpp) with the table law (linear in T between the rows, as the
 // matrix itself) from the separator thermocouple. Judged where the ramps passed; the figures at
@@ -190,7 +166,7 @@ TEST(CharacteriseRoundTrip, FluidCMatrixPiecewiseTableWithinOnePercentWhereTheRa
         const auto law = il == 0 ? LawKind::kMaki : LawKind::kTable;
         const Characterisation c = analysis::characterise(data.runs, round_trip_settings(comp, law));
         const Errors e = errors_of(c, *rt.truth.friction);
-        passed[ch][ic][il] = max_error_where_passed(c, *rt.truth.friction, rt);
+        passed[ch][ic][il] = test::max_error_where_passed(c, *rt.truth.friction, rt.runs, rt.interface_C);
         std::printf("[ figures  ] fluid C matrix, %s temperature, %s + %s: max |mu/mu_true - 1| where the ramps "
                     "passed %.4f, at the rows %.4f; up-down gap %.5f -> %.5f\n",
                     ch == 0 ? "thermocouple" : "interface (model)", analysis::compensation_name(comp),
@@ -237,7 +213,7 @@ TEST(CharacteriseRoundTrip, FluidCMatrixOtherThermalModelWithinTwoPercent) {
                                                &rt.interface_C.back()));
   }
   const Characterisation c = analysis::characterise(rt.runs, round_trip_settings(Compensation::kPiecewise, LawKind::kTable));
-  const double passed = max_error_where_passed(c, *rt.truth.friction, rt);
+  const double passed = test::max_error_where_passed(c, *rt.truth.friction, rt.runs, rt.interface_C);
   std::printf("[ figures  ] fluid C matrix through another thermal model, 20 kN, piecewise + table: where the ramps "
               "passed %.4f, at the rows %.4f\n", passed, errors_of(c, *rt.truth.friction).mu);
   EXPECT_LT(passed, 0.02);

@@ -12,6 +12,7 @@
 #include "io/fluid_loader.hpp"
 #include "rig_models/fluid_screening.hpp"
 #include "rig_models/inverse_characterisation.hpp"
+#include "tests/support/characterisation_errors.hpp"
 #include "tests/support/ramp_runs.hpp"
 
 namespace {
@@ -67,26 +68,6 @@ struct Set {
   clutch::Fluid truth;
 };
 
-// Max |mu_fit/mu_true − 1| where the ramps passed: at each node speed a used ramp crosses, at the
-// data model's mean interface temperature there (within the law's rows) and the run's load.
-double max_error_where_passed(const Characterisation& c, const clutch::FrictionLaw& truth, const Set& set) {
-  double e = 0.0;
-  for (const auto& ramp : c.used)
-    for (std::size_t k = 0; k < c.node_rpm.size(); ++k) {
-      double t = 0.0;
-      int n = 0;
-      for (std::size_t i = ramp.first; i <= ramp.last; ++i)
-        if (std::abs(set.runs[ramp.run].speed_rpm[i] - c.node_rpm[k]) <= 0.05 * c.node_rpm[k]) {
-          t += set.interface_C[ramp.run][i];
-          ++n;
-        }
-      if (n == 0 || t / n > c.temps_C.back() || t / n < c.temps_C.front()) continue;
-      const double v = c.node_speeds_mm_s[k];
-      e = std::max(e, std::abs(c.law->mu(v, t / n, ramp.load_N) / truth.mu(v, t / n, ramp.load_N) - 1.0));
-    }
-  return e;
-}
-
 // 10, 15, 20 kN x 5 start temperatures, Paper D cycles (10 s ramps), 50 S/s, sensor noise.
 Set round_trip(const std::string& fluid_file, std::vector<double> temps_C) {
   Set s;
@@ -112,8 +93,8 @@ TEST(InverseCharacterisation, FluidCMatrixRecoversTheOilFlowAndTheLaw) {
   const auto r = rig_models::characterise_inverse(set.runs, replay_inputs(set.runs),
                                                   settings(LawKind::kTable, Compensation::kPiecewise), "temp_C", is);
   const double es = max_error(r.sensor, *set.truth.friction), ei = max_error(r.inverse, *set.truth.friction);
-  const double ps = max_error_where_passed(r.sensor, *set.truth.friction, set),
-               pi = max_error_where_passed(r.inverse, *set.truth.friction, set);
+  const double ps = test::max_error_where_passed(r.sensor, *set.truth.friction, set.runs, set.interface_C),
+               pi = test::max_error_where_passed(r.inverse, *set.truth.friction, set.runs, set.interface_C);
   std::printf("[ figures  ] fluid C matrix, piecewise + table: max |mu/mu_true - 1| where the ramps passed: sensor %.4f, "
               "inverse %.4f\n", ps, pi);
   std::printf("[ figures  ] fluid C matrix, piecewise + table: max |mu/mu_true - 1| at the rows: sensor %.4f, inverse %.4f; "
