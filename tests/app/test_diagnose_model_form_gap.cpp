@@ -19,22 +19,14 @@
 #include <gtest/gtest.h>
 
 #include "analysis/diagnosis.hpp"
-#include "io/diagnosis_inputs.hpp"
-#include "io/measured_run.hpp"
-#include "io/scenario.hpp"
-#include "report/diagnosis_narrative.hpp"
-#include "rig_models/replay.hpp"
 #include "tests/support/cli.hpp"
 #include "tests/support/diagnosis_probe.hpp"
+#include "tests/support/diagnosis_runs.hpp"
 
 namespace shudder {
 namespace {
 
-using test::replace;
-using test::run_cli;
 using test::scratch_dir;
-using test::source_path;
-using test::write_file;
 
 const char* const kOtherSimulator =
     "[solver]\nradial_cells = 60\nthermal_step_ms = 2.5\n"
@@ -42,27 +34,14 @@ const char* const kOtherSimulator =
 
 analysis::DiagnosisResult diagnose_other_simulator(const std::string& name, const std::string& hidden) {
   const auto dir = scratch_dir(name);
-  std::vector<io::MeasuredRun> runs;
-  const struct { double force, temp; unsigned seed; const char* stem; } spec[] = {{14000, 70, 91, "a"},
-                                                                                {26000, 90, 92, "b"}};
-  for (const auto& r : spec) {
-    const std::string stem = r.stem;
-    write_file(dir / (stem + ".toml"), test::probe_scenario_text(std::string(kOtherSimulator) + hidden, r.force, r.temp));
-    const auto out = run_cli("run " + stem + ".toml -o " + stem + ".h5 --measurement " + stem +
-                                 ".csv --sample-rate 100 --noise --seed " + std::to_string(r.seed),
-                             dir);
-    EXPECT_EQ(out.exit_code, 0) << out.err;
-    runs.push_back(io::read_measured_run((dir / (stem + ".csv")).string()));
-  }
-  const auto scenario = io::load_scenario_text(test::probe_scenario_text("", 14000, 70), source_path("scenarios/diagnosis_probe.toml"));
-  auto data = io::diagnosis_data(runs);
-  const auto model = io::replay_model(scenario);
+  const std::string data = std::string(kOtherSimulator) + hidden;
+  const std::vector<std::filesystem::path> csvs = {
+      test::make_measured_run(dir, "a", test::probe_scenario_text(data, 14000, 70), 91),
+      test::make_measured_run(dir, "b", test::probe_scenario_text(data, 26000, 90), 92)};
   analysis::DiagnosisOptions o;
   o.jobs = 1;  // ctest runs the cases in parallel
   o.tolerance = {{"torque_Nm", 0.51}, {"temp_C", 2.97}, {"ir_temp_C", 2.98}};  // seeds 41/42, above
-  const auto reproduce = rig_models::replay_reproducer(model, data.inputs);
-  return analysis::diagnose(data.runs, rig_models::replay_candidates(model, nullptr),
-                            rig_models::replay_simulator(model, std::move(data.inputs)), o, reproduce);
+  return test::diagnose_measured(csvs, test::probe_scenario_text("", 14000, 70), "scenarios/diagnosis_probe.toml", o);
 }
 
 TEST(DiagnoseLargerModelFormGap, TheMismatchAloneNamesNothingWithinTheTolerance) {
