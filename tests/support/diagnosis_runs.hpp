@@ -38,21 +38,27 @@ inline std::filesystem::path make_measured_run(const std::filesystem::path& dir,
 /// diagnose`; the hidden-effect cases were set up without it and are kept so.
 enum class Reproduction { kCounted, kNotCounted };
 
-/// Diagnoses the measured runs `csvs` against the scenario `model_text`, read as if it stood at
-/// `model_path` (under the source tree; relative paths inside resolve from there), with `o`.
+/// Diagnoses `runs` against the scenario `model` with `o`, as `shudder diagnose` does.
+inline analysis::DiagnosisResult diagnose_measured(const std::vector<io::MeasuredRun>& runs, const io::Scenario& model,
+                                                   const analysis::DiagnosisOptions& o,
+                                                   Reproduction reproduction = Reproduction::kCounted) {
+  const auto replay = io::replay_model(model);
+  auto data = io::diagnosis_data(runs, replay);
+  const auto reproduce = reproduction == Reproduction::kCounted ? rig_models::replay_reproducer(replay, data.inputs)
+                                                                : analysis::Reproducer{};
+  return analysis::diagnose(data.runs, rig_models::replay_candidates(replay, nullptr),
+                            rig_models::replay_simulator(replay, std::move(data.inputs)), o, reproduce);
+}
+
+/// The same on the measured CSVs `csvs`, against the scenario `model_text` read as if it stood
+/// at `model_path` (under the source tree; relative paths inside resolve from there).
 inline analysis::DiagnosisResult diagnose_measured(const std::vector<std::filesystem::path>& csvs,
                                                    const std::string& model_text, const std::string& model_path,
                                                    const analysis::DiagnosisOptions& o,
                                                    Reproduction reproduction = Reproduction::kCounted) {
   std::vector<io::MeasuredRun> runs;
   for (const auto& c : csvs) runs.push_back(io::read_measured_run(c.string()));
-  const auto scenario = io::load_scenario_text(model_text, source_path(model_path));
-  auto data = io::diagnosis_data(runs);
-  const auto model = io::replay_model(scenario);
-  const auto reproduce = reproduction == Reproduction::kCounted ? rig_models::replay_reproducer(model, data.inputs)
-                                                                : analysis::Reproducer{};
-  return analysis::diagnose(data.runs, rig_models::replay_candidates(model, nullptr),
-                            rig_models::replay_simulator(model, std::move(data.inputs)), o, reproduce);
+  return diagnose_measured(runs, io::load_scenario_text(model_text, source_path(model_path)), o, reproduction);
 }
 
 }  // namespace shudder::test
