@@ -93,14 +93,6 @@ TEST(RampSearch, RejectsAStepALoadChangeAndASmallSweep) {
   EXPECT_NE(reasons.find("rpm; a ramp must span at least 20 rpm"), std::string::npos) << reasons;
 }
 
-// Relative error of `law` against `truth` at a row, over the node speeds the law covers.
-double max_rel_error(const clutch::FrictionLaw& law, const clutch::FrictionLaw& truth, double temp_C, double load_N,
-                     const std::vector<double>& speeds_mm_s) {
-  double e = 0.0;
-  for (double v : speeds_mm_s) e = std::max(e, std::abs(law.mu(v, temp_C, load_N) / truth.mu(v, temp_C, load_N) - 1.0));
-  return e;
-}
-
 struct RoundTrip {
   std::vector<analysis::RampRun> runs;
   std::vector<std::vector<double>> interface_C;  // the model's area-mean interface temperature per run
@@ -141,8 +133,8 @@ struct Errors {
 
 Errors errors_of(const Characterisation& c, const clutch::FrictionLaw& truth) {
   Errors e;
+  e.mu = test::max_error_at_rows(c, truth);
   for (const auto& row : c.rows) {
-    e.mu = std::max(e.mu, max_rel_error(*c.law, truth, row.temp_C, row.load_N, c.node_speeds_mm_s));
     e.gap_raw += row.up_down_gap_raw / double(c.rows.size());
     e.gap_comp += row.up_down_gap_comp / double(c.rows.size());
   }
@@ -199,18 +191,11 @@ TEST(CharacteriseRoundTrip, FluidCMatrixPiecewiseTableWithinOnePercentWhereTheRa
 TEST(CharacteriseRoundTrip, FluidCMatrixOtherThermalModelWithinTwoPercent) {
   RoundTrip rt;
   rt.truth = io::load_fluid(SHUDDER_SOURCE_DIR "/scenarios/fluids/lsc_fluid_c.toml");
-  const auto vary = [](clutch::WetClutchParams& p) {
-    p.thermal.radial_cells = 40;
-    p.thermal.oil_flow.a = 0.002;
-    p.thermal.oil_flow.e = 0.010;
-    p.thermal.temperature_sensor_lag = true;
-    p.thermal.sensor_time_constant_s = 0.5;
-  };
   unsigned seed = 900;
   for (double t0 : {30.0, 40.0, 50.0, 60.0, 70.0}) {
     rt.interface_C.emplace_back();
-    rt.runs.push_back(test::simulated_ramp_run(rt.truth, test::paper_d_cycle(20000.0), t0, seed++, 50.0, "temp_C", vary,
-                                               &rt.interface_C.back()));
+    rt.runs.push_back(test::simulated_ramp_run(rt.truth, test::paper_d_cycle(20000.0), t0, seed++, 50.0, "temp_C",
+                                               test::other_thermal_model, &rt.interface_C.back()));
   }
   const Characterisation c = analysis::characterise(rt.runs, round_trip_settings(Compensation::kPiecewise, LawKind::kTable));
   const double passed = test::max_error_where_passed(c, *rt.truth.friction, rt.runs, rt.interface_C);
@@ -286,19 +271,13 @@ TEST(CharacteriseRoundTrip, PaperELinearLawWithinOnePercentAtTheInterfaceTempera
 // zero), and a thermocouple lagging the disc by 0.5 s. The characterisation knows none of it.
 TEST(CharacteriseRoundTrip, OtherThermalModelWithinTwoPercent) {
   const clutch::Fluid truth = io::load_fluid(SHUDDER_SOURCE_DIR "/scenarios/fluids/paper_e_fluid_c.toml");
-  const auto vary = [](clutch::WetClutchParams& p) {
-    p.thermal.radial_cells = 40;
-    p.thermal.oil_flow.a = 0.002;  // fraction + 0.002 (Δω + 1): 0.4 % more flow per 2 rad/s
-    p.thermal.oil_flow.e = 0.010;
-    p.thermal.temperature_sensor_lag = true;
-    p.thermal.sensor_time_constant_s = 0.5;
-  };
   std::vector<analysis::RampRun> runs;
   unsigned seed = 300;
   // One load (the linear law does not depend on it; the 3-load cases are above), to keep
   // the finer grid's runs quick.
   for (double t0 : {30.0, 45.0, 60.0, 75.0, 90.0})
-    runs.push_back(test::simulated_ramp_run(truth, test::paper_d_cycle(20000.0), t0, seed++, 50.0, "temp_C", vary));
+    runs.push_back(test::simulated_ramp_run(truth, test::paper_d_cycle(20000.0), t0, seed++, 50.0, "temp_C",
+                                            test::other_thermal_model));
   const double none = errors_of(analysis::characterise(runs, round_trip_settings(Compensation::kNone, LawKind::kLinear)),
                                 *truth.friction).mu;
   const double quad = errors_of(analysis::characterise(runs, round_trip_settings(Compensation::kQuadratic, LawKind::kLinear)),

@@ -23,15 +23,6 @@ using analysis::CharacterisationSettings;
 using analysis::Compensation;
 using analysis::LawKind;
 
-// Max over rows and the node speeds of |mu_fit / mu_true − 1| at the row's (T, F).
-double max_error(const Characterisation& c, const clutch::FrictionLaw& truth) {
-  double e = 0.0;
-  for (const auto& row : c.rows)
-    for (double v : c.node_speeds_mm_s)
-      e = std::max(e, std::abs(c.law->mu(v, row.temp_C, row.load_N) / truth.mu(v, row.temp_C, row.load_N) - 1.0));
-  return e;
-}
-
 std::vector<rig_models::ReplayInputs> replay_inputs(const std::vector<analysis::RampRun>& runs) {
   std::vector<rig_models::ReplayInputs> in;
   for (const auto& r : runs) {
@@ -92,7 +83,7 @@ TEST(InverseCharacterisation, FluidCMatrixRecoversTheOilFlowAndTheLaw) {
   is.model.clutch.thermal.oil_flow.e = 0.03;  // the data were made with 0.016 (Paper G defaults)
   const auto r = rig_models::characterise_inverse(set.runs, replay_inputs(set.runs),
                                                   settings(LawKind::kTable, Compensation::kPiecewise), "temp_C", is);
-  const double es = max_error(r.sensor, *set.truth.friction), ei = max_error(r.inverse, *set.truth.friction);
+  const double es = test::max_error_at_rows(r.sensor, *set.truth.friction), ei = test::max_error_at_rows(r.inverse, *set.truth.friction);
   const double ps = test::max_error_where_passed(r.sensor, *set.truth.friction, set.runs, set.interface_C),
                pi = test::max_error_where_passed(r.inverse, *set.truth.friction, set.runs, set.interface_C);
   std::printf("[ figures  ] fluid C matrix, piecewise + table: max |mu/mu_true - 1| where the ramps passed: sensor %.4f, "
@@ -149,7 +140,7 @@ TEST(InverseCharacterisation, PaperELinearLawWithinOnePercent) {
   const Set set = round_trip("paper_e_fluid_c.toml", {30.0, 45.0, 60.0, 75.0, 90.0});
   const auto r = rig_models::characterise_inverse(set.runs, replay_inputs(set.runs), settings(LawKind::kLinear),
                                                   "temp_C", inverse_settings(set.truth));
-  const double es = max_error(r.sensor, *set.truth.friction), ei = max_error(r.inverse, *set.truth.friction);
+  const double es = test::max_error_at_rows(r.sensor, *set.truth.friction), ei = test::max_error_at_rows(r.inverse, *set.truth.friction);
   std::printf("[ figures  ] Paper E fluid C linear law: sensor %.4f, inverse %.4f; %d updates, %d replays; e %.4g a %.3g\n",
               es, ei, r.iterations, r.replays, r.oil_flow.e, r.oil_flow.a);
   EXPECT_LT(ei, 0.01);
@@ -160,20 +151,14 @@ TEST(InverseCharacterisation, PaperELinearLawWithinOnePercent) {
 // lag-free sensor, calibrating the oil flow on the lagging thermocouple. The 2 %.
 TEST(InverseCharacterisation, OtherThermalModelWithinTwoPercent) {
   const clutch::Fluid truth = io::load_fluid(SHUDDER_SOURCE_DIR "/scenarios/fluids/paper_e_fluid_c.toml");
-  const auto vary = [](clutch::WetClutchParams& p) {
-    p.thermal.radial_cells = 40;
-    p.thermal.oil_flow.a = 0.002;
-    p.thermal.oil_flow.e = 0.010;
-    p.thermal.temperature_sensor_lag = true;
-    p.thermal.sensor_time_constant_s = 0.5;
-  };
   std::vector<analysis::RampRun> runs;
   unsigned seed = 700;
   for (double t0 : {30.0, 45.0, 60.0, 75.0, 90.0})
-    runs.push_back(test::simulated_ramp_run(truth, test::paper_d_cycle(20000.0), t0, seed++, 50.0, "temp_C", vary));
+    runs.push_back(test::simulated_ramp_run(truth, test::paper_d_cycle(20000.0), t0, seed++, 50.0, "temp_C",
+                                            test::other_thermal_model));
   const auto r = rig_models::characterise_inverse(runs, replay_inputs(runs), settings(LawKind::kLinear), "temp_C",
                                                   inverse_settings(truth));
-  const double es = max_error(r.sensor, *truth.friction), ei = max_error(r.inverse, *truth.friction);
+  const double es = test::max_error_at_rows(r.sensor, *truth.friction), ei = test::max_error_at_rows(r.inverse, *truth.friction);
   std::printf("[ figures  ] other thermal model: sensor %.4f, inverse %.4f; oil flow e %.4g a %.3g (data: 0.010, 0.002); "
               "temp rms %.3f -> %.3f C\n", es, ei, r.oil_flow.e, r.oil_flow.a, r.temp_rms_start_C, r.temp_rms_C);
   EXPECT_LT(ei, 0.02);

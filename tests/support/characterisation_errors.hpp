@@ -13,6 +13,16 @@
 
 namespace shudder::test {
 
+/// Max |mu_fit/mu_true − 1| over the law's rows (their temperature and load) and its node
+/// speeds, including speeds no ramp reached at a row's temperature (extrapolated there).
+inline double max_error_at_rows(const analysis::Characterisation& c, const clutch::FrictionLaw& truth) {
+  double e = 0.0;
+  for (const auto& row : c.rows)
+    for (double v : c.node_speeds_mm_s)
+      e = std::max(e, std::abs(c.law->mu(v, row.temp_C, row.load_N) / truth.mu(v, row.temp_C, row.load_N) - 1.0));
+  return e;
+}
+
 /// Max |mu_fit/mu_true − 1| where the ramps passed: at every node speed each used ramp crosses
 /// (samples within ±5 % of it), at the data model's mean interface temperature there
 /// (`interface_C[run]`, sample by sample with `runs[run]`) and the run's load, skipping means
