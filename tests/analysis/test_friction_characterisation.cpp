@@ -16,6 +16,7 @@
 #include "clutch/maki_friction.hpp"
 #include "io/fluid_loader.hpp"
 #include "rig_models/fluid_screening.hpp"
+#include "tests/support/characterisation_errors.hpp"
 #include "tests/support/ramp_runs.hpp"
 
 namespace {
@@ -92,14 +93,6 @@ TEST(RampSearch, RejectsAStepALoadChangeAndASmallSweep) {
   EXPECT_NE(reasons.find("rpm; a ramp must span at least 20 rpm"), std::string::npos) << reasons;
 }
 
-// Relative error of `law` against `truth` at a row, over the node speeds the law covers.
-double max_rel_error(const clutch::FrictionLaw& law, const clutch::FrictionLaw& truth, double temp_C, double load_N,
-                     const std::vector<double>& speeds_mm_s) {
-  double e = 0.0;
-  for (double v : speeds_mm_s) e = std::max(e, std::abs(law.mu(v, temp_C, load_N) / truth.mu(v, temp_C, load_N) - 1.0));
-  return e;
-}
-
 struct RoundTrip {
   std::vector<analysis::RampRun> runs;
   std::vector<std::vector<double>> interface_C;  // the model's area-mean interface temperature per run
@@ -140,35 +133,10 @@ struct Errors {
 
 Errors errors_of(const Characterisation& c, const clutch::FrictionLaw& truth) {
   Errors e;
+  e.mu = test::max_error_at_rows(c, truth);
   for (const auto& row : c.rows) {
-    e.mu = std::max(e.mu, max_rel_error(*c.law, truth, row.temp_C, row.load_N, c.node_speeds_mm_s));
     e.gap_raw += row.up_down_gap_raw / double(c.rows.size());
     e.gap_comp += row.up_down_gap_comp / double(c.rows.size());
-  }
-  return e;
-}
-
-// Max |mu_fit/mu_true − 1| where the ramps passed: at every node speed each used ramp crosses
-// (samples within ±5 % of it), at the model's mean interface temperature there and the run's
-// load: the states the data hold. The law's value at a row temperature and a speed no ramp
-// reaches at that temperature (the coldest row at 100 rpm: every ramp is warmer there) is an
-// extrapolation, reported separately by errors_of.
-double max_error_where_passed(const Characterisation& c, const clutch::FrictionLaw& truth, const RoundTrip& rt) {
-  double e = 0.0;
-  for (const auto& ramp : c.used) {
-    const analysis::RampRun& run = rt.runs[ramp.run];
-    for (std::size_t k = 0; k < c.node_rpm.size(); ++k) {
-      double t = 0.0;
-      int n = 0;
-      for (std::size_t i = ramp.first; i <= ramp.last; ++i)
-        if (std::abs(run.speed_rpm[i] - c.node_rpm[k]) <= 0.05 * c.node_rpm[k]) {
-          t += rt.interface_C[ramp.run][i];
-          ++n;
-        }
-      if (n == 0 || t / n > c.temps_C.back() || t / n < c.temps_C.front()) continue;
-      const double v = c.node_speeds_mm_s[k];
-      e = std::max(e, std::abs(c.law->mu(v, t / n, ramp.load_N) / truth.mu(v, t / n, ramp.load_N) - 1.0));
-    }
   }
   return e;
 }
@@ -190,7 +158,7 @@ TEST(CharacteriseRoundTrip, FluidCMatrixPiecewiseTableWithinOnePercentWhereTheRa
         const auto law = il == 0 ? LawKind::kMaki : LawKind::kTable;
         const Characterisation c = analysis::characterise(data.runs, round_trip_settings(comp, law));
         const Errors e = errors_of(c, *rt.truth.friction);
-        passed[ch][ic][il] = max_error_where_passed(c, *rt.truth.friction, rt);
+        passed[ch][ic][il] = test::max_error_where_passed(c, *rt.truth.friction, rt.runs, rt.interface_C);
         std::printf("[ figures  ] fluid C matrix, %s temperature, %s + %s: max |mu/mu_true - 1| where the ramps "
                     "passed %.4f, at the rows %.4f; up-down gap %.5f -> %.5f\n",
                     ch == 0 ? "thermocouple" : "interface (model)", analysis::compensation_name(comp),
@@ -223,21 +191,14 @@ TEST(CharacteriseRoundTrip, FluidCMatrixPiecewiseTableWithinOnePercentWhereTheRa
 TEST(CharacteriseRoundTrip, FluidCMatrixOtherThermalModelWithinTwoPercent) {
   RoundTrip rt;
   rt.truth = io::load_fluid(SHUDDER_SOURCE_DIR "/scenarios/fluids/lsc_fluid_c.toml");
-  const auto vary = [](clutch::WetClutchParams& p) {
-    p.thermal.radial_cells = 40;
-    p.thermal.oil_flow.a = 0.002;
-    p.thermal.oil_flow.e = 0.010;
-    p.thermal.temperature_sensor_lag = true;
-    p.thermal.sensor_time_constant_s = 0.5;
-  };
   unsigned seed = 900;
   for (double t0 : {30.0, 40.0, 50.0, 60.0, 70.0}) {
     rt.interface_C.emplace_back();
-    rt.runs.push_back(test::simulated_ramp_run(rt.truth, test::paper_d_cycle(20000.0), t0, seed++, 50.0, "temp_C", vary,
-                                               &rt.interface_C.back()));
+    rt.runs.push_back(test::simulated_ramp_run(rt.truth, test::paper_d_cycle(20000.0), t0, seed++, 50.0, "temp_C",
+                                               test::other_thermal_model, &rt.interface_C.back()));
   }
   const Characterisation c = analysis::characterise(rt.runs, round_trip_settings(Compensation::kPiecewise, LawKind::kTable));
-  const double passed = max_error_where_passed(c, *rt.truth.friction, rt);
+  const double passed = test::max_error_where_passed(c, *rt.truth.friction, rt.runs, rt.interface_C);
   std::printf("[ figures  ] fluid C matrix through another thermal model, 20 kN, piecewise + table: where the ramps "
               "passed %.4f, at the rows %.4f\n", passed, errors_of(c, *rt.truth.friction).mu);
   EXPECT_LT(passed, 0.02);
@@ -310,19 +271,13 @@ TEST(CharacteriseRoundTrip, PaperELinearLawWithinOnePercentAtTheInterfaceTempera
 // zero), and a thermocouple lagging the disc by 0.5 s. The characterisation knows none of it.
 TEST(CharacteriseRoundTrip, OtherThermalModelWithinTwoPercent) {
   const clutch::Fluid truth = io::load_fluid(SHUDDER_SOURCE_DIR "/scenarios/fluids/paper_e_fluid_c.toml");
-  const auto vary = [](clutch::WetClutchParams& p) {
-    p.thermal.radial_cells = 40;
-    p.thermal.oil_flow.a = 0.002;  // fraction + 0.002 (Δω + 1): 0.4 % more flow per 2 rad/s
-    p.thermal.oil_flow.e = 0.010;
-    p.thermal.temperature_sensor_lag = true;
-    p.thermal.sensor_time_constant_s = 0.5;
-  };
   std::vector<analysis::RampRun> runs;
   unsigned seed = 300;
   // One load (the linear law does not depend on it; the 3-load cases are above), to keep
   // the finer grid's runs quick.
   for (double t0 : {30.0, 45.0, 60.0, 75.0, 90.0})
-    runs.push_back(test::simulated_ramp_run(truth, test::paper_d_cycle(20000.0), t0, seed++, 50.0, "temp_C", vary));
+    runs.push_back(test::simulated_ramp_run(truth, test::paper_d_cycle(20000.0), t0, seed++, 50.0, "temp_C",
+                                            test::other_thermal_model));
   const double none = errors_of(analysis::characterise(runs, round_trip_settings(Compensation::kNone, LawKind::kLinear)),
                                 *truth.friction).mu;
   const double quad = errors_of(analysis::characterise(runs, round_trip_settings(Compensation::kQuadratic, LawKind::kLinear)),

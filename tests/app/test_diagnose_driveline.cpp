@@ -21,6 +21,7 @@
 #include "rig_models/model.hpp"
 #include "rig_models/replay.hpp"
 #include "tests/support/cli.hpp"
+#include "tests/support/diagnosis_runs.hpp"
 
 namespace shudder {
 namespace {
@@ -50,14 +51,9 @@ io::MeasuredRun measured_run(const std::string& name, const std::string& effects
 
 // What `shudder diagnose` does (app/cmd_diagnose.cpp), on the baseline scenario.
 analysis::DiagnosisResult diagnose(const std::vector<io::MeasuredRun>& runs) {
-  const auto scenario = io::load_scenario_text(coupling_scenario(), "car.toml");
-  const auto model = io::replay_model(scenario);
-  auto data = io::diagnosis_data(runs, model);
   analysis::DiagnosisOptions o;
   o.jobs = 1;  // ctest runs tests in parallel
-  const auto reproduce = rig_models::replay_reproducer(model, data.inputs);
-  return analysis::diagnose(data.runs, rig_models::replay_candidates(model, nullptr),
-                            rig_models::replay_simulator(model, std::move(data.inputs)), o, reproduce);
+  return test::diagnose_measured(runs, io::load_scenario_text(coupling_scenario(), "car.toml"), o);
 }
 
 const analysis::ChannelFit& torque_channel(const analysis::DiagnosisResult& r) {

@@ -17,23 +17,15 @@
 #include <map>
 
 #include "analysis/diagnosis.hpp"
-#include "io/diagnosis_inputs.hpp"
-#include "report/diagnosis_narrative.hpp"
-#include "io/measured_run.hpp"
-#include "io/scenario.hpp"
-#include "rig_models/replay.hpp"
 #include "tests/support/cli.hpp"
 #include "tests/support/diagnosis_probe.hpp"
+#include "tests/support/diagnosis_runs.hpp"
 
 namespace shudder {
 namespace {
 
 using test::replace;
-using test::run_cli;
 using test::scratch_dir;
-using test::slurp;
-using test::source_path;
-using test::write_file;
 
 struct Case {
   std::string name;
@@ -48,25 +40,15 @@ void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
 
 analysis::DiagnosisResult diagnose_case(const Case& c) {
   const auto dir = scratch_dir("diag_" + c.name);
-  std::vector<io::MeasuredRun> runs;
+  std::vector<std::filesystem::path> csvs;
   const struct { double force, temp; unsigned seed; } runs_spec[] = {{12000, 75, 11}, {24000, 85, 12}};
-  for (const auto& r : runs_spec) {
-    const std::string stem = "run_" + std::to_string(static_cast<int>(r.force / 1000)) + "kN";
-    write_file(dir / (stem + ".toml"), test::probe_scenario_text(c.hidden, r.force, r.temp));
-    const auto out = run_cli("run " + stem + ".toml -o " + stem + ".h5 --measurement " + stem +
-                                 ".csv --sample-rate 100 --noise --seed " + std::to_string(r.seed),
-                             dir);
-    EXPECT_EQ(out.exit_code, 0) << out.err;
-    runs.push_back(io::read_measured_run((dir / (stem + ".csv")).string()));
-  }
-  const auto scenario = io::load_scenario_text(test::probe_scenario_text(c.model, 12000, 75),
-                                               source_path("scenarios/diagnosis_probe.toml"));
-  auto data = io::diagnosis_data(runs);
-  const auto model = io::replay_model(scenario);
+  for (const auto& r : runs_spec)
+    csvs.push_back(test::make_measured_run(dir, "run_" + std::to_string(static_cast<int>(r.force / 1000)) + "kN",
+                                           test::probe_scenario_text(c.hidden, r.force, r.temp), r.seed));
   analysis::DiagnosisOptions o;
   o.jobs = 1;  // ctest runs the cases in parallel
-  return analysis::diagnose(data.runs, rig_models::replay_candidates(model, nullptr),
-                            rig_models::replay_simulator(model, std::move(data.inputs)), o);
+  return test::diagnose_measured(csvs, test::probe_scenario_text(c.model, 12000, 75), "scenarios/diagnosis_probe.toml",
+                                 o, test::Reproduction::kNotCounted);
 }
 
 void expect_gap_shrinks(const analysis::DiagnosisResult& r) {
@@ -222,24 +204,15 @@ const char* const kHiddenStickTime =
 
 analysis::DiagnosisResult diagnose_stick_slip(const std::string& dir_name, const std::string& model_extra) {
   const auto dir = scratch_dir(dir_name);
-  std::vector<io::MeasuredRun> runs;
-  for (const auto& [rpm, seed] : {std::pair{0.5, 21}, std::pair{1.5, 22}}) {
-    const std::string stem = "stick_" + std::to_string(static_cast<int>(rpm * 10)) + "rpm";
-    write_file(dir / (stem + ".toml"), stick_probe_text(kHiddenStickTime, rpm));
-    const auto out = run_cli("run " + stem + ".toml -o " + stem + ".h5 --measurement " + stem +
-                                 ".csv --noise --seed " + std::to_string(seed), dir);
-    EXPECT_EQ(out.exit_code, 0) << out.err;
-    runs.push_back(io::read_measured_run((dir / (stem + ".csv")).string()));
-  }
-  const auto scenario = io::load_scenario_text(stick_probe_text(model_extra, 0.5),
-                                               source_path("scenarios/rig_stick_time_probe.toml"));
-  auto data = io::diagnosis_data(runs);
-  const auto model = io::replay_model(scenario);
+  std::vector<std::filesystem::path> csvs;
+  for (const auto& [rpm, seed] : {std::pair{0.5, 21u}, std::pair{1.5, 22u}})
+    csvs.push_back(test::make_measured_run(dir, "stick_" + std::to_string(static_cast<int>(rpm * 10)) + "rpm",
+                                           stick_probe_text(kHiddenStickTime, rpm), seed, ""));  // the rig's 1 kHz
   analysis::DiagnosisOptions o;
   o.jobs = 1;
   o.torque_block_statistics = true;  // as `shudder diagnose` does for rig models
-  return analysis::diagnose(data.runs, rig_models::replay_candidates(model, nullptr),
-                            rig_models::replay_simulator(model, std::move(data.inputs)), o);
+  return test::diagnose_measured(csvs, stick_probe_text(model_extra, 0.5), "scenarios/rig_stick_time_probe.toml", o,
+                                 test::Reproduction::kNotCounted);
 }
 
 TEST(DiagnoseStickTime, IsNamedFromRigStickSlipRuns) {

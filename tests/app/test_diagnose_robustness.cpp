@@ -11,17 +11,15 @@
 #include <sstream>
 
 #include "analysis/diagnosis.hpp"
-#include "io/diagnosis_inputs.hpp"
 #include "io/measured_run.hpp"
-#include "io/scenario.hpp"
-#include "report/diagnosis_narrative.hpp"
-#include "rig_models/replay.hpp"
 #include "tests/support/cli.hpp"
 #include "tests/support/diagnosis_probe.hpp"
+#include "tests/support/diagnosis_runs.hpp"
 
 namespace shudder {
 namespace {
 
+using test::make_measured_run;
 using test::replace;
 using test::run_cli;
 using test::scratch_dir;
@@ -29,17 +27,6 @@ using test::slurp;
 using test::source_path;
 using test::write_file;
 using ::testing::HasSubstr;
-
-// Makes a measured run from scenario text; returns its CSV path inside dir.
-std::filesystem::path make_run(const std::filesystem::path& dir, const std::string& stem, const std::string& text,
-                               unsigned seed, const char* rate = "--sample-rate 100") {
-  write_file(dir / (stem + ".toml"), text);
-  const auto out = run_cli("run " + stem + ".toml -o " + stem + ".h5 --measurement " + stem + ".csv " + rate +
-                               " --noise --seed " + std::to_string(seed),
-                           dir);
-  EXPECT_EQ(out.exit_code, 0) << out.err;
-  return dir / (stem + ".csv");
-}
 
 // Rewrites one column of a measured CSV: f(time, column) -> new column.
 void transform_column(const std::filesystem::path& csv, const std::string& column,
@@ -86,21 +73,15 @@ void transform_column(const std::filesystem::path& csv, const std::string& colum
   write_file(csv, out.str());
 }
 
+// As `shudder diagnose` runs it: block statistics of the torque for a rig model.
 analysis::DiagnosisResult diagnose_files(const std::vector<std::filesystem::path>& csvs, const std::string& model_text,
                                          const std::string& model_path, bool rig,
                                          std::vector<std::pair<std::string, double>> tolerance = {}) {
-  std::vector<io::MeasuredRun> runs;
-  for (const auto& c : csvs) runs.push_back(io::read_measured_run(c.string()));
-  const auto scenario = io::load_scenario_text(model_text, source_path(model_path));
-  auto data = io::diagnosis_data(runs);
-  const auto model = io::replay_model(scenario);
   analysis::DiagnosisOptions o;
   o.jobs = 1;  // ctest runs the cases in parallel
   o.torque_block_statistics = rig;
   o.tolerance = std::move(tolerance);
-  const auto reproduce = rig_models::replay_reproducer(model, data.inputs);
-  return analysis::diagnose(data.runs, rig_models::replay_candidates(model, nullptr),
-                            rig_models::replay_simulator(model, std::move(data.inputs)), o, reproduce);
+  return test::diagnose_measured(csvs, model_text, model_path, o);
 }
 
 // ---- the true model on rig stick-slip runs ------------------------------------------------
@@ -120,8 +101,8 @@ TEST_P(TrueRigModel, NamesNothingAndIsExplained) {
   // reproduction error, which the error scale now counts; nothing may be named.
   const unsigned seed = GetParam();
   const auto dir = scratch_dir("diag_true_rig_" + std::to_string(seed));
-  const auto a = make_run(dir, "a", stick_probe(0.7), seed, "");
-  const auto b = make_run(dir, "b", stick_probe(1.3), seed + 1, "");
+  const auto a = make_measured_run(dir, "a", stick_probe(0.7), seed, "");
+  const auto b = make_measured_run(dir, "b", stick_probe(1.3), seed + 1, "");
   const auto r = diagnose_files({a, b}, stick_probe(0.7), "scenarios/rig_stick_time_probe.toml", true);
   EXPECT_TRUE(r.missing_effects.empty()) << test::describe_diagnosis(r);
   // What is left is the first breakaway from rest (the first second): 1.1-1.2 x the scale on
@@ -141,8 +122,8 @@ class TrueRigModelNamesNothing : public ::testing::TestWithParam<unsigned> {};
 TEST_P(TrueRigModelNamesNothing, OnMoreSeeds) {
   const unsigned seed = GetParam();
   const auto dir = scratch_dir("diag_true_rig_more_" + std::to_string(seed));
-  const auto a = make_run(dir, "a", stick_probe(0.7), seed, "");
-  const auto b = make_run(dir, "b", stick_probe(1.3), seed + 1, "");
+  const auto a = make_measured_run(dir, "a", stick_probe(0.7), seed, "");
+  const auto b = make_measured_run(dir, "b", stick_probe(1.3), seed + 1, "");
   const auto r = diagnose_files({a, b}, stick_probe(0.7), "scenarios/rig_stick_time_probe.toml", true);
   EXPECT_TRUE(r.missing_effects.empty()) << test::describe_diagnosis(r);
 }
@@ -156,8 +137,8 @@ const char* const kFinerGrid = "[solver]\nradial_cells = 60\nthermal_step_ms = 2
 
 std::vector<std::filesystem::path> mismatch_runs(const std::string& name, const std::string& extra) {
   const auto dir = scratch_dir(name);
-  return {make_run(dir, "a", test::probe_scenario_text(std::string(kFinerGrid) + extra, 14000, 70), 91),
-          make_run(dir, "b", test::probe_scenario_text(std::string(kFinerGrid) + extra, 26000, 90), 92)};
+  return {make_measured_run(dir, "a", test::probe_scenario_text(std::string(kFinerGrid) + extra, 14000, 70), 91),
+          make_measured_run(dir, "b", test::probe_scenario_text(std::string(kFinerGrid) + extra, 26000, 90), 92)};
 }
 
 TEST(DiagnoseModelForm, FinerDiscretisationAloneNamesNothingAndIsExplainedWithinTheTolerance) {
@@ -192,8 +173,8 @@ class OutOfCatalogue : public ::testing::TestWithParam<Fault> {};
 TEST_P(OutOfCatalogue, LeavesAGapAndNamesNothingAtABound) {
   const Fault& f = GetParam();
   const auto dir = scratch_dir("diag_ooc_" + f.name);
-  const auto a = make_run(dir, "a", test::probe_scenario_text("", 13000, 72), 101);
-  const auto b = make_run(dir, "b", test::probe_scenario_text("", 25000, 88), 102);
+  const auto a = make_measured_run(dir, "a", test::probe_scenario_text("", 13000, 72), 101);
+  const auto b = make_measured_run(dir, "b", test::probe_scenario_text("", 25000, 88), 102);
   transform_column(a, f.column, f.apply);
   transform_column(b, f.column, f.apply);
   const auto r = diagnose_files({a, b}, test::probe_scenario_text("", 13000, 72), "scenarios/diagnosis_probe.toml", false);
@@ -256,7 +237,7 @@ class Plausibility : public ::testing::TestWithParam<Implausible> {};
 TEST_P(Plausibility, WrongUnitsExitTwoWithOneLine) {
   const Implausible& c = GetParam();
   const auto dir = scratch_dir("diag_plaus_" + c.name);
-  const auto a = make_run(dir, "a", test::probe_scenario_text("", 16000, 78), 111);
+  const auto a = make_measured_run(dir, "a", test::probe_scenario_text("", 16000, 78), 111);
   transform_column(a, c.column, [&](const std::vector<double>&, const std::vector<double>& x) {
     std::vector<double> y(x);
     for (double& v : y) v = v * c.scale + c.offset;
@@ -278,7 +259,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(Plausibility, TheSameRunTwiceExitsTwo) {
   const auto dir = scratch_dir("diag_plaus_twice");
-  make_run(dir, "a", test::probe_scenario_text("", 16000, 78), 112);
+  make_measured_run(dir, "a", test::probe_scenario_text("", 16000, 78), 112);
   std::filesystem::copy_file(dir / "a.csv", dir / "copy.csv", std::filesystem::copy_options::overwrite_existing);
   const auto out =
       run_cli("diagnose " + source_path("scenarios/diagnosis_probe.toml") + " a.csv copy.csv --jobs 1", dir);
@@ -290,7 +271,7 @@ TEST(Plausibility, ARunShorterThanTwentyThermalStepsExitsTwo) {
   // 0.1 s steps: 20 of them are 2 s; the run lasts 1.5 s (long enough for the row checks).
   const auto dir = scratch_dir("diag_plaus_short");
   std::string s = test::probe_scenario_text("[solver]\nthermal_step_ms = 100\n", 16000, 78);
-  make_run(dir, "a", replace(s, "duration_s = 20.0", "duration_s = 1.5"), 113);
+  make_measured_run(dir, "a", replace(s, "duration_s = 20.0", "duration_s = 1.5"), 113);
   write_file(dir / "model.toml", s);
   const auto out = run_cli("diagnose model.toml a.csv --jobs 1", dir);
   EXPECT_EQ(out.exit_code, 2) << out.err;
@@ -327,8 +308,8 @@ TEST(DiagnoseWriteModel, RunningTheFixedModelReproducesTheFinalGap) {
   const auto dir = scratch_dir("diag_write_model");
   const std::string hidden =
       "[effects.rig_heat_capacity]\nenabled = true\nheat_capacity_J_per_K = 250.0\nconductance_W_per_K = 15.0\n";
-  make_run(dir, "a", test::probe_scenario_text(hidden, 13000, 72), 121);
-  make_run(dir, "b", test::probe_scenario_text(hidden, 23000, 84), 122);
+  make_measured_run(dir, "a", test::probe_scenario_text(hidden, 13000, 72), 121);
+  make_measured_run(dir, "b", test::probe_scenario_text(hidden, 23000, 84), 122);
   write_file(dir / "model.toml", test::probe_scenario_text("", 13000, 72));
   std::filesystem::create_directories(dir / "out");  // written elsewhere: the fluid path is rewritten
   auto out = run_cli("diagnose model.toml a.csv b.csv --jobs 1 --write-model out/fixed.toml --json d.json", dir);

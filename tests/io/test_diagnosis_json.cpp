@@ -28,6 +28,7 @@
 #include "report/diagnosis_report.hpp"
 #include "tests/support/json.hpp"
 #include "tests/support/linear_diagnosis.hpp"
+#include "tests/support/test_directory.hpp"
 
 namespace fs = std::filesystem;
 using shudder::analysis::CandidateScore;
@@ -131,18 +132,9 @@ bool gnuplot_installed() {
   return false;
 }
 
-class DiagnosisFiles : public testing::Test {
+class DiagnosisFiles : public shudder::test::TestDirectory {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("shudder_djson_" + std::to_string(::getpid()) + "_" +
-            testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  fs::path dir_;
+  DiagnosisFiles() : TestDirectory("djson") {}
 };
 
 std::string slurp(const std::string& p) {

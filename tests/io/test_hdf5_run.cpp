@@ -15,6 +15,7 @@
 
 #include "io/hdf5_run.hpp"
 #include "io/input_error.hpp"
+#include "tests/support/test_directory.hpp"
 
 namespace fs = std::filesystem;
 using shudder::dynamics::Recording;
@@ -23,19 +24,9 @@ using testing::HasSubstr;
 
 namespace {
 
-// A fresh directory per test, removed afterwards.
-class Hdf5Run : public testing::Test {
+class Hdf5Run : public shudder::test::TestDirectory {
  protected:
-  void SetUp() override {
-    dir_ =
-        fs::temp_directory_path() / ("shudder_hdf5_" + std::to_string(::getpid()) + "_" +
-                                     testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  fs::path dir_;
+  Hdf5Run() : TestDirectory("hdf5") {}
 };
 
 // Values chosen to catch any lossy conversion: 1/3, -0, a subnormal, the largest double.

@@ -21,6 +21,7 @@
 #include "io/input_error.hpp"
 #include "io/measured_run.hpp"
 #include "io/measurement_csv.hpp"
+#include "tests/support/test_directory.hpp"
 
 namespace fs = std::filesystem;
 using shudder::dynamics::Recording;
@@ -37,17 +38,9 @@ using testing::ThrowsMessage;
 
 namespace {
 
-class MeasuredRunTest : public testing::Test {
+class MeasuredRunTest : public shudder::test::TestDirectory {
  protected:
-  void SetUp() override {
-    dir_ =
-        fs::temp_directory_path() / ("shudder_mrun_" + std::to_string(::getpid()) + "_" +
-                                     testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  MeasuredRunTest() : TestDirectory("mrun") {}
 
   // Writes `text` byte for byte to `name` and returns the path.
   std::string file(const std::string& name, const std::string& text) const {
@@ -73,8 +66,6 @@ class MeasuredRunTest : public testing::Test {
                 ThrowsMessage<InputError>(
                     AllOf(HasSubstr(p + ": key '" + key + "'"), HasSubstr(reason))));
   }
-
-  fs::path dir_;
 };
 
 // The FORMATS.md example with `n` rows; `meta` and `header` replace the defaults.

@@ -15,6 +15,7 @@
 
 #include "io/input_error.hpp"
 #include "io/measurement_csv.hpp"
+#include "tests/support/test_directory.hpp"
 
 namespace fs = std::filesystem;
 using shudder::dynamics::Recording;
@@ -26,18 +27,9 @@ using testing::ThrowsMessage;
 
 namespace {
 
-class MeasurementCsv : public testing::Test {
+class MeasurementCsv : public shudder::test::TestDirectory {
  protected:
-  void SetUp() override {
-    dir_ =
-        fs::temp_directory_path() / ("shudder_csv_" + std::to_string(::getpid()) + "_" +
-                                     testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  fs::path dir_;
+  MeasurementCsv() : TestDirectory("csv") {}
 };
 
 // A written file split into metadata lines, header and numeric rows.

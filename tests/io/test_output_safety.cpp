@@ -13,6 +13,7 @@
 #include "io/hdf5_run.hpp"
 #include "io/input_error.hpp"
 #include "io/output_safety.hpp"
+#include "tests/support/test_directory.hpp"
 
 namespace fs = std::filesystem;
 using shudder::io::InputError;
@@ -23,18 +24,10 @@ using ::testing::ThrowsMessage;
 
 namespace {
 
-class OutputSafety : public testing::Test {
+class OutputSafety : public shudder::test::TestDirectory {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("shudder_outsafe_" + std::to_string(::getpid()) + "_" +
-                                        testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  OutputSafety() : TestDirectory("outsafe") {}
   void touch(const std::string& name) const { std::ofstream(dir_ / name) << "x"; }
-  fs::path dir_;
 };
 
 // A pid no process can have: above the kernel's pid_max.

@@ -12,6 +12,7 @@
 #include "io/fluid_loader.hpp"
 #include "rig_models/fluid_screening.hpp"
 #include "rig_models/inverse_characterisation.hpp"
+#include "tests/support/characterisation_errors.hpp"
 #include "tests/support/ramp_runs.hpp"
 
 namespace {
@@ -21,15 +22,6 @@ using analysis::Characterisation;
 using analysis::CharacterisationSettings;
 using analysis::Compensation;
 using analysis::LawKind;
-
-// Max over rows and the node speeds of |mu_fit / mu_true − 1| at the row's (T, F).
-double max_error(const Characterisation& c, const clutch::FrictionLaw& truth) {
-  double e = 0.0;
-  for (const auto& row : c.rows)
-    for (double v : c.node_speeds_mm_s)
-      e = std::max(e, std::abs(c.law->mu(v, row.temp_C, row.load_N) / truth.mu(v, row.temp_C, row.load_N) - 1.0));
-  return e;
-}
 
 std::vector<rig_models::ReplayInputs> replay_inputs(const std::vector<analysis::RampRun>& runs) {
   std::vector<rig_models::ReplayInputs> in;
@@ -67,26 +59,6 @@ struct Set {
   clutch::Fluid truth;
 };
 
-// Max |mu_fit/mu_true − 1| where the ramps passed: at each node speed a used ramp crosses, at the
-// data model's mean interface temperature there (within the law's rows) and the run's load.
-double max_error_where_passed(const Characterisation& c, const clutch::FrictionLaw& truth, const Set& set) {
-  double e = 0.0;
-  for (const auto& ramp : c.used)
-    for (std::size_t k = 0; k < c.node_rpm.size(); ++k) {
-      double t = 0.0;
-      int n = 0;
-      for (std::size_t i = ramp.first; i <= ramp.last; ++i)
-        if (std::abs(set.runs[ramp.run].speed_rpm[i] - c.node_rpm[k]) <= 0.05 * c.node_rpm[k]) {
-          t += set.interface_C[ramp.run][i];
-          ++n;
-        }
-      if (n == 0 || t / n > c.temps_C.back() || t / n < c.temps_C.front()) continue;
-      const double v = c.node_speeds_mm_s[k];
-      e = std::max(e, std::abs(c.law->mu(v, t / n, ramp.load_N) / truth.mu(v, t / n, ramp.load_N) - 1.0));
-    }
-  return e;
-}
-
 // 10, 15, 20 kN x 5 start temperatures, Paper D cycles (10 s ramps), 50 S/s, sensor noise.
 Set round_trip(const std::string& fluid_file, std::vector<double> temps_C) {
   Set s;
@@ -111,9 +83,9 @@ TEST(InverseCharacterisation, FluidCMatrixRecoversTheOilFlowAndTheLaw) {
   is.model.clutch.thermal.oil_flow.e = 0.03;  // the data were made with 0.016 (Paper G defaults)
   const auto r = rig_models::characterise_inverse(set.runs, replay_inputs(set.runs),
                                                   settings(LawKind::kTable, Compensation::kPiecewise), "temp_C", is);
-  const double es = max_error(r.sensor, *set.truth.friction), ei = max_error(r.inverse, *set.truth.friction);
-  const double ps = max_error_where_passed(r.sensor, *set.truth.friction, set),
-               pi = max_error_where_passed(r.inverse, *set.truth.friction, set);
+  const double es = test::max_error_at_rows(r.sensor, *set.truth.friction), ei = test::max_error_at_rows(r.inverse, *set.truth.friction);
+  const double ps = test::max_error_where_passed(r.sensor, *set.truth.friction, set.runs, set.interface_C),
+               pi = test::max_error_where_passed(r.inverse, *set.truth.friction, set.runs, set.interface_C);
   std::printf("[ figures  ] fluid C matrix, piecewise + table: max |mu/mu_true - 1| where the ramps passed: sensor %.4f, "
               "inverse %.4f\n", ps, pi);
   std::printf("[ figures  ] fluid C matrix, piecewise + table: max |mu/mu_true - 1| at the rows: sensor %.4f, inverse %.4f; "
@@ -168,7 +140,7 @@ TEST(InverseCharacterisation, PaperELinearLawWithinOnePercent) {
   const Set set = round_trip("paper_e_fluid_c.toml", {30.0, 45.0, 60.0, 75.0, 90.0});
   const auto r = rig_models::characterise_inverse(set.runs, replay_inputs(set.runs), settings(LawKind::kLinear),
                                                   "temp_C", inverse_settings(set.truth));
-  const double es = max_error(r.sensor, *set.truth.friction), ei = max_error(r.inverse, *set.truth.friction);
+  const double es = test::max_error_at_rows(r.sensor, *set.truth.friction), ei = test::max_error_at_rows(r.inverse, *set.truth.friction);
   std::printf("[ figures  ] Paper E fluid C linear law: sensor %.4f, inverse %.4f; %d updates, %d replays; e %.4g a %.3g\n",
               es, ei, r.iterations, r.replays, r.oil_flow.e, r.oil_flow.a);
   EXPECT_LT(ei, 0.01);
@@ -179,20 +151,14 @@ TEST(InverseCharacterisation, PaperELinearLawWithinOnePercent) {
 // lag-free sensor, calibrating the oil flow on the lagging thermocouple. The 2 %.
 TEST(InverseCharacterisation, OtherThermalModelWithinTwoPercent) {
   const clutch::Fluid truth = io::load_fluid(SHUDDER_SOURCE_DIR "/scenarios/fluids/paper_e_fluid_c.toml");
-  const auto vary = [](clutch::WetClutchParams& p) {
-    p.thermal.radial_cells = 40;
-    p.thermal.oil_flow.a = 0.002;
-    p.thermal.oil_flow.e = 0.010;
-    p.thermal.temperature_sensor_lag = true;
-    p.thermal.sensor_time_constant_s = 0.5;
-  };
   std::vector<analysis::RampRun> runs;
   unsigned seed = 700;
   for (double t0 : {30.0, 45.0, 60.0, 75.0, 90.0})
-    runs.push_back(test::simulated_ramp_run(truth, test::paper_d_cycle(20000.0), t0, seed++, 50.0, "temp_C", vary));
+    runs.push_back(test::simulated_ramp_run(truth, test::paper_d_cycle(20000.0), t0, seed++, 50.0, "temp_C",
+                                            test::other_thermal_model));
   const auto r = rig_models::characterise_inverse(runs, replay_inputs(runs), settings(LawKind::kLinear), "temp_C",
                                                   inverse_settings(truth));
-  const double es = max_error(r.sensor, *truth.friction), ei = max_error(r.inverse, *truth.friction);
+  const double es = test::max_error_at_rows(r.sensor, *truth.friction), ei = test::max_error_at_rows(r.inverse, *truth.friction);
   std::printf("[ figures  ] other thermal model: sensor %.4f, inverse %.4f; oil flow e %.4g a %.3g (data: 0.010, 0.002); "
               "temp rms %.3f -> %.3f C\n", es, ei, r.oil_flow.e, r.oil_flow.a, r.temp_rms_start_C, r.temp_rms_C);
   EXPECT_LT(ei, 0.02);

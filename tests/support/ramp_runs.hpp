@@ -35,6 +35,18 @@ inline rig_models::DriveCycle paper_e_cycle(double load_N, int ramps = 5) {
   return {rig_models::PiecewiseLinear(t, w), rig_models::PiecewiseLinear({0.0}, {load_N})};
 }
 
+/// Another thermal model than the one the characterisations replay or compensate with, as a
+/// `vary` for simulated_ramp_run: twice the radial cells (40 against 20), an oil flow through the
+/// contact that grows with slip (fraction e 0.010 + a 0.002 (Δω + 1): 0.4 % more flow per 2 rad/s;
+/// the shipped calibration has a = 0) and a thermocouple lagging the disc by 0.5 s.
+inline void other_thermal_model(clutch::WetClutchParams& p) {
+  p.thermal.radial_cells = 40;
+  p.thermal.oil_flow.a = 0.002;
+  p.thermal.oil_flow.e = 0.010;
+  p.thermal.temperature_sensor_lag = true;
+  p.thermal.sensor_time_constant_s = 0.5;
+}
+
 /// One simulated run of `cycle` from `start_temp_C` (discs and sump), sampled at `rate_Hz` with
 /// sensor noise (seed), as the characterisation reads it. `temp_channel` may also name a model
 /// signal the measured run does not carry; `interface_mean_C` (if given) gets the model's
