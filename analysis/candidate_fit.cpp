@@ -11,6 +11,10 @@
 
 namespace shudder::analysis {
 
+double needed_gain(const DiagnosisOptions& o, std::size_t members, std::size_t parameters, double s) {
+  return (o.min_gain * static_cast<double>(members) + o.penalty_per_parameter * static_cast<double>(parameters)) * s;
+}
+
 Predictions CandidateFitter::predict(const Config& config, const std::vector<std::size_t>& which,
                                      unsigned jobs) const {
   Predictions out(runs_.size());
@@ -168,10 +172,10 @@ void CandidateFitter::score_outcome(CandidateOutcome& o, std::size_t members, co
   o.score.holdout_misfit = misfit_.misfit(misfit_.holdout(), o.predictions);
   const double j_ref = misfit_.misfit(misfit_.holdout(), current);
   const double s = std::max(1.0, j_ref);
-  // Each member beyond the first pays min_gain · s, the gain it would need as an effect of its
-  // own (effect_selection.cpp "joint step"), so a joint candidate and a single compare by score.
-  o.score.score = o.score.holdout_misfit + opt_.penalty_per_parameter * static_cast<double>(k) * s +
-                  opt_.min_gain * static_cast<double>(members - 1) * s;
+  // The threshold but for the first member's min_gain · s, which the gain must reach
+  // (rejection): each member beyond the first pays the gain it would need as an effect of its
+  // own, so a joint candidate and a single compare by score (needed_gain).
+  o.score.score = o.score.holdout_misfit + needed_gain(opt_, members - 1, k, s);
   o.score.gain = j_ref - o.score.score;
   o.score.signature_correlation = signature_correlation(current, o.predictions);
   o.score.rejection = rejection(own, o.score, s);
@@ -181,13 +185,14 @@ void CandidateFitter::score_outcome(CandidateOutcome& o, std::size_t members, co
 // The acceptance tests beyond the score (DiagnosisOptions): a parameter pinned at a bound
 // says the effect's shape does not fit and it is only being stretched to absorb something
 // else; a change that does not follow the residual is not what is missing; and a gain below
-// min_gain · s is within what a flexible term finds in any systematic gap.
+// min_gain · s (the rest of the threshold is in the score) is within what a flexible term finds
+// in any systematic gap.
 std::string CandidateFitter::rejection(const Config& members, const CandidateScore& score, double s) const {
   for (const auto& e : members)
     if (const std::string name = parameter_at_bound(candidate(e.effect), e.values); !name.empty())
       return name + " at its bound";
   if (score.signature_correlation < opt_.min_signature) return "signature does not follow the residual";
-  if (score.gain < opt_.min_gain * s) return "gain too small";
+  if (score.gain < needed_gain(opt_, 1, 0, s)) return "gain too small";
   return {};
 }
 

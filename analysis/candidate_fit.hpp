@@ -19,6 +19,23 @@ namespace shudder::analysis {
 /// The effects added to the baseline, each with its parameter values.
 using Config = std::vector<EffectSetting>;
 
+/// The acceptance threshold of the greedy search and its backward check: the held-out misfit
+/// drop a unit of `members` effects (one, or a joint step's pair) with `parameters` fitted
+/// parameters in all must show to be added, and that taking it out again must cost for it to
+/// stay (effect_selection.cpp):
+///
+///   needed = (min_gain · members + penalty_per_parameter · parameters) · s,  s = max(1, J_ref)
+///
+/// Derivation (docs/diagnosis.md "Fair selection", "Joint step"): an effect must gain min_gain
+/// on its own, since less is what any flexible term shaves off a systematic gap; that share
+/// grows with the gap, hence × s (at the noise, J ≈ 1, the threshold is absolute). Each free
+/// parameter buys some fit of anything (the AIC idea), so it pays penalty_per_parameter on top.
+/// A pair counts as two effects, each paying its own min_gain, and only the parameters it fits.
+/// A candidate's score carries all of this but one min_gain · s (needed_gain(o, members − 1,
+/// parameters, s)), which its gain J_ref − score must then reach (needed_gain(o, 1, 0, s)): so
+/// singles and pairs compare by score, and a candidate passes iff J_ref − J_holdout ≥ needed.
+double needed_gain(const DiagnosisOptions& options, std::size_t members, std::size_t parameters, double s);
+
 struct CandidateOutcome {
   CandidateScore score;
   Config config;            // the effects added so far, refitted with it, plus it (last)

@@ -95,7 +95,8 @@ struct DiagnosisOptions {
   double noise_tolerance = 1.1;       // "within noise": every signal's RMS <= this × its error scale
   // Acceptance of a candidate (docs/diagnosis.md "Fair selection"), s = max(1, J_ref) with
   // J_ref the hold-out misfit of the earlier effects refitted alone on the same fit set:
-  //   score = J_holdout + penalty_per_parameter · k · s,  gain = J_ref − score >= min_gain · s,
+  //   score = J_holdout + penalty_per_parameter · k · s,  gain = J_ref − score >= min_gain · s
+  //   (a joint pair pays min_gain · s more; analysis/candidate_fit.hpp needed_gain),
   //   every own parameter interior (log-distance to each bound >= bound_margin of the log range),
   //   signature r >= min_signature.
   double min_gain = 0.02;             // hold-out misfit drop needed (noise variance units, × s)
