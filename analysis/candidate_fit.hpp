@@ -57,8 +57,8 @@ class CandidateFitter {
   /// A joint candidate (effect_selection.cpp "joint step"): the last `members` effects of
   /// `start` switched on together on top of the others (the effects added so far); every
   /// parameter of `start` is fitted from its value there. `at_start` holds the predictions of
-  /// the fit and hold-out runs at `start` (the screen's): the solver's first evaluation reuses
-  /// them. Scored as fit_candidate, plus min_gain · s per member beyond the first.
+  /// the fit runs at `start` (the screen's): the solver's first evaluation reuses them. Scored
+  /// as fit_candidate, plus min_gain · s per member beyond the first.
   CandidateOutcome fit_joint(const Config& start, std::size_t members, const Predictions& at_start,
                              const Predictions& current) const;
   /// Refits the effects of `fold` alone on the fit set from their values (the fair reference of
