@@ -85,8 +85,12 @@ std::optional<Config> CandidateFitter::fit_config(const FlatConfig& flat, std::v
   double best_cost = std::numeric_limits<double>::infinity();
   std::vector<double> best_values;
   Predictions best;
+  // `evaluations` counts the simulations of the set's runs the fit makes: not the solver's own
+  // count, which includes its replay of the best start and the reused `at_start`.
   problem.evaluate = [&](const std::vector<double>& v, Eigen::VectorXd& r) {
-    Predictions p = at_start && v == flat.values ? *at_start : predict(flat.with(v), runs, jobs);
+    const bool reuse = at_start && v == flat.values;
+    if (!reuse) ++evaluations;
+    Predictions p = reuse ? *at_start : predict(flat.with(v), runs, jobs);
     const bool ok = misfit_.residual_vector(set, p, r);
     if (ok && r.squaredNorm() < best_cost) {
       best_cost = r.squaredNorm();
@@ -96,7 +100,6 @@ std::optional<Config> CandidateFitter::fit_config(const FlatConfig& flat, std::v
     return ok;
   };
   const LogParameterFit fit = fit_log_parameters(problem);
-  evaluations += fit.evaluations;
   if (!fit.feasible) return std::nullopt;
   if (fit.values == best_values) at_best = std::move(best);
   return flat.with(fit.values);
@@ -127,7 +130,6 @@ CandidateOutcome CandidateFitter::fit_candidate(const EffectCandidate& c, const 
     }
     o.config = *fitted;
     o.predictions = complete(o.config, std::move(at_best), union_runs(misfit_.fit(), misfit_.holdout()), 1);
-    ++o.score.evaluations;
   } catch (const std::exception& e) {
     o.score.failure = e.what();
     return o;

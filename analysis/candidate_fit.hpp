@@ -87,6 +87,7 @@ class CandidateFitter {
   };
   FlatConfig flatten(const Config& config) const;
   /// Least squares on `set` from the starts; nullopt when no start could be simulated.
+  /// `evaluations` grows by the simulations of the set's runs made (CandidateScore).
   /// `at_best` gets the predictions of the set's runs at the returned values (simulated
   /// during the fit: they are not simulated again). `at_start`, if given, holds the
   /// predictions at flat.values (used instead of simulating that point).

@@ -192,7 +192,9 @@ struct CandidateScore {
   double score = 0.0;           // holdout_misfit + penalty × parameters (+ min_gain × extra members)
   double gain = 0.0;            // current hold-out J − score
   double signature_correlation = 0.0;  // r(current residual, change this effect makes)
-  int evaluations = 0;          // model evaluations used by the fit
+  // Simulations of every fit run the fit made (the solver's start replay and, for a joint
+  // candidate, its screen not counted); the hold-out runs are then simulated once more.
+  int evaluations = 0;
   std::string failure;          // non-empty if every simulation failed
   // Why the candidate may not be added although fitted (empty: it may): a parameter at its
   // bound, a signature that does not follow the residual, or a gain below the needed one.

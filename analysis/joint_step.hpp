@@ -15,7 +15,8 @@
 // pair with the lowest fit-set misfit there is fitted (all parameters of the added effects and
 // of the members jointly, as a single candidate is), and the fit reuses the screen's
 // simulations at its start. So a round costs (pairs × fit runs) simulations and one fit more:
-// (evaluations − 1) × fit runs, then the hold-out runs once at the fitted values.
+// its evaluations × fit runs (CandidateScore::evaluations), then the hold-out runs once at the
+// fitted values.
 //
 // Acceptance (analysis/candidate_fit.hpp): the pair is scored like a single candidate, plus
 // min_gain · s for its second member: score = J_holdout + penalty · k · s + min_gain · s, gain

@@ -1,5 +1,7 @@
-// What the joint step simulates, counted per run on a fake model (analysis/joint_step.hpp
-// "Cost"): the screen simulates the fit runs only, the hold-out run once for the chosen pair.
+// What the diagnosis' fits simulate, counted per run on a fake model (analysis/joint_step.hpp
+// "Cost", analysis/candidate_fit.hpp): the counts follow from the fits' own `evaluations`
+// (each one simulation of every fit run, counted alike for single and joint candidates) in
+// closed form, so every simulation is accounted for.
 //
 //   three runs at "load" L = 10, 25 (fit) and 15 (held out), 5 s at 100 Hz
 //   baseline   torque = 100 N m, temp = 20 °C + 1 K/s · t
@@ -7,8 +9,9 @@
 //   idle       a switch that changes nothing; gain: torque × g (one parameter)
 //   measured   warm and load on, torque × 1.01, with noise
 //
-//   joint step:        each fit run pairs times in the screen, then in the fit; the hold-out
-//                      run once, at the chosen pair's fitted values
+//   single candidate:  each fit run evaluations times, the hold-out run once (at the fitted values)
+//   joint step:        each fit run pairs + evaluations times (the screen, then the fit,
+//                      which starts from the chosen pair's screen), the hold-out run once
 #include <gtest/gtest.h>
 
 #include <array>
@@ -100,6 +103,16 @@ TEST(DiagnosisCost, TheSplitHoldsOutTheLastRun) {
   EXPECT_EQ(c.misfit.holdout().runs(), std::vector<std::size_t>{2});
 }
 
+TEST(DiagnosisCost, ASingleCandidateSimulatesEachFitRunOncePerEvaluationAndTheHoldOutOnce) {
+  Counted c;
+  const CandidateOutcome o = c.fitter.fit_candidate(c.cands[0], {}, c.uncounted({}));
+  ASSERT_TRUE(o.ok) << o.score.failure;
+  ASSERT_GT(o.score.evaluations, 1);
+  EXPECT_EQ(c.count[0], o.score.evaluations);
+  EXPECT_EQ(c.count[1], o.score.evaluations);
+  EXPECT_EQ(c.count[2], 1);
+}
+
 TEST(DiagnosisCost, TheJointScreenSimulatesOnlyTheFitRuns) {
   Counted c;
   // The gain already added (its parameter is refitted with the pair, so the fit evaluates more
@@ -110,9 +123,10 @@ TEST(DiagnosisCost, TheJointScreenSimulatesOnlyTheFitRuns) {
   ASSERT_TRUE(pair && pair->ok);
   EXPECT_EQ(pair->score.effect, "warm");  // the pair that closes the gap ranks first
   EXPECT_EQ(pair->score.joint_with, std::vector<std::string>{"load"});
-  const int pairs = 3;
-  EXPECT_GT(c.count[0], pairs);  // the screen, then the fit's evaluations
-  EXPECT_EQ(c.count[1], c.count[0]);
+  const int pairs = 3, evaluations = pair->score.evaluations;
+  ASSERT_GT(evaluations, 1);
+  EXPECT_EQ(c.count[0], pairs + evaluations);
+  EXPECT_EQ(c.count[1], pairs + evaluations);
   EXPECT_EQ(c.count[2], 1);  // the chosen pair's hold-out, at its fitted values; no pair's screen
 }
 
