@@ -2,13 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
 #include <regex>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 
-#include "analysis/noise_estimate.hpp"
 #include "core/units.hpp"
 #include "dynamics/signal_names.hpp"
 #include "rig_models/speed_setpoint.hpp"
@@ -241,14 +239,7 @@ analysis::Reproducer replay_reproducer(ReplayModel model, std::vector<ReplayInpu
     in.temp_C = pseudo.temp_C;
     if (!in.torque_Nm.empty()) in.torque_Nm = pseudo.torque_Nm;
     if (!in.sump_temp_C.empty()) in.sump_temp_C = pseudo.sump_temp_C;
-    // A coupling's pack turns clamp-force noise into torque n_interfaces times as strongly as
-    // the rig's single disc (16 x: 37.5 N of load-cell noise reads ~3 N m), so its replay error
-    // counts it: the force gets fresh noise of the sigma the measured force shows.
-    if (const double sigma_N = model.kind == ModelKind::kDriveline ? analysis::estimate_noise_sigma(in.normal_force_N) : 0.0; sigma_N > 0) {
-      std::mt19937_64 rng(2000 + run);
-      std::normal_distribution<double> unit(0.0, sigma_N);
-      for (double& f : in.normal_force_N) f = std::max(0.0, f + unit(rng));
-    }
+    in.normal_force_N = pseudo.normal_force_N;  // with its own noise (analysis/diagnosis.cpp pseudo_run)
     ReplayOutput o = replay(model, in);
     return analysis::Prediction{std::move(o.torque_Nm), std::move(o.temp_C), std::move(o.sump_temp_C),
                                 std::move(o.ir_temp_C), std::move(o.speed_rpm)};
