@@ -17,8 +17,8 @@ namespace {
 // in round 1; the load gain, which also moves the heat, comes later and makes it redundant).
 // So each added effect is taken out in turn and the others refitted alone on the fit set. It is
 // expendable when that costs less held-out misfit than it would need to be added now
-// (needed_gain: (min_gain + penalty·k)·s, the forward test's threshold): the criterion cannot tell the model
-// with it from the model without it.
+// (needed_gain: (min_gain + penalty·k)·s, the forward test's threshold): the criterion cannot
+// tell the model with it from the model without it.
 //
 // Tie rule. Expendable does not mean wrong: on some data two effects explain the same gap (oil
 // cooling to a held sump, q ∝ T − T_sump, and a large rig heat sink at T_rig ≈ const). The
