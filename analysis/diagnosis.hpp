@@ -193,7 +193,8 @@ struct CandidateScore {
   double gain = 0.0;            // current hold-out J − score
   double signature_correlation = 0.0;  // r(current residual, change this effect makes)
   // Simulations of every fit run the fit made (the solver's start replay and, for a joint
-  // candidate, its screen not counted); the hold-out runs are then simulated once more.
+  // candidate, its screen not counted); the runs not yet simulated at the fitted values (the
+  // hold-out; all for a switch with nothing to fit: 0 evaluations) are then simulated once.
   int evaluations = 0;
   std::string failure;          // non-empty if every simulation failed
   // Why the candidate may not be added although fitted (empty: it may): a parameter at its
