@@ -9,7 +9,8 @@
 //   idle       a switch that changes nothing; gain: torque × g (one parameter)
 //   measured   warm and load on, torque × 1.01, with noise
 //
-//   single candidate:  each fit run evaluations times, the hold-out run once (at the fitted values)
+//   single candidate:  each fit run evaluations times, the hold-out run once (at the fitted values);
+//                      a switch with nothing to fit: 0 evaluations, every run once
 //   joint step:        each fit run pairs + evaluations times (the screen, then the fit,
 //                      which starts from the chosen pair's screen), the hold-out run once
 #include <gtest/gtest.h>
@@ -110,6 +111,16 @@ TEST(DiagnosisCost, ASingleCandidateSimulatesEachFitRunOncePerEvaluationAndTheHo
   ASSERT_GT(o.score.evaluations, 1);
   EXPECT_EQ(c.count[0], o.score.evaluations);
   EXPECT_EQ(c.count[1], o.score.evaluations);
+  EXPECT_EQ(c.count[2], 1);
+}
+
+TEST(DiagnosisCost, ASwitchWithNothingToFitCountsNoEvaluationsAndSimulatesEachRunOnce) {
+  Counted c;
+  const CandidateOutcome o = c.fitter.fit_candidate(c.cands[1], {}, c.uncounted({}));
+  ASSERT_TRUE(o.ok) << o.score.failure;
+  EXPECT_EQ(o.score.evaluations, 0);
+  EXPECT_EQ(c.count[0], 1);
+  EXPECT_EQ(c.count[1], 1);
   EXPECT_EQ(c.count[2], 1);
 }
 
