@@ -11,6 +11,10 @@
 
 namespace shudder::analysis {
 
+double needed_gain(const DiagnosisOptions& o, std::size_t members, std::size_t parameters, double s) {
+  return (o.min_gain * static_cast<double>(members) + o.penalty_per_parameter * static_cast<double>(parameters)) * s;
+}
+
 Predictions CandidateFitter::predict(const Config& config, const std::vector<std::size_t>& which,
                                      unsigned jobs) const {
   Predictions out(runs_.size());
@@ -81,8 +85,12 @@ std::optional<Config> CandidateFitter::fit_config(const FlatConfig& flat, std::v
   double best_cost = std::numeric_limits<double>::infinity();
   std::vector<double> best_values;
   Predictions best;
+  // `evaluations` counts the simulations of the set's runs the fit makes: not the solver's own
+  // count, which includes its replay of the best start and the reused `at_start`.
   problem.evaluate = [&](const std::vector<double>& v, Eigen::VectorXd& r) {
-    Predictions p = at_start && v == flat.values ? *at_start : predict(flat.with(v), runs, jobs);
+    const bool reuse = at_start && v == flat.values;
+    if (!reuse) ++evaluations;
+    Predictions p = reuse ? *at_start : predict(flat.with(v), runs, jobs);
     const bool ok = misfit_.residual_vector(set, p, r);
     if (ok && r.squaredNorm() < best_cost) {
       best_cost = r.squaredNorm();
@@ -92,7 +100,6 @@ std::optional<Config> CandidateFitter::fit_config(const FlatConfig& flat, std::v
     return ok;
   };
   const LogParameterFit fit = fit_log_parameters(problem);
-  evaluations += fit.evaluations;
   if (!fit.feasible) return std::nullopt;
   if (fit.values == best_values) at_best = std::move(best);
   return flat.with(fit.values);
@@ -123,7 +130,6 @@ CandidateOutcome CandidateFitter::fit_candidate(const EffectCandidate& c, const 
     }
     o.config = *fitted;
     o.predictions = complete(o.config, std::move(at_best), union_runs(misfit_.fit(), misfit_.holdout()), 1);
-    ++o.score.evaluations;
   } catch (const std::exception& e) {
     o.score.failure = e.what();
     return o;
@@ -168,10 +174,10 @@ void CandidateFitter::score_outcome(CandidateOutcome& o, std::size_t members, co
   o.score.holdout_misfit = misfit_.misfit(misfit_.holdout(), o.predictions);
   const double j_ref = misfit_.misfit(misfit_.holdout(), current);
   const double s = std::max(1.0, j_ref);
-  // Each member beyond the first pays min_gain · s, the gain it would need as an effect of its
-  // own (effect_selection.cpp "joint step"), so a joint candidate and a single compare by score.
-  o.score.score = o.score.holdout_misfit + opt_.penalty_per_parameter * static_cast<double>(k) * s +
-                  opt_.min_gain * static_cast<double>(members - 1) * s;
+  // The threshold but for the first member's min_gain · s, which the gain must reach
+  // (rejection): each member beyond the first pays the gain it would need as an effect of its
+  // own, so a joint candidate and a single compare by score (needed_gain).
+  o.score.score = o.score.holdout_misfit + needed_gain(opt_, members - 1, k, s);
   o.score.gain = j_ref - o.score.score;
   o.score.signature_correlation = signature_correlation(current, o.predictions);
   o.score.rejection = rejection(own, o.score, s);
@@ -181,13 +187,14 @@ void CandidateFitter::score_outcome(CandidateOutcome& o, std::size_t members, co
 // The acceptance tests beyond the score (DiagnosisOptions): a parameter pinned at a bound
 // says the effect's shape does not fit and it is only being stretched to absorb something
 // else; a change that does not follow the residual is not what is missing; and a gain below
-// min_gain · s is within what a flexible term finds in any systematic gap.
+// min_gain · s (the rest of the threshold is in the score) is within what a flexible term finds
+// in any systematic gap.
 std::string CandidateFitter::rejection(const Config& members, const CandidateScore& score, double s) const {
   for (const auto& e : members)
     if (const std::string name = parameter_at_bound(candidate(e.effect), e.values); !name.empty())
       return name + " at its bound";
   if (score.signature_correlation < opt_.min_signature) return "signature does not follow the residual";
-  if (score.gain < opt_.min_gain * s) return "gain too small";
+  if (score.gain < needed_gain(opt_, 1, 0, s)) return "gain too small";
   return {};
 }
 

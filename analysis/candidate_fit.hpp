@@ -19,6 +19,23 @@ namespace shudder::analysis {
 /// The effects added to the baseline, each with its parameter values.
 using Config = std::vector<EffectSetting>;
 
+/// The acceptance threshold of the greedy search and its backward check: the held-out misfit
+/// drop a unit of `members` effects (one, or a joint step's pair) with `parameters` fitted
+/// parameters in all must show to be added, and that taking it out again must cost for it to
+/// stay (effect_selection.cpp):
+///
+///   needed = (min_gain · members + penalty_per_parameter · parameters) · s,  s = max(1, J_ref)
+///
+/// Derivation (docs/diagnosis.md "Fair selection", "Joint step"): an effect must gain min_gain
+/// on its own, since less is what any flexible term shaves off a systematic gap; that share
+/// grows with the gap, hence × s (at the noise, J ≈ 1, the threshold is absolute). Each free
+/// parameter buys some fit of anything (the AIC idea), so it pays penalty_per_parameter on top.
+/// A pair counts as two effects, each paying its own min_gain, and only the parameters it fits.
+/// A candidate's score carries all of this but one min_gain · s (needed_gain(o, members − 1,
+/// parameters, s)), which its gain J_ref − score must then reach (needed_gain(o, 1, 0, s)): so
+/// singles and pairs compare by score, and a candidate passes iff J_ref − J_holdout ≥ needed.
+double needed_gain(const DiagnosisOptions& options, std::size_t members, std::size_t parameters, double s);
+
 struct CandidateOutcome {
   CandidateScore score;
   Config config;            // the effects added so far, refitted with it, plus it (last)
@@ -40,8 +57,8 @@ class CandidateFitter {
   /// A joint candidate (effect_selection.cpp "joint step"): the last `members` effects of
   /// `start` switched on together on top of the others (the effects added so far); every
   /// parameter of `start` is fitted from its value there. `at_start` holds the predictions of
-  /// the fit and hold-out runs at `start` (the screen's): the solver's first evaluation reuses
-  /// them. Scored as fit_candidate, plus min_gain · s per member beyond the first.
+  /// the fit runs at `start` (the screen's): the solver's first evaluation reuses them. Scored
+  /// as fit_candidate, plus min_gain · s per member beyond the first.
   CandidateOutcome fit_joint(const Config& start, std::size_t members, const Predictions& at_start,
                              const Predictions& current) const;
   /// Refits the effects of `fold` alone on the fit set from their values (the fair reference of
@@ -70,6 +87,7 @@ class CandidateFitter {
   };
   FlatConfig flatten(const Config& config) const;
   /// Least squares on `set` from the starts; nullopt when no start could be simulated.
+  /// `evaluations` grows by the simulations of the set's runs made (CandidateScore).
   /// `at_best` gets the predictions of the set's runs at the returned values (simulated
   /// during the fit: they are not simulated again). `at_start`, if given, holds the
   /// predictions at flat.values (used instead of simulating that point).

@@ -38,7 +38,8 @@ void check_inputs(const std::vector<DiagnosisRun>& runs, const std::vector<Effec
 
 // A run the baseline model made, as a sensor would have recorded it: its predicted torque,
 // temperatures and drive speed plus white noise of the sigmas the measured run shows (the
-// speed's and force's read off the measured columns alike). Seeded per run: reproducible.
+// speed's read off the measured column alike), and the measured clamp force with fresh noise
+// of the sigma it shows. Seeded per run: reproducible.
 DiagnosisRun pseudo_run(const DiagnosisRun& measured_run, const Prediction& p, const std::vector<double>& sigmas,
                         std::size_t k) {
   DiagnosisRun pseudo = measured_run;
@@ -57,6 +58,18 @@ DiagnosisRun pseudo_run(const DiagnosisRun& measured_run, const Prediction& p, c
     pseudo.ir_temp_C = noisy(p.ir_temp_C, sigmas[1]);
   const std::vector<double>& speed = p.speed_rpm.size() == p.torque_Nm.size() ? p.speed_rpm : measured_run.speed_rpm;
   pseudo.speed_rpm = noisy(speed, estimate_noise_sigma(measured_run.speed_rpm));
+  // The force is the replay's input, not the model's output: the measured one, which already
+  // carries the load cell's noise once, gets a second draw, so that the replays of the measured
+  // and the pseudo run differ by one force noise as the model and the clutch do. It matters
+  // most in a coupling, whose pack turns clamp-force noise into torque n_interfaces times as
+  // strongly as the rig's single disc (16 x: 37.5 N of load-cell noise reads ~3 N m); on the
+  // rig the replay's 0.05 s force windows average most of it away. Its own stream, so that the
+  // other channels' draws do not depend on it; clipped at 0 like the load cell's reading.
+  if (const double sigma_N = estimate_noise_sigma(measured_run.normal_force_N); sigma_N > 0) {
+    std::mt19937_64 force_rng(2000 + k);
+    std::normal_distribution<double> force_noise(0.0, sigma_N);
+    for (double& f : pseudo.normal_force_N) f = std::max(0.0, f + force_noise(force_rng));
+  }
   return pseudo;
 }
 

@@ -95,7 +95,8 @@ struct DiagnosisOptions {
   double noise_tolerance = 1.1;       // "within noise": every signal's RMS <= this × its error scale
   // Acceptance of a candidate (docs/diagnosis.md "Fair selection"), s = max(1, J_ref) with
   // J_ref the hold-out misfit of the earlier effects refitted alone on the same fit set:
-  //   score = J_holdout + penalty_per_parameter · k · s,  gain = J_ref − score >= min_gain · s,
+  //   score = J_holdout + penalty_per_parameter · k · s,  gain = J_ref − score >= min_gain · s
+  //   (a joint pair pays min_gain · s more; analysis/candidate_fit.hpp needed_gain),
   //   every own parameter interior (log-distance to each bound >= bound_margin of the log range),
   //   signature r >= min_signature.
   double min_gain = 0.02;             // hold-out misfit drop needed (noise variance units, × s)
@@ -191,7 +192,10 @@ struct CandidateScore {
   double score = 0.0;           // holdout_misfit + penalty × parameters (+ min_gain × extra members)
   double gain = 0.0;            // current hold-out J − score
   double signature_correlation = 0.0;  // r(current residual, change this effect makes)
-  int evaluations = 0;          // model evaluations used by the fit
+  // Simulations of every fit run the fit made (the solver's start replay and, for a joint
+  // candidate, its screen not counted); the runs not yet simulated at the fitted values (the
+  // hold-out; all for a switch with nothing to fit: 0 evaluations) are then simulated once.
+  int evaluations = 0;
   std::string failure;          // non-empty if every simulation failed
   // Why the candidate may not be added although fitted (empty: it may): a parameter at its
   // bound, a signature that does not follow the residual, or a gain below the needed one.

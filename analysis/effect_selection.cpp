@@ -17,8 +17,8 @@ namespace {
 // in round 1; the load gain, which also moves the heat, comes later and makes it redundant).
 // So each added effect is taken out in turn and the others refitted alone on the fit set. It is
 // expendable when that costs less held-out misfit than it would need to be added now
-// ((min_gain + penalty·k)·s, the forward test's threshold): the criterion cannot tell the model
-// with it from the model without it.
+// (needed_gain: (min_gain + penalty·k)·s, the forward test's threshold): the criterion cannot
+// tell the model with it from the model without it.
 //
 // Tie rule. Expendable does not mean wrong: on some data two effects explain the same gap (oil
 // cooling to a held sump, q ∝ T − T_sump, and a large rig heat sink at T_rig ≈ const). The
@@ -78,8 +78,7 @@ Removal try_removal(const Unit& u, const Config& fold, const Predictions& fold_p
   r.refit = fitter.refit_fold(without, r.predictions);
   for (std::size_t m = u.first; m < u.first + u.size; ++m) r.parameters += fold[m].values.size();
   r.cost = misfit.misfit(misfit.holdout(), r.predictions) - j_with;
-  r.needed = (opt.min_gain * static_cast<double>(u.size) +
-              opt.penalty_per_parameter * static_cast<double>(r.parameters)) * s;
+  r.needed = needed_gain(opt, u.size, r.parameters, s);
   r.finding.effect = fold[u.first].effect;
   for (std::size_t m = u.first + 1; m < u.first + u.size; ++m) r.finding.joint_with.push_back(fold[m].effect);
   r.finding.holdout_cost = r.cost;
@@ -252,16 +251,17 @@ Selection select_effects(const std::vector<DiagnosisRun>& runs, const std::vecto
       if (!chosen && o.ok && o.score.rejection.empty()) chosen = &o;
     if (!chosen) {
       const CandidateOutcome& best = outcomes.front();
-      const double k = static_cast<double>(best.score.parameters.size());
-      const double extra = static_cast<double>(best.score.joint_with.size());
+      const std::size_t k = best.score.parameters.size();
+      const std::size_t members = 1 + best.score.joint_with.size();
       const double s = std::max(1.0, misfit.misfit(misfit.holdout(), fold_pred));
       sel.last_round = scores;
       if (best.ok) {
         stop.kind = StopReason::Kind::kNoGain;
-        stop.needed_gain = (opt.min_gain * (1.0 + extra) + opt.penalty_per_parameter * k) * s;
+        stop.needed_gain = needed_gain(opt, members, k, s);
         stop.best_effect = best.score.effect;
         for (const auto& m : best.score.joint_with) stop.best_effect += " + " + m;
-        stop.best_gain = best.score.gain + (opt.penalty_per_parameter * k + opt.min_gain * extra) * s;
+        // Its own drop J_ref − J_holdout: the gain plus what the score charged (needed_gain).
+        stop.best_gain = best.score.gain + needed_gain(opt, members - 1, k, s);
         stop.best_rejection = best.score.rejection;
       } else {
         stop.kind = StopReason::Kind::kNoFit;

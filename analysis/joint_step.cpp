@@ -32,8 +32,9 @@ std::optional<CandidateOutcome> joint_candidate(const std::vector<const EffectCa
     }
   if (starts.empty()) return std::nullopt;
 
-  // Screen: every fit and hold-out run at each start (reused by the fit of the chosen pair).
-  const auto runs = union_runs(misfit.fit(), misfit.holdout());
+  // Screen: the fit runs at each start, which alone rank the pairs (reused by the fit of the
+  // chosen pair; its hold-out runs are simulated once, at its fitted values).
+  const auto runs = misfit.fit().runs();
   std::vector<Predictions> screened(starts.size());
   std::vector<double> fit_misfit(starts.size(), std::numeric_limits<double>::infinity());
   parallel_for(starts.size(), opt.jobs, [&](std::size_t i) {

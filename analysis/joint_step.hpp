@@ -10,11 +10,13 @@
 //   * each open switch with the round's best-scored single candidate (at its fitted values),
 //     when that candidate has parameters (a switch is already paired with the other switches).
 //
-// Cost: each pair is first screened by one simulation of every fit and hold-out run at its
-// start (the added effects' values, both members on); only the pair with the lowest fit-set
-// misfit there is fitted (all parameters of the added effects and of the members jointly, as a
-// single candidate is), and the fit reuses the screen's simulations at its start. So a round
-// costs (pairs × runs) simulations and one fit more.
+// Cost: each pair is first screened by one simulation of every fit run at its start (the added
+// effects' values, both members on; the hold-out runs would not change the ranking); only the
+// pair with the lowest fit-set misfit there is fitted (all parameters of the added effects and
+// of the members jointly, as a single candidate is), and the fit reuses the screen's
+// simulations at its start. So a round costs (pairs × fit runs) simulations and one fit more:
+// its evaluations × fit runs (CandidateScore::evaluations), then the hold-out runs once at the
+// fitted values.
 //
 // Acceptance (analysis/candidate_fit.hpp): the pair is scored like a single candidate, plus
 // min_gain · s for its second member: score = J_holdout + penalty · k · s + min_gain · s, gain

@@ -75,7 +75,7 @@ int diagnose_command(const DiagnoseOptions& opt) {
     const auto candidates = rig_models::replay_candidates(model, &skipped);
     analysis::DiagnosisOptions o;
     o.jobs = opt.jobs ? opt.jobs : std::max(1u, std::thread::hardware_concurrency());
-    o.torque_block_statistics = model.rig;
+    o.torque_block_statistics = model.kind == ModelKind::kRig;
     o.max_effects = opt.max_effects;
     o.tolerance = tolerance;
     const auto reproduce = rig_models::replay_reproducer(model, data.inputs);

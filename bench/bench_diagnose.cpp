@@ -134,7 +134,7 @@ void run_diagnosis(benchmark::State& state, const std::string& model_text, const
   const auto candidates = rig_models::replay_candidates(model, &skipped);
   analysis::DiagnosisOptions o;
   o.jobs = 2;
-  o.torque_block_statistics = model.rig;
+  o.torque_block_statistics = model.kind == ModelKind::kRig;
   o.max_effects = max_effects;
 
   analysis::DiagnosisResult r;

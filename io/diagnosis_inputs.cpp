@@ -101,7 +101,7 @@ DiagnosisData diagnosis_data(const std::vector<MeasuredRun>& runs) {
 DiagnosisData diagnosis_data(const std::vector<MeasuredRun>& runs, const rig_models::ReplayModel& model) {
   DiagnosisData d = read_runs(runs);
   if (d.rig.empty()) return d;
-  if (model.driveline) {
+  if (model.kind == ModelKind::kDriveline) {
     if (d.rig != rig_models::kCouplingRig)
       d.warnings.push_back("the runs come from rig '" + d.rig + "'; the model is a driveline's Haldex coupling ('" +
                            std::string(rig_models::kCouplingRig) + "')");

@@ -81,7 +81,7 @@ void check_plausibility(const std::vector<MeasuredRun>& runs, const rig_models::
                        "the run lasts " + fmt(run.duration_s()) + " s, shorter than 20 of the model's thermal steps (" +
                            fmt(min_s) + " s); give a longer run");
     // Half-overlapping blocks: a run of D s holds 2D/L − 1 of them; the jitter needs 5.
-    if (model.rig && run.duration_s() < 3.0 * statistics_block_s - 1e-9)
+    if (model.kind == ModelKind::kRig && run.duration_s() < 3.0 * statistics_block_s - 1e-9)
       warnings.push_back(run.path + ": the run lasts " + fmt(run.duration_s()) + " s, under 3 torque statistics blocks of " +
                          fmt(statistics_block_s) +
                          " s; the block jitter is not estimated and the torque scale is the noise alone");

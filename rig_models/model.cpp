@@ -74,7 +74,7 @@ CaseOutcome evaluate_case(const PrescribedSlipModel& model, const clutch::WetClu
 
 ReplayModel replay_model(const PrescribedSlipModel& model, const StickTimeFriction& stick_time) {
   ReplayModel m;
-  m.rig = false;
+  m.kind = ModelKind::kPrescribedSlip;
   m.settings = model.settings;
   m.rig_params.stick_time = stick_time;
   return m;
@@ -114,7 +114,7 @@ CaseOutcome evaluate_case(const RigModel& model, const clutch::WetClutch& clutch
 // The rig carries its own stick-time friction in params; the scenario's copy is the same.
 ReplayModel replay_model(const RigModel& model, const StickTimeFriction&) {
   ReplayModel m;
-  m.rig = true;
+  m.kind = ModelKind::kRig;
   m.settings.duration_s = model.settings.duration_s;
   m.settings.thermal_step_s = model.settings.thermal_step_s;
   m.settings.sample_rate_Hz = model.settings.sample_rate_Hz;
@@ -173,8 +173,7 @@ CaseOutcome evaluate_case(const DrivelineModel& model, const clutch::WetClutch& 
 // thermal step; the instrumented coupling's sensors as the prescribed-slip cells.
 ReplayModel replay_model(const DrivelineModel& model, const StickTimeFriction&) {
   ReplayModel m;
-  m.rig = false;
-  m.driveline = true;
+  m.kind = ModelKind::kDriveline;
   m.settings.duration_s = model.settings.duration_s;
   m.settings.thermal_step_s = model.settings.slow_step_s;
   m.settings.sample_rate_Hz = model.settings.sample_rate_Hz;

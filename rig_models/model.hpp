@@ -129,7 +129,7 @@ CaseOutcome evaluate_case(const DrivelineModel& model, const clutch::WetClutch& 
 /// The model a measured run is replayed on (rig_models/replay.hpp), without its clutch and
 /// fluid, which the caller sets. `stick_time` is the scenario's [effects.stick_time_static_friction]
 /// as read: a prescribed-slip model has no rig to hold it, but the candidate list must still
-/// know whether that effect is on. A driveline replays its coupling alone (ReplayModel::driveline).
+/// know whether that effect is on. A driveline replays its coupling alone (ReplayModel::kind kDriveline).
 ReplayModel replay_model(const PrescribedSlipModel& model, const StickTimeFriction& stick_time);
 ReplayModel replay_model(const RigModel& model, const StickTimeFriction& stick_time);
 ReplayModel replay_model(const DrivelineModel& model, const StickTimeFriction& stick_time);

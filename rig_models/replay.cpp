@@ -2,13 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
 #include <regex>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 
-#include "analysis/noise_estimate.hpp"
 #include "core/units.hpp"
 #include "dynamics/signal_names.hpp"
 #include "rig_models/speed_setpoint.hpp"
@@ -134,9 +132,9 @@ ReplayOutput replay(const ReplayModel& model, const ReplayInputs& in) {
   // A coupling's clamp force moves in steps of its hydraulic step (rig_models/haldex_driveline.hpp),
   // which the replay holds as the driveline does; 0.05 s windows joined linearly would smear the
   // take-up's step over 50 ms and every later step into a saw-tooth.
-  const double window_s = model.driveline ? model.settings.thermal_step_s : in.input_window_s;
+  const double window_s = model.kind == ModelKind::kDriveline ? model.settings.thermal_step_s : in.input_window_s;
   // On the rig the measured speed is the drive's; its loop's set point is what drives the model.
-  const bool setpoint = model.rig && in.torque_Nm.size() == t.size();
+  const bool setpoint = model.kind == ModelKind::kRig && in.torque_Nm.size() == t.size();
   RigParams rp = model.rig_params;
   rp.bearing_drag = model.settings.bearing_drag;
   cycle.slip_speed_rpm = window_means(
@@ -145,11 +143,11 @@ ReplayOutput replay(const ReplayModel& model, const ReplayInputs& in) {
   std::vector<double> force_N = in.normal_force_N;
   for (auto& f : force_N) f = model.settings.load_cell.true_N(f);
   cycle.normal_force_N =
-      model.driveline ? window_holds(t, force_N, t0, window_s) : window_means(t, force_N, t0, window_s);
+      model.kind == ModelKind::kDriveline ? window_holds(t, force_N, t0, window_s) : window_means(t, force_N, t0, window_s);
 
   dynamics::Recording rec;
   const double duration = t.back() - t0;
-  if (model.rig) {
+  if (model.kind == ModelKind::kRig) {
     RigSettings rs;
     rs.duration_s = duration;
     rs.thermal_step_s = model.settings.thermal_step_s;
@@ -160,7 +158,7 @@ ReplayOutput replay(const ReplayModel& model, const ReplayInputs& in) {
     ps.duration_s = duration;
     // Prescribed slip records its step ends and interpolates between them; a coupling's held
     // force steps every thermal step, so ten steps per hold put the recorded torque on the steps.
-    if (model.driveline) ps.thermal_step_s = model.settings.thermal_step_s / kCouplingStepsPerHold;
+    if (model.kind == ModelKind::kDriveline) ps.thermal_step_s = model.settings.thermal_step_s / kCouplingStepsPerHold;
     ps.snapshot_times_s.clear();
     rec = run_prescribed_slip(clutch, cycle, ps);
   }
@@ -188,15 +186,11 @@ const EffectDefinition& known_effect(std::string_view name) {
                               effect_names_list());
 }
 
-ModelKind model_kind(const ReplayModel& m) {
-  return m.rig ? ModelKind::kRig : m.driveline ? ModelKind::kDriveline : ModelKind::kPrescribedSlip;
-}
-
 // Why the effect cannot be a candidate: inert in the model's kind, or, for a driveline's
 // coupling, inert in the prescribed slip it is replayed with (nothing sticks).
 std::optional<std::string_view> candidate_inert_reason(const EffectDefinition& effect, const ReplayModel& m) {
-  if (const auto why = inert_reason(effect, model_kind(m))) return why;
-  return m.driveline ? inert_reason(effect, ModelKind::kPrescribedSlip) : std::nullopt;
+  if (const auto why = inert_reason(effect, m.kind)) return why;
+  return m.kind == ModelKind::kDriveline ? inert_reason(effect, ModelKind::kPrescribedSlip) : std::nullopt;
 }
 
 }  // namespace
@@ -245,14 +239,7 @@ analysis::Reproducer replay_reproducer(ReplayModel model, std::vector<ReplayInpu
     in.temp_C = pseudo.temp_C;
     if (!in.torque_Nm.empty()) in.torque_Nm = pseudo.torque_Nm;
     if (!in.sump_temp_C.empty()) in.sump_temp_C = pseudo.sump_temp_C;
-    // A coupling's pack turns clamp-force noise into torque n_interfaces times as strongly as
-    // the rig's single disc (16 x: 37.5 N of load-cell noise reads ~3 N m), so its replay error
-    // counts it: the force gets fresh noise of the sigma the measured force shows.
-    if (const double sigma_N = model.driveline ? analysis::estimate_noise_sigma(in.normal_force_N) : 0.0; sigma_N > 0) {
-      std::mt19937_64 rng(2000 + run);
-      std::normal_distribution<double> unit(0.0, sigma_N);
-      for (double& f : in.normal_force_N) f = std::max(0.0, f + unit(rng));
-    }
+    in.normal_force_N = pseudo.normal_force_N;  // with its own noise (analysis/diagnosis.cpp pseudo_run)
     ReplayOutput o = replay(model, in);
     return analysis::Prediction{std::move(o.torque_Nm), std::move(o.temp_C), std::move(o.sump_temp_C),
                                 std::move(o.ir_temp_C), std::move(o.speed_rpm)};

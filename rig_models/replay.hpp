@@ -9,7 +9,7 @@
 //     centres. On the rig the speed is the loop's set point, recovered from the drive speed and
 //     torque cell by inverting the loop (rig_models/speed_setpoint.hpp): under a rising
 //     load, and in stick-slip, the drive lags its set point.
-//   * a driveline's coupling (ReplayModel::driveline): the clamp force held per hydraulic step
+//   * a driveline's coupling (ReplayModel::kind kDriveline): the clamp force held per hydraulic step
 //     (the scenario's thermal step, 10 ms) instead, and the pack stepped ten times per hold
 //     (docs/driveline.md "Measured vehicle runs").
 //   * start temperatures: discs and inner boundary at the mean temp_C of the first 0.1 s (at
@@ -34,6 +34,7 @@
 #include "analysis/diagnosis.hpp"
 #include "clutch/fluid.hpp"
 #include "clutch/wet_clutch.hpp"
+#include "core/model_kind.hpp"
 #include "rig_models/effect_registry.hpp"
 #include "rig_models/lsctr_rig.hpp"
 #include "rig_models/prescribed_slip.hpp"
@@ -41,15 +42,16 @@
 namespace shudder::rig_models {
 
 struct ReplayModel {
-  bool rig = false;  // the LSCTR rig; else prescribed slip
-  // A driveline's Haldex coupling replayed alone: the measured slip and clamp force imposed on
-  // its pack (prescribed slip; rig_models/coupling_measurement.hpp has the run's columns). Its
-  // candidates are the effects that act in a driveline and in the replay.
-  bool driveline = false;
+  // What the measured runs come from: kPrescribedSlip (slip imposed on the clutch), kRig (the
+  // LSCTR rig), or kDriveline: a driveline's Haldex coupling replayed alone, the measured slip
+  // and clamp force imposed on its pack (prescribed slip; rig_models/coupling_measurement.hpp
+  // has the run's columns); its candidates are the effects that act in a driveline and in the
+  // replay.
+  ModelKind kind = ModelKind::kPrescribedSlip;
   clutch::WetClutchParams clutch;
   clutch::Fluid fluid;
   PrescribedSlipSettings settings;  // solver steps, sampling; bearing drag for both models
-  RigParams rig_params;             // used when rig
+  RigParams rig_params;             // used when kind is kRig
 };
 
 struct ReplayInputs {

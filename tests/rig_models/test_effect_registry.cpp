@@ -306,7 +306,7 @@ TEST(EffectRegistry, StickTimeIsACandidateOnTheRigOnly) {
   EXPECT_TRUE(is_candidate(slip_candidates, "bearing_drag"));
 
   rig_models::ReplayModel rig;
-  rig.rig = true;
+  rig.kind = ModelKind::kRig;
   skipped.clear();
   const auto rig_candidates = rig_models::replay_candidates(rig, &skipped);
   EXPECT_TRUE(is_candidate(rig_candidates, "stick_time_static_friction"));

@@ -116,8 +116,7 @@ TEST(ModelCapabilities, DrivelineExportsItsCouplingAndReplaysItAlone) {
   const io::Scenario sc = io::load_scenario(kDriveline);
   const auto& dl = std::get<rig_models::DrivelineModel>(sc.model);
   const rig_models::ReplayModel m = io::replay_model(sc);
-  EXPECT_TRUE(m.driveline);
-  EXPECT_FALSE(m.rig);
+  EXPECT_EQ(m.kind, ModelKind::kDriveline);
   EXPECT_EQ(m.settings.thermal_step_s, dl.settings.slow_step_s);
   EXPECT_EQ(m.clutch.thermal.sump_volume_m3, sc.clutch.thermal.sump_volume_m3);  // the pack's own oil
   dynamics::Recording rec;
@@ -176,11 +175,11 @@ TEST(ModelCapabilities, AcceptingKindsYieldTheirOwnModel) {
   rig_models::StickTimeFriction on;
   on.enabled = true;
   const rig_models::ReplayModel ps_replay = rig_models::replay_model(ps_model, on);
-  EXPECT_FALSE(ps_replay.rig);
+  EXPECT_EQ(ps_replay.kind, ModelKind::kPrescribedSlip);
   EXPECT_TRUE(ps_replay.rig_params.stick_time.enabled);  // the scenario's switch reaches the candidate list
   EXPECT_EQ(ps_replay.settings.duration_s, ps_model.settings.duration_s);
   const rig_models::ReplayModel rig_replay = rig_models::replay_model(rig_model, on);
-  EXPECT_TRUE(rig_replay.rig);
+  EXPECT_EQ(rig_replay.kind, ModelKind::kRig);
   EXPECT_EQ(rig_replay.rig_params.stick_time.enabled, rig_model.params.stick_time.enabled);  // the rig's own
   EXPECT_EQ(rig_replay.settings.sample_rate_Hz, rig_model.settings.sample_rate_Hz);
   EXPECT_EQ(rig_replay.settings.duration_s, rig_model.settings.duration_s);
