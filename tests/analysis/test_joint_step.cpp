@@ -1,6 +1,7 @@
 // The joint step of the greedy search (analysis/joint_step.hpp) on a fake model whose answer is
-// known, built like the every-effect-off Case 2 benchmark: two parameter-free switches that are
-// right only together, and a one-parameter stand-in that a one-at-a-time search would prefer.
+// known (tests/support/switch_pair_diagnosis.hpp), built like the every-effect-off Case 2
+// benchmark: two parameter-free switches that are right only together, and a one-parameter
+// stand-in that a one-at-a-time search would prefer.
 //
 //   three runs at "load" L = 10, 25 (fit) and 15 (held out), 10 s at 100 Hz
 //   baseline   torque = 100 N m, temp = 20 °C + 1 K/s · t
@@ -15,68 +16,25 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <random>
 #include <string>
 #include <vector>
 
 #include "analysis/diagnosis.hpp"
+#include "tests/support/switch_pair_diagnosis.hpp"
 
 namespace {
 
 using shudder::analysis::DiagnosisOptions;
 using shudder::analysis::DiagnosisResult;
 using shudder::analysis::DiagnosisRun;
-using shudder::analysis::EffectCandidate;
 using shudder::analysis::EffectSetting;
-using shudder::analysis::Prediction;
-
-double load_of(const DiagnosisRun& run) { return run.normal_force_N.front() / 1000.0; }
-
-Prediction predict(const DiagnosisRun& run, const std::vector<EffectSetting>& added) {
-  Prediction p;
-  const double load = load_of(run);
-  for (double t : run.time_s) {
-    double torque = 100.0;
-    for (const auto& e : added) {
-      if (e.effect == "warm") torque += 1.0 + 0.2 * t;
-      if (e.effect == "load") torque -= 0.15 * load;
-    }
-    for (const auto& e : added)
-      if (e.effect == "gain") torque *= e.values[0];
-    p.torque_Nm.push_back(torque);
-    p.temp_C.push_back(20.0 + 1.0 * t);
-  }
-  return p;
-}
-
-std::vector<EffectCandidate> candidates() {
-  return {{"gain", "the torque cell reads a fraction high or low", {"g"}, {{0.97}, {1.03}}, {0.5}, {2.0}, {}},
-          {"warm", "friction follows the temperature rise", {}, {}, {}, {}, {}},
-          {"load", "friction falls with the load", {}, {}, {}, {}, {}}};
-}
 
 DiagnosisResult diagnose_hidden(const std::vector<EffectSetting>& hidden) {
-  std::vector<DiagnosisRun> runs;
-  std::mt19937 rng(7);
-  std::normal_distribution<double> torque_noise(0.0, 0.1), temp_noise(0.0, 0.05);
-  const struct { double load; const char* name; } spec[] = {{10.0, "L10.csv"}, {25.0, "L25.csv"}, {15.0, "L15.csv"}};
-  for (const auto& [load, name] : spec) {  // the last is held out
-    DiagnosisRun run;
-    run.name = name;
-    for (int i = 0; i <= 1000; ++i) {
-      run.time_s.push_back(0.01 * i);
-      run.speed_rpm.push_back(50.0);
-      run.normal_force_N.push_back(1000.0 * load);
-    }
-    const Prediction truth = predict(run, hidden);
-    for (std::size_t i = 0; i < run.time_s.size(); ++i) {
-      run.torque_Nm.push_back(truth.torque_Nm[i] + torque_noise(rng));
-      run.temp_C.push_back(truth.temp_C[i] + temp_noise(rng));
-    }
-    runs.push_back(std::move(run));
-  }
-  const auto simulate = [&](const std::vector<EffectSetting>& added, std::size_t k) { return predict(runs[k], added); };
-  return shudder::analysis::diagnose(runs, candidates(), simulate, DiagnosisOptions{});
+  const std::vector<DiagnosisRun> runs = shudder::test::switch_pair_runs(hidden, 1000, 7, ".csv");
+  const auto simulate = [&](const std::vector<EffectSetting>& added, std::size_t k) {
+    return shudder::test::switch_pair_prediction(runs[k], added);
+  };
+  return shudder::analysis::diagnose(runs, shudder::test::switch_pair_candidates(), simulate, DiagnosisOptions{});
 }
 
 using Names = std::vector<std::string>;

@@ -1,4 +1,5 @@
-// What the diagnosis' fits simulate, counted per run on a fake model (analysis/joint_step.hpp
+// What the diagnosis' fits simulate, counted per run on a fake model (tests/support/
+// switch_pair_diagnosis.hpp, with an "idle" switch added; analysis/joint_step.hpp
 // "Cost", analysis/candidate_fit.hpp): the counts follow from the fits' own `evaluations`
 // (each one simulation of every fit run, counted alike for single and joint candidates) in
 // closed form, so every simulation is accounted for.
@@ -17,62 +18,30 @@
 
 #include <array>
 #include <atomic>
-#include <random>
 #include <string>
 #include <vector>
 
 #include "analysis/candidate_fit.hpp"
 #include "analysis/joint_step.hpp"
 #include "analysis/misfit.hpp"
+#include "tests/support/switch_pair_diagnosis.hpp"
 
 namespace shudder::analysis {
 namespace {
 
 Prediction predict(const DiagnosisRun& run, const std::vector<EffectSetting>& added) {
-  Prediction p;
-  const double load = run.normal_force_N.front() / 1000.0;
-  for (double t : run.time_s) {
-    double torque = 100.0;
-    for (const auto& e : added) {
-      if (e.effect == "warm") torque += 1.0 + 0.2 * t;
-      if (e.effect == "load") torque -= 0.15 * load;
-    }
-    for (const auto& e : added)
-      if (e.effect == "gain") torque *= e.values[0];
-    p.torque_Nm.push_back(torque);
-    p.temp_C.push_back(20.0 + 1.0 * t);
-  }
-  return p;
+  return test::switch_pair_prediction(run, added);
 }
 
+// Warm and load on, the torque cell 1 % high.
 std::vector<DiagnosisRun> measured_runs() {
-  std::vector<DiagnosisRun> runs;
-  std::mt19937 rng(11);
-  std::normal_distribution<double> torque_noise(0.0, 0.1), temp_noise(0.0, 0.05);
-  const struct { double load; const char* name; } spec[] = {{10.0, "L10"}, {25.0, "L25"}, {15.0, "L15"}};
-  for (const auto& [load, name] : spec) {  // the last is held out
-    DiagnosisRun run;
-    run.name = name;
-    for (int i = 0; i <= 500; ++i) {
-      run.time_s.push_back(0.01 * i);
-      run.speed_rpm.push_back(50.0);
-      run.normal_force_N.push_back(1000.0 * load);
-    }
-    const Prediction truth = predict(run, {{"warm", {}}, {"load", {}}, {"gain", {1.01}}});
-    for (std::size_t i = 0; i < run.time_s.size(); ++i) {
-      run.torque_Nm.push_back(truth.torque_Nm[i] + torque_noise(rng));
-      run.temp_C.push_back(truth.temp_C[i] + temp_noise(rng));
-    }
-    runs.push_back(std::move(run));
-  }
-  return runs;
+  return test::switch_pair_runs({{"warm", {}}, {"load", {}}, {"gain", {1.01}}}, 500, 11);
 }
 
 std::vector<EffectCandidate> candidates() {
-  return {{"gain", "the torque cell reads a fraction high or low", {"g"}, {{0.97}, {1.03}}, {0.5}, {2.0}, {}},
-          {"warm", "friction follows the temperature rise", {}, {}, {}, {}, {}},
-          {"load", "friction falls with the load", {}, {}, {}, {}, {}},
-          {"idle", "changes nothing", {}, {}, {}, {}, {}}};
+  std::vector<EffectCandidate> c = test::switch_pair_candidates();
+  c.push_back({"idle", "changes nothing", {}, {}, {}, {}, {}});
+  return c;
 }
 
 struct Counted {
