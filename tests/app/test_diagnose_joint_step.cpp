@@ -10,22 +10,15 @@
 #include <algorithm>
 
 #include "analysis/diagnosis.hpp"
-#include "io/diagnosis_inputs.hpp"
-#include "io/measured_run.hpp"
-#include "io/scenario.hpp"
 #include "report/diagnosis_narrative.hpp"
-#include "rig_models/replay.hpp"
 #include "tests/support/cli.hpp"
 #include "tests/support/diagnosis_probe.hpp"
+#include "tests/support/diagnosis_runs.hpp"
 
 namespace shudder {
 namespace {
 
-using test::replace;
-using test::run_cli;
 using test::scratch_dir;
-using test::source_path;
-using test::write_file;
 using Names = std::vector<std::string>;
 
 std::string probe(const std::string& extra, double force_N) { return test::probe_scenario_text(extra, force_N, 80.0); }
@@ -35,27 +28,14 @@ const std::string kSwitchesOff = off("temperature_dependent_friction") + off("lo
 
 analysis::DiagnosisResult diagnose_three_loads(const std::string& name, const std::string& hidden) {
   const auto dir = scratch_dir("diag_joint_" + name);
-  std::vector<io::MeasuredRun> runs;
+  std::vector<std::filesystem::path> csvs;
   const struct { double force; unsigned seed; } spec[] = {{10400, 31}, {25300, 32}, {14800, 33}};  // last held out
-  for (const auto& r : spec) {
-    std::string stem = std::to_string(static_cast<int>(r.force));
-    stem.insert(0, "run_");
-    write_file(dir / (stem + ".toml"), probe(hidden, r.force));
-    const auto out = run_cli("run " + stem + ".toml -o " + stem + ".h5 --measurement " + stem +
-                                 ".csv --sample-rate 100 --noise --seed " + std::to_string(r.seed),
-                             dir);
-    EXPECT_EQ(out.exit_code, 0) << out.err;
-    runs.push_back(io::read_measured_run((dir / (stem + ".csv")).string()));
-  }
-  const auto scenario =
-      io::load_scenario_text(probe(kSwitchesOff, 14800), source_path("scenarios/diagnosis_probe.toml"));
-  auto data = io::diagnosis_data(runs);
-  const auto model = io::replay_model(scenario);
+  for (const auto& r : spec)
+    csvs.push_back(test::make_measured_run(dir, "run_" + std::to_string(static_cast<int>(r.force)), probe(hidden, r.force),
+                                           r.seed));
   analysis::DiagnosisOptions o;
   o.jobs = 1;  // ctest runs the cases in parallel
-  const auto reproduce = rig_models::replay_reproducer(model, data.inputs);
-  return analysis::diagnose(data.runs, rig_models::replay_candidates(model, nullptr),
-                            rig_models::replay_simulator(model, std::move(data.inputs)), o, reproduce);
+  return test::diagnose_measured(csvs, probe(kSwitchesOff, 14800), "scenarios/diagnosis_probe.toml", o);
 }
 
 Names sorted(Names v) {
