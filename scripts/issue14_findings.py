@@ -245,22 +245,25 @@ def final_thermocouple(r):
     return "; thermocouple %s C" % fmt(float(m.group(1))) if m else ""
 
 
+def tiny_value_rejected(p, d, scenario, appended, key):
+    """`scenario` in d with `appended` (a 1e-300 for `key`): refused by name and allowed range."""
+    write(os.path.join(d, "s.toml"), slurp(os.path.join(d, scenario)) + appended)
+    r = p.run(["run", "s.toml", "-o", "out.h5"], d)
+    ok, seen = rejected(r, key, "allowed [")
+    return ok, seen + final_thermocouple(r)
+
+
 def tiny_film(p):
     d = p.dir("film")
-    s = short_rig(d)
-    write(os.path.join(d, s), slurp(os.path.join(d, s)) + "\n[clutch.oil]\nfilm_thickness_um = 1e-300\n")
-    r = p.run(["run", s, "-o", "out.h5"], d)
-    ok, seen = rejected(r, "clutch.oil.film_thickness_um", "allowed [")
-    return ok, seen + final_thermocouple(r)
+    return tiny_value_rejected(p, d, short_rig(d), "\n[clutch.oil]\nfilm_thickness_um = 1e-300\n",
+                               "clutch.oil.film_thickness_um")
 
 
 def tiny_gap(p):
     d = p.dir("gap")
-    write(os.path.join(d, "s.toml"), slurp(os.path.join(d, "paper_g_case1_10kN.toml")) +
-          "\n[effects.viscous_shear]\nenabled = true\ngap_um = 1e-300\n")
-    r = p.run(["run", "s.toml", "-o", "out.h5"], d)
-    ok, seen = rejected(r, "effects.viscous_shear.gap_um", "allowed [")
-    return ok, seen + final_thermocouple(r)
+    return tiny_value_rejected(p, d, "paper_g_case1_10kN.toml",
+                               "\n[effects.viscous_shear]\nenabled = true\ngap_um = 1e-300\n",
+                               "effects.viscous_shear.gap_um")
 
 
 def energy_error(p):
