@@ -206,46 +206,41 @@ double ThermalModel::sump_heat_capacity_J_per_K() const {
   return p_.oil_density_kg_m3 * p_.oil_specific_heat_J_per_kgK * p_.sump_volume_m3;
 }
 
-void ThermalModel::step(ThermalState& s, ThermalWorkspace& w, double dt,
-                        const Eigen::VectorXd& ring_heat_W, double slip_rad_s) const {
-  if (!(dt > 0.0)) throw std::invalid_argument("thermal step must be > 0");
-  const int n = nr_ * nz_;
-  const double flow_W_per_K = p_.oil_density_kg_m3 * p_.oil_specific_heat_J_per_kgK *
-                              interface_flow_m3_s(slip_rad_s, mean_interface_temp_C(s));
+void ThermalModel::factorise_if_changed(ThermalWorkspace& w, double storage_step_s, double flow_W_per_K,
+                                        double time_s) const {
+  if (storage_step_s == w.factored_storage_step_s_ && flow_W_per_K == w.factored_flow_W_per_K_) return;
+  double* m = w.system_.valuePtr();
+  const double* c = conduction_.valuePtr();
+  const double* a = advection_.valuePtr();
+  const double* cap = identity_.valuePtr();
+  for (Eigen::Index e = 0; e < w.system_.nonZeros(); ++e)
+    m[e] = cap[e] / storage_step_s + c[e] + flow_W_per_K * a[e];
+  if (!w.lu_.factorize(w.system_))
+    throw std::runtime_error("thermal solve: factorisation failed at t = " + std::to_string(time_s) + " s");
+  w.factored_storage_step_s_ = storage_step_s;
+  w.factored_flow_W_per_K_ = flow_W_per_K;
+}
 
-  // Re-factorise only when the matrix changed (step size or oil flow).
-  if (dt != w.factored_dt_ || flow_W_per_K != w.factored_flow_W_per_K_) {
-    double* m = w.system_.valuePtr();
-    const double* c = conduction_.valuePtr();
-    const double* a = advection_.valuePtr();
-    const double* cap = identity_.valuePtr();
-    for (Eigen::Index e = 0; e < w.system_.nonZeros(); ++e)
-      m[e] = cap[e] / dt + c[e] + flow_W_per_K * a[e];
-    if (!w.lu_.factorize(w.system_))
-      throw std::runtime_error("thermal solve: factorisation failed at t = " +
-                               std::to_string(s.time_s) + " s");
-    w.factored_dt_ = dt;
-    w.factored_flow_W_per_K_ = flow_W_per_K;
-  }
-
-  // Right-hand side: storage, boundary temperatures, heat input, oil inlet, rig mass.
-  w.rhs_ = capacity_J_per_K_.cwiseProduct(s.temp_C) / dt + g_inner_ * s.inner_temp_C +
-          g_outer_ * s.sump_temp_C;
+void ThermalModel::add_sources(const ThermalState& s, ThermalWorkspace& w, const Eigen::VectorXd& ring_heat_W,
+                               double flow_W_per_K) const {
   for (int i = 0; i < nr_; ++i) {
     w.rhs_[node(i, film_j_)] += ring_heat_W[i];
     w.rhs_[node(i, 0)] += g_rig_[i] * s.rig_temp_C;
   }
   w.rhs_[node(0, film_j_)] += flow_W_per_K * adv_weight_[0] * s.inner_temp_C;
+}
 
-  w.lu_.solve_in_place(w.rhs_);
-  const Eigen::VectorXd& next = w.rhs_;
-  for (int a = 0; a < n; ++a)
+void ThermalModel::check_finite(const Eigen::VectorXd& next, double time_s) const {
+  for (Eigen::Index a = 0; a < next.size(); ++a)
     if (!std::isfinite(next[a]))
-      throw std::runtime_error("thermal solve produced a non-finite temperature at t = " +
-                               std::to_string(s.time_s) + " s, ring " + std::to_string(a / nz_) +
-                               ", axial node " + std::to_string(a % nz_));
+      throw std::runtime_error("thermal solve produced a non-finite temperature at t = " + std::to_string(time_s) +
+                               " s, ring " + std::to_string(a / nz_) + ", axial node " + std::to_string(a % nz_));
+}
 
-  // Energy ledger with the same end-of-step temperatures the solve used.
+std::pair<double, double> ThermalModel::book_fluxes(ThermalState& s, const Eigen::VectorXd& next,
+                                                    const Eigen::VectorXd& ring_heat_W, double flow_W_per_K,
+                                                    double dt) const {
+  const Eigen::Index n = next.size();
   const double out_inner = g_inner_.dot(next - Eigen::VectorXd::Constant(n, s.inner_temp_C)) * dt;
   const double out_outer = g_outer_.dot(next - Eigen::VectorXd::Constant(n, s.sump_temp_C)) * dt;
   double out_oil = 0.0, to_rig = 0.0;
@@ -258,16 +253,89 @@ void ThermalModel::step(ThermalState& s, ThermalWorkspace& w, double dt,
   s.energy.generated_J += ring_heat_W.sum() * dt;
   s.energy.to_sump_J += to_sump;
   s.energy.to_rig_J += to_rig;
+  return {to_sump, to_rig};
+}
 
-  s.temp_C.swap(w.rhs_);  // the new field; the old one's storage is the next right-hand side
+void ThermalModel::finish_step(ThermalState& s, double dt, double to_sump_J, double to_rig_J) const {
   s.time_s += dt;
-  if (p_.sump_heating) s.sump_temp_C += to_sump / sump_heat_capacity_J_per_K();
-  if (p_.rig_heat_capacity) s.rig_temp_C += to_rig / p_.rig_heat_capacity_J_per_K;
+  if (p_.sump_heating) s.sump_temp_C += to_sump_J / sump_heat_capacity_J_per_K();
+  if (p_.rig_heat_capacity) s.rig_temp_C += to_rig_J / p_.rig_heat_capacity_J_per_K;
   const double probe_now = thermocouple_C(s) + (p_.thermocouple_offset ? p_.thermocouple_offset_K : 0.0);
   s.sensor_temp_C = p_.temperature_sensor_lag
-                        ? probe_now + (s.sensor_temp_C - probe_now) *
-                                          std::exp(-dt / p_.sensor_time_constant_s)
+                        ? probe_now + (s.sensor_temp_C - probe_now) * std::exp(-dt / p_.sensor_time_constant_s)
                         : probe_now;
+}
+
+void ThermalModel::step(ThermalState& s, ThermalWorkspace& w, double dt,
+                        const Eigen::VectorXd& ring_heat_W, double slip_rad_s) const {
+  if (!(dt > 0.0)) throw std::invalid_argument("thermal step must be > 0");
+  const double flow_W_per_K = p_.oil_density_kg_m3 * p_.oil_specific_heat_J_per_kgK *
+                              interface_flow_m3_s(slip_rad_s, mean_interface_temp_C(s));
+  factorise_if_changed(w, dt, flow_W_per_K, s.time_s);
+
+  // Right-hand side: storage, boundary temperatures, heat input, oil inlet, rig mass.
+  w.rhs_ = capacity_J_per_K_.cwiseProduct(s.temp_C) / dt + g_inner_ * s.inner_temp_C + g_outer_ * s.sump_temp_C;
+  add_sources(s, w, ring_heat_W, flow_W_per_K);
+  w.lu_.solve_in_place(w.rhs_);
+  check_finite(w.rhs_, s.time_s);
+  const auto [to_sump, to_rig] = book_fluxes(s, w.rhs_, ring_heat_W, flow_W_per_K, dt);
+
+  s.temp_C.swap(w.rhs_);  // the new field; the old one's storage is the next right-hand side
+  s.previous_step_s = 0.0;  // a BDF2 step after this one has no valid history
+  finish_step(s, dt, to_sump, to_rig);
+}
+
+void ThermalModel::step_bdf2(ThermalState& s, ThermalWorkspace& w, double dt,
+                             const Eigen::VectorXd& ring_heat_end_W, double slip_end_rad_s) const {
+  if (!(dt > 0.0)) throw std::invalid_argument("thermal step must be > 0");
+  const Eigen::Index n = s.temp_C.size();
+  if (!(s.previous_step_s > 0.0) || s.previous_temp_C.size() != n) {
+    // Start (or restart) with one backward Euler step: one first-order step's error is
+    // O(dt²), which keeps the run second order.
+    s.previous_temp_C = s.temp_C;
+    step(s, w, dt, ring_heat_end_W, slip_end_rad_s);
+    s.previous_step_s = dt;
+    return;
+  }
+  const double ratio = dt / s.previous_step_s;  // w of the header
+  const double a = (1.0 + 2.0 * ratio) / (1.0 + ratio), b = 1.0 + ratio, c = ratio * ratio / (1.0 + ratio);
+  const double mean_now_C = film_mean_C(s.temp_C);
+  const double mean_end_C = mean_now_C + ratio * (mean_now_C - film_mean_C(s.previous_temp_C));
+  const double flow_W_per_K = p_.oil_density_kg_m3 * p_.oil_specific_heat_J_per_kgK *
+                              interface_flow_m3_s(slip_end_rad_s, mean_end_C);
+  factorise_if_changed(w, dt / a, flow_W_per_K, s.time_s);
+
+  w.rhs_ = capacity_J_per_K_.cwiseProduct(b * s.temp_C - c * s.previous_temp_C) / dt +
+           g_inner_ * s.inner_temp_C + g_outer_ * s.sump_temp_C;
+  add_sources(s, w, ring_heat_end_W, flow_W_per_K);
+  w.lu_.solve_in_place(w.rhs_);
+  check_finite(w.rhs_, s.time_s);
+  const auto [to_sump, to_rig] = book_fluxes(s, w.rhs_, ring_heat_end_W, flow_W_per_K, dt);
+  // What BDF2's storage term books beyond C (T1 - T0) (header): the ledger's closing term.
+  s.energy.scheme_storage_J +=
+      ratio / (1.0 + ratio) *
+      capacity_J_per_K_.dot((w.rhs_ - s.temp_C) - ratio * (s.temp_C - s.previous_temp_C));
+
+  s.previous_temp_C.swap(s.temp_C);  // history: the field at t
+  s.temp_C.swap(w.rhs_);             // the new field; the oldest one's storage is the next right-hand side
+  s.previous_step_s = dt;
+  finish_step(s, dt, to_sump, to_rig);
+}
+
+void ThermalModel::predicted_interface_temps_C(const ThermalState& s, double dt, Eigen::VectorXd& out) const {
+  out.resize(nr_);
+  const bool history = s.previous_step_s > 0.0 && s.previous_temp_C.size() == s.temp_C.size();
+  const double ratio = history ? dt / s.previous_step_s : 0.0;
+  for (int i = 0; i < nr_; ++i) {
+    const double now = s.temp_C[node(i, film_j_)];
+    out[i] = history ? now + ratio * (now - s.previous_temp_C[node(i, film_j_)]) : now;
+  }
+}
+
+double ThermalModel::film_mean_C(const Eigen::VectorXd& field) const {
+  Eigen::VectorXd t(nr_);
+  for (int i = 0; i < nr_; ++i) t[i] = field[node(i, film_j_)];
+  return t.dot(area_) / area_.sum();
 }
 
 Eigen::VectorXd ThermalModel::interface_temps_C(const ThermalState& s) const {
@@ -276,9 +344,7 @@ Eigen::VectorXd ThermalModel::interface_temps_C(const ThermalState& s) const {
   return t;
 }
 
-double ThermalModel::mean_interface_temp_C(const ThermalState& s) const {
-  return interface_temps_C(s).dot(area_) / area_.sum();
-}
+double ThermalModel::mean_interface_temp_C(const ThermalState& s) const { return film_mean_C(s.temp_C); }
 
 double ThermalModel::max_temp_C(const ThermalState& s) const { return s.temp_C.maxCoeff(); }
 
@@ -323,7 +389,7 @@ double ThermalModel::stored_energy_J(const ThermalState& s) const {
 
 double ThermalModel::energy_imbalance_J(const ThermalState& s) const {
   const auto& e = s.energy;
-  return e.generated_J - (stored_energy_J(s) - e.initial_stored_J) - e.to_sump_J - e.to_rig_J;
+  return e.generated_J - (stored_energy_J(s) - e.initial_stored_J) - e.scheme_storage_J - e.to_sump_J - e.to_rig_J;
 }
 
 }  // namespace shudder::clutch

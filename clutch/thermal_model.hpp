@@ -17,17 +17,28 @@
 // volume that receives every joule leaving the discs through R_in, R_out and the film outlet.
 //
 // Discretisation: finite volumes, cell-centred, uniform within a layer; harmonic (series)
-// conductances across layer boundaries give flux continuity (eq. 8). Time stepping: backward
-// Euler on the whole field (first order, unconditionally stable and non-oscillating for the
-// stiff film nodes), solved by a band LU (ring-major numbering: half band width = nodes per
-// ring; see banded_lu.hpp), factorised only when dt or the oil flow changes. Sump and rig temperatures lag one step (explicit,
-// their time constants are seconds); every flux of the ledger is evaluated with the same
-// end-of-step temperatures as the solve, so the discrete energy balance closes to round-off.
+// conductances across layer boundaries give flux continuity (eq. 8). Time stepping, two schemes
+// on the whole field, both implicit, unconditionally stable and damping the stiff film nodes
+// (time constant ≈ 25 µs against steps of milliseconds) instead of ringing on them:
+//   step()      backward Euler, first order:  C (T1 - T0) / dt = -K T1 + q
+//   step_bdf2() BDF2 with variable steps, second order (docs/thermal_model.md, "Time scheme"):
+//               C (a T1 - b T0 + c T-1) / dt = -K T1 + q(t1),  w = dt / dt_prev,
+//               a = (1 + 2w) / (1 + w),  b = 1 + w,  c = w² / (1 + w)
+//               (w = 1: 3/2, 2, 1/2). Its first step, and any after a step(), is backward Euler.
+// Either is solved by a band LU (ring-major numbering: half band width = nodes per ring; see
+// banded_lu.hpp), factorised only when the step's storage term or the oil flow changes. Sump and
+// rig temperatures lag one step (explicit, their time constants are seconds); every flux of the
+// ledger is evaluated with the same end-of-step temperatures as the solve, so the discrete energy
+// balance closes to round-off. BDF2's storage term is not C (T1 - T0): it books in addition
+//     C w / (1 + w) [ (T1 - T0) - w (T0 - T-1) ]
+// (for w = 1 this telescopes to C (ΔT_last - ΔT_first) / 2 over a run: bounded, O(dt), no drift),
+// which the ledger keeps as `scheme_storage_J` so that the balance still closes to round-off.
 //
 // Units: SI inside (m, s, W, J, K); temperatures in °C.
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
+#include <utility>
 #include <vector>
 
 #include "clutch/banded_lu.hpp"
@@ -90,6 +101,7 @@ struct EnergyLedger {
   double to_sump_J = 0.0;        // left the discs through R_in, R_out and the film outlet
   double to_rig_J = 0.0;         // taken by the lumped rig mass
   double initial_stored_J = 0.0; // sum C*T of discs and film at the start (reference 0 °C)
+  double scheme_storage_J = 0.0; // BDF2 only: its storage term beyond the change of sum C*T
 };
 
 struct ThermalState {
@@ -100,6 +112,10 @@ struct ThermalState {
   double rig_temp_C = 0.0;       // lumped rig mass
   double sensor_temp_C = 0.0;    // thermocouple reading after its lag (and offset)
   EnergyLedger energy;
+  // BDF2's history: the field one step back and that step's length. previous_step_s = 0 means
+  // none (before the first step, or after a backward Euler step).
+  Eigen::VectorXd previous_temp_C;
+  double previous_step_s = 0.0;
 };
 
 class ThermalModel;
@@ -117,7 +133,7 @@ class ThermalWorkspace {
   friend class ThermalModel;
   Eigen::SparseMatrix<double> system_;  // capacity/dt + conduction + rho*cp*Q * advection
   BandedLu lu_;
-  double factored_dt_ = -1.0;
+  double factored_storage_step_s_ = -1.0;  // the matrix' capacity term is C / this (dt / a)
   double factored_flow_W_per_K_ = -1.0;
   Eigen::VectorXd rhs_;  // right-hand side, solved in place into the new temperatures
 };
@@ -135,6 +151,19 @@ class ThermalModel {
   void step(ThermalState& state, ThermalWorkspace& workspace, double dt_s,
             const Eigen::VectorXd& ring_heat_W, double slip_rad_s) const;
 
+  /// Advances by dt with BDF2 (second order; see the header). ring_heat_end_W (n_r): the heat
+  /// power into each ring's film at the step's end, t + dt (energy booked = ring_heat_end_W * dt);
+  /// slip_end_rad_s: the slip there. The oil flow's temperature is the film mean extrapolated to
+  /// t + dt. Keeps the history in `state`; its first step is backward Euler.
+  void step_bdf2(ThermalState& state, ThermalWorkspace& workspace, double dt_s,
+                 const Eigen::VectorXd& ring_heat_end_W, double slip_end_rad_s) const;
+
+  /// The film (interface) temperatures extrapolated linearly from the last two fields to
+  /// t + dt_s, T0 + w (T0 - T-1) with w = dt_s / previous_step_s: what a friction law needs at
+  /// the end of a BDF2 step without an iteration (its error, O(dt²), keeps BDF2 second order).
+  /// Without history, the current film temperatures. `out` is resized to n_r.
+  void predicted_interface_temps_C(const ThermalState& s, double dt_s, Eigen::VectorXd& out) const;
+
   int radial_cells() const { return nr_; }
   int nodes_per_ring() const { return nz_; }
   int film_index() const { return film_j_; }
@@ -151,7 +180,7 @@ class ThermalModel {
   double ir_C(const ThermalState& s) const;                        // spot mean on interface
   Eigen::MatrixXd field_C(const ThermalState& s) const;            // (nodes_per_ring x n_r)
   double stored_energy_J(const ThermalState& s) const;             // sum C*T, 0 °C reference
-  /// generated - (stored - initial) - to_sump - to_rig, joules.
+  /// generated - (stored - initial) - scheme_storage - to_sump - to_rig, joules (round-off).
   double energy_imbalance_J(const ThermalState& s) const;
   double sump_heat_capacity_J_per_K() const;
   double interface_flow_m3_s(double slip_rad_s, double mean_temp_C) const;
@@ -167,6 +196,19 @@ class ThermalModel {
   };
   ProbeWeights probe_weights(double r_m, double z_m) const;
   double probe(const ThermalState& s, const ProbeWeights& w) const;
+  double film_mean_C(const Eigen::VectorXd& field) const;  // area-weighted film temperature
+  void factorise_if_changed(ThermalWorkspace& w, double storage_step_s, double flow_W_per_K,
+                            double time_s) const;
+  // Adds the boundary, heat, oil-inlet and rig terms to w.rhs_ (storage term already there).
+  void add_sources(const ThermalState& s, ThermalWorkspace& w, const Eigen::VectorXd& ring_heat_W,
+                   double flow_W_per_K) const;
+  void check_finite(const Eigen::VectorXd& next, double time_s) const;
+  // Books the step's heat and outflows with the end-of-step field `next`; returns {to sump, to rig} in J.
+  std::pair<double, double> book_fluxes(ThermalState& s, const Eigen::VectorXd& next,
+                                        const Eigen::VectorXd& ring_heat_W, double flow_W_per_K,
+                                        double dt) const;
+  // Time, sump, rig mass and sensor after the field has been replaced.
+  void finish_step(ThermalState& s, double dt, double to_sump_J, double to_rig_J) const;
 
   ThermalParams p_;
   int nr_ = 0, nz_ = 0, film_j_ = 0;

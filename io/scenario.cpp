@@ -503,6 +503,13 @@ Scenario load_scenario_text(const std::string& text, const std::string& path) {
   if (auto solver = root.optional_table("solver")) {
     s.clutch.thermal.radial_cells = static_cast<int>(solver->integer_or("radial_cells", s.clutch.thermal.radial_cells, 2, 2000));
     s.settings.thermal_step_s = solver->number_or("thermal_step_ms", s.settings.thermal_step_s * 1e3, Range::closed(1e-3, 1e4)) * 1e-3;
+    const std::string scheme = solver->choice_or("thermal_scheme", "backward_euler", {"backward_euler", "bdf2"});
+    if (scheme == "bdf2" && s.kind != ModelKind::kPrescribedSlip)
+      solver->fail("thermal_scheme",
+                   "\"bdf2\" needs the clutch's heat at each thermal step's end, which only type = \"prescribed_slip\" "
+                   "knows; a " + s.type + " scenario steps its thermal field with \"backward_euler\" (remove the key)");
+    s.settings.thermal_scheme =
+        scheme == "bdf2" ? rig_models::ThermalScheme::kBdf2 : rig_models::ThermalScheme::kBackwardEuler;
     auto& integ = s.kind == ModelKind::kDriveline ? s.driveline.integrator : s.rig.integrator;
     integ.abs_tol = solver->number_or("abs_tol", integ.abs_tol, Range::closed(1e-15, 1e-2));
     integ.rel_tol = solver->number_or("rel_tol", integ.rel_tol, Range::closed(1e-15, 1e-2));

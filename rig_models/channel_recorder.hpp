@@ -7,7 +7,12 @@
 //                 model evaluates at a thermal step's end), at slow-step ends only; each sample
 //                 the step added gets the value linear in time between the step's two ends,
 //                 x(t) = (1 − w) x_a + w x_b with w = (t − t_a) / (t_b − t_a) (w = 1 for an
-//                 empty step), t read from the first channel, which is `time_s` and sampled.
+//                 empty step), t read from the first channel, which is `time_s` and sampled;
+//   refined:      like interpolated at a slow step's ends, but a sample strictly inside a step
+//                 is read from the slow state the runner evaluates at that sample's time (step()'s
+//                 `inside`) — for channels that move nonlinearly within a step (the friction's
+//                 dependence on the slip speed), where a straight line between the ends is not
+//                 good enough once a step spans several samples.
 // The recorder writes into a dynamics::Recording (signals in declaration order).
 
 #include <cstddef>
@@ -29,7 +34,8 @@ class ChannelRecorder {
   struct Channel {
     std::string_view name, units;
     std::function<double(const Fast&)> sampled;     // set for a sampled channel
-    std::function<double(const Slow&)> interpolated;  // set for an interpolated one
+    std::function<double(const Slow&)> interpolated;  // set for an interpolated or refined one
+    bool refined = false;
   };
   static Channel sampled(std::string_view name, std::string_view units, std::function<double(const Fast&)> read) {
     return {name, units, std::move(read), {}};
@@ -38,6 +44,12 @@ class ChannelRecorder {
                               std::function<double(const Slow&)> read) {
     return {name, units, {}, std::move(read)};
   }
+  static Channel refined(std::string_view name, std::string_view units, std::function<double(const Slow&)> read) {
+    return {name, units, {}, std::move(read), true};
+  }
+
+  /// The slow state at sample time t inside a step, w = (t − t_a) / (t_b − t_a) in [0, 1).
+  using Inside = std::function<Slow(double t_s, double w)>;
 
   /// Adds the channels' signals to `rec`, which must outlive the recorder.
   ChannelRecorder(dynamics::Recording& rec, std::vector<Channel> channels)
@@ -60,10 +72,11 @@ class ChannelRecorder {
   }
 
   /// The slow state after the step [ta_s, tb_s]: the samples added since the last fill get the
-  /// values between the step's two ends.
-  void step(const Slow& after, double ta_s, double tb_s) {
+  /// values between the step's two ends; refined channels of samples inside the step are read
+  /// from `inside` (once per such sample) when given.
+  void step(const Slow& after, double ta_s, double tb_s, const Inside& inside = {}) {
     std::vector<double> b = read(after);
-    fill(before_, b, ta_s, tb_s);
+    fill(before_, b, ta_s, tb_s, inside);
     before_ = std::move(b);
   }
 
@@ -77,14 +90,24 @@ class ChannelRecorder {
     return v;
   }
 
-  void fill(const std::vector<double>& a, const std::vector<double>& b, double ta, double tb) {
+  // A sample this close to a step's end (relative to the step) is at the end: its values are
+  // the end's, up to the interpolation's round-off (sample and step times are accumulated
+  // differently), not a fresh evaluation.
+  static constexpr double kAtEnd = 1e-9;
+
+  void fill(const std::vector<double>& a, const std::vector<double>& b, double ta, double tb,
+            const Inside& inside = {}) {
     const std::vector<double>& t = values(0);
     for (; filled_ < t.size(); ++filled_) {
       const double w = tb > ta ? (t[filled_] - ta) / (tb - ta) : 1.0;
+      const bool fresh = inside && w < 1.0 - kAtEnd;
+      Slow here{};
+      if (fresh) here = inside(t[filled_], w);
       std::size_t k = 0;
       for (std::size_t c = 0; c < channels_.size(); ++c)
         if (channels_[c].interpolated) {
-          values(c).push_back((1 - w) * a[k] + w * b[k]);
+          values(c).push_back(fresh && channels_[c].refined ? channels_[c].interpolated(here)
+                                                            : (1 - w) * a[k] + w * b[k]);
           ++k;
         }
     }

@@ -21,19 +21,17 @@ struct Probe {
       interface_mean_C, interface_max_C, field_max_C, mean_mu, heat_W, flow_ml_min, rig_C;
 };
 
-// `heat` gets the ring heat powers at t with the state's temperatures: exactly what the next
-// thermal step's Simpson rule needs at its start, so the step reuses them. The ring torques are
-// evaluated once for the torque and the heat (WetClutch::torque_Nm and ring_heat_W would each
-// evaluate them, with the same numbers).
-Probe measure(const clutch::WetClutch& clutch, const clutch::ThermalState& s,
-              const DriveCycle& cycle, const BearingDrag& drag, const TorqueCell& cell,
-              const LoadCell& load_cell, double drift, double t, Eigen::VectorXd& heat,
-              clutch::WetClutch::RingScratch& scratch) {
+// The friction side of a Probe at time t with the ring temperatures ring_T (and the film's mean
+// mean_interface_C for the oil flow): slip, force, torques, friction coefficient, heat, flow.
+// `heat` gets the ring heat powers.
+void measure_friction(Probe& p, const clutch::WetClutch& clutch, const DriveCycle& cycle, const BearingDrag& drag,
+                      const TorqueCell& cell, const LoadCell& load_cell, double drift, double t,
+                      const Eigen::VectorXd& ring_T, double mean_interface_C, Eigen::VectorXd& heat,
+                      clutch::WetClutch::RingScratch& scratch) {
   const auto& th = clutch.thermal();
   const double slip_rpm = cycle.slip_speed_rpm(t);
   const double slip = units::rpm_to_rad_s(slip_rpm);
   const double force = cycle.normal_force_N(t);
-  const Eigen::VectorXd ring_T = th.interface_temps_C(s);
   clutch.ring_torque_Nm(slip, force, ring_T, heat, &scratch);
   heat *= drift;
   const double m = std::copysign(clutch.params().sliding_interfaces * heat.sum(), slip);
@@ -41,20 +39,35 @@ Probe measure(const clutch::WetClutch& clutch, const clutch::ThermalState& s,
   const double drag_Nm = drag.enabled ? std::copysign(drag.equivalent_mu * force * drag.radius_m, slip) : 0.0;
   const double n = clutch.params().sliding_interfaces;
   const double denom = n * force * clutch.mean_radius_m();
-  return Probe{slip_rpm,
-               load_cell.reading_N(force),
-               cell.reading_Nm(m + drag_Nm),
-               m,
-               s.sensor_temp_C,
-               th.ir_C(s),
-               s.sump_temp_C,
-               th.mean_interface_temp_C(s),
-               ring_T.maxCoeff(),
-               th.max_temp_C(s),
-               denom > 0.0 ? std::abs(m) / denom : 0.0,
-               n * heat.sum(),
-               units::m3_s_to_ml_min(th.interface_flow_m3_s(slip, th.mean_interface_temp_C(s))),
-               s.rig_temp_C};
+  p.slip_rpm = slip_rpm;
+  p.force_N = load_cell.reading_N(force);
+  p.torque_Nm = cell.reading_Nm(m + drag_Nm);
+  p.clutch_torque_Nm = m;
+  p.mean_mu = denom > 0.0 ? std::abs(m) / denom : 0.0;
+  p.heat_W = n * heat.sum();
+  p.flow_ml_min = units::m3_s_to_ml_min(th.interface_flow_m3_s(slip, mean_interface_C));
+}
+
+// Everything at t with the state's temperatures. `heat` gets the ring heat powers there: exactly
+// what the next backward Euler step's Simpson rule needs at its start, so the step reuses them.
+// The ring torques are evaluated once for the torque and the heat (WetClutch::torque_Nm and
+// ring_heat_W would each evaluate them, with the same numbers).
+Probe measure(const clutch::WetClutch& clutch, const clutch::ThermalState& s, const DriveCycle& cycle,
+              const BearingDrag& drag, const TorqueCell& cell, const LoadCell& load_cell, double drift, double t,
+              Eigen::VectorXd& heat, clutch::WetClutch::RingScratch& scratch) {
+  const auto& th = clutch.thermal();
+  const Eigen::VectorXd ring_T = th.interface_temps_C(s);
+  Probe p{};
+  measure_friction(p, clutch, cycle, drag, cell, load_cell, drift, t, ring_T, th.mean_interface_temp_C(s), heat,
+                   scratch);
+  p.tc_C = s.sensor_temp_C;
+  p.ir_C = th.ir_C(s);
+  p.sump_C = s.sump_temp_C;
+  p.interface_mean_C = th.mean_interface_temp_C(s);
+  p.interface_max_C = ring_T.maxCoeff();
+  p.field_max_C = th.max_temp_C(s);
+  p.rig_C = s.rig_temp_C;
+  return p;
 }
 
 }  // namespace
@@ -73,22 +86,28 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
   const auto probed = [](std::string_view name, std::string_view units, double Probe::*field) {
     return Recorder::interpolated(name, units, [field](const Probe& p) { return p.*field; });
   };
+  // The drive cycle's and the friction's channels, evaluated afresh at samples inside a thermal
+  // step (the slip and the force may bend there, the friction bends with them); the temperatures
+  // are interpolated, as they change smoothly (channel_recorder.hpp).
+  const auto refined = [](std::string_view name, std::string_view units, double Probe::*field) {
+    return Recorder::refined(name, units, [field](const Probe& p) { return p.*field; });
+  };
   dynamics::Recording rec;
   Recorder recorder(rec, {
       Recorder::sampled(sn::kTime, "s", [](double t_s) { return t_s; }),
-      probed(sn::kSpeed, "rpm", &Probe::slip_rpm),
-      probed(sn::kNormalForce, "N", &Probe::force_N),
-      probed(sn::kTorque, "N m", &Probe::torque_Nm),
+      refined(sn::kSpeed, "rpm", &Probe::slip_rpm),
+      refined(sn::kNormalForce, "N", &Probe::force_N),
+      refined(sn::kTorque, "N m", &Probe::torque_Nm),
       probed(sn::kTemp, "degC", &Probe::tc_C),
       probed(sn::kIrTemp, "degC", &Probe::ir_C),
       probed(sn::kSumpTemp, "degC", &Probe::sump_C),
-      probed(sn::kClutchTorque, "N m", &Probe::clutch_torque_Nm),
+      refined(sn::kClutchTorque, "N m", &Probe::clutch_torque_Nm),
       probed(sn::kInterfaceMeanTemp, "degC", &Probe::interface_mean_C),
       probed(sn::kInterfaceMaxTemp, "degC", &Probe::interface_max_C),
       probed(sn::kMaxTemp, "degC", &Probe::field_max_C),
-      probed(sn::kFrictionCoefficient, "1", &Probe::mean_mu),
-      probed(sn::kHeatPower, "W", &Probe::heat_W),
-      probed(sn::kInterfaceOilFlow, "ml/min", &Probe::flow_ml_min),
+      refined(sn::kFrictionCoefficient, "1", &Probe::mean_mu),
+      refined(sn::kHeatPower, "W", &Probe::heat_W),
+      refined(sn::kInterfaceOilFlow, "ml/min", &Probe::flow_ml_min),
       probed(sn::kRigTemp, "degC", &Probe::rig_C),
   });
 
@@ -105,8 +124,9 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
   // A step's end is evaluated twice at the same slip (old temperatures for the step's heat,
   // new ones for the probe): the friction law's speed-only work is kept between the two.
   clutch::WetClutch::RingScratch scratch;
-  recorder.start(measure(clutch, state, cycle, cfg.bearing_drag, cfg.torque_cell, cfg.load_cell,
-                         cfg.friction_drift.factor(sliding_m), 0.0, h0, scratch));
+  const Probe recorder_start = measure(clutch, state, cycle, cfg.bearing_drag, cfg.torque_cell, cfg.load_cell,
+                                      cfg.friction_drift.factor(sliding_m), 0.0, h0, scratch);
+  recorder.start(recorder_start);
   next_sample = 1;
 
   std::vector<double> snaps = cfg.snapshot_times_s;
@@ -122,25 +142,44 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
 
   clutch::FrictionDataRange data_range(*clutch.fluid().friction);
   double peak_interface_C = th.interface_temps_C(state).maxCoeff();
+  Eigen::VectorXd predicted_T;  // BDF2: the film temperatures extrapolated to the step's end
+  // For samples inside a step: the film temperatures at its two ends and between them, the
+  // probe at its start, the sliding distance there, and a heat scratch of their own.
+  Eigen::VectorXd film_start_C = th.interface_temps_C(state), film_end_C, film_between_C, heat_inside;
+  Probe before = recorder_start;
   while (state.time_s < cfg.duration_s - 1e-12) {
     const double t0 = state.time_s;
     const double dt = std::min(cfg.thermal_step_s, cfg.duration_s - t0);
     const double tm = t0 + 0.5 * dt, t1 = t0 + dt;
-    // Ring heat over the step with temperatures held at t0 (Simpson's rule).
-    const Eigen::VectorXd ring_T = th.interface_temps_C(state);
-    const auto heat_at = [&](double t, Eigen::VectorXd& h) {
-      clutch.ring_heat_W(units::rpm_to_rad_s(cycle.slip_speed_rpm(t)), cycle.normal_force_N(t), ring_T, h, &scratch);
-    };
-    // h0 (at t0 with the temperatures at t0) is the previous measure()'s.
-    heat_at(tm, hm);
-    heat_at(t1, h1);
-    const double v0 = sliding_speed(t0), vm = sliding_speed(tm), v1 = sliding_speed(t1);
-    hm *= cfg.friction_drift.factor(sliding_m + 0.25 * dt * (v0 + vm));
-    sliding_m += dt * (v0 + 4.0 * vm + v1) / 6.0;
-    h1 *= cfg.friction_drift.factor(sliding_m);
-    const Eigen::VectorXd mean_heat = (h0 + 4.0 * hm + h1) / 6.0;
-    th.step(state, workspace, dt, mean_heat, units::rpm_to_rad_s(cycle.slip_speed_rpm(tm)));
-    data_range.add(dt, units::rpm_to_rad_s(cycle.slip_speed_rpm(tm)), th.ring_radius_m(), ring_T, cycle.normal_force_N(tm));
+    const double sliding_start_m = sliding_m;
+    if (cfg.thermal_scheme == ThermalScheme::kBdf2) {
+      // Heat at the step's end with the film temperatures extrapolated there (second order
+      // without iterating); the sliding distance still by Simpson's rule.
+      th.predicted_interface_temps_C(state, dt, predicted_T);
+      const double slip1 = units::rpm_to_rad_s(cycle.slip_speed_rpm(t1));
+      clutch.ring_heat_W(slip1, cycle.normal_force_N(t1), predicted_T, h1, &scratch);
+      sliding_m += dt * (sliding_speed(t0) + 4.0 * sliding_speed(tm) + sliding_speed(t1)) / 6.0;
+      h1 *= cfg.friction_drift.factor(sliding_m);
+      th.step_bdf2(state, workspace, dt, h1, slip1);
+      data_range.add(dt, slip1, th.ring_radius_m(), predicted_T, cycle.normal_force_N(t1));
+    } else {
+      // Ring heat over the step with temperatures held at t0 (Simpson's rule).
+      const Eigen::VectorXd ring_T = th.interface_temps_C(state);
+      const auto heat_at = [&](double t, Eigen::VectorXd& h) {
+        clutch.ring_heat_W(units::rpm_to_rad_s(cycle.slip_speed_rpm(t)), cycle.normal_force_N(t), ring_T, h, &scratch);
+      };
+      // h0 (at t0 with the temperatures at t0) is the previous measure()'s.
+      heat_at(tm, hm);
+      heat_at(t1, h1);
+      const double v0 = sliding_speed(t0), vm = sliding_speed(tm), v1 = sliding_speed(t1);
+      hm *= cfg.friction_drift.factor(sliding_m + 0.25 * dt * (v0 + vm));
+      sliding_m += dt * (v0 + 4.0 * vm + v1) / 6.0;
+      h1 *= cfg.friction_drift.factor(sliding_m);
+      const Eigen::VectorXd mean_heat = (h0 + 4.0 * hm + h1) / 6.0;
+      th.step(state, workspace, dt, mean_heat, units::rpm_to_rad_s(cycle.slip_speed_rpm(tm)));
+      data_range.add(dt, units::rpm_to_rad_s(cycle.slip_speed_rpm(tm)), th.ring_radius_m(), ring_T,
+                     cycle.normal_force_N(tm));
+    }
     state.time_s = t1;  // exact end time, free of accumulated round-off
 
     const Probe after = measure(clutch, state, cycle, cfg.bearing_drag, cfg.torque_cell, cfg.load_cell,
@@ -151,7 +190,22 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
       recorder.sample(ts);
       ++next_sample;
     }
-    recorder.step(after, t0, t1);
+    film_end_C = th.interface_temps_C(state);
+    // A sample inside the step: the friction at its own slip and force, with the film
+    // temperatures (and their mean, for the oil flow) linear in time between the step's ends.
+    const auto inside = [&](double t, double w) {
+      film_between_C = (1.0 - w) * film_start_C + w * film_end_C;
+      const double mean_C = (1.0 - w) * before.interface_mean_C + w * after.interface_mean_C;
+      const double sliding_at_m =
+          sliding_start_m + (t - t0) * (sliding_speed(t0) + 4.0 * sliding_speed(0.5 * (t0 + t)) + sliding_speed(t)) / 6.0;
+      Probe p{};
+      measure_friction(p, clutch, cycle, cfg.bearing_drag, cfg.torque_cell, cfg.load_cell,
+                       cfg.friction_drift.factor(sliding_at_m), t, film_between_C, mean_C, heat_inside, scratch);
+      return p;
+    };
+    recorder.step(after, t0, t1, inside);
+    film_start_C.swap(film_end_C);
+    before = after;
     peak_interface_C = std::max(peak_interface_C, after.interface_max_C);
     take_snapshots(t1, dt);
   }

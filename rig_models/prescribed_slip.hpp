@@ -70,9 +70,16 @@ struct LoadCell {
   double true_N(double reading_N) const { return gain_fault ? reading_N / gain : reading_N; }
 };
 
+/// How the thermal field is stepped (clutch/thermal_model.hpp). Backward Euler takes the ring
+/// heat as the step's mean (Simpson's rule, temperatures held at the step's start): first order.
+/// BDF2 takes the heat at the step's end with the film temperatures extrapolated there: second
+/// order, so twice to four times the step at the same accuracy (docs/thermal_model.md).
+enum class ThermalScheme { kBackwardEuler, kBdf2 };
+
 struct PrescribedSlipSettings {
   double duration_s = 10.0;
   double thermal_step_s = 0.01;
+  ThermalScheme thermal_scheme = ThermalScheme::kBackwardEuler;
   double sample_rate_Hz = 100.0;
   std::vector<double> snapshot_times_s;  // thermal-field snapshots (nearest step end)
   BearingDrag bearing_drag;
