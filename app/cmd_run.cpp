@@ -34,6 +34,13 @@ int run_command(const RunOptions& opt) {
   return guarded(opt.scenario, "simulation", [&]() -> int {
     const io::Scenario scenario = io::load_scenario(opt.scenario);
     for (const auto& w : scenario.warnings) std::cerr << "shudder: warning: " << w << "\n";
+    if (const auto* ps = std::get_if<rig_models::PrescribedSlipModel>(&scenario.model);
+        ps && opt.fixed_step_s > 0 && ps->settings.thermal_scheme == rig_models::ThermalScheme::kBdf2)
+      std::cerr << "shudder: warning: [solver] thermal_scheme = \"bdf2\" is for the adaptive run; --fixed-step hands "
+                   "the heat to the thermal field every thermal_step_ms ("
+                << ps->settings.thermal_step_s * 1e3
+                << " ms) with backward Euler, whose time error grows with that step (set thermal_step_ms = 10 for "
+                   "the real-time mode's documented accuracy, docs/realtime.md)\n";
     const clutch::WetClutch clutch = scenario.make_clutch();
     const std::string out = opt.output.empty() ? scenario.name + ".h5" : opt.output;
 

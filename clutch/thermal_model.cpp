@@ -237,9 +237,8 @@ void ThermalModel::check_finite(const Eigen::VectorXd& next, double time_s) cons
                                " s, ring " + std::to_string(a / nz_) + ", axial node " + std::to_string(a % nz_));
 }
 
-std::pair<double, double> ThermalModel::book_fluxes(ThermalState& s, const Eigen::VectorXd& next,
-                                                    const Eigen::VectorXd& ring_heat_W, double flow_W_per_K,
-                                                    double dt) const {
+std::pair<double, double> ThermalModel::outflows(const ThermalState& s, const Eigen::VectorXd& next,
+                                                 double flow_W_per_K, double dt) const {
   const Eigen::Index n = next.size();
   const double out_inner = g_inner_.dot(next - Eigen::VectorXd::Constant(n, s.inner_temp_C)) * dt;
   const double out_outer = g_outer_.dot(next - Eigen::VectorXd::Constant(n, s.sump_temp_C)) * dt;
@@ -249,11 +248,7 @@ std::pair<double, double> ThermalModel::book_fluxes(ThermalState& s, const Eigen
     out_oil += flow_W_per_K * adv_weight_[i] * (next[node(i, film_j_)] - upstream) * dt;
     to_rig += g_rig_[i] * (next[node(i, 0)] - s.rig_temp_C) * dt;
   }
-  const double to_sump = out_inner + out_outer + out_oil;
-  s.energy.generated_J += ring_heat_W.sum() * dt;
-  s.energy.to_sump_J += to_sump;
-  s.energy.to_rig_J += to_rig;
-  return {to_sump, to_rig};
+  return {out_inner + out_outer + out_oil, to_rig};
 }
 
 void ThermalModel::finish_step(ThermalState& s, double dt, double to_sump_J, double to_rig_J) const {
@@ -278,57 +273,77 @@ void ThermalModel::step(ThermalState& s, ThermalWorkspace& w, double dt,
   add_sources(s, w, ring_heat_W, flow_W_per_K);
   w.lu_.solve_in_place(w.rhs_);
   check_finite(w.rhs_, s.time_s);
-  const auto [to_sump, to_rig] = book_fluxes(s, w.rhs_, ring_heat_W, flow_W_per_K, dt);
+  // Energy ledger with the same end-of-step temperatures the solve used.
+  const auto [to_sump, to_rig] = outflows(s, w.rhs_, flow_W_per_K, dt);
+  s.energy.generated_J += ring_heat_W.sum() * dt;
+  s.energy.to_sump_J += to_sump;
+  s.energy.to_rig_J += to_rig;
 
   s.temp_C.swap(w.rhs_);  // the new field; the old one's storage is the next right-hand side
-  s.previous_step_s = 0.0;  // a BDF2 step after this one has no valid history
+  s.history.step_s = 0.0;  // a BDF2 step after this one has no valid history
   finish_step(s, dt, to_sump, to_rig);
 }
 
 void ThermalModel::step_bdf2(ThermalState& s, ThermalWorkspace& w, double dt,
                              const Eigen::VectorXd& ring_heat_end_W, double slip_end_rad_s) const {
   if (!(dt > 0.0)) throw std::invalid_argument("thermal step must be > 0");
+  auto& h = s.history;
   const Eigen::Index n = s.temp_C.size();
-  if (!(s.previous_step_s > 0.0) || s.previous_temp_C.size() != n) {
+  if (!(h.step_s > 0.0) || h.temp_C.size() != n) {
     // Start (or restart) with one backward Euler step: one first-order step's error is
     // O(dt²), which keeps the run second order.
-    s.previous_temp_C = s.temp_C;
+    h.temp_C = s.temp_C;
+    const EnergyLedger before = s.energy;
     step(s, w, dt, ring_heat_end_W, slip_end_rad_s);
-    s.previous_step_s = dt;
+    h.step_s = dt;
+    h.heat_W = ring_heat_end_W.sum();
+    h.to_sump_W = (s.energy.to_sump_J - before.to_sump_J) / dt;
+    h.to_rig_W = (s.energy.to_rig_J - before.to_rig_J) / dt;
     return;
   }
-  const double ratio = dt / s.previous_step_s;  // w of the header
+  const double ratio = dt / h.step_s;  // w of the header
   const double a = (1.0 + 2.0 * ratio) / (1.0 + ratio), b = 1.0 + ratio, c = ratio * ratio / (1.0 + ratio);
   const double mean_now_C = film_mean_C(s.temp_C);
-  const double mean_end_C = mean_now_C + ratio * (mean_now_C - film_mean_C(s.previous_temp_C));
+  const double mean_end_C = mean_now_C + ratio * (mean_now_C - film_mean_C(h.temp_C));
   const double flow_W_per_K = p_.oil_density_kg_m3 * p_.oil_specific_heat_J_per_kgK *
                               interface_flow_m3_s(slip_end_rad_s, mean_end_C);
   factorise_if_changed(w, dt / a, flow_W_per_K, s.time_s);
 
-  w.rhs_ = capacity_J_per_K_.cwiseProduct(b * s.temp_C - c * s.previous_temp_C) / dt +
-           g_inner_ * s.inner_temp_C + g_outer_ * s.sump_temp_C;
+  w.rhs_ = capacity_J_per_K_.cwiseProduct(b * s.temp_C - c * h.temp_C) / dt + g_inner_ * s.inner_temp_C +
+           g_outer_ * s.sump_temp_C;
   add_sources(s, w, ring_heat_end_W, flow_W_per_K);
   w.lu_.solve_in_place(w.rhs_);
   check_finite(w.rhs_, s.time_s);
-  const auto [to_sump, to_rig] = book_fluxes(s, w.rhs_, ring_heat_end_W, flow_W_per_K, dt);
-  // What BDF2's storage term books beyond C (T1 - T0) (header): the ledger's closing term.
-  s.energy.scheme_storage_J +=
-      ratio / (1.0 + ratio) *
-      capacity_J_per_K_.dot((w.rhs_ - s.temp_C) - ratio * (s.temp_C - s.previous_temp_C));
 
-  s.previous_temp_C.swap(s.temp_C);  // history: the field at t
-  s.temp_C.swap(w.rhs_);             // the new field; the oldest one's storage is the next right-hand side
-  s.previous_step_s = dt;
+  // Ledger: trapezoidal sums of the rates at the step's two ends, and the scheme's own term
+  // (header) from the fields and rates alone, so that its closure checks the solve.
+  const auto [to_sump_W, to_rig_W] = outflows(s, w.rhs_, flow_W_per_K, 1.0);
+  const double heat_W = ring_heat_end_W.sum();
+  const double to_sump = 0.5 * dt * (h.to_sump_W + to_sump_W), to_rig = 0.5 * dt * (h.to_rig_W + to_rig_W);
+  s.energy.generated_J += 0.5 * dt * (h.heat_W + heat_W);
+  s.energy.to_sump_J += to_sump;
+  s.energy.to_rig_J += to_rig;
+  s.energy.scheme_storage_J +=
+      ratio / (1.0 + ratio) * capacity_J_per_K_.dot((w.rhs_ - s.temp_C) - ratio * (s.temp_C - h.temp_C)) -
+      0.5 * dt * ((heat_W - h.heat_W) - (to_sump_W + to_rig_W - h.to_sump_W - h.to_rig_W));
+
+  h.temp_C.swap(s.temp_C);  // history: the field at t
+  s.temp_C.swap(w.rhs_);    // the new field; the oldest one's storage is the next right-hand side
+  h.step_s = dt;
+  h.heat_W = heat_W;
+  h.to_sump_W = to_sump_W;
+  h.to_rig_W = to_rig_W;
   finish_step(s, dt, to_sump, to_rig);
 }
 
 void ThermalModel::predicted_interface_temps_C(const ThermalState& s, double dt, Eigen::VectorXd& out) const {
   out.resize(nr_);
-  const bool history = s.previous_step_s > 0.0 && s.previous_temp_C.size() == s.temp_C.size();
-  const double ratio = history ? dt / s.previous_step_s : 0.0;
+  const auto& h = s.history;
+  const bool known = h.step_s > 0.0 && h.temp_C.size() == s.temp_C.size();
+  const double ratio = known ? dt / h.step_s : 0.0;
   for (int i = 0; i < nr_; ++i) {
     const double now = s.temp_C[node(i, film_j_)];
-    out[i] = history ? now + ratio * (now - s.previous_temp_C[node(i, film_j_)]) : now;
+    out[i] = known ? now + ratio * (now - h.temp_C[node(i, film_j_)]) : now;
   }
 }
 

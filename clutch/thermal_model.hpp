@@ -29,10 +29,15 @@
 // banded_lu.hpp), factorised only when the step's storage term or the oil flow changes. Sump and
 // rig temperatures lag one step (explicit, their time constants are seconds); every flux of the
 // ledger is evaluated with the same end-of-step temperatures as the solve, so the discrete energy
-// balance closes to round-off. BDF2's storage term is not C (T1 - T0): it books in addition
-//     C w / (1 + w) [ (T1 - T0) - w (T0 - T-1) ]
-// (for w = 1 this telescopes to C (ΔT_last - ΔT_first) / 2 over a run: bounded, O(dt), no drift),
-// which the ledger keeps as `scheme_storage_J` so that the balance still closes to round-off.
+// balance closes to round-off. Backward Euler books each step's heat and outflows as their
+// end-of-step rates times dt (Simpson's mean heat, for the prescribed-slip runner), exactly
+// what its solve balances. BDF2 books them by the trapezoidal rule over the step's two ends
+// (second order, like the scheme: the heat generated is then not biased by dt/2 of its rise),
+// whereas its solve balances
+//     C (T1 - T0) + C w / (1 + w) [ (T1 - T0) - w (T0 - T-1) ] = dt (q1 - out1);
+// the difference, C w/(1+w) [...] - dt/2 [ (q1 - q0) - (out1 - out0) ], telescopes over a run to
+// terms of the first and last steps only (bounded, O(dt), no drift) and is kept as the ledger's
+// `scheme_storage_J`, so that the balance still closes to round-off.
 //
 // Units: SI inside (m, s, W, J, K); temperatures in °C.
 
@@ -112,10 +117,14 @@ struct ThermalState {
   double rig_temp_C = 0.0;       // lumped rig mass
   double sensor_temp_C = 0.0;    // thermocouple reading after its lag (and offset)
   EnergyLedger energy;
-  // BDF2's history: the field one step back and that step's length. previous_step_s = 0 means
-  // none (before the first step, or after a backward Euler step).
-  Eigen::VectorXd previous_temp_C;
-  double previous_step_s = 0.0;
+  // BDF2's history: the field one step back, that step's length, and the heat and outflow
+  // rates at its end (for the ledger's trapezoidal sums). step_s = 0 means none (before the
+  // first step, or after a backward Euler step).
+  struct History {
+    Eigen::VectorXd temp_C;
+    double step_s = 0.0;
+    double heat_W = 0.0, to_sump_W = 0.0, to_rig_W = 0.0;
+  } history;
 };
 
 class ThermalModel;
@@ -203,10 +212,9 @@ class ThermalModel {
   void add_sources(const ThermalState& s, ThermalWorkspace& w, const Eigen::VectorXd& ring_heat_W,
                    double flow_W_per_K) const;
   void check_finite(const Eigen::VectorXd& next, double time_s) const;
-  // Books the step's heat and outflows with the end-of-step field `next`; returns {to sump, to rig} in J.
-  std::pair<double, double> book_fluxes(ThermalState& s, const Eigen::VectorXd& next,
-                                        const Eigen::VectorXd& ring_heat_W, double flow_W_per_K,
-                                        double dt) const;
+  // The outflows {to sump, to rig} with the end-of-step field `next`, times dt (J; W for dt = 1).
+  std::pair<double, double> outflows(const ThermalState& s, const Eigen::VectorXd& next, double flow_W_per_K,
+                                     double dt) const;
   // Time, sump, rig mass and sensor after the field has been replaced.
   void finish_step(ThermalState& s, double dt, double to_sump_J, double to_rig_J) const;
 

@@ -63,6 +63,10 @@ TEST(Realtime, PrescribedSlipMatchesTheAdaptiveRunWithinTheThermalLagBound) {
   io::Scenario sc = io::load_scenario(kScenarios + "paper_g_case1_25kN.toml");
   auto& m = std::get<rig_models::PrescribedSlipModel>(sc.model);
   m.settings.duration_s = 3.0;
+  // The configuration docs/realtime.md states the accuracy for: both runs with backward Euler at
+  // 10 ms (the shipped scenario's BDF2 at 40 ms is the adaptive run's own choice).
+  m.settings.thermal_step_s = 0.01;
+  m.settings.thermal_scheme = rig_models::ThermalScheme::kBackwardEuler;
   const clutch::WetClutch clutch = sc.make_clutch();
   const auto ad = rig_models::simulate(m, clutch);
   const auto rt = rig_models::run_fixed_step(m, clutch, 1e-4);
