@@ -160,8 +160,12 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
       clutch.ring_heat_W(slip1, cycle.normal_force_N(t1), predicted_T, h1, &scratch);
       sliding_m += dt * (sliding_speed(t0) + 4.0 * sliding_speed(tm) + sliding_speed(t1)) / 6.0;
       h1 *= cfg.friction_drift.factor(sliding_m);
+      // The data range takes each step at its middle, as under backward Euler (film
+      // temperatures half way to the predicted ones), before the step moves the field.
+      film_between_C = 0.5 * (film_start_C + predicted_T);
+      data_range.add(dt, units::rpm_to_rad_s(cycle.slip_speed_rpm(tm)), th.ring_radius_m(), film_between_C,
+                      cycle.normal_force_N(tm));
       th.step_bdf2(state, workspace, dt, h1, slip1);
-      data_range.add(dt, slip1, th.ring_radius_m(), predicted_T, cycle.normal_force_N(t1));
     } else {
       // Ring heat over the step with temperatures held at t0 (Simpson's rule).
       const Eigen::VectorXd ring_T = th.interface_temps_C(state);
