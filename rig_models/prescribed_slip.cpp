@@ -9,6 +9,7 @@
 #include "core/units.hpp"
 #include "dynamics/signal_names.hpp"
 #include "rig_models/channel_recorder.hpp"
+#include "rig_models/thermal_step_plan.hpp"
 #include "rig_models/energy_scalars.hpp"
 
 namespace shudder::rig_models {
@@ -147,12 +148,22 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
   // probe at its start, the sliding distance there, and a heat scratch of their own.
   Eigen::VectorXd film_start_C = th.interface_temps_C(state), film_end_C, film_between_C, heat_inside;
   Probe before = recorder_start;
+  // BDF2's steps end on the cycles' breakpoints and grow by at most 2x (thermal_step_plan.hpp);
+  // backward Euler keeps its fixed grid.
+  std::vector<double> knots_s = cycle.slip_speed_rpm.times_s();
+  knots_s.insert(knots_s.end(), cycle.normal_force_N.times_s().begin(), cycle.normal_force_N.times_s().end());
+  const ThermalStepPlan plan(std::move(knots_s), cfg.thermal_step_s, cfg.duration_s);
+  const bool bdf2 = cfg.thermal_scheme == ThermalScheme::kBdf2;
+  double previous_dt = 0.0;
+  long thermal_steps = 0;
   while (state.time_s < cfg.duration_s - 1e-12) {
     const double t0 = state.time_s;
-    const double dt = std::min(cfg.thermal_step_s, cfg.duration_s - t0);
+    const double dt = bdf2 ? plan.next_step_s(t0, previous_dt) : std::min(cfg.thermal_step_s, cfg.duration_s - t0);
+    previous_dt = dt;
+    ++thermal_steps;
     const double tm = t0 + 0.5 * dt, t1 = t0 + dt;
     const double sliding_start_m = sliding_m;
-    if (cfg.thermal_scheme == ThermalScheme::kBdf2) {
+    if (bdf2) {
       // Heat at the step's end with the film temperatures extrapolated there (second order
       // without iterating); the sliding distance still by Simpson's rule.
       th.predicted_interface_temps_C(state, dt, predicted_T);
@@ -222,7 +233,7 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
   rec.scalars = heat_account_scalars(clutch, state);
   rec.scalars.push_back({"peak_interface_temp_C", "degC", peak_interface_C});
   rec.scalars.push_back({"final_max_temp_C", "degC", th.max_temp_C(state)});
-  rec.scalars.push_back({"thermal_steps", "1", std::ceil(cfg.duration_s / cfg.thermal_step_s - 1e-9)});
+  rec.scalars.push_back({"thermal_steps", "1", static_cast<double>(thermal_steps)});
   rec.blocks.push_back(friction_range_block(data_range));
   return rec;
 }
