@@ -121,6 +121,11 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
   // Sliding distance at the mean radius (friction_drift), by the same Simpson rule as the heat.
   const double r_m = clutch.mean_radius_m();
   const auto sliding_speed = [&](double t) { return r_m * std::abs(units::rpm_to_rad_s(cycle.slip_speed_rpm(t))); };
+  // The distance slid over [ta, ta + h], Simpson's rule (exact for the piecewise-linear cycle
+  // within a segment).
+  const auto slid_m = [&](double ta, double h) {
+    return h * (sliding_speed(ta) + 4.0 * sliding_speed(ta + 0.5 * h) + sliding_speed(ta + h)) / 6.0;
+  };
   double sliding_m = 0.0;
   // A step's end is evaluated twice at the same slip (old temperatures for the step's heat,
   // new ones for the probe): the friction law's speed-only work is kept between the two.
@@ -169,7 +174,7 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
       th.predicted_interface_temps_C(state, dt, predicted_T);
       const double slip1 = units::rpm_to_rad_s(cycle.slip_speed_rpm(t1));
       clutch.ring_heat_W(slip1, cycle.normal_force_N(t1), predicted_T, h1, &scratch);
-      sliding_m += dt * (sliding_speed(t0) + 4.0 * sliding_speed(tm) + sliding_speed(t1)) / 6.0;
+      sliding_m += slid_m(t0, dt);
       h1 *= cfg.friction_drift.factor(sliding_m);
       // The data range takes each step at its middle, as under backward Euler (film
       // temperatures half way to the predicted ones), before the step moves the field.
@@ -211,11 +216,10 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
     const auto inside = [&](double t, double w) {
       film_between_C = (1.0 - w) * film_start_C + w * film_end_C;
       const double mean_C = (1.0 - w) * before.interface_mean_C + w * after.interface_mean_C;
-      const double sliding_at_m =
-          sliding_start_m + (t - t0) * (sliding_speed(t0) + 4.0 * sliding_speed(0.5 * (t0 + t)) + sliding_speed(t)) / 6.0;
       Probe p{};
       measure_friction(p, clutch, cycle, cfg.bearing_drag, cfg.torque_cell, cfg.load_cell,
-                       cfg.friction_drift.factor(sliding_at_m), t, film_between_C, mean_C, heat_inside, scratch);
+                       cfg.friction_drift.factor(sliding_start_m + slid_m(t0, t - t0)), t, film_between_C, mean_C,
+                       heat_inside, scratch);
       return p;
     };
     recorder.step(after, t0, t1, inside);
