@@ -21,6 +21,7 @@
 #include "io/input_error.hpp"
 #include "io/kind_refusal.hpp"
 #include "io/measurement_csv.hpp"
+#include "io/network_scenario.hpp"
 #include "io/output_safety.hpp"
 #include "report/plots.hpp"
 #include "io/scenario.hpp"
@@ -32,6 +33,7 @@ namespace shudder::app {
 
 int run_command(const RunOptions& opt) {
   return guarded(opt.scenario, "simulation", [&]() -> int {
+    if (io::scenario_type(opt.scenario) == "network") return run_network_command(opt);
     const io::Scenario scenario = io::load_scenario(opt.scenario);
     for (const auto& w : scenario.warnings) std::cerr << "shudder: warning: " << w << "\n";
     if (const auto* ps = std::get_if<rig_models::PrescribedSlipModel>(&scenario.model);

@@ -24,6 +24,8 @@ struct RunOptions {
   double fixed_step_s = 0.0;           // > 0: the fixed-step real-time mode (docs/realtime.md)
 };
 int run_command(const RunOptions& options);
+/// `run` on a type = "network" scenario (app/cmd_run_network.cpp); run_command dispatches to it.
+int run_network_command(const RunOptions& options);
 
 struct ModesOptions {
   std::string scenario;

@@ -21,6 +21,12 @@ class ContactLaw {
   virtual double kinetic_torque_Nm(double abs_slip_rad_s, double t_s) const = 0;
   /// Largest torque the stuck contact can carry after `stick_time_s` stuck, N m.
   virtual double static_capacity_Nm(double t_s, double stick_time_s) const = 0;
+  /// Largest torque the stuck contact can carry against a holding torque `held_Nm` (transmitted
+  /// from a to b, i.e. −held_Nm on a, +held_Nm on b). A two-way clutch holds either sign up to its
+  /// static capacity; a one-way clutch (components/one_way_clutch.hpp) holds one sign only.
+  virtual double holding_capacity_Nm(double t_s, double stick_time_s, double /*held_Nm*/) const {
+    return static_capacity_Nm(t_s, stick_time_s);
+  }
   /// d(kinetic torque)/d|Δω| at constant temperature, N m s/rad (for linearisation).
   virtual double kinetic_torque_slope_Nms(double abs_slip_rad_s, double t_s) const = 0;
   /// Number of heat channels (0 if the law does not split its heat).

@@ -57,9 +57,21 @@ void TorsionalNetwork::check_node(int node, const std::string& what, bool ground
 void TorsionalNetwork::validate() const {
   const auto positive = [](double x) { return std::isfinite(x) && x > 0.0; };
   const auto non_negative = [](double x) { return std::isfinite(x) && x >= 0.0; };
-  for (const auto& i : inertias_)
-    if (!positive(i.inertia_kg_m2))
-      throw std::invalid_argument("inertia '" + i.name + "' must be > 0 kg m^2");
+  // A massless node is allowed where a gear, differential or speed source fixes its speed (the
+  // KKT system then has its row); anywhere else its acceleration would be undefined.
+  std::vector<bool> tied(inertias_.size(), false);
+  const auto tie = [&](int node) {
+    if (node >= 0 && node < nodes()) tied[static_cast<std::size_t>(node)] = true;
+  };
+  for (const auto& g : gears_) tie(g.a), tie(g.b);
+  for (const auto& d : differentials_) tie(d.carrier), tie(d.left), tie(d.right);
+  for (const auto& s : speed_sources_) tie(s.node);
+  for (std::size_t i = 0; i < inertias_.size(); ++i) {
+    const double j = inertias_[i].inertia_kg_m2;
+    if (!(positive(j) || (j == 0.0 && tied[i])))
+      throw std::invalid_argument("inertia '" + inertias_[i].name +
+                                  "' must be > 0 kg m^2 (0 only where a gear, differential or speed source fixes its speed)");
+  }
   for (const auto& s : shafts_) {
     check_node(s.a, "shaft '" + s.name + "'", false);
     check_node(s.b, "shaft '" + s.name + "'", true);

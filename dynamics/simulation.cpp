@@ -314,7 +314,7 @@ void Simulation::derivative(const State& x, State& dxdt, double t) const {
 double Simulation::event_function(int c, const State& x, double t, const Forces& f) const {
   const auto& k = net_.contacts()[c];
   if (modes_[c] == ContactMode::kStuck)
-    return k.law->static_capacity_Nm(t, stick_time(c, t)) - std::abs(f.contact_T[c]);
+    return k.law->holding_capacity_Nm(t, stick_time(c, t), f.contact_T[c]) - std::abs(f.contact_T[c]);
   const double dw = x[n_ + k.a] - (k.b == kGround ? 0.0 : x[n_ + k.b]);
   return sign_of(modes_[c]) * dw;
 }
@@ -342,14 +342,33 @@ double Simulation::project_velocities(State& x, double t) {
   if (rows.empty()) return 0.0;
   Eigen::MatrixXd G(static_cast<Eigen::Index>(rows.size()), n_);
   for (std::size_t r = 0; r < rows.size(); ++r) G.row(static_cast<Eigen::Index>(r)) = rows[r];
-  Eigen::VectorXd minv(n_);
-  for (int i = 0; i < n_; ++i) minv[i] = 1.0 / net_.inertias()[i].inertia_kg_m2;
   Eigen::Map<Eigen::VectorXd> om(x.data() + n_, n_);
   const Eigen::VectorXd before = om;
-  const Eigen::MatrixXd gm = G * minv.asDiagonal();
-  const Eigen::VectorXd resid = G * om - Eigen::Map<const Eigen::VectorXd>(b.data(), static_cast<Eigen::Index>(b.size()));
-  const Eigen::VectorXd y = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(gm * G.transpose()).solve(resid);
-  om -= gm.transpose() * y;
+  const Eigen::Map<const Eigen::VectorXd> rhs(b.data(), static_cast<Eigen::Index>(b.size()));
+  bool massless = false;
+  for (int i = 0; i < n_; ++i) massless = massless || !(net_.inertias()[i].inertia_kg_m2 > 0.0);
+  if (!massless) {
+    Eigen::VectorXd minv(n_);
+    for (int i = 0; i < n_; ++i) minv[i] = 1.0 / net_.inertias()[i].inertia_kg_m2;
+    const Eigen::MatrixXd gm = G * minv.asDiagonal();
+    const Eigen::VectorXd resid = G * om - rhs;
+    const Eigen::VectorXd y = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(gm * G.transpose()).solve(resid);
+    om -= gm.transpose() * y;
+  } else {
+    // A massless node (fixed by a gear or differential): the same closest-in-kinetic-energy
+    // projection as the KKT system [M Gᵀ; G 0] [ω; λ] = [M ω₀; b], which needs no M⁻¹.
+    const Eigen::Index m = G.rows();
+    Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(n_ + m, n_ + m);
+    Eigen::VectorXd r(n_ + m);
+    for (int i = 0; i < n_; ++i) {
+      kkt(i, i) = net_.inertias()[i].inertia_kg_m2;
+      r[i] = kkt(i, i) * om[i];
+    }
+    kkt.block(n_, 0, m, n_) = G;
+    kkt.block(0, n_, n_, m) = G.transpose();
+    r.tail(m) = rhs;
+    om = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(kkt).solve(r).head(n_);
+  }
   // Not constraints(): an event's projection must not factorise a KKT system (the counter counts
   // those of the integration); the groups alone are cheap.
   equalise_stuck_groups(stuck_groups(), om.data());
@@ -381,7 +400,8 @@ void Simulation::resolve_contacts(State& x, double t, std::vector<int> sticking,
     double worst_ratio = 1.0 + 1e-12;
     for (std::size_t c = 0; c < modes_.size(); ++c) {
       if (modes_[c] != ContactMode::kStuck) continue;
-      const double cap = net_.contacts()[c].law->static_capacity_Nm(t, stick_time(static_cast<int>(c), t));
+      const double cap =
+          net_.contacts()[c].law->holding_capacity_Nm(t, stick_time(static_cast<int>(c), t), f.contact_T[c]);
       const double ratio = std::abs(f.contact_T[c]) / std::max(cap, 1e-300);
       if (ratio > worst_ratio) {
         worst_ratio = ratio;

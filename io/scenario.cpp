@@ -475,7 +475,10 @@ Scenario load_scenario_text(const std::string& text, const std::string& path) {
 
   auto head = root.table("scenario");
   sc.name = head.string_or("name", fs::path(path).stem().string());
-  s.type = head.choice_or("type", "prescribed_slip", {"prescribed_slip", "rig", "driveline"});
+  s.type = head.choice_or("type", "prescribed_slip", {"prescribed_slip", "rig", "driveline", "network"});
+  if (s.type == "network")
+    head.fail("type", "\"network\" scenarios (docs/network_format.md) work with `shudder run` and `shudder sweep`; "
+                      "this command needs type = \"prescribed_slip\", \"rig\" or \"driveline\"");
   s.kind = kind_of_type(s.type);
   sc.description = head.string_or("description", "");
   s.settings.duration_s = head.number("duration_s", Range::closed(1e-3, 1e5));
@@ -539,6 +542,30 @@ Scenario load_scenario_text(const std::string& text, const std::string& path) {
   sc.warnings = s.warnings;
   sc.model = make_model(s);
   return sc;
+}
+
+components::WetPackSpec read_wet_pack(TomlTable& component, const std::string& scenario_path,
+                                      std::vector<std::string>& warnings) {
+  Draft s;
+  s.path = scenario_path;
+  s.type = "network";
+  s.kind = ModelKind::kRig;  // a wet clutch between two inertias: the rig's effects apply
+  read_clutch(component, s);
+  read_effects(component, s);
+  components::WetPackSpec w;
+  w.fluid_path = s.fluid_path;
+  w.fluid_text = s.fluid_text;
+  w.fluid = s.fluid;
+  w.clutch = s.clutch;
+  w.bearing_drag = s.settings.bearing_drag;
+  w.stick_time = s.rig.stick_time;
+  const auto target = effect_target(s);
+  for (const auto& effect : rig_models::effect_registry())
+    if (effect.enabled(target)) w.enabled_effects.push_back(effect.name);
+  std::string where = component.full_key("");
+  if (!where.empty() && where.back() == '.') where.pop_back();
+  for (auto& msg : s.warnings) warnings.push_back(where + ": " + msg);
+  return w;
 }
 
 clutch::WetClutch Scenario::make_clutch() const {

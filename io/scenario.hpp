@@ -10,6 +10,8 @@
 #include "clutch/fluid.hpp"
 #include "clutch/wet_clutch.hpp"
 #include "core/model_kind.hpp"
+#include "components/network_spec.hpp"
+#include "io/toml_reader.hpp"
 #include "rig_models/model.hpp"
 
 namespace shudder::io {
@@ -43,6 +45,12 @@ struct Scenario {
 Scenario load_scenario(const std::string& path);
 /// Loads scenario text; `path` names it in messages and anchors relative fluid paths.
 Scenario load_scenario_text(const std::string& text, const std::string& path);
+/// A network's wet clutch (docs/network_format.md): `component` holds a [clutch] table and an
+/// optional [effects] table exactly as a scenario's root does; the fluid path is relative to
+/// the scenario file. Effects that cannot act on it are warnings (appended).
+components::WetPackSpec read_wet_pack(TomlTable& component, const std::string& scenario_path,
+                                      std::vector<std::string>& warnings);
+
 /// The scenario text with numeric `key` (dotted, tables created as needed) set to `value`
 /// (comments are not kept). Used by sweeps.
 std::string set_scenario_key(const std::string& text, const std::string& path,

@@ -28,35 +28,6 @@ std::string Range::describe() const {
   return os.str();
 }
 
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  // d[i][j]: distance between a's first i and b's first j characters (Wagner–Fischer with the
-  // adjacent-swap case of Damerau).
-  std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
-  for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
-  for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i)
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
-        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-    }
-  return d[a.size()][b.size()];
-}
-
-std::string nearest_key(const std::string& key, const std::vector<std::string>& candidates) {
-  const std::size_t limit = std::min<std::size_t>(2, key.size() / 3);
-  std::string best;
-  std::size_t best_d = limit + 1;
-  for (const auto& c : candidates) {
-    const std::size_t dist = edit_distance(key, c);
-    if (dist < best_d) {
-      best_d = dist;
-      best = c;
-    }
-  }
-  return best;
-}
 
 TomlTable::TomlTable(const toml::table& table, std::string file, std::string path)
     : table_(&table), file_(std::move(file)), path_(std::move(path)) {}
@@ -164,6 +135,11 @@ void TomlTable::fail(const std::string& key, const std::string& message) const {
 }
 
 bool TomlTable::has(const std::string& key) const { return table_->contains(key); }
+
+bool TomlTable::is_table(const std::string& key) const {
+  const auto* n = get(key);
+  return n && n->is_table();
+}
 
 bool TomlTable::is_array(const std::string& key) const {
   const auto* n = get(key);

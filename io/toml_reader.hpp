@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/nearest_name.hpp"
 #include "io/input_error.hpp"
 
 namespace shudder::io {
@@ -30,14 +31,8 @@ struct Range {
   std::string describe() const;
 };
 
-/// Optimal-string-alignment (Damerau–Levenshtein) distance: insertions, deletions,
-/// substitutions and swaps of adjacent characters, each costing 1.
-std::size_t edit_distance(const std::string& a, const std::string& b);
-
-/// The candidate nearest to `key` if it is a plausible misspelling: distance <= 2 and at most a
-/// third of `key`'s length (so "fluid" does not suggest "lining"); ties go to the first
-/// candidate. "" when none is that near.
-std::string nearest_key(const std::string& key, const std::vector<std::string>& candidates);
+using shudder::edit_distance;  // core/nearest_name.hpp
+using shudder::nearest_key;
 
 /// "a table", "an array", "a string", ... for messages about a value of the wrong type.
 const char* toml_type_name(const toml::node& n);
@@ -53,6 +48,7 @@ class TomlTable {
 
   bool has(const std::string& key) const;
   bool is_array(const std::string& key) const;
+  bool is_table(const std::string& key) const;
 
   double number(const std::string& key, Range range = {});
   double number_or(const std::string& key, double fallback, Range range = {});

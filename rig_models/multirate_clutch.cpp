@@ -16,16 +16,39 @@ void run_multirate(dynamics::Simulation& sim, ClutchContext& context, const clut
                    double sample_rate_Hz, const std::function<void(const dynamics::Sample&)>& on_sample,
                    const std::function<void(const SlowStep&)>& after_step,
                    clutch::FrictionDataRange* data_range) {
+  run_multirate(sim, {MultirateClutch{&context, &clutch, &ts, contact, data_range}}, duration_s, slow_step_s,
+                sample_rate_Hz, on_sample, after_step);
+}
+
+void run_multirate(dynamics::Simulation& sim, const std::vector<MultirateClutch>& clutches, double duration_s,
+                   double slow_step_s, double sample_rate_Hz,
+                   const std::function<void(const dynamics::Sample&)>& on_sample,
+                   const std::function<void(const SlowStep&)>& after_step,
+                   const std::vector<double>& breaks_s) {
   std::vector<double> sample_times;
   const long n_samples = static_cast<long>(std::floor(duration_s * sample_rate_Hz + 1e-9));
   for (long k = 1; k <= n_samples; ++k) sample_times.push_back(static_cast<double>(k) / sample_rate_Hz);
 
-  const auto& th = clutch.thermal();
-  clutch::ThermalWorkspace workspace(th);
-  const auto& c = sim.network().contacts()[static_cast<std::size_t>(contact)];
-  const int nr = th.radial_cells();
-  Eigen::VectorXd heat_before(nr), heat_now(nr);
-  for (int i = 0; i < nr; ++i) heat_before[i] = sim.channel_heat_J(contact, i);
+  // Per clutch: its thermal workspace, the ring heat at the last step's end and the hold's
+  // temperatures (header).
+  struct Slot {
+    const MultirateClutch& in;
+    const clutch::ThermalModel& th;
+    clutch::ThermalWorkspace workspace;
+    const dynamics::FrictionContact& c;
+    Eigen::VectorXd heat_before, heat_now, seen_C, seen_end_C, last_C, now_C;
+  };
+  std::vector<Slot> slots;
+  slots.reserve(clutches.size());
+  for (const auto& in : clutches) {
+    const auto& th = in.clutch->thermal();
+    const int nr = th.radial_cells();
+    Slot s{in, th, clutch::ThermalWorkspace(th), sim.network().contacts()[static_cast<std::size_t>(in.contact)],
+           Eigen::VectorXd(nr), Eigen::VectorXd(nr), in.context->held().ring_temp_C, in.context->held().ring_temp_C,
+           th.interface_temps_C(*in.state), Eigen::VectorXd(nr)};
+    for (int i = 0; i < nr; ++i) s.heat_before[i] = sim.channel_heat_J(in.contact, i);
+    slots.push_back(std::move(s));
+  }
   // Step k ends at t0 + k·step (a product, not a running sum), moved onto a sample time or the
   // duration when round-off is all that separates them (header).
   const double t0 = sim.time_s();
@@ -39,46 +62,50 @@ void run_multirate(dynamics::Simulation& sim, ClutchContext& context, const clut
       tb = nearest / sample_rate_Hz;
     return tb;
   };
-  // The first-order hold (header): the friction's temperatures over the coming step go from
-  // where they ended (`seen_C`) to the extrapolation of the last two thermal updates.
-  Eigen::VectorXd seen_C = context.held().ring_temp_C, seen_end_C = seen_C;
-  Eigen::VectorXd last_C = th.interface_temps_C(ts), now_C(nr);
   for (long k = 1; sim.time_s() < duration_s - 1e-12; ++k) {
     const double ta = sim.time_s();
     const double tb = step_end(k);
     const auto sa = sim.sample();
+    for (auto br = std::upper_bound(breaks_s.begin(), breaks_s.end(), ta); br != breaks_s.end() && *br < tb; ++br) {
+      sim.advance(*br, sample_times, on_sample);
+      sim.restart();
+    }
     sim.advance(tb, sample_times, on_sample);
     const auto sb = sim.sample();
     const double dt = tb - ta;
-    for (int i = 0; i < nr; ++i) heat_now[i] = sim.channel_heat_J(contact, i);
-    const auto twist = [&](const dynamics::Sample& s) {
-      const auto angle = [&](int node) { return node == dynamics::kGround ? 0.0 : s.theta_rad[node]; };
-      return angle(c.a) - angle(c.b);
-    };
-    const double mean_slip = (twist(sb) - twist(sa)) / dt;
-    if (data_range)  // the inputs the friction was evaluated at over this step (mid-step temperatures)
-      data_range->add(dt, mean_slip, th.ring_radius_m(), 0.5 * (seen_C + seen_end_C),
-                      context.held().normal_force_N(0.5 * (ta + tb)));
-    th.step(ts, workspace, dt, (heat_now - heat_before) / dt, mean_slip);
-    ts.time_s = tb;
-    heat_before = heat_now;
-    now_C = th.interface_temps_C(ts);
-    // A thermal state far outside any physical range is a numerical failure, as a non-finite
-    // mechanical state is (dynamics/simulation.cpp). Without this check the hold would feed
-    // friction at such temperatures to the integrator, which then creeps on with ever smaller
-    // steps instead of failing (seen: a diagnosis candidate with a 1 J/K rig part behind a
-    // 1000 W/K conductance diverges to 1e94 °C within 0.5 s). 1e4 °C: far above any disc or oil.
-    if (!now_C.allFinite() || now_C.cwiseAbs().maxCoeff() > kDivergedTemp_C)
-      throw std::runtime_error("thermal step diverged at t = " + std::to_string(tb) + " s: interface temperature " +
-                               (now_C.allFinite() ? std::to_string(now_C.cwiseAbs().maxCoeff()) + " degC"
-                                                  : std::string("not finite")));
     const double next_dt = step_end(k + 1) - tb;
-    if (next_dt > 0) {
-      seen_C = seen_end_C;
-      seen_end_C = now_C + (now_C - last_C) * (next_dt / dt);
-      context.set_ring_temperature_ramp(seen_C, seen_end_C, tb, tb + next_dt);
+    for (auto& s : slots) {
+      const int nr = s.th.radial_cells();
+      auto& ts = *s.in.state;
+      for (int i = 0; i < nr; ++i) s.heat_now[i] = sim.channel_heat_J(s.in.contact, i);
+      const auto twist = [&](const dynamics::Sample& smp) {
+        const auto angle = [&](int node) { return node == dynamics::kGround ? 0.0 : smp.theta_rad[node]; };
+        return angle(s.c.a) - angle(s.c.b);
+      };
+      const double mean_slip = (twist(sb) - twist(sa)) / dt;
+      if (s.in.data_range)  // the inputs the friction was evaluated at over this step (mid-step temperatures)
+        s.in.data_range->add(dt, mean_slip, s.th.ring_radius_m(), 0.5 * (s.seen_C + s.seen_end_C),
+                             s.in.context->held().normal_force_N(0.5 * (ta + tb)));
+      s.th.step(ts, s.workspace, dt, (s.heat_now - s.heat_before) / dt, mean_slip);
+      ts.time_s = tb;
+      s.heat_before = s.heat_now;
+      s.now_C = s.th.interface_temps_C(ts);
+      // A thermal state far outside any physical range is a numerical failure, as a non-finite
+      // mechanical state is (dynamics/simulation.cpp). Without this check the hold would feed
+      // friction at such temperatures to the integrator, which then creeps on with ever smaller
+      // steps instead of failing (seen: a diagnosis candidate with a 1 J/K rig part behind a
+      // 1000 W/K conductance diverges to 1e94 °C within 0.5 s). 1e4 °C: far above any disc or oil.
+      if (!s.now_C.allFinite() || s.now_C.cwiseAbs().maxCoeff() > kDivergedTemp_C)
+        throw std::runtime_error("thermal step diverged at t = " + std::to_string(tb) + " s: interface temperature " +
+                                 (s.now_C.allFinite() ? std::to_string(s.now_C.cwiseAbs().maxCoeff()) + " degC"
+                                                      : std::string("not finite")));
+      if (next_dt > 0) {
+        s.seen_C = s.seen_end_C;
+        s.seen_end_C = s.now_C + (s.now_C - s.last_C) * (next_dt / dt);
+        s.in.context->set_ring_temperature_ramp(s.seen_C, s.seen_end_C, tb, tb + next_dt);
+      }
+      s.last_C = s.now_C;
     }
-    last_C = now_C;
     after_step(SlowStep{ta, tb, sa, sb});
     sim.restart();
   }

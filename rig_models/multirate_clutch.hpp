@@ -36,6 +36,7 @@
 // a sample at a step's end is always delivered before that step's update.
 
 #include <functional>
+#include <vector>
 
 #include "clutch/friction_data_range.hpp"
 #include "clutch/wet_clutch.hpp"
@@ -49,6 +50,27 @@ struct SlowStep {
   const dynamics::Sample& before;  // at ta_s
   const dynamics::Sample& after;   // at tb_s, before the restart
 };
+
+/// One wet-clutch contact of the network in the multi-rate coupling: the context its law is bound
+/// to, the clutch, its thermal state (advanced in place) and, optionally, its friction data tally.
+struct MultirateClutch {
+  ClutchContext* context = nullptr;
+  const clutch::WetClutch* clutch = nullptr;
+  clutch::ThermalState* state = nullptr;
+  int contact = -1;
+  clutch::FrictionDataRange* data_range = nullptr;
+};
+
+/// The coupling above for any number of wet clutches (none: the network alone, stepped and
+/// restarted at each slow step): each clutch's thermal model advanced over every slow step with
+/// the heat its own contact accumulated, and its own first-order hold. `breaks_s` are times where
+/// an input jumps (a step in a source or a force): the stepper stops and restarts there, so no
+/// step straddles the jump (dopri5's error control would otherwise meet it as a kink).
+void run_multirate(dynamics::Simulation& sim, const std::vector<MultirateClutch>& clutches, double duration_s,
+                   double slow_step_s, double sample_rate_Hz,
+                   const std::function<void(const dynamics::Sample&)>& on_sample,
+                   const std::function<void(const SlowStep&)>& after_step,
+                   const std::vector<double>& breaks_s = {});
 
 /// Runs `sim` from its current time to `duration_s`; `on_sample` gets every sample at
 /// `sample_rate_Hz` (k / rate, k >= 1), `after_step` each completed slow step after the thermal

@@ -38,13 +38,17 @@ Prediction Prediction::none(const std::string& why) {
 RunVerdict judge_run(const dynamics::Recording& rec) {
   const auto detection = recording_detection(rec);
   if (!detection) throw std::invalid_argument("the recording has no time, torque or slip channel to judge");
+  return judge_detection(*detection);
+}
+
+RunVerdict judge_detection(const RecordingDetection& detection) {
   RunVerdict v;
-  v.torque_signal = std::string(detection->torque_signal);
-  v.slip_signal = std::string(detection->slip_signal);
-  v.judged = judge_recording(*detection);
+  v.torque_signal = std::string(detection.torque_signal);
+  v.slip_signal = std::string(detection.slip_signal);
+  v.judged = judge_recording(detection);
 
   // The judged window: the oscillating part when there is an oscillation, else the whole record.
-  const auto& in = detection->input;
+  const auto& in = detection.input;
   const bool oscillating = v.judged.verdict != analysis::Verdict::kNone;
   v.window.what = oscillating ? "oscillating part" : "whole run";
   v.window.from_s = oscillating ? v.judged.oscillating_from_s : in.time_s.front();

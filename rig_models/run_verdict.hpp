@@ -32,6 +32,7 @@
 #include "clutch/wet_clutch.hpp"
 #include "dynamics/recording.hpp"
 #include "rig_models/lsctr_rig.hpp"
+#include "rig_models/recording_detection.hpp"
 
 namespace shudder::rig_models {
 
@@ -72,6 +73,9 @@ struct RunVerdict {
 /// std::invalid_argument if the recording cannot be judged (no time, torque or slip channel;
 /// fewer than 64 samples; non-uniform sampling), with the reason.
 RunVerdict judge_run(const dynamics::Recording& rec);
+/// The same for a detection case assembled by the caller (a network's clutch: its own channels
+/// and settings, components/network_run.hpp).
+RunVerdict judge_detection(const RecordingDetection& detection);
 
 /// The rig's linear stability at `window` (rig_stability.hpp at the window's mean force, slip
 /// and interface temperature); Prediction::none with the reason where it cannot be made (no

@@ -24,11 +24,12 @@ const std::map<std::string, std::set<std::string>>& allowed() {
       {"dynamics", {"core"}},
       {"analysis", {"core", "clutch", "dynamics"}},
       {"rig_models", {"core", "clutch", "dynamics", "analysis"}},
-      {"io", {"core", "clutch", "dynamics", "analysis", "rig_models"}},
-      {"report", {"core", "clutch", "dynamics", "analysis", "rig_models", "io"}},
-      {"app", {"core", "clutch", "dynamics", "analysis", "rig_models", "io", "report"}},
-      {"python", {"core", "clutch", "dynamics", "analysis", "rig_models", "io", "report", "app"}},
-      {"fmu", {"core", "clutch", "dynamics", "analysis", "rig_models", "io"}},  // the FMU, beside app
+      {"components", {"core", "clutch", "dynamics", "analysis", "rig_models"}},
+      {"io", {"core", "clutch", "dynamics", "analysis", "rig_models", "components"}},
+      {"report", {"core", "clutch", "dynamics", "analysis", "rig_models", "components", "io"}},
+      {"app", {"core", "clutch", "dynamics", "analysis", "rig_models", "components", "io", "report"}},
+      {"python", {"core", "clutch", "dynamics", "analysis", "rig_models", "components", "io", "report", "app"}},
+      {"fmu", {"core", "clutch", "dynamics", "analysis", "rig_models", "components", "io"}},  // the FMU, beside app
   };
   return k;
 }

@@ -1,0 +1,367 @@
+#include "components/network_builder.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <set>
+
+#include "components/lash_shaft.hpp"
+#include "components/one_way_clutch.hpp"
+#include "core/nearest_name.hpp"
+#include "core/units.hpp"
+
+namespace shudder::components {
+
+namespace {
+
+constexpr double kGravity_m_s2 = 9.80665;
+
+// The wet clutch reads its clamp force as a piecewise-linear schedule (rig_models/drive_cycle.hpp):
+// the signal at its knots (a jump becomes a 1 µs ramp) and, for smooth kinds, every 1/50 of a
+// period (sine) or 1/2000 of the run (products), which keeps a sine within 0.2 % of its amplitude.
+rig_models::PiecewiseLinear force_schedule(const Signal& s, double scale_N, double duration_s) {
+  constexpr double kJump_s = 1e-6;
+  std::vector<double> t{0.0, duration_s};
+  for (double k : s.knots(0.0, duration_s)) {
+    t.push_back(std::max(0.0, k - kJump_s));
+    t.push_back(k);
+  }
+  if (s.kind() == Signal::Kind::kSine || s.kind() == Signal::Kind::kProduct) {
+    const int n = 20000;
+    for (int i = 1; i < n; ++i) t.push_back(duration_s * i / n);
+  }
+  std::sort(t.begin(), t.end());
+  t.erase(std::unique(t.begin(), t.end(), [](double a, double b) { return b - a < 1e-12; }), t.end());
+  std::vector<double> v;
+  for (double x : t) v.push_back(scale_N * std::max(s(x), 0.0));
+  return {t, v};
+}
+
+struct Builder {
+  const NetworkSpec& spec;
+  BuiltNetwork& out;
+  std::map<std::string, int> index;
+
+  int node(const std::string& component, const std::string& role, const std::string& name, bool ground_ok) const {
+    if (name == kGroundNode) {
+      if (!ground_ok)
+        throw NetworkError(component, role + " cannot be \"ground\"; name an inertia or vehicle");
+      return dynamics::kGround;
+    }
+    const auto it = index.find(name);
+    if (it != index.end()) return it->second;
+    std::vector<std::string> names(out.node_names);
+    if (ground_ok) names.push_back(kGroundNode);
+    const std::string near = nearest_key(name, names);
+    std::string list;
+    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+    throw NetworkError(component, role + " '" + name + "' is no node of the network" +
+                                      (near.empty() ? "" : "; did you mean '" + near + "'?") + " (nodes: " + list + ")");
+  }
+  void distinct(const std::string& component, int a, int b) const {
+    if (a == b)
+      throw NetworkError(component, "is joined to itself (both ends on '" +
+                                        (a == dynamics::kGround ? std::string(kGroundNode) : out.node_names[a]) +
+                                        "'); join two different nodes");
+  }
+};
+
+}  // namespace
+
+double BuiltClutch::normal_force_N(double t_s) const { return spec->max_force_N * std::max(spec->force_signal(t_s), 0.0); }
+
+int BuiltNetwork::node(const std::string& name) const {
+  if (name == kGroundNode) return dynamics::kGround;
+  const auto it = std::find(node_names.begin(), node_names.end(), name);
+  return it == node_names.end() ? -2 : static_cast<int>(it - node_names.begin());
+}
+
+std::unique_ptr<BuiltNetwork> build_network(const NetworkSpec& spec) {
+  auto built = std::make_unique<BuiltNetwork>();
+  BuiltNetwork& out = *built;
+  Builder b{spec, out, {}};
+  auto& net = out.network;
+  const double duration = spec.settings.duration_s;
+
+  // Nodes.
+  std::vector<double> speeds;
+  for (const auto& i : spec.inertias) {
+    if (i.name == kGroundNode) throw NetworkError(i.name, "\"ground\" is the fixed frame; give the inertia another name");
+    if (!(i.inertia_kg_m2 >= 0)) throw NetworkError(i.name, "inertia_kg_m2 must be >= 0");
+    b.index[i.name] = net.add_inertia({i.name, i.inertia_kg_m2});
+    out.node_names.push_back(i.name);
+    speeds.push_back(i.speed_rad_s);
+  }
+  for (const auto& v : spec.vehicles) {
+    if (!(v.mass_kg > 0) || !(v.wheel_radius_m > 0))
+      throw NetworkError(v.name, "mass_kg and wheel_radius_m must be > 0");
+    const int n = net.add_inertia({v.name, v.mass_kg * v.wheel_radius_m * v.wheel_radius_m});
+    b.index[v.name] = n;
+    out.node_names.push_back(v.name);
+    out.vehicle_nodes.push_back(n);
+    speeds.push_back(v.speed_m_s / v.wheel_radius_m);
+  }
+  if (out.node_names.empty()) throw NetworkError("", "the network has no inertia; add at least one [network.NAME] with type = \"inertia\"");
+  out.initial_speed_rad_s = Eigen::Map<const Eigen::VectorXd>(speeds.data(), static_cast<Eigen::Index>(speeds.size()));
+
+  // Two-node links, for the connectivity check: (a, b) per link.
+  std::vector<std::pair<int, int>> links;
+  std::set<int> driven_nodes;  // nodes a source, motor, engine or speed source acts on
+  std::set<int> fixed_nodes;   // nodes whose speed a gear, differential or speed source ties
+
+  // Clutches and brakes first: contact index = position.
+  for (const auto& c : spec.clutches) {
+    const int a = b.node(c.name, "node", c.a, false);
+    const int bb = b.node(c.name, "node", c.b, true);
+    b.distinct(c.name, a, bb);
+    links.emplace_back(a, bb);
+    if (!(c.max_force_N > 0))
+      throw NetworkError(c.name, "max_force_N = " + std::to_string(c.max_force_N) +
+                                     " can never load the clutch; give the largest normal force in N (> 0)");
+    if (!(c.force_signal.max_over(0.0, duration) > 0))
+      throw NetworkError(c.name, "its normal_force signal never rises above 0 during the run (0 to " +
+                                     std::to_string(duration) + " s), so the clutch can never carry torque; "
+                                     "raise the signal or remove the clutch");
+    BuiltClutch bc;
+    bc.spec = &c;
+    if (c.law == ClutchSpec::Law::kPlain) {
+      PlainFrictionParams p = c.plain;
+      p.max_force_N = c.max_force_N;
+      try {
+        bc.plain = std::make_shared<const PlainFrictionLaw>(p, c.force_signal);
+      } catch (const std::invalid_argument& e) {
+        throw NetworkError(c.name, e.what());
+      }
+      bc.geometry_factor_m = p.geometry_factor_m;
+      bc.contact = net.add_contact({c.name, a, bb, bc.plain});
+    } else {
+      try {
+        bc.wet = std::make_unique<clutch::WetClutch>(c.wet.clutch, c.wet.fluid);
+      } catch (const std::invalid_argument& e) {
+        throw NetworkError(c.name, e.what());
+      }
+      const rig_models::ClutchContact contact(*bc.wet, c.wet.bearing_drag, c.wet.stick_time);
+      bc.context = std::make_shared<rig_models::ClutchContext>(
+          contact.start_inputs(force_schedule(c.force_signal, c.max_force_N, duration)));
+      bc.geometry_factor_m = c.wet.clutch.sliding_interfaces * bc.wet->mean_radius_m();
+      bc.contact = net.add_contact({c.name, a, bb, std::make_shared<rig_models::ClutchContactLaw>(contact, bc.context)});
+    }
+    out.clutches.push_back(std::move(bc));
+  }
+  for (const auto& f : spec.freewheels) {
+    const int a = b.node(f.name, "driving", f.driving, false);
+    const int bb = b.node(f.name, "driven", f.driven, true);
+    b.distinct(f.name, a, bb);
+    if (!(f.drag_Nm >= 0)) throw NetworkError(f.name, "drag_Nm must be >= 0");
+    const double wb = bb == dynamics::kGround ? 0.0 : out.initial_speed_rad_s[bb];
+    if (out.initial_speed_rad_s[a] > wb + 1e-12)
+      throw NetworkError(f.name, "starts with '" + f.driving + "' faster than '" + f.driven +
+                                     "', which a freewheel cannot allow (it locks that way); start driving no faster "
+                                     "than driven");
+    links.emplace_back(a, bb);
+    out.freewheel_contacts.push_back(net.add_contact({f.name, a, bb, std::make_shared<OneWayClutchLaw>(f.drag_Nm)}));
+  }
+
+  for (const auto& s : spec.shafts) {
+    const int a = b.node(s.name, "node", s.a, false);
+    const int bb = b.node(s.name, "node", s.b, true);
+    b.distinct(s.name, a, bb);
+    if (!(s.stiffness_Nm_per_rad >= 0) || !(s.damping_Nms_per_rad >= 0) ||
+        !(s.stiffness_Nm_per_rad > 0 || s.damping_Nms_per_rad > 0))
+      throw NetworkError(s.name, "needs stiffness_Nm_per_rad >= 0 and damping_Nms_per_rad >= 0, not both 0");
+    links.emplace_back(a, bb);
+    if (s.lash_rad > 0) {
+      if (!(s.stiffness_Nm_per_rad > 0)) throw NetworkError(s.name, "a shaft with lash needs stiffness_Nm_per_rad > 0");
+      if (bb == dynamics::kGround) throw NetworkError(s.name, "a shaft with lash joins two nodes; ground is not allowed");
+      out.lash_elements.push_back(net.add_force_element(
+          {s.name, a, bb, 1.0, std::make_shared<LashShaft>(s.stiffness_Nm_per_rad, s.damping_Nms_per_rad, s.lash_rad)}));
+    } else {
+      net.add_shaft({s.name, a, bb, s.stiffness_Nm_per_rad, s.damping_Nms_per_rad});
+    }
+  }
+  for (const auto& g : spec.gears) {
+    const int a = b.node(g.name, "input", g.input, false);
+    const int bb = b.node(g.name, "output", g.output, false);
+    b.distinct(g.name, a, bb);
+    if (!(std::isfinite(g.ratio) && g.ratio != 0.0)) throw NetworkError(g.name, "ratio must be finite and not 0");
+    links.emplace_back(a, bb);
+    fixed_nodes.insert({a, bb});
+    net.add_gear({g.name, a, bb, g.ratio});
+  }
+  for (const auto& d : spec.differentials) {
+    const int c = b.node(d.name, "carrier", d.carrier, false);
+    const int l = b.node(d.name, "left", d.left, false);
+    const int r = b.node(d.name, "right", d.right, false);
+    if (c == l || c == r || l == r) throw NetworkError(d.name, "carrier, left and right must be three different nodes");
+    links.emplace_back(c, l);
+    links.emplace_back(c, r);
+    fixed_nodes.insert({c, l, r});
+    net.add_differential({d.name, c, l, r});
+  }
+  for (const auto& t : spec.tyres) {
+    const int w = b.node(t.name, "wheel", t.wheel, false);
+    const int v = b.node(t.name, "vehicle", t.vehicle, false);
+    b.distinct(t.name, w, v);
+    const auto vit = std::find_if(spec.vehicles.begin(), spec.vehicles.end(), [&](const VehicleSpec& x) { return x.name == t.vehicle; });
+    if (vit == spec.vehicles.end()) throw NetworkError(t.name, "vehicle '" + t.vehicle + "' is not a component of type \"vehicle\"");
+    std::shared_ptr<const dynamics::ForceLaw> law;
+    try {
+      law = std::make_shared<rig_models::BrushTyre>(t.params);
+    } catch (const std::invalid_argument& e) {
+      throw NetworkError(t.name, e.what());
+    }
+    links.emplace_back(w, v);
+    out.tyre_elements.push_back(net.add_force_element({t.name, w, v, vit->wheel_radius_m / t.params.radius_m, law}));
+  }
+  for (std::size_t i = 0; i < spec.vehicles.size(); ++i) {
+    const auto& v = spec.vehicles[i];
+    const int n = out.vehicle_nodes[i];
+    auto road = v.road;
+    road.radius_m = v.wheel_radius_m;
+    std::shared_ptr<const dynamics::ForceLaw> law;
+    try {
+      law = std::make_shared<rig_models::RoadLoad>(road);
+    } catch (const std::invalid_argument& e) {
+      throw NetworkError(v.name, e.what());
+    }
+    out.road_elements.push_back(net.add_force_element({v.name + ".road_load", n, dynamics::kGround, 1.0, law}));
+    if (v.grade_percent != 0.0) {
+      const double torque = -v.mass_kg * kGravity_m_s2 * std::sin(std::atan(v.grade_percent / 100.0)) * v.wheel_radius_m;
+      out.grade_sources.push_back(net.add_torque_source({v.name + ".grade", n, [torque](double) { return torque; }}));
+      driven_nodes.insert(n);
+    }
+  }
+
+  // Sources.
+  for (const auto& s : spec.torque_sources) {
+    const int n = b.node(s.name, "node", s.node, false);
+    driven_nodes.insert(n);
+    net.add_torque_source({s.name, n, [sig = s.torque_Nm](double t) { return sig(t); }});
+  }
+  for (const auto& s : spec.speed_sources) {
+    const int n = b.node(s.name, "node", s.node, false);
+    driven_nodes.insert(n);
+    fixed_nodes.insert(n);
+    net.add_speed_source({s.name, n, [sig = s.speed_rpm](double t) { return units::rpm_to_rad_s(sig(t)); },
+                          [sig = s.speed_rpm](double t) { return units::rpm_to_rad_s(sig.derivative(t)); }});
+  }
+  for (const auto& m : spec.motors) {
+    const int n = b.node(m.name, "node", m.node, false);
+    if (!(m.kp_Nms_per_rad >= 0) || !(m.ki_Nm_per_rad >= 0) || !(m.kp_Nms_per_rad + m.ki_Nm_per_rad > 0) ||
+        !(m.torque_limit_Nm > 0))
+      throw NetworkError(m.name, "needs kp_Nms_per_rad >= 0, ki_Nm_per_rad >= 0 (not both 0) and torque_limit_Nm > 0");
+    driven_nodes.insert(n);
+    net.add_motor({m.name, n, [sig = m.speed_rpm](double t) { return units::rpm_to_rad_s(sig(t)); }, m.kp_Nms_per_rad,
+                   m.ki_Nm_per_rad, m.torque_limit_Nm});
+  }
+  for (const auto& e : spec.engines) {
+    const int n = b.node(e.name, "node", e.node, false);
+    std::shared_ptr<const rig_models::Engine> engine;
+    try {
+      engine = std::make_shared<const rig_models::Engine>(e.params);
+    } catch (const std::invalid_argument& err) {
+      throw NetworkError(e.name, err.what());
+    }
+    driven_nodes.insert(n);
+    dynamics::TorqueSource src{e.name, n, [](double) { return 0.0; }};
+    src.torque_at_speed_Nm = [engine, throttle = e.throttle](double t, double w) {
+      return engine->torque_Nm(w, std::clamp(throttle(t), 0.0, 1.0));
+    };
+    out.engine_sources.push_back(net.add_torque_source(std::move(src)));
+  }
+
+  // A massless node must have its speed fixed by a gear, a differential or a speed source.
+  for (std::size_t i = 0; i < spec.inertias.size(); ++i)
+    if (spec.inertias[i].inertia_kg_m2 == 0.0 && !fixed_nodes.count(static_cast<int>(i)))
+      throw NetworkError(spec.inertias[i].name,
+                         "has no inertia and nothing fixes its speed (no gear, differential or speed source on it); "
+                         "give it inertia_kg_m2 > 0");
+
+  // Gears, differentials and speed sources must be independent: a row that adds no rank closes a
+  // loop the others already fix.
+  {
+    const int n = static_cast<int>(out.node_names.size());
+    Eigen::MatrixXd g(0, n);
+    const auto add_row = [&](const std::string& who, const Eigen::RowVectorXd& row) {
+      Eigen::MatrixXd h(g.rows() + 1, n);
+      h << g, row;
+      Eigen::FullPivLU<Eigen::MatrixXd> lu(h);
+      lu.setThreshold(1e-10);
+      if (lu.rank() <= g.rows())
+        throw NetworkError(who, "over-constrains the network: the speeds it ties are already fixed by the gears, "
+                                "differentials and speed sources before it (a closed loop of gears); remove it or "
+                                "replace one gear of the loop by a shaft or a clutch");
+      g = h;
+    };
+    for (const auto& gr : net.gears()) {
+      Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(n);
+      r[gr.a] += 1.0;
+      r[gr.b] -= gr.ratio;
+      add_row(gr.name, r);
+    }
+    for (const auto& d : net.differentials()) {
+      Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(n);
+      r[d.left] += 1.0;
+      r[d.right] += 1.0;
+      r[d.carrier] -= 2.0;
+      add_row(d.name, r);
+    }
+    for (const auto& s : net.speed_sources()) {
+      Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(n);
+      r[s.node] = 1.0;
+      add_row(s.name, r);
+    }
+    // The mass left on the free motions must be positive definite (a massless node between gears
+    // only, e.g., still needs mass somewhere on its side).
+    const Eigen::MatrixXd basis = net.constraint_basis({});
+    if (basis.cols() > 0) {
+      const Eigen::MatrixXd m = basis.transpose() * net.mass_matrix() * basis;
+      const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(m);
+      if (es.eigenvalues().minCoeff() <= 1e-12 * std::max(1.0, es.eigenvalues().maxCoeff())) {
+        std::string massless;
+        for (const auto& i : spec.inertias)
+          if (i.inertia_kg_m2 == 0.0) massless += (massless.empty() ? "" : ", ") + i.name;
+        throw NetworkError(massless.empty() ? "" : spec.inertias.front().name,
+                           "a part of the network has no inertia (massless nodes: " + massless +
+                               "); give one of its nodes inertia_kg_m2 > 0");
+      }
+    }
+  }
+
+  // Every part of the network must be driven or start moving: union-find over the links.
+  {
+    const int n = static_cast<int>(out.node_names.size());
+    std::vector<int> parent(static_cast<std::size_t>(n));
+    std::iota(parent.begin(), parent.end(), 0);
+    const auto find = [&](int x) {
+      while (parent[x] != x) x = parent[x] = parent[parent[x]];
+      return x;
+    };
+    for (const auto& [a, bb] : links)
+      if (a >= 0 && bb >= 0) parent[find(a)] = find(bb);
+    std::vector<bool> alive(static_cast<std::size_t>(n), false);
+    for (int i = 0; i < n; ++i)
+      if (driven_nodes.count(i) || out.initial_speed_rad_s[i] != 0.0) alive[find(i)] = true;
+    for (int i = 0; i < n; ++i)
+      if (!alive[find(i)]) {
+        std::vector<std::string> part;
+        for (int j = 0; j < n; ++j)
+          if (find(j) == find(i)) part.push_back(out.node_names[j]);
+        std::string list;
+        for (const auto& p : part) list += (list.empty() ? "" : ", ") + p;
+        throw NetworkError(out.node_names[i], "its part of the network (" + list +
+                                                  ") starts at rest and nothing drives it (no source, motor, engine or "
+                                                  "speed source, and no link to one); connect it or give it a speed");
+      }
+  }
+
+  try {
+    net.validate();
+  } catch (const std::invalid_argument& e) {
+    throw NetworkError("", e.what());
+  }
+  return built;
+}
+
+}  // namespace shudder::components

@@ -1,0 +1,67 @@
+#pragma once
+// A NetworkSpec (components/network_spec.hpp) checked and turned into a dynamics::TorsionalNetwork
+// with its contact laws, the run-time context of every wet clutch and the initial speeds.
+//
+// Layout of what is built, in the spec's order within each group:
+//   nodes      the inertias, then the vehicles (inertia m r²)
+//   contacts   the clutches and brakes, then the freewheels
+//   shafts     the shafts without lash; shafts with lash are force elements
+//   elements   lash shafts, tyres, then one road load per vehicle
+//   sources    torque sources, then one grade torque per vehicle with a grade; engines
+//
+// Checks (each a NetworkError naming the component and what to change): unknown nodes (with the
+// nearest name), a component joined to itself, a massless node nothing fixes, gears and
+// differentials that over-constrain a loop, parts of the network that nothing drives and that
+// start at rest, a clutch whose normal force never rises above zero during the run, a
+// freewheel that starts overrun in its locking direction.
+
+#include <Eigen/Dense>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "components/network_spec.hpp"
+#include "dynamics/network.hpp"
+
+namespace shudder::components {
+
+/// A network the spec cannot make; `component()` is the component's name ("" for the whole).
+class NetworkError : public std::invalid_argument {
+ public:
+  NetworkError(std::string component, const std::string& message)
+      : std::invalid_argument((component.empty() ? "" : "component '" + component + "': ") + message),
+        component_(std::move(component)) {}
+  const std::string& component() const { return component_; }
+
+ private:
+  std::string component_;
+};
+
+struct BuiltClutch {
+  const ClutchSpec* spec = nullptr;
+  int contact = -1;
+  double geometry_factor_m = 0.0;                    // torque per unit μ F: plain R, wet n r_mean
+  std::shared_ptr<const PlainFrictionLaw> plain;     // plain law
+  std::unique_ptr<clutch::WetClutch> wet;            // wet law: the clutch...
+  std::shared_ptr<rig_models::ClutchContext> context;  // ...and the inputs its run holds
+  double normal_force_N(double t_s) const;
+  const std::string& name() const { return spec->name; }
+};
+
+struct BuiltNetwork {
+  dynamics::TorsionalNetwork network;
+  std::vector<BuiltClutch> clutches;        // contact c for clutches[c]
+  std::vector<int> freewheel_contacts;      // spec.freewheels[i] is contact freewheel_contacts[i]
+  std::vector<int> lash_elements, tyre_elements, road_elements;  // force element indices
+  std::vector<int> vehicle_nodes;
+  std::vector<int> engine_sources, grade_sources;  // torque source indices
+  Eigen::VectorXd initial_speed_rad_s;
+  int node(const std::string& name) const;  // kGround for "ground"; -2 if unknown
+  std::vector<std::string> node_names;
+};
+
+/// Checks and builds; throws NetworkError. `spec` must outlive the result.
+std::unique_ptr<BuiltNetwork> build_network(const NetworkSpec& spec);
+
+}  // namespace shudder::components

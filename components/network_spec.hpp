@@ -1,0 +1,126 @@
+#pragma once
+// A drivetrain described by its components and the nodes they join (docs/network_format.md):
+// the plain description a scenario file is read into (io/network_scenario.hpp) and a network is
+// built from (components/network_builder.hpp). Nodes are the inertias, named by the user;
+// "ground" is the fixed frame. Units SI (rad/s, N m, N, kg m², m); files use rpm where engineers
+// do and say so in the key.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "clutch/fluid.hpp"
+#include "clutch/wet_clutch.hpp"
+#include "components/plain_friction.hpp"
+#include "components/signal.hpp"
+#include "dynamics/simulation.hpp"
+#include "rig_models/clutch_contact.hpp"
+#include "rig_models/engine.hpp"
+#include "rig_models/tyre.hpp"
+
+namespace shudder::components {
+
+inline constexpr const char* kGroundNode = "ground";
+
+struct InertiaSpec {
+  std::string name;
+  double inertia_kg_m2 = 0.0;  // >= 0; 0 only where a gear or differential fixes its speed
+  double speed_rad_s = 0.0;    // at t = 0
+};
+/// T = k (θ_a − θ_b) + c (ω_a − ω_b) from a to b; with lash > 0 a dead zone of that total width
+/// (components/lash_shaft.hpp).
+struct ShaftSpec {
+  std::string name, a, b;
+  double stiffness_Nm_per_rad = 0.0, damping_Nms_per_rad = 0.0, lash_rad = 0.0;
+};
+/// ω_input = ratio · ω_output (ideal, lossless).
+struct GearSpec {
+  std::string name, input, output;
+  double ratio = 1.0;
+};
+/// ω_left + ω_right = 2 ω_carrier (open, massless, equal torque split).
+struct DifferentialSpec {
+  std::string name, carrier, left, right;
+};
+/// A wet clutch's pack: the clutch, its fluid, the effects outside the clutch (bearing drag,
+/// stick-time static friction), as a scenario's [clutch] and [effects] give them.
+struct WetPackSpec {
+  std::string fluid_path, fluid_text;
+  clutch::Fluid fluid;
+  clutch::WetClutchParams clutch;
+  rig_models::BearingDrag bearing_drag;
+  rig_models::StickTimeFriction stick_time;
+  std::vector<std::string> enabled_effects;
+};
+/// A clutch between a and b, or a brake (b = "ground"). Normal force F = max_force_N · max(u, 0).
+struct ClutchSpec {
+  enum class Law { kPlain, kWet };
+  std::string name, a, b;
+  Law law = Law::kPlain;
+  double max_force_N = 0.0;
+  Signal force_signal = Signal::constant(1.0);
+  PlainFrictionParams plain;  // law kPlain (its max_force_N is this one's)
+  WetPackSpec wet;            // law kWet
+};
+/// A one-way clutch: carries torque from `driving` to `driven` when driving would turn faster;
+/// driven may overrun driving (components/one_way_clutch.hpp). `driven` may be ground (a backstop).
+struct FreewheelSpec {
+  std::string name, driving, driven;
+  double drag_Nm = 0.0;
+};
+struct TorqueSourceSpec {
+  std::string name, node;
+  Signal torque_Nm = Signal::constant(0.0);  // on the node, positive along its speed
+};
+struct SpeedSourceSpec {
+  std::string name, node;
+  Signal speed_rpm = Signal::constant(0.0);
+};
+struct MotorSpec {
+  std::string name, node;
+  Signal speed_rpm = Signal::constant(0.0);  // the speed loop's set point
+  double kp_Nms_per_rad = 0.0, ki_Nm_per_rad = 0.0, torque_limit_Nm = 0.0;
+};
+/// rig_models/engine.hpp's torque map on a node, driven by a throttle signal (0–1).
+struct EngineSpec {
+  std::string name, node;
+  rig_models::EngineParams params;
+  Signal throttle = Signal::constant(0.0);
+};
+/// The car's translational mass as a node of inertia m r² (speed ω = v / r) with its road load
+/// (rolling resistance, drag) and grade to ground.
+struct VehicleSpec {
+  std::string name;
+  double mass_kg = 0.0, wheel_radius_m = 0.0, speed_m_s = 0.0, grade_percent = 0.0;
+  rig_models::RoadLoadParams road;  // rolling_resistance_N from f_r m g cos θ when not given
+};
+/// A tyre between a wheel node and a vehicle node (rig_models/tyre.hpp).
+struct TyreSpec {
+  std::string name, wheel, vehicle;
+  rig_models::TyreParams params;
+};
+
+struct NetworkSettings {
+  double duration_s = 1.0;
+  double sample_rate_Hz = 1000.0;
+  double thermal_step_s = 0.01;  // wet clutches' thermal step (the multi-rate coupling)
+  dynamics::IntegratorSettings integrator{1e-7, 1e-6, 1e-3, 1e-6, 1e-10};
+};
+
+struct NetworkSpec {
+  std::vector<InertiaSpec> inertias;
+  std::vector<ShaftSpec> shafts;
+  std::vector<GearSpec> gears;
+  std::vector<DifferentialSpec> differentials;
+  std::vector<ClutchSpec> clutches;
+  std::vector<FreewheelSpec> freewheels;
+  std::vector<TorqueSourceSpec> torque_sources;
+  std::vector<SpeedSourceSpec> speed_sources;
+  std::vector<MotorSpec> motors;
+  std::vector<EngineSpec> engines;
+  std::vector<VehicleSpec> vehicles;
+  std::vector<TyreSpec> tyres;
+  NetworkSettings settings;
+};
+
+}  // namespace shudder::components

@@ -1,0 +1,82 @@
+#include "report/network_summary.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace shudder::report {
+
+namespace {
+
+std::string format(const char* fmt, double a, double b = 0, double c = 0) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, fmt, a, b, c);
+  return buf;
+}
+
+std::string verdict_line(const rig_models::RunVerdict& v) {
+  const auto& r = v.judged;
+  const std::string name(analysis::to_string(r.verdict));
+  if (r.verdict == analysis::Verdict::kNone)
+    return "none (largest oscillation " + format("%.3g N m at %.3g Hz", r.amplitude_Nm, r.peak_frequency_Hz) + ")";
+  return name + format(" at %.3g Hz, amplitude %.3g N m", r.frequency_Hz, r.amplitude_Nm) +
+         (std::isfinite(r.onset_time_s) ? format(", onset %.3g s", r.onset_time_s) : std::string());
+}
+
+// The time from which the clutch stays stuck to the end, NaN if it slips at the end.
+double locked_from_s(const dynamics::Recording& rec, const std::string& clutch) {
+  const auto* t = rec.find("time_s");
+  const auto* stuck = rec.find(clutch + ".stuck");
+  if (!t || !stuck || stuck->values.empty() || stuck->values.back() < 0.5) return std::nan("");
+  std::size_t i = stuck->values.size();
+  while (i > 0 && stuck->values[i - 1] > 0.5) --i;
+  return t->values[i == 0 ? 0 : i];
+}
+
+double scalar(const dynamics::Recording& rec, const std::string& name) {
+  const auto* s = rec.find_scalar(name);
+  return s ? s->value : std::nan("");
+}
+
+}  // namespace
+
+void print_network_summary(std::ostream& os, const io::NetworkScenario& sc, const components::NetworkRun& run) {
+  const auto& spec = sc.spec;
+  const auto& rec = run.recording;
+  os << "Scenario: " << sc.name << " (network)";
+  if (!sc.description.empty()) os << " - " << sc.description;
+  os << "\n";
+  os << "  " << spec.inertias.size() + spec.vehicles.size() << " nodes, " << spec.shafts.size() << " shafts, "
+     << spec.gears.size() << " gears, " << spec.differentials.size() << " differentials, " << spec.clutches.size()
+     << " clutches/brakes, " << spec.freewheels.size() << " freewheels; "
+     << format("%.4g s at %.4g samples/s", spec.settings.duration_s, spec.settings.sample_rate_Hz) << "\n";
+  if (run.worst >= 0) {
+    const auto& w = run.verdicts[static_cast<std::size_t>(run.worst)];
+    os << "Verdict: " << verdict_line(w.verdict) << " - clutch '" << w.clutch << "'\n";
+  } else {
+    os << "Verdict: not judged (" << (spec.clutches.empty() ? "no clutch in the network" : run.verdicts.front().reason)
+       << ")\n";
+  }
+  for (std::size_t c = 0; c < spec.clutches.size(); ++c) {
+    const auto& k = spec.clutches[c];
+    const auto& v = run.verdicts[c];
+    os << "  " << k.name << " (" << (k.law == components::ClutchSpec::Law::kWet ? "wet" : "plain") << ", "
+       << k.a << " -> " << k.b << "): ";
+    os << (v.judged ? verdict_line(v.verdict) : "not judged: " + v.reason) << "\n";
+    const double locked = locked_from_s(rec, k.name);
+    os << "    " << (std::isfinite(locked) ? format("locked from %.4g s to the end", locked) : std::string("slipping at the end"))
+       << format("; friction heat %.4g kJ", scalar(rec, k.name + ".friction_work_J") * 1e-3);
+    if (k.law == components::ClutchSpec::Law::kWet)
+      os << format("; peak interface temperature %.4g degC", scalar(rec, k.name + ".peak_interface_temp_C"));
+    os << "\n";
+  }
+  os << format("Energy: source work %.6g kJ = kinetic change %.6g kJ", scalar(rec, "source_work_J") * 1e-3,
+               scalar(rec, "kinetic_energy_change_J") * 1e-3)
+     << format(" + elastic change %.4g kJ + friction heat %.6g kJ", scalar(rec, "elastic_energy_change_J") * 1e-3,
+               scalar(rec, "friction_heat_J") * 1e-3)
+     << format(" + damper losses %.4g kJ (relative error %.2g)\n", scalar(rec, "damper_loss_J") * 1e-3,
+               scalar(rec, "mechanical_energy_relative_error"));
+  for (const auto& w : sc.warnings) os << "Note: " << w << "\n";
+}
+
+}  // namespace shudder::report
