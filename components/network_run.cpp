@@ -252,6 +252,7 @@ NetworkRun run_network(const NetworkSpec& spec) {
       if (const auto* s = rec.find(bc.name() + ".interface_mean_temp_C")) d.input.interface_temp_C = part(s->values);
       d.settings.onset_definition = analysis::OnsetDefinition::kThresholdCrossing;
       d.settings.min_frequency_Hz = std::max(kNetworkMinFrequency_Hz, kMinJudgedCycles / span_s);
+      d.sustained_only = true;
       if (d.settings.min_frequency_Hz >= 0.5 * cfg.sample_rate_Hz / 2) {
         cv.reason = "its loaded slip (" + std::to_string(span_s) + " s) is too short to hold " +
                     std::to_string(static_cast<int>(kMinJudgedCycles)) + " cycles below the sampling's Nyquist rate";
