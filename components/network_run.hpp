@@ -20,10 +20,10 @@
 // follows it, is no stick-slip, while sticking again and again inside the window is. The search
 // starts at max(2 Hz, 3 / window length): a car's shuffle and take-up modes lie at a few Hz, and
 // a frequency counts only if the window holds three of its cycles. A window of fewer than
-// kMinJudgedSamples samples is "not judged", with the reason. As for the driveline's coupling,
-// an oscillation counts only if it lasts to the window's end (half its amplitude over the last
-// two periods, rig_models/recording_detection.hpp): a ringing that dies out while the clutch
-// still slips is the drivetrain answering a step, a judder lasts until the clutch locks or opens.
+// kMinJudgedSamples samples is "not judged", with the reason. An oscillation counts only if it
+// lasts to the window's end (the last two periods' amplitude at least half the largest period's,
+// components/transient_oscillation.hpp): a ringing that dies out while the clutch still slips is
+// the drivetrain answering a step; a judder lasts until the clutch locks or opens.
 
 #include <cstddef>
 #include <string>

@@ -12,6 +12,7 @@
 #include "core/nearest_name.hpp"
 #include "core/units.hpp"
 #include "io/input_error.hpp"
+#include "io/network_components.hpp"
 #include "io/scenario.hpp"
 #include "io/toml_reader.hpp"
 
@@ -21,11 +22,6 @@ namespace {
 
 using components::Signal;
 
-const std::vector<std::string> kComponentTypes = {"inertia",   "shaft",         "gear",         "differential",
-                                                   "clutch",    "brake",         "freewheel",    "torque_source",
-                                                   "speed_source", "motor",      "engine",       "vehicle",
-                                                   "tyre"};
-const std::vector<std::string> kSignalKinds = {"constant", "table", "step", "sine", "pulse", "ramp", "product"};
 constexpr double kGravity_m_s2 = 9.80665;
 
 std::string list(const std::vector<std::string>& v) {
@@ -51,10 +47,12 @@ std::string one_of(TomlTable& t, const std::string& key, const std::vector<std::
 }
 
 Signal read_signal_table(TomlTable& t) {
-  const std::string kind = one_of(t, "kind", kSignalKinds);
+  const std::string kind = one_of(t, "kind", signal_kinds());
+  const ComponentDecl& d = signal_decl(kind);
+  const auto num = [&](const std::string& key) { return read_number(t, d, key); };
   Signal s = Signal::constant(0.0);
   if (kind == "constant") {
-    s = Signal::constant(t.number("value"));
+    s = Signal::constant(num("value"));
   } else if (kind == "table") {
     const auto times = t.numbers("time_s", Range::non_negative(), 1);
     const auto values = t.numbers("value", {}, 1);
@@ -62,21 +60,19 @@ Signal read_signal_table(TomlTable& t) {
       t.fail("value", "has " + std::to_string(values.size()) + " values but time_s has " + std::to_string(times.size()));
     for (std::size_t i = 1; i < times.size(); ++i)
       if (!(times[i] > times[i - 1])) t.fail("time_s", "must be strictly increasing");
-    const std::string interp = t.choice_or("interpolation", "linear", {"linear", "step"});
-    s = Signal::table(times, values, interp == "linear");
+    const auto& interp = d.key("interpolation").choices;
+    s = Signal::table(times, values, t.choice_or("interpolation", interp.front(), interp) == "linear");
   } else if (kind == "step") {
-    s = Signal::step(t.number("time_s", Range::non_negative()), t.number_or("before", 0.0), t.number("after"));
+    s = Signal::step(num("time_s"), num("before"), num("after"));
   } else if (kind == "sine") {
-    s = Signal::sine(t.number_or("offset", 0.0), t.number("amplitude"), t.number("frequency_Hz", Range::positive()),
-                     t.number_or("phase_deg", 0.0) * std::numbers::pi / 180.0, t.number_or("start_s", 0.0, Range::non_negative()));
+    s = Signal::sine(num("offset"), num("amplitude"), num("frequency_Hz"), num("phase_deg") * std::numbers::pi / 180.0,
+                     num("start_s"));
   } else if (kind == "pulse") {
-    const double period = t.number("period_s", Range::positive());
-    const double width = t.number("width_s", Range::positive());
+    const double period = num("period_s"), width = num("width_s");
     if (width > period) t.fail("width_s", "must not exceed period_s");
-    s = Signal::pulse(t.number_or("low", 0.0), t.number("high"), period, width, t.number_or("start_s", 0.0, Range::non_negative()));
+    s = Signal::pulse(num("low"), num("high"), period, width, num("start_s"));
   } else if (kind == "ramp") {
-    s = Signal::ramp(t.number_or("from", 0.0), t.number("to"), t.number_or("start_s", 0.0, Range::non_negative()),
-                     t.number("duration_s", Range::non_negative()));
+    s = Signal::ramp(num("from"), num("to"), num("start_s"), num("duration_s"));
   } else {  // product
     auto factors = t.table_array("factors");
     if (factors.size() < 2) t.fail("factors", "a product needs at least two factor signals");
@@ -90,7 +86,7 @@ Signal read_signal_table(TomlTable& t) {
 /// `key` as a signal table, or a plain number meaning a constant; `fallback` when absent.
 Signal read_signal(TomlTable& c, const std::string& key, std::optional<Signal> fallback) {
   if (!c.has(key)) {
-    if (!fallback) c.number(key);  // reports the missing key
+    if (!fallback) c.fail(key, "missing; give a signal: a number, or a table with kind = one of " + list(signal_kinds()));
     c.mark_read(key);
     return *fallback;
   }
@@ -101,14 +97,15 @@ Signal read_signal(TomlTable& c, const std::string& key, std::optional<Signal> f
   return Signal::constant(c.number(key));
 }
 
-// Plain friction: μ, peak ratio and the geometry factor (components/plain_friction.hpp).
-components::PlainFrictionParams read_plain(TomlTable& c) {
+// Plain friction: mu, peak ratio and the geometry factor (components/plain_friction.hpp).
+components::PlainFrictionParams read_plain(TomlTable& c, const ComponentDecl& d) {
+  const auto num = [&](const std::string& key) { return read_number(c, d, key); };
   components::PlainFrictionParams p;
   const bool table = c.has("mu_table"), constant = c.has("mu");
   if (table == constant) c.fail(constant ? "mu_table" : "mu", "give exactly one of mu (a constant) or mu_table");
   if (constant) {
     p.slip_rpm = {0.0};
-    p.mu = {c.number("mu", Range::positive())};
+    p.mu = {num("mu")};
   } else {
     auto t = c.table("mu_table");
     p.slip_rpm = t.numbers("slip_rpm", Range::non_negative(), 1);
@@ -119,7 +116,7 @@ components::PlainFrictionParams read_plain(TomlTable& c) {
       if (!(p.slip_rpm[i] > p.slip_rpm[i - 1])) t.fail("slip_rpm", "must be strictly increasing");
     t.finish();
   }
-  p.peak_ratio = c.number_or("peak_ratio", 1.0, Range::closed(1.0, 10.0));
+  p.peak_ratio = num("peak_ratio");
   const bool by_factor = c.has("geometry_factor_m"), by_mean = c.has("mean_radius_m"),
              by_annulus = c.has("inner_radius_m") || c.has("outer_radius_m");
   if (by_factor + by_mean + by_annulus != 1)
@@ -127,13 +124,13 @@ components::PlainFrictionParams read_plain(TomlTable& c) {
            "give exactly one geometry: geometry_factor_m, or mean_radius_m with interfaces, or inner_radius_m and "
            "outer_radius_m with interfaces");
   if (by_factor) {
-    p.geometry_factor_m = c.number("geometry_factor_m", Range::positive());
+    p.geometry_factor_m = num("geometry_factor_m");
   } else {
-    const double n = static_cast<double>(c.integer_or("interfaces", 1, 1, 64));
+    const double n = num("interfaces");
     if (by_mean) {
-      p.geometry_factor_m = n * c.number("mean_radius_m", Range::positive());
+      p.geometry_factor_m = n * num("mean_radius_m");
     } else {
-      const double ri = c.number("inner_radius_m", Range::positive()), ro = c.number("outer_radius_m", Range::positive());
+      const double ri = num("inner_radius_m"), ro = num("outer_radius_m");
       if (!(ro > ri)) c.fail("outer_radius_m", "must exceed inner_radius_m");
       p.geometry_factor_m = n * (2.0 / 3.0) * (ro * ro * ro - ri * ri * ri) / (ro * ro - ri * ri);  // uniform pressure
     }
@@ -143,20 +140,23 @@ components::PlainFrictionParams read_plain(TomlTable& c) {
 
 void read_component(TomlTable& c, const std::string& name, const std::string& path, NetworkScenario& sc) {
   auto& spec = sc.spec;
-  const std::string type = one_of(c, "type", kComponentTypes);
-  const auto node = [&](const std::string& key) { return c.string(key); };
+  const std::string type = one_of(c, "type", component_types());
+  const ComponentDecl& d = component_decl(type);
+  const auto num = [&](const std::string& key) { return read_number(c, d, key); };
+  const auto node = [&](const std::string& key) {
+    d.key(key);  // declared
+    return c.string(key);
+  };
   if (type == "inertia") {
-    spec.inertias.push_back({name, c.number("inertia_kg_m2", Range::non_negative()),
-                             units::rpm_to_rad_s(c.number_or("speed_rpm", 0.0))});
+    spec.inertias.push_back({name, num("inertia_kg_m2"), units::rpm_to_rad_s(num("speed_rpm"))});
   } else if (type == "shaft") {
-    components::ShaftSpec s{name, node("from"), node("to"), c.number_or("stiffness_Nm_per_rad", 0.0, Range::non_negative()),
-                            c.number_or("damping_Nms_per_rad", 0.0, Range::non_negative()),
-                            c.number_or("lash_deg", 0.0, Range::closed(0.0, 360.0)) * std::numbers::pi / 180.0};
+    components::ShaftSpec s{name, node("from"), node("to"), num("stiffness_Nm_per_rad"), num("damping_Nms_per_rad"),
+                            num("lash_deg") * std::numbers::pi / 180.0};
     if (s.stiffness_Nm_per_rad == 0 && s.damping_Nms_per_rad == 0)
       c.fail("stiffness_Nm_per_rad", "a shaft needs stiffness_Nm_per_rad > 0 or damping_Nms_per_rad > 0");
     spec.shafts.push_back(s);
   } else if (type == "gear") {
-    const double ratio = c.number("ratio");
+    const double ratio = num("ratio");
     if (ratio == 0.0) c.fail("ratio", "must not be 0 (speed of input = ratio x speed of output)");
     spec.gears.push_back({name, node("input"), node("output"), ratio});
   } else if (type == "differential") {
@@ -171,29 +171,36 @@ void read_component(TomlTable& c, const std::string& name, const std::string& pa
       k.a = node("node");
       k.b = components::kGroundNode;
     }
-    k.max_force_N = c.number("max_force_N", Range::positive());
+    k.max_force_N = num("max_force_N");
     k.force_signal = read_signal(c, "normal_force", Signal::constant(1.0));
-    const std::string law = c.choice_or("law", "plain", {"plain", "wet"});
+    const auto& laws = d.key("law").choices;
+    const std::string law = c.choice_or("law", laws.front(), laws);
     if (law == "plain") {
       k.law = components::ClutchSpec::Law::kPlain;
-      k.plain = read_plain(c);
+      k.plain = read_plain(c, d);
+      for (const char* wet_only : {"clutch", "effects"})
+        if (c.has(wet_only)) c.fail(wet_only, "belongs to law = \"wet\"; a plain clutch takes mu or mu_table");
     } else {
       k.law = components::ClutchSpec::Law::kWet;
+      for (const char* plain_only : {"mu", "mu_table", "peak_ratio", "geometry_factor_m", "mean_radius_m",
+                                     "inner_radius_m", "outer_radius_m", "interfaces"})
+        if (c.has(plain_only))
+          c.fail(plain_only, "belongs to law = \"plain\"; a wet clutch's friction comes from its fluid and its "
+                             "geometry from its [clutch] table");
       k.wet = read_wet_pack(c, path, sc.warnings);
       sc.fluid_paths.push_back(k.wet.fluid_path);
       sc.fluid_texts += "# file: " + k.wet.fluid_path + " (clutch " + name + ")\n" + k.wet.fluid_text + "\n";
     }
     spec.clutches.push_back(std::move(k));
   } else if (type == "freewheel") {
-    spec.freewheels.push_back({name, node("driving"), node("driven"), c.number_or("drag_Nm", 0.0, Range::non_negative())});
+    spec.freewheels.push_back({name, node("driving"), node("driven"), num("drag_Nm")});
   } else if (type == "torque_source") {
     spec.torque_sources.push_back({name, node("node"), read_signal(c, "torque_Nm", std::nullopt)});
   } else if (type == "speed_source") {
     spec.speed_sources.push_back({name, node("node"), read_signal(c, "speed_rpm", std::nullopt)});
   } else if (type == "motor") {
-    spec.motors.push_back({name, node("node"), read_signal(c, "speed_rpm", std::nullopt),
-                           c.number("kp_Nms_per_rad", Range::non_negative()), c.number("ki_Nm_per_rad", Range::non_negative()),
-                           c.number("torque_limit_Nm", Range::positive())});
+    spec.motors.push_back({name, node("node"), read_signal(c, "speed_rpm", std::nullopt), num("kp_Nms_per_rad"),
+                           num("ki_Nm_per_rad"), num("torque_limit_Nm")});
     if (spec.motors.back().kp_Nms_per_rad == 0 && spec.motors.back().ki_Nm_per_rad == 0)
       c.fail("kp_Nms_per_rad", "a speed loop needs kp_Nms_per_rad > 0 or ki_Nm_per_rad > 0");
   } else if (type == "engine") {
@@ -211,25 +218,25 @@ void read_component(TomlTable& c, const std::string& name, const std::string& pa
       p.full_load_torque_Nm = rig_models::PiecewiseLinear(n, tq);
       fl->finish();
     }
-    p.idle_speed_rpm = c.number_or("idle_speed_rpm", p.idle_speed_rpm, Range::positive());
-    p.stall_speed_rpm = c.number_or("stall_speed_rpm", p.stall_speed_rpm, Range::positive());
+    p.idle_speed_rpm = num("idle_speed_rpm");
+    p.stall_speed_rpm = num("stall_speed_rpm");
     if (!(p.idle_speed_rpm > p.stall_speed_rpm)) c.fail("idle_speed_rpm", "must exceed stall_speed_rpm");
-    p.idle_governor_gain_Nms_per_rad = c.number_or("idle_governor_gain_Nms_per_rad", p.idle_governor_gain_Nms_per_rad, Range::positive());
-    p.loss_torque_idle_Nm = c.number_or("loss_torque_idle_Nm", p.loss_torque_idle_Nm, Range::non_negative());
-    p.loss_torque_max_Nm = c.number_or("loss_torque_max_Nm", p.loss_torque_max_Nm, Range::non_negative());
-    p.max_speed_rpm = c.number_or("max_speed_rpm", p.max_speed_rpm, Range::positive());
+    p.idle_governor_gain_Nms_per_rad = num("idle_governor_gain_Nms_per_rad");
+    p.loss_torque_idle_Nm = num("loss_torque_idle_Nm");
+    p.loss_torque_max_Nm = num("loss_torque_max_Nm");
+    p.max_speed_rpm = num("max_speed_rpm");
     spec.engines.push_back(std::move(e));
   } else if (type == "vehicle") {
     components::VehicleSpec v;
     v.name = name;
-    v.mass_kg = c.number("mass_kg", Range::positive());
-    v.wheel_radius_m = c.number("wheel_radius_m", Range::positive());
-    v.speed_m_s = c.number_or("speed_km_h", 0.0) / 3.6;
-    v.grade_percent = c.number_or("grade_percent", 0.0, Range::closed(-100.0, 100.0));
-    const double f_r = c.number_or("rolling_resistance_coefficient", 0.012, Range::closed(0.0, 0.5));
+    v.mass_kg = num("mass_kg");
+    v.wheel_radius_m = num("wheel_radius_m");
+    v.speed_m_s = num("speed_km_h") / 3.6;
+    v.grade_percent = num("grade_percent");
+    const double f_r = num("rolling_resistance_coefficient");
     v.road.rolling_resistance_N = f_r * v.mass_kg * kGravity_m_s2 * std::cos(std::atan(v.grade_percent / 100.0));
-    v.road.drag_coefficient_area_m2 = c.number_or("drag_area_m2", v.road.drag_coefficient_area_m2, Range::non_negative());
-    v.road.air_density_kg_m3 = c.number_or("air_density_kg_m3", v.road.air_density_kg_m3, Range::positive());
+    v.road.drag_coefficient_area_m2 = num("drag_area_m2");
+    v.road.air_density_kg_m3 = num("air_density_kg_m3");
     spec.vehicles.push_back(v);
   } else if (type == "tyre") {
     components::TyreSpec t;
@@ -237,11 +244,12 @@ void read_component(TomlTable& c, const std::string& name, const std::string& pa
     t.wheel = node("wheel");
     t.vehicle = node("vehicle");
     auto& p = t.params;
-    p.slip_stiffness_N = c.number_or("slip_stiffness_N", p.slip_stiffness_N, Range::positive());
-    p.relaxation_length_m = c.number_or("relaxation_length_m", p.relaxation_length_m, Range::positive());
-    p.vertical_load_N = c.number("vertical_load_N", Range::positive());
-    p.road_friction = c.number_or("road_friction", p.road_friction, Range::positive());
-    p.radius_m = c.number_or("radius_m", std::nan(""), Range::positive());  // default: the vehicle's wheel radius
+    p.vertical_load_N = num("vertical_load_N");
+    p.slip_stiffness_N = num("slip_stiffness_N");
+    p.relaxation_length_m = num("relaxation_length_m");
+    p.road_friction = num("road_friction");
+    p.radius_m = gives(c, "radius_m") ? num("radius_m") : std::nan("");  // default: the vehicle's wheel radius
+    if (!gives(c, "radius_m")) c.mark_read("radius_m");
     spec.tyres.push_back(t);
   }
   c.finish();

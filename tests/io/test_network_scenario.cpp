@@ -1,0 +1,146 @@
+// Network scenario files: the reference in docs/network_format.md equals the declarations the
+// reader uses; a bad network is one line naming the component, its line and what to change.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "io/input_error.hpp"
+#include "io/network_components.hpp"
+#include "io/network_scenario.hpp"
+#include "tests/support/cli.hpp"
+
+namespace shudder::io {
+namespace {
+
+TEST(NetworkComponents, DocsTablesEqualTheDeclarations) {
+  const std::string docs = test::slurp(test::source_path("docs/network_format.md"));
+  const std::string begin = "<!-- BEGIN GENERATED REFERENCE -->\n", end = "<!-- END GENERATED REFERENCE -->";
+  const auto a = docs.find(begin), b = docs.find(end);
+  ASSERT_NE(a, std::string::npos);
+  ASSERT_NE(b, std::string::npos);
+  const std::string section = docs.substr(a + begin.size(), b - a - begin.size());
+  EXPECT_EQ(section, network_reference_markdown())
+      << "docs/network_format.md's reference section should read:\n\n" << network_reference_markdown();
+}
+
+// Two inertias joined by a plain clutch; `extra` is appended (more components or keys).
+std::string two_inertias(const std::string& extra) {
+  return R"([scenario]
+type = "network"
+duration_s = 0.1
+[network.engine_side]
+type = "inertia"
+inertia_kg_m2 = 0.2
+speed_rpm = 1000
+[network.wheel_side]
+type = "inertia"
+inertia_kg_m2 = 0.5
+[network.clutch]
+type = "clutch"
+from = "engine_side"
+to = "wheel_side"
+mu = 0.1
+mean_radius_m = 0.1
+interfaces = 2
+max_force_N = 1000
+)" + extra;
+}
+
+// The error's text, or "" when the file loads.
+std::string error_of(const std::string& text) {
+  try {
+    load_network_scenario_text(text, "net.toml");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(NetworkScenario, AGoodNetworkLoads) {
+  const auto sc = load_network_scenario_text(two_inertias(""), "net.toml");
+  EXPECT_EQ(sc.spec.inertias.size(), 2u);
+  ASSERT_EQ(sc.spec.clutches.size(), 1u);
+  EXPECT_DOUBLE_EQ(sc.spec.clutches[0].plain.geometry_factor_m, 0.2);  // 2 interfaces x 0.1 m
+}
+
+TEST(NetworkScenario, AMisspeltNodeNamesTheNearest) {
+  std::string text = two_inertias("");
+  text.replace(text.find("to = \"wheel_side\""), 17, "to = \"wheel_sde\"");
+  const std::string e = error_of(text);
+  EXPECT_NE(e.find("net.toml:"), std::string::npos) << e;
+  EXPECT_NE(e.find("network.clutch"), std::string::npos) << e;
+  EXPECT_NE(e.find("did you mean 'wheel_side'"), std::string::npos) << e;
+}
+
+TEST(NetworkScenario, AMisspeltTypeNamesTheNearest) {
+  const std::string e = error_of(two_inertias("[network.spring]\ntype = \"shfat\"\nfrom = \"engine_side\"\nto = \"ground\"\n"));
+  EXPECT_NE(e.find("did you mean 'shaft'"), std::string::npos) << e;
+}
+
+TEST(NetworkScenario, AComponentJoinedToItselfIsRefused) {
+  const std::string e = error_of(two_inertias(
+      "[network.spring]\ntype = \"shaft\"\nfrom = \"wheel_side\"\nto = \"wheel_side\"\nstiffness_Nm_per_rad = 100\n"));
+  EXPECT_NE(e.find("network.spring"), std::string::npos) << e;
+  EXPECT_NE(e.find("joined to itself"), std::string::npos) << e;
+}
+
+TEST(NetworkScenario, AMasslessNodeNothingFixesIsRefused) {
+  const std::string e = error_of(two_inertias(
+      "[network.hub]\ntype = \"inertia\"\ninertia_kg_m2 = 0\n[network.spring]\ntype = \"shaft\"\nfrom = \"wheel_side\"\n"
+      "to = \"hub\"\nstiffness_Nm_per_rad = 100\n"));
+  EXPECT_NE(e.find("network.hub"), std::string::npos) << e;
+  EXPECT_NE(e.find("no inertia"), std::string::npos) << e;
+}
+
+TEST(NetworkScenario, GearsThatCloseALoopAreRefused) {
+  const std::string e = error_of(two_inertias(
+      "[network.g1]\ntype = \"gear\"\ninput = \"engine_side\"\noutput = \"wheel_side\"\nratio = 3\n"
+      "[network.g2]\ntype = \"gear\"\ninput = \"engine_side\"\noutput = \"wheel_side\"\nratio = 2\n"));
+  EXPECT_NE(e.find("network.g2"), std::string::npos) << e;
+  EXPECT_NE(e.find("over-constrains"), std::string::npos) << e;
+}
+
+TEST(NetworkScenario, APartNothingDrivesIsRefused) {
+  const std::string e = error_of(two_inertias("[network.island]\ntype = \"inertia\"\ninertia_kg_m2 = 1\n"));
+  EXPECT_NE(e.find("network.island"), std::string::npos) << e;
+  EXPECT_NE(e.find("nothing drives it"), std::string::npos) << e;
+}
+
+TEST(NetworkScenario, AClutchThatCanNeverLoadIsRefused) {
+  const std::string e = error_of(two_inertias("normal_force = { kind = \"step\", time_s = 0.5, after = 1 }\n"));
+  EXPECT_NE(e.find("network.clutch"), std::string::npos) << e;
+  EXPECT_NE(e.find("never rises above 0"), std::string::npos) << e;
+}
+
+TEST(NetworkScenario, AnUnknownKeyNamesTheNearest) {
+  const std::string e = error_of(two_inertias("peak_raito = 1.2\n"));
+  EXPECT_NE(e.find("network.clutch.peak_raito"), std::string::npos) << e;
+  EXPECT_NE(e.find("peak_ratio"), std::string::npos) << e;
+}
+
+TEST(NetworkScenario, WetOnlyKeysOnAPlainClutchAreRefused) {
+  const std::string e = error_of(two_inertias("[network.clutch.clutch]\nfluid = \"x.toml\"\n"));
+  EXPECT_NE(e.find("belongs to law = \"wet\""), std::string::npos) << e;
+}
+
+TEST(NetworkScenario, OtherCommandsSayWhyTheyCannot) {
+  const auto dir = test::scratch_dir("network_refusal");
+  test::write_file(dir / "net.toml", two_inertias(""));
+  const auto r = test::run_cli("modes net.toml", dir);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("\"network\" scenarios"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
+}
+
+TEST(NetworkScenario, RunWritesChannelsNamedAfterTheComponents) {
+  const auto dir = test::scratch_dir("network_run");
+  test::write_file(dir / "net.toml", two_inertias(""));
+  const auto r = test::run_cli("run net.toml -o out.h5", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("clutch (plain, engine_side -> wheel_side)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("locked from"), std::string::npos) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(dir / "out.h5"));
+}
+
+}  // namespace
+}  // namespace shudder::io
