@@ -283,7 +283,7 @@ std::unique_ptr<BuiltNetwork> build_network(const NetworkSpec& spec) {
   {
     const int n = static_cast<int>(out.node_names.size());
     Eigen::MatrixXd g(0, n);
-    const auto add_row = [&](const std::string& who, const Eigen::RowVectorXd& row) {
+    const auto add_row = [&](const std::string& who, const Eigen::RowVectorXd& row, bool prescribes) {
       Eigen::MatrixXd h(g.rows() + 1, n);
       h << g, row;
       Eigen::FullPivLU<Eigen::MatrixXd> lu(h);
@@ -292,25 +292,35 @@ std::unique_ptr<BuiltNetwork> build_network(const NetworkSpec& spec) {
         throw NetworkError(who, "over-constrains the network: the speeds it ties are already fixed by the gears, "
                                 "differentials and speed sources before it (a closed loop of gears); remove it or "
                                 "replace one gear of the loop by a shaft or a clutch");
+      // Gears and differentials alone must leave every node free to turn: a loop whose ratios
+      // disagree admits only standstill (a tie-up).
+      if (!prescribes) {
+        const Eigen::MatrixXd free = lu.kernel();
+        for (int i = 0; i < n; ++i)
+          if (lu.dimensionOfKernel() == 0 || free.row(i).norm() < 1e-9)
+            throw NetworkError(who, "closes a loop of gears whose ratios disagree, which locks '" + out.node_names[i] +
+                                        "' at standstill; make the ratios around the loop agree, or replace one gear by "
+                                        "a shaft or a clutch");
+      }
       g = h;
     };
     for (const auto& gr : net.gears()) {
       Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(n);
       r[gr.a] += 1.0;
       r[gr.b] -= gr.ratio;
-      add_row(gr.name, r);
+      add_row(gr.name, r, false);
     }
     for (const auto& d : net.differentials()) {
       Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(n);
       r[d.left] += 1.0;
       r[d.right] += 1.0;
       r[d.carrier] -= 2.0;
-      add_row(d.name, r);
+      add_row(d.name, r, false);
     }
     for (const auto& s : net.speed_sources()) {
       Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(n);
       r[s.node] = 1.0;
-      add_row(s.name, r);
+      add_row(s.name, r, true);
     }
     // The mass left on the free motions must be positive definite (a massless node between gears
     // only, e.g., still needs mass somewhere on its side).

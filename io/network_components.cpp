@@ -102,7 +102,7 @@ std::vector<ComponentDecl> make_components() {
       signal("speed_rpm", "rpm", "speed set point"),
       number("kp_Nms_per_rad", "N m s/rad", std::nullopt, Range::non_negative(), "proportional gain"),
       number("ki_Nm_per_rad", "N m/rad", std::nullopt, Range::non_negative(), "integral gain (kp and ki not both 0)"),
-      number("torque_limit_Nm", "N m", std::nullopt, Range::positive(), "|torque| limit"),
+      number("torque_limit_Nm", "N m", std::nullopt, Range::positive(), "limit on the motor torque (either sign)"),
   }});
   d.push_back({"engine", "combustion engine torque from a throttle map, losses and an idle governor (rig_models/engine.hpp)", {
       node("node", "crankshaft node"),
@@ -197,7 +197,7 @@ std::string kind_text(const KeyDecl& k) {
     case KeyKind::kSignal: return "signal";
     case KeyKind::kChoice: {
       std::string s;
-      for (const auto& c : k.choices) s += (s.empty() ? "" : " | ") + ("\"" + c + "\"");
+      for (const auto& c : k.choices) s += (s.empty() ? "" : " or ") + ("\"" + c + "\"");
       return s;
     }
     case KeyKind::kTable: return "table/array";
