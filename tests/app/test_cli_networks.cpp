@@ -1,0 +1,108 @@
+// The shipped network examples (scenarios/networks/): each runs, closes its energy account, and
+// shows what its header says. The judder examples are run twice: with their negative-slope fluid
+// (a clutch verdict of vibration) and with fluid C, whose friction rises with slip (none).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "io/hdf5_run.hpp"
+#include "tests/support/cli.hpp"
+
+namespace shudder {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct NetworkRun {
+  test::CliResult r;
+  dynamics::Recording rec;
+};
+
+// Copies the example into a scratch directory beside a copy of the fluids (its fluid paths are
+// relative), optionally swapping the fluid file name, and runs it.
+NetworkRun run_example(const std::string& name, const std::string& fluid_from = "", const std::string& fluid_to = "") {
+  const auto dir = test::scratch_dir("network_" + name + (fluid_to.empty() ? "" : "_swapped"));
+  fs::create_directories(dir / "networks");
+  fs::copy(test::source_path("scenarios/fluids"), dir / "fluids");
+  std::string text = test::slurp(test::source_path("scenarios/networks/" + name + ".toml"));
+  if (!fluid_from.empty()) {
+    const auto at = text.find(fluid_from);
+    EXPECT_NE(at, std::string::npos) << fluid_from;
+    if (at != std::string::npos) text.replace(at, fluid_from.size(), fluid_to);
+  }
+  test::write_file(dir / "networks" / (name + ".toml"), text);
+  NetworkRun run;
+  run.r = test::run_cli("run networks/" + name + ".toml -o out.h5", dir);
+  if (run.r.exit_code == 0) run.rec = io::read_run_hdf5((dir / "out.h5").string());
+  return run;
+}
+
+std::string verdict_of(const dynamics::Recording& rec, const std::string& block) {
+  const auto* b = rec.find_block(block);
+  if (!b) return "no block " + block;
+  const auto* t = b->find_text("verdict");
+  return t ? t->value : "no verdict";
+}
+
+TEST(CliNetworks, EveryShippedNetworkRunsAndClosesItsEnergyAccount) {
+  int n = 0;
+  for (const auto& e : fs::directory_iterator(test::source_path("scenarios/networks"))) {
+    if (e.path().extension() != ".toml") continue;
+    ++n;
+    const auto run = run_example(e.path().stem().string());
+    ASSERT_EQ(run.r.exit_code, 0) << e.path() << "\n" << run.r.err;
+    const auto* err = run.rec.find_scalar("mechanical_energy_relative_error");
+    ASSERT_NE(err, nullptr);
+    // The adaptive integration drifts by ~1e-10 on these runs; the guard's bound is 1e-3.
+    EXPECT_LT(std::abs(err->value), 1e-6) << e.path();
+    EXPECT_NE(run.rec.find_block("verdict"), nullptr) << e.path();
+  }
+  EXPECT_GE(n, 4);
+}
+
+// Four inertias, three clutches closing in turn: all lock, at the common speed
+// sum(J w0) / sum(J) = 0.4 x 1500 / 1.0 = 600 rpm, and the heat is the kinetic energy lost.
+TEST(CliNetworks, FourInertiaChainLocksAtTheMomentumSpeed) {
+  const auto run = run_example("four_inertia_chain");
+  ASSERT_EQ(run.r.exit_code, 0) << run.r.err;
+  for (const char* node : {"input", "second", "third", "output"})
+    EXPECT_NEAR(run.rec.find(std::string(node) + ".speed_rpm")->values.back(), 600.0, 1e-6) << node;
+  const double w0 = 1500.0 * 2 * 3.141592653589793 / 60, w1 = 600.0 * 2 * 3.141592653589793 / 60;
+  EXPECT_NEAR(run.rec.find_scalar("friction_heat_J")->value, 0.5 * 0.4 * w0 * w0 - 0.5 * 1.0 * w1 * w1, 1e-3);
+  for (const char* c : {"c1", "c2", "c3"}) EXPECT_EQ(run.rec.find(std::string(c) + ".stuck")->values.back(), 1.0) << c;
+}
+
+// The upshift: the offgoing clutch ends open, the oncoming one locked at the second-gear speed.
+TEST(CliNetworks, PowershiftHandsTheTorqueOver) {
+  const auto run = run_example("powershift_two_clutches");
+  ASSERT_EQ(run.r.exit_code, 0) << run.r.err;
+  EXPECT_EQ(run.rec.find("second_clutch.stuck")->values.back(), 1.0);
+  EXPECT_EQ(run.rec.find("first_clutch.normal_force_N")->values.back(), 0.0);
+  const double crank = run.rec.find("crankshaft.speed_rpm")->values.back();
+  const double out = run.rec.find("output_shaft.speed_rpm")->values.back();
+  EXPECT_NEAR(crank, 5.2 * out, 1e-6 * crank);  // locked in second gear
+}
+
+TEST(CliNetworks, LockupClutchShuddersWithANegativeSlopeFluidAndNotWithFluidC) {
+  const auto neg = run_example("lockup_clutch_controlled_slip");
+  ASSERT_EQ(neg.r.exit_code, 0) << neg.r.err;
+  EXPECT_EQ(verdict_of(neg.rec, "verdict.lockup_clutch"), "vibration") << neg.r.out;
+  EXPECT_EQ(verdict_of(neg.rec, "verdict"), "vibration");
+  EXPECT_NE(neg.r.out.find("clutch 'lockup_clutch'"), std::string::npos) << neg.r.out;
+  const auto c = run_example("lockup_clutch_controlled_slip", "schematic_negative_slope.toml", "lsc_fluid_c.toml");
+  ASSERT_EQ(c.r.exit_code, 0) << c.r.err;
+  EXPECT_EQ(verdict_of(c.rec, "verdict.lockup_clutch"), "none") << c.r.out;
+}
+
+TEST(CliNetworks, LaunchJuddersWithANegativeSlopeFluidAndNotWithFluidC) {
+  const auto neg = run_example("manual_launch_wet_clutch");
+  ASSERT_EQ(neg.r.exit_code, 0) << neg.r.err;
+  EXPECT_EQ(verdict_of(neg.rec, "verdict.launch_clutch"), "vibration") << neg.r.out;
+  const auto c = run_example("manual_launch_wet_clutch", "schematic_launch_negative_slope.toml", "lsc_fluid_c.toml");
+  ASSERT_EQ(c.r.exit_code, 0) << c.r.err;
+  EXPECT_EQ(verdict_of(c.rec, "verdict.launch_clutch"), "none") << c.r.out;
+}
+
+}  // namespace
+}  // namespace shudder
