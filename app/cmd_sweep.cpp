@@ -25,12 +25,14 @@
 #include "app/guarded.hpp"
 #include "app/mpi_sweep.hpp"
 #include "app/output_size.hpp"
+#include "components/network_run.hpp"
 #include "core/parallel_for.hpp"
 #include "dynamics/signal_names.hpp"
 #include "io/hdf5_run.hpp"
 #include "io/hdf5_sweep.hpp"
 #include "io/input_error.hpp"
 #include "io/kind_refusal.hpp"
+#include "io/network_scenario.hpp"
 #include "io/output_safety.hpp"
 #include "report/plots.hpp"
 #include "io/scenario.hpp"
@@ -59,9 +61,42 @@ constexpr const char* kFailed = "failed";
 // model or run throws is a result, not a sweep failure: its part records the message (verdict
 // `failed`), so the sweep finishes and a resume keeps it. Running out of memory is not a
 // property of the case and stops the sweep; so does a part that cannot be written.
+// A network case: the run's verdict (its worst clutch) as the outcome; kept: time and every
+// clutch's torque and slip. No linear prediction (as the driveline's).
+rig_models::CaseOutcome run_network_case(const std::string& text, const std::string& path, dynamics::Recording& kept) {
+  const io::NetworkScenario sc = io::load_network_scenario_text(text, path);
+  const components::NetworkRun run = components::run_network(sc.spec);
+  if (const std::string bad = rig_models::energy_balance_violation(run.recording); !bad.empty())
+    throw std::runtime_error("numerical failure: " + bad);
+  kept.signals.push_back(*run.recording.find(sn::kTime));
+  for (const auto& c : sc.spec.clutches)
+    for (const char* q : {".torque_Nm", ".slip_rpm"}) kept.signals.push_back(*run.recording.find(c.name + q));
+  rig_models::CaseOutcome o;
+  if (run.worst >= 0) {
+    const auto& r = run.verdicts[static_cast<std::size_t>(run.worst)].verdict.judged;
+    o.simulated_verdict = std::string(analysis::to_string(r.verdict));
+    o.simulated_frequency_Hz = r.frequency_Hz;
+    o.amplitude_Nm = r.amplitude_Nm;
+    o.onset_time_s = r.onset_time_s;
+  }
+  return o;
+}
+
 void run_case(const std::string& text, const std::string& path, const std::string& part) {
   dynamics::Recording kept;
   try {
+    if (io::scenario_type_of_text(text, path) == "network") {
+      const rig_models::CaseOutcome o = run_network_case(text, path, kept);
+      kept.scalars = {{"predicted_stable", "1", o.predicted_stable ? 1.0 : 0.0},
+                      {"predicted_margin_per_s", "1/s", o.predicted_margin_per_s},
+                      {"predicted_frequency_Hz", "Hz", o.predicted_frequency_Hz},
+                      {"simulated_verdict_code", "1", verdict_code(o.simulated_verdict)},
+                      {"simulated_frequency_Hz", "Hz", o.simulated_frequency_Hz},
+                      {"amplitude_Nm", "N m", o.amplitude_Nm},
+                      {"onset_time_s", "s", o.onset_time_s}};
+      io::write_run_hdf5(part, kept, text, "", io::RunCompression::kNone);
+      return;
+    }
     const io::Scenario sc = io::load_scenario_text(text, path);
     const clutch::WetClutch clutch = sc.make_clutch();
     dynamics::Recording rec;
@@ -92,6 +127,34 @@ void run_case(const std::string& text, const std::string& path, const std::strin
   }
   // A part is read back once when the sweep is assembled: not worth deflating.
   io::write_run_hdf5(part, kept, text, "", io::RunCompression::kNone);
+}
+
+// What the sweep needs of its base scenario, a network or one of the kinds.
+struct SweepBase {
+  bool network = false;
+  std::string name, text, fluid_text;
+  std::vector<std::string> fluid_paths, warnings;
+};
+
+SweepBase load_sweep_base(const std::string& path) {
+  SweepBase b;
+  if (io::scenario_type(path) == "network") {
+    const io::NetworkScenario sc = io::load_network_scenario(path);
+    if (sc.spec.clutches.empty())
+      throw io::InputError(path, 0, "network", "has no clutch: a sweep judges the clutches' verdicts; add a clutch");
+    b = {true, sc.name, sc.text, sc.fluid_texts, sc.fluid_paths, sc.warnings};
+    return b;
+  }
+  const io::Scenario sc = io::load_scenario(path);
+  io::visit_kind(path, "scenario.type", sc.model, [](const auto& m) { rig_models::require_sweep(m); });
+  b = {false, sc.name, sc.text, sc.fluid_text, {sc.fluid_path}, sc.warnings};
+  return b;
+}
+
+// A network case's kept data: time and two signals per clutch, 8 bytes a sample.
+std::uint64_t network_case_bytes(const io::NetworkScenario& sc) {
+  const double samples = std::floor(sc.spec.settings.duration_s * sc.spec.settings.sample_rate_Hz) + 1;
+  return static_cast<std::uint64_t>(samples * static_cast<double>(1 + 2 * sc.spec.clutches.size()) * 8.0);
 }
 
 // Rejects a key given to two --set options (the cases would repeat and /cases would hold two
@@ -157,8 +220,7 @@ int sweep_command(const SweepOptions& opt) {
       }
     }
     mpi::Session* const mpi = mpi_session ? &*mpi_session : nullptr;
-    const io::Scenario base = io::load_scenario(opt.scenario);
-    io::visit_kind(opt.scenario, "scenario.type", base.model, [](const auto& m) { rig_models::require_sweep(m); });
+    const SweepBase base = load_sweep_base(opt.scenario);
     for (const auto& w : base.warnings) std::cerr << "shudder: warning: " << w << "\n";
     if (opt.sets.empty()) throw io::InputError("--set", 0, "", "give at least one --set KEY=START:STOP:STEP");
     std::vector<io::SweepAxis> axes;
@@ -170,7 +232,9 @@ int sweep_command(const SweepOptions& opt) {
     // the parts folder beside it is created, never the directories above it.
     std::vector<io::RolePath> outputs{{"-o", opt.output}};
     if (!opt.report.empty()) outputs.push_back({"--report", opt.report});
-    io::require_distinct_paths({{"scenario", opt.scenario}, {"fluid file", base.fluid_path}}, outputs);
+    std::vector<io::RolePath> inputs{{"scenario", opt.scenario}};
+    for (const auto& f : base.fluid_paths) inputs.push_back({"fluid file", f});
+    io::require_distinct_paths(inputs, outputs);
     for (const auto& o : outputs) io::require_output_directory(o.path);
 
     // Case texts, each validated now so bad keys or values stop the sweep before it runs; the
@@ -180,7 +244,8 @@ int sweep_command(const SweepOptions& opt) {
     for (const auto& row : rows) {
       std::string text = base.text;
       for (std::size_t a = 0; a < axes.size(); ++a) text = io::set_scenario_key(text, opt.scenario, axes[a].key, row[a]);
-      bytes += estimated_sweep_bytes(io::load_scenario_text(text, opt.scenario), 1);
+      bytes += base.network ? network_case_bytes(io::load_network_scenario_text(text, opt.scenario))
+                            : estimated_sweep_bytes(io::load_scenario_text(text, opt.scenario), 1);
       texts.push_back(std::move(text));
     }
     io::require_output_size(opt.output, bytes,

@@ -277,7 +277,8 @@ std::string network_reference_markdown() {
   }
   os << "### Signals\n\n";
   os << "A signal is a table with `kind` and the kind's keys (inline, `{ kind = \"ramp\", to = 1, duration_s = 0.5 }`), "
-        "or a plain number for a constant.\n\n";
+        "or a plain number for a constant. A table without `kind` is a constant: `{ value = 0.8 }`, which a sweep can set "
+        "as `network.NAME.KEY.value`.\n\n";
   for (const auto& c : signal_kind_decls()) {
     os << "#### `kind = \"" << c.type << "\"`: " << c.what << "\n\n";
     os << "| key | kind | unit | default | allowed | meaning |\n|---|---|---|---|---|---|\n";

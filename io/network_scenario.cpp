@@ -47,7 +47,8 @@ std::string one_of(TomlTable& t, const std::string& key, const std::vector<std::
 }
 
 Signal read_signal_table(TomlTable& t) {
-  const std::string kind = one_of(t, "kind", signal_kinds());
+  // A table without `kind` is a constant (so a sweep can set NAME.normal_force.value alone).
+  const std::string kind = t.has("kind") ? one_of(t, "kind", signal_kinds()) : std::string("constant");
   const ComponentDecl& d = signal_decl(kind);
   const auto num = [&](const std::string& key) { return read_number(t, d, key); };
   Signal s = Signal::constant(0.0);
@@ -257,8 +258,10 @@ void read_component(TomlTable& c, const std::string& name, const std::string& pa
 
 }  // namespace
 
-std::string scenario_type(const std::string& path) {
-  const toml::table doc = TomlTable::parse_text(read_text(path), path);
+std::string scenario_type(const std::string& path) { return scenario_type_of_text(read_text(path), path); }
+
+std::string scenario_type_of_text(const std::string& text, const std::string& path) {
+  const toml::table doc = TomlTable::parse_text(text, path);
   if (const auto* head = doc["scenario"].as_table())
     if (const auto* type = (*head)["type"].as_string()) return type->get();
   return "prescribed_slip";

@@ -24,6 +24,8 @@ struct NetworkScenario {
 /// The `[scenario] type` of a scenario file ("prescribed_slip" when absent). Throws InputError
 /// for an unreadable file or bad TOML.
 std::string scenario_type(const std::string& path);
+/// The same for scenario text (`path` names it in messages).
+std::string scenario_type_of_text(const std::string& text, const std::string& path);
 NetworkScenario load_network_scenario(const std::string& path);
 NetworkScenario load_network_scenario_text(const std::string& text, const std::string& path);
 
