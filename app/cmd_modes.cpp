@@ -1,7 +1,8 @@
 // `shudder modes`: natural frequencies, mode shapes and damped eigenvalues of a rig scenario's
 // torsional network, with the clutch slipping (no stiffness through the contact) and stuck; for
 // a driveline, its linearisation about the manoeuvre's quasi-static operating point with the
-// coupling slipping and locked (rig_models/driveline_stability.hpp).
+// coupling slipping and locked (rig_models/driveline_stability.hpp); for a network, every clutch
+// slipping, every clutch stuck and each clutch alone slipping.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -15,6 +16,8 @@
 #include "core/units.hpp"
 #include "io/input_error.hpp"
 #include "io/kind_refusal.hpp"
+#include "io/network_scenario.hpp"
+#include "components/network_builder.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/driveline_stability.hpp"
 #include "rig_models/lsctr_rig.hpp"
@@ -98,10 +101,42 @@ void print_driveline(const io::Scenario& sc, const rig_models::DrivelineModel& m
               least.growth_per_s > 0 ? "UNSTABLE (judder predicted)" : "stable");
 }
 
+// A network: its modes with every clutch slipping, every clutch stuck, and (with several
+// clutches) each clutch alone slipping; freewheels locked (their driving direction). Shapes are
+// named by the nodes; a slipping clutch adds no stiffness (dynamics::TorsionalNetwork::modes).
+void print_network_modes(const std::string& path) {
+  const io::NetworkScenario sc = io::load_network_scenario(path);
+  for (const auto& w : sc.warnings) std::cerr << "shudder: warning: " << w << "\n";
+  const auto built = components::build_network(sc.spec);
+  const auto& net = built->network;
+  const std::size_t nc = built->clutches.size(), nf = built->freewheel_contacts.size();
+  const auto stuck_set = [&](int slipping) {  // -1: all slipping, -2: all stuck, c: only c slipping
+    std::vector<bool> stuck(nc + nf, true);
+    for (std::size_t c = 0; c < nc; ++c) stuck[c] = slipping == -2 || (slipping >= 0 && static_cast<int>(c) != slipping);
+    return stuck;
+  };
+  std::printf("Scenario %s (network): %d nodes, %zu clutches, %zu freewheels (locked)\n\n", sc.name.c_str(),
+              net.nodes(), nc, nf);
+  print_modes(net, net.modes(stuck_set(-1)), nc ? "Every clutch slipping:" : "Modes:");
+  if (nc == 0) return;
+  std::printf("\n");
+  print_modes(net, net.modes(stuck_set(-2)), "Every clutch stuck:");
+  if (nc < 2) return;
+  for (std::size_t c = 0; c < nc; ++c) {
+    std::printf("\n");
+    const std::string title = "Clutch " + built->clutches[c].name() + " slipping, the others stuck:";
+    print_modes(net, net.modes(stuck_set(static_cast<int>(c))), title.c_str());
+  }
+}
+
 }  // namespace
 
 int modes_command(const ModesOptions& opt) {
   return guarded(opt.scenario, "modal analysis", [&]() -> int {
+    if (io::scenario_type(opt.scenario) == "network") {
+      print_network_modes(opt.scenario);
+      return 0;
+    }
     const io::Scenario sc = io::load_scenario(opt.scenario);
     for (const auto& w : sc.warnings) std::cerr << "shudder: warning: " << w << "\n";
     const rig_models::ModalSubject subject = io::visit_kind(

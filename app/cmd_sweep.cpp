@@ -61,6 +61,17 @@ constexpr const char* kFailed = "failed";
 // model or run throws is a result, not a sweep failure: its part records the message (verdict
 // `failed`), so the sweep finishes and a resume keeps it. Running out of memory is not a
 // property of the case and stops the sweep; so does a part that cannot be written.
+// A case's outcome as the part file's summary scalars.
+std::vector<dynamics::Scalar> outcome_scalars(const rig_models::CaseOutcome& o) {
+  return {{"predicted_stable", "1", o.predicted_stable ? 1.0 : 0.0},
+          {"predicted_margin_per_s", "1/s", o.predicted_margin_per_s},
+          {"predicted_frequency_Hz", "Hz", o.predicted_frequency_Hz},
+          {"simulated_verdict_code", "1", verdict_code(o.simulated_verdict)},
+          {"simulated_frequency_Hz", "Hz", o.simulated_frequency_Hz},
+          {"amplitude_Nm", "N m", o.amplitude_Nm},
+          {"onset_time_s", "s", o.onset_time_s}};
+}
+
 // A network case: the run's verdict (its worst clutch) as the outcome; kept: time and every
 // clutch's torque and slip. No linear prediction (as the driveline's).
 rig_models::CaseOutcome run_network_case(const std::string& text, const std::string& path, dynamics::Recording& kept) {
@@ -87,13 +98,7 @@ void run_case(const std::string& text, const std::string& path, const std::strin
   try {
     if (io::scenario_type_of_text(text, path) == "network") {
       const rig_models::CaseOutcome o = run_network_case(text, path, kept);
-      kept.scalars = {{"predicted_stable", "1", o.predicted_stable ? 1.0 : 0.0},
-                      {"predicted_margin_per_s", "1/s", o.predicted_margin_per_s},
-                      {"predicted_frequency_Hz", "Hz", o.predicted_frequency_Hz},
-                      {"simulated_verdict_code", "1", verdict_code(o.simulated_verdict)},
-                      {"simulated_frequency_Hz", "Hz", o.simulated_frequency_Hz},
-                      {"amplitude_Nm", "N m", o.amplitude_Nm},
-                      {"onset_time_s", "s", o.onset_time_s}};
+      kept.scalars = outcome_scalars(o);
       io::write_run_hdf5(part, kept, text, "", io::RunCompression::kNone);
       return;
     }
@@ -112,13 +117,7 @@ void run_case(const std::string& text, const std::string& path, const std::strin
       for (const std::string_view name : kKeptSignals)
         if (const auto* s = rec.find(name)) kept.signals.push_back(*s);
     }
-    kept.scalars = {{"predicted_stable", "1", o.predicted_stable ? 1.0 : 0.0},
-                    {"predicted_margin_per_s", "1/s", o.predicted_margin_per_s},
-                    {"predicted_frequency_Hz", "Hz", o.predicted_frequency_Hz},
-                    {"simulated_verdict_code", "1", verdict_code(o.simulated_verdict)},
-                    {"simulated_frequency_Hz", "Hz", o.simulated_frequency_Hz},
-                    {"amplitude_Nm", "N m", o.amplitude_Nm},
-                    {"onset_time_s", "s", o.onset_time_s}};
+    kept.scalars = outcome_scalars(o);
   } catch (const std::bad_alloc&) {
     throw;
   } catch (const std::exception& e) {

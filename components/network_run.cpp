@@ -236,7 +236,8 @@ NetworkRun run_network(const NetworkSpec& spec) {
     const std::string torque = bc.name() + ".torque_Nm", slip = bc.name() + ".slip_rpm";
     const auto& stuck = signal(rec, bc.name() + ".stuck").values;
     const auto& force = signal(rec, bc.name() + ".normal_force_N").values;
-    const auto [i0, i1] = loaded_window(stuck, force);
+    const auto window = loaded_window(stuck, force);
+    const std::size_t i0 = window.first, i1 = window.second;  // plain names: lambdas below capture them
     const double span_s = i1 > i0 ? time.values[i1 - 1] - time.values[i0] : 0.0;
     if (i1 - i0 < kMinJudgedSamples) {
       cv.reason = i1 > i0 ? "it slips under load for only " + std::to_string(span_s) + " s (" +

@@ -211,6 +211,14 @@ std::string range_text(const KeyDecl& k) {
   return k.range.describe();
 }
 
+void key_table(std::ostream& os, const ComponentDecl& c) {
+  os << "| key | kind | unit | default | allowed | meaning |\n|---|---|---|---|---|---|\n";
+  for (const auto& k : c.keys)
+    os << "| `" << k.key << "` | " << kind_text(k) << " | " << k.unit << " | " << default_text(k) << " | "
+       << range_text(k) << " | " << k.meaning << " |\n";
+  os << "\n";
+}
+
 }  // namespace
 
 const KeyDecl& ComponentDecl::key(const std::string& name) const {
@@ -269,11 +277,7 @@ std::string network_reference_markdown() {
   std::ostringstream os;
   for (const auto& c : network_component_decls()) {
     os << "### `type = \"" << c.type << "\"`: " << c.what << "\n\n";
-    os << "| key | kind | unit | default | allowed | meaning |\n|---|---|---|---|---|---|\n";
-    for (const auto& k : c.keys)
-      os << "| `" << k.key << "` | " << kind_text(k) << " | " << k.unit << " | " << default_text(k) << " | "
-         << range_text(k) << " | " << k.meaning << " |\n";
-    os << "\n";
+    key_table(os, c);
   }
   os << "### Signals\n\n";
   os << "A signal is a table with `kind` and the kind's keys (inline, `{ kind = \"ramp\", to = 1, duration_s = 0.5 }`), "
@@ -281,11 +285,7 @@ std::string network_reference_markdown() {
         "as `network.NAME.KEY.value`.\n\n";
   for (const auto& c : signal_kind_decls()) {
     os << "#### `kind = \"" << c.type << "\"`: " << c.what << "\n\n";
-    os << "| key | kind | unit | default | allowed | meaning |\n|---|---|---|---|---|---|\n";
-    for (const auto& k : c.keys)
-      os << "| `" << k.key << "` | " << kind_text(k) << " | " << k.unit << " | " << default_text(k) << " | "
-         << range_text(k) << " | " << k.meaning << " |\n";
-    os << "\n";
+    key_table(os, c);
   }
   return os.str();
 }

@@ -3,10 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <optional>
 #include <numbers>
-#include <sstream>
 
 #include "components/network_builder.hpp"
 #include "core/nearest_name.hpp"
@@ -28,14 +26,6 @@ std::string list(const std::vector<std::string>& v) {
   std::string s;
   for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
   return s;
-}
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, "", "cannot open the file for reading");
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
 }
 
 std::string one_of(TomlTable& t, const std::string& key, const std::vector<std::string>& allowed) {
@@ -258,7 +248,7 @@ void read_component(TomlTable& c, const std::string& name, const std::string& pa
 
 }  // namespace
 
-std::string scenario_type(const std::string& path) { return scenario_type_of_text(read_text(path), path); }
+std::string scenario_type(const std::string& path) { return scenario_type_of_text(read_scenario_text(path), path); }
 
 std::string scenario_type_of_text(const std::string& text, const std::string& path) {
   const toml::table doc = TomlTable::parse_text(text, path);
@@ -267,7 +257,7 @@ std::string scenario_type_of_text(const std::string& text, const std::string& pa
   return "prescribed_slip";
 }
 
-NetworkScenario load_network_scenario(const std::string& path) { return load_network_scenario_text(read_text(path), path); }
+NetworkScenario load_network_scenario(const std::string& path) { return load_network_scenario_text(read_scenario_text(path), path); }
 
 NetworkScenario load_network_scenario_text(const std::string& text, const std::string& path) {
   NetworkScenario sc;

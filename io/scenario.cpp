@@ -48,13 +48,6 @@ ModelKind kind_of_type(const std::string& type) {
   throw std::logic_error("scenario type '" + type + "' passed the reader's choice but names no model kind");
 }
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, "", "cannot open the file for reading");
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
-}
 
 void read_layer(TomlTable& parent, const std::string& key, clutch::Layer& layer) {
   auto t = parent.optional_table(key);
@@ -85,7 +78,7 @@ void read_clutch(TomlTable& root, Draft& s) {
   if (!fs::is_regular_file(status))
     c.fail("fluid", "'" + s.fluid_path + "' is not a regular file; expected a fluid TOML file");
   // The fluid is parsed from the very text stored in the outputs (reproducibility).
-  s.fluid_text = read_text(s.fluid_path);
+  s.fluid_text = read_scenario_text(s.fluid_path);
   s.fluid = load_fluid_text(s.fluid_text, s.fluid_path);
   p.sliding_interfaces = static_cast<int>(c.integer_or("sliding_interfaces", 1, 1, 64));
   p.start_temp_C = c.number("start_temp_C", kTemp_C);
@@ -431,7 +424,7 @@ std::string set_scenario_key(const std::string& text, const std::string& path,
   return os.str();
 }
 
-Scenario load_scenario(const std::string& path) { return load_scenario_text(read_text(path), path); }
+Scenario load_scenario(const std::string& path) { return load_scenario_text(read_scenario_text(path), path); }
 
 namespace {
 
@@ -542,6 +535,14 @@ Scenario load_scenario_text(const std::string& text, const std::string& path) {
   sc.warnings = s.warnings;
   sc.model = make_model(s);
   return sc;
+}
+
+std::string read_scenario_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, 0, "", "cannot open the file for reading");
+  std::ostringstream os;
+  os << in.rdbuf();
+  return os.str();
 }
 
 components::WetPackSpec read_wet_pack(TomlTable& component, const std::string& scenario_path,

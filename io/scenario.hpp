@@ -43,6 +43,8 @@ struct Scenario {
 };
 
 Scenario load_scenario(const std::string& path);
+/// A scenario (or fluid) file's text; InputError naming the file if it cannot be read.
+std::string read_scenario_text(const std::string& path);
 /// Loads scenario text; `path` names it in messages and anchors relative fluid paths.
 Scenario load_scenario_text(const std::string& text, const std::string& path);
 /// A network's wet clutch (docs/network_format.md): `component` holds a [clutch] table and an

@@ -25,6 +25,7 @@
 #include "app/guarded.hpp"
 #include "io/hdf5_sweep.hpp"
 #include "io/input_error.hpp"
+#include "io/network_scenario.hpp"
 #include "python/py_run.hpp"
 
 namespace py = pybind11;
@@ -141,10 +142,10 @@ struct Result {
   double wall_time_s = 0.0;
 };
 
-Result to_python(const io::Scenario& sc, const python::RunOutcome& o) {
+Result to_python(const std::string& name, const std::string& text, const python::RunOutcome& o) {
   Result r;
-  r.name = sc.name;
-  r.scenario_text = sc.text;
+  r.name = name;
+  r.scenario_text = text;
   r.wall_time_s = o.wall_time_s;
   const auto& rec = o.recording;
   for (const auto& s : rec.signals) {
@@ -192,12 +193,23 @@ Result to_python(const io::Scenario& sc, const python::RunOutcome& o) {
 }
 
 Result run(const py::object& scenario, const py::object& overrides, const py::object& output, bool force) {
+  // A network scenario file (docs/network_format.md) runs through its own path.
+  if (!py::isinstance<Scenario>(scenario)) {
+    const std::string p = py::str(scenario).cast<std::string>();
+    if (without_gil(p, "simulation", [&] { return io::scenario_type(p); }) == "network") {
+      const auto ov = overrides_of(overrides, p);
+      const std::string out = output.is_none() ? "" : py::str(output).cast<std::string>();
+      std::string name, text;
+      auto outcome = without_gil(p, "simulation", [&] { return python::run_network(p, ov, out, name, text); });
+      return to_python(name, text, outcome);
+    }
+  }
   Scenario s = py::isinstance<Scenario>(scenario) ? scenario.cast<Scenario>()
                                                    : load(scenario, py::none(), "", py::none());
   if (!overrides.is_none()) s = load(py::none(), py::str(s.sc.text), s.sc.path, overrides);
   const std::string out = output.is_none() ? "" : py::str(output).cast<std::string>();
   auto outcome = without_gil(s.sc.path, "simulation", [&] { return python::run(s.sc, out, force); });
-  return to_python(s.sc, outcome);
+  return to_python(s.sc.name, s.sc.text, outcome);
 }
 
 // Numbers as the CLI's comma-separated lists ("150,250.5"), every double exact. (A stream,

@@ -6,7 +6,9 @@
 #include <variant>
 
 #include "app/output_size.hpp"
+#include "components/network_run.hpp"
 #include "io/hdf5_run.hpp"
+#include "io/network_scenario.hpp"
 #include "io/output_safety.hpp"
 #include "rig_models/energy_guard.hpp"
 #include "rig_models/model.hpp"
@@ -45,6 +47,29 @@ RunOutcome run(const io::Scenario& scenario, const std::string& output, bool for
     throw std::runtime_error("numerical failure: " + bad + (output.empty() ? "" : "; the run is written to " + output +
                                                                                      " for inspection") +
                              ", but its results cannot be trusted");
+  return out;
+}
+
+RunOutcome run_network(const std::string& path, const std::vector<std::pair<std::string, double>>& overrides,
+                       const std::string& output, std::string& name, std::string& text) {
+  text = io::load_network_scenario(path).text;
+  for (const auto& [key, value] : overrides) text = io::set_scenario_key(text, path, key, value);
+  const io::NetworkScenario sc = io::load_network_scenario_text(text, path);
+  name = sc.name;
+  if (!output.empty()) {
+    std::vector<io::RolePath> inputs{{"scenario", path}};
+    for (const auto& f : sc.fluid_paths) inputs.push_back({"fluid file", f});
+    io::require_distinct_paths(inputs, {{"output", output}});
+    io::require_output_directory(output);
+  }
+  RunOutcome out;
+  out.warnings = sc.warnings;
+  const auto t0 = std::chrono::steady_clock::now();
+  out.recording = components::run_network(sc.spec).recording;
+  out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!output.empty()) io::write_run_hdf5(output, out.recording, sc.text, sc.fluid_texts);
+  if (const std::string bad = rig_models::energy_balance_violation(out.recording); !bad.empty())
+    throw std::runtime_error("numerical failure: " + bad + ", but its results cannot be trusted");
   return out;
 }
 

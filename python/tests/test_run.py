@@ -155,3 +155,21 @@ def test_the_gil_is_released_during_a_run():
         time.sleep(0.001)
     t.join()
     assert steps >= 20
+
+
+# A network scenario (docs/network_format.md) runs from Python as from the CLI: same signals,
+# overrides by `network.COMPONENT.KEY`, the clutches' verdict blocks.
+def test_network_run_equals_the_cli_and_takes_overrides(tmp_path):
+    net = scenario("networks/four_inertia_chain.toml")
+    r = shudder.run(net)
+    code, _, err = cli("run", net, "-o", tmp_path / "n.h5")
+    assert code == 0, err
+    with h5py.File(tmp_path / "n.h5") as f:
+        np.testing.assert_array_equal(r.signals["c1.torque_Nm"], f["signals"]["c1.torque_Nm"][()])
+    assert r.blocks["verdict"]["clutch"] in ("c1", "c2", "c3")
+    assert "verdict.c2" in r.blocks
+    # A twice as strong first clutch locks sooner: its heat is the same (1/2 J_eff dw^2), its time shorter.
+    faster = shudder.run(net, overrides={"network.c1.max_force_N": 6000})
+    lock = lambda res: res.signals["time_s"][np.argmax(res.signals["c1.stuck"] > 0.5)]
+    assert lock(faster) < lock(r)
+    assert faster.scalars["c1.friction_work_J"] == pytest.approx(r.scalars["c1.friction_work_J"], rel=1e-6)

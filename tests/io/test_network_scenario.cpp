@@ -140,10 +140,48 @@ TEST(NetworkScenario, WetOnlyKeysOnAPlainClutchAreRefused) {
 TEST(NetworkScenario, OtherCommandsSayWhyTheyCannot) {
   const auto dir = test::scratch_dir("network_refusal");
   test::write_file(dir / "net.toml", two_inertias(""));
-  const auto r = test::run_cli("modes net.toml", dir);
+  const auto r = test::run_cli("screen '" + test::source_path("scenarios/fluids/lsc_fluid_c.toml") + "' --rig net.toml", dir);
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("\"network\" scenarios"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
+}
+
+// modes: J1 = 0.5 kg m^2 on a shaft k = 2000 N m/rad to ground, J2 = 1.5 kg m^2 through a clutch.
+// Slipping, J1 alone on the shaft: f = sqrt(k / J1) / 2 pi = 10.066 Hz (J2 a free rigid body, 0 Hz);
+// stuck, both on the shaft: f = sqrt(k / (J1 + J2)) / 2 pi = 5.033 Hz.
+TEST(NetworkScenario, ModesWithTheClutchSlippingAndStuck) {
+  const auto dir = test::scratch_dir("network_modes");
+  test::write_file(dir / "net.toml", R"([scenario]
+type = "network"
+duration_s = 1.0
+[network.a]
+type = "inertia"
+inertia_kg_m2 = 0.5
+speed_rpm = 100
+[network.b]
+type = "inertia"
+inertia_kg_m2 = 1.5
+[network.spring]
+type = "shaft"
+from = "a"
+to = "ground"
+stiffness_Nm_per_rad = 2000
+[network.c]
+type = "clutch"
+from = "a"
+to = "b"
+mu = 0.1
+geometry_factor_m = 0.1
+max_force_N = 100
+)");
+  const auto r = test::run_cli("modes net.toml", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto slipping = r.out.find("Every clutch slipping:"), stuck = r.out.find("Every clutch stuck:");
+  ASSERT_NE(slipping, std::string::npos) << r.out;
+  ASSERT_NE(stuck, std::string::npos) << r.out;
+  EXPECT_NE(r.out.substr(slipping, stuck - slipping).find("10.066"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.substr(stuck).find("5.033"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("shape:          a          b"), std::string::npos) << r.out;  // named by node
 }
 
 TEST(NetworkScenario, RunWritesChannelsNamedAfterTheComponents) {
