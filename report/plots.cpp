@@ -132,7 +132,23 @@ std::string scenario_name(const std::string& scenario_text, const std::string& f
 
 // ---- time histories ----------------------------------------------------------------------
 
+// A network run: every clutch's torque (the channels CLUTCH.torque_Nm beside CLUTCH.slip_rpm).
+Plot network_torque_plot(const Recording& rec, const std::string& name, const std::string& source) {
+  const Signal& t = require_signal(rec, "time_s", source, "torque");
+  Plot p;
+  p.title = name + ": clutch torques";
+  p.xlabel = "time [s]";
+  p.ylabel = "torque [N m]";
+  const std::string suffix = ".slip_rpm";
+  for (const auto& s : rec.signals)
+    if (s.name.size() > suffix.size() && s.name.compare(s.name.size() - suffix.size(), suffix.size(), suffix) == 0)
+      if (const Signal* torque = rec.find(s.name.substr(0, s.name.size() - suffix.size()) + ".torque_Nm"))
+        p.series.push_back(series_of(t, *torque, torque->name));
+  return p;
+}
+
 Plot torque_plot(const Recording& rec, const std::string& name, const std::string& source) {
+  if (rig_models::network_verdict_clutch(rec)) return network_torque_plot(rec, name, source);
   const Signal& t = require_signal(rec, "time_s", source, "torque");
   const Signal& torque = require_signal(rec, "torque_Nm", source, "torque");
   Plot p;
@@ -193,6 +209,12 @@ Plot temperature_plot(const Recording& rec, const std::string& name, const std::
   p.ylabel = "temperature [°C]";
   for (const auto& c : kChannels)
     if (const Signal* s = rec.find(c.signal)) p.series.push_back(series_of(t, *s, c.label));
+  // A network's wet clutches: each one's hottest interface point (CLUTCH.interface_max_temp_C).
+  const std::string network_suffix = ".interface_max_temp_C";
+  for (const auto& s : rec.signals)
+    if (s.name.size() > network_suffix.size() &&
+        s.name.compare(s.name.size() - network_suffix.size(), network_suffix.size(), network_suffix) == 0)
+      p.series.push_back(series_of(t, s, s.name));
   if (p.series.empty())
     throw io::InputError(source, 0, "",
                      "no temperature signals (temp_C, ir_temp_C, sump_temp_C, "

@@ -38,7 +38,17 @@ double final_oscillation_amplitude_Nm(std::span<const double> t, std::span<const
 }  // namespace
 
 std::string_view judged_torque_signal(const dynamics::Recording& rec) {
-  return rec.find(sn::kCouplingTorque) ? sn::kCouplingTorque : sn::kTorque;
+  if (rec.find(sn::kCouplingTorque)) return sn::kCouplingTorque;
+  if (const auto* clutch = network_verdict_clutch(rec))
+    if (const auto* s = rec.find(*clutch + ".torque_Nm")) return s->name;
+  return sn::kTorque;
+}
+
+const std::string* network_verdict_clutch(const dynamics::Recording& rec) {
+  if (rec.find(sn::kTorque) || rec.find(sn::kCouplingTorque)) return nullptr;
+  const auto* verdict = rec.find_block("verdict");
+  const auto* clutch = verdict ? verdict->find_text("clutch") : nullptr;
+  return clutch ? &clutch->value : nullptr;
 }
 
 std::optional<RecordingDetection> recording_detection(const dynamics::Recording& rec) {
@@ -47,6 +57,8 @@ std::optional<RecordingDetection> recording_detection(const dynamics::Recording&
   const auto* torque = rec.find(judged_torque_signal(rec));
   std::string_view slip_signal = driveline ? sn::kCouplingSlip : sn::kSlip;
   if (!driveline && !rec.find(slip_signal)) slip_signal = sn::kSpeed;
+  if (const auto* clutch = network_verdict_clutch(rec))
+    if (const auto* s = rec.find(*clutch + ".slip_rpm")) slip_signal = s->name;
   const auto* slip = rec.find(slip_signal);
   if (!time || !torque || !slip) return std::nullopt;
 

@@ -16,6 +16,7 @@
 // transient and of the thermal step (issue 14; docs/rig_model.md).
 
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include "analysis/shudder_detection.hpp"
@@ -31,7 +32,12 @@ struct RecordingDetection {
   bool sustained_only = false;  // a decaying oscillation is no verdict (drivelines)
 };
 
-/// The torque channel a recording is judged on: coupling_torque_Nm for a driveline, else torque_Nm.
+/// A network run's judged clutch (the `clutch` text of its verdict block, components/network_run.hpp):
+/// its channels CLUTCH.torque_Nm and CLUTCH.slip_rpm stand for torque_Nm and slip_rpm in plots
+/// of the file. nullptr for the other kinds' recordings.
+const std::string* network_verdict_clutch(const dynamics::Recording& rec);
+/// The torque channel a recording is judged on: coupling_torque_Nm for a driveline, the judged
+/// clutch's torque for a network, else torque_Nm.
 std::string_view judged_torque_signal(const dynamics::Recording& rec);
 /// The detection case of a recording; nullopt when it lacks time, torque or slip.
 std::optional<RecordingDetection> recording_detection(const dynamics::Recording& rec);

@@ -104,5 +104,21 @@ TEST(CliNetworks, LaunchJuddersWithANegativeSlopeFluidAndNotWithFluidC) {
   EXPECT_EQ(verdict_of(c.rec, "verdict.launch_clutch"), "none") << c.r.out;
 }
 
+// `shudder plot` on a network's run file: the clutches' torques, their temperatures, and the
+// spectra of the clutch the run's verdict names.
+TEST(CliNetworks, PlotsDrawTheJudgedClutch) {
+  const auto dir = test::scratch_dir("network_plots");
+  fs::create_directories(dir / "networks");
+  fs::copy(test::source_path("scenarios/fluids"), dir / "fluids");
+  fs::copy_file(test::source_path("scenarios/networks/lockup_clutch_controlled_slip.toml"), dir / "networks/l.toml");
+  ASSERT_EQ(test::run_cli("run networks/l.toml -o l.h5", dir).exit_code, 0);
+  for (const char* what : {"torque", "temperature", "spectrum", "spectrogram"}) {
+    const auto r = test::run_cli(std::string("plot l.h5 --what ") + what + " -o " + what + ".svg", dir);
+    EXPECT_EQ(r.exit_code, 0) << what << ": " << r.err;
+    EXPECT_TRUE(fs::exists(dir / (std::string(what) + ".svg"))) << what;
+  }
+  EXPECT_NE(test::slurp(dir / "torque.svg").find("lockup_clutch.torque_Nm"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace shudder
