@@ -1,5 +1,7 @@
 // `shudder run` on a network scenario (docs/network_format.md): load and check the network,
 // simulate every clutch, write the HDF5 run file and print the summary with each clutch's verdict.
+#include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 #include <stdexcept>
@@ -7,13 +9,54 @@
 #include "app/commands.hpp"
 #include "components/network_run.hpp"
 #include "io/hdf5_run.hpp"
+#include "core/units.hpp"
 #include "io/input_error.hpp"
+#include "io/measurement_csv.hpp"
+#include "rig_models/rig_names.hpp"
 #include "io/network_scenario.hpp"
 #include "io/output_safety.hpp"
 #include "report/network_summary.hpp"
 #include "rig_models/energy_guard.hpp"
 
 namespace shudder::app {
+
+namespace {
+
+// `--measurement RUN.csv` writes RUN.CLUTCH.csv for each wet clutch (the extension kept).
+std::string measurement_path(const std::string& given, const std::string& clutch) {
+  const std::filesystem::path p(given);
+  return (p.parent_path() / (p.stem().string() + "." + clutch + p.extension().string())).string();
+}
+
+// One wet clutch's channels as a measured run (io/measurement_csv.hpp): its slip as speed_rpm,
+// its friction torque, its normal force, its thermocouple.
+void write_clutch_measurement(const RunOptions& opt, const components::ClutchSpec& c, const dynamics::Recording& rec) {
+  dynamics::Recording m;
+  const auto copy = [&](const std::string& from, const char* to) {
+    const auto* s = rec.find(from);
+    if (!s) throw std::logic_error("network run: no channel " + from);
+    m.signals.push_back({to, s->units, s->values});
+  };
+  copy("time_s", "time_s");
+  copy(c.name + ".slip_rpm", "speed_rpm");
+  copy(c.name + ".normal_force_N", "normal_force_N");
+  copy(c.name + ".torque_Nm", "torque_Nm");
+  copy(c.name + ".temp_C", "temp_C");
+  io::MeasurementOptions o;
+  o.rig = std::string(rig_models::kNetworkClutchRig);
+  o.sample_rate_Hz = opt.measurement_rate_Hz;
+  o.noise = opt.noise;
+  o.seed = opt.seed;
+  o.fluid = c.wet.fluid.name;
+  o.oil_flow_ml_min = units::m3_s_to_ml_min(c.wet.clutch.thermal.supply_flow_m3_s);
+  char sensor[96];
+  std::snprintf(sensor, sizeof sensor, "separator_thermocouple r_mm=%g z_mm=%g", c.wet.clutch.thermal.thermocouple_r_m * 1e3,
+                c.wet.clutch.thermal.thermocouple_z_m * 1e3);
+  o.temp_sensor = sensor;
+  io::write_measurement(measurement_path(opt.measurement, c.name), m, o);
+}
+
+}  // namespace
 
 int run_network_command(const RunOptions& opt) {
   const io::NetworkScenario sc = io::load_network_scenario(opt.scenario);
@@ -22,17 +65,25 @@ int run_network_command(const RunOptions& opt) {
     throw io::InputError(opt.scenario, 0, "--fixed-step",
                          "the fixed-step mode runs the rig and the prescribed-slip clutch; a network runs adaptively "
                          "(remove --fixed-step)");
-  if (!opt.measurement.empty())
-    throw io::InputError(opt.scenario, 0, "--measurement",
-                         "a network writes no measured-run file yet; read the clutches' channels from the HDF5 run file");
   if (!opt.report.empty())
     throw io::InputError(opt.scenario, 0, "--report",
                          "a network has no report directory yet; the summary is printed and the run is in the HDF5 file");
   const std::string out = opt.output.empty() ? sc.name + ".h5" : opt.output;
   std::vector<io::RolePath> inputs{{"scenario", opt.scenario}};
   for (const auto& f : sc.fluid_paths) inputs.push_back({"fluid file", f});
-  io::require_distinct_paths(inputs, {{"-o", out}});
-  io::require_output_directory(out);
+  std::vector<io::RolePath> outputs{{"-o", out}};
+  std::vector<const components::ClutchSpec*> measured;  // the wet clutches, one measured run each
+  for (const auto& c : sc.spec.clutches)
+    if (c.law == components::ClutchSpec::Law::kWet) measured.push_back(&c);
+  if (!opt.measurement.empty()) {
+    if (measured.empty())
+      throw io::InputError(opt.scenario, 0, "--measurement",
+                           "a measured run needs a clutch's temperature sensor; this network has no wet clutch "
+                           "(its plain clutches' channels are in the HDF5 run file)");
+    for (const auto* c : measured) outputs.push_back({"--measurement", measurement_path(opt.measurement, c->name)});
+  }
+  io::require_distinct_paths(inputs, outputs);
+  for (const auto& o : outputs) io::require_output_directory(o.path);
   const double samples = sc.spec.settings.duration_s * sc.spec.settings.sample_rate_Hz;
   if (samples > 5e7)
     throw io::InputError(opt.scenario, 0, "output.sample_rate_Hz",
@@ -44,9 +95,14 @@ int run_network_command(const RunOptions& opt) {
   if (const std::string bad = rig_models::energy_balance_violation(run.recording); !bad.empty())
     throw std::runtime_error("numerical failure: " + bad + "; the run is written to " + out +
                              " for inspection, but its results cannot be trusted");
+  if (!opt.measurement.empty())
+    for (const auto* c : measured) write_clutch_measurement(opt, *c, run.recording);
   std::ostringstream summary;
   report::print_network_summary(summary, sc, run);
-  summary << "Output: " << out << "\n";
+  summary << "Output: " << out;
+  if (!opt.measurement.empty())
+    for (const auto* c : measured) summary << ", " << measurement_path(opt.measurement, c->name);
+  summary << "\n";
   std::cout << summary.str();
   return 0;
 }

@@ -9,5 +9,7 @@ namespace shudder::rig_models {
 inline constexpr std::string_view kLsctrRig = "lsctr";
 /// Runs of a driveline's Haldex coupling (rig_models/coupling_measurement.hpp).
 inline constexpr std::string_view kCouplingRig = "haldex_coupling";
+/// Runs of one wet clutch of a network scenario (app/cmd_run_network.cpp: one file per clutch).
+inline constexpr std::string_view kNetworkClutchRig = "network_clutch";
 
 }  // namespace shudder::rig_models

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "io/hdf5_run.hpp"
+#include "io/measured_run.hpp"
 #include "tests/support/cli.hpp"
 
 namespace shudder {
@@ -102,6 +103,28 @@ TEST(CliNetworks, LaunchJuddersWithANegativeSlopeFluidAndNotWithFluidC) {
   const auto c = run_example("manual_launch_wet_clutch", "schematic_launch_negative_slope.toml", "lsc_fluid_c.toml");
   ASSERT_EQ(c.r.exit_code, 0) << c.r.err;
   EXPECT_EQ(verdict_of(c.rec, "verdict.launch_clutch"), "none") << c.r.out;
+}
+
+// `run --measurement RUN.csv` on a network: one measured run per wet clutch, RUN.CLUTCH.csv, that
+// the measured-run reader accepts: the clutch's slip as speed, its torque, force and thermocouple.
+TEST(CliNetworks, MeasurementIsWrittenPerWetClutch) {
+  const auto dir = test::scratch_dir("network_measurement");
+  fs::create_directories(dir / "networks");
+  fs::copy(test::source_path("scenarios/fluids"), dir / "fluids");
+  fs::copy_file(test::source_path("scenarios/networks/lockup_clutch_controlled_slip.toml"), dir / "networks/l.toml");
+  const auto r = test::run_cli("run networks/l.toml -o l.h5 --measurement l.csv --sample-rate 200", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto m = io::read_measured_run((dir / "l.lockup_clutch.csv").string());
+  EXPECT_EQ(m.meta("rig").value_or(""), "network_clutch");
+  EXPECT_EQ(m.rows(), 601u);  // 3 s at 200 samples/s, both ends
+  const auto rec = io::read_run_hdf5((dir / "l.h5").string());
+  EXPECT_NEAR(m.required("torque_Nm").back(), rec.find("lockup_clutch.torque_Nm")->values.back(), 1e-3);
+  // A network without a wet clutch has no sensor to log: refused, nothing written.
+  fs::copy_file(test::source_path("scenarios/networks/four_inertia_chain.toml"), dir / "networks/c.toml");
+  const auto plain = test::run_cli("run networks/c.toml -o c.h5 --measurement c.csv", dir);
+  EXPECT_EQ(plain.exit_code, 2);
+  EXPECT_NE(plain.err.find("no wet clutch"), std::string::npos) << plain.err;
+  EXPECT_FALSE(fs::exists(dir / "c.h5"));
 }
 
 // `shudder plot` on a network's run file: the clutches' torques, their temperatures, and the
