@@ -11,6 +11,7 @@
 #include "components/transient_oscillation.hpp"
 #include "core/units.hpp"
 #include "rig_models/channel_recorder.hpp"
+#include "rig_models/energy_scalars.hpp"
 #include "rig_models/multirate_clutch.hpp"
 
 namespace shudder::components {
@@ -220,13 +221,24 @@ NetworkRun run_network(const NetworkSpec& spec) {
       {"stick_events", "1", static_cast<double>(sim.counters().stick_events)},
       {"breakaway_events", "1", static_cast<double>(sim.counters().breakaway_events)},
   };
+  // Each wet clutch's heat account (rig_models/energy_scalars.hpp) under its name; the run's
+  // energy_balance_relative_error is the worst of them, so the energy guard judges every clutch.
+  double worst_thermal = 0.0;
   for (std::size_t c = 0, w = 0; c < built->clutches.size(); ++c) {
-    rec.scalars.push_back({built->clutches[c].name() + ".friction_work_J", "J", sim.friction_work_J(built->clutches[c].contact)});
+    const std::string& cn = built->clutches[c].name();
+    rec.scalars.push_back({cn + ".friction_work_J", "J", sim.friction_work_J(built->clutches[c].contact)});
     if (built->clutches[c].wet) {
-      rec.scalars.push_back({built->clutches[c].name() + ".peak_interface_temp_C", "degC", peak_C[w]});
+      rec.scalars.push_back({cn + ".peak_interface_temp_C", "degC", peak_C[w]});
+      for (auto sc : rig_models::heat_account_scalars(*built->clutches[c].wet, thermal[w])) {
+        if (sc.name == "energy_balance_relative_error")
+          worst_thermal = std::isfinite(sc.value) ? std::max(worst_thermal, std::abs(sc.value)) : sc.value;
+        sc.name = cn + "." + sc.name;
+        rec.scalars.push_back(sc);
+      }
       ++w;
     }
   }
+  if (!wet.empty()) rec.scalars.push_back({"energy_balance_relative_error", "1", worst_thermal});
 
   // Verdicts, each on its clutch's loaded window (header).
   const auto& time = signal(rec, std::string(dynamics::signal_names::kTime));
