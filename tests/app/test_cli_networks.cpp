@@ -105,6 +105,51 @@ TEST(CliNetworks, LaunchJuddersWithANegativeSlopeFluidAndNotWithFluidC) {
   EXPECT_EQ(verdict_of(c.rec, "verdict.launch_clutch"), "none") << c.r.out;
 }
 
+// Two wet clutches on one motor, each with its own fluid, thermal model and verdict: the
+// negative-slope clutch vibrates at its bar's frequency, the fluid C one does not; each clutch's
+// heat account closes and its generated heat equals the friction work its contact integrated.
+TEST(CliNetworks, TwoWetClutchesEachWithItsOwnFluidAndThermalModel) {
+  const auto dir = test::scratch_dir("network_two_wet");
+  fs::create_directories(dir / "networks");
+  fs::copy(test::source_path("scenarios/fluids"), dir / "fluids");
+  std::string text = test::slurp(test::source_path("scenarios/networks/wet_clutch_bench.toml"));
+  text += R"(
+[network.second_clutch]
+type = "clutch"
+law = "wet"
+from = "drive"
+to = "second_housing"
+max_force_N = 15000
+[network.second_clutch.clutch]
+fluid = "../fluids/lsc_fluid_c.toml"
+start_temp_C = 40.0
+[network.second_housing]
+type = "inertia"
+inertia_kg_m2 = 0.02
+[network.second_bar]
+type = "shaft"
+from = "second_housing"
+to = "ground"
+stiffness_Nm_per_rad = 1.128e5
+damping_Nms_per_rad = 0.95
+)";
+  test::write_file(dir / "networks/two.toml", text);
+  const auto r = test::run_cli("run networks/two.toml -o two.h5", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rec = io::read_run_hdf5((dir / "two.h5").string());
+  EXPECT_EQ(verdict_of(rec, "verdict.clutch"), "vibration");
+  EXPECT_EQ(verdict_of(rec, "verdict.second_clutch"), "none");
+  EXPECT_EQ(rec.find_block("verdict")->find_text("clutch")->value, "clutch");
+  for (const std::string c : {"clutch", "second_clutch"}) {
+    EXPECT_LT(rec.find_scalar(c + ".energy_balance_relative_error")->value, 1e-9) << c;
+    const double generated = rec.find_scalar(c + ".heat_generated_J")->value;
+    EXPECT_NEAR(generated, rec.find_scalar(c + ".friction_work_J")->value, 1e-6 * generated) << c;
+  }
+  // Their own thermal models: they started 20 K apart and stay apart.
+  EXPECT_GT(rec.find("clutch.interface_mean_temp_C")->values.back(),
+            rec.find("second_clutch.interface_mean_temp_C")->values.back() + 10.0);
+}
+
 // `run --measurement RUN.csv` on a network: one measured run per wet clutch, RUN.CLUTCH.csv, that
 // the measured-run reader accepts: the clutch's slip as speed, its torque, force and thermocouple.
 TEST(CliNetworks, MeasurementIsWrittenPerWetClutch) {
