@@ -13,41 +13,17 @@
 // verdict block per clutch (`verdict.<clutch>`: rig_models/run_verdict.hpp's block judged on that
 // clutch's torque and slip) and the run's `verdict` block, the worst clutch's verdict with text
 // `clutch` naming it (stick_slip over vibration over none; between equals, the larger amplitude).
-//
-// Judging a clutch (analysis/shudder_detection.hpp's detector) covers its LOADED WINDOW: from
-// its first sample with normal force > 0 to its last sample slipping under load. A launch
-// judders while the clutch slips and then locks; the lock-up that ends an engagement, and what
-// follows it, is no stick-slip, while sticking again and again inside the window is. The search
-// starts at max(2 Hz, 3 / window length): a car's shuffle and take-up modes lie at a few Hz, and
-// a frequency counts only if the window holds three of its cycles. A window of fewer than
-// kMinJudgedSamples samples is "not judged", with the reason. An oscillation counts only if it
-// lasts to the window's end (the last two periods' amplitude at least half the largest period's,
-// components/transient_oscillation.hpp): a ringing that dies out while the clutch still slips is
-// the drivetrain answering a step; a judder lasts until the clutch locks or opens.
 
-#include <cstddef>
+// Judging: components/clutch_judgement.hpp.
+
 #include <string>
 #include <vector>
 
 #include "components/network_spec.hpp"
 #include "dynamics/recording.hpp"
-#include "rig_models/run_verdict.hpp"
+#include "components/clutch_judgement.hpp"
 
 namespace shudder::components {
-
-/// The lowest frequency a network clutch's oscillation is searched from, Hz (header).
-inline constexpr double kNetworkMinFrequency_Hz = 2.0;
-/// Cycles of the lowest searched frequency the loaded window must hold.
-inline constexpr double kMinJudgedCycles = 3.0;
-/// Fewest samples judged (the detector's own minimum, analysis/shudder_detection.hpp).
-inline constexpr std::size_t kMinJudgedSamples = 64;
-
-struct ClutchVerdict {
-  std::string clutch;
-  bool judged = false;
-  std::string reason;  // why not judged
-  rig_models::RunVerdict verdict;
-};
 
 struct NetworkRun {
   dynamics::Recording recording;
@@ -59,8 +35,5 @@ struct NetworkRun {
 /// Builds, runs and judges; throws NetworkError (bad network), std::runtime_error (numerical
 /// failure).
 NetworkRun run_network(const NetworkSpec& spec);
-
-/// Rank of a verdict for the run's verdict (none 0, vibration 1, stick_slip 2).
-int verdict_rank(const analysis::ShudderResult& r);
 
 }  // namespace shudder::components
