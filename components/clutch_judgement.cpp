@@ -99,7 +99,6 @@ ClutchVerdict judge_clutch(const dynamics::Recording& rec, const std::string& cl
         cv.verdict = rig_models::judge_detection(d);
         cv.judged = true;
         confirm_repeated(d, cv.verdict.judged);
-        cv.verdict.prediction = rig_models::Prediction::none("a network's linear prediction is not made per clutch yet");
       } catch (const std::invalid_argument& err) {
         cv.reason = err.what();
       }

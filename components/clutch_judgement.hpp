@@ -39,7 +39,8 @@ struct ClutchVerdict {
   rig_models::RunVerdict verdict;
 };
 
-/// Judges clutch `clutch` of a network recording sampled at `sample_rate_Hz`.
+/// Judges clutch `clutch` of a network recording sampled at `sample_rate_Hz` (the verdict's
+/// prediction is left for components/clutch_prediction.hpp).
 ClutchVerdict judge_clutch(const dynamics::Recording& rec, const std::string& clutch, double sample_rate_Hz);
 
 /// Rank of a verdict for the run's verdict (none 0, vibration 1, stick_slip 2).

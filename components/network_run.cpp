@@ -4,6 +4,7 @@
 #include <cmath>
 #include <deque>
 
+#include "components/clutch_prediction.hpp"
 #include "components/network_builder.hpp"
 #include "components/network_channels.hpp"
 #include "rig_models/energy_scalars.hpp"
@@ -58,7 +59,17 @@ NetworkRun run_network(const NetworkSpec& spec) {
   NetworkRun run;
   dynamics::Recording& rec = run.recording;
   NetworkRecorder recorder(rec, std::move(channels));
+  // States kept every kSnapshotInterval_s (or every sample, if sparser) for the predictions.
+  constexpr double kSnapshotInterval_s = 5e-3;
+  std::vector<dynamics::Sample> snapshots;
+  double next_snapshot_s = 0.0;
+  const auto keep_snapshot = [&](const dynamics::Sample& s) {
+    if (s.t_s < next_snapshot_s - 1e-12) return;
+    snapshots.push_back(s);
+    next_snapshot_s = s.t_s + kSnapshotInterval_s;
+  };
   recorder.sample(sim.sample());
+  keep_snapshot(sim.sample());
   const NetworkSlow slow = &thermal;
   recorder.start(slow);
 
@@ -72,7 +83,11 @@ NetworkRun run_network(const NetworkSpec& spec) {
     if (built->clutches[c].wet) peak_C.push_back(built->clutches[c].wet->thermal().interface_temps_C(thermal[peak_C.size()]).maxCoeff());
   const double slow_step = wet.empty() ? cfg.duration_s : cfg.thermal_step_s;
   rig_models::run_multirate(
-      sim, wet, cfg.duration_s, slow_step, cfg.sample_rate_Hz, [&](const dynamics::Sample& s) { recorder.sample(s); },
+      sim, wet, cfg.duration_s, slow_step, cfg.sample_rate_Hz,
+      [&](const dynamics::Sample& s) {
+        recorder.sample(s);
+        keep_snapshot(s);
+      },
       [&](const rig_models::SlowStep& step) {
         for (std::size_t w = 0; w < wet.size(); ++w)
           peak_C[w] = std::max(peak_C[w], wet[w].clutch->thermal().interface_temps_C(thermal[w]).maxCoeff());
@@ -116,6 +131,9 @@ NetworkRun run_network(const NetworkSpec& spec) {
 
   // Verdicts, each on its clutch's loaded window (components/clutch_judgement.hpp).
   for (const BuiltClutch& bc : built->clutches) run.verdicts.push_back(judge_clutch(rec, bc.name(), cfg.sample_rate_Hz));
+  for (std::size_t c = 0; c < run.verdicts.size(); ++c)
+    if (run.verdicts[c].judged)
+      run.verdicts[c].verdict.prediction = predict_clutch(*built, c, run.verdicts[c].verdict.window, snapshots);
   run.worst = worst_verdict(run.verdicts);
   add_verdict_blocks(rec, run.verdicts, run.worst,
                      built->clutches.empty() ? "the network has no clutch to judge"

@@ -480,6 +480,7 @@ Sample Simulation::evaluate(const State& x, double t) const {
   s.shaft_torque_Nm = f.shaft_T;
   s.contact_torque_Nm = f.contact_T;
   s.element_torque_Nm = f.element_T;
+  s.element_states = Eigen::Map<const Eigen::VectorXd>(x.data() + element_offset_, element_states_);
   s.contact_slip_rad_s.resize(static_cast<Eigen::Index>(net_.contacts().size()));
   for (std::size_t c = 0; c < net_.contacts().size(); ++c) {
     const auto& k = net_.contacts()[c];

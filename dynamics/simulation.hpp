@@ -53,6 +53,7 @@ struct Sample {
   Eigen::VectorXd contact_torque_Nm;        // (n_contacts) torque transmitted from a to b
   Eigen::VectorXd contact_slip_rad_s;       // (n_contacts) Δω = ω_a − ω_b
   Eigen::VectorXd element_torque_Nm;        // (n_force_elements) T of each force element
+  Eigen::VectorXd element_states;           // (all force elements' states, in element order)
   std::vector<ContactMode> modes;
 };
 

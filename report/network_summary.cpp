@@ -23,6 +23,16 @@ std::string verdict_line(const rig_models::RunVerdict& v) {
          (std::isfinite(r.onset_time_s) ? format(", onset %.3g s", r.onset_time_s) : std::string());
 }
 
+// Linear theory about the judged window (components/clutch_prediction.hpp), in one line.
+std::string prediction_line(const rig_models::Prediction& p) {
+  if (!p.made) return p.method;  // "not predicted: <why>"
+  std::string s = p.margin_per_s > 0 ? "predicted: UNSTABLE" : "predicted: stable";
+  s += format(" (margin %.3g 1/s", p.margin_per_s);
+  if (std::isfinite(p.frequency_Hz))
+    s += format("; least damped oscillation %.4g Hz at %.3g 1/s", p.frequency_Hz, p.oscillatory_margin_per_s);
+  return s + ")";
+}
+
 // The time from which the clutch stays stuck to the end, NaN if it slips at the end.
 double locked_from_s(const dynamics::Recording& rec, const std::string& clutch) {
   const auto* t = rec.find("time_s");
@@ -63,6 +73,7 @@ void print_network_summary(std::ostream& os, const io::NetworkScenario& sc, cons
     os << "  " << k.name << " (" << (k.law == components::ClutchSpec::Law::kWet ? "wet" : "plain") << ", "
        << k.a << " -> " << k.b << "): ";
     os << (v.judged ? verdict_line(v.verdict) : "not judged: " + v.reason) << "\n";
+    if (v.judged) os << "    " << prediction_line(v.verdict.prediction) << "\n";
     const double locked = locked_from_s(rec, k.name);
     os << "    " << (std::isfinite(locked) ? format("locked from %.4g s to the end", locked) : std::string("slipping at the end"))
        << format("; friction heat %.4g kJ", scalar(rec, k.name + ".friction_work_J") * 1e-3);

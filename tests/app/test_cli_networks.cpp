@@ -91,15 +91,25 @@ TEST(CliNetworks, LockupClutchShuddersWithANegativeSlopeFluidAndNotWithFluidC) {
   EXPECT_EQ(verdict_of(neg.rec, "verdict.lockup_clutch"), "vibration") << neg.r.out;
   EXPECT_EQ(verdict_of(neg.rec, "verdict"), "vibration");
   EXPECT_NE(neg.r.out.find("clutch 'lockup_clutch'"), std::string::npos) << neg.r.out;
+  // Linear theory about the judged window agrees: an unstable mode at the judder's frequency.
+  const auto* b = neg.rec.find_block("verdict.lockup_clutch");
+  EXPECT_GT(b->find_scalar("predicted_oscillatory_margin_per_s")->value, 0.0);
+  EXPECT_NEAR(b->find_scalar("predicted_frequency_Hz")->value, b->find_scalar("frequency_Hz")->value,
+              0.05 * b->find_scalar("frequency_Hz")->value);
   const auto c = run_example("lockup_clutch_controlled_slip", "schematic_negative_slope.toml", "lsc_fluid_c.toml");
   ASSERT_EQ(c.r.exit_code, 0) << c.r.err;
   EXPECT_EQ(verdict_of(c.rec, "verdict.lockup_clutch"), "none") << c.r.out;
+  EXPECT_LT(c.rec.find_block("verdict.lockup_clutch")->find_scalar("predicted_oscillatory_margin_per_s")->value, 0.0);
 }
 
 TEST(CliNetworks, LaunchJuddersWithANegativeSlopeFluidAndNotWithFluidC) {
   const auto neg = run_example("manual_launch_wet_clutch");
   ASSERT_EQ(neg.r.exit_code, 0) << neg.r.err;
   EXPECT_EQ(verdict_of(neg.rec, "verdict.launch_clutch"), "vibration") << neg.r.out;
+  const auto* b = neg.rec.find_block("verdict.launch_clutch");
+  EXPECT_GT(b->find_scalar("predicted_oscillatory_margin_per_s")->value, 0.0);
+  EXPECT_NEAR(b->find_scalar("predicted_frequency_Hz")->value, b->find_scalar("frequency_Hz")->value,
+              0.05 * b->find_scalar("frequency_Hz")->value);
   const auto c = run_example("manual_launch_wet_clutch", "schematic_launch_negative_slope.toml", "lsc_fluid_c.toml");
   ASSERT_EQ(c.r.exit_code, 0) << c.r.err;
   EXPECT_EQ(verdict_of(c.rec, "verdict.launch_clutch"), "none") << c.r.out;
