@@ -16,6 +16,7 @@
 #include "io/network_scenario.hpp"
 #include "io/output_safety.hpp"
 #include "report/network_summary.hpp"
+#include "report/plots.hpp"
 #include "rig_models/energy_guard.hpp"
 
 namespace shudder::app {
@@ -65,13 +66,11 @@ int run_network_command(const RunOptions& opt) {
     throw io::InputError(opt.scenario, 0, "--fixed-step",
                          "the fixed-step mode runs the rig and the prescribed-slip clutch; a network runs adaptively "
                          "(remove --fixed-step)");
-  if (!opt.report.empty())
-    throw io::InputError(opt.scenario, 0, "--report",
-                         "a network has no report directory yet; the summary is printed and the run is in the HDF5 file");
   const std::string out = opt.output.empty() ? sc.name + ".h5" : opt.output;
   std::vector<io::RolePath> inputs{{"scenario", opt.scenario}};
   for (const auto& f : sc.fluid_paths) inputs.push_back({"fluid file", f});
   std::vector<io::RolePath> outputs{{"-o", out}};
+  if (!opt.report.empty()) outputs.push_back({"--report", opt.report});
   std::vector<const components::ClutchSpec*> measured;  // the wet clutches, one measured run each
   for (const auto& c : sc.spec.clutches)
     if (c.law == components::ClutchSpec::Law::kWet) measured.push_back(&c);
@@ -104,6 +103,19 @@ int run_network_command(const RunOptions& opt) {
     for (const auto* c : measured) summary << ", " << measurement_path(opt.measurement, c->name);
   summary << "\n";
   std::cout << summary.str();
+  if (!opt.report.empty()) {
+    // summary.txt, verdict.json and the plots of `shudder plot` (docs/plots.md).
+    try {
+      const report::Report rep = report::write_run_report(opt.report, run.recording, sc.name, summary.str(), false);
+      std::cout << "Report: " << opt.report << " (" << rep.files.size() << " files)\n";
+      for (const auto& skipped : rep.skipped) std::cerr << "shudder: warning: report: " << skipped << "\n";
+    } catch (const io::InputError&) {
+      throw;
+    } catch (const std::exception& e) {
+      std::cerr << "shudder: report failed: " << e.what() << " (the run itself is in " << out << ")\n";
+      return 1;
+    }
+  }
   return 0;
 }
 

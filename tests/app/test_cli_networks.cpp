@@ -196,6 +196,12 @@ TEST(CliNetworks, PlotsDrawTheJudgedClutch) {
     EXPECT_TRUE(fs::exists(dir / (std::string(what) + ".svg"))) << what;
   }
   EXPECT_NE(test::slurp(dir / "torque.svg").find("lockup_clutch.torque_Nm"), std::string::npos);
+  // --report: the summary, the verdict and the run's plots in one directory.
+  const auto r = test::run_cli("run networks/l.toml -o l2.h5 --report rep", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* f : {"summary.txt", "verdict.json", "torque.png", "temperature.png", "spectrum.png"})
+    EXPECT_TRUE(fs::exists(dir / "rep" / f)) << f << "\n" << r.err;
+  EXPECT_NE(test::slurp(dir / "rep" / "verdict.json").find("lockup_clutch"), std::string::npos);
 }
 
 }  // namespace
