@@ -48,7 +48,6 @@ ModelKind kind_of_type(const std::string& type) {
   throw std::logic_error("scenario type '" + type + "' passed the reader's choice but names no model kind");
 }
 
-
 void read_layer(TomlTable& parent, const std::string& key, clutch::Layer& layer) {
   auto t = parent.optional_table(key);
   if (!t) return;
