@@ -57,10 +57,6 @@ double verdict_code(const std::string& v) { return static_cast<double>(analysis:
 // The /cases verdict of a case whose run threw (not an analysis verdict: nothing was classified).
 constexpr const char* kFailed = "failed";
 
-// Runs one case and writes its part file (recording + outcome as summary scalars). A case whose
-// model or run throws is a result, not a sweep failure: its part records the message (verdict
-// `failed`), so the sweep finishes and a resume keeps it. Running out of memory is not a
-// property of the case and stops the sweep; so does a part that cannot be written.
 // A case's outcome as the part file's summary scalars.
 std::vector<dynamics::Scalar> outcome_scalars(const rig_models::CaseOutcome& o) {
   return {{"predicted_stable", "1", o.predicted_stable ? 1.0 : 0.0},
@@ -72,8 +68,8 @@ std::vector<dynamics::Scalar> outcome_scalars(const rig_models::CaseOutcome& o) 
           {"onset_time_s", "s", o.onset_time_s}};
 }
 
-// A network case: the run's verdict (its worst clutch) as the outcome; kept: time and every
-// clutch's torque and slip. No linear prediction (as the driveline's).
+// A network case: the run's verdict (its worst clutch) and that clutch's linear prediction
+// (components/clutch_prediction.hpp) as the outcome; kept: time and every clutch's torque and slip.
 rig_models::CaseOutcome run_network_case(const std::string& text, const std::string& path, dynamics::Recording& kept) {
   const io::NetworkScenario sc = io::load_network_scenario_text(text, path);
   const components::NetworkRun run = components::run_network(sc.spec);
@@ -84,7 +80,13 @@ rig_models::CaseOutcome run_network_case(const std::string& text, const std::str
     for (const char* q : {".torque_Nm", ".slip_rpm"}) kept.signals.push_back(*run.recording.find(c.name + q));
   rig_models::CaseOutcome o;
   if (run.worst >= 0) {
-    const auto& r = run.verdicts[static_cast<std::size_t>(run.worst)].verdict.judged;
+    const auto& v = run.verdicts[static_cast<std::size_t>(run.worst)].verdict;
+    const auto& r = v.judged;
+    if (v.prediction.made) {
+      o.predicted_stable = !(v.prediction.margin_per_s > 0);
+      o.predicted_margin_per_s = v.prediction.margin_per_s;
+      o.predicted_frequency_Hz = v.prediction.frequency_Hz;
+    }
     o.simulated_verdict = std::string(analysis::to_string(r.verdict));
     o.simulated_frequency_Hz = r.frequency_Hz;
     o.amplitude_Nm = r.amplitude_Nm;
@@ -93,6 +95,10 @@ rig_models::CaseOutcome run_network_case(const std::string& text, const std::str
   return o;
 }
 
+// Runs one case and writes its part file (recording + outcome as summary scalars). A case whose
+// model or run throws is a result, not a sweep failure: its part records the message (verdict
+// `failed`), so the sweep finishes and a resume keeps it. Running out of memory is not a
+// property of the case and stops the sweep; so does a part that cannot be written.
 void run_case(const std::string& text, const std::string& path, const std::string& part) {
   dynamics::Recording kept;
   try {
