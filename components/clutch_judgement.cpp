@@ -62,11 +62,12 @@ int verdict_rank(const analysis::ShudderResult& r) {
   return 0;
 }
 
-ClutchVerdict judge_clutch(const dynamics::Recording& rec, const std::string& clutch, double sample_rate_Hz) {
+ClutchVerdict judge_clutch(const dynamics::Recording& rec, const std::string& clutch, const std::string& torque,
+                           double sample_rate_Hz) {
   const auto& time = signal(rec, std::string(dynamics::signal_names::kTime));
   ClutchVerdict cv;
   cv.clutch = clutch;
-  const std::string torque = clutch + ".torque_Nm", slip = clutch + ".slip_rpm";
+  const std::string slip = clutch + ".slip_rpm";
   const auto& stuck = signal(rec, clutch + ".stuck").values;
   const auto& force = signal(rec, clutch + ".normal_force_N").values;
   const auto window = loaded_window(stuck, force);

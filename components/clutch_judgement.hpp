@@ -39,9 +39,11 @@ struct ClutchVerdict {
   rig_models::RunVerdict verdict;
 };
 
-/// Judges clutch `clutch` of a network recording sampled at `sample_rate_Hz` (the verdict's
-/// prediction is left for components/clutch_prediction.hpp).
-ClutchVerdict judge_clutch(const dynamics::Recording& rec, const std::string& clutch, double sample_rate_Hz);
+/// Judges clutch `clutch` of a network recording sampled at `sample_rate_Hz` on the torque
+/// channel `torque_signal` (its own CLUTCH.torque_Nm, or a shaft's: ClutchSpec::judged_on); the
+/// verdict's prediction is left for components/clutch_prediction.hpp.
+ClutchVerdict judge_clutch(const dynamics::Recording& rec, const std::string& clutch, const std::string& torque_signal,
+                           double sample_rate_Hz);
 
 /// Rank of a verdict for the run's verdict (none 0, vibration 1, stick_slip 2).
 int verdict_rank(const analysis::ShudderResult& r);

@@ -150,6 +150,19 @@ std::unique_ptr<BuiltNetwork> build_network(const NetworkSpec& spec) {
     }
     out.clutches.push_back(std::move(bc));
   }
+  // A clutch judged on a shaft's torque names a shaft of the network.
+  for (const auto& c : spec.clutches) {
+    if (c.judged_on.empty()) continue;
+    std::vector<std::string> shafts;
+    for (const auto& s : spec.shafts) shafts.push_back(s.name);
+    if (std::find(shafts.begin(), shafts.end(), c.judged_on) != shafts.end()) continue;
+    const std::string near = nearest_key(c.judged_on, shafts);
+    std::string list;
+    for (const auto& n : shafts) list += (list.empty() ? "" : ", ") + n;
+    throw NetworkError(c.name, "judged_on = '" + c.judged_on + "' is no shaft of the network" +
+                                   (near.empty() ? "" : "; did you mean '" + near + "'?") +
+                                   (list.empty() ? " (it has no shaft)" : " (shafts: " + list + ")"));
+  }
   for (const auto& f : spec.freewheels) {
     const int a = b.node(f.name, "driving", f.driving, false);
     const int bb = b.node(f.name, "driven", f.driven, true);

@@ -130,7 +130,9 @@ NetworkRun run_network(const NetworkSpec& spec) {
   if (!wet.empty()) rec.scalars.push_back({"energy_balance_relative_error", "1", worst_thermal});
 
   // Verdicts, each on its clutch's loaded window (components/clutch_judgement.hpp).
-  for (const BuiltClutch& bc : built->clutches) run.verdicts.push_back(judge_clutch(rec, bc.name(), cfg.sample_rate_Hz));
+  for (const BuiltClutch& bc : built->clutches)
+    run.verdicts.push_back(judge_clutch(
+        rec, bc.name(), (bc.spec->judged_on.empty() ? bc.name() : bc.spec->judged_on) + ".torque_Nm", cfg.sample_rate_Hz));
   for (std::size_t c = 0; c < run.verdicts.size(); ++c)
     if (run.verdicts[c].judged)
       run.verdicts[c].verdict.prediction = predict_clutch(*built, c, run.verdicts[c].verdict.window, snapshots);

@@ -61,6 +61,7 @@ struct ClutchSpec {
   Signal force_signal = Signal::constant(1.0);
   PlainFrictionParams plain;  // law kPlain (its max_force_N is this one's)
   WetPackSpec wet;            // law kWet
+  std::string judged_on;      // a shaft whose torque the verdict is judged on; "" = the clutch's own
 };
 /// A one-way clutch: carries torque from `driving` to `driven` when driving would turn faster;
 /// driven may overrun driving (components/one_way_clutch.hpp). `driven` may be ground (a backstop).

@@ -50,6 +50,7 @@ std::vector<KeyDecl> friction_keys() {
       integer("interfaces", 1, 1, 64, "plain: friction interfaces n (with a radius)"),
       table("clutch", "wet: the clutch exactly as a scenario's [clutch] (docs/scenario_format.md): `fluid` relative to this file, `sliding_interfaces`, radii, layers, oil, sensors", "required for law = \"wet\""),
       table("effects", "wet: switchable effects exactly as a scenario's [effects] (docs/effects.md)", "optional"),
+      {"judged_on", KeyKind::kComponent, "", std::nullopt, {}, "a shaft whose torque the clutch's verdict is judged on (as a rig's torque cell reads its torsion bar)", "default: the clutch's own torque", {}},
   };
 }
 
@@ -194,6 +195,7 @@ std::string kind_text(const KeyDecl& k) {
     case KeyKind::kInteger: return "integer";
     case KeyKind::kNode: return "node name";
     case KeyKind::kNodeOrGround: return "node name or \"ground\"";
+    case KeyKind::kComponent: return "component name";
     case KeyKind::kSignal: return "signal";
     case KeyKind::kChoice: {
       std::string s;

@@ -13,7 +13,7 @@
 
 namespace shudder::io {
 
-enum class KeyKind { kNumber, kInteger, kNode, kNodeOrGround, kSignal, kChoice, kTable };
+enum class KeyKind { kNumber, kInteger, kNode, kNodeOrGround, kComponent, kSignal, kChoice, kTable };
 
 struct KeyDecl {
   std::string key;

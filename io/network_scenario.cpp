@@ -163,6 +163,7 @@ void read_component(TomlTable& c, const std::string& name, const std::string& pa
       k.b = components::kGroundNode;
     }
     k.max_force_N = num("max_force_N");
+    if (gives(c, d.key("judged_on").key)) k.judged_on = c.string("judged_on");
     k.force_signal = read_signal(c, "normal_force", Signal::constant(1.0));
     const auto& laws = d.key("law").choices;
     const std::string law = c.choice_or("law", laws.front(), laws);

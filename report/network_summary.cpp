@@ -72,7 +72,9 @@ void print_network_summary(std::ostream& os, const io::NetworkScenario& sc, cons
     const auto& v = run.verdicts[c];
     os << "  " << k.name << " (" << (k.law == components::ClutchSpec::Law::kWet ? "wet" : "plain") << ", "
        << k.a << " -> " << k.b << "): ";
-    os << (v.judged ? verdict_line(v.verdict) : "not judged: " + v.reason) << "\n";
+    os << (v.judged ? verdict_line(v.verdict) : "not judged: " + v.reason);
+    if (!k.judged_on.empty()) os << " [judged on " << k.judged_on << ".torque_Nm]";
+    os << "\n";
     if (v.judged) os << "    " << prediction_line(v.verdict.prediction) << "\n";
     const double locked = locked_from_s(rec, k.name);
     os << "    " << (std::isfinite(locked) ? format("locked from %.4g s to the end", locked) : std::string("slipping at the end"))

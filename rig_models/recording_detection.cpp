@@ -39,8 +39,12 @@ double final_oscillation_amplitude_Nm(std::span<const double> t, std::span<const
 
 std::string_view judged_torque_signal(const dynamics::Recording& rec) {
   if (rec.find(sn::kCouplingTorque)) return sn::kCouplingTorque;
-  if (const auto* clutch = network_verdict_clutch(rec))
-    if (const auto* s = rec.find(*clutch + ".torque_Nm")) return s->name;
+  if (network_verdict_clutch(rec)) {
+    // The verdict's judged torque: the clutch's own or the shaft it is judged on.
+    const auto* judged = rec.find_block("verdict")->find_text("judged_signals");
+    const std::string name = judged ? judged->value.substr(0, judged->value.find(", ")) : "";
+    if (const auto* s = rec.find(name)) return s->name;
+  }
   return sn::kTorque;
 }
 

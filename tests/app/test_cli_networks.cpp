@@ -115,6 +115,29 @@ TEST(CliNetworks, LaunchJuddersWithANegativeSlopeFluidAndNotWithFluidC) {
   EXPECT_EQ(verdict_of(c.rec, "verdict.launch_clutch"), "none") << c.r.out;
 }
 
+// The bench network, judged on its torsion bar as the rig's torque cell reads it, against the rig
+// kind's scenario of the same machine (rig_shudder_negative_slope: 30 rpm, 15 kN, 378 Hz bar,
+// the same estimated inertias, bar and speed loop): the same verdict at the same frequency and
+// amplitude. They differ in their start (the network at rest on an unloaded bar, the rig in
+// steady sliding), which the saturated oscillation forgets: 1 % on the frequency (the spectra's
+// resolution) and 5 % on the amplitude.
+TEST(CliNetworks, BenchJudgedOnItsBarMatchesTheRigKind) {
+  const auto bench = run_example("wet_clutch_bench");
+  ASSERT_EQ(bench.r.exit_code, 0) << bench.r.err;
+  const auto dir = test::scratch_dir("network_bench_rig");
+  const auto rig = test::run_cli("run '" + test::source_path("scenarios/rig_shudder_negative_slope.toml") + "' -o rig.h5", dir);
+  ASSERT_EQ(rig.exit_code, 0) << rig.err;
+  const auto rig_rec = io::read_run_hdf5((dir / "rig.h5").string());
+  const auto* a = bench.rec.find_block("verdict");
+  const auto* b = rig_rec.find_block("verdict");
+  EXPECT_EQ(a->find_text("verdict")->value, b->find_text("verdict")->value);
+  const double fa = a->find_scalar("frequency_Hz")->value, fb = b->find_scalar("frequency_Hz")->value;
+  const double aa = a->find_scalar("amplitude_Nm")->value, ab = b->find_scalar("amplitude_Nm")->value;
+  EXPECT_NEAR(fa, fb, 0.01 * fb);
+  EXPECT_NEAR(aa, ab, 0.05 * ab);
+  EXPECT_NE(a->find_text("judged_signals")->value.find("torsion_bar.torque_Nm"), std::string::npos);
+}
+
 // Two wet clutches on one motor, each with its own fluid, thermal model and verdict: the
 // negative-slope clutch vibrates at its bar's frequency, the fluid C one does not; each clutch's
 // heat account closes and its generated heat equals the friction work its contact integrated.

@@ -126,6 +126,14 @@ TEST(NetworkScenario, AClutchThatCanNeverLoadIsRefused) {
   EXPECT_NE(e.find("never rises above 0"), std::string::npos) << e;
 }
 
+TEST(NetworkScenario, AClutchJudgedOnNoShaftIsRefused) {
+  const std::string e = error_of(two_inertias(
+      "judged_on = \"sprng\"\n[network.spring]\ntype = \"shaft\"\nfrom = \"wheel_side\"\nto = \"ground\"\n"
+      "stiffness_Nm_per_rad = 100\n"));
+  EXPECT_NE(e.find("network.clutch"), std::string::npos) << e;
+  EXPECT_NE(e.find("did you mean 'spring'"), std::string::npos) << e;
+}
+
 TEST(NetworkScenario, AnUnknownKeyNamesTheNearest) {
   const std::string e = error_of(two_inertias("peak_raito = 1.2\n"));
   EXPECT_NE(e.find("network.clutch.peak_raito"), std::string::npos) << e;
