@@ -72,12 +72,6 @@ struct Builder {
 
 double BuiltClutch::normal_force_N(double t_s) const { return spec->max_force_N * std::max(spec->force_signal(t_s), 0.0); }
 
-int BuiltNetwork::node(const std::string& name) const {
-  if (name == kGroundNode) return dynamics::kGround;
-  const auto it = std::find(node_names.begin(), node_names.end(), name);
-  return it == node_names.end() ? -2 : static_cast<int>(it - node_names.begin());
-}
-
 std::unique_ptr<BuiltNetwork> build_network(const NetworkSpec& spec) {
   auto built = std::make_unique<BuiltNetwork>();
   BuiltNetwork& out = *built;

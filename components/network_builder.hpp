@@ -57,7 +57,6 @@ struct BuiltNetwork {
   std::vector<int> vehicle_nodes;
   std::vector<int> engine_sources, grade_sources;  // torque source indices
   Eigen::VectorXd initial_speed_rad_s;
-  int node(const std::string& name) const;  // kGround for "ground"; -2 if unknown
   std::vector<std::string> node_names;
 };
 

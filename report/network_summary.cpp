@@ -79,8 +79,11 @@ void print_network_summary(std::ostream& os, const io::NetworkScenario& sc, cons
     const double locked = locked_from_s(rec, k.name);
     os << "    " << (std::isfinite(locked) ? format("locked from %.4g s to the end", locked) : std::string("slipping at the end"))
        << format("; friction heat %.4g kJ", scalar(rec, k.name + ".friction_work_J") * 1e-3);
-    if (k.law == components::ClutchSpec::Law::kWet)
+    if (k.law == components::ClutchSpec::Law::kWet) {
       os << format("; peak interface temperature %.4g degC", scalar(rec, k.name + ".peak_interface_temp_C"));
+      os << "\n    fluid " << k.wet.fluid.name << ", effects on:";
+      for (const auto& e : k.wet.enabled_effects) os << " " << e;
+    }
     os << "\n";
   }
   os << format("Energy: source work %.6g kJ = kinetic change %.6g kJ", scalar(rec, "source_work_J") * 1e-3,
