@@ -1,6 +1,6 @@
 #pragma once
 // The static/dynamic (breakaway) friction ratio, measured from runs that start an up-ramp from
-// rest (issue 11; Paper F ranks additives "based on the ratio between the static friction (peak
+// rest (Paper F ranks additives "based on the ratio between the static friction (peak
 // value) and the dynamic friction", thesis; PHYSICS.md §6).
 //
 //   start from rest   the drive speed stays within ±rest_rpm for at least rest_s, then rises

@@ -1,5 +1,5 @@
 #pragma once
-// From measured speed ramps to a friction law (issue 11; the thesis' method, PHYSICS.md §2, §7):
+// From measured speed ramps to a friction law (the thesis' method, PHYSICS.md §2, §7):
 //
 //   1. ramps   analysis/ramp_detection finds the up- and down-ramps of every run.
 //   2. mu      mu = (M / (n F r_eff)) − mu_bearing, M the torque cell, F the normal force, n the

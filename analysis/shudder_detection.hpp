@@ -3,7 +3,7 @@
 // oscillation's amplitude and dominant frequency, when it started and the operating point
 // (slip speed, interface temperature, normal force) at that time.
 //
-// Verdicts (issue 4, PHYSICS.md §6):
+// Verdicts (PHYSICS.md §6):
 //   none        no oscillation above the amplitude threshold;
 //   vibration   friction-induced vibration: a (near-)harmonic oscillation while the contact
 //               keeps sliding — the slip never reverses and never reaches zero;
@@ -85,7 +85,7 @@
 //         centres; the level is capped at the oscillating part's, b_max − oscillating_part_dB,
 //         so an oscillation judged on its half peak-to-peak but weaker in its fundamental still
 //         has a crossing. t_0 (growth_observed false) if the band never lies under that level
-//         before the oscillating part (oscillating from the start). Why (issue 14): 8c measures
+//         before the oscillating part (oscillating from the start). Why: 8c measures
 //         from the start level, the first frames' band power. Where the operating point is
 //         unstable from t = 0 the growth leaves the start at once, and 8c's onset is t_0 plus a
 //         fraction of a frame, set by what fills the band in the first frames (the start, the

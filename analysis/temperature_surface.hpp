@@ -1,7 +1,7 @@
 #pragma once
 // Friction surface mu(v, T) at one load, piecewise linear in T between temperature knots and
 // linear in ln v between speed knots, fitted to every sample of every ramp of that load at once
-// (`shudder characterise --compensation piecewise`, issue 11):
+// (`shudder characterise --compensation piecewise`):
 //
 //     mu(v, T) = sum_ij  h_i(T) g_j(ln v) theta_ij        h, g: hat functions on the knots
 //

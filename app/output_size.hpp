@@ -1,7 +1,7 @@
 #pragma once
 // What a run or a sweep will write, estimated from the scenario before simulating, so that a
-// mistaken rate or duration is refused in a second instead of after hours (issue 14: a
-// `sample_rate_Hz = 1e6` run wrote 3.6 GB with no warning). The figure is the data before
+// mistaken rate or duration is refused in a second instead of after hours (a
+// `sample_rate_Hz = 1e6` run once wrote 3.6 GB with no warning). The figure is the data before
 // compression: (duration x rate + 1) samples x channels x 8 bytes, plus the thermal snapshots
 // (n_snap x n_r x n_z x 8 bytes). Compression only makes the file smaller, so the estimate is
 // an upper figure for the data; HDF5's own overhead (a few kB) is not counted.

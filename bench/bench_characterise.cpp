@@ -1,5 +1,5 @@
-// Benchmark of `characterise` at Paper G's scale (issue 11: "characterise 1,750 synthetic
-// ramps — wall time on 2 cores, target <= 30 s"). Built from the library as the command uses
+// Benchmark of `characterise` at Paper G's scale (characterise 1,750 synthetic
+// ramps; target: <= 30 s wall time on 2 cores). Built from the library as the command uses
 // it (analysis::characterise), the data in memory.
 //
 // Data, generated once: fluid C's matrix (scenarios/fluids/lsc_fluid_c.toml) through the

@@ -1,9 +1,9 @@
 // Benchmark of the Haldex driveline (docs/driveline.md, docs/performance.md): the shipped tight
 // turn (scenarios/driveline_tight_turn.toml, 5 s simulated, fluid C, coupling sliding), the same
-// manoeuvre with the stick-slip fluid, and the 10 s manoeuvres of issue 13's target (≥ 100× real
-// time on one core): the tight turn and the full-lock parking turn
+// manoeuvre with the stick-slip fluid, and the 10 s manoeuvres of the ≥ 100× real-time target (on one
+// core): the tight turn and the full-lock parking turn
 // (scenarios/driveline_parking_turn.toml, controller deciding) run for 10 s, and the parking turn
-// as shipped (5 s; issue 16: ≤ 50 ms). The simulation only
+// as shipped (5 s; target ≤ 50 ms). The simulation only
 // (rig_models::simulate); the run's stability maps and prediction are `Driveline_RunAnalysis`.
 // Counters: integrator steps, stick events, and the factor over real time (simulated s / CPU s).
 //   ./build/bench/shudder_bench --benchmark_filter=Driveline
@@ -49,7 +49,7 @@ void BM_Driveline_TightTurn_StickSlipFluid(benchmark::State& state) {
 void BM_Driveline_TightTurn_10s(benchmark::State& state) {
   run_driveline(state, "driveline_tight_turn.toml", nullptr, 10.0);
 }
-// The shipped parking turn as it is (5 s): issue 16's "5 s parking turn <= 50 ms".
+// The shipped parking turn as it is (5 s): the target "5 s parking turn <= 50 ms".
 void BM_Driveline_ParkingTurn(benchmark::State& state) {
   run_driveline(state, "driveline_parking_turn.toml", nullptr, 0.0);
 }

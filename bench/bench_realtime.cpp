@@ -1,4 +1,4 @@
-// Benchmark: the fixed-step real-time mode (docs/realtime.md; issue 16 target: worst step over
+// Benchmark: the fixed-step real-time mode (docs/realtime.md; target: worst step over
 // 10^5 steps of 0.1 ms < 20 µs, thermal update included). Each step is timed on its own with
 // steady_clock:
 //   *_paced     the steps are released on a 0.1 ms real-time grid (spin-wait), as a

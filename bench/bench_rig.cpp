@@ -1,4 +1,4 @@
-// Benchmarks of the test rig (issue 3): Paper G Case 2 (30 s simulated) on the rig with the
+// Benchmarks of the test rig: Paper G Case 2 (30 s simulated) on the rig with the
 // 378 Hz bar and the thermal model, with fluid C (no shudder; target <= 0.5 s on one core) and
 // with the schematic negative-slope fluid (shudders; target <= 3 s). Counters report integrator
 // steps, right-hand-side evaluations and stick/slip events.

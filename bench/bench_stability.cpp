@@ -1,4 +1,4 @@
-// Benchmark of the stability map (issue 4, target <= 1 s on one core): 100 slip speeds
+// Benchmark of the stability map (target <= 1 s on one core): 100 slip speeds
 // (20–120 rpm) x 100 interface temperatures (20–120 °C) at 15 kN on the rig with the 378 Hz bar
 // and fluid C (scenarios/rig_case1_25kN_378Hz.toml). Counter: map points per second.
 #include <benchmark/benchmark.h>

@@ -1,4 +1,4 @@
-// Benchmark of `shudder sweep` in parallel (issue 4, "Speed"): scenarios/sweep_torsion_bar.toml
+// Benchmark of `shudder sweep` in parallel: scenarios/sweep_torsion_bar.toml
 // (20 s simulated per case) over 41 bar frequencies, 100:500:10 Hz, run through the built CLI
 // exactly as a user would:
 //   shudder sweep scenarios/sweep_torsion_bar.toml

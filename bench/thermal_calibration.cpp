@@ -1,4 +1,4 @@
-// Thermal calibration study (issue 11 part 5): every thermal anchor of the thesis at once.
+// Thermal calibration study: every thermal anchor of the thesis at once.
 //
 // Runs the shipped calibration scenarios with a candidate oil-flow law (Paper G eq. 12,
 // clutch/oil_flow.hpp) and sump model, and prints each anchor's value and weighted residual

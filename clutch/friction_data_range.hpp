@@ -1,5 +1,5 @@
 #pragma once
-// How much of a run used the friction law outside its data (issue 11 item 4). A law is
+// How much of a run used the friction law outside its data. A law is
 // defined by data over a speed range, a temperature range and a load range
 // (FrictionLaw::min/max_speed_mm_s, temp_range_C, load_range_N); outside them it holds or
 // extrapolates (the Mäki matrix clamps speed to 6–590 mm/s, load to its first/last load and

@@ -1,6 +1,6 @@
 #pragma once
 // Tabulated boundary friction: mu on a speed x temperature x load grid, for measured data the
-// Mäki form (Paper G eq. 13) does not fit (issue 11, `shudder characterise --law table`).
+// Mäki form (Paper G eq. 13) does not fit (`shudder characterise --law table`).
 //
 //     mu(v, T, F) = bilinear blend over (T, F) of the four surrounding grid curves mu_ij(v),
 //                   each curve linear in ln(v) between its tabulated speeds

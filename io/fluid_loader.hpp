@@ -11,7 +11,7 @@
 //   [linear]           Papers B/C/E lines mu = alpha*T + beta per speed (speeds_rpm,
 //                      mean_radius_mm)
 //
-// Plausibility (issue 14): mu must lie in (0, 1] over the law's whole declared range — every
+// Plausibility: mu must lie in (0, 1] over the law's whole declared range — every
 // row and load of a [maki] matrix at speeds min_speed_mm_s..max_speed_mm_s, every line of a
 // [linear] law from -40 to 150 °C — else InputError naming the key and the failing point.
 //

@@ -1,5 +1,5 @@
 #pragma once
-// Checks made before a command writes anything (issue 14, "file safety"):
+// Checks made before a command writes anything:
 //   * no output may be one of the command's inputs, nor another of its outputs (a run with
 //     `-o X.toml` used to replace its own scenario; `--measurement same.h5 -o same.h5` left
 //     only /measurement). Paths are compared canonically (symlinks, `..`, relative spellings),

@@ -1,6 +1,6 @@
 #pragma once
 // Linear stability and modes of the Haldex driveline (rig_models/haldex_driveline.hpp) about an
-// operating point, with the coupling slipping or locked (PHYSICS.md §6, §8; issue 13 part 4).
+// operating point, with the coupling slipping or locked (PHYSICS.md §6, §8).
 //
 // The network is linearised by dynamics/linearisation.hpp with every element's own dynamics:
 //   coupling (slipping)  damper s = dM/d|Δω| = n r F dμ/d|Δω| at the point's slip, clamp force
@@ -92,7 +92,7 @@ CouplingMode least_damped_slipping_mode(const HaldexDriveline& dl, const clutch:
                                         const DrivelineOperatingPoint& op, const Eigen::MatrixXd& extra_damping = {});
 
 /// The interface temperature's feedback on the coupling's torque at an oscillation of angular
-/// frequency ω (issue 13 part 4; the isothermal slope leaves it out). Per interface (n of them,
+/// frequency ω (the isothermal slope leaves it out). Per interface (n of them,
 /// area A, torque M/n, heat flux q'' = (M/n)|Δω|/A into the discs, all of it: an upper bound):
 ///   δM_i = s_i δΔω + g_i δT,   δT = Z(iω) δq'' = Z (M_i δΔω + |Δω| δM_i)/A   (g_i = dM_i/dT)
 ///   ⇒ s_eff = n (s_i + g_i Z M_i/A) / (1 − g_i Z |Δω|/A)

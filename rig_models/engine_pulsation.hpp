@@ -2,7 +2,7 @@
 // The engine's firing-order torque pulsation: the driveline's always-present physical
 // disturbance, from which an unstable sliding state of the coupling starts to oscillate (without
 // it the only seed is the numerical torque step of each slow step, and the onset follows that
-// step; issue 14).
+// step).
 //
 //   T_p = A s(ω) sin(k θ)            on the engine node, N m
 //   k   = z / 2 pulses per crank revolution (a 4-stroke engine fires each of its z cylinders

@@ -1,5 +1,5 @@
 #pragma once
-// Comparing fluids (issue 11 item 2; docs/characterisation.md "Comparing fluids"):
+// Comparing fluids (docs/characterisation.md "Comparing fluids"):
 //
 //   per fluid   the screening of rig_models/fluid_screening (anti-shudder indices at the chosen
 //               temperatures, stability margins on the chosen rigs, the verdict);

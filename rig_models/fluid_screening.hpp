@@ -1,5 +1,5 @@
 #pragma once
-// Screening a fluid's friction data for vibration risk (issue 4 item 6; docs/screening.md):
+// Screening a fluid's friction data for vibration risk (docs/screening.md):
 //
 //   1. the anti-shudder indices at each screening temperature (analysis/anti_shudder_indices.hpp);
 //   2. the isothermal slope map dmu/dv over slip speed x temperature and its negative region;

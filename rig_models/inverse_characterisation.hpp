@@ -1,10 +1,10 @@
 #pragma once
-// Model-based characterisation (`shudder characterise --method inverse`, issue 11 part 6).
+// Model-based characterisation (`shudder characterise --method inverse`).
 //
 // Why: the sensor method (analysis/friction_characterisation) compensates each sample with the
 // temperature a sensor reads, but friction acts at the interface, whose field spans tens of
 // kelvin across the radius during a ramp (at 24 kN, 84–125 °C; the inner edge near the start
-// temperature; issue 11 item 6) while the thermocouple behind the separator lags and averages it. Here the
+// temperature) while the thermocouple behind the separator lags and averages it. Here the
 // friction law is judged at the SIMULATED interface field instead: every run is replayed
 // through the clutch and thermal model (rig_models/replay, the diagnosis' simulator), its oil
 // flow calibrated on the measured temperature channel, and each sample is compensated with the

@@ -8,7 +8,7 @@
 // held inputs (a clamp force), and the stepper restarts. The thermal solver's workspace lives
 // here, one per run.
 //
-// Ring temperatures across a slow step: a continuous first-order hold (issue 14). Holding each
+// Ring temperatures across a slow step: a continuous first-order hold. Holding each
 // ring's thermal-update value over the step (a zero-order hold, before) made the friction torque
 // a staircase with a step at every update: a numerical forcing at 1/Δt_th and its harmonics (the
 // 10 ms step's third harmonic, 300 Hz, sat on the 300 Hz bar mode and set the onset of shudder).

@@ -76,7 +76,7 @@ std::optional<RecordingDetection> recording_detection(const dynamics::Recording&
   if (const auto* s = rec.find(sn::kInterfaceMeanTemp)) d.input.interface_temp_C = s->values;
   if (const auto* s = rec.find(driveline ? sn::kClampForce : sn::kNormalForce)) d.input.normal_force_N = s->values;
   // A run's onset: the oscillation reaching the verdict's threshold (detector definition 8e),
-  // not set by the start transient (issue 14).
+  // not set by the start transient.
   d.settings.onset_definition = analysis::OnsetDefinition::kThresholdCrossing;
   if (driveline) {
     d.settings.min_frequency_Hz = 2.0;

@@ -13,7 +13,7 @@
 // Stuck flags, interface temperature and normal force are used when recorded.
 // The onset reported is detector definition 8e (analysis/shudder_detection.hpp): the time the
 // oscillation's amplitude last rose through the verdict's threshold, independent of the start
-// transient and of the thermal step (issue 14; docs/rig_model.md).
+// transient and of the thermal step (docs/rig_model.md).
 
 #include <optional>
 #include <string>

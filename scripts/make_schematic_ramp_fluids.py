@@ -2,7 +2,7 @@
 """Write the SCHEMATIC ramp fluids (scenarios/fluids/schematic_ramp_*.toml).
 
 These are not measured fluids. They are made so that a slow speed ramp on the rig crosses the
-stability boundary at a well-defined speed (issue 4, prediction against simulation). Speeds v
+stability boundary at a well-defined speed (prediction against simulation). Speeds v
 are in rpm at the file's 46 mm mean radius and T is in degC. At T_ref the law is:
 
     1 rpm <= v <= v_j   log-linear rise of `rise` up to the parabola (steep positive slope);

@@ -45,7 +45,7 @@ shudder::io::Scenario scenario(const std::string& name) {
   return shudder::io::load_scenario(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/" + name);
 }
 
-// `ripple`: false switches the motor's torque ripple (issue 14) off, for closed forms of the
+// `ripple`: false switches the motor's torque ripple off, for closed forms of the
 // undisturbed rig.
 Recording run(const shudder::io::Scenario& sc, bool ripple = true) {
   const auto clutch = sc.make_clutch();

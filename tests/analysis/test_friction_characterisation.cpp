@@ -312,7 +312,7 @@ TEST(CharacteriseRoundTrip, IndicesFollowTheTruth) {
   so.temps_C = {40.0, 60.0};
   // Judged where the runs have data (starts 30–70 °C, ramps warm to ~100 °C): over the law's
   // whole -40…200 °C the truth's verdict comes from the published -40 °C rows alone (unstable at
-  // -40…-30 °C since fluid C's reconstructed rows rise with speed, issue 11 part 3), which no
+  // -40…-30 °C since fluid C's reconstructed rows rise with speed), which no
   // characterisation of these runs can see.
   for (double t = 30.0; t <= 100.0; t += 5.0) so.map_temps_C.push_back(t);
   const auto a = rig_models::screen_fluid(fitted, so), b = rig_models::screen_fluid(rt.truth, so);

@@ -1,4 +1,4 @@
-// Every sample of a record counts (issue 14, verdicts): the Welch PSD's last segment and, with
+// Every sample of a record counts: the Welch PSD's last segment and, with
 // end_frame, the spectrogram's last frame end at the record's last sample
 // (analysis/spectrum.hpp), so a judder that grows late in a run decides its verdict.
 //

@@ -1,5 +1,5 @@
 // Bad scenario input through the real CLI: exit code 2, ONE line on stderr naming the file, the
-// key and what is allowed, and no output file left behind (issue 2, "Bad input").
+// key and what is allowed, and no output file left behind.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// `shudder modes` on a driveline scenario (issue 13 part 4): the linearisation about the
+// `shudder modes` on a driveline scenario: the linearisation about the
 // manoeuvre's quasi-static point, coupling slipping and locked, modes named by component.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Physical guards and file safety end to end (issue 14, items 2 and 3). Each test names what
+// Physical guards and file safety end to end. Each test names what
 // the code before issue 14 did with the same input.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Rig scenarios through the real CLI (issue 3): `shudder modes`, `shudder run --measurement`, and
+// Rig scenarios through the real CLI: `shudder modes`, `shudder run --measurement`, and
 // bad rig input — exit code 2, ONE line on stderr naming the file, the key and what is allowed,
 // no output file left behind; a torsion bar outside the rig's 100–500 Hz is only a warning.
 #include <gmock/gmock.h>

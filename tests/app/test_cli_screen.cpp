@@ -1,4 +1,4 @@
-// `shudder screen` through the real CLI (issue 4 item 6): the indices table, the slope and
+// `shudder screen` through the real CLI: the indices table, the slope and
 // stability summaries and the verdict on fluid C and on the schematic negative-slope fluid; the
 // JSON output parsed by a minimal reader (arrays aligned with temperatures_C); bad input exits 2
 // with one line and leaves no JSON behind.

@@ -1,4 +1,4 @@
-// `shudder run` says whether the run shuddered (issue 14, "`shudder run` never says whether a
+// `shudder run` says whether the run shuddered ("`shudder run` never says whether a
 // rig shuddered"): the verdict block in the summary, under /analysis/verdict in the HDF5 and as
 // verdict.json in the --report directory, for the rig and the driveline; and the summary's
 // table gives min / mean / max per fifth of the run instead of instantaneous samples.

@@ -133,7 +133,7 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"none", "", "", {}, {}}),
     [](const ::testing::TestParamInfo<Case>& i) { return i.param.name; });
 
-// Rig faults of the measurement chain (issue 12 item 4), each hidden alone and beside one
+// Rig faults of the measurement chain, each hidden alone and beside one
 // effect of the other channel. Magnitudes: a 3 % torque-cell gain (a cell calibrated on a
 // wrong lever arm or a drifted bridge), a 3 N m offset (2.4 sigma of the torque noise, an
 // unzeroed cell), a +2 K thermocouple (a type K junction's standard tolerance is ±2.2 K).
@@ -194,7 +194,7 @@ INSTANTIATE_TEST_SUITE_P(
 std::string stick_probe_text(const std::string& extra, double speed_rpm) {
   std::string s = test::shipped_scenario_text("rig_stick_time_probe.toml");
   s = replace(s, "speed_rpm = [0.5, 0.5]", "speed_rpm = [" + std::to_string(speed_rpm) + ", " + std::to_string(speed_rpm) + "]");
-  // The motor's torque ripple (issue 14) is on, as by default: at 0.5-1.5 rpm it runs at 5-15 Hz,
+  // The motor's torque ripple is on, as by default: at 0.5-1.5 rpm it runs at 5-15 Hz,
   // in the stick-slip band; the replay models it (its set-point recovery subtracts it).
   return s + "\n" + extra;
 }

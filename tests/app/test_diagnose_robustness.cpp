@@ -1,4 +1,4 @@
-// The diagnosis outside its own model family (issue 12): the true model on rig stick-slip runs,
+// The diagnosis outside its own model family: the true model on rig stick-slip runs,
 // data from the same physics on another discretisation, faults outside the catalogue, wrong
 // units and files, and the fixed model written back. Runs are made at test time by `shudder
 // run --measurement --noise --seed` (seeds and magnitudes differ from the documented examples

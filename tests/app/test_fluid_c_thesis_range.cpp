@@ -1,4 +1,4 @@
-// Fluid C consistent with the thesis (issue 11 part 3; docs/fluid_c_reconstruction.md): over the
+// Fluid C consistent with the thesis (docs/fluid_c_reconstruction.md): over the
 // range its 1,750 ramps covered (-20…90 °C, 1–100 rpm, 10–25 kN; Paper G) the 175 and 378 Hz bars
 // "did not act as an initiator of shudder", and the fluids "maintained acceptable anti-shudder
 // properties even at temperatures as low as -20 °C" (thesis; PHYSICS.md §9).

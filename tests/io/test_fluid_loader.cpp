@@ -292,7 +292,7 @@ TEST(LoadFluid, TomlSyntaxErrorNamesTheLine) {
 
 }  // namespace
 
-// ---- Plausibility: mu in (0, 1] over the law's declared range (issue 14) ----------------------
+// ---- Plausibility: mu in (0, 1] over the law's declared range ----------------------
 // On the old code each of these files loaded without complaint (the audit's sign typo in `beta`
 // then gave -4,923 J of friction heat and a thermocouple at -65 °C, exit 0).
 

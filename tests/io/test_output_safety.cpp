@@ -1,4 +1,4 @@
-// File safety of the writers (issue 14): outputs that would replace inputs or each other,
+// File safety of the writers: outputs that would replace inputs or each other,
 // missing output directories, the size limit, stale temporaries of killed writers, and
 // compressed datasets. Each test says what the old code did.
 #include <gmock/gmock.h>

@@ -1,4 +1,4 @@
-// The "did you mean" of io/toml_reader (issue 14): the optimal-string-alignment distance against
+// The "did you mean" of io/toml_reader: the optimal-string-alignment distance against
 // hand-counted edits, and which candidates count as a misspelling.
 #include <gtest/gtest.h>
 

@@ -122,7 +122,7 @@ TEST(ClutchContact, NewHeldTemperaturesAndTheTemperatureSwitchReachTheTorque) {
 // friction at the linearly moving temperature: at the ramp's middle the torque, capacity and
 // heat are those at the mean temperature (1e-12); before t0 / after t1 the nearer end holds.
 // The next ramp starts where this one ended, so the torque has no step at the boundary (what
-// removed the thermal step's staircase, issue 14).
+// removed the thermal step's staircase).
 TEST(ClutchContact, TemperatureRampBlendsFrictionLinearlyInTimeAndIsContinuousAtItsEnds) {
   const WetClutch c = clutch();
   const ClutchContact law(c, BearingDrag{}, StickTimeFriction{true, 0.15, 1.0});

@@ -1,5 +1,5 @@
 // Take-up judder of the Haldex coupling: the linear prediction (rig_models/driveline_stability.hpp)
-// against the simulation (rig_models/haldex_driveline.hpp), issue 13 part 4.
+// against the simulation (rig_models/haldex_driveline.hpp), the driveline's linear prediction.
 //
 // Case: the tight-turn car on a legacy turn ratio ρ = 1.1 from 10 km/h, no engine torque, the
 // valve holding a constant pressure p (so the coupling keeps slipping at ~20 rpm on the turn's
@@ -117,7 +117,7 @@ TEST(DrivelinePrediction, TakeUpJudderOnsetAndFrequencyMatchTheSimulation) {
   const double simulated_onset = 0.5 * (lo + hi);
   std::printf("onset: predicted %.1f N, simulated %.1f N (%+.1f %%)\n", onset, simulated_onset,
               100 * (simulated_onset / onset - 1));
-  EXPECT_NEAR(simulated_onset, onset, 0.10 * onset);  // issue 13: within 10 %
+  EXPECT_NEAR(simulated_onset, onset, 0.10 * onset);  // the target: within 10 %
 
   const double judder_N = 1.1 * onset;
   const auto rec = simulate_at(c, judder_N, 6.0);
@@ -128,7 +128,7 @@ TEST(DrivelinePrediction, TakeUpJudderOnsetAndFrequencyMatchTheSimulation) {
       least_damped_mode(driveline_stability(dl, c.clutch, recorded_operating_point(rec, 2.0, 6.0), false)).frequency_Hz;
   std::printf("frequency: FFT %.3f Hz, predicted %.3f Hz (quasi-static), %.3f Hz (run's mean point)\n", fft_Hz,
               predicted_Hz, at_run_Hz);
-  // FFT bin 0.25 Hz over 4 s, interpolated (~0.02 Hz); issue 13 asks 2 %.
+  // FFT bin 0.25 Hz over 4 s, interpolated (~0.02 Hz); the target is 2 %.
   EXPECT_NEAR(fft_Hz, predicted_Hz, 0.02 * predicted_Hz);
   EXPECT_NEAR(fft_Hz, at_run_Hz, 0.02 * at_run_Hz);
 }

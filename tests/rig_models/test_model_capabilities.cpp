@@ -110,7 +110,7 @@ std::string refusal(const std::string& path, const std::string& key, Capability&
 // The refusal texts below are the commands' messages before the capabilities moved to the
 // kinds (app/cmd_*.cpp at 6fc3277); they must stay byte-identical.
 TEST(ModelCapabilities, DrivelineExportsItsCouplingAndReplaysItAlone) {
-  // Sweeps accept driveline cases now (issue 13): the capability passes and a case evaluates.
+  // Sweeps accept driveline cases now: the capability passes and a case evaluates.
   EXPECT_EQ(refusal(kDriveline, "scenario.type", [](const auto& m) { rig_models::require_sweep(m); }), "(accepted)");
   // Issue 13 part 5: a measured run of the coupling, replayed through the pack alone.
   const io::Scenario sc = io::load_scenario(kDriveline);

@@ -1,4 +1,4 @@
-// Prediction against simulation (issue 4, item 4): the linear stability of steady sliding on the
+// Prediction against simulation: the linear stability of steady sliding on the
 // rig (rig_models/rig_stability) predicts where a slow speed ramp starts to shudder and at what
 // frequency. The nonlinear rig simulation (rig_models::run_rig, thermal model on) gives the
 // simulated values, and they must agree.
@@ -171,7 +171,7 @@ CaseResult compare(const std::string& scenario_name, double bar_Hz) {
   Scenario sc = scenario(scenario_name);
   shudder::test::rig_model(sc).params.bar_natural_frequency_Hz = bar_Hz;
   // The prediction is the linear stability of the autonomous rig; the motor's torque ripple
-  // (issue 14) is a forcing whose frequency (9.6 Hz per rpm) crosses the 175 Hz bar at 18 rpm
+  // is a forcing whose frequency (9.6 Hz per rpm) crosses the 175 Hz bar at 18 rpm
   // on the ramp and adds a resonant floor to the band the onset is fitted in: switched off.
   shudder::test::rig_model(sc).params.motor_ripple.amplitude_Nm = 0.0;
   const auto clutch = sc.make_clutch();

@@ -86,7 +86,7 @@ PiecewiseLinear window_means(const std::vector<double>& t, const std::vector<dou
 TEST(SpeedSetpoint, RecoversTheSetPointOfAStickSlipRun) {
   io::Scenario sc = io::load_scenario(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/rig_stick_time_probe.toml");
   // The motor's torque ripple is on (default 1 N m, 576/rev: 4.8 Hz at 0.5 rpm); the estimate
-  // subtracts it before inverting the loop (issue 14).
+  // subtracts it before inverting the loop.
   ASSERT_EQ(shudder::test::rig_model(sc).params.motor_ripple.amplitude_Nm, 1.0);
   shudder::test::rig_model(sc).params.stick_time.enabled = true;
   shudder::test::rig_model(sc).params.stick_time.max_increase = 0.15;

@@ -4,7 +4,7 @@
 Written from /work/shared/PHYSICS.md (thesis digest), the thesis (Paper G eqs. 2-13, Table 1)
 and the file contracts of FORMATS.md only -- not from shudder's C++ (clutch/, rig_models/,
 analysis/). Its purpose: "measured" runs from a different author's discretisation and oil-flow
-calibration, to test `shudder diagnose` outside its own model family (issue 12).
+calibration, to test `shudder diagnose` outside its own model family.
 
 Physics (SI units inside; names carry units):
 * friction  mu = C1 tanh(C2 v) + C3 v^0.1 + C4, v local sliding speed in mm/s (Paper G eq. 13),

@@ -1,4 +1,4 @@
-"""Tests of the independent simulator and a regression of `shudder diagnose` on its runs (issue 12).
+"""Tests of the independent simulator and a regression of `shudder diagnose` on its runs.
 
 The diagnosis tests need SHUDDER_CLI (set by ctest: tests/CMakeLists.txt `independent_sim`).
 """

@@ -1,14 +1,14 @@
 #!/usr/bin/python3
-"""Issue 14's findings re-checked in one place, through the command line only.
+"""The robustness audit's findings re-checked in one place, through the command line only.
 
-    /usr/bin/python3 scripts/issue14_findings.py SHUDDER            # one binary: one line per finding
-    /usr/bin/python3 scripts/issue14_findings.py OLD_SHUDDER NEW_SHUDDER
+    /usr/bin/python3 scripts/audit_findings.py SHUDDER            # one binary: one line per finding
+    /usr/bin/python3 scripts/audit_findings.py OLD_SHUDDER NEW_SHUDDER
 
 Each probe runs the given `shudder` binary in a fresh scratch directory on the shipped inputs of
 commit 20f3647 (the audited commit; `git archive` of its scenarios/ from this repository, so the
 probes do not move when today's scenarios are retuned; FORMATS.md keeps them readable) and prints
     finding | PASS/FAIL | what was seen
-PASS means today's promised behaviour (docs/issue14_findings.md names the unit tests that also
+PASS means today's promised behaviour (docs/audit_findings.md names the unit tests that also
 cover each finding). With two binaries the script also prints the table old | new and exits 0
 only if every finding FAILs on the old binary and PASSes on the new one. Needs git, h5py and
 numpy (Debian's python3-h5py, python3-numpy; scripts/install-deps.sh). Not part of ctest: it
