@@ -81,13 +81,7 @@ int run_command(const RunOptions& opt) {
       m.sample_rate_Hz = opt.measurement_rate_Hz;
       m.noise = opt.noise;
       m.seed = opt.seed;
-      m.fluid = scenario.fluid.name;
-      m.oil_flow_ml_min = units::m3_s_to_ml_min(scenario.clutch.thermal.supply_flow_m3_s);
-      char sensor[96];
-      std::snprintf(sensor, sizeof sensor, "separator_thermocouple r_mm=%g z_mm=%g",
-                    scenario.clutch.thermal.thermocouple_r_m * 1e3,
-                    scenario.clutch.thermal.thermocouple_z_m * 1e3);
-      m.temp_sensor = sensor;
+      io::describe_clutch(m, scenario.clutch, scenario.fluid.name);
       io::write_measurement(opt.measurement, exported.channels(rec), m);
     }
     // Energy accounts that do not close mean the numbers are wrong: a numerical failure (exit
@@ -102,21 +96,11 @@ int run_command(const RunOptions& opt) {
     if (!opt.measurement.empty()) summary << ", " << opt.measurement;
     summary << "\n";
     std::cout << summary.str();
-    if (!opt.report.empty()) {
-      try {
-        const report::Report report =
-            report::write_run_report(opt.report, rec, scenario.name, summary.str(),
-                                 std::visit([](const auto& m) { return rig_models::has_rig_plots(m); },
-                                            scenario.model));
-        std::cout << "Report: " << opt.report << " (" << report.files.size() << " files)\n";
-        for (const auto& s : report.skipped) std::cerr << "shudder: warning: report: " << s << "\n";
-      } catch (const io::InputError&) {
-        throw;
-      } catch (const std::exception& e) {
-        std::cerr << "shudder: report failed: " << e.what() << " (the run itself is in " << out << ")\n";
-        return 1;
-      }
-    }
+    if (!opt.report.empty() &&
+        write_report_directory(opt.report, rec, scenario.name, summary.str(),
+                               std::visit([](const auto& m) { return rig_models::has_rig_plots(m); }, scenario.model),
+                               out) != 0)
+      return 1;
     if (opt.profile) std::cout << "Profile: simulation wall time " << wall_s * 1e3 << " ms\n";
     return 0;
   });

@@ -1,6 +1,5 @@
 // `shudder run` on a network scenario (docs/network_format.md): load and check the network,
 // simulate every clutch, write the HDF5 run file and print the summary with each clutch's verdict.
-#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -9,14 +8,12 @@
 #include "app/commands.hpp"
 #include "components/network_run.hpp"
 #include "io/hdf5_run.hpp"
-#include "core/units.hpp"
 #include "io/input_error.hpp"
 #include "io/measurement_csv.hpp"
 #include "rig_models/rig_names.hpp"
 #include "io/network_scenario.hpp"
 #include "io/output_safety.hpp"
 #include "report/network_summary.hpp"
-#include "report/plots.hpp"
 #include "rig_models/energy_guard.hpp"
 
 namespace shudder::app {
@@ -48,12 +45,7 @@ void write_clutch_measurement(const RunOptions& opt, const components::ClutchSpe
   o.sample_rate_Hz = opt.measurement_rate_Hz;
   o.noise = opt.noise;
   o.seed = opt.seed;
-  o.fluid = c.wet.fluid.name;
-  o.oil_flow_ml_min = units::m3_s_to_ml_min(c.wet.clutch.thermal.supply_flow_m3_s);
-  char sensor[96];
-  std::snprintf(sensor, sizeof sensor, "separator_thermocouple r_mm=%g z_mm=%g", c.wet.clutch.thermal.thermocouple_r_m * 1e3,
-                c.wet.clutch.thermal.thermocouple_z_m * 1e3);
-  o.temp_sensor = sensor;
+  io::describe_clutch(o, c.wet.clutch, c.wet.fluid.name);
   io::write_measurement(measurement_path(opt.measurement, c.name), m, o);
 }
 
@@ -103,19 +95,9 @@ int run_network_command(const RunOptions& opt) {
     for (const auto* c : measured) summary << ", " << measurement_path(opt.measurement, c->name);
   summary << "\n";
   std::cout << summary.str();
-  if (!opt.report.empty()) {
-    // summary.txt, verdict.json and the plots of `shudder plot` (docs/plots.md).
-    try {
-      const report::Report rep = report::write_run_report(opt.report, run.recording, sc.name, summary.str(), false);
-      std::cout << "Report: " << opt.report << " (" << rep.files.size() << " files)\n";
-      for (const auto& skipped : rep.skipped) std::cerr << "shudder: warning: report: " << skipped << "\n";
-    } catch (const io::InputError&) {
-      throw;
-    } catch (const std::exception& e) {
-      std::cerr << "shudder: report failed: " << e.what() << " (the run itself is in " << out << ")\n";
-      return 1;
-    }
-  }
+  // summary.txt, verdict.json and the plots of `shudder plot` (docs/plots.md).
+  if (!opt.report.empty() && write_report_directory(opt.report, run.recording, sc.name, summary.str(), false, out) != 0)
+    return 1;
   return 0;
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "dynamics/recording.hpp"
 #include "rig_models/effect_registry.hpp"
 
 namespace shudder::app {
@@ -26,6 +27,10 @@ struct RunOptions {
 int run_command(const RunOptions& options);
 /// `run` on a type = "network" scenario (app/cmd_run_network.cpp); run_command dispatches to it.
 int run_network_command(const RunOptions& options);
+/// `run --report DIR`: the report directory (report/plots.hpp) with a line saying so; a report
+/// that fails after the run was written is exit code 1 with a line naming `run_file`.
+int write_report_directory(const std::string& dir, const dynamics::Recording& rec, const std::string& name,
+                           const std::string& summary, bool rig_plots, const std::string& run_file);
 
 struct ModesOptions {
   std::string scenario;

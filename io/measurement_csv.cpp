@@ -8,6 +8,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <limits>
 #include <numbers>
@@ -15,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/units.hpp"
 #include "dynamics/signal_names.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
@@ -266,6 +268,15 @@ void write_measurement(const std::string& path, const dynamics::Recording& rec,
     write_measured_run_hdf5(path, make_measurement(path, rec, opt));
   else
     write_measurement_csv(path, rec, opt);
+}
+
+void describe_clutch(MeasurementOptions& opt, const clutch::WetClutchParams& clutch, const std::string& fluid_name) {
+  opt.fluid = fluid_name;
+  opt.oil_flow_ml_min = units::m3_s_to_ml_min(clutch.thermal.supply_flow_m3_s);
+  char sensor[96];
+  std::snprintf(sensor, sizeof sensor, "separator_thermocouple r_mm=%g z_mm=%g", clutch.thermal.thermocouple_r_m * 1e3,
+                clutch.thermal.thermocouple_z_m * 1e3);
+  opt.temp_sensor = sensor;
 }
 
 }  // namespace shudder::io

@@ -23,6 +23,7 @@
 
 #include <string>
 
+#include "clutch/wet_clutch.hpp"
 #include "dynamics/recording.hpp"
 #include "io/measured_run.hpp"
 #include "rig_models/rig_names.hpp"
@@ -68,5 +69,9 @@ void write_measurement_csv(const std::string& path, const dynamics::Recording& r
 /// the HDF5 form (write_measured_run_hdf5), its values at full precision instead of printed.
 void write_measurement(const std::string& path, const dynamics::Recording& rec,
                        const MeasurementOptions& opt);
+
+/// The metadata a wet clutch's run carries: its fluid's name, its oil flow and its thermocouple
+/// (`separator_thermocouple r_mm=R z_mm=Z`); the rig, rate, noise and seed are the caller's.
+void describe_clutch(MeasurementOptions& opt, const clutch::WetClutchParams& clutch, const std::string& fluid_name);
 
 }  // namespace shudder::io

@@ -19,14 +19,20 @@ std::string verdict_line(const rig_models::RunVerdict& v) {
   const std::string name(analysis::to_string(r.verdict));
   if (r.verdict == analysis::Verdict::kNone)
     return "none (largest oscillation " + format("%.3g N m at %.3g Hz", r.amplitude_Nm, r.peak_frequency_Hz) + ")";
-  return name + format(" at %.3g Hz, amplitude %.3g N m", r.frequency_Hz, r.amplitude_Nm) +
-         (std::isfinite(r.onset_time_s) ? format(", onset %.3g s", r.onset_time_s) : std::string());
+  // An oscillation already there in the first frames of the judged window has no onset of its
+  // own: the window's start is all that can be said (analysis/shudder_detection.hpp, 8e).
+  std::string onset;
+  if (std::isfinite(r.onset_time_s))
+    onset = r.growth_observed ? format(", onset %.3g s", r.onset_time_s)
+                              : format(", present from the judged window's start (%.3g s)", r.onset_time_s);
+  return name + format(" at %.3g Hz, amplitude %.3g N m", r.frequency_Hz, r.amplitude_Nm) + onset;
 }
 
 // Linear theory about the judged window (components/clutch_prediction.hpp), in one line.
 std::string prediction_line(const rig_models::Prediction& p) {
   if (!p.made) return p.method;  // "not predicted: <why>"
-  std::string s = p.margin_per_s > 0 ? "predicted: UNSTABLE" : "predicted: stable";
+  // A zero margin is a mode that neither grows nor decays (a free rotation the constraints leave).
+  std::string s = p.margin_per_s > 0 ? "predicted: UNSTABLE" : (p.margin_per_s < 0 ? "predicted: stable" : "predicted: neutrally stable");
   s += format(" (margin %.3g 1/s", p.margin_per_s);
   if (std::isfinite(p.frequency_Hz))
     s += format("; least damped oscillation %.4g Hz at %.3g 1/s", p.frequency_Hz, p.oscillatory_margin_per_s);

@@ -2,12 +2,14 @@
 // reader uses; a bad network is one line naming the component, its line and what to change.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <string>
 
 #include "io/input_error.hpp"
 #include "io/network_components.hpp"
+#include "components/network_run.hpp"
 #include "io/network_scenario.hpp"
 #include "tests/support/cli.hpp"
 
@@ -132,6 +134,67 @@ TEST(NetworkScenario, AClutchJudgedOnNoShaftIsRefused) {
       "stiffness_Nm_per_rad = 100\n"));
   EXPECT_NE(e.find("network.clutch"), std::string::npos) << e;
   EXPECT_NE(e.find("did you mean 'spring'"), std::string::npos) << e;
+}
+
+// Inputs beyond the shipped examples: each is one error naming where, never a crash or a run.
+TEST(NetworkScenario, OutOfRangeAndMalformedInputsAreInputErrors) {
+  const auto refused = [](const std::string& text, const std::string& what) {
+    const std::string e = error_of(text);
+    EXPECT_NE(e.find(what), std::string::npos) << "expected '" << what << "' in: " << e;
+  };
+  const std::string head = "[scenario]\ntype = \"network\"\nduration_s = 1.0\n";
+  refused(head, "network");                                        // no [network] table at all
+  refused(head + "[network]\n", "no inertia");                     // an empty network
+  refused(head + "[network.a]\ntype = \"inertia\"\ninertia_kg_m2 = -1\n", "inertia_kg_m2");
+  refused(head + "[network.a]\ntype = \"inertia\"\ninertia_kg_m2 = nan\n", "inertia_kg_m2");
+  refused(head + "[network.a]\ntype = \"inertia\"\ninertia_kg_m2 = 1\nspeed_rpm = 10\n"
+                 "[network.g]\ntype = \"gear\"\ninput = \"a\"\noutput = \"a\"\nratio = 2\n",
+          "joined to itself");
+  refused(two_inertias("").replace(two_inertias("").find("mu = 0.1"), 8, "mu_table = { slip_rpm = [10, 0], mu = [0.1, 0.1] }"),
+          "strictly increasing");
+  refused(two_inertias("normal_force = { kind = \"sine\", amplitude = 1, frequency_Hz = 0 }\n"), "frequency_Hz");
+  refused(two_inertias("normal_force = { kind = \"pulse\", high = 1, period_s = 0.1, width_s = 0.2 }\n"), "width_s");
+  refused(two_inertias("normal_force = { kind = \"product\", factors = [{ value = 1 }] }\n"), "two factor");
+  refused(two_inertias("normal_force = { kind = \"ramp\", to = 1 }\n"), "duration_s");
+  refused(two_inertias("[network.tyre]\ntype = \"tyre\"\nwheel = \"wheel_side\"\nvehicle = \"engine_side\"\n"
+                       "vertical_load_N = 4000\n"),
+          "not a component of type \"vehicle\"");
+}
+
+// Magnitudes far from the examples' (a 1e-6 kg m^2 pinion, a 1e4 kg m^2 flywheel, a 100:1 gear,
+// 20000 rpm) still run and close their energy account: nothing in the path assumes a car's scale.
+TEST(NetworkScenario, ExtremeMagnitudesRunAndCloseTheirEnergyAccount) {
+  const auto sc = load_network_scenario_text(R"([scenario]
+type = "network"
+duration_s = 0.5
+[network.pinion]
+type = "inertia"
+inertia_kg_m2 = 1e-6
+speed_rpm = 20000
+[network.wheel]
+type = "inertia"
+inertia_kg_m2 = 1e4
+[network.reduction]
+type = "gear"
+input = "pinion"
+output = "hub"
+ratio = 100
+[network.hub]
+type = "inertia"
+inertia_kg_m2 = 0
+[network.clutch]
+type = "clutch"
+from = "hub"
+to = "wheel"
+mu = 0.1
+geometry_factor_m = 0.5
+max_force_N = 2e5
+)", "extreme.toml");
+  const auto run = components::run_network(sc.spec);
+  EXPECT_LT(std::abs(run.recording.find_scalar("mechanical_energy_relative_error")->value), 1e-6);
+  // Momentum about the wheel: J_pinion r^2 w_hub0 = (J_pinion r^2 + J_wheel) w_end (massless hub).
+  const double r = 100.0, w_hub0 = 20000.0 / r, j_ref = 1e-6 * r * r;
+  EXPECT_NEAR(run.recording.find("wheel.speed_rpm")->values.back(), j_ref * w_hub0 / (j_ref + 1e4), 1e-9);
 }
 
 TEST(NetworkScenario, AnUnknownKeyNamesTheNearest) {
