@@ -46,10 +46,13 @@ void check_input(const dynamics::TorsionalNetwork& net, const SteadySliding& s) 
 Eigen::MatrixXd friction_slope_damping(const dynamics::TorsionalNetwork& net, const SteadySliding& s) {
   check_input(net, s);
   Eigen::MatrixXd d = Eigen::MatrixXd::Zero(net.nodes(), net.nodes());
+  // Contact laws' own states (an actuator's pressure) at their start values.
+  const Eigen::VectorXd z = net.initial_contact_states();
+  const std::vector<int> z_at = net.contact_state_indices();
   for (std::size_t k = 0; k < net.contacts().size(); ++k) {
     if (is_stuck(s, k)) continue;
     const auto& c = net.contacts()[k];
-    const double slope = c.law->kinetic_torque_slope_Nms(std::abs(s.slip_rad_s[k]), s.t_s);
+    const double slope = c.law->kinetic_torque_slope_Nms(std::abs(s.slip_rad_s[k]), s.t_s, z.data() + z_at[k]);
     if (!std::isfinite(slope))
       throw std::invalid_argument("friction law of contact '" + c.name + "' gives a non-finite slope at slip " +
                                   std::to_string(s.slip_rad_s[k]) + " rad/s");

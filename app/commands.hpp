@@ -32,6 +32,13 @@ int run_network_command(const RunOptions& options);
 int write_report_directory(const std::string& dir, const dynamics::Recording& rec, const std::string& name,
                            const std::string& summary, bool rig_plots, const std::string& run_file);
 
+struct ConvergenceOptions {
+  std::string scenario;
+  double factor = 4.0;  // every exposed numerical step divided by this
+};
+/// `convergence` (app/cmd_convergence.cpp): exit 0 converged, 3 not converged.
+int convergence_command(const ConvergenceOptions& options);
+
 struct ModesOptions {
   std::string scenario;
 };

@@ -44,6 +44,14 @@ int main(int argc, char** argv) {
                       "Run with the fixed-step real-time stepper at this step, s (docs/realtime.md)")
       ->check(CLI::Range(1e-7, 1.0));  // a step from 0.1 µs to 1 s
 
+  ConvergenceOptions convergence;
+  auto* conv_cmd = app.add_subcommand(
+      "convergence", "Re-run a scenario with its numerical steps divided and show whether its verdicts change "
+                     "(exit 0 converged, 3 not)");
+  conv_cmd->add_option("scenario", convergence.scenario, "Scenario file (TOML)")->required();
+  conv_cmd->add_option("--factor", convergence.factor, "Divide every exposed step by this (default 4)")
+      ->check(CLI::Range(1.5, 100.0));
+
   ModesOptions modes;
   auto* modes_cmd = app.add_subcommand("modes", "Natural frequencies and mode shapes of a rig or driveline scenario");
   modes_cmd->add_option("scenario", modes.scenario, "Scenario file (TOML, type = \"rig\" or \"driveline\")")->required();
@@ -187,6 +195,7 @@ int main(int argc, char** argv) {
   if (*run_cmd) return run_command(run);
   if (*val_cmd) return validate_command(validate);
   if (*modes_cmd) return modes_command(modes);
+  if (*conv_cmd) return convergence_command(convergence);
   if (*sweep_cmd && sweep.mpi) mpi::relaunch_with_mpi(argv);  // shudder-mpi (app/mpi_sweep.hpp)
   if (*sweep_cmd) return sweep_command(sweep);
   if (*screen_cmd) return screen_command(screen);

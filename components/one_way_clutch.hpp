@@ -24,12 +24,12 @@ class OneWayClutchLaw final : public dynamics::ContactLaw {
   static constexpr double kFreeCapacity_Nm = 1e-9;
 
   explicit OneWayClutchLaw(double drag_Nm = 0.0) : drag_Nm_(drag_Nm) {}
-  double kinetic_torque_Nm(double, double) const override { return drag_Nm_; }
-  double static_capacity_Nm(double, double) const override { return kLockedCapacity_Nm; }
-  double holding_capacity_Nm(double, double, double held_Nm) const override {
+  double kinetic_torque_Nm(double, double, const double*) const override { return drag_Nm_; }
+  double static_capacity_Nm(double, double, const double*) const override { return kLockedCapacity_Nm; }
+  double holding_capacity_Nm(double, double, double held_Nm, const double*) const override {
     return held_Nm >= 0.0 ? kLockedCapacity_Nm : kFreeCapacity_Nm;
   }
-  double kinetic_torque_slope_Nms(double, double) const override { return 0.0; }
+  double kinetic_torque_slope_Nms(double, double, const double*) const override { return 0.0; }
 
  private:
   double drag_Nm_;

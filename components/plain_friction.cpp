@@ -32,15 +32,15 @@ double PlainFrictionLaw::mu(double abs_slip_rad_s) const {
   return p_.mu[hi - 1] + w * (p_.mu[hi] - p_.mu[hi - 1]);
 }
 
-double PlainFrictionLaw::kinetic_torque_Nm(double abs_slip, double t) const {
+double PlainFrictionLaw::kinetic_torque_Nm(double abs_slip, double t, const double*) const {
   return mu(abs_slip) * p_.geometry_factor_m * normal_force_N(t);
 }
 
-double PlainFrictionLaw::static_capacity_Nm(double t, double) const {
+double PlainFrictionLaw::static_capacity_Nm(double t, double, const double*) const {
   return p_.peak_ratio * p_.mu.front() * p_.geometry_factor_m * normal_force_N(t);
 }
 
-double PlainFrictionLaw::kinetic_torque_slope_Nms(double abs_slip, double t) const {
+double PlainFrictionLaw::kinetic_torque_slope_Nms(double abs_slip, double t, const double*) const {
   const double n = units::rad_s_to_rpm(abs_slip);
   const auto& x = p_.slip_rpm;
   if (x.size() < 2 || n < x.front() || n >= x.back()) return 0.0;

@@ -34,9 +34,9 @@ class PlainFrictionLaw final : public dynamics::ContactLaw {
   /// Throws std::invalid_argument for an empty or unsorted table, μ <= 0, peak_ratio < 1, R <= 0
   /// or F_max < 0.
   PlainFrictionLaw(PlainFrictionParams p, Signal force_signal);
-  double kinetic_torque_Nm(double abs_slip_rad_s, double t_s) const override;
-  double static_capacity_Nm(double t_s, double stick_time_s) const override;
-  double kinetic_torque_slope_Nms(double abs_slip_rad_s, double t_s) const override;
+  double kinetic_torque_Nm(double abs_slip_rad_s, double t_s, const double* z) const override;
+  double static_capacity_Nm(double t_s, double stick_time_s, const double* z) const override;
+  double kinetic_torque_slope_Nms(double abs_slip_rad_s, double t_s, const double* z) const override;
   double normal_force_N(double t_s) const;
   double mu(double abs_slip_rad_s) const;
 

@@ -51,11 +51,13 @@ LinearSystem linearise_network(const TorsionalNetwork& net, const LinearOperatin
 
   // Slipping contacts: the friction slope as a damper.
   sys.contact_slope_Nms.assign(net.contacts().size(), 0.0);
+  const Eigen::VectorXd contact_z = op.contact_states.size() != 0 ? op.contact_states : net.initial_contact_states();
+  const std::vector<int> contact_z_at = net.contact_state_indices();
   for (std::size_t i = 0; i < net.contacts().size(); ++i) {
     if (stuck[i]) continue;
     const auto& ct = net.contacts()[i];
     const double slip = op.omega_rad_s[ct.a] - (ct.b == kGround ? 0.0 : op.omega_rad_s[ct.b]);
-    const double s = ct.law->kinetic_torque_slope_Nms(std::abs(slip), op.t_s);
+    const double s = ct.law->kinetic_torque_slope_Nms(std::abs(slip), op.t_s, contact_z.data() + contact_z_at[i]);
     if (!std::isfinite(s))
       throw std::invalid_argument("linearisation: friction slope of contact '" + ct.name + "' is not finite");
     sys.contact_slope_Nms[i] = s;
@@ -74,7 +76,9 @@ LinearSystem linearise_network(const TorsionalNetwork& net, const LinearOperatin
   const Eigen::MatrixXd cr = nb.transpose() * c * nb;
   const Eigen::LLT<Eigen::MatrixXd> llt(mr);
 
-  const int dim = 2 * r + m_states;
+  const int mc_states = static_cast<int>(contact_z.size());
+  sys.contact_states = mc_states;
+  const int dim = 2 * r + m_states + mc_states;
   sys.a = Eigen::MatrixXd::Zero(dim, dim);
   sys.a.block(0, r, r, r).setIdentity();
   sys.a.block(r, 0, r, r) = -llt.solve(kr);
@@ -119,6 +123,48 @@ LinearSystem linearise_network(const TorsionalNetwork& net, const LinearOperatin
       for (int s2 = 0; s2 < ns; ++s2) sys.a(2 * r + z_off + s, 2 * r + z_off + s2) += jac(1 + s, 2 + s2);
     }
     z_off += ns;
+  }
+  // Contact laws' internal states (an actuator's pressure and valve): z_c at their values in the
+  // operating point; ż_c = f(Δω, t, z_c) and, while slipping, the torque M(|Δω|, t, z_c) acting
+  // −s M on a and +s M on b (s the slip's sign). Central differences as for the force elements;
+  // a stuck contact's δΔω is 0 in the basis, so its states only decay on their own.
+  for (std::size_t ci = 0; ci < net.contacts().size(); ++ci) {
+    const auto& ct = net.contacts()[ci];
+    const int ns = ct.law->states();
+    if (ns == 0) continue;
+    const int row0 = 2 * r + m_states + contact_z_at[ci];
+    const double slip = stuck[ci] ? 0.0 : op.omega_rad_s[ct.a] - (ct.b == kGround ? 0.0 : op.omega_rad_s[ct.b]);
+    const double sign = slip >= 0 ? 1.0 : -1.0;
+    std::vector<double> z(contact_z.data() + contact_z_at[ci], contact_z.data() + contact_z_at[ci] + ns);
+    std::vector<double> dz_p(static_cast<std::size_t>(ns)), dz_m(static_cast<std::size_t>(ns));
+    const Eigen::RowVectorXd dslip_dv =
+        ct.b == kGround ? Eigen::RowVectorXd(nb.row(ct.a)) : Eigen::RowVectorXd(nb.row(ct.a) - nb.row(ct.b));
+    Eigen::VectorXd g = -nb.row(ct.a).transpose();
+    if (ct.b != kGround) g += nb.row(ct.b).transpose();
+    const Eigen::VectorXd minv_g = llt.solve(sign * g);
+    // With respect to the slip (only while slipping; stuck, δΔω = 0).
+    if (!stuck[ci]) {
+      const double h = fd_step(slip);
+      ct.law->state_rates(slip + h, op.t_s, z.data(), dz_p.data());
+      ct.law->state_rates(slip - h, op.t_s, z.data(), dz_m.data());
+      for (int s = 0; s < ns; ++s) sys.a.block(row0 + s, r, 1, r) += (dz_p[s] - dz_m[s]) / (2 * h) * dslip_dv;
+    }
+    // With respect to each state: the rates, and the torque while slipping.
+    for (int j = 0; j < ns; ++j) {
+      const double h = std::max(1e-9, 1e-6 * std::abs(z[static_cast<std::size_t>(j)]));
+      std::vector<double> z_p = z, z_m = z;
+      z_p[j] += h;
+      z_m[j] -= h;
+      ct.law->state_rates(slip, op.t_s, z_p.data(), dz_p.data());
+      ct.law->state_rates(slip, op.t_s, z_m.data(), dz_m.data());
+      for (int s = 0; s < ns; ++s) sys.a(row0 + s, row0 + j) += (dz_p[s] - dz_m[s]) / (2 * h);
+      if (!stuck[ci]) {
+        const double dm = (ct.law->kinetic_torque_Nm(std::abs(slip), op.t_s, z_p.data()) -
+                           ct.law->kinetic_torque_Nm(std::abs(slip), op.t_s, z_m.data())) /
+                          (2 * h);
+        sys.a.block(r, row0 + j, r, 1) += minv_g * dm;
+      }
+    }
   }
   if (!sys.a.allFinite()) throw std::invalid_argument("linearisation: the linear system is not finite");
 

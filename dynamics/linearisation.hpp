@@ -16,7 +16,10 @@
 //   force element e     T = T(ω_a, ρ ω_b, z), ż = g(ω_a, ρ ω_b, z); torque −T on a, +ρ T on b:
 //       δT = T_a δω_a + T_b ρ δω_b + T_z δz,   δż = g_a δω_a + g_b ρ δω_b + g_z δz
 //
-//   x = [δq (r); δv (r); δz (m)],  ẋ = A x:
+//   contact law c with internal states z_c (an actuator's pressure and valve, dynamics/contact_law.hpp):
+//       δż_c = f_Δω δΔω + f_z δz_c,  and while slipping δM_c = M_z δz_c beside its slope
+//
+//   x = [δq (r); δv (r); δz (m); δz_c (m_c)],  ẋ = A x:
 //     δq̇ = δv
 //     M_r δv̇ = −K_r δq − (C_r + Nᵀ(S + D_src)N) δv + Σ_e Nᵀ(−e_a + ρ e_b) δT_e
 //     δż = ...                                                   (M_r = NᵀMN, K_r = NᵀKN, ...)
@@ -42,16 +45,20 @@ struct LinearOperatingPoint {
   Eigen::VectorXd omega_rad_s;     // (n) node speeds
   Eigen::VectorXd element_states;  // (Σ states of the force elements, in element order; periodic forcings left out)
   std::vector<bool> stuck;         // (n_contacts) or empty = all slipping
+  /// Contact laws' internal states (Sample::contact_states' layout) at the operating point; they
+  /// are linearised with the motion. Empty: each law's start values.
+  Eigen::VectorXd contact_states;
   /// Extra node damping (n x n, may be empty), e.g. a thermal admittance's equivalent damper.
   Eigen::MatrixXd extra_damping;
 };
 
-/// ẋ = A x with x = [δq; δv; δz] (see the header).
+/// ẋ = A x with x = [δq; δv; δz; δz_c] (see the header).
 struct LinearSystem {
   Eigen::MatrixXd a;               // (2r + m) x (2r + m)
   Eigen::MatrixXd basis;           // N (n x r)
   int reduced_dofs = 0;            // r
   int element_states = 0;          // m
+  int contact_states = 0;          // m_c: the contact laws' internal states, after the elements' 
   int rigid_body_modes = 0;        // r − rank(K_r)
   std::vector<double> contact_slope_Nms;  // (n_contacts) s_k used (0 for stuck contacts)
   /// Node speeds (n) of an eigenvector of A (its δv part mapped through N).

@@ -221,4 +221,24 @@ Modes TorsionalNetwork::modes(const std::vector<bool>& stuck,
   return out;
 }
 
+std::vector<int> TorsionalNetwork::contact_state_indices() const {
+  std::vector<int> at;
+  int n = 0;
+  for (const auto& c : contacts_) {
+    at.push_back(n);
+    n += c.law->states();
+  }
+  return at;
+}
+
+Eigen::VectorXd TorsionalNetwork::initial_contact_states() const {
+  int n = 0;
+  for (const auto& c : contacts_) n += c.law->states();
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(n);
+  const auto at = contact_state_indices();
+  for (std::size_t c = 0; c < contacts_.size(); ++c)
+    if (contacts_[c].law->states() > 0) contacts_[c].law->initial_states(z.data() + at[c]);
+  return z;
+}
+
 }  // namespace shudder::dynamics

@@ -160,6 +160,11 @@ class TorsionalNetwork {
   /// Throws std::invalid_argument naming the element if a node index or parameter is invalid.
   void validate() const;
 
+  /// Every contact law's internal states at their start values, in contact order (the layout of
+  /// Sample::contact_states), and where contact c's start in it.
+  Eigen::VectorXd initial_contact_states() const;
+  std::vector<int> contact_state_indices() const;
+
  private:
   void check_node(int node, const std::string& what, bool ground_ok) const;
   std::vector<Inertia> inertias_;

@@ -53,6 +53,12 @@ Simulation::Simulation(const TorsionalNetwork& network, IntegratorSettings setti
     off += e.law->states();
   }
   element_states_ = off - element_offset_;
+  contact_offset_ = off;
+  for (const auto& c : net_.contacts()) {
+    contact_state_offset_.push_back(off);
+    off += c.law->states();
+  }
+  contact_states_ = off - contact_offset_;
   for (const auto& c : net_.contacts()) {
     channel_offset_.push_back(off);
     off += c.law->heat_channels();
@@ -194,7 +200,7 @@ void Simulation::compute(const State& x, double t, Forces& f) const {
     const auto& k = contacts[c];
     const double s = sign_of(modes_[c]);
     const double dw = om[k.a] - node_speed(k.b);
-    const double T = s * k.law->kinetic_torque_Nm(std::abs(dw), t);
+    const double T = s * k.law->kinetic_torque_Nm(std::abs(dw), t, x.data() + contact_state_offset_[c]);
     f.contact_T[c] = T;
     f.friction_P[c] = T * dw;  // exact work rate, also if a stage overshoots the reversal
     f.tau[k.a] -= T;
@@ -303,9 +309,16 @@ void Simulation::derivative(const State& x, State& dxdt, double t) const {
   const auto& contacts = net_.contacts();
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     dxdt[friction_offset_ + c] = f.friction_P[c];
+    const bool has_states = contacts[c].law->states() > 0;
+    if (!has_states && (modes_[c] == ContactMode::kStuck || contacts[c].law->heat_channels() == 0)) continue;
+    const double* z = x.data() + contact_state_offset_[c];
+    // Stuck: Δω is exactly 0 (a stuck group shares one speed), as the rates must see it.
+    const double dw = modes_[c] == ContactMode::kStuck
+                          ? 0.0
+                          : x[n_ + contacts[c].a] - (contacts[c].b == kGround ? 0.0 : x[n_ + contacts[c].b]);
+    if (has_states) contacts[c].law->state_rates(dw, t, z, &dxdt[contact_state_offset_[c]]);
     if (modes_[c] == ContactMode::kStuck || contacts[c].law->heat_channels() == 0) continue;
-    const double dw = x[n_ + contacts[c].a] - (contacts[c].b == kGround ? 0.0 : x[n_ + contacts[c].b]);
-    contacts[c].law->channel_heat_W(std::abs(dw), t, &dxdt[channel_offset_[c]]);
+    contacts[c].law->channel_heat_W(std::abs(dw), t, z, &dxdt[channel_offset_[c]]);
   }
   dxdt[source_offset_] = f.source_P;
   dxdt[damper_offset_] = f.damper_P;
@@ -314,7 +327,8 @@ void Simulation::derivative(const State& x, State& dxdt, double t) const {
 double Simulation::event_function(int c, const State& x, double t, const Forces& f) const {
   const auto& k = net_.contacts()[c];
   if (modes_[c] == ContactMode::kStuck)
-    return k.law->holding_capacity_Nm(t, stick_time(c, t), f.contact_T[c]) - std::abs(f.contact_T[c]);
+    return k.law->holding_capacity_Nm(t, stick_time(c, t), f.contact_T[c], x.data() + contact_state_offset_[c]) -
+           std::abs(f.contact_T[c]);
   const double dw = x[n_ + k.a] - (k.b == kGround ? 0.0 : x[n_ + k.b]);
   return sign_of(modes_[c]) * dw;
 }
@@ -400,8 +414,8 @@ void Simulation::resolve_contacts(State& x, double t, std::vector<int> sticking,
     double worst_ratio = 1.0 + 1e-12;
     for (std::size_t c = 0; c < modes_.size(); ++c) {
       if (modes_[c] != ContactMode::kStuck) continue;
-      const double cap =
-          net_.contacts()[c].law->holding_capacity_Nm(t, stick_time(static_cast<int>(c), t), f.contact_T[c]);
+      const double cap = net_.contacts()[c].law->holding_capacity_Nm(t, stick_time(static_cast<int>(c), t),
+                                                                      f.contact_T[c], x.data() + contact_state_offset_[c]);
       const double ratio = std::abs(f.contact_T[c]) / std::max(cap, 1e-300);
       if (ratio > worst_ratio) {
         worst_ratio = ratio;
@@ -428,6 +442,7 @@ void Simulation::initialize(double t0, const Eigen::VectorXd& theta, const Eigen
   }
   for (Eigen::Index m = 0; m < motor_integral.size() && m < static_cast<Eigen::Index>(net_.motors().size()); ++m)
     x_[motor_offset_ + m] = motor_integral[m];
+  for (std::size_t c = 0; c < net_.contacts().size(); ++c) net_.contacts()[c].law->initial_states(&x_[contact_state_offset_[c]]);
   t_ = t0;
   // Classify the contacts on the given speeds, then project those onto the gears and speed
   // sources (no contact stuck yet), then let the candidates stick (projecting again).
@@ -481,6 +496,7 @@ Sample Simulation::evaluate(const State& x, double t) const {
   s.contact_torque_Nm = f.contact_T;
   s.element_torque_Nm = f.element_T;
   s.element_states = Eigen::Map<const Eigen::VectorXd>(x.data() + element_offset_, element_states_);
+  s.contact_states = Eigen::Map<const Eigen::VectorXd>(x.data() + contact_offset_, contact_states_);
   s.contact_slip_rad_s.resize(static_cast<Eigen::Index>(net_.contacts().size()));
   for (std::size_t c = 0; c < net_.contacts().size(); ++c) {
     const auto& k = net_.contacts()[c];

@@ -19,7 +19,9 @@
 // group receive bitwise-identical accelerations, so their relative speed stays exactly zero.
 //
 // Force elements' internal states (e.g. a tyre's deflection) follow the motors' integrals; their
-// stored energy counts as elastic, their dissipation with the dampers'.
+// stored energy counts as elastic, their dissipation with the dampers'. Contact laws' internal
+// states (e.g. a coupling's hydraulic pressure, dynamics/contact_law.hpp) follow them; they are not
+// mechanical energy (the actuator's own power is outside the account, as a motor's electrics are).
 // Extra integrated states make coupling and energy exact: the heat of every contact channel
 // (e.g. clutch rings, handed to a thermal step), each contact's total friction work, the work
 // of all sources and the damper losses.
@@ -54,6 +56,7 @@ struct Sample {
   Eigen::VectorXd contact_slip_rad_s;       // (n_contacts) Δω = ω_a − ω_b
   Eigen::VectorXd element_torque_Nm;        // (n_force_elements) T of each force element
   Eigen::VectorXd element_states;           // (all force elements' states, in element order)
+  Eigen::VectorXd contact_states;           // (all contact laws' internal states, in contact order)
   std::vector<ContactMode> modes;
 };
 
@@ -106,6 +109,8 @@ class Simulation {
   EnergyAccount energy() const;
   const Counters& counters() const { return counters_; }
   const TorsionalNetwork& network() const { return net_; }
+  /// Where contact `c`'s internal states start in Sample::contact_states.
+  int contact_state_index(int c) const { return contact_state_offset_[static_cast<std::size_t>(c)] - contact_offset_; }
 
  private:
   using State = std::vector<double>;
@@ -154,6 +159,9 @@ class Simulation {
   std::vector<int> channel_offset_;
   std::vector<int> element_state_offset_;  // per force element, into the state
   int element_states_ = 0;                 // all force elements' states
+  int contact_offset_ = 0;                 // first contact-law state
+  std::vector<int> contact_state_offset_;  // per contact, into the state
+  int contact_states_ = 0;                 // all contact laws' states
   std::vector<ContactMode> modes_;
   std::vector<double> stick_start_s_;
   std::vector<double> impact_loss_J_;

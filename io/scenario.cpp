@@ -279,6 +279,7 @@ void read_driveline(TomlTable& root, Draft& s) {
       hp.leak_cm3_s_per_bar = h->number_or("leak_cm3_s_per_bar", hp.leak_cm3_s_per_bar, Range::non_negative());
       positive("oil_density_kg_m3", hp.oil_density_kg_m3);
       hp.preload_torque_Nm = h->number_or("preload_torque_Nm", hp.preload_torque_Nm, Range::non_negative());
+      hp.valve_time_constant_ms = h->number_or("valve_time_constant_ms", hp.valve_time_constant_ms, Range{0.0, 1e4, true, false});
       h->finish();
     }
     if (auto c = d->optional_table("controller")) {
@@ -291,6 +292,9 @@ void read_driveline(TomlTable& root, Draft& s) {
       cp.fast_speed_km_h = c->number_or("fast_speed_km_h", cp.fast_speed_km_h, Range::closed(0.0, 400.0));
       cp.top_speed_km_h = c->number_or("top_speed_km_h", cp.top_speed_km_h, Range{cp.fast_speed_km_h, 500.0, true, false});
       cp.fast_demand = c->number_or("fast_demand", cp.fast_demand, Range::closed(0.0, 1.0));
+      cp.control_period_ms = c->number_or("control_period_ms", cp.control_period_ms, Range{0.0, 1e3, true, false});
+      cp.speed_filter_time_constant_ms =
+          c->number_or("speed_filter_time_constant_ms", cp.speed_filter_time_constant_ms, Range::closed(0.0, 1e4));
       c->finish();
     }
     d->finish();

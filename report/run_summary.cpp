@@ -177,6 +177,12 @@ void print_section(std::ostream& os, const rig_models::RigModel& model, const dy
   os << line;
 }
 
+// A clamp force swinging by this fraction of its mean or more with an oscillation: the control
+// loop carries it. Friction-induced judder (tens of Hz) rides on a clamp force that the
+// hydraulics' millisecond-to-tens-of-milliseconds time constants keep within a few per cent;
+// the control loop's hunting swings it by half or more (docs/driveline.md).
+constexpr double kControlLoopSwing = 0.2;
+
 // The verdict block (rig_models/run_verdict.hpp) in three lines: what the run shows, the
 // operating point it was judged at, and what linear theory predicted there.
 void print_verdict(std::ostream& os, const char* label, const dynamics::Recording& rec) {
@@ -228,6 +234,22 @@ void print_verdict(std::ostream& os, const char* label, const dynamics::Recordin
   else
     std::snprintf(line, sizeof line, "Predicted there: %s\n", text("prediction").c_str());
   os << line;
+  // A coupling whose clamp force is a state (the driveline's hydraulics): whether the clamp
+  // force swings with the oscillation (rig_models/model.cpp, clamp_force_swing).
+  const double swing = value("clamp_force_swing");
+  if (std::isfinite(swing)) {
+    if (swing >= kControlLoopSwing)
+      std::snprintf(line, sizeof line,
+                    "Clamp force over the oscillation: +/-%.0f %%: the coupling's control loop carries it (valve and "
+                    "pressure hunting with the wheel slip), not friction-induced judder\n",
+                    100 * swing);
+    else
+      std::snprintf(line, sizeof line,
+                    "Clamp force over the oscillation: +/-%.0f %% (steady: the oscillation is the friction's, not the "
+                    "control loop's)\n",
+                    100 * swing);
+    os << line;
+  }
 }
 
 }  // namespace

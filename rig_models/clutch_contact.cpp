@@ -51,11 +51,15 @@ ClutchHeldInputs ClutchContact::start_inputs(PiecewiseLinear normal_force_N) con
           std::move(normal_force_N)};
 }
 
-void ClutchContact::update(ClutchContext& c, double abs_slip, double t) const {
-  if (c.frozen_valid_ && abs_slip == c.cached_slip_ && t == c.cached_t_) return;
-  const double force = c.held_.normal_force_N(t);
+void ClutchContact::update(ClutchContext& c, double abs_slip, double t, double force) const {
+  if (c.frozen_valid_ && abs_slip == c.cached_slip_ && t == c.cached_t_ && force == c.cached_force_) return;
   const double load = clutch_->friction_load_N(force);
-  if (!c.frozen_valid_ || std::abs(load - c.frozen_.load_N) > 1e-4 * std::abs(load)) {
+  // The law holds its values outside its data's loads: two loads on the same side beyond them
+  // give the same friction, so a clamp force moving there (a coupling's pressure below the
+  // data's 10 kN) needs no new freeze.
+  const auto [load_lo, load_hi] = clutch_->fluid().friction->load_range_N();
+  const auto held = [&](double l) { return std::clamp(l, load_lo, load_hi); };
+  if (!c.frozen_valid_ || std::abs(held(load) - held(c.frozen_.load_N)) > 1e-4 * std::abs(held(load))) {
     c.frozen_ = clutch_->freeze(c.held_.ring_temp_C, force);
     c.frozen_valid_ = true;
     c.frozen_end_valid_ = false;
@@ -74,19 +78,32 @@ void ClutchContact::update(ClutchContext& c, double abs_slip, double t) const {
   }
   c.cached_slip_ = abs_slip;
   c.cached_t_ = t;
+  c.cached_force_ = force;
+}
+
+double ClutchContact::drag_torque_at_force_Nm(double force_N) const {
+  return drag_.enabled ? drag_.equivalent_mu * force_N * drag_.radius_m : 0.0;
 }
 
 double ClutchContact::drag_torque_Nm(const ClutchContext& c, double t) const {
-  return drag_.enabled ? drag_.equivalent_mu * c.held_.normal_force_N(t) * drag_.radius_m : 0.0;
+  return drag_torque_at_force_Nm(c.held_.normal_force_N(t));
 }
 
 double ClutchContact::kinetic_torque_Nm(ClutchContext& c, double abs_slip, double t) const {
-  update(c, abs_slip, t);
-  return clutch_->params().sliding_interfaces * c.ring_torque_.sum() + drag_torque_Nm(c, t);
+  return kinetic_torque_at_force_Nm(c, abs_slip, t, c.held_.normal_force_N(t));
+}
+
+double ClutchContact::kinetic_torque_at_force_Nm(ClutchContext& c, double abs_slip, double t, double force) const {
+  update(c, abs_slip, t, force);
+  return clutch_->params().sliding_interfaces * c.ring_torque_.sum() + drag_torque_at_force_Nm(force);
 }
 
 double ClutchContact::static_capacity_Nm(const ClutchContext& c, double t, double stick_time) const {
-  const double force = c.held_.normal_force_N(t);
+  return static_capacity_at_force_Nm(c, t, stick_time, c.held_.normal_force_N(t));
+}
+
+double ClutchContact::static_capacity_at_force_Nm(const ClutchContext& c, double t, double stick_time,
+                                                  double force) const {
   const auto& p = clutch_->params();
   const auto& th = clutch_->thermal();
   // mu_s per ring at the held temperatures (the ratio to mu_k at the law's lowest speed), on a
@@ -103,19 +120,30 @@ double ClutchContact::static_capacity_Nm(const ClutchContext& c, double t, doubl
   if (c.ramp_) sum += c.ramp_weight(t) * (weighted_sum(c.ring_temp_end_C_) - sum);
   double growth = 1.0;
   if (stick_.enabled) growth += stick_.max_increase * (1.0 - std::exp(-stick_time / stick_.time_constant_s));
-  return p.sliding_interfaces * clutch_->pressure_Pa(force) * sum * growth + drag_torque_Nm(c, t);
+  return p.sliding_interfaces * clutch_->pressure_Pa(force) * sum * growth + drag_torque_at_force_Nm(force);
 }
 
 double ClutchContact::kinetic_torque_slope_Nms(ClutchContext& c, double abs_slip, double t) const {
+  return kinetic_torque_slope_at_force_Nms(c, abs_slip, t, c.held_.normal_force_N(t));
+}
+
+double ClutchContact::kinetic_torque_slope_at_force_Nms(ClutchContext& c, double abs_slip, double t,
+                                                        double force) const {
   // Central difference at constant (held) temperature; the step is far below the speed scale
   // of the friction curves (mm/s) yet far above round-off.
   const double h = std::max(1e-6, 1e-4 * abs_slip);
   const double lo = std::max(abs_slip - h, 0.0);
-  return (kinetic_torque_Nm(c, abs_slip + h, t) - kinetic_torque_Nm(c, lo, t)) / (abs_slip + h - lo);
+  return (kinetic_torque_at_force_Nm(c, abs_slip + h, t, force) - kinetic_torque_at_force_Nm(c, lo, t, force)) /
+         (abs_slip + h - lo);
 }
 
 void ClutchContact::channel_heat_W(ClutchContext& c, double abs_slip, double t, double* out) const {
-  update(c, abs_slip, t);
+  channel_heat_at_force_W(c, abs_slip, t, c.held_.normal_force_N(t), out);
+}
+
+void ClutchContact::channel_heat_at_force_W(ClutchContext& c, double abs_slip, double t, double force,
+                                            double* out) const {
+  update(c, abs_slip, t, force);
   for (Eigen::Index i = 0; i < c.ring_torque_.size(); ++i) out[i] = c.ring_torque_[i] * abs_slip;
 }
 

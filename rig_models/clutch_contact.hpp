@@ -74,7 +74,7 @@ class ClutchContext {
   // < 1e-6 over such a step).
   clutch::FrozenFriction frozen_;
   bool frozen_valid_ = false;
-  double cached_slip_ = -1.0, cached_t_ = 0.0;
+  double cached_slip_ = -1.0, cached_t_ = 0.0, cached_force_ = 0.0;
   Eigen::VectorXd ring_torque_;  // (n_r) per interface at the cached arguments
   // The ramp's far end (set_ring_temperature_ramp): temperatures, times, frozen friction there.
   bool ramp_ = false;
@@ -96,15 +96,25 @@ class ClutchContact {
   /// Held inputs with every ring at the clutch's start temperature.
   ClutchHeldInputs start_inputs(PiecewiseLinear normal_force_N) const;
 
+  // At the context's held clamp force F(t):
   double kinetic_torque_Nm(ClutchContext& c, double abs_slip_rad_s, double t_s) const;
   double static_capacity_Nm(const ClutchContext& c, double t_s, double stick_time_s) const;
   double kinetic_torque_slope_Nms(ClutchContext& c, double abs_slip_rad_s, double t_s) const;
   int heat_channels() const { return clutch_->thermal().radial_cells(); }
   void channel_heat_W(ClutchContext& c, double abs_slip_rad_s, double t_s, double* out) const;
   double drag_torque_Nm(const ClutchContext& c, double t_s) const;
+  // At a clamp force given by the caller (a force that is a state of the run, e.g. an actuator's
+  // pressure integrated with the motion); the ring temperatures still come from the context.
+  double kinetic_torque_at_force_Nm(ClutchContext& c, double abs_slip_rad_s, double t_s, double force_N) const;
+  double static_capacity_at_force_Nm(const ClutchContext& c, double t_s, double stick_time_s, double force_N) const;
+  double kinetic_torque_slope_at_force_Nms(ClutchContext& c, double abs_slip_rad_s, double t_s,
+                                           double force_N) const;
+  void channel_heat_at_force_W(ClutchContext& c, double abs_slip_rad_s, double t_s, double force_N,
+                               double* out) const;
+  double drag_torque_at_force_Nm(double force_N) const;
 
  private:
-  void update(ClutchContext& c, double abs_slip_rad_s, double t_s) const;
+  void update(ClutchContext& c, double abs_slip_rad_s, double t_s, double force_N) const;
   const clutch::WetClutch* clutch_;
   BearingDrag drag_;
   StickTimeFriction stick_;
@@ -117,17 +127,17 @@ class ClutchContactLaw final : public dynamics::ContactLaw {
   ClutchContactLaw(ClutchContact model, std::shared_ptr<ClutchContext> context)
       : model_(model), context_(std::move(context)) {}
 
-  double kinetic_torque_Nm(double abs_slip_rad_s, double t_s) const override {
+  double kinetic_torque_Nm(double abs_slip_rad_s, double t_s, const double* /*z*/) const override {
     return model_.kinetic_torque_Nm(*context_, abs_slip_rad_s, t_s);
   }
-  double static_capacity_Nm(double t_s, double stick_time_s) const override {
+  double static_capacity_Nm(double t_s, double stick_time_s, const double* /*z*/) const override {
     return model_.static_capacity_Nm(*context_, t_s, stick_time_s);
   }
-  double kinetic_torque_slope_Nms(double abs_slip_rad_s, double t_s) const override {
+  double kinetic_torque_slope_Nms(double abs_slip_rad_s, double t_s, const double* /*z*/) const override {
     return model_.kinetic_torque_slope_Nms(*context_, abs_slip_rad_s, t_s);
   }
   int heat_channels() const override { return model_.heat_channels(); }
-  void channel_heat_W(double abs_slip_rad_s, double t_s, double* out) const override {
+  void channel_heat_W(double abs_slip_rad_s, double t_s, const double* /*z*/, double* out) const override {
     model_.channel_heat_W(*context_, abs_slip_rad_s, t_s, out);
   }
   double drag_torque_Nm(double t_s) const { return model_.drag_torque_Nm(*context_, t_s); }

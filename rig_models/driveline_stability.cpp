@@ -90,13 +90,14 @@ DrivelineOperatingPoint quasi_static_operating_point(const HaldexDriveline& dl, 
     dynamics::Sample at;
     at.omega_rad_s = w;
     const double leak_scale = viscosity.kinematic_cSt(40.0) / viscosity.kinematic_cSt(op.interface_temp_C);
-    const double p_bar = std::min(dl.hydraulics().steady_pressure_bar(std::abs(op.coupling_slip_rad_s),
-                                                                      dl.valve_opening(at), leak_scale),
-                                  dl.valve_setting_bar(0.0));
+    const double p_bar = dl.hydraulics().steady_pressure_bar(std::abs(op.coupling_slip_rad_s), dl.valve_opening(at),
+                                                             leak_scale, dl.valve_setting_bar(0.0));
     op.clamp_force_N = std::isfinite(clamp_force_N) ? clamp_force_N : dl.hydraulics().clamp_force_N(p_bar);
     ctx->set_normal_force(PiecewiseLinear({0.0}, {op.clamp_force_N}));
+    const Eigen::VectorXd z = dl.coupling_states(op.clamp_force_N, dl.valve_opening(at));
     const double m_c = std::copysign(
-        net.contacts()[D::kCoupling].law->kinetic_torque_Nm(std::abs(op.coupling_slip_rad_s), 0.0), op.coupling_slip_rad_s);
+        net.contacts()[D::kCoupling].law->kinetic_torque_Nm(std::abs(op.coupling_slip_rad_s), 0.0, z.data()),
+        op.coupling_slip_rad_s);
     const double t_engine = dl.engine_torque_Nm(0.0, w[D::kEngine]);
     // The car accelerating as one body: J_eq ω̇_v = engine and grade power − coupling loss − road load.
     const double road_N = dl.road_load().force_N(op.vehicle_speed_m_s);
@@ -211,6 +212,23 @@ dynamics::LinearSystem linearise_driveline(const HaldexDriveline& dl, const clut
   for (int w = 0; w < 4; ++w) lop.element_states[w] = tyre_deflection_m(dl.tyre(w), op.tyre_force_N[static_cast<std::size_t>(w)]);
   lop.stuck = {coupling_locked};
   lop.extra_damping = extra_damping;
+  {
+    // The coupling's pressure and valve: at the clamp force's pressure, except where that is the
+    // cap itself (a raw setting, or the relief) while the slip pumps: there the pump's flow
+    // passes the relief valve, and the pressure sits on its active side, at the steady pressure.
+    dynamics::Sample at;
+    at.omega_rad_s = lop.omega_rad_s;
+    const double opening = dl.valve_opening(at);
+    lop.contact_states = dl.coupling_states(op.clamp_force_N, opening);
+    double& p_bar = lop.contact_states[HaldexCouplingLaw::kPressure];
+    const double cap_bar = std::min(dl.valve_setting_bar(op.t_s), dl.params().hydraulics.relief_pressure_bar);
+    if (!coupling_locked && std::abs(p_bar - cap_bar) <= 1e-9 * cap_bar) {
+      const clutch::WaltherViscosity viscosity(clutch.fluid().nu40_cSt, clutch.fluid().nu100_cSt);
+      const double leak_scale = viscosity.kinematic_cSt(40.0) / viscosity.kinematic_cSt(op.interface_temp_C);
+      p_bar = std::max(p_bar, dl.hydraulics().steady_pressure_bar(std::abs(op.coupling_slip_rad_s), opening,
+                                                                  leak_scale, dl.valve_setting_bar(op.t_s)));
+    }
+  }
   if (node_names)
     for (const auto& in : net.inertias()) node_names->push_back(in.name);
   return dynamics::linearise_network(net, lop);
@@ -257,15 +275,16 @@ ThermalFeedback coupling_thermal_feedback(const HaldexDriveline& dl, const clutc
   const dynamics::TorsionalNetwork net = dl.network(ctx);
   const auto& law = *net.contacts()[D::kCoupling].law;
   const double slip = std::abs(op.coupling_slip_rad_s);
+  const Eigen::VectorXd z = dl.coupling_states(op.clamp_force_N, 1.0);
   const auto torque_at = [&](double temp_C) {
     ctx->set_ring_temperatures(Eigen::VectorXd::Constant(n_rings, temp_C));
-    return law.kinetic_torque_Nm(slip, op.t_s);
+    return law.kinetic_torque_Nm(slip, op.t_s, z.data());
   };
   ThermalFeedback fb;
   fb.frequency_Hz = frequency_Hz;
   fb.torque_temperature_slope_Nm_per_K = torque_at(op.interface_temp_C + 0.5) - torque_at(op.interface_temp_C - 0.5);
   fb.coupling_torque_Nm = torque_at(op.interface_temp_C);
-  fb.isothermal_slope_Nms = law.kinetic_torque_slope_Nms(slip, op.t_s);
+  fb.isothermal_slope_Nms = law.kinetic_torque_slope_Nms(slip, op.t_s, z.data());
   fb.impedance_m2K_per_W = clutch::interface_thermal_impedance(clutch.thermal().params(), units::kTwoPi * frequency_Hz);
   const double n = clutch.params().sliding_interfaces, area = clutch.thermal().contact_area_m2();
   const std::complex<double> gz = fb.torque_temperature_slope_Nm_per_K / n * fb.impedance_m2K_per_W / area;

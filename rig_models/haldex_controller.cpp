@@ -24,6 +24,9 @@ HaldexController::HaldexController(const HaldexControllerParams& p) : p_(p) {
               p.top_speed_km_h > p.fast_speed_km_h,
           "top_speed_km_h must exceed fast_speed_km_h (both >= 0)");
   require(std::isfinite(p.fast_demand) && p.fast_demand >= 0 && p.fast_demand <= 1, "fast_demand must be in [0, 1]");
+  require(std::isfinite(p.control_period_ms) && p.control_period_ms > 0, "control_period_ms must be a finite value > 0");
+  require(std::isfinite(p.speed_filter_time_constant_ms) && p.speed_filter_time_constant_ms >= 0,
+          "speed_filter_time_constant_ms must be a finite value >= 0");
 }
 
 double HaldexController::excess_slip_rpm(const ControllerReading& r) const {

@@ -16,6 +16,13 @@
 //                 (less pressure at speed: "at high speeds a much lower pressure", awdwiki)
 //   opening       u = 1 − d
 //
+// Sampling (what a control unit has, not the model's exact speeds): the unit acts every control
+// period T_c on the wheel speeds the ABS unit sends over the CAN bus. A toothed-wheel sensor
+// counts pulses, so each reading is the MEAN speed over the period just ended (the angle turned
+// over T_c), which no oscillation faster than 1/T_c can alias into a step; the unit then low-passes
+// it (SampledSpeedSignal, a first-order filter τ_f), and holds its valve command until the next
+// instant. The valve itself follows the command with its own lag (haldex_hydraulics.hpp).
+//
 // Every threshold is an ESTIMATE (the unit's calibration is not public), named and overridable.
 // The pedal is the throttle of the engine map, or, with a raw torque schedule, the torque over
 // the full-load torque at the engine's speed.
@@ -30,6 +37,31 @@ struct HaldexControllerParams {
   double fast_speed_km_h = 80.0;      // v_fast0: demand starts to be limited (estimate)
   double top_speed_km_h = 160.0;      // v_fast1: limit reached (estimate)
   double fast_demand = 0.3;           // d_fast: the largest demand at and above v_fast1 (estimate)
+  double control_period_ms = 10.0;    // T_c (estimate: wheel-speed messages on the CAN bus every 10–20 ms)
+  double speed_filter_time_constant_ms = 20.0;  // τ_f (estimate: a few wheel-speed messages)
+};
+
+/// One speed as the control unit sees it: the mean over each control period from the angle
+/// turned, then y_k = y_{k−1} + α (x_k − y_{k−1}), α = T/(τ_f + T) (backward Euler of
+/// τ_f dy/dt = x − y, unconditionally stable whatever T/τ_f).
+class SampledSpeedSignal {
+ public:
+  /// Starts at a steady speed `speed_rad_s` with the shaft at `angle_rad`.
+  void start(double angle_rad, double speed_rad_s) {
+    angle_rad_ = angle_rad;
+    filtered_rad_s_ = speed_rad_s;
+  }
+  /// The reading at the end of a period of `period_s` (> 0) with the shaft at `angle_rad`.
+  double update(double angle_rad, double period_s, double time_constant_s) {
+    const double mean = (angle_rad - angle_rad_) / period_s;
+    angle_rad_ = angle_rad;
+    filtered_rad_s_ += period_s / (time_constant_s + period_s) * (mean - filtered_rad_s_);
+    return filtered_rad_s_;
+  }
+  double value_rad_s() const { return filtered_rad_s_; }
+
+ private:
+  double angle_rad_ = 0.0, filtered_rad_s_ = 0.0;
 };
 
 struct ControllerReading {

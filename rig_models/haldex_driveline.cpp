@@ -116,15 +116,35 @@ HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::We
   grade_torque_Nm_ = -weight_N * std::sin(theta) * r;
 
   // Builds the network once to validate it; runs build their own around their context.
-  build(std::make_shared<ClutchContactLaw>(contact_, std::make_shared<ClutchContext>(start_inputs())));
+  network();
+}
+
+HaldexCommand HaldexDriveline::start_command() const {
+  HaldexCommand c;
+  c.setting_bar = p_.hydraulics.relief_pressure_bar;
+  c.setting_schedule_bar = valve_pressure_bar_;
+  if (valve_pressure_bar_) c.opening = 0.0;
+  return c;
+}
+
+Eigen::VectorXd HaldexDriveline::coupling_states(double clamp_force_N, double opening) const {
+  Eigen::VectorXd z(2);
+  z[HaldexCouplingLaw::kPressure] = hydraulics_.pressure_for_force_bar(clamp_force_N);
+  z[HaldexCouplingLaw::kOpening] = opening;
+  return z;
 }
 
 ClutchHeldInputs HaldexDriveline::start_inputs() const {
   return contact_.start_inputs(PiecewiseLinear({0.0}, {hydraulics_.clamp_force_N(0.0)}));
 }
 
+dynamics::TorsionalNetwork HaldexDriveline::network(std::shared_ptr<ClutchContext> coupling_context,
+                                                    std::shared_ptr<HaldexCommand> command) const {
+  return build(std::make_shared<HaldexCouplingLaw>(contact_, std::move(coupling_context), hydraulics_, std::move(command)));
+}
+
 dynamics::TorsionalNetwork HaldexDriveline::network(std::shared_ptr<ClutchContext> coupling_context) const {
-  return build(std::make_shared<ClutchContactLaw>(contact_, std::move(coupling_context)));
+  return network(std::move(coupling_context), std::make_shared<HaldexCommand>(start_command()));
 }
 
 dynamics::TorsionalNetwork HaldexDriveline::network() const {
@@ -207,16 +227,28 @@ double HaldexDriveline::pedal(double t) const {
   return peak > 0 ? std::clamp(engine_torque_Nm_(t) / peak, 0.0, 1.0) : 0.0;
 }
 
-double HaldexDriveline::valve_opening(const dynamics::Sample& s) const {
-  if (valve_opening_) return (*valve_opening_)(s.t_s);
-  if (valve_pressure_bar_) return 0.0;  // a raw pressure setting: shut below it
+ControllerReading HaldexDriveline::reading(double t, double front_rad_s, double rear_rad_s) const {
+  const Eigen::VectorXd rolling = rolling_speed_ratios();
   ControllerReading r;
-  r.vehicle_speed_km_h = s.omega_rad_s[kVehicle] * p_.wheel_radius_m * 3.6;
-  r.front_axle_rpm = units::rad_s_to_rpm(s.omega_rad_s[kFrontDiff]);
-  r.rear_axle_rpm = units::rad_s_to_rpm(s.omega_rad_s[kRearDiff]);
+  // Each axle's speed over its path ratio is the car's as that axle sees it; the slower one
+  // slips least in traction.
+  const double vehicle_rad_s = std::min(front_rad_s / rolling[kFrontDiff], rear_rad_s / rolling[kRearDiff]);
+  r.vehicle_speed_km_h = vehicle_rad_s * p_.wheel_radius_m * 3.6;
+  r.front_axle_rpm = units::rad_s_to_rpm(front_rad_s);
+  r.rear_axle_rpm = units::rad_s_to_rpm(rear_rad_s);
   r.turn_axle_ratio = turn_axle_ratio_;
-  r.pedal = pedal(s.t_s);
-  return controller_.valve_opening(r);
+  r.pedal = pedal(t);
+  return r;
+}
+
+double HaldexDriveline::commanded_opening(double t, double front_rad_s, double rear_rad_s) const {
+  if (valve_opening_) return (*valve_opening_)(t);
+  if (valve_pressure_bar_) return 0.0;  // a raw pressure setting: shut below it
+  return controller_.valve_opening(reading(t, front_rad_s, rear_rad_s));
+}
+
+double HaldexDriveline::valve_opening(const dynamics::Sample& s) const {
+  return commanded_opening(s.t_s, s.omega_rad_s[kFrontDiff], s.omega_rad_s[kRearDiff]);
 }
 
 double HaldexDriveline::valve_setting_bar(double t) const {
@@ -265,11 +297,28 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
   clutch::ThermalState ts = clutch.initial_state();
   const auto coupling_context = std::make_shared<ClutchContext>(dl.start_inputs());
   coupling_context->set_ring_temperatures(th.interface_temps_C(ts));
-  const dynamics::TorsionalNetwork network = dl.network(coupling_context);
+  // Laminar leakage scales with 1/ν of the coupling's oil (its sump temperature), Walther's law.
+  const clutch::WaltherViscosity viscosity(clutch.fluid().nu40_cSt, clutch.fluid().nu100_cSt);
+  const double nu40_cSt = viscosity.kinematic_cSt(40.0);
+  const auto command = std::make_shared<HaldexCommand>(dl.start_command());
+  command->leak_scale = nu40_cSt / viscosity.kinematic_cSt(ts.sump_temp_C);
+  // The control unit's speed signals start steady at the rolling speeds, and its first command
+  // is set from them before the network takes the valve's start opening from it.
+  const double w_vehicle = inputs.start_speed_km_h / 3.6 / params.wheel_radius_m;
+  const Eigen::VectorXd w_start = dl.rolling_speed_ratios() * w_vehicle;
+  SampledSpeedSignal front_axle, rear_axle;
+  front_axle.start(0.0, w_start[D::kFrontDiff]);
+  rear_axle.start(0.0, w_start[D::kRearDiff]);
+  command->opening = dl.commanded_opening(0.0, front_axle.value_rad_s(), rear_axle.value_rad_s());
+  const dynamics::TorsionalNetwork network = dl.network(coupling_context, command);
 
   dynamics::Simulation sim(network, params.integrator);
-  const double w_vehicle = inputs.start_speed_km_h / 3.6 / params.wheel_radius_m;
-  sim.initialize(0.0, Eigen::VectorXd::Zero(D::kNodes), dl.rolling_speed_ratios() * w_vehicle, Eigen::VectorXd());
+  sim.initialize(0.0, Eigen::VectorXd::Zero(D::kNodes), w_start, Eigen::VectorXd());
+  const int z_coupling = sim.contact_state_index(D::kCoupling);
+  const auto pressure_bar = [z_coupling](const dynamics::Sample& s) {
+    return s.contact_states[z_coupling + HaldexCouplingLaw::kPressure];
+  };
+  const auto clamp_force_N = [&](const dynamics::Sample& s) { return dl.hydraulics().clamp_force_N(pressure_bar(s)); };
 
   // Channels: mechanical ones and the held pressure at every sample, the coupling's interface
   // temperatures from the thermal state, interpolated across each slow step.
@@ -277,11 +326,6 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
   using Recorder = ChannelRecorder<dynamics::Sample, clutch::ThermalState>;
   using dynamics::Sample;
   using clutch::ThermalState;
-  double pressure_bar = 0.0;
-  double opening = dl.valve_opening(sim.sample());
-  // Laminar leakage scales with 1/ν of the coupling's oil (its sump temperature), Walther's law.
-  const clutch::WaltherViscosity viscosity(clutch.fluid().nu40_cSt, clutch.fluid().nu100_cSt);
-  const double nu40_cSt = viscosity.kinematic_cSt(40.0);
   dynamics::Recording rec;
   Recorder recorder(rec, {
       Recorder::sampled(sn::kTime, "s", [](const Sample& s) { return s.t_s; }),
@@ -311,10 +355,12 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
                         [](const Sample& s) {
                           return static_cast<double>(s.modes[D::kCoupling] == dynamics::ContactMode::kStuck);
                         }),
-      Recorder::sampled(sn::kPressure, "bar", [&](const Sample&) { return pressure_bar; }),
-      Recorder::sampled(sn::kValveOpening, "1", [&](const Sample&) { return opening; }),
-      Recorder::sampled(sn::kClampForce, "N",
-                        [&](const Sample&) { return dl.hydraulics().clamp_force_N(pressure_bar); }),
+      Recorder::sampled(sn::kPressure, "bar", pressure_bar),
+      Recorder::sampled(sn::kValveOpening, "1",
+                        [z_coupling](const Sample& s) {
+                          return s.contact_states[z_coupling + HaldexCouplingLaw::kOpening];
+                        }),
+      Recorder::sampled(sn::kClampForce, "N", clamp_force_N),
       Recorder::sampled(sn::kWheelSpeedFL, "rpm", [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kFrontLeftWheel]); }),
       Recorder::sampled(sn::kWheelSpeedFR, "rpm", [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kFrontRightWheel]); }),
       Recorder::sampled(sn::kWheelSpeedRL, "rpm", [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kRearLeftWheel]); }),
@@ -345,28 +391,33 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
   recorder.start(ts);
   double peak_C = th.interface_temps_C(ts).maxCoeff();
   clutch::FrictionDataRange data_range(*clutch.fluid().friction);
-  run_multirate(sim, *coupling_context, clutch, ts, D::kCoupling, cfg.duration_s, cfg.slow_step_s, cfg.sample_rate_Hz,
-                [&](const dynamics::Sample& s) {
-                  watch_stall(s);
-                  recorder.sample(s);
-                },
-                [&](const SlowStep& step) {
-                  // The pump strokes with the relative rotation; |Δθ| over the step is its
-                  // integral of |Δω| unless the slip reversed within the step.
-                  const auto twist = [](const dynamics::Sample& s) {
-                    return s.theta_rad[D::kCouplingIn] - s.theta_rad[D::kCouplingOut];
-                  };
-                  pressure_bar = dl.hydraulics().step_pressure_bar(
-                      pressure_bar, std::abs(twist(step.after) - twist(step.before)), step.tb_s - step.ta_s, opening,
-                      dl.valve_setting_bar(step.tb_s), nu40_cSt / viscosity.kinematic_cSt(ts.sump_temp_C));
-                  // The control unit reads the wheel speeds at the end of the step and sets the
-                  // valve for the next (a 10 ms control period).
-                  opening = dl.valve_opening(step.after);
-                  coupling_context->set_normal_force(PiecewiseLinear({0.0}, {dl.hydraulics().clamp_force_N(pressure_bar)}));
-                  peak_C = std::max(peak_C, th.interface_temps_C(ts).maxCoeff());
-                  recorder.step(ts, step.ta_s, step.tb_s);
-                },
-                &data_range);
+  // The control unit's instants: every control period, independent of the thermal step.
+  const double control_period_s = 1e-3 * params.controller.control_period_ms;
+  std::vector<double> control_times_s;
+  for (long k = 1; static_cast<double>(k) * control_period_s < cfg.duration_s - 1e-12; ++k)
+    control_times_s.push_back(static_cast<double>(k) * control_period_s);
+  const double filter_s = 1e-3 * params.controller.speed_filter_time_constant_ms;
+  run_multirate(
+      sim, {MultirateClutch{coupling_context.get(), &clutch, &ts, D::kCoupling, &data_range, clamp_force_N}},
+      cfg.duration_s, cfg.slow_step_s, cfg.sample_rate_Hz,
+      [&](const dynamics::Sample& s) {
+        watch_stall(s);
+        recorder.sample(s);
+      },
+      [&](const SlowStep& step) {
+        command->leak_scale = nu40_cSt / viscosity.kinematic_cSt(ts.sump_temp_C);
+        peak_C = std::max(peak_C, th.interface_temps_C(ts).maxCoeff());
+        recorder.step(ts, step.ta_s, step.tb_s);
+      },
+      control_times_s,
+      [&](double t) {
+        // The unit reads each axle's mean speed over the period just ended, filters it and sets
+        // the valve command it holds until the next instant.
+        const dynamics::Sample s = sim.sample();
+        const double front = front_axle.update(s.theta_rad[D::kFrontDiff], control_period_s, filter_s);
+        const double rear = rear_axle.update(s.theta_rad[D::kRearDiff], control_period_s, filter_s);
+        command->opening = dl.commanded_opening(t, front, rear);
+      });
   rec.blocks.push_back(friction_range_block(data_range));
 
   const double n_if = clutch.params().sliding_interfaces;

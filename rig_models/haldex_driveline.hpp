@@ -20,13 +20,14 @@
 //     path winds the driveline up through the tyres' slip: the tight-turn case. (A legacy
 //     `turn_ratio` ρ puts both front wheels on ρ and both rear on 1.)
 //   Vertical loads: static, F_z = m g cos θ × the axle's share / 2 (no load transfer yet).
-//   the coupling: the wet clutch of clutch/ (WetClutch as a ClutchContactLaw) clamped by
-//     F = F_preload + A p from HaldexHydraulics (a Gen I coupling: pump ∝ |Δω|, throttle valve on
-//     the return, relief valve, oil and pack compliance), p advanced per slow step with the
-//     coupling's relative rotation and held over the next (as the disc temperatures are); the
-//     valve's opening from HaldexController (rig_models/haldex_controller.hpp) at every slow step,
-//     or a raw schedule. The pack's own oil (volume, cooling flow) replaces the rig's sump and
-//     forced flow: apply_pack_oil().
+//   the coupling: the wet clutch of clutch/ clamped by F = F_preload + A p from HaldexHydraulics
+//     (a Gen I coupling: pump ∝ |Δω|, throttle valve on the return, relief valve, oil and pack
+//     compliance), one contact law with the pressure and the valve's opening as its states,
+//     integrated with the motion (rig_models/haldex_coupling_law.hpp); the valve commanded by
+//     HaldexController every control period from sampled, filtered axle speeds
+//     (rig_models/haldex_controller.hpp), or by a raw schedule. The thermal step sets only the
+//     disc temperatures' update. The pack's own oil (volume, cooling flow) replaces the rig's sump
+//     and forced flow: apply_pack_oil().
 //
 // Parameters are not in the thesis: every default below is an ESTIMATE for a mid-size AWD car of
 // the thesis' era (1.7 t, 1st gear; wheelbase and track of a VW Golf IV 4motion, the first
@@ -46,6 +47,7 @@
 #include "rig_models/engine.hpp"
 #include "rig_models/engine_pulsation.hpp"
 #include "rig_models/haldex_controller.hpp"
+#include "rig_models/haldex_coupling_law.hpp"
 #include "rig_models/haldex_hydraulics.hpp"
 #include "rig_models/tyre.hpp"
 
@@ -110,12 +112,13 @@ struct DrivelineInputs {
 
 struct DrivelineSettings {
   double duration_s = 5.0;
-  double slow_step_s = 0.01;      // thermal and hydraulic step
+  double slow_step_s = 0.01;      // thermal step (the hydraulics are integrated with the motion)
   double sample_rate_Hz = 1000.0;
 };
 
-/// A const model: the coupling's held inputs (ring temperatures, clamp force) live in a
-/// ClutchContext owned by the run, to which the network's coupling law is bound.
+/// A const model: the coupling's held inputs (ring temperatures; the valve command, pressure
+/// setting and leakage scale) live in a ClutchContext and a HaldexCommand owned by the run, to
+/// which the network's coupling law is bound.
 class HaldexDriveline {
  public:
   /// Throws std::invalid_argument for invalid parameters.
@@ -123,14 +126,27 @@ class HaldexDriveline {
 
   /// Every ring at the clutch's start temperature, the clamp force of the unpressurised pump.
   ClutchHeldInputs start_inputs() const;
-  /// The network with the coupling's law bound to `coupling_context` (the run's held inputs).
+  /// The command at the start: the valve open, the raw pressure setting if one is given.
+  HaldexCommand start_command() const;
+  /// The network with the coupling's law bound to the run's held inputs.
+  dynamics::TorsionalNetwork network(std::shared_ptr<ClutchContext> coupling_context,
+                                     std::shared_ptr<HaldexCommand> command) const;
+  /// The same with a fresh start_command() (its states then set by the caller, e.g. for modes).
   dynamics::TorsionalNetwork network(std::shared_ptr<ClutchContext> coupling_context) const;
   /// The network bound to a fresh context at start_inputs() (for inspection and modes).
   dynamics::TorsionalNetwork network() const;
+  /// The coupling law's states [p, u] for a clamp force and valve opening (operating points).
+  Eigen::VectorXd coupling_states(double clamp_force_N, double opening) const;
   const HaldexHydraulics& hydraulics() const { return hydraulics_; }
   const HaldexController& controller() const { return controller_; }
-  /// The throttle valve's opening at time t for the axle speeds of `s` (the controller's, or the
-  /// raw schedule's), and the pressure setting (the relief pressure unless a raw one is given).
+  /// What the control unit reads at time t from the (sampled, filtered) axle speeds: the vehicle
+  /// speed it estimates from the slower axle (as an ABS reference speed does), the turn, the pedal.
+  ControllerReading reading(double t_s, double front_axle_rad_s, double rear_axle_rad_s) const;
+  /// The valve opening commanded at time t for those axle speeds (the controller's, or the raw
+  /// schedule's; shut under a raw pressure setting).
+  double commanded_opening(double t_s, double front_axle_rad_s, double rear_axle_rad_s) const;
+  /// The same at a steady state (the axles' instantaneous speeds), and the pressure setting (the
+  /// relief pressure unless a raw one is given).
   double valve_opening(const dynamics::Sample& s) const;
   double valve_setting_bar(double t_s) const;
   /// The accelerator pedal the controller reads: the throttle, or the raw torque over the

@@ -11,7 +11,6 @@ namespace shudder::rig_models {
 namespace {
 
 constexpr double kPaPerBar = 1e5;
-constexpr double kMaxSubstep_s = 5e-4;  // backward Euler: 0.5 ms against the chamber's ≥ 50 ms time constants
 
 void require_positive(double v, const char* what) {
   if (!std::isfinite(v) || !(v > 0))
@@ -21,13 +20,6 @@ void require_positive(double v, const char* what) {
 void require_non_negative(double v, const char* what) {
   if (!std::isfinite(v) || v < 0)
     throw std::invalid_argument(std::string("Haldex hydraulics: ") + what + " must be a finite value >= 0");
-}
-
-// The positive root s of a s² + b s − c = 0 (a > 0, b >= 0, c >= 0), in the form that keeps
-// its precision when b² >> a c.
-double positive_root(double a, double b, double c) {
-  const double d = b + std::sqrt(b * b + 4.0 * a * c);
-  return d > 0 ? 2.0 * c / d : 0.0;
 }
 
 }  // namespace
@@ -44,6 +36,7 @@ HaldexHydraulics::HaldexHydraulics(const HaldexHydraulicsParams& p, double pack_
   require_non_negative(p.leak_cm3_s_per_bar, "leak_cm3_s_per_bar");
   require_positive(p.oil_density_kg_m3, "oil_density_kg_m3");
   require_non_negative(p.preload_torque_Nm, "preload_torque_Nm");
+  require_positive(p.valve_time_constant_ms, "valve_time_constant_ms");
   require_positive(pack_torque_per_newton_m, "the pack's torque per newton (n mu r_eff)");
   area_m2_ = p.piston_area_cm2 * 1e-4;
   preload_N_ = p.preload_torque_Nm / pack_torque_per_newton_m;
@@ -54,38 +47,44 @@ HaldexHydraulics::HaldexHydraulics(const HaldexHydraulicsParams& p, double pack_
   valve_k_ = p.discharge_coefficient * p.valve_area_mm2 * 1e-6 * std::sqrt(2.0 / p.oil_density_kg_m3);
 }
 
-double HaldexHydraulics::step_pressure_bar(double pressure_bar, double rotation_rad, double step_s, double opening,
-                                           double setting_bar, double leak_scale) const {
+double HaldexHydraulics::pressure_rate_bar_s(double pressure_bar, double abs_slip_rad_s, double opening,
+                                             double setting_bar, double leak_scale) const {
   const double cap_Pa = std::clamp(setting_bar, 0.0, p_.relief_pressure_bar) * kPaPerBar;
-  double p_Pa = std::clamp(pressure_bar * kPaPerBar, 0.0, cap_Pa);
-  if (!(step_s > 0)) return p_Pa / kPaPerBar;
-  const double flow_m3_s = displacement_m3_per_rad_ * std::abs(rotation_rad) / step_s;
+  const double p_Pa = pressure_bar * kPaPerBar;
+  const double lam_Pa = kLaminarPressure_bar * kPaPerBar;
   const double valve = valve_k_ * std::clamp(opening, 0.0, 1.0);
-  const double leak = leak_m3_s_per_Pa_ * std::max(leak_scale, 0.0);
-  const int n = static_cast<int>(std::ceil(step_s / kMaxSubstep_s - 1e-9));
-  const double h = step_s / n;
-  for (int k = 0; k < n; ++k) {
-    // C (p1 − p0)/h = Q − valve √p1 − leak p1, a quadratic in s = √p1; the caps (relief valve
-    // and setting) pass whatever would exceed them.
-    const double a = compliance_m3_per_Pa_ / h + leak;
-    const double s = positive_root(a, valve, compliance_m3_per_Pa_ / h * p_Pa + flow_m3_s);
-    p_Pa = std::min(s * s, cap_Pa);
-  }
-  return p_Pa / kPaPerBar;
+  // Below p_lam the orifice is linear through zero, so a small overshoot below 0 flows back.
+  const double valve_flow = p_Pa >= lam_Pa ? valve * std::sqrt(p_Pa) : valve * p_Pa / std::sqrt(lam_Pa);
+  const double flow_in = displacement_m3_per_rad_ * std::abs(abs_slip_rad_s);
+  double rate_Pa_s =
+      (flow_in - valve_flow - leak_m3_s_per_Pa_ * std::max(leak_scale, 0.0) * p_Pa) / compliance_m3_per_Pa_;
+  // The relief valve opens in proportion to the pressure above its setting (its pressure
+  // override): Q_r = (C/τ_r)(p − p_cap)⁺. Continuous in p, unlike an ideal cap, whose switch
+  // an explicit integrator can only resolve by ever shorter steps.
+  rate_Pa_s -= std::max(p_Pa - cap_Pa, 0.0) / kReliefTime_s;
+  return rate_Pa_s / kPaPerBar;
 }
 
-double HaldexHydraulics::steady_pressure_bar(double slip_rad_s, double opening, double leak_scale) const {
-  const double flow_m3_s = displacement_m3_per_rad_ * std::abs(slip_rad_s);
-  const double valve = valve_k_ * std::clamp(opening, 0.0, 1.0);
-  const double leak = leak_m3_s_per_Pa_ * std::max(leak_scale, 0.0);
-  if (valve == 0.0 && leak == 0.0) return flow_m3_s > 0 ? p_.relief_pressure_bar : 0.0;
-  // G s² + valve s − Q = 0 with s = √p.
-  const double s = leak > 0 ? positive_root(leak, valve, flow_m3_s) : flow_m3_s / valve;
-  return std::min(s * s / kPaPerBar, p_.relief_pressure_bar);
+double HaldexHydraulics::steady_pressure_bar(double slip_rad_s, double opening, double leak_scale,
+                                             double setting_bar) const {
+  // The rate falls strictly with p (every outflow grows with it) and is >= 0 at p = 0: bisect
+  // between 0 and a pressure where the relief valve alone passes the whole pump flow.
+  const auto rate = [&](double p) { return pressure_rate_bar_s(p, slip_rad_s, opening, setting_bar, leak_scale); };
+  if (rate(0.0) <= 0.0) return 0.0;
+  const double cap_bar = std::clamp(setting_bar, 0.0, p_.relief_pressure_bar);
+  double lo = 0.0, hi = cap_bar + displacement_m3_per_rad_ * std::abs(slip_rad_s) * kReliefTime_s /
+                                      compliance_m3_per_Pa_ / kPaPerBar + 1e-9;
+  while (rate(hi) > 0.0) hi *= 2.0;
+  for (int i = 0; i < 200 && hi - lo > 1e-15 * hi; ++i) (rate(0.5 * (lo + hi)) > 0.0 ? lo : hi) = 0.5 * (lo + hi);
+  return 0.5 * (lo + hi);
 }
 
 double HaldexHydraulics::clamp_force_N(double pressure_bar) const {
-  return preload_N_ + area_m2_ * 1e5 * std::max(pressure_bar, 0.0);
+  return preload_N_ + area_m2_ * kPaPerBar * std::max(pressure_bar, 0.0);
+}
+
+double HaldexHydraulics::pressure_for_force_bar(double force_N) const {
+  return std::max(force_N - preload_N_, 0.0) / (area_m2_ * kPaPerBar);
 }
 
 }  // namespace shudder::rig_models

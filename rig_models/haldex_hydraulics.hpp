@@ -17,15 +17,29 @@
 //
 // The pressure chamber behind the clutch piston (one lumped volume):
 //
-//   C dp/dt = D |Δω| − C_d u a_max √(2 p/ρ) − G(T) p,     0 <= p <= min(p_relief, p_set)
+//   C dp/dt = D |Δω| − Q_v(p, u) − G(T) p − Q_r(p),     p_cap = min(p_relief, p_set)
+//   Q_v = C_d u a_max √(2 p/ρ)          p >= p_lam   (turbulent, the sharp-edged orifice)
+//   Q_v = C_d u a_max √(2/ρ) p/√p_lam   p <  p_lam   (laminar: linear through zero)
+//   τ_v du/dt = u_cmd − u                (the valve follows the control unit's command)
 //   C = V/β + A²/k_pack                                     (oil and pack compliance)
 //   F_clamp = F_preload + A p
 //
 //   D        pump displacement per radian of relative rotation of the coupling's halves [P1]
-//   u        throttle-valve opening 0..1 from the controller [S1]; a_max its full flow area;
-//            the sharp-edged orifice equation with discharge coefficient C_d
+//   u        throttle-valve opening 0..1 [S1]; a_max its full flow area; the sharp-edged orifice
+//            equation with discharge coefficient C_d. Below p_lam = 0.01 bar the flow turns
+//            laminar (the transition every hydraulic library puts at a critical pressure or
+//            Reynolds number): without it √p has an infinite slope at p = 0, which an explicit
+//            integrator meets as a stiff, non-Lipschitz right-hand side.
+//   u_cmd    the opening the control unit commands (rig_models/haldex_controller.hpp); the Gen I
+//            unit turns the regulating valve with a servomotor [S1], so the valve lags the
+//            command with τ_v (estimate, valve_time_constant_ms)
 //   G(T)     laminar leakage (piston seals, check valves), G_40 ν(40 °C)/ν(T) (laminar flow ∝ 1/ν)
-//   p_relief the pressure-limiting valve [S1, P2]: ideal, it passes whatever would exceed it
+//   p_relief the pressure-limiting valve [S1, P2]: it opens in proportion to the pressure above
+//            its setting, Q_r = (C/τ_r)(p − p_cap)⁺ with τ_r = 1 ms (estimate: a poppet valve's
+//            response), so the pressure overrides the setting by Q τ_r / C (0.07 bar at
+//            10 rad/s of slip with the defaults) and falls to a lowered setting within
+//            milliseconds; a rate continuous in p, which an explicit integrator steps over at
+//            full step size (an ideal cap's switch it can only resolve with ever shorter steps)
 //   p_set    an optional raw pressure setting (scenario key valve_pressure_bar), an ideal cap
 //   V, β     chamber volume and effective bulk modulus of the oil (air and housing included)
 //   A        piston area; k_pack the pack's axial stiffness: the piston's travel as the pressure
@@ -35,11 +49,11 @@
 // quarter turn of the WHEEL ([W1]): the coupling turns i_r = 2.6 times the rear wheel, so the pump
 // sweeps D i_r π/2 = C p_relief (test). Units: SI inside; bar, cm³, mm² at the interface.
 //
-// Multi-rate (DESIGN.md): the pressure changes over tens of milliseconds, like the disc
-// temperatures, so it is advanced once per slow step with the step's relative rotation (a
-// constant pumping rate over the step) and held over the next. Within the step: backward Euler
-// in sub-steps of at most 0.5 ms, each solved in closed form (a quadratic in √p), so the orifice's
-// infinite slope at p = 0 cannot make it oscillate.
+// Integration: p and u are states of the coupling's contact law (rig_models/haldex_coupling_law.hpp),
+// integrated with the torsional states, so the clamp force follows the slip that pumps it within
+// every integrator step. Holding p over a thermal step instead made the force a staircase that
+// set the driveline's verdicts (they changed with the thermal step). Time scales: C/(dQ_v/dp)
+// ≈ 2 ms at p_lam up to ≈ 35 ms at 1 bar with the valve open, against the integrator's ≤ 1 ms steps.
 
 namespace shudder::rig_models {
 
@@ -55,6 +69,7 @@ struct HaldexHydraulicsParams {
   double leak_cm3_s_per_bar = 0.005;            // estimate at 40 °C: holds the pressure ~10 s with the valve shut
   double oil_density_kg_m3 = 870.0;             // mineral ATF/Haldex oil
   double preload_torque_Nm = 0.0;               // Gen I has no preload spring [W1]; later generations ~80 N m
+  double valve_time_constant_ms = 50.0;         // estimate: a servomotor-driven regulating valve [S1], ~0.1–0.2 s end to end
 };
 
 class HaldexHydraulics {
@@ -64,16 +79,22 @@ class HaldexHydraulics {
   /// Throws std::invalid_argument for non-positive or non-finite parameters.
   HaldexHydraulics(const HaldexHydraulicsParams& params, double pack_torque_per_newton_m);
 
-  /// Pressure after a slow step of `step_s` in which the coupling's halves turned by
-  /// `rotation_rad` relative to each other (the integral of |Δω|), the throttle valve open by
-  /// `opening` (0–1), the pressure capped at `setting_bar` (≥ relief: no cap but the relief
-  /// valve), the leakage scaled by `leak_scale` (ν(40 °C)/ν(T) of the oil).
-  double step_pressure_bar(double pressure_bar, double rotation_rad, double step_s, double opening,
-                           double setting_bar, double leak_scale = 1.0) const;
-  /// The steady pressure at a constant |Δω| and valve opening (no leakage change), below the caps:
-  /// the root of D|Δω| = C_d u a_max √(2p/ρ) + G p.
-  double steady_pressure_bar(double slip_rad_s, double opening, double leak_scale = 1.0) const;
+  /// dp/dt in bar/s at pressure `pressure_bar`, slip |Δω| `abs_slip_rad_s`, the throttle valve
+  /// open by `opening` (0–1), the pressure capped at `setting_bar` (≥ relief: no cap but the
+  /// relief valve), the leakage scaled by `leak_scale` (ν(40 °C)/ν(T) of the oil).
+  double pressure_rate_bar_s(double pressure_bar, double abs_slip_rad_s, double opening, double setting_bar,
+                             double leak_scale = 1.0) const;
+  /// The steady pressure at a constant |Δω| and valve opening: where pressure_rate_bar_s vanishes
+  /// (D|Δω| = Q_v(p, u) + G p + Q_r(p)), with the cap `setting_bar` (≥ relief: the relief valve).
+  double steady_pressure_bar(double slip_rad_s, double opening, double leak_scale = 1.0,
+                             double setting_bar = 1e9) const;
   double clamp_force_N(double pressure_bar) const;
+  /// The pressure that gives a clamp force (0 below the preload), bar.
+  double pressure_for_force_bar(double force_N) const;
+  /// The laminar–turbulent transition pressure of the valve, bar.
+  static constexpr double kLaminarPressure_bar = 0.01;
+  /// The relief valve's time constant τ_r (its flow (C/τ_r)(p − p_cap)⁺), s.
+  static constexpr double kReliefTime_s = 1e-3;
   double piston_area_m2() const { return area_m2_; }
   double preload_force_N() const { return preload_N_; }
   /// D: pump delivery per radian of relative rotation, m³/rad.

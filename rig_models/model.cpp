@@ -6,6 +6,12 @@
 #include "rig_models/rig_names.hpp"
 #include "rig_models/run_verdict.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "dynamics/signal_names.hpp"
+
 namespace shudder::rig_models {
 
 namespace {
@@ -13,6 +19,27 @@ namespace {
 // A refusal that names the kind, as the user wrote it in `type`: "\"driveline\" <rest>".
 [[noreturn]] void refuse_quoting_kind(ModelKind k, const char* rest) {
   throw KindNotSupported(std::string("\"").append(model_kind_name(k)).append(rest));
+}
+
+// How far the coupling's clamp force swings over the judged oscillating window: RMS about its
+// mean times √2 (the amplitude of a sine) over the mean. A friction-induced judder rides on a
+// steady clamp force; an oscillation that the control loop carries (the valve and pressure
+// hunting with the wheel slip) swings the clamp force with it. NaN without such a window.
+double clamp_force_swing(const dynamics::Recording& rec, double from_s, double to_s) {
+  const auto* t = rec.find(dynamics::signal_names::kTime);
+  const auto* f = rec.find(dynamics::signal_names::kClampForce);
+  if (!t || !f || !(to_s > from_s)) return std::numeric_limits<double>::quiet_NaN();
+  double n = 0, sum = 0, sum2 = 0;
+  for (std::size_t i = 0; i < t->values.size(); ++i)
+    if (t->values[i] >= from_s && t->values[i] <= to_s) {
+      n += 1;
+      sum += f->values[i];
+      sum2 += f->values[i] * f->values[i];
+    }
+  if (n < 2) return std::numeric_limits<double>::quiet_NaN();
+  const double mean = sum / n;
+  const double rms = std::sqrt(std::max(sum2 / n - mean * mean, 0.0));
+  return mean > 0 ? std::sqrt(2.0) * rms / mean : std::numeric_limits<double>::quiet_NaN();
 }
 
 constexpr const char* kNoNetwork = "\" has no torsional network; modes needs type = \"rig\" or \"driveline\"";
@@ -140,12 +167,27 @@ dynamics::Recording simulate(const DrivelineModel& model, const clutch::WetClutc
 std::vector<std::string> add_run_analysis(const DrivelineModel& model, const clutch::WetClutch& clutch,
                                           double start_temp_C, dynamics::Recording& rec) {
   add_verdict(rec, [&](const OperatingWindow& w) { return predict_driveline(model.params, clutch, model.manoeuvre, rec, w); });
-  // Coupling stability maps about the manoeuvre's quasi-static point (12 x 9 x 3 cells, ~0.25 ms
-  // each): slip 1–60 rpm, the start
-  // temperature −20 … +80 °C, at half, once and twice that point's clamp force.
+  // The clamp force's swing over an oscillation (docs/run_output.md, `clamp_force_swing`).
+  double window_force_N = std::numeric_limits<double>::quiet_NaN();
+  for (auto& b : rec.blocks) {
+    if (b.name != kVerdictBlock) continue;
+    const auto* from = b.find_scalar("window_from_s");
+    const auto* to = b.find_scalar("window_to_s");
+    const auto* force = b.find_scalar("normal_force_N");
+    if (force) window_force_N = force->value;
+    const auto* verdict = b.find_text("verdict");
+    const bool oscillates = verdict && (verdict->value == "vibration" || verdict->value == "stick_slip");
+    b.scalars.push_back({"clamp_force_swing", "1",
+                         oscillates && from && to ? clamp_force_swing(rec, from->value, to->value)
+                                                  : std::numeric_limits<double>::quiet_NaN()});
+  }
+  // Coupling stability maps (12 x 9 x 3 cells, ~0.25 ms each): slip 1–60 rpm, the start
+  // temperature −20 … +80 °C, at half, once and twice the run's own clamp force (its mean over
+  // the judged window; the manoeuvre's quasi-static point's when the run has none).
   try {
     const HaldexDriveline dl(model.params, clutch, model.manoeuvre);
-    const DrivelineOperatingPoint op = quasi_static_operating_point(dl, clutch, model.manoeuvre);
+    DrivelineOperatingPoint op = quasi_static_operating_point(dl, clutch, model.manoeuvre);
+    if (std::isfinite(window_force_N) && window_force_N > 0) op.clamp_force_N = window_force_N;
     std::vector<double> slips, temps;
     for (int i = 0; i < 12; ++i) slips.push_back(1.0 + 59.0 * i / 11.0);
     for (int j = 0; j < 9; ++j) temps.push_back(start_temp_C - 20.0 + 12.5 * j);

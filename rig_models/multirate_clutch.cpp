@@ -24,7 +24,7 @@ void run_multirate(dynamics::Simulation& sim, const std::vector<MultirateClutch>
                    double slow_step_s, double sample_rate_Hz,
                    const std::function<void(const dynamics::Sample&)>& on_sample,
                    const std::function<void(const SlowStep&)>& after_step,
-                   const std::vector<double>& breaks_s) {
+                   const std::vector<double>& breaks_s, const std::function<void(double t_s)>& at_break) {
   std::vector<double> sample_times;
   const long n_samples = static_cast<long>(std::floor(duration_s * sample_rate_Hz + 1e-9));
   for (long k = 1; k <= n_samples; ++k) sample_times.push_back(static_cast<double>(k) / sample_rate_Hz);
@@ -66,8 +66,15 @@ void run_multirate(dynamics::Simulation& sim, const std::vector<MultirateClutch>
     const double ta = sim.time_s();
     const double tb = step_end(k);
     const auto sa = sim.sample();
-    for (auto br = std::upper_bound(breaks_s.begin(), breaks_s.end(), ta); br != breaks_s.end() && *br < tb; ++br) {
+    bool break_at_end = false;
+    for (auto br = std::upper_bound(breaks_s.begin(), breaks_s.end(), ta); br != breaks_s.end() && *br <= tb + snap_s;
+         ++br) {
+      if (*br >= tb - snap_s) {
+        break_at_end = true;
+        break;
+      }
       sim.advance(*br, sample_times, on_sample);
+      if (at_break) at_break(*br);
       sim.restart();
     }
     sim.advance(tb, sample_times, on_sample);
@@ -85,7 +92,8 @@ void run_multirate(dynamics::Simulation& sim, const std::vector<MultirateClutch>
       const double mean_slip = (twist(sb) - twist(sa)) / dt;
       if (s.in.data_range)  // the inputs the friction was evaluated at over this step (mid-step temperatures)
         s.in.data_range->add(dt, mean_slip, s.th.ring_radius_m(), 0.5 * (s.seen_C + s.seen_end_C),
-                             s.in.context->held().normal_force_N(0.5 * (ta + tb)));
+                             s.in.clamp_force_N ? 0.5 * (s.in.clamp_force_N(sa) + s.in.clamp_force_N(sb))
+                                                : s.in.context->held().normal_force_N(0.5 * (ta + tb)));
       s.th.step(ts, s.workspace, dt, (s.heat_now - s.heat_before) / dt, mean_slip);
       ts.time_s = tb;
       s.heat_before = s.heat_now;
@@ -106,6 +114,7 @@ void run_multirate(dynamics::Simulation& sim, const std::vector<MultirateClutch>
       }
       s.last_C = s.now_C;
     }
+    if (break_at_end && at_break) at_break(tb);
     after_step(SlowStep{ta, tb, sa, sb});
     sim.restart();
   }

@@ -59,6 +59,9 @@ struct MultirateClutch {
   clutch::ThermalState* state = nullptr;
   int contact = -1;
   clutch::FrictionDataRange* data_range = nullptr;
+  /// The clamp force at a sample, for the data tally, when it is a state of the run (an
+  /// actuator's pressure) rather than the context's held force; the step's mean of its ends.
+  std::function<double(const dynamics::Sample&)> clamp_force_N = nullptr;
 };
 
 /// The coupling above for any number of wet clutches (none: the network alone, stepped and
@@ -66,11 +69,15 @@ struct MultirateClutch {
 /// the heat its own contact accumulated, and its own first-order hold. `breaks_s` are times where
 /// an input jumps (a step in a source or a force): the stepper stops and restarts there, so no
 /// step straddles the jump (dopri5's error control would otherwise meet it as a kink).
+/// `at_break` (if given) is called at each break, the simulation there, before the restart: a
+/// sampled controller sets its held output for the next period (breaks within round-off of a
+/// slow step's end are taken at that end, after its thermal update and before `after_step`).
 void run_multirate(dynamics::Simulation& sim, const std::vector<MultirateClutch>& clutches, double duration_s,
                    double slow_step_s, double sample_rate_Hz,
                    const std::function<void(const dynamics::Sample&)>& on_sample,
                    const std::function<void(const SlowStep&)>& after_step,
-                   const std::vector<double>& breaks_s = {});
+                   const std::vector<double>& breaks_s = {},
+                   const std::function<void(double t_s)>& at_break = nullptr);
 
 /// Runs `sim` from its current time to `duration_s`; `on_sample` gets every sample at
 /// `sample_rate_Hz` (k / rate, k >= 1), `after_step` each completed slow step after the thermal

@@ -15,7 +15,7 @@ namespace shudder::rig_models {
 
 namespace {
 
-constexpr int kCouplingStepsPerHold = 10;
+constexpr int kCouplingStepsPerStep = 10;
 
 // Mean of `x` over consecutive windows of `window_s`, at the windows' mean times.
 PiecewiseLinear window_means(const std::vector<double>& t, const std::vector<double>& x, double t0,
@@ -40,32 +40,16 @@ PiecewiseLinear window_means(const std::vector<double>& t, const std::vector<dou
   return {times, values};
 }
 
-// Mean of `x` over the windows (t0 + k w, t0 + (k+1) w], held over each window: the clamp force
-// of a coupling, which its hydraulic step w holds between updates (the sample at a step's end
-// still carries the old force, hence the window closed on the right). Empty windows are
-// bridged linearly. A continuous force is followed within half its change over w.
-PiecewiseLinear window_holds(const std::vector<double>& t, const std::vector<double>& x, double t0, double w) {
+// `x` at its own sample times (relative to t0), joined linearly: a measured signal that is
+// continuous and sampled finely enough for its motion (a coupling's clamp force and slip, which the
+// driveline integrates with the motion and records at 1 kHz). Repeated times keep the first.
+PiecewiseLinear samples_as_measured(const std::vector<double>& t, const std::vector<double>& x, double t0) {
   std::vector<double> times, values;
-  // The hold ends eps after its window and the next starts 2 eps after: a steep edge, strictly
-  // increasing times, and a step end that the thermal steps' summed times reach a few ulps late
-  // still reads the old force, as the driveline's sample there does.
-  const double eps = 1e-3 * w;
-  // A sample's window by one expression, for the first sample and its followers alike: a second
-  // test (t <= window end + tolerance) rounded differently at the edge, so that a time such as
-  // 0.030000000010000003 s (w = 10 ms) fell in no window and the loop never moved on.
-  const auto window_of = [&](double ti) { return std::ceil((ti - t0) / w - 1e-9) - 1.0; };
-  for (std::size_t b = 0; b < t.size();) {
-    const double k = window_of(t[b]);
-    std::size_t e = b;
-    double sx = 0;
-    for (; e < t.size() && window_of(t[e]) == k; ++e) sx += x[e];
-    const double mean = sx / static_cast<double>(e - b);
-    times.push_back(k * w + 2.0 * eps);
-    values.push_back(mean);
-    times.push_back((k + 1.0) * w + eps);
-    values.push_back(mean);
-    b = e;
-  }
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (times.empty() || t[i] - t0 > times.back()) {
+      times.push_back(t[i] - t0);
+      values.push_back(x[i]);
+    }
   return {times, values};
 }
 
@@ -129,21 +113,23 @@ ReplayOutput replay(const ReplayModel& model, const ReplayInputs& in) {
   const clutch::WetClutch clutch(cp, model.fluid);
 
   DriveCycle cycle;
-  // A coupling's clamp force moves in steps of its hydraulic step (rig_models/haldex_driveline.hpp),
-  // which the replay holds as the driveline does; 0.05 s windows joined linearly would smear the
-  // take-up's step over 50 ms and every later step into a saw-tooth.
-  const double window_s = model.kind == ModelKind::kDriveline ? model.settings.thermal_step_s : in.input_window_s;
+  // A coupling's slip and clamp force are continuous (its hydraulics are integrated with the
+  // motion, rig_models/haldex_driveline.hpp) and recorded finely: imposed as measured. A rig's
+  // inputs are averaged over windows of `input_window_s` against the sensors' noise.
+  const bool coupling = model.kind == ModelKind::kDriveline;
+  const double window_s = in.input_window_s;
   // On the rig the measured speed is the drive's; its loop's set point is what drives the model.
   const bool setpoint = model.kind == ModelKind::kRig && in.torque_Nm.size() == t.size();
   RigParams rp = model.rig_params;
   rp.bearing_drag = model.settings.bearing_drag;
-  cycle.slip_speed_rpm = window_means(
-      t, setpoint ? estimate_speed_setpoint(t, in.speed_rpm, in.torque_Nm, rp) : in.speed_rpm, t0, window_s);
+  cycle.slip_speed_rpm =
+      coupling ? samples_as_measured(t, in.speed_rpm, t0)
+               : window_means(t, setpoint ? estimate_speed_setpoint(t, in.speed_rpm, in.torque_Nm, rp) : in.speed_rpm,
+                              t0, window_s);
   // A load cell reading g_F too much: the clutch was pressed with F_rec / g_F.
   std::vector<double> force_N = in.normal_force_N;
   for (auto& f : force_N) f = model.settings.load_cell.true_N(f);
-  cycle.normal_force_N =
-      model.kind == ModelKind::kDriveline ? window_holds(t, force_N, t0, window_s) : window_means(t, force_N, t0, window_s);
+  cycle.normal_force_N = coupling ? samples_as_measured(t, force_N, t0) : window_means(t, force_N, t0, window_s);
 
   dynamics::Recording rec;
   const double duration = t.back() - t0;
@@ -156,9 +142,9 @@ ReplayOutput replay(const ReplayModel& model, const ReplayInputs& in) {
   } else {
     PrescribedSlipSettings ps = model.settings;
     ps.duration_s = duration;
-    // Prescribed slip records its step ends and interpolates between them; a coupling's held
-    // force steps every thermal step, so ten steps per hold put the recorded torque on the steps.
-    if (model.kind == ModelKind::kDriveline) ps.thermal_step_s = model.settings.thermal_step_s / kCouplingStepsPerHold;
+    // Prescribed slip records its step ends and interpolates between them: a tenth of the
+    // coupling's thermal step puts them within a millisecond of every measured sample.
+    if (coupling) ps.thermal_step_s = model.settings.thermal_step_s / kCouplingStepsPerStep;
     ps.snapshot_times_s.clear();
     rec = run_prescribed_slip(clutch, cycle, ps);
   }

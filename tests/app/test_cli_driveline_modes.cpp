@@ -13,7 +13,8 @@ using ::testing::HasSubstr;
 // The shipped tight turn with fluid C: a rising friction curve, so every mode is damped. Its raw
 // valve setting (30 bar, the valve shut below it) lets the pump build the full setting at any
 // slip in the steady state, so the operating point's clamp force is A p = 60 cm² × 30 bar =
-// 18000 N (Gen I: no preload), and the tyres carry the wound-up torque (≈5.4 kN each).
+// 18000 N (Gen I: no preload) plus the relief valve's override at that slip, D|Δω| τ_r/C ≈
+// 0.007 bar (4 N), and the tyres carry the wound-up torque (≈5.4 kN each).
 TEST(CliDrivelineModes, TightTurnReportsSlippingAndLockedModesByComponent) {
   const auto dir = scratch_dir("dl_modes");
   const auto r = run_cli("modes '" + source_path("scenarios/driveline_tight_turn.toml") + "'", dir);
@@ -22,7 +23,7 @@ TEST(CliDrivelineModes, TightTurnReportsSlippingAndLockedModesByComponent) {
   EXPECT_THAT(r.out, HasSubstr("Coupling slipping:"));
   EXPECT_THAT(r.out, HasSubstr("Coupling locked:"));
   EXPECT_THAT(r.out, HasSubstr("wheel_rl"));
-  EXPECT_THAT(r.out, HasSubstr("clamp force 18000 N"));
+  EXPECT_THAT(r.out, HasSubstr("clamp force 18004 N"));
   EXPECT_THAT(r.out, HasSubstr("stable"));
   EXPECT_THAT(r.out, ::testing::Not(HasSubstr("UNSTABLE")));
 }

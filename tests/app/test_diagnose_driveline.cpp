@@ -117,11 +117,10 @@ TEST(DiagnoseDriveline, CandidatesAreTheEffectsThatActOnTheCoupling) {
 
 // The replay through the pack alone reproduces the driveline's coupling. Noise-free, its torque
 // within 0.02 N m RMS of 0–280 N m: what separates the two is the replay's 1 ms thermal steps
-// against the driveline's 10 ms (thermocouple 0.004 °C apart, torque 0.004 N m measured; 5× room).
-// The bound catches a sample at a hydraulic step's end taken after the step's update, i.e. on
-// the next clamp force: the driveline's summed step times once did that from ~2 s on, one sample
-// in ten 0.85 N m off (0.16 N m RMS); a hold one step late gave a 0.3 N m bias on every sample.
-// Its thermocouple within 0.05 °C.
+// against the driveline's 10 ms and the linear join of the 1 kHz samples. The bound catches an
+// input imposed out of time: the clamp force averaged and held per 10 ms window (as the replay
+// did while the driveline held its pressure per thermal step) is 0.42 N m off on every sample of
+// this ramp. Its thermocouple within 0.05 °C.
 TEST(DiagnoseDriveline, ReplayOfTheCouplingReproducesItsTorqueAndTemperature) {
   const auto run = measured_run("clean", "", "");
   const auto model = io::replay_model(io::load_scenario_text(coupling_scenario(), "car.toml"));

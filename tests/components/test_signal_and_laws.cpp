@@ -75,20 +75,20 @@ TEST(PlainFriction, TorqueCapacityAndSlopeFromTheTable) {
   EXPECT_DOUBLE_EQ(law.normal_force_N(0.25), 0.0);
   EXPECT_DOUBLE_EQ(law.normal_force_N(1.5), 1000.0);
   const double w50 = units::rpm_to_rad_s(50.0);
-  EXPECT_NEAR(law.kinetic_torque_Nm(w50, 1.5), 0.125 * 0.2 * 1000.0, 1e-12);
-  EXPECT_NEAR(law.kinetic_torque_Nm(units::rpm_to_rad_s(500.0), 1.5), 0.10 * 200.0, 1e-12);  // held beyond
-  EXPECT_NEAR(law.static_capacity_Nm(1.5, 0.0), 1.2 * 0.15 * 200.0, 1e-12);
-  EXPECT_NEAR(law.kinetic_torque_slope_Nms(w50, 1.5), -0.05 / units::rpm_to_rad_s(100.0) * 200.0, 1e-12);
-  EXPECT_DOUBLE_EQ(law.kinetic_torque_Nm(w50, 0.25), 0.0);
+  EXPECT_NEAR(law.kinetic_torque_Nm(w50, 1.5, nullptr), 0.125 * 0.2 * 1000.0, 1e-12);
+  EXPECT_NEAR(law.kinetic_torque_Nm(units::rpm_to_rad_s(500.0), 1.5, nullptr), 0.10 * 200.0, 1e-12);  // held beyond
+  EXPECT_NEAR(law.static_capacity_Nm(1.5, 0.0, nullptr), 1.2 * 0.15 * 200.0, 1e-12);
+  EXPECT_NEAR(law.kinetic_torque_slope_Nms(w50, 1.5, nullptr), -0.05 / units::rpm_to_rad_s(100.0) * 200.0, 1e-12);
+  EXPECT_DOUBLE_EQ(law.kinetic_torque_Nm(w50, 0.25, nullptr), 0.0);
   p.mu = {0.15, -0.1};
   EXPECT_THROW(PlainFrictionLaw(p, Signal::constant(1.0)), std::invalid_argument);
 }
 
 TEST(OneWayClutch, HoldsOneDirectionOnly) {
   const OneWayClutchLaw law(0.5);
-  EXPECT_GE(law.holding_capacity_Nm(0.0, 0.0, 1e6), 1e12);  // driving: any torque
-  EXPECT_LT(law.holding_capacity_Nm(0.0, 0.0, -1e-6), 1e-6);  // reversed: releases
-  EXPECT_DOUBLE_EQ(law.kinetic_torque_Nm(10.0, 0.0), 0.5);   // overrunning drag
+  EXPECT_GE(law.holding_capacity_Nm(0.0, 0.0, 1e6, nullptr), 1e12);  // driving: any torque
+  EXPECT_LT(law.holding_capacity_Nm(0.0, 0.0, -1e-6, nullptr), 1e-6);  // reversed: releases
+  EXPECT_DOUBLE_EQ(law.kinetic_torque_Nm(10.0, 0.0, nullptr), 0.5);   // overrunning drag
 }
 
 // Lash: no torque inside the gap; beyond it k d + c w, never pulling; P_diss >= 0 and

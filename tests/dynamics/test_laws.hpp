@@ -17,9 +17,9 @@ class CoulombLaw : public ContactLaw {
                                double mu_kinetic) {
     return {faces * radius_m * force_N * mu_kinetic, faces * radius_m * force_N * mu_static};
   }
-  double kinetic_torque_Nm(double, double) const override { return kinetic_; }
-  double static_capacity_Nm(double, double) const override { return static_; }
-  double kinetic_torque_slope_Nms(double, double) const override { return 0.0; }
+  double kinetic_torque_Nm(double, double, const double*) const override { return kinetic_; }
+  double static_capacity_Nm(double, double, const double*) const override { return static_; }
+  double kinetic_torque_slope_Nms(double, double, const double*) const override { return 0.0; }
 
  private:
   double kinetic_, static_;
@@ -30,11 +30,11 @@ class AgeingCoulombLaw : public ContactLaw {
  public:
   AgeingCoulombLaw(double kinetic_Nm, double static_Nm, double growth_Nm_per_s)
       : kinetic_(kinetic_Nm), static_(static_Nm), growth_(growth_Nm_per_s) {}
-  double kinetic_torque_Nm(double, double) const override { return kinetic_; }
-  double static_capacity_Nm(double, double stick_time_s) const override {
+  double kinetic_torque_Nm(double, double, const double*) const override { return kinetic_; }
+  double static_capacity_Nm(double, double stick_time_s, const double*) const override {
     return static_ + growth_ * stick_time_s;
   }
-  double kinetic_torque_slope_Nms(double, double) const override { return 0.0; }
+  double kinetic_torque_slope_Nms(double, double, const double*) const override { return 0.0; }
 
  private:
   double kinetic_, static_, growth_;
@@ -48,12 +48,12 @@ class LinearSlopeLaw : public ContactLaw {
                  std::vector<double> channel_fractions = {})
       : offset_(offset_Nm), slope_(slope_Nms), static_(static_Nm),
         fractions_(std::move(channel_fractions)) {}
-  double kinetic_torque_Nm(double w, double) const override { return offset_ + slope_ * w; }
-  double static_capacity_Nm(double, double) const override { return static_; }
-  double kinetic_torque_slope_Nms(double, double) const override { return slope_; }
+  double kinetic_torque_Nm(double w, double, const double*) const override { return offset_ + slope_ * w; }
+  double static_capacity_Nm(double, double, const double*) const override { return static_; }
+  double kinetic_torque_slope_Nms(double, double, const double*) const override { return slope_; }
   int heat_channels() const override { return static_cast<int>(fractions_.size()); }
-  void channel_heat_W(double w, double t, double* out) const override {
-    for (std::size_t i = 0; i < fractions_.size(); ++i) out[i] = fractions_[i] * kinetic_torque_Nm(w, t) * w;
+  void channel_heat_W(double w, double t, const double* z, double* out) const override {
+    for (std::size_t i = 0; i < fractions_.size(); ++i) out[i] = fractions_[i] * kinetic_torque_Nm(w, t, z) * w;
   }
 
  private:

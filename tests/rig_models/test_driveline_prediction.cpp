@@ -85,6 +85,9 @@ double fft_frequency_Hz(const dynamics::Recording& rec, double t0, double f_lo, 
 // 1.1 F* against the linear mode's, at the quasi-static point and at the run's mean point.
 TEST(DrivelinePrediction, TakeUpJudderOnsetAndFrequencyMatchTheSimulation) {
   TakeUp c = take_up();
+  // The predicted system is the simulated one: the valve's setting at 0 (simulate_at), so the
+  // relief valve passes the pump's flow and the pressure follows the slip as simulated.
+  c.inputs.valve_pressure_bar = PiecewiseLinear({0.0}, {0.0});
   // The engine holds the car's speed against the coupling's scrub and the road load (so the
   // operating point stays where it was predicted): T_e s_e = M_c (s_in − s_out) + F_road r.
   {

@@ -27,15 +27,19 @@ DrivelineInputs take_up_inputs() {
   return in;
 }
 
-// The nonlinear right-hand side in the linearisation's coordinates x = [q; v; z] about ω₀
-// (ω = ω₀ + N v, θ = N q): every element's torque from its own law, projected by Nᵀ.
+// The nonlinear right-hand side in the linearisation's coordinates x = [q; v; z; z_c] about ω₀
+// (ω = ω₀ + N v, θ = N q; z_c the contact laws' states about `contact_z`): every element's torque
+// from its own law, projected by Nᵀ, and every state's rate.
 Eigen::VectorXd nonlinear_rhs(const dynamics::TorsionalNetwork& net, const dynamics::LinearSystem& sys,
-                              const Eigen::VectorXd& w0, const Eigen::VectorXd& z0, double t, const Eigen::VectorXd& x) {
+                              const Eigen::VectorXd& w0, const Eigen::VectorXd& z0, const Eigen::VectorXd& contact_z,
+                              double t, const Eigen::VectorXd& x) {
   const int r = sys.reduced_dofs, n = net.nodes();
   const Eigen::MatrixXd& nb = sys.basis;
   const Eigen::VectorXd theta = nb * x.head(r);
   const Eigen::VectorXd w = w0 + nb * x.segment(r, r);
-  const Eigen::VectorXd z = z0 + x.tail(sys.element_states);
+  const Eigen::VectorXd z = z0 + x.segment(2 * r, sys.element_states);
+  const Eigen::VectorXd zc = contact_z + x.tail(sys.contact_states);
+  Eigen::VectorXd zc_dot = Eigen::VectorXd::Zero(sys.contact_states);
   Eigen::VectorXd tau = Eigen::VectorXd::Zero(n);
   const auto at = [](const Eigen::VectorXd& v, int i) { return i == dynamics::kGround ? 0.0 : v[i]; };
   const auto apply = [&](int a, int b, double ta, double tb) {
@@ -47,9 +51,13 @@ Eigen::VectorXd nonlinear_rhs(const dynamics::TorsionalNetwork& net, const dynam
                       s.damping_Nms_per_rad * (at(w, s.a) - at(w, s.b));
     apply(s.a, s.b, -tq, tq);
   }
+  const std::vector<int> contact_z_at = net.contact_state_indices();
+  std::size_t ci = 0;
   for (const auto& c : net.contacts()) {
     const double dw = at(w, c.a) - at(w, c.b);
-    const double tq = std::copysign(c.law->kinetic_torque_Nm(std::abs(dw), t), dw);
+    const double tq = std::copysign(c.law->kinetic_torque_Nm(std::abs(dw), t, zc.data() + contact_z_at[ci]), dw);
+    c.law->state_rates(dw, t, zc.data() + contact_z_at[ci], zc_dot.data() + contact_z_at[ci]);
+    ++ci;
     apply(c.a, c.b, -tq, tq);
   }
   for (const auto& src : net.torque_sources())
@@ -68,7 +76,8 @@ Eigen::VectorXd nonlinear_rhs(const dynamics::TorsionalNetwork& net, const dynam
   f.head(r) = x.segment(r, r);
   const Eigen::MatrixXd mr = nb.transpose() * net.mass_matrix() * nb;
   f.segment(r, r) = mr.llt().solve(nb.transpose() * tau);
-  f.tail(sys.element_states) = zdot;
+  f.segment(2 * r, sys.element_states) = zdot;
+  f.tail(sys.contact_states) = zc_dot;
   return f;
 }
 
@@ -120,15 +129,23 @@ TEST(DrivelineStability, MatrixEqualsFiniteDifferenceJacobianOfTheNonlinearRhs) 
     }
     z0[i] = 0.5 * (lo + hi);
   }
+  // The coupling's pressure and valve at the operating point (as the linearisation takes them).
+  dynamics::Sample at_w0;
+  at_w0.omega_rad_s = w0;
+  const Eigen::VectorXd coupling_z = dl.coupling_states(op.clamp_force_N, dl.valve_opening(at_w0));
   const Eigen::Index dim = st.system.a.rows();
   Eigen::MatrixXd jac(dim, dim);
   for (Eigen::Index j = 0; j < dim; ++j) {
-    // Steps: 1e-7 rad / rad/s for angles and speeds, 1e-9 m for deflections of ~1e-3 m.
-    const double h = j >= 2 * st.system.reduced_dofs ? 1e-9 : 1e-7;
+    // Steps: 1e-7 rad / rad/s for angles and speeds, 1e-9 m for deflections of ~1e-3 m, 1e-7 for
+    // the coupling's pressure (bar) and valve opening.
+    const Eigen::Index deflections_end = 2 * st.system.reduced_dofs + st.system.element_states;
+    const double h = j >= 2 * st.system.reduced_dofs && j < deflections_end ? 1e-9 : 1e-7;
     Eigen::VectorXd xp = Eigen::VectorXd::Zero(dim), xm = xp;
     xp[j] = h;
     xm[j] = -h;
-    jac.col(j) = (nonlinear_rhs(net, st.system, w0, z0, op.t_s, xp) - nonlinear_rhs(net, st.system, w0, z0, op.t_s, xm)) / (2 * h);
+    jac.col(j) = (nonlinear_rhs(net, st.system, w0, z0, coupling_z, op.t_s, xp) -
+                  nonlinear_rhs(net, st.system, w0, z0, coupling_z, op.t_s, xm)) /
+                 (2 * h);
   }
   // Central differences of O(1e3–1e6) entries: truncation and round-off ~1e-6 of the largest
   // entry of each column.

@@ -220,8 +220,10 @@ TEST(HaldexDriveline, OpenCouplingDrivesTheFrontAxleOnly) {
   DrivelineSettings s;
   s.duration_s = 1.0;
   const auto rec = run_driveline(p, pack.clutch, in, s);
-  EXPECT_EQ(last(rec, "pressure_bar"), 0.0);
-  EXPECT_NEAR(last(rec, "coupling_torque_Nm"), 0.0, 1e-9);
+  // A zero setting: the relief valve passes the pump's whole flow, leaving only its override
+  // D|Δω| τ_r / C (≈ 1e-3 bar at this slip; docs/driveline.md) and a torque of that order.
+  EXPECT_LT(last(rec, "pressure_bar"), 0.01);
+  EXPECT_LT(std::abs(last(rec, "coupling_torque_Nm")), 0.5);
   // The rear wheels are only carried along by the road: their half-shafts accelerate the rear
   // diff and the coupling's rear half, a few N m at most.
   EXPECT_LT(std::abs(last(rec, "rear_axle_torque_Nm")), 5.0);
