@@ -1,5 +1,5 @@
-# The FMU library's sources: the FMI functions and the parts of the project they run, nothing
-# that needs HDF5 or FFTW.
+# The FMU library's sources (fmu/CMakeLists.txt for linux64, fmu/cross/ for win64): the FMI
+# functions and the parts of the project they run, nothing that needs HDF5 or FFTW.
 # SHUDDER_SOURCE_DIR is the project's source directory.
 file(GLOB FMU_CLUTCH_SOURCES CONFIGURE_DEPENDS ${SHUDDER_SOURCE_DIR}/clutch/*.cpp)
 set(FMU_LIBRARY_SOURCES
