@@ -417,7 +417,7 @@ TEST(Fmu, VariableAndNonMultipleStepsAreHonouredExactly) {
       EXPECT_NEAR(other.at(ref), fixed.at(ref), 1e-10 * std::abs(fixed.at(ref)))
           << name << " with steps of " << steps[0] << " s …";  // sums in another order: round-off only
   }
-  // The call: a master shortening a step at an input discontinuity.
+  // A master shortening a step at an input discontinuity: fmi2DoStep(0.123, 0.00045).
   fmi2Component c = start(f, 0.0, 1.0);
   double t = 0.0;
   for (int k = 0; k < 1230; ++k, t = k * kStep) ASSERT_EQ(f.fmi2DoStep(c, t, kStep, fmi2True), fmi2OK);
