@@ -429,7 +429,7 @@ TEST(Fmu, VariableAndNonMultipleStepsAreHonouredExactly) {
   f.fmi2FreeInstance(c);
 }
 
-TEST(Fmu, OutputsAreDefinedInInitialisationModeAndHaveNoFeedthroughAfterASteps) {
+TEST(Fmu, OutputsAreDefinedInInitialisationModeAndHaveNoFeedthroughAfterAStep) {
   Fmu& f = fmu_functions();
   g_log.clear();
   fmi2Component c = instantiate(f);
