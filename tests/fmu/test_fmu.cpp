@@ -660,6 +660,8 @@ TEST(Fmu, ErrorPathsReturnFmi2ErrorWithALoggedReason) {
   EXPECT_TRUE(logged("parameter inner_radius_mm is fixed"));
   // A communication step of 10 fixed steps is fine, and the time must follow.
   EXPECT_EQ(f.fmi2DoStep(c, 0.0, 1e-3, fmi2True), fmi2OK);
+  EXPECT_EQ(f.fmi2DoStep(c, 1e-3, 1e9, fmi2True), fmi2Error);  // 1e13 internal steps: refused, not run
+  EXPECT_TRUE(logged("is more than 1e12 internal steps"));
   EXPECT_EQ(f.fmi2DoStep(c, 0.5, 1e-3, fmi2True), fmi2Error);
   EXPECT_TRUE(logged("differs from the FMU's time"));
   EXPECT_EQ(f.fmi2DoStep(c, NAN, 1e-3, fmi2True), fmi2Error);
