@@ -28,8 +28,11 @@ struct Variable {
 
 inline constexpr std::string_view kModelIdentifier = "shudder_clutch";
 inline constexpr std::string_view kModelName = "shudder wet clutch (prescribed slip)";
-// Identifies this variable table; change it with the table.
-inline constexpr std::string_view kGuid = "{5d6f3b2a-9c1e-4e57-8a3d-shudder-clutch-1}";
+// The GUID is derived from modelDescription.xml's text at build time (fmu/content_guid.hpp).
+
+// DefaultExperiment: the internal step, and a stop time of a few seconds of clutch engagement.
+inline constexpr double kDefaultStepSize_s = 1e-4;
+inline constexpr double kDefaultStopTime_s = 10.0;
 
 namespace vr {
 inline constexpr unsigned kSpeedA = 0, kSpeedB = 1, kClampForce = 2, kApplyPressure = 3;
@@ -72,7 +75,7 @@ inline constexpr Variable kVariables[] = {
     {vr::kPistonArea, "piston_area_m2", kReal, kParameter, "m2", 0.0, "",
      "piston area converting apply_pressure_Pa to clamp force (0: the pressure input is unused)"},
     {vr::kFixedStep, "fixed_step_s", kReal, kParameter, "s", 1e-4, "",
-     "internal fixed step; communication steps must be whole multiples of it"},
+     "internal fixed step; a communication step that is not a whole multiple ends with one shorter step"},
     {vr::kThermalStep, "thermal_step_s", kReal, kParameter, "s", 0.01, "",
      "thermal update interval, a whole multiple of fixed_step_s"},
     {vr::kBearingDragMu, "bearing_drag_mu", kReal, kParameter, "1", 0.005, "", "bearing_drag effect: equivalent mu"},

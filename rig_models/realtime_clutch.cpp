@@ -49,10 +49,12 @@ double RealtimeClutch::kinetic_torque_Nm(double abs_slip, double force_N) {
 }
 
 void RealtimeClutch::end_step(const Eigen::VectorXd& ring_heat_J, double slip_angle_rad, double t_end_s,
-                              double force_N) {
+                              double force_N, double fraction) {
   window_heat_J_ += ring_heat_J;
   window_angle_rad_ += slip_angle_rad;
-  if (++steps_in_window_ < steps_per_window_) return;
+  steps_in_window_ += fraction;
+  // With whole steps the count is an exact integer and this is `count < steps_per_window_`.
+  if (steps_in_window_ < static_cast<double>(steps_per_window_) - kWindowSlack) return;
   // The window is complete: latch the previous window's result, hand this one over.
   task_.collect();
   const double dt = t_end_s - window_start_s_;
@@ -60,7 +62,7 @@ void RealtimeClutch::end_step(const Eigen::VectorXd& ring_heat_J, double slip_an
   window_heat_J_.setZero();
   window_angle_rad_ = 0.0;
   window_start_s_ = t_end_s;
-  steps_in_window_ = 0;
+  steps_in_window_ = 0.0;
 }
 
 void RealtimeClutch::reset(double force_N) {
@@ -68,7 +70,7 @@ void RealtimeClutch::reset(double force_N) {
   window_heat_J_.setZero();
   window_angle_rad_ = 0.0;
   window_start_s_ = 0.0;
-  steps_in_window_ = 0;
+  steps_in_window_ = 0.0;
 }
 
 }  // namespace shudder::rig_models

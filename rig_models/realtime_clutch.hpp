@@ -42,7 +42,18 @@ class RealtimeClutch {
   /// Closes one fixed step ending at `t_end_s`: the heat per ring of one interface over it (J)
   /// and the relative rotation Δθ over it (rad). Every steps_per_thermal_step() steps the
   /// window goes to the thermal task (and the previous window's result is latched).
-  void end_step(const Eigen::VectorXd& ring_heat_J, double slip_angle_rad, double t_end_s, double force_N);
+  /// `fraction` (0, 1] is the step's length in fixed steps: below 1 for the shorter steps a
+  /// co-simulation master may ask for (docs/fmu.md). A window then closes once the steps in it
+  /// add up to steps_per_thermal_step() within kWindowSlack (the caller must not step across
+  /// a window's end: window_steps_left()); the thermal task is given the window's true length.
+  /// Whole steps (fraction 1, the default) add exact integers and behave as before.
+  void end_step(const Eigen::VectorXd& ring_heat_J, double slip_angle_rad, double t_end_s, double force_N,
+                double fraction = 1.0);
+  /// Fixed steps left in the open thermal window (a whole number unless shorter steps were taken).
+  double window_steps_left() const { return static_cast<double>(steps_per_window_) - steps_in_window_; }
+  /// How short of full (in fixed steps) a window may be and still close: the round-off of
+  /// adding up fractions of a step (e.g. 0.23 + 0.77), far below any step a master asks for.
+  static constexpr double kWindowSlack = 1e-9;
 
   const ThermalOutputs& thermal() const { return task_.latest(); }
   /// Handovers that found the thermal job unfinished and waited for it (0 in a paced loop).
@@ -67,7 +78,7 @@ class RealtimeClutch {
   Eigen::VectorXd window_heat_J_;     // (n_r) heat of the open window
   double window_angle_rad_ = 0.0;
   double window_start_s_ = 0.0;
-  long steps_in_window_ = 0;
+  double steps_in_window_ = 0.0;  // fixed steps in the open window (whole unless shorter steps)
 };
 
 }  // namespace shudder::rig_models

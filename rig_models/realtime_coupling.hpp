@@ -24,7 +24,11 @@ class RealtimeCoupling {
                    double force_N);
 
   /// Advances one fixed step with Δω (rad/s) and F (N) held over it. Allocates nothing.
-  void step(double slip_rad_s, double force_N);
+  /// `fraction` (0, 1] shortens the step to fraction × the fixed step (a co-simulation master's
+  /// step that is not a whole multiple, docs/fmu.md); the heat is integrated over that length.
+  /// A caller taking shorter steps must not cross a thermal window's end within one step
+  /// (clutch().window_steps_left()).
+  void step(double slip_rad_s, double force_N, double fraction = 1.0);
 
   double time_s() const { return t_s_; }
   /// Over the last step: torque with bearing drag (the torque cell), without it (the clutch),
@@ -40,7 +44,7 @@ class RealtimeCoupling {
   RealtimeClutch clutch_;
   BearingDrag drag_;
   Eigen::VectorXd heat_J_;  // (n_r) scratch
-  long steps_ = 0;
+  double steps_ = 0.0;  // fixed steps taken (an exact integer while all steps are whole)
   double t_s_ = 0.0, torque_Nm_ = 0.0, clutch_torque_Nm_ = 0.0, heat_W_ = 0.0;
 };
 

@@ -22,6 +22,8 @@ packages=(
   python3-matplotlib     # docs/python.md's worked example plots with it (run by the tests)
   libopenmpi-dev openmpi-bin  # `shudder sweep --mpi` across MPI ranks (docs/mpi.md; mpirun in the tests)
   libexpat1-dev          # the FMU test parses modelDescription.xml (tests/fmu)
+  g++-mingw-w64-x86-64-posix  # the FMU's win64 binary, cross-built (docs/fmu.md "Platforms")
+  wine64                 # the FMU test runs the win64 binary under Wine (tests/fmu)
 )
 missing=()
 for p in "${packages[@]}"; do
