@@ -7,5 +7,5 @@ bash scripts/install-deps.sh
 # Every part switched on by name: a build/ configured by scripts/run-default.sh (which switches
 # them off) would otherwise keep them off from its cache.
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=ON -DSHUDDER_PYTHON=ON -DSHUDDER_MPI=ON \
-      -DSHUDDER_FMU=ON -DSHUDDER_BENCH=ON >/dev/null
+      -DSHUDDER_FMU=ON -DSHUDDER_BENCH=ON -DSHUDDER_PCH=ON -DSHUDDER_UNITY_BUILD=ON >/dev/null
 cmake --build build -j"$(nproc)"

@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh cli
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=OFF -DSHUDDER_PYTHON=OFF -DSHUDDER_MPI=OFF \
-      -DSHUDDER_FMU=OFF -DSHUDDER_BENCH=OFF >/dev/null
+      -DSHUDDER_FMU=OFF -DSHUDDER_BENCH=OFF -DSHUDDER_PCH=ON -DSHUDDER_UNITY_BUILD=ON >/dev/null
 cmake --build build -j"$(nproc)" --target shudder
 mkdir -p out
 ./build/app/shudder run scenarios/paper_g_case1_25kN.toml -o out/paper_g_case1_25kN.h5
