@@ -10,6 +10,7 @@
 #include "dynamics/signal_names.hpp"
 #include "rig_models/friction_range_block.hpp"
 #include "rig_models/run_verdict.hpp"
+#include "core/nan.hpp"
 
 namespace shudder::report {
 
@@ -31,7 +32,6 @@ namespace {
 
 namespace sn = dynamics::signal_names;
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double scalar(const dynamics::Recording& rec, const char* name) {
   const auto* s = rec.find_scalar(name);
@@ -178,7 +178,8 @@ void print_section(std::ostream& os, const rig_models::RigModel& model, const dy
 }
 
 // The verdict block (rig_models/run_verdict.hpp) in three lines: what the run shows, the
-// operating point it was judged at, and what linear theory predicted there.
+// operating point it was judged at, and what linear theory predicted there; a fourth for
+// stick-slip, which that theory cannot predict.
 void print_verdict(std::ostream& os, const char* label, const dynamics::Recording& rec) {
   const auto* b = rec.find_block(rig_models::kVerdictBlock);
   if (!b) {
@@ -228,6 +229,7 @@ void print_verdict(std::ostream& os, const char* label, const dynamics::Recordin
   else
     std::snprintf(line, sizeof line, "Predicted there: %s\n", text("prediction").c_str());
   os << line;
+  if (verdict == "stick_slip") os << kStickSlipNote;
 }
 
 }  // namespace
