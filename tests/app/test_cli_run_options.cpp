@@ -45,14 +45,16 @@ TEST(CliRunOptions, SetChangesTheRunAndIsRecorded) {
   EXPECT_THAT(stored, Not(HasSubstr("25300")));
 }
 
-// A network takes the same keys as `sweep --set` on it.
-TEST(CliRunOptions, SetWorksOnANetwork) {
+// A network takes the same keys as `sweep --set` on it, and --profile prints the simulation's
+// wall time on a network as on the other kinds.
+TEST(CliRunOptions, SetAndProfileWorkOnANetwork) {
   const auto dir = scratch_dir("run_set_network");
   const auto r = run_cli("run '" + source_path("scenarios/networks/lockup_clutch_controlled_slip.toml") +
-                             "' -o out.h5 --set network.lockup_clutch.max_force_N=2600",
+                             "' -o out.h5 --set network.lockup_clutch.max_force_N=2600 --profile",
                          dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(io::read_run_attribute((dir / "out.h5").string(), "scenario"), HasSubstr("max_force_N = 2600"));
+  EXPECT_THAT(r.out, HasSubstr("Profile: simulation wall time "));
 }
 
 // A misspelt key is the sweep's message: one line naming the key and the nearest allowed name.
@@ -79,8 +81,8 @@ TEST(CliRunOptions, SetTakesOneNumberPerKey) {
   EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
 }
 
-// --sample-rate and --noise shape the measured run: without --measurement they used to be
-// ignored with exit 0.
+// --sample-rate and --noise shape the measured run: without --measurement they would have no
+// effect, so they are refused.
 TEST(CliRunOptions, MeasuredRunOptionsWithoutMeasurementAreRefused) {
   const auto dir = scratch_dir("run_no_effect");
   expect_rejected(run_cli("run " + case1() + " -o out.h5 --sample-rate 100", dir),
