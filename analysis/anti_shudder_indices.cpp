@@ -1,4 +1,5 @@
 #include "analysis/anti_shudder_indices.hpp"
+#include "core/nan.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +13,6 @@ namespace shudder::analysis {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Relative slack when deciding whether a speed lies outside the law's data: the fluid files
 // and the indices convert rpm at the same radius, but not necessarily by the same operations.
 constexpr double kRangeSlack = 1e-9;
@@ -281,7 +281,7 @@ std::string describe_extent(const RegionExtent& e) {
   return range_text(e.min_rpm, e.max_rpm, "rpm") + ", " + range_text(e.min_temp_C, e.max_temp_C, "\u00b0C");
 }
 
-Verdict screening_verdict(const std::vector<AntiShudderIndices>& indices, const SlopeMap& slope,
+ScreeningVerdict screening_verdict(const std::vector<AntiShudderIndices>& indices, const SlopeMap& slope,
                           const RegionExtent& negative_slope, const std::vector<RigEvidence>& rigs) {
   std::vector<std::string> risk, caution;
 
@@ -321,7 +321,7 @@ Verdict screening_verdict(const std::vector<AntiShudderIndices>& indices, const 
     (idx == Index::kMu1OverMu50 ? risk : caution).push_back(why);
   }
 
-  Verdict v;
+  ScreeningVerdict v;
   v.level = !risk.empty() ? RiskLevel::kRisk : !caution.empty() ? RiskLevel::kCaution : RiskLevel::kLow;
   v.text = risk_level_name(v.level);
   v.text += ": ";

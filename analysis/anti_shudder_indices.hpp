@@ -182,7 +182,7 @@ struct RigEvidence {
 enum class RiskLevel { kLow, kCaution, kRisk };
 const char* risk_level_name(RiskLevel level);  // "LOW RISK", "CAUTION", "RISK"
 
-struct Verdict {
+struct ScreeningVerdict {
   RiskLevel level = RiskLevel::kLow;
   std::string text;  // one line: "LEVEL: reason; reason; ..."
 };
@@ -196,7 +196,7 @@ struct Verdict {
 ///             its risk side (the rigs damp it);
 ///   LOW RISK  otherwise: no negative slope on the map and every index on the safe side.
 /// Indices computed from held (clamped) speeds count, and are named "(outside data)".
-Verdict screening_verdict(const std::vector<AntiShudderIndices>& indices, const SlopeMap& slope,
+ScreeningVerdict screening_verdict(const std::vector<AntiShudderIndices>& indices, const SlopeMap& slope,
                           const RegionExtent& negative_slope, const std::vector<RigEvidence>& rigs);
 
 /// "10–100 rpm, 40–120 °C" (or "30 rpm, 80 °C" for a single point).

@@ -13,6 +13,7 @@
 #include "clutch/maki_friction.hpp"
 #include "clutch/table_friction.hpp"
 #include "analysis/temperature_surface.hpp"
+#include "core/nan.hpp"
 
 namespace shudder::analysis {
 
@@ -43,7 +44,6 @@ double FrictionConversion::effective_radius_mm() const {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::string g(double x, int digits = 4) {
   char buf[64];

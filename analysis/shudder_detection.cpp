@@ -10,12 +10,12 @@
 
 #include "core/median.hpp"
 #include "dynamics/signal_names.hpp"
+#include "core/nan.hpp"
 
 namespace shudder::analysis {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr std::size_t kMinSamples = 64;
 
 void require(bool ok, const std::string& what) {
@@ -308,7 +308,7 @@ ShudderResult ShudderDetector::detect(const DetectionInput& in) const {
         r.onset_time_s = std::max(t0, (b0 - intercept) / slope_dB_per_s);
       }
       if (cfg.onset_definition == OnsetDefinition::kGrowthRateZero) {
-        // 8d: least-squares parabola b = c0 + c1 u + c2 u², u = t − t_mean (centred for
+        // kGrowthRateZero: least-squares parabola b = c0 + c1 u + c2 u², u = t − t_mean (centred for
         // conditioning), over the same frames; its vertex is where the growth rate is zero.
         const double t_mean = st / c;
         double s2 = 0, s3 = 0, s4 = 0, y0 = 0, y1 = 0, y2 = 0;
@@ -335,7 +335,7 @@ ShudderResult ShudderDetector::detect(const DetectionInput& in) const {
     }
   }
 
-  // 8e: the last upward crossing of the verdict's threshold (as band power: a²/2) before the
+  // kThresholdCrossing: the last upward crossing of the verdict's threshold (as band power: a²/2) before the
   // oscillating part, the level capped at the oscillating part's.
   if (cfg.onset_definition == OnsetDefinition::kThresholdCrossing) {
     const double level_e = std::min(to_dB(0.5 * r.threshold_Nm * r.threshold_Nm), b_max - cfg.oscillating_part_dB);

@@ -49,7 +49,8 @@
 //         last upward crossing before the oscillating part (interpolated in dB between frame
 //         centres): the band power leaves its start level for good (the second term keeps
 //         the drift of a floor far under the oscillation from counting);
-//      c. if at least `min_growth_frames` frames lie between t_x and the oscillating part, the
+//      c. OnsetDefinition::kGrowthLine (the default, the growth-line onset): if at least
+//         `min_growth_frames` frames lie between t_x and the oscillating part, the
 //         growth there is fitted by a least-squares line b = b_1 + g t (exponential growth,
 //         amplitude ∝ e^{σ t} with σ = g ln10/20, reported as growth_rate_per_s) and the onset
 //         is where that line comes up out of the start level: t = (b_0 − b_1)/g (not before
@@ -72,7 +73,7 @@
 //         on the rig, the small torque steps at each thermal step excite the bar mode. A forced
 //         floor rises as the damping falls toward zero, so the band power's minimum comes well
 //         before the onset. Otherwise (constant or falling growth rate, too few frames) the
-//         onset is that of 8c.
+//         onset is the growth line's.
 //         The vertex is extrapolated back from the fitted 20 dB by σ/σ'. Its precision is set
 //         by how well those frames give the curvature. A random floor scatters the band power
 //         by ~√(P_floor/P): at 45 dB under the fitted frames the onset is good to ~10 % of the
@@ -85,17 +86,17 @@
 //         centres; the level is capped at the oscillating part's, b_max − oscillating_part_dB,
 //         so an oscillation judged on its half peak-to-peak but weaker in its fundamental still
 //         has a crossing. t_0 (growth_observed false) if the band never lies under that level
-//         before the oscillating part (oscillating from the start). Why: 8c measures
+//         before the oscillating part (oscillating from the start). Why: the growth line measures
 //         from the start level, the first frames' band power. Where the operating point is
-//         unstable from t = 0 the growth leaves the start at once, and 8c's onset is t_0 plus a
+//         unstable from t = 0 the growth leaves the start at once, and the growth line's onset is t_0 plus a
 //         fraction of a frame, set by what fills the band in the first frames (the start, the
 //         thermal steps' numerical floor), not by physics: rig_shudder_negative_slope gave
-//         0.028–0.040 s at thermal steps of 1–10 ms with no trend. 8e is the instant the
+//         0.028–0.040 s at thermal steps of 1–10 ms with no trend. The threshold crossing is the instant the
 //         oscillation becomes what the verdict calls shudder (the smallest oscillation that
 //         counts): it is set by the seed and the growth rate, not by the floor below the
 //         threshold; a start transient above the threshold that decays again is skipped (the
-//         LAST upward crossing counts). It shares 8c's assumption that what crosses is the
-//         growing oscillation. growth_rate_per_s is still 8c's fitted σ.
+//         LAST upward crossing counts). It shares the growth line's assumption that what crosses is the
+//         growing oscillation. growth_rate_per_s is still the growth line's fitted σ.
 //   9. Operating point at onset: the means of slip (rpm, signed), interface temperature (°C)
 //      and normal force (N) over one period P centred at the onset time.
 // For `none`, frequency, onset, growth rate and operating point are NaN (peak_frequency_Hz
@@ -119,9 +120,9 @@ inline constexpr std::array<Verdict, 3> kVerdicts = {Verdict::kNone, Verdict::kV
 
 /// How the onset time is placed on the growth (definition 8 in the header comment).
 enum class OnsetDefinition {
-  kGrowthLine,      // 8c: the fitted exponential growth extrapolated down to the start level
-  kGrowthRateZero,  // 8d (ramps): where the growth rate, fitted as linear in time, crosses zero
-  kThresholdCrossing,  // 8e (runs' verdicts): the band amplitude's last rise through the verdict threshold
+  kGrowthLine,      // c: the fitted exponential growth extrapolated down to the start level
+  kGrowthRateZero,  // d (ramps): where the growth rate, fitted as linear in time, crosses zero
+  kThresholdCrossing,  // e (runs' verdicts): the band amplitude's last rise through the verdict threshold
 };
 
 /// "none", "vibration", "stick_slip" (the names written to outputs).
@@ -169,8 +170,9 @@ struct DetectionSettings {
   // quarter frame (2 periods) per hop.
   double periods_per_frame = 8.0;
   double periods_per_block = 4.0;
-  // Onset definition 8c (constant operating point), 8d (slow ramp into instability) or 8e (the
-  // oscillation reaching the verdict's threshold; what runs report).
+  // Onset definition: the growth line (constant operating point), the growth rate's zero (slow
+  // ramp into instability) or the threshold crossing (the oscillation reaching the verdict's
+  // threshold; what runs report).
   OnsetDefinition onset_definition = OnsetDefinition::kGrowthLine;
 };
 
@@ -199,9 +201,9 @@ struct ShudderResult {
   double frequency_Hz = 0.0;       // dominant frequency f_d; NaN for none
   double peak_frequency_Hz = 0.0;  // strongest peak examined (f_d, also for none)
   double onset_time_s = 0.0;       // definition 8; NaN for none
-  bool growth_observed = false;    // the band power rose from its starting level (8e: through the threshold)
-  double growth_rate_per_s = 0.0;  // σ of the fitted growth (definition 8c); NaN if not fitted
-  // dσ/dt of the parabola of definition 8d, 1/s²; NaN unless that definition placed the onset.
+  bool growth_observed = false;    // the band power rose from its starting level (threshold crossing: through the threshold)
+  double growth_rate_per_s = 0.0;  // σ of the fitted growth (the growth line); NaN if not fitted
+  // dσ/dt of the parabola of kGrowthRateZero, 1/s²; NaN unless that definition placed the onset.
   double growth_acceleration_per_s2 = 0.0;
   OperatingPoint at_onset;         // definition 9; NaN fields for none
   double mean_torque_Nm = 0.0;     // mean |T| over the record

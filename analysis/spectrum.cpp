@@ -39,7 +39,7 @@ void offer_shipped_wisdom() {
   wisdom_accepted = fftw_import_wisdom_from_string(kShippedFftwWisdom) != 0;
 }
 
-void require(bool ok, const std::string& what) {
+void require_valid(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument(what);
 }
 
@@ -91,7 +91,7 @@ std::size_t argmax_in_band(std::span<const double> f, std::span<const double> v,
     if (f[k] < lo || f[k] > hi) continue;
     if (best == f.size() || v[k] > v[best]) best = k;
   }
-  require(best < f.size(), "no spectral bin lies in the band " + std::to_string(lo) + " – " +
+  require_valid(best < f.size(), "no spectral bin lies in the band " + std::to_string(lo) + " – " +
                                std::to_string(hi) + " Hz; widen the band or use a longer record");
   return best;
 }
@@ -119,7 +119,7 @@ void windowed_segment(std::span<const double> x, std::size_t start, const std::v
 }  // namespace
 
 std::vector<double> window_coefficients(Window window, std::size_t n) {
-  require(n >= 1, "a window needs at least 1 sample");
+  require_valid(n >= 1, "a window needs at least 1 sample");
   std::vector<double> w(n, 1.0);
   if (window == Window::kHann)
     for (std::size_t i = 0; i < n; ++i)
@@ -139,7 +139,7 @@ double window_transform_magnitude(Window window, std::size_t n, double offset_bi
 // FftPlan
 
 FftPlan::FftPlan(std::size_t n) : n_(n) {
-  require(n >= 2, "an FFT needs at least 2 samples, got " + std::to_string(n));
+  require_valid(n >= 2, "an FFT needs at least 2 samples, got " + std::to_string(n));
   std::lock_guard<std::mutex> lock(planner_mutex());
   offer_shipped_wisdom();
   double* in = fftw_alloc_real(n);
@@ -176,8 +176,8 @@ FftPlan& FftPlan::operator=(FftPlan&& other) noexcept {
 }
 
 void FftPlan::execute(std::span<const double> in, std::span<std::complex<double>> out) const {
-  require(plan_ != nullptr, "FftPlan used after being moved from");
-  require(in.size() == n_ && out.size() == bins(),
+  require_valid(plan_ != nullptr, "FftPlan used after being moved from");
+  require_valid(in.size() == n_ && out.size() == bins(),
           "FftPlan of length " + std::to_string(n_) + " needs " + std::to_string(n_) + " inputs and " +
               std::to_string(bins()) + " outputs, got " + std::to_string(in.size()) + " and " +
               std::to_string(out.size()));
@@ -194,7 +194,7 @@ std::string fftw_wisdom_for_lengths(std::span<const std::size_t> lengths) {
   wisdom_offered = true;  // forgotten on purpose: later plans plan afresh
   wisdom_accepted = false;
   for (std::size_t n : lengths) {
-    require(n >= 2, "an FFT needs at least 2 samples, got " + std::to_string(n));
+    require_valid(n >= 2, "an FFT needs at least 2 samples, got " + std::to_string(n));
     double* in = fftw_alloc_real(n);
     fftw_complex* out = fftw_alloc_complex(n / 2 + 1);
     const fftw_plan plan = fftw_plan_dft_r2c_1d(static_cast<int>(n), in, out, kPlannerFlags);
@@ -219,9 +219,9 @@ bool shipped_fftw_wisdom_in_use() {
 // Spectra
 
 Spectrum amplitude_spectrum(const FftPlan& plan, std::span<const double> x, double fs, Window window) {
-  require(fs > 0.0, "sample rate must be > 0 Hz");
+  require_valid(fs > 0.0, "sample rate must be > 0 Hz");
   const std::size_t n = plan.size();
-  require(x.size() == n, "amplitude_spectrum: signal of " + std::to_string(x.size()) +
+  require_valid(x.size() == n, "amplitude_spectrum: signal of " + std::to_string(x.size()) +
                              " samples for a plan of length " + std::to_string(n));
   const std::vector<double> w = window_coefficients(window, n);
   const double s1 = sum(w);
@@ -254,10 +254,10 @@ Peak find_peak(const Spectrum& s, double f_lo_Hz, double f_hi_Hz) {
 }
 
 Psd welch_psd(const FftPlan& plan, std::span<const double> x, double fs, const WelchSettings& cfg) {
-  require(fs > 0.0, "sample rate must be > 0 Hz");
-  require(cfg.overlap >= 0.0 && cfg.overlap < 1.0, "Welch overlap must be in [0, 1), got " + std::to_string(cfg.overlap));
+  require_valid(fs > 0.0, "sample rate must be > 0 Hz");
+  require_valid(cfg.overlap >= 0.0 && cfg.overlap < 1.0, "Welch overlap must be in [0, 1), got " + std::to_string(cfg.overlap));
   const std::size_t L = plan.size();
-  require(x.size() >= L, "Welch PSD: signal of " + std::to_string(x.size()) +
+  require_valid(x.size() >= L, "Welch PSD: signal of " + std::to_string(x.size()) +
                              " samples is shorter than one segment (" + std::to_string(L) + ")");
   const std::size_t step = std::max<std::size_t>(
       1, static_cast<std::size_t>(std::lround(static_cast<double>(L) * (1.0 - cfg.overlap))));
@@ -295,10 +295,10 @@ double peak_frequency_Hz(const Psd& psd, Window window, double f_lo_Hz, double f
 
 Spectrogram spectrogram(const FftPlan& plan, std::span<const double> x, double fs,
                         const SpectrogramSettings& cfg, double t0_s) {
-  require(fs > 0.0, "sample rate must be > 0 Hz");
-  require(cfg.hop >= 1, "spectrogram hop must be >= 1 sample");
+  require_valid(fs > 0.0, "sample rate must be > 0 Hz");
+  require_valid(cfg.hop >= 1, "spectrogram hop must be >= 1 sample");
   const std::size_t L = plan.size();
-  require(x.size() >= L, "spectrogram: signal of " + std::to_string(x.size()) +
+  require_valid(x.size() >= L, "spectrogram: signal of " + std::to_string(x.size()) +
                              " samples is shorter than one frame (" + std::to_string(L) + ")");
   const std::size_t regular = 1 + (x.size() - L) / cfg.hop;
   const bool tail = cfg.end_frame && (regular - 1) * cfg.hop + L < x.size();
@@ -336,12 +336,12 @@ std::vector<double> band_power(const Spectrogram& s, double f_lo_Hz, double f_hi
     for (std::size_t j = 0; j < b.size(); ++j)
       b[j] += s.power(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(k)) * s.bin_width_Hz;
   }
-  require(any, "band_power: no bin lies in " + std::to_string(f_lo_Hz) + " – " + std::to_string(f_hi_Hz) + " Hz");
+  require_valid(any, "band_power: no bin lies in " + std::to_string(f_lo_Hz) + " – " + std::to_string(f_hi_Hz) + " Hz");
   return b;
 }
 
 double first_time_at_or_above(std::span<const double> t, std::span<const double> v, double level) {
-  require(t.size() == v.size(), "first_time_at_or_above: times and values differ in length");
+  require_valid(t.size() == v.size(), "first_time_at_or_above: times and values differ in length");
   for (std::size_t j = 0; j < v.size(); ++j) {
     if (v[j] < level) continue;
     if (j == 0) return t[0];

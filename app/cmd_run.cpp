@@ -25,16 +25,29 @@
 #include "io/output_safety.hpp"
 #include "report/plots.hpp"
 #include "io/scenario.hpp"
+#include "io/sweep_spec.hpp"
 #include "rig_models/energy_guard.hpp"
 #include "rig_models/model.hpp"
 #include "rig_models/realtime_run.hpp"
 
 namespace shudder::app {
 
+std::string run_scenario_text(const RunOptions& opt) {
+  std::string text = io::read_scenario_text(opt.scenario);
+  if (opt.sets.empty()) return text;
+  std::vector<io::SweepAxis> sets;
+  for (const auto& s : opt.sets) sets.push_back(io::parse_set_value(s));
+  io::require_distinct_keys(sets);
+  for (const auto& s : sets) text = io::set_scenario_key(text, opt.scenario, s.key, s.values.front());
+  return text;
+}
+
 int run_command(const RunOptions& opt) {
   return guarded(opt.scenario, "simulation", [&]() -> int {
-    if (io::scenario_type(opt.scenario) == "network") return run_network_command(opt);
-    const io::Scenario scenario = io::load_scenario(opt.scenario);
+    const std::string text = run_scenario_text(opt);
+    if (io::scenario_type_of_text(text, opt.scenario) == "network") return run_network_command(opt);
+    // A misspelt --set key is an unknown key here, named with the nearest allowed one.
+    const io::Scenario scenario = io::load_scenario_text(text, opt.scenario);
     for (const auto& w : scenario.warnings) std::cerr << "shudder: warning: " << w << "\n";
     if (const auto* ps = std::get_if<rig_models::PrescribedSlipModel>(&scenario.model);
         ps && opt.fixed_step_s > 0 && ps->settings.thermal_scheme == rig_models::ThermalScheme::kBdf2)

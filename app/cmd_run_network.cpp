@@ -1,5 +1,6 @@
 // `shudder run` on a network scenario (docs/network_format.md): load and check the network,
 // simulate every clutch, write the HDF5 run file and print the summary with each clutch's verdict.
+#include <chrono>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -52,7 +53,7 @@ void write_clutch_measurement(const RunOptions& opt, const components::ClutchSpe
 }  // namespace
 
 int run_network_command(const RunOptions& opt) {
-  const io::NetworkScenario sc = io::load_network_scenario(opt.scenario);
+  const io::NetworkScenario sc = io::load_network_scenario_text(run_scenario_text(opt), opt.scenario);
   for (const auto& w : sc.warnings) std::cerr << "shudder: warning: " << w << "\n";
   if (opt.fixed_step_s > 0)
     throw io::InputError(opt.scenario, 0, "--fixed-step",
@@ -81,7 +82,9 @@ int run_network_command(const RunOptions& opt) {
                          "duration x sample rate asks for " + std::to_string(static_cast<long>(samples)) +
                              " samples per channel; lower the rate (at most 5e7 samples)");
 
+  const auto t0 = std::chrono::steady_clock::now();
   const components::NetworkRun run = components::run_network(sc.spec);
+  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   io::write_run_hdf5(out, run.recording, sc.text, sc.fluid_texts);
   if (const std::string bad = rig_models::energy_balance_violation(run.recording); !bad.empty())
     throw std::runtime_error("numerical failure: " + bad + "; the run is written to " + out +
@@ -98,6 +101,7 @@ int run_network_command(const RunOptions& opt) {
   // summary.txt, verdict.json and the plots of `shudder plot` (docs/plots.md).
   if (!opt.report.empty() && write_report_directory(opt.report, run.recording, sc.name, summary.str(), false, out) != 0)
     return 1;
+  if (opt.profile) std::cout << "Profile: simulation wall time " << wall_s * 1e3 << " ms\n";
   return 0;
 }
 

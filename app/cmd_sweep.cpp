@@ -162,16 +162,6 @@ std::uint64_t network_case_bytes(const io::NetworkScenario& sc) {
   return static_cast<std::uint64_t>(samples * static_cast<double>(1 + 2 * sc.spec.clutches.size()) * 8.0);
 }
 
-// Rejects a key given to two --set options (the cases would repeat and /cases would hold two
-// columns of one name) before anything runs.
-void require_distinct_keys(const std::vector<io::SweepAxis>& axes) {
-  for (std::size_t a = 0; a < axes.size(); ++a)
-    for (std::size_t b = 0; b < a; ++b)
-      if (axes[a].key == axes[b].key)
-        throw io::InputError("--set", 0, axes[a].key,
-                             "given twice; give each key once (list several values as KEY=V1,V2,...)");
-}
-
 // The grid's rows; a grid too large to list in memory is an input error naming its size.
 std::vector<std::vector<double>> list_cases(const std::vector<io::SweepAxis>& axes) {
   double n = 1.0;
@@ -230,7 +220,7 @@ int sweep_command(const SweepOptions& opt) {
     if (opt.sets.empty()) throw io::InputError("--set", 0, "", "give at least one --set KEY=START:STOP:STEP");
     std::vector<io::SweepAxis> axes;
     for (const auto& s : opt.sets) axes.push_back(io::parse_sweep_axis(s));
-    require_distinct_keys(axes);
+    io::require_distinct_keys(axes);  // else cases would repeat and /cases hold two columns of one name
     const auto rows = list_cases(axes);
 
     // The output may replace neither an input nor the report, and its directory must exist:

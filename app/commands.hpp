@@ -23,8 +23,12 @@ struct RunOptions {
   std::string report;                  // report directory (summary.txt + plots); empty = none
   bool force = false;                  // write even above io::kMaxOutputBytesWithoutForce
   double fixed_step_s = 0.0;           // > 0: the fixed-step real-time mode (docs/realtime.md)
+  std::vector<std::string> sets;       // KEY=VALUE overrides, the sweep's key names (io/sweep_spec.hpp)
 };
 int run_command(const RunOptions& options);
+/// The scenario file's text with `run --set` applied (the sweep's parser and key setter); the
+/// file's own text, comments kept, when nothing is set.
+std::string run_scenario_text(const RunOptions& options);
 /// `run` on a type = "network" scenario (app/cmd_run_network.cpp); run_command dispatches to it.
 int run_network_command(const RunOptions& options);
 /// `run --report DIR`: the report directory (report/plots.hpp) with a line saying so; a report

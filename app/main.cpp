@@ -28,6 +28,8 @@ int main(int argc, char** argv) {
   RunOptions run;
   auto* run_cmd = app.add_subcommand("run", "Run a scenario; write HDF5 and print a summary");
   run_cmd->add_option("scenario", run.scenario, "Scenario file (TOML)")->required();
+  run_cmd->add_option("--set", run.sets, "KEY=VALUE: set a numeric scenario key for this run, as `sweep --set` "
+                                         "names it (repeatable)");
   run_cmd->add_option("-o,--output", run.output, "HDF5 output (default: <scenario name>.h5)");
   run_cmd->add_option("--measurement", run.measurement,
                       "Also write the sensor signals as a measured-run CSV");
@@ -187,11 +189,17 @@ int main(int argc, char** argv) {
               << (used.empty() ? std::string() : used.front()->get_name() + " ") << "--help)\n";
     return 2;
   }
-  // --seed only seeds the sensor noise: without --noise it would be silently ignored.
+  // Options that act on another one's output would be silently ignored without it.
   if (*run_cmd && run_cmd->count("--seed") > 0 && !run.noise) {
     std::cerr << "shudder: error: --seed sets the sensor noise; give --noise too\n";
     return 2;
   }
+  for (const char* measured_only : {"--sample-rate", "--noise"})
+    if (*run_cmd && run_cmd->count(measured_only) > 0 && run.measurement.empty()) {
+      std::cerr << "shudder: error: " << measured_only
+                << " applies to the measured run; give --measurement FILE.csv too\n";
+      return 2;
+    }
   if (*run_cmd) return run_command(run);
   if (*val_cmd) return validate_command(validate);
   if (*modes_cmd) return modes_command(modes);

@@ -25,7 +25,7 @@ namespace {
 // no FMA, so the multiply and the subtraction round separately, as in the reference.
 // kB > 0: the half band width as a compile-time constant, so the row loops unroll completely
 // (no loop counter or exit test among the terms; a 240 × 12 solve 1.90 → 1.80–1.83 µs,
-// docs/performance.md session 23); kB = 0: the width b at run time. The operations and their
+// docs/performance.md); kB = 0: the width b at run time. The operations and their
 // order are the same either way.
 template <int kB>
 void sweep(double* __restrict y, const double* __restrict lower, const double* __restrict upper,

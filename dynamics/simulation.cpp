@@ -285,7 +285,7 @@ const Simulation::Constraints& Simulation::constraints() const {
   // unique regardless. Applied as a matrix (a 20 × 20 product for the driveline) instead of the
   // decomposition's Householder steps per right-hand side (≈ 16 k instructions each, 860 M of a
   // 5 s tight turn; refactorising each time cost 3.8 G more), it rounds differently, at the
-  // level of a backward-stable solve (cond(KKT) · ε): docs/performance.md, session 20.
+  // level of a backward-stable solve (cond(KKT) · ε): docs/performance.md.
   if (m > 0) {
     k.kkt_pinv = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(kkt).pseudoInverse();
     ++counters_.constraint_factorisations;

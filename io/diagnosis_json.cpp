@@ -12,6 +12,7 @@
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 #include "io/screening_json.hpp"
+#include "io/json_number.hpp"
 
 namespace shudder::io {
 
@@ -24,14 +25,6 @@ using analysis::Misfit;
 using analysis::Tracking;
 using Pairs = std::vector<std::pair<std::string, double>>;
 
-std::string number(double x) {
-  // JSON has no NaN or infinity; a reader gets null and can tell "not available" from 0.
-  if (!std::isfinite(x)) return "null";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.10g", x);
-  return buf;
-}
-
 // One JSON object, members appended in order. Built on a stream rather than chained string
 // `+`: GCC 12 flags `"..." + std::string&&` with a false-positive -Wrestrict at -O3.
 class Object {
@@ -42,7 +35,7 @@ class Object {
     first_ = false;
     return *this;
   }
-  Object& num(const char* k, double v) { return raw(k, number(v)); }
+  Object& num(const char* k, double v) { return raw(k, json_number(v)); }
   Object& str(const char* k, const std::string& v) { return raw(k, json_string(v)); }
   std::string text() const {
     std::string t = "{";
@@ -69,7 +62,7 @@ std::string object_of(const Pairs& p) {
   std::ostringstream os;
   os << '{';
   for (std::size_t i = 0; i < p.size(); ++i)
-    os << (i ? ", " : "") << json_string(p[i].first) << ": " << number(p[i].second);
+    os << (i ? ", " : "") << json_string(p[i].first) << ": " << json_number(p[i].second);
   os << '}';
   return os.str();
 }

@@ -23,7 +23,7 @@ constexpr double kDefaultMinSpeed_mm_s = 6.0;    // Paper G range rule
 constexpr double kDefaultMaxSpeed_mm_s = 590.0;
 constexpr const char* kCoefficientNames[4] = {"C1", "C2", "C3", "C4"};
 
-std::string num(double x) {
+std::string message_number(double x) {
   std::ostringstream os;
   os.precision(10);
   os << x;
@@ -51,10 +51,10 @@ constexpr int kMakiSpeedSamples = 256;
 // mu must lie in (0, kMaxPlausibleMu]; "" if it does, else what is wrong.
 std::string implausible_mu(double mu) {
   if (!(mu > 0.0))
-    return "gives mu = " + num(mu) + " <= 0 (friction would drive the sliding surfaces and "
+    return "gives mu = " + message_number(mu) + " <= 0 (friction would drive the sliding surfaces and "
            "generate negative heat)";
   if (mu > kMaxPlausibleMu)
-    return "gives mu = " + num(mu) + " > " + num(kMaxPlausibleMu) +
+    return "gives mu = " + message_number(mu) + " > " + message_number(kMaxPlausibleMu) +
            " (implausible for a lubricated clutch, whose mu is ~0.05-0.2)";
   return "";
 }
@@ -95,8 +95,8 @@ void check_maki_set(TomlTable& row, const clutch::MakiSet& set, std::size_t j, d
     const double mu = set.c1 * th[k] + set.c3 * speeds.v_pow[k] + set.c4;
     if (mu > 0.0 && mu <= kMaxPlausibleMu) continue;
     row.fail("sets", "set " + std::to_string(j) + " " + implausible_mu(mu) + " at speed " +
-                         num(speeds.v[k]) + " mm/s, temperature " + num(temp_C) + " °C, load " +
-                         num(load_N) + " N; mu must lie in (0, " + num(kMaxPlausibleMu) +
+                         message_number(speeds.v[k]) + " mm/s, temperature " + message_number(temp_C) + " °C, load " +
+                         message_number(load_N) + " N; mu must lie in (0, " + message_number(kMaxPlausibleMu) +
                          "] over the law's whole range (min_speed_mm_s..max_speed_mm_s, every "
                          "row and load)");
   }
@@ -106,9 +106,9 @@ void check_maki_set(TomlTable& row, const clutch::MakiSet& set, std::size_t j, d
 void require_increasing(TomlTable& t, const std::string& key, const std::vector<double>& axis) {
   for (std::size_t i = 1; i < axis.size(); ++i)
     if (!(axis[i] > axis[i - 1]))
-      t.fail(key, "element " + std::to_string(i) + " = " + num(axis[i]) +
+      t.fail(key, "element " + std::to_string(i) + " = " + message_number(axis[i]) +
                       " is not greater than element " + std::to_string(i - 1) + " = " +
-                      num(axis[i - 1]) + "; values must be strictly increasing");
+                      message_number(axis[i - 1]) + "; values must be strictly increasing");
 }
 
 // One row's `sets`: an array with one [C1, C2, C3, C4] per load, all finite numbers.
@@ -124,12 +124,12 @@ std::vector<clutch::MakiSet> read_sets(TomlTable& row, const toml::table& raw_ro
   if (sets->size() != loads_N.size())
     row.fail("sets", "has " + std::to_string(sets->size()) +
                          " sets; expected one per load (" + std::to_string(loads_N.size()) +
-                         ") in the row at temp_C = " + num(temp_C));
+                         ") in the row at temp_C = " + message_number(temp_C));
 
   std::vector<clutch::MakiSet> out;
   for (std::size_t j = 0; j < sets->size(); ++j) {
     const std::string which =
-        "set " + std::to_string(j) + " (load " + num(loads_N[j]) + " N)";
+        "set " + std::to_string(j) + " (load " + message_number(loads_N[j]) + " N)";
     const toml::array* c = sets->get(j)->as_array();
     if (!c) row.fail("sets", which + " is " + std::string(toml_type_name(*sets->get(j))) +
                                  "; expected an array [C1, C2, C3, C4]");
@@ -159,7 +159,7 @@ std::vector<clutch::MakiSet> read_sets(TomlTable& row, const toml::table& raw_ro
 double read_row_temp(TomlTable& row, std::vector<double>& temps) {
   const double t = row.number("temp_C", Range::closed(-273.15, 1000.0));
   if (!temps.empty() && !(t > temps.back()))
-    row.fail("temp_C", "value " + num(t) + " is not above the previous row's " + num(temps.back()) +
+    row.fail("temp_C", "value " + message_number(t) + " is not above the previous row's " + message_number(temps.back()) +
                            "; rows must be strictly increasing in temp_C");
   temps.push_back(t);
   row.string_or("origin", "");
@@ -170,8 +170,8 @@ std::shared_ptr<const clutch::FrictionLaw> read_maki(TomlTable& maki, const toml
   const double vmin = maki.number_or("min_speed_mm_s", kDefaultMinSpeed_mm_s, Range::positive());
   const double vmax = maki.number_or("max_speed_mm_s", kDefaultMaxSpeed_mm_s, Range::positive());
   if (!(vmax > vmin))
-    maki.fail("max_speed_mm_s", "value " + num(vmax) + " must exceed min_speed_mm_s = " +
-                                    num(vmin));
+    maki.fail("max_speed_mm_s", "value " + message_number(vmax) + " must exceed min_speed_mm_s = " +
+                                    message_number(vmin));
   const std::vector<double> loads = maki.numbers("loads_N", Range::positive());
   require_increasing(maki, "loads_N", loads);
 
@@ -217,10 +217,10 @@ std::shared_ptr<const clutch::FrictionLaw> read_linear(TomlTable& lin) {
     for (const double t : {kLinearCheckLow_C, kLinearCheckHigh_C}) {
       const std::string what = implausible_mu(alpha[i] * t + beta[i]);
       if (!what.empty())
-        lin.fail("beta", "the line at speed " + num(rpm[i]) + " rpm (alpha_per_C[" + std::to_string(i) +
+        lin.fail("beta", "the line at speed " + message_number(rpm[i]) + " rpm (alpha_per_C[" + std::to_string(i) +
                              "] * T + beta[" + std::to_string(i) + "]) " + what + " at temperature " +
-                             num(t) + " °C (any load); mu must lie in (0, " + num(kMaxPlausibleMu) +
-                             "] from " + num(kLinearCheckLow_C) + " to " + num(kLinearCheckHigh_C) + " °C");
+                             message_number(t) + " °C (any load); mu must lie in (0, " + message_number(kMaxPlausibleMu) +
+                             "] from " + message_number(kLinearCheckLow_C) + " to " + message_number(kLinearCheckHigh_C) + " °C");
     }
   lin.finish();
 
@@ -291,14 +291,14 @@ std::shared_ptr<const clutch::FrictionLaw> read_table(TomlTable& tab, const toml
                      "table.loads_N (" + std::to_string(loads.size()) + ")");
     for (std::size_t j = 0; j < grid.size(); ++j) {
       if (grid[j].size() != speeds.size())
-        row.fail("mu", "array " + std::to_string(j) + " (load " + num(loads[j]) + " N) has " +
+        row.fail("mu", "array " + std::to_string(j) + " (load " + message_number(loads[j]) + " N) has " +
                            std::to_string(grid[j].size()) + " values; expected one per speed in "
                            "table.speeds_mm_s (" + std::to_string(speeds.size()) + ")");
       for (std::size_t k = 0; k < speeds.size(); ++k) {
         const std::string what = implausible_mu(grid[j][k]);
         if (!what.empty())
-          row.fail("mu", "value at speed " + num(speeds[k]) + " mm/s, load " + num(loads[j]) +
-                             " N " + what + "; mu must lie in (0, " + num(kMaxPlausibleMu) + "]");
+          row.fail("mu", "value at speed " + message_number(speeds[k]) + " mm/s, load " + message_number(loads[j]) +
+                             " N " + what + "; mu must lie in (0, " + message_number(kMaxPlausibleMu) + "]");
         mu.push_back(grid[j][k]);
       }
     }

@@ -392,7 +392,7 @@ std::vector<std::string> attribute_names(hid_t group) {
 }
 
 // A scalar string attribute; nullopt when it is something else (a number, an array).
-std::optional<std::string> read_string_attr(hid_t obj, const std::string& name) {
+std::optional<std::string> read_text_attr(hid_t obj, const std::string& name) {
   const Handle attr =
       own(H5Aopen(obj, name.c_str(), H5P_DEFAULT), H5Aclose, "open attribute '" + name + "'");
   const Handle file_type = own(H5Aget_type(attr), H5Tclose, "read type of '" + name + "'");
@@ -423,7 +423,7 @@ MeasuredRun read_hdf5(const std::string& path, hid_t file, std::uintmax_t max_fi
   const Handle group = own(H5Gopen2(file, group_name, H5P_DEFAULT), H5Gclose, "open /measurement");
 
   for (const auto& key : attribute_names(group)) {
-    auto value = read_string_attr(group, key);
+    auto value = read_text_attr(group, key);
     if (!value)
       bad(attribute_key(key), "metadata attribute is not a string; every attribute of "
                               "/measurement must be a scalar string");
@@ -472,7 +472,7 @@ MeasuredRun read_hdf5(const std::string& path, hid_t file, std::uintmax_t max_fi
     const htri_t has_units = H5Aexists(dset, "units");
     ok(has_units, "look up attribute 'units' of " + key);
     if (has_units > 0) {
-      auto units = read_string_attr(dset, "units");
+      auto units = read_text_attr(dset, "units");
       if (!units) bad(key + "@units", "attribute 'units' is not a string");
       column.units = std::move(*units);
     }

@@ -8,6 +8,7 @@
 
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
+#include "io/json_number.hpp"
 
 namespace shudder::io {
 
@@ -15,13 +16,6 @@ namespace {
 
 using analysis::Index;
 using analysis::kIndexCount;
-
-std::string number(double x) {
-  if (!std::isfinite(x)) return "null";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.10g", x);
-  return buf;
-}
 
 const char* boolean(bool b) { return b ? "true" : "false"; }
 
@@ -36,21 +30,21 @@ std::string array(std::size_t n, const std::function<std::string(std::size_t)>& 
 }
 
 std::string numbers(const std::vector<double>& v) {
-  return array(v.size(), [&](std::size_t i) { return number(v[i]); });
+  return array(v.size(), [&](std::size_t i) { return json_number(v[i]); });
 }
 
 // Rows of a (n_s x n_T) matrix: [[m(0,0), m(0,1), ...], ...], one row per speed.
 std::string matrix(const Eigen::MatrixXd& m) {
   return array(static_cast<std::size_t>(m.rows()), [&](std::size_t i) {
     return array(static_cast<std::size_t>(m.cols()),
-                 [&](std::size_t j) { return number(m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j))); });
+                 [&](std::size_t j) { return json_number(m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j))); });
   });
 }
 
 std::string runs(const std::vector<analysis::RegionRun>& r) {
   return array(r.size(), [&](std::size_t i) {
-    return "{\"temp_C\": " + number(r[i].temp_C) + ", \"from_rpm\": " + number(r[i].from_rpm) +
-           ", \"to_rpm\": " + number(r[i].to_rpm) + "}";
+    return "{\"temp_C\": " + json_number(r[i].temp_C) + ", \"from_rpm\": " + json_number(r[i].from_rpm) +
+           ", \"to_rpm\": " + json_number(r[i].to_rpm) + "}";
   });
 }
 
@@ -58,8 +52,8 @@ std::string extent(const analysis::RegionExtent& e) {
   std::ostringstream os;
   os << "{\"points\": " << e.points << ", \"grid_points\": " << e.grid_points;
   if (e.points > 0)
-    os << ", \"speed_rpm\": [" << number(e.min_rpm) << ", " << number(e.max_rpm) << "], \"temp_C\": ["
-       << number(e.min_temp_C) << ", " << number(e.max_temp_C) << "]";
+    os << ", \"speed_rpm\": [" << json_number(e.min_rpm) << ", " << json_number(e.max_rpm) << "], \"temp_C\": ["
+       << json_number(e.min_temp_C) << ", " << json_number(e.max_temp_C) << "]";
   os << "}";
   return os.str();
 }
@@ -100,20 +94,20 @@ std::string screening_json(const rig_models::ScreeningReport& rep, const std::st
   os << "  \"shudder_version\": " << json_string(SHUDDER_VERSION) << ",\n";
   os << "  \"fluid\": " << json_string(rep.fluid_name) << ",\n";
   os << "  \"fluid_file\": " << json_string(fluid_file) << ",\n";
-  os << "  \"load_N\": " << number(rep.load_N) << ",\n";
-  os << "  \"mean_radius_mm\": " << number(rep.mean_radius_mm) << ",\n";
-  os << "  \"mm_s_per_rpm\": " << number(analysis::rpm_to_mm_s(1.0, rep.mean_radius_mm)) << ",\n";
-  os << "  \"law_data_range\": {\"speed_mm_s\": [" << number(rep.law_speed_range_mm_s.first) << ", "
-     << number(rep.law_speed_range_mm_s.second) << "], \"temp_C\": [" << number(rep.law_temp_range_C.first)
-     << ", " << number(rep.law_temp_range_C.second) << "]},\n";
+  os << "  \"load_N\": " << json_number(rep.load_N) << ",\n";
+  os << "  \"mean_radius_mm\": " << json_number(rep.mean_radius_mm) << ",\n";
+  os << "  \"mm_s_per_rpm\": " << json_number(analysis::rpm_to_mm_s(1.0, rep.mean_radius_mm)) << ",\n";
+  os << "  \"law_data_range\": {\"speed_mm_s\": [" << json_number(rep.law_speed_range_mm_s.first) << ", "
+     << json_number(rep.law_speed_range_mm_s.second) << "], \"temp_C\": [" << json_number(rep.law_temp_range_C.first)
+     << ", " << json_number(rep.law_temp_range_C.second) << "]},\n";
 
   // Indices: one array per index, aligned with temperatures_C.
-  os << "  \"temperatures_C\": " << array(nt, [&](std::size_t i) { return number(idx[i].temp_C); }) << ",\n";
+  os << "  \"temperatures_C\": " << array(nt, [&](std::size_t i) { return json_number(idx[i].temp_C); }) << ",\n";
   os << "  \"temperature_outside_data\": "
      << array(nt, [&](std::size_t i) { return std::string(boolean(idx[i].temp_outside_data)); }) << ",\n";
   for (std::size_t k = 0; k < kIndexCount; ++k)
     os << "  \"" << analysis::index_info()[k].key
-       << "\": " << array(nt, [&](std::size_t i) { return number(idx[i].values[k].value); }) << ",\n";
+       << "\": " << array(nt, [&](std::size_t i) { return json_number(idx[i].values[k].value); }) << ",\n";
   os << "  \"units\": {";
   for (std::size_t k = 0; k < kIndexCount; ++k)
     os << (k ? ", " : "") << "\"" << analysis::index_info()[k].key << "\": " << json_string(analysis::index_info()[k].unit);
@@ -133,18 +127,18 @@ std::string screening_json(const rig_models::ScreeningReport& rep, const std::st
   os << "  \"risky_region_extent\": " << extent(rep.negative_slope_extent) << ",\n";
 
   // Stability maps, one per rig, on the slope map's grid.
-  os << "  \"stability\": {\"load_N\": " << number(rep.load_N) << ", \"speeds_rpm\": " << numbers(rep.slope.speeds_rpm)
+  os << "  \"stability\": {\"load_N\": " << json_number(rep.load_N) << ", \"speeds_rpm\": " << numbers(rep.slope.speeds_rpm)
      << ", \"temps_C\": " << numbers(rep.slope.temps_C) << ", \"rigs\": [";
   for (std::size_t r = 0; r < rep.rigs.size(); ++r) {
     const auto& rig = rep.rigs[r];
     os << (r ? ",\n" : "\n") << "    {\"label\": " << json_string(rig.label)
-       << ", \"clutch_side_frequency_Hz\": " << number(rig.clutch_side_frequency_Hz)
+       << ", \"clutch_side_frequency_Hz\": " << json_number(rig.clutch_side_frequency_Hz)
        << ", \"unstable_region\": " << runs(rig.unstable) << ", \"unstable_extent\": " << extent(rig.unstable_extent)
        << ", \"saturated_points\": " << rig.saturated_points
-       << ", \"max_margin_per_s\": " << number(rig.max_margin_per_s)
-       << ", \"max_margin_at\": {\"speed_rpm\": " << number(rig.max_margin_rpm)
-       << ", \"temp_C\": " << number(rig.max_margin_temp_C)
-       << ", \"frequency_Hz\": " << number(rig.max_margin_frequency_Hz) << "}"
+       << ", \"max_margin_per_s\": " << json_number(rig.max_margin_per_s)
+       << ", \"max_margin_at\": {\"speed_rpm\": " << json_number(rig.max_margin_rpm)
+       << ", \"temp_C\": " << json_number(rig.max_margin_temp_C)
+       << ", \"frequency_Hz\": " << json_number(rig.max_margin_frequency_Hz) << "}"
        << ", \"margin_per_s\": " << matrix(rig.map.margin_per_s)
        << ", \"frequency_Hz\": " << matrix(rig.map.frequency_Hz) << "}";
   }

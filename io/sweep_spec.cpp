@@ -12,17 +12,18 @@ namespace {
 
 constexpr std::size_t kMaxValuesPerAxis = 100000;
 
-[[noreturn]] void bad(const std::string& arg, const std::string& why) {
-  throw InputError("--set", 0, "", "'" + arg + "': " + why +
-                                       "; expected KEY=START:STOP:STEP (STEP > 0, STOP >= START) "
-                                       "or KEY=V1,V2,...");
+constexpr const char* kSweepForm = "KEY=START:STOP:STEP (STEP > 0, STOP >= START) or KEY=V1,V2,...";
+constexpr const char* kRunForm = "KEY=VALUE (one number; `shudder sweep` runs several values)";
+
+[[noreturn]] void bad(const std::string& arg, const std::string& why, const char* form = kSweepForm) {
+  throw InputError("--set", 0, "", "'" + arg + "': " + why + "; expected " + form);
 }
 
-double number(const std::string& arg, const std::string& text) {
+double number(const std::string& arg, const std::string& text, const char* form = kSweepForm) {
   double x = 0.0;
   const char* end = text.data() + text.size();
   const auto [ptr, ec] = std::from_chars(text.data(), end, x);
-  if (ec != std::errc() || ptr != end || !std::isfinite(x)) bad(arg, "'" + text + "' is not a finite number");
+  if (ec != std::errc() || ptr != end || !std::isfinite(x)) bad(arg, "'" + text + "' is not a finite number", form);
   return x;
 }
 
@@ -54,6 +55,22 @@ SweepAxis parse_sweep_axis(const std::string& arg) {
     for (const auto& v : split(spec, ',')) axis.values.push_back(number(arg, v));
   }
   return axis;
+}
+
+void require_distinct_keys(const std::vector<SweepAxis>& axes) {
+  for (std::size_t a = 0; a < axes.size(); ++a)
+    for (std::size_t b = 0; b < a; ++b)
+      if (axes[a].key == axes[b].key)
+        throw InputError("--set", 0, axes[a].key,
+                         "given twice; give each key once (list several values as KEY=V1,V2,...)");
+}
+
+SweepAxis parse_set_value(const std::string& arg) {
+  const auto eq = arg.find('=');
+  if (eq == std::string::npos || eq == 0) bad(arg, "no KEY=", kRunForm);
+  const std::string value = arg.substr(eq + 1);
+  if (value.find_first_of(":,") != std::string::npos) bad(arg, "a run takes one value per key", kRunForm);
+  return {arg.substr(0, eq), {number(arg, value, kRunForm)}};
 }
 
 std::vector<std::vector<double>> sweep_cases(const std::vector<SweepAxis>& axes) {

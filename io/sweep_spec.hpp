@@ -15,6 +15,14 @@ struct SweepAxis {
 /// Parses one --set argument; throws InputError (key "--set") naming the argument and the form.
 SweepAxis parse_sweep_axis(const std::string& arg);
 
+/// Rejects a key given twice (the cases would repeat, or a run's second value would silently
+/// win) with an InputError naming it.
+void require_distinct_keys(const std::vector<SweepAxis>& axes);
+
+/// One `run --set KEY=VALUE`: the sweep's parser, so the same keys, numbers and messages, with
+/// exactly one value (a range or list is an InputError pointing to `shudder sweep`).
+SweepAxis parse_set_value(const std::string& arg);
+
 /// Cartesian product: row i gives the value of every axis for case i (axis order kept).
 std::vector<std::vector<double>> sweep_cases(const std::vector<SweepAxis>& axes);
 

@@ -5,24 +5,18 @@
 
 #include "io/atomic_file.hpp"
 #include "io/screening_json.hpp"
+#include "io/json_number.hpp"
 
 namespace shudder::io {
 
 namespace {
-
-std::string number(double x) {
-  if (!std::isfinite(x)) return "null";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.10g", x);
-  return buf;
-}
 
 }  // namespace
 
 std::string verdict_json(const dynamics::ResultBlock& b) {
   std::string s = "{\n  \"format\": \"shudder-verdict/1\"";
   for (const auto& t : b.texts) s += ",\n  " + json_string(t.name) + ": " + json_string(t.value);
-  for (const auto& sc : b.scalars) s += ",\n  " + json_string(sc.name) + ": " + number(sc.value);
+  for (const auto& sc : b.scalars) s += ",\n  " + json_string(sc.name) + ": " + json_number(sc.value);
   return s + "\n}\n";
 }
 

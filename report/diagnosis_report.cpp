@@ -18,6 +18,7 @@
 #include "report/gnuplot.hpp"
 #include "report/plots.hpp"
 #include "io/input_error.hpp"
+#include "core/nan.hpp"
 
 namespace shudder::report {
 
@@ -27,7 +28,6 @@ namespace fs = std::filesystem;
 using analysis::CandidateScore;
 using analysis::RunTraces;
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::string fixed(double x, const char* fmt = "%.4g") {
   if (!std::isfinite(x)) return "–";

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <string>
 
+#include "report/run_summary.hpp"
+
 namespace shudder::report {
 
 namespace {
@@ -20,7 +22,7 @@ std::string verdict_line(const rig_models::RunVerdict& v) {
   if (r.verdict == analysis::Verdict::kNone)
     return "none (largest oscillation " + format("%.3g N m at %.3g Hz", r.amplitude_Nm, r.peak_frequency_Hz) + ")";
   // An oscillation already there in the first frames of the judged window has no onset of its
-  // own: the window's start is all that can be said (analysis/shudder_detection.hpp, 8e).
+  // own: the window's start is all that can be said (analysis/shudder_detection.hpp, threshold-crossing onset).
   std::string onset;
   if (std::isfinite(r.onset_time_s))
     onset = r.growth_observed ? format(", onset %.3g s", r.onset_time_s)
@@ -82,6 +84,7 @@ void print_network_summary(std::ostream& os, const io::NetworkScenario& sc, cons
     if (!k.judged_on.empty()) os << " [judged on " << k.judged_on << ".torque_Nm]";
     os << "\n";
     if (v.judged) os << "    " << prediction_line(v.verdict.prediction) << "\n";
+    if (v.judged && v.verdict.judged.verdict == analysis::Verdict::kStickSlip) os << "    " << kStickSlipNote;
     const double locked = locked_from_s(rec, k.name);
     os << "    " << (std::isfinite(locked) ? format("locked from %.4g s to the end", locked) : std::string("slipping at the end"))
        << format("; friction heat %.4g kJ", scalar(rec, k.name + ".friction_work_J") * 1e-3);

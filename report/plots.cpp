@@ -22,6 +22,7 @@
 #include "io/hdf5_run.hpp"
 #include "io/input_error.hpp"
 #include "io/verdict_json.hpp"
+#include "core/nan.hpp"
 
 namespace shudder::report {
 
@@ -31,9 +32,8 @@ namespace fs = std::filesystem;
 using dynamics::Recording;
 using dynamics::Signal;
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-std::string format(const char* fmt, double a) { return number(a, fmt); }
+std::string plot_number(const char* fmt, double a) { return number(a, fmt); }
 
 /// "°C" for the files' "degC", "N m" as is, ...: the unit as printed on an axis.
 std::string display_units(const std::string& units) { return units == "degC" ? "°C" : units; }
@@ -246,8 +246,8 @@ Plot spectrum_plot(const Recording& rec, const std::string& name, const std::str
 
   Plot p;
   p.title = name + ": torque amplitude spectrum (Hann window, whole record " +
-            format("%.3g", t.values.back() - t.values.front()) + " s, bin " +
-            format("%.3g", sp.bin_width_Hz) + " Hz)";
+            plot_number("%.3g", t.values.back() - t.values.front()) + " s, bin " +
+            plot_number("%.3g", sp.bin_width_Hz) + " Hz)";
   p.xlabel = "frequency [Hz]";
   p.ylabel = "torque amplitude [N m]";
   p.log_y = true;
@@ -330,7 +330,7 @@ Plot spectrogram_plot(const Recording& rec, const std::string& name, const std::
   if (bins.size() < 2 || sg.times_s.size() < 2)
     throw io::InputError(source, 0, "",
                      "the record (" + std::to_string(n) + " samples) is too short for a spectrogram around " +
-                         format("%.4g", f) + " Hz");
+                         plot_number("%.4g", f) + " Hz");
 
   ColorMap map;
   map.x = sg.times_s;
@@ -348,7 +348,7 @@ Plot spectrogram_plot(const Recording& rec, const std::string& name, const std::
   map.label = "torque PSD [dB re 1 (N m)²/Hz]";
 
   Plot p;
-  p.title = name + ": torque spectrogram (frames of " + format("%.3g", 1e3 * static_cast<double>(len) / fs) +
+  p.title = name + ": torque spectrogram (frames of " + plot_number("%.3g", 1e3 * static_cast<double>(len) / fs) +
             " ms, Hann)";
   p.xlabel = "time [s] (frame centre)";
   p.ylabel = "frequency [Hz]";
@@ -364,11 +364,11 @@ Plot spectrogram_plot(const Recording& rec, const std::string& name, const std::
     line.rgb = "#ffffff";
     p.series.push_back(std::move(line));
     const bool shudder = det && det->verdict != analysis::Verdict::kNone;
-    p.labels.push_back({t0, f, (shudder ? "dominant " : "strongest peak ") + format("%.1f", f) + " Hz"});
+    p.labels.push_back({t0, f, (shudder ? "dominant " : "strongest peak ") + plot_number("%.1f", f) + " Hz"});
   }
   if (det && det->verdict != analysis::Verdict::kNone && std::isfinite(det->onset_time_s)) {
     Series onset;
-    onset.label = "onset " + format("%.3g", det->onset_time_s) + " s (" + verdict_text(det->verdict) + ")";
+    onset.label = "onset " + plot_number("%.3g", det->onset_time_s) + " s (" + verdict_text(det->verdict) + ")";
     onset.x = {det->onset_time_s, det->onset_time_s};
     onset.y = {p.map.y.front(), p.map.y.back()};
     onset.dashed = true;
@@ -451,7 +451,7 @@ Plot stability_map_plot(const Recording& rec, const std::string& name, const std
   Plot p;
   const auto* force = m->find_scalar("normal_force_N");
   p.title = name + ": stability of steady sliding" +
-            (force ? " at " + format("%.4g", force->value / 1e3) + " kN" : std::string());
+            (force ? " at " + plot_number("%.4g", force->value / 1e3) + " kN" : std::string());
   p.xlabel = axis(m->x_name, m->x_units, "slip speed", "interface temperature");
   p.ylabel = axis(m->y_name, m->y_units, "slip speed", "interface temperature");
   p.map.x = m->x;

@@ -10,6 +10,7 @@
 #include "dynamics/signal_names.hpp"
 #include "rig_models/friction_range_block.hpp"
 #include "rig_models/run_verdict.hpp"
+#include "core/nan.hpp"
 
 namespace shudder::report {
 
@@ -31,7 +32,6 @@ namespace {
 
 namespace sn = dynamics::signal_names;
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double scalar(const dynamics::Recording& rec, const char* name) {
   const auto* s = rec.find_scalar(name);
@@ -184,7 +184,8 @@ void print_section(std::ostream& os, const rig_models::RigModel& model, const dy
 constexpr double kControlLoopSwing = 0.2;
 
 // The verdict block (rig_models/run_verdict.hpp) in three lines: what the run shows, the
-// operating point it was judged at, and what linear theory predicted there.
+// operating point it was judged at, and what linear theory predicted there; a fourth for
+// stick-slip, which that theory cannot predict.
 void print_verdict(std::ostream& os, const char* label, const dynamics::Recording& rec) {
   const auto* b = rec.find_block(rig_models::kVerdictBlock);
   if (!b) {
@@ -250,6 +251,7 @@ void print_verdict(std::ostream& os, const char* label, const dynamics::Recordin
                     100 * swing);
     os << line;
   }
+  if (verdict == "stick_slip") os << kStickSlipNote;
 }
 
 }  // namespace

@@ -14,6 +14,12 @@ namespace shudder::report {
 /// Value of signal `name` at time t (linear interpolation), NaN if absent.
 double signal_at(const dynamics::Recording& rec, std::string_view name, double t_s);
 
+/// The line said beside a stick-slip verdict (run and network summaries): linear theory about
+/// steady slipping, printed next to it, cannot see stick-slip, so "stable" there is no contradiction.
+inline constexpr std::string_view kStickSlipNote =
+    "Note: linear theory about the slipping point cannot predict stick-slip (a nonlinear phenomenon: the clutch "
+    "sticks), so a 'stable' prediction does not contradict this verdict\n";
+
 void print_run_summary(std::ostream& os, const io::Scenario& scenario,
                        const dynamics::Recording& rec);
 

@@ -66,7 +66,7 @@ std::size_t width(const std::string& s) {
   return n;
 }
 
-double scalar(const dynamics::Recording& rec, const char* name) {
+double run_scalar(const dynamics::Recording& rec, const char* name) {
   const auto* s = rec.find_scalar(name);
   return s ? s->value : std::nan("");
 }
@@ -136,9 +136,9 @@ void write_energy(std::ostream& md, const std::vector<ValidationRun>& runs) {
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const auto& r = runs[i].rec;
     md << fmt("| %s | %.1f | %.1f | %.1f | %.1f | %.1e |\n", runs[i].label.c_str(),
-              scalar(r, "heat_generated_J"), scalar(r, "heat_stored_in_discs_J"),
-              scalar(r, "heat_to_sump_J"), scalar(r, "heat_to_rig_J"),
-              scalar(r, "energy_balance_relative_error"));
+              run_scalar(r, "heat_generated_J"), run_scalar(r, "heat_stored_in_discs_J"),
+              run_scalar(r, "heat_to_sump_J"), run_scalar(r, "heat_to_rig_J"),
+              run_scalar(r, "energy_balance_relative_error"));
   }
   md << "\n";
 }

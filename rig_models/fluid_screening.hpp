@@ -67,7 +67,7 @@ struct ScreeningReport {
   std::vector<analysis::RegionRun> negative_slope;    // the risky region: dmu/dv < 0
   analysis::RegionExtent negative_slope_extent;
   std::vector<RigScreen> rigs;
-  analysis::Verdict verdict;
+  analysis::ScreeningVerdict verdict;
 };
 
 /// Runs the screening. Throws std::invalid_argument for a bad load, radius, temperature or

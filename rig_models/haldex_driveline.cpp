@@ -20,7 +20,7 @@ namespace shudder::rig_models {
 
 namespace {
 
-void require_positive(double v, const char* what) {
+void require_positive_parameter(double v, const char* what) {
   if (!std::isfinite(v) || !(v > 0))
     throw std::invalid_argument(std::string("driveline: ") + what + " must be a finite value > 0");
 }
@@ -69,7 +69,7 @@ HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::We
            {p_.coupling_half_inertia_kg_m2, "coupling_half_inertia_kg_m2"}, {p_.rear_diff_ratio, "rear_diff_ratio"},
            {p_.rear_diff_inertia_kg_m2, "rear_diff_inertia_kg_m2"}, {p_.turn_ratio, "turn_ratio"},
            {p_.nominal_friction, "nominal_friction"}, {p_.front_axle_load_share, "front_axle_load_share"}})
-    require_positive(v, what);
+    require_positive_parameter(v, what);
   if (!(p_.front_axle_load_share < 1))
     throw std::invalid_argument("driveline: front_axle_load_share must be in (0, 1)");
   for (const auto& [v, what] : std::initializer_list<std::pair<double, const char*>>{

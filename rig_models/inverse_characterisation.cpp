@@ -13,7 +13,7 @@ namespace shudder::rig_models {
 
 namespace {
 
-std::string g(double x) {
+std::string three_digits(double x) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.3g", x);
   return buf;
@@ -151,7 +151,7 @@ InverseCharacterisation characterise_inverse(const std::vector<analysis::RampRun
     if (!converged)
       throw std::runtime_error("the inverse characterisation did not converge: after " +
                                std::to_string(inv.max_iterations) + " replays the law still changes by " +
-                               g(out.last_change_mu) + " in mu (tolerance " + g(inv.tolerance_mu) +
+                               three_digits(out.last_change_mu) + " in mu (tolerance " + three_digits(inv.tolerance_mu) +
                                "); the replayed temperature field does not settle with the law — use --method sensor");
   }
   const Replayed final_rep = replay_with(law, oil);

@@ -75,7 +75,7 @@ std::optional<RecordingDetection> recording_detection(const dynamics::Recording&
   if (const auto* s = rec.find(sn::kStuck)) d.input.stuck = s->values;
   if (const auto* s = rec.find(sn::kInterfaceMeanTemp)) d.input.interface_temp_C = s->values;
   if (const auto* s = rec.find(driveline ? sn::kClampForce : sn::kNormalForce)) d.input.normal_force_N = s->values;
-  // A run's onset: the oscillation reaching the verdict's threshold (detector definition 8e),
+  // A run's onset: the oscillation reaching the verdict's threshold (the detector's threshold-crossing onset),
   // not set by the start transient.
   d.settings.onset_definition = analysis::OnsetDefinition::kThresholdCrossing;
   if (driveline) {

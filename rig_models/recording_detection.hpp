@@ -11,8 +11,8 @@
 // the record's last two periods (or last tenth, if longer). A ringing that dies out is the car
 // answering the manoeuvre (a torque step rings the shuffle mode), not judder.
 // Stuck flags, interface temperature and normal force are used when recorded.
-// The onset reported is detector definition 8e (analysis/shudder_detection.hpp): the time the
-// oscillation's amplitude last rose through the verdict's threshold, independent of the start
+// The onset reported is the detector's threshold-crossing onset (analysis/shudder_detection.hpp):
+// the time the oscillation's amplitude last rose through the verdict's threshold, independent of the start
 // transient and of the thermal step (docs/rig_model.md).
 
 #include <optional>

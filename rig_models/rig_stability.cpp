@@ -6,12 +6,12 @@
 #include <string>
 
 #include "core/units.hpp"
+#include "core/nan.hpp"
 
 namespace shudder::rig_models {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 void check_operating_point(double force_N, double slip_rpm, double temp_C) {
   if (!(std::isfinite(force_N) && force_N > 0))

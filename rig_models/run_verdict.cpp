@@ -7,12 +7,12 @@
 
 #include "rig_models/recording_detection.hpp"
 #include "rig_models/rig_stability.hpp"
+#include "core/nan.hpp"
 
 namespace shudder::rig_models {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Mean of x over the samples whose time lies in [from, to]; NaN for an absent signal.
 double window_mean(std::span<const double> t, std::span<const double> x, double from_s, double to_s) {

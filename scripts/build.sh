@@ -1,7 +1,11 @@
 #!/usr/bin/env bash
-# Installs the Debian dependencies (if missing) and builds shudder in ./build (Release).
+# Installs every Debian dependency (if missing) and builds everything in ./build (Release): the
+# `shudder` executable, tests, benchmarks, the Python module, `shudder-mpi` and the FMU.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+# Every part switched on by name: a build/ configured by scripts/run-default.sh (which switches
+# them off) would otherwise keep them off from its cache.
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=ON -DSHUDDER_PYTHON=ON -DSHUDDER_MPI=ON \
+      -DSHUDDER_FMU=ON -DSHUDDER_BENCH=ON -DSHUDDER_PCH=ON -DSHUDDER_UNITY_BUILD=ON >/dev/null
 cmake --build build -j"$(nproc)"

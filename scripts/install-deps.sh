@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Installs everything shudder needs to build, test and plot, from Debian 12 packages only.
-# Safe to run again: apt-get skips what is already there. Needs root (or sudo).
+# Installs shudder's dependencies from Debian 12 packages only. Safe to run again: packages
+# already present are skipped. Needs root (or sudo).
+#   bash scripts/install-deps.sh cli   what the `shudder` executable needs to build (run-default.sh)
+#   bash scripts/install-deps.sh       everything: also tests, benchmarks, Python, MPI, FMU, fuzzing, plots
 set -euo pipefail
-packages=(
+cli_packages=(
   g++ cmake make pkg-config
   libeigen3-dev          # dense/sparse linear algebra (thermal solver, modal analysis)
   libboost-dev           # Boost.Odeint (header-only) for time integration
@@ -10,6 +12,8 @@ packages=(
   libhdf5-dev            # HDF5 output (C API)
   libtomlplusplus-dev    # TOML scenario parsing (toml++ 3.3, header-only, reports line/column)
   libcli11-dev           # command line parsing (CLI11, header-only)
+)
+rest_packages=(
   libgtest-dev libgmock-dev  # unit tests
   libbenchmark-dev       # benchmarks
   gnuplot-nox            # plots (PNG/SVG), driven by the program
@@ -25,6 +29,11 @@ packages=(
   g++-mingw-w64-x86-64-posix  # the FMU's win64 binary, cross-built (docs/fmu.md "Platforms")
   wine64                 # the FMU test runs the win64 binary under Wine (tests/fmu)
 )
+case "${1:-all}" in
+  cli) packages=("${cli_packages[@]}") ;;
+  all) packages=("${cli_packages[@]}" "${rest_packages[@]}") ;;
+  *) echo "install-deps: error: unknown set '$1'; use 'cli' or nothing (everything)" >&2; exit 2 ;;
+esac
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

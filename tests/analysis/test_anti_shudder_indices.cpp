@@ -333,16 +333,16 @@ TEST(Indices, VerdictRules) {
   const RigEvidence stable{"rig (378 Hz bar)", {0, 4}};
   const RigEvidence unstable{"rig (378 Hz bar)", {2, 4, 30, 100, 80, 120}};
 
-  const Verdict low = screening_verdict({safe}, slope, none, {stable});
+  const ScreeningVerdict low = screening_verdict({safe}, slope, none, {stable});
   EXPECT_EQ(low.level, RiskLevel::kLow);
   EXPECT_THAT(low.text, HasSubstr("LOW RISK: no negative isothermal slope over 1\u2013120 rpm"));
 
-  const Verdict caution = screening_verdict({safe}, slope, neg, {stable});
+  const ScreeningVerdict caution = screening_verdict({safe}, slope, neg, {stable});
   EXPECT_EQ(caution.level, RiskLevel::kCaution);
   EXPECT_THAT(caution.text, HasSubstr("CAUTION: negative isothermal slope at 30\u2013100 rpm, 70\u2013120 \u00b0C"));
   EXPECT_THAT(caution.text, HasSubstr("every rig is predicted stable"));
 
-  const Verdict risk = screening_verdict({safe}, slope, neg, {stable, unstable});
+  const ScreeningVerdict risk = screening_verdict({safe}, slope, neg, {stable, unstable});
   EXPECT_EQ(risk.level, RiskLevel::kRisk);
   EXPECT_THAT(risk.text, HasSubstr("rig (378 Hz bar) predicted unstable at 30\u2013100 rpm, 80\u2013120 \u00b0C"));
 
@@ -350,14 +350,14 @@ TEST(Indices, VerdictRules) {
   // A rig saturated everywhere (no evaluated point) is no evidence: the slope decides, and the
   // rig is named as not judged.
   const RigEvidence saturated{"rig (500 Hz bar)", {0, 0}};
-  const Verdict unjudged = screening_verdict({safe}, slope, neg, {saturated});
+  const ScreeningVerdict unjudged = screening_verdict({safe}, slope, neg, {saturated});
   EXPECT_EQ(unjudged.level, RiskLevel::kRisk);
   EXPECT_THAT(unjudged.text, HasSubstr("rig (500 Hz bar) not judged"));
   EXPECT_EQ(screening_verdict({safe}, slope, none, {saturated}).level, RiskLevel::kCaution);
 
   AntiShudderIndices ohtani = safe;
   ohtani[Index::kMu1OverMu50] = {1.05, true};
-  const Verdict o = screening_verdict({ohtani}, slope, none, {stable});
+  const ScreeningVerdict o = screening_verdict({ohtani}, slope, none, {stable});
   EXPECT_EQ(o.level, RiskLevel::kRisk);
   EXPECT_THAT(o.text, HasSubstr("mu1/mu50 (Ohtani) > 1 at 80 \u00b0C (outside data)"));
 

@@ -219,7 +219,7 @@ TEST(CharacteriseRoundTrip, FluidCMatrixQuadraticCompensationBeatsNone) {
               en.mu, el.mu, lin.alpha_per_C, eq.mu, et.mu, eq.gap_raw, eq.gap_comp);
   // Without compensation the data at 100 rpm are 10-30 °C hotter than the row: the bias is
   // several percent. The sensor reads the back of the separator (r = 48 mm, z = 0.5 mm), not
-  // the interface, so compensation with it cannot be exact (issue 11 part 6: ~3 %); it must
+  // the interface, so compensation with it cannot be exact (~3 %); it must
   // still beat no compensation by a clear factor, and stay within 5 %.
   EXPECT_GT(en.mu, 0.03);
   EXPECT_LT(eq.mu, 0.05);

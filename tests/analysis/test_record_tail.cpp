@@ -8,7 +8,7 @@
 // a decaying low-frequency start transient (a take-up) and a sine that grows from ε A at t_g and
 // saturates at A, starting in the last ~30 % of the record, after the last whole regular Welch
 // segment has ended (so the old segmentation had no sample of it). Slip is a steady 30 rpm, so
-// the verdict is a vibration. Onset (definition 8e): the amplitude A e(t) reaches the verdict's
+// the verdict is a vibration. Onset (threshold crossing): the amplitude A e(t) reaches the verdict's
 // threshold a* = max(0.5 N m, 1 % mean |T|) at g* = (a*/A)/√(1 − (a*/A)²):
 //   t* = t_g + ln(g*/ε)/σ.
 #include <gtest/gtest.h>

@@ -77,7 +77,7 @@ TEST(DetectionSynthetic, SteadyTorqueWithSmallNoiseIsNone) {
 //   amplitude 2 %: the residual's half peak-to-peak adds the noise at the crests, ~1–2 σ_n =
 //     0.1–0.2 N m of A = 20 N m (≤ 1 %), the one-period moving mean removes the sine to the
 //     sampling's ~1/N_period² (53 samples per period: 4e-4);
-//   onset: by the definition (shudder_detection.hpp, 8c) the growth line fitted between the
+//   onset: by the definition (shudder_detection.hpp, kGrowthLine) the growth line fitted between the
 //     crossing level and the oscillating part is extrapolated down to the start level P_b
 //     (the mean of the detector's first 8 frames: noise only), so the onset is where the
 //     sine's mean square ε² A² e^{2σ (t − t_g)}/2 equals P_b:
@@ -129,14 +129,14 @@ TEST(DetectionSynthetic, GrowingSaturatingSineOnSteadySlipIsVibrationWithItsFreq
   EXPECT_NEAR(r.oscillating_from_s, t_g + std::log(0.1 / eps) / sigma, 0.05);
 }
 
-// Onset definition 8e (kThresholdCrossing, what runs report): a growing saturating sine as
+// The threshold-crossing onset (kThresholdCrossing, what runs report): a growing saturating sine as
 // above (A = 50 N m on 300 N m, threshold max(0.5, 1 % of the mean |T|) ≈ 3 N m, under the
 // oscillating part's 5 N m) behind a start transient above the threshold: a ringing at the same
 // frequency, 4 e^{−10 t} N m, under the threshold after 29 ms. The amplitude A e(t) reaches
-// 3 N m where g = 0.06/√(1 − 0.06²): t = t_g + ln(g/ε)/σ (0.8267 s). 8e must skip the decaying
+// 3 N m where g = 0.06/√(1 − 0.06²): t = t_g + ln(g/ε)/σ (0.8267 s). The threshold crossing must skip the decaying
 // start (the LAST upward crossing counts) and not depend on what lies under the threshold:
 // without the transient, or with 10 times the noise (σ_n 0.1 → 1 N m, ~0.2 N m in the band),
-// it stays put, while 8c's start level is the transient's (its onset moves with it).
+// it stays put, while the growth line's start level is the transient's (its onset moves with it).
 // Tolerances: onset 5 ms = 7 % of amplitude at σ = 15 1/s (the Hann band ±2 bins holds the
 // sine's power to < 1 %; the interpolation in dB between frame centres is exact for an
 // exponential; the saturation bends the curve by 0.2 % at 6 % of A). Noise: its cross term
@@ -168,7 +168,7 @@ TEST(DetectionSynthetic, ThresholdCrossingOnsetSkipsTheStartTransientAndIgnoresT
   const double gc = 0.06 / std::sqrt(1.0 - 0.06 * 0.06);
   const double expected = t_g + std::log(gc / eps) / sigma;
   record("threshold_onset",
-         "8e onset %.4f s (expected %.4f s), noise x10 %.4f s, no transient %.4f s; 8c onset %.4f s, no transient %.4f s",
+         "threshold-crossing onset %.4f s (expected %.4f s), noise x10 %.4f s, no transient %.4f s; growth-line onset %.4f s, no transient %.4f s",
          r.onset_time_s, expected, r_noisy.onset_time_s, r_clean.onset_time_s, line.onset_time_s,
          line_clean.onset_time_s);
   ASSERT_EQ(r.verdict, Verdict::kVibration);
@@ -177,23 +177,23 @@ TEST(DetectionSynthetic, ThresholdCrossingOnsetSkipsTheStartTransientAndIgnoresT
   EXPECT_NEAR(r.onset_time_s, expected, 0.005);
   EXPECT_NEAR(r_noisy.onset_time_s, r.onset_time_s, 0.005);
   EXPECT_NEAR(r_clean.onset_time_s, r.onset_time_s, 0.001);
-  EXPECT_GT(std::abs(line.onset_time_s - line_clean.onset_time_s), 0.05);  // 8c follows the start
+  EXPECT_GT(std::abs(line.onset_time_s - line_clean.onset_time_s), 0.05);  // the growth line follows the start
   EXPECT_LT(r.onset_time_s, r.oscillating_from_s);
   EXPECT_NEAR(r.at_onset.slip_rpm, 30.0, 1e-9);
 }
 
 // A ramp into instability: the growth rate rises linearly through zero at t_c, σ(t) = σ' (t − t_c),
 // so the amplitude is e(t) = g/√(1 + g²) with g = ε e^{σ' (t − t_c)²/2} after t_c. It is held at
-// ε before t_c, as a forced floor would hold it. Onset definition 8d (kGrowthRateZero) fits a
+// ε before t_c, as a forced floor would hold it. The growth-rate-zero onset (kGrowthRateZero) fits a
 // parabola to the band power (dB) of the free growth and takes its vertex, which is t_c by
-// construction. Definition 8c (the default) extrapolates a secant of the convex growth down to
+// construction. The growth line (the default) extrapolates a secant of the convex growth down to
 // the floor, so it lands well after t_c (0.82 s here). Tolerances:
-//   onset 8d: 50 ms, 9 % of the 0.55 s the vertex is extrapolated back from the fitted frames
+//   growth-rate-zero onset: 50 ms, 9 % of the 0.55 s the vertex is extrapolated back from the fitted frames
 //     (20 dB of growth between 40 and 20 dB under the largest band power). The noise's cross
 //     term with the sine scatters the band power there by ~√(P_noise/P_sine), about 0.05 dB at
 //     this 45 dB signal-to-noise ratio, and that scatter moves the fitted curvature. Over 10
 //     noise seeds the onset was within 35 ms of t_c (13 ms rms); this seed is 7 ms off. With
-//     10 times the noise (25 dB) the scatter is ±0.4 s: 8d needs a floor far under the growth.
+//     10 times the noise (25 dB) the scatter is ±0.4 s: the growth-rate-zero onset needs a floor far under the growth.
 //   σ': 5 % (10 seeds: within 3 %).
 TEST(DetectionSynthetic, RampIntoInstabilityOnsetIsWhereTheGrowthRateCrossesZero) {
   const double fs = 10000.0, f = 311.7, A = 20.0, accel = 30.0, eps = 1e-4, t_c = 0.5, noise = 0.005;
@@ -211,7 +211,7 @@ TEST(DetectionSynthetic, RampIntoInstabilityOnsetIsWhereTheGrowthRateCrossesZero
   ramp.onset_definition = OnsetDefinition::kGrowthRateZero;
   const ShudderResult r = detect_shudder(s.input(), ramp);
   const ShudderResult line = detect_shudder(s.input());
-  record("ramp_onset", "8d onset %.4f s (t_c %.3f s), slip %.3f rpm, dsigma/dt %.3f 1/s2 (%+.2e); 8c onset %.4f s",
+  record("ramp_onset", "growth-rate-zero onset %.4f s (t_c %.3f s), slip %.3f rpm, dsigma/dt %.3f 1/s2 (%+.2e); growth-line onset %.4f s",
          r.onset_time_s, t_c, r.at_onset.slip_rpm, r.growth_acceleration_per_s2,
          r.growth_acceleration_per_s2 / accel - 1.0, line.onset_time_s);
   ASSERT_EQ(r.verdict, Verdict::kVibration);

@@ -106,7 +106,7 @@ TEST(CliDriveline, RejectsARigDriveCycle) {
                   {"s.toml", "drive", "[manoeuvre]"});
 }
 
-// Issue 13 part 5: a driveline writes its coupling's measured run (was refused: "a measured run
+// A driveline writes its coupling's measured run (was refused: "a measured run
 // is a rig log"); tests/app/test_diagnose_driveline.cpp checks its columns.
 TEST(CliDriveline, WritesTheCouplingsMeasuredRun) {
   const auto dir = scratch_dir("cli_driveline_measurement");

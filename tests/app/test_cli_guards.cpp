@@ -1,5 +1,5 @@
 // Physical guards and file safety end to end. Each test names what
-// the code before issue 14 did with the same input.
+// the code before these guards did with the same input.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <toml++/toml.h>

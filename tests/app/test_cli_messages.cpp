@@ -1,4 +1,4 @@
-// Issue 14, "Messages": every error is ONE stderr line with the `shudder: error: ` prefix (CLI11's
+// Messages: every error is ONE stderr line with the `shudder: error: ` prefix (CLI11's
 // parse errors included), a misspelt key names itself with the key it should be, --seed without
 // --noise is refused instead of ignored, `modes` on a driveline says what is true, and a grid too
 // large for memory is an input error naming its size. Each test says what the old code did.

@@ -62,7 +62,7 @@ TEST(CliSweep, CasesTableHasOneRowPerCaseAndPredictionMatchesTheShudder) {
     EXPECT_EQ(t.text_column[k], "vibration");
     // The housing mode is decoupled by the slipping clutch: the predicted frequency is the
     // bar's damped frequency (within its small damping shift, < 1 %), and the simulated one
-    // agrees within 2 % (issue 4's prediction target).
+    // agrees within 2 % (the prediction's target).
     const double f = key->values[k];
     EXPECT_NEAR(t.find("predicted_frequency_Hz")->values[k], f, 0.01 * f);
     EXPECT_NEAR(t.find("simulated_frequency_Hz")->values[k], t.find("predicted_frequency_Hz")->values[k], 0.02 * f);
@@ -103,7 +103,7 @@ TEST(CliSweep, BadSetArgumentsExitTwoNamingTheProblem) {
   }
 }
 
-// Issue 14, "Sweeps that finish". At 50 S/s the 1 s case has 51 samples, fewer than the
+// Sweeps that finish. At 50 S/s the 1 s case has 51 samples, fewer than the
 // shudder detector's 64: that case throws while it is evaluated (it loads fine). Old: exit 1,
 // "case 1: ... (finished cases are kept in sw.h5.parts; rerun to resume)", no sw.h5, and every
 // rerun failed the same way. Now the sweep finishes: exit 0, one warning line naming the case,

@@ -160,7 +160,7 @@ TEST(CliVerdict, SteadyRigRunSaysNoneAndIsPredictedStable) {
   expect_json_matches_block(test::parse(test::slurp(dir / "rep" / "verdict.json")), *b);
 }
 
-// The driveline stores the same block, with its own linear prediction (issue 13 part 4:
+// The driveline stores the same block, with its own linear prediction (
 // rig_models/driveline_stability.hpp) at the judged window's mean point.
 TEST(CliVerdict, DrivelineRunHasTheSameBlockWithTheDrivelinePrediction) {
   const auto dir = scratch_dir("cli_verdict_driveline");

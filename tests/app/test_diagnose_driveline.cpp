@@ -1,4 +1,4 @@
-// Issue 13 part 5: `shudder diagnose` on driveline scenarios. A driveline run writes a measured
+// `shudder diagnose` on driveline scenarios. A driveline run writes a measured
 // vehicle run of its Haldex coupling (`run --measurement`: slip, clamp force, coupling torque,
 // the pack's thermocouple and oil; rig_models/coupling_measurement.hpp), and the diagnosis
 // replays it through the coupling alone (prescribed slip through the pack, rig_models/replay.hpp).

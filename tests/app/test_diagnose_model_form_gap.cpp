@@ -1,4 +1,4 @@
-// Model-form mismatch with a larger gap (issue 12: the held-out set's independent simulator,
+// Model-form mismatch with a larger gap (the held-out set's independent simulator,
 // with another oil-flow calibration, left a 3.2 °C RMS gap with nothing hidden). Here the "other
 // simulator" is our own model with a deliberately different calibration and discretisation:
 // oil flow e = 0.020 against the model's 0.016 (25 % more flow through the interface), 60 radial
@@ -66,7 +66,7 @@ TEST(DiagnoseLargerModelFormGap, ABearingDragOnTopIsStillNamed) {
 TEST(DiagnoseLargerModelFormGap, ASensorLagOnTopIsNamedThroughTheThermocoupleAgainstTheIrSpot) {
   // A 1 s thermocouple lag adds ~3.3 °C RMS to temp_C, little more than its 2.97 °C tolerance, and the
   // extra oil flow is a heat sink rig_heat_capacity imitates on both thermometers: judged per
-  // channel, rig_heat_capacity 535 J/K was named instead (session 21). The thermocouple less the
+  // channel, rig_heat_capacity 535 J/K was named instead. The thermocouple less the
   // IR spot (the temp_minus_ir_C channel a temperature tolerance adds, analysis/misfit.hpp)
   // cancels the oil-flow gap and keeps the lag at its noise scale: the lag alone is named.
   const auto r = diagnose_other_simulator("diag_form_gap_lag",

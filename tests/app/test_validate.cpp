@@ -133,7 +133,7 @@ TEST(WritePlot, MissingGnuplotIsAClearError) {
   EXPECT_FALSE(fs::exists(dir.path / "a.png.tmp"));
 }
 
-// Issue 14: a failing gnuplot is reported by its own cause, without our script. The stand-in
+// A failing gnuplot is reported by its own cause, without our script. The stand-in
 // prints what gnuplot 5 prints for a script error (the echoed script line, a caret, then
 // `"FILE" line N: MESSAGE`) and exits 1. The old message appended the log's tail, so it held the
 // script text `plot 'data.txt' using 1:2` and the caret line.

@@ -149,7 +149,7 @@ TEST(LoadFluid, MissingSetsOfARow) {
               fails_with(path, "maki.row[0].sets", "missing; expected an array of 4 sets"));
 }
 
-// Found by fuzz_fluid under UBSan (session 21): a bare key running into "°" ("mean_°C") made
+// Found by fuzz_fluid under UBSan: a bare key running into "°" ("mean_°C") made
 // toml++ 3.3.0 reach __builtin_unreachable while reading a file (io/toml_reader.cpp). A file is
 // checked as text is: rejected with the line, before toml++ parses it.
 TEST(LoadFluid, NonAsciiCharacterInABareKeyIsRejectedWithItsLine) {

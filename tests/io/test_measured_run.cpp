@@ -521,7 +521,7 @@ TEST(MeasuredRunFuzzRegression, Hdf5DatasetClaimingMoreRowsThanTheFileCanHoldIsR
 }
 
 
-// Fuzzing finding (session 20, fuzz/fuzz_measured_hdf5): a damaged datatype message claiming
+// Fuzzing finding (fuzz/fuzz_measured_hdf5): a damaged datatype message claiming
 // numbers of 2^30 bytes made libhdf5 allocate a conversion buffer of that size inside H5Dread
 // (an out-of-memory abort under the fuzzer; old behaviour in a plain build: the 1 GiB buffer
 // was allocated and cleared, 9.3 s on a shared machine, before the read failed with "addr

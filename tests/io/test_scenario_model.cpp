@@ -156,7 +156,7 @@ TEST(ScenarioFuzzRegression, FluidPathTheOsRefusesIsBadInput) {
 }
 
 
-// Found by fuzz_scenario under UBSan (session 21, once toml++ was compiled with our flags): a
+// Found by fuzz_scenario under UBSan (once toml++ was compiled with our flags): a
 // code point from U+00A1 to U+0499 where whitespace may stand ("ı", U+0131, as a whole file) made
 // toml++ 3.3.0 reach __builtin_unreachable (io/toml_reader.cpp). Such a character is rejected
 // before toml++ sees it, with its line; the same characters inside strings and comments, where

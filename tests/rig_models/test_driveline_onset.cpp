@@ -1,4 +1,4 @@
-// Issue 14 part 6 for the driveline: a judder onset set by physics, not by the slow step.
+// For the driveline: a judder onset set by physics, not by the slow step.
 //
 // scenarios/driveline_coastdown_judder.toml: over the first 2 s the coupling is taken up (valve
 // setting 0.1 → 1.8 bar, engine braking 0 → −10 N m), then it slides steadily on the curve's
@@ -31,7 +31,7 @@ namespace {
 struct CoastDown {
   io::Scenario sc;
   dynamics::Recording rec;
-  analysis::ShudderResult verdict;  // the run's judgement (`shudder run`): onset definition 8e
+  analysis::ShudderResult verdict;  // the run's judgement (`shudder run`): the threshold-crossing onset
 };
 
 // The shipped scenario with its slow (thermal and hydraulic) step scaled, optionally without the
@@ -50,7 +50,7 @@ CoastDown coast_down(double step_factor, bool pulsation = true) {
 // The issue's criterion: halving the thermal step (10 → 5 → 2.5 ms; in the driveline it is also
 // the hydraulics' and the controller's step) moves the run's onset by < 5 %, with the verdict
 // unchanged. Measured (shared machine): 5.6422 / 5.6742 / 5.6829 s (+0.57 %, +0.15 %).
-// What would fail: the onset as runs reported it before issue 14 part 6 (definition 8c, measured
+// What would fail: the onset as runs reported it before the threshold-crossing onset (the growth line, measured
 // up from the first frames' band level) gives 3.955 / 3.959 / 4.739 s on these runs (+19.7 % at
 // the second halving); a start transient above the threshold (the clamp applied as a step, as in
 // driveline_takeup_judder) puts the onset at 0 whatever the step — hence the onset must come
@@ -65,7 +65,7 @@ TEST(DrivelineOnset, CoastDownOnsetChangesLessThanFivePercentWhenTheThermalStepI
   for (const CoastDown* r : {&a, &b, &c}) {
     auto old_onset = *recording_detection(r->rec);  // the figure quoted above, printed only
     old_onset.settings.onset_definition = analysis::OnsetDefinition::kGrowthLine;
-    std::printf("  onset by definition 8c: %.4f s\n",
+    std::printf("  onset by the growth line: %.4f s\n",
                 analysis::detect_shudder(old_onset.input, old_onset.settings).onset_time_s);
     EXPECT_EQ(r->verdict.verdict, analysis::Verdict::kVibration);
     // The coupling mode the linear analysis finds at the judged window's mean point (31.52 Hz);

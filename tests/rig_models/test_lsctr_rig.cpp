@@ -56,7 +56,7 @@ using shudder::test::signal;
 // Records a measured number in the test's XML output (--gtest_output=xml), printf-formatted.
 using shudder::test::record;
 
-// The closed forms below describe the undisturbed rig, so the motor's torque ripple (issue 14,
+// The closed forms below describe the undisturbed rig, so the motor's torque ripple (
 // tests/rig_models/test_motor_ripple.cpp) is switched off in every run of this file.
 shudder::rig_models::RigParams without_ripple(shudder::rig_models::RigParams p) {
   p.motor_ripple.amplitude_Nm = 0.0;

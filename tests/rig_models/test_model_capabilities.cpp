@@ -112,7 +112,7 @@ std::string refusal(const std::string& path, const std::string& key, Capability&
 TEST(ModelCapabilities, DrivelineExportsItsCouplingAndReplaysItAlone) {
   // Sweeps accept driveline cases now: the capability passes and a case evaluates.
   EXPECT_EQ(refusal(kDriveline, "scenario.type", [](const auto& m) { rig_models::require_sweep(m); }), "(accepted)");
-  // Issue 13 part 5: a measured run of the coupling, replayed through the pack alone.
+  // A measured run of the coupling, replayed through the pack alone.
   const io::Scenario sc = io::load_scenario(kDriveline);
   const auto& dl = std::get<rig_models::DrivelineModel>(sc.model);
   const rig_models::ReplayModel m = io::replay_model(sc);
@@ -139,7 +139,7 @@ TEST(ModelCapabilities, KindsWithoutATorsionalNetworkRefuseModesAndScreeningNami
   EXPECT_EQ(refusal(kPrescribed, "scenario.type", modes),
             kPrescribed + ": key 'scenario.type': \"prescribed_slip\" has no torsional network; modes needs type = "
                           "\"rig\" or \"driveline\"");
-  // Issue 13: a driveline's modes are its linearisation about the manoeuvre (accepted).
+  // A driveline's modes are its linearisation about the manoeuvre (accepted).
   EXPECT_EQ(refusal(kDriveline, "scenario.type", modes), "(accepted)");
   EXPECT_EQ(refusal(kPrescribed, "scenario.type", screening),
             kPrescribed + ": key 'scenario.type': \"prescribed_slip\" is not a rig; --rig needs a scenario with "

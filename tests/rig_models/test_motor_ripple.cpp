@@ -164,13 +164,13 @@ namespace {
 
 // The issue's criterion on every shipped rig scenario, as shipped (the defaults: ripple on):
 // halving the thermal step (10 -> 5 ms) moves the reported onset (the run's judgement:
-// detector definition 8e, the oscillation reaching the verdict's threshold) by < 5 %, and a
+// the detector's threshold-crossing onset, the oscillation reaching the verdict's threshold) by < 5 %, and a
 // further halving (2.5 ms) agrees with 5 ms to < 5 % as well (convergence). Scenarios judged
 // "none" have no onset; the others must agree in verdict and onset.
-// Fails on the code before issue 14 part 6 (docs/rig_model.md, "Onset and the thermal step"):
+// Fails on the code before the first-order hold and that onset (docs/rig_model.md, "Onset and the thermal step"):
 // with the ring temperatures held over the thermal step, the 10 ms staircase's 3rd harmonic
 // sits on the 300 Hz bars (rig_ramp_peak10 2.739 / 2.992 s, +9.2 %; rig_ramp_thermal +8.0 %;
-// sweep_torsion_bar 0.582 / 1.072 s, +84 %); with the first-order hold but the old onset (8c,
+// sweep_torsion_bar 0.582 / 1.072 s, +84 %); with the first-order hold but the old onset (the growth line,
 // from the start level) the two growths from the start scatter (rig_shudder_negative_slope
 // 0.028 / 0.035 s, +25 %; sweep_torsion_bar 0.151 / 0.120 s, −20 %).
 class ShippedRigOnset : public ::testing::TestWithParam<const char*> {};

@@ -19,12 +19,12 @@
 //
 // Simulated onset speed v_s: the slip (mean over one period) at the detector's onset time,
 // with the onset defined for ramps. That is OnsetDefinition::kGrowthRateZero,
-// analysis/shudder_detection.hpp 8d: a parabola is fitted to the band power (dB) of the free
+// analysis/shudder_detection.hpp, kGrowthRateZero: a parabola is fitted to the band power (dB) of the free
 // exponential growth, and its vertex is the instant the growth rate crossed zero. Along a slow
 // ramp the growth rate rises linearly through zero, so the log amplitude is that parabola. Its
 // vertex is what linear theory calls the onset, and the test compares it with v_p. Two other
 // onsets are not physically honest here, for these reasons:
-//   * the default definition (8c) extrapolates a secant of the convex growth down to the start
+//   * the default definition (kGrowthLine) extrapolates a secant of the convex growth down to the start
 //     level. That level is where the growth emerges from the floor, not where it began, so the
 //     result depends on the floor: -6 % to +33 % here (late where the floor is flat, early where
 //     it rises);
@@ -215,9 +215,9 @@ CaseResult compare(const std::string& scenario_name, double bar_Hz) {
   // The fluids' rising branch below the maximum and their flat top bound the vibration: the
   // slip stays above zero.
   EXPECT_EQ(r.verdict, Verdict::kVibration) << key;
-  EXPECT_TRUE(std::isfinite(r.growth_acceleration_per_s2)) << key << ": onset 8d did not apply";
-  EXPECT_NEAR(c.simulated_rpm / c.predicted_rpm, 1.0, 0.10) << key;  // issue 4: 10 %
-  EXPECT_NEAR(c.simulated_Hz / c.predicted_Hz, 1.0, 0.02) << key;    // issue 4: 2 %
+  EXPECT_TRUE(std::isfinite(r.growth_acceleration_per_s2)) << key << ": the growth-rate-zero onset did not apply";
+  EXPECT_NEAR(c.simulated_rpm / c.predicted_rpm, 1.0, 0.10) << key;  // target: 10 %
+  EXPECT_NEAR(c.simulated_Hz / c.predicted_Hz, 1.0, 0.02) << key;    // target: 2 %
   EXPECT_NEAR(r.growth_acceleration_per_s2 / predicted_rate, 1.0, 0.15) << key;
   return c;
 }

@@ -117,7 +117,7 @@ TEST(SpeedSetpoint, RecoversTheSetPointOfAStickSlipRun) {
   EXPECT_LT(worst_estimate, 0.1);
   EXPECT_NEAR(mean, 0.5, 0.01);
 
-  // The same inversion blind to the ripple (the code before issue 14's replay change) reads the
+  // The same inversion blind to the ripple (the replay before it accounted for the ripple) reads the
   // ripple as a speed error of T_r / kp = 0.13 rpm, which the 0.05 s windows (a quarter of the
   // ripple's period) do not average away: the windows wobble by about that much.
   RigParams blind = shudder::test::rig_model(sc).params;

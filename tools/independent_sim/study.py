@@ -74,7 +74,7 @@ def diagnose(shudder, runs, out_json, extra):
 def tolerance_from(result, rule):
     """The model-form tolerance per channel from the nothing-hidden runs' baseline RMS.
 
-    rule "rms": the RMS itself (docs/diagnosis.md before session 22); "beyond_noise": the part
+    rule "rms": the RMS itself (an earlier rule of docs/diagnosis.md); "beyond_noise": the part
     of the RMS beyond the channel's noise, sqrt(RMS^2 - sigma^2) -- the scale, noise and
     tolerance in quadrature, then equals the RMS the true model leaves (J_c = 1 on the
     reference), instead of counting the noise twice."""
