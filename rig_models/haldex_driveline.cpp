@@ -320,8 +320,9 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
   };
   const auto clamp_force_N = [&](const dynamics::Sample& s) { return dl.hydraulics().clamp_force_N(pressure_bar(s)); };
 
-  // Channels: mechanical ones and the held pressure at every sample, the coupling's interface
-  // temperatures from the thermal state, interpolated across each slow step.
+  // Channels: mechanical ones and the coupling's pressure and valve (its contact law's states) at
+  // every sample, the interface temperatures from the thermal state, interpolated across each
+  // slow step.
   namespace sn = dynamics::signal_names;
   using Recorder = ChannelRecorder<dynamics::Sample, clutch::ThermalState>;
   using dynamics::Sample;
