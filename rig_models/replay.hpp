@@ -9,9 +9,9 @@
 //     centres. On the rig the speed is the loop's set point, recovered from the drive speed and
 //     torque cell by inverting the loop (rig_models/speed_setpoint.hpp): under a rising
 //     load, and in stick-slip, the drive lags its set point.
-//   * a driveline's coupling (ReplayModel::kind kDriveline): the clamp force held per hydraulic step
-//     (the scenario's thermal step, 10 ms) instead, and the pack stepped ten times per hold
-//     (docs/driveline.md "Measured vehicle runs").
+//   * a driveline's coupling (ReplayModel::kind kDriveline): slip and clamp force imposed as
+//     measured, sample by sample (both continuous: the driveline integrates its hydraulics with
+//     the motion), and the pack stepped at a tenth of the thermal step (docs/driveline.md).
 //   * start temperatures: discs and inner boundary at the mean temp_C of the first 0.1 s (at
 //     least 5 samples); sump at the mean sump_temp_C there when measured, else the same. With
 //     `thermocouple_offset` on, the discs start at the sump's mean instead (the offset shows
