@@ -182,6 +182,9 @@ void print_section(std::ostream& os, const rig_models::RigModel& model, const dy
 // hydraulics' millisecond-to-tens-of-milliseconds time constants keep within a few per cent;
 // the control loop's hunting swings it by half or more (docs/driveline.md).
 constexpr double kControlLoopSwing = 0.2;
+// A run whose friction law is outside its data for more than this share of the run gets the
+// warning at the top of its summary (outside_data_fraction in the verdict block).
+constexpr double kMostlyOutsideData = 0.5;
 
 // The verdict block (rig_models/run_verdict.hpp) in three lines: what the run shows, the
 // operating point it was judged at, and what linear theory predicted there; a fourth for
@@ -265,6 +268,16 @@ void print_run_summary(std::ostream& os, const io::Scenario& sc, const dynamics:
   os << "Effects on:";
   for (const auto& e : sc.enabled_effects) os << " " << e;
   os << "\n\n";
+  // A friction law used outside its data for most of the run: said before anything else, since
+  // every verdict below is then an extrapolation of the law.
+  if (const auto* b = rec.find_block(rig_models::kFrictionRangeBlock))
+    if (const auto* f = b->find_scalar("fraction_outside"); f && f->value > kMostlyOutsideData) {
+      std::snprintf(line, sizeof line,
+                    "WARNING: the friction law is used outside its data for %.0f %% of the run: the verdict below is an "
+                    "extrapolation of the law (see \"Friction data\")\n\n",
+                    100 * f->value);
+      os << line;
+    }
   // The verdict first: whether it shuddered is what a reader looks for.
   print_verdict(os, sc.kind() == ModelKind::kDriveline ? "Coupling judder" : "Shudder", rec);
   // Friction outside its data (rig_models/friction_range_block.hpp): said once, every kind.

@@ -1,6 +1,7 @@
 #include "rig_models/model.hpp"
 
 #include "rig_models/coupling_measurement.hpp"
+#include "rig_models/friction_range_block.hpp"
 #include "rig_models/driveline_stability.hpp"
 #include "rig_models/run_stability_map.hpp"
 #include "rig_models/rig_names.hpp"
@@ -58,7 +59,14 @@ void add_verdict(dynamics::Recording& rec, Predict predict) {
     return;
   }
   v.prediction = predict(v.window);
-  rec.blocks.push_back(verdict_block(v));
+  dynamics::ResultBlock block = verdict_block(v);
+  // How much of the run the friction law was used outside its data (friction_range_block.hpp):
+  // a verdict reached there is an extrapolation of the law, and says so.
+  double outside = std::numeric_limits<double>::quiet_NaN();
+  if (const auto* range = rec.find_block(kFrictionRangeBlock))
+    if (const auto* f = range->find_scalar("fraction_outside")) outside = f->value;
+  block.scalars.push_back({"outside_data_fraction", "1", outside});
+  rec.blocks.push_back(std::move(block));
 }
 
 [[noreturn]] void refuse_validation(ModelKind k) {

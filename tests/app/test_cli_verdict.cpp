@@ -147,6 +147,9 @@ TEST(CliVerdict, SteadyRigRunSaysNoneAndIsPredictedStable) {
   EXPECT_TRUE(std::isnan(block_scalar(*b, "frequency_Hz")));
   EXPECT_TRUE(std::isnan(block_scalar(*b, "onset_time_s")));
   EXPECT_LT(block_scalar(*b, "amplitude_Nm"), block_scalar(*b, "threshold_Nm"));
+  // Paper G's Case 2 on the rig stays inside fluid C's data: no extrapolation to warn of.
+  EXPECT_LT(block_scalar(*b, "outside_data_fraction"), 0.5);
+  EXPECT_THAT(r.out, ::testing::Not(HasSubstr("WARNING: the friction law is used outside its data")));
   // No oscillation: the whole 30 s run is the window.
   EXPECT_EQ(block_text(*b, "operating_window"), "whole run");
   EXPECT_EQ(block_scalar(*b, "window_from_s"), 0.0);
@@ -172,6 +175,10 @@ TEST(CliVerdict, DrivelineRunHasTheSameBlockWithTheDrivelinePrediction) {
   ASSERT_NE(b, nullptr) << "no /analysis/verdict";
   // Fluid C's coupling slides smoothly: the take-up rings the shuffle mode, which dies out.
   EXPECT_EQ(block_text(*b, "verdict"), "none");
+  // Its clamp force (0–7 kN) stays below fluid C's data (10–25 kN) all run: the verdict is an
+  // extrapolation of the law, and the summary opens by saying so.
+  EXPECT_GT(block_scalar(*b, "outside_data_fraction"), 0.99);
+  EXPECT_THAT(r.out, HasSubstr("WARNING: the friction law is used outside its data for 100 % of the run"));
   EXPECT_EQ(block_scalar(*b, "verdict_code"), test::scalar(rec, "coupling_verdict_code"));
   EXPECT_EQ(block_text(*b, "judged_signals"), "coupling_torque_Nm, coupling_slip_rpm");
   EXPECT_THAT(block_text(*b, "prediction"), HasSubstr("driveline linear stability at the window's mean point"));
