@@ -90,11 +90,12 @@ DrivelineOperatingPoint quasi_static_operating_point(const HaldexDriveline& dl, 
     dynamics::Sample at;
     at.omega_rad_s = w;
     const double leak_scale = viscosity.kinematic_cSt(40.0) / viscosity.kinematic_cSt(op.interface_temp_C);
-    const double p_bar = dl.hydraulics().steady_pressure_bar(std::abs(op.coupling_slip_rad_s), dl.valve_opening(at),
-                                                             leak_scale, dl.valve_setting_bar(0.0));
+    const double opening = dl.valve_opening(at);
+    const double p_bar = dl.hydraulics().steady_pressure_bar(std::abs(op.coupling_slip_rad_s), opening, leak_scale,
+                                                             dl.valve_setting_bar(0.0));
     op.clamp_force_N = std::isfinite(clamp_force_N) ? clamp_force_N : dl.hydraulics().clamp_force_N(p_bar);
-    ctx->set_normal_force(PiecewiseLinear({0.0}, {op.clamp_force_N}));
-    const Eigen::VectorXd z = dl.coupling_states(op.clamp_force_N, dl.valve_opening(at));
+    // The coupling law reads its clamp force from its pressure state.
+    const Eigen::VectorXd z = dl.coupling_states(op.clamp_force_N, opening);
     const double m_c = std::copysign(
         net.contacts()[D::kCoupling].law->kinetic_torque_Nm(std::abs(op.coupling_slip_rad_s), 0.0, z.data()),
         op.coupling_slip_rad_s);
@@ -193,7 +194,6 @@ dynamics::LinearSystem linearise_driveline(const HaldexDriveline& dl, const clut
       !std::isfinite(op.coupling_slip_rad_s) || !std::isfinite(op.t_s))
     throw std::invalid_argument("driveline stability: the operating point must be finite");
   auto ctx = std::make_shared<ClutchContext>(dl.start_inputs());
-  ctx->set_normal_force(PiecewiseLinear({0.0}, {op.clamp_force_N}));
   ctx->set_ring_temperatures(Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), op.interface_temp_C));
   const dynamics::TorsionalNetwork net = dl.network(ctx);
 
@@ -271,7 +271,6 @@ ThermalFeedback coupling_thermal_feedback(const HaldexDriveline& dl, const clutc
                                           const DrivelineOperatingPoint& op, double frequency_Hz) {
   const int n_rings = clutch.thermal().radial_cells();
   auto ctx = std::make_shared<ClutchContext>(dl.start_inputs());
-  ctx->set_normal_force(PiecewiseLinear({0.0}, {op.clamp_force_N}));
   const dynamics::TorsionalNetwork net = dl.network(ctx);
   const auto& law = *net.contacts()[D::kCoupling].law;
   const double slip = std::abs(op.coupling_slip_rad_s);

@@ -105,7 +105,6 @@ TEST(DrivelineStability, MatrixEqualsFiniteDifferenceJacobianOfTheNonlinearRhs) 
   ASSERT_LT(st.coupling_slope_Nms, 0.0);
 
   auto ctx = std::make_shared<ClutchContext>(dl.start_inputs());
-  ctx->set_normal_force(PiecewiseLinear({0.0}, {op.clamp_force_N}));
   ctx->set_ring_temperatures(Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), op.interface_temp_C));
   const dynamics::TorsionalNetwork net = dl.network(ctx);
   // The same operating point as driveline_stability: its node speeds and tyre deflections.
