@@ -66,7 +66,7 @@ int run_network_command(const RunOptions& opt) {
   if (!opt.report.empty()) outputs.push_back({"--report", opt.report});
   std::vector<const components::ClutchSpec*> measured;  // the wet clutches, one measured run each
   for (const auto& c : sc.spec.clutches)
-    if (c.law == components::ClutchSpec::Law::kWet) measured.push_back(&c);
+    if (c.law != components::ClutchSpec::Law::kPlain) measured.push_back(&c);
   if (!opt.measurement.empty()) {
     if (measured.empty())
       throw io::InputError(opt.scenario, 0, "--measurement",

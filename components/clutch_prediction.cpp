@@ -23,9 +23,11 @@ rig_models::Prediction predict_clutch(BuiltNetwork& built, std::size_t clutch, c
     if (count == 0) {
       op.omega_rad_s = s.omega_rad_s;
       op.element_states = s.element_states;
+      op.contact_states = s.contact_states;
     } else {
       op.omega_rad_s += s.omega_rad_s;
       op.element_states += s.element_states;
+      op.contact_states += s.contact_states;
     }
     for (std::size_t c = 0; c < contacts; ++c) stuck_count[c] += s.modes[c] == dynamics::ContactMode::kStuck;
     ++count;
@@ -33,6 +35,20 @@ rig_models::Prediction predict_clutch(BuiltNetwork& built, std::size_t clutch, c
   if (count == 0) return Prediction::none("no state of the run was kept inside the judged window");
   op.omega_rad_s /= count;
   op.element_states /= count;
+  op.contact_states /= count;
+  // The linearisation takes the states of the elements that are not periodic forcings (a firing
+  // pulsation has no linear part about the mean motion).
+  {
+    std::vector<double> kept;
+    Eigen::Index at = 0;
+    for (const auto& e : net.force_elements()) {
+      const int m = e.law->states();
+      if (!e.law->is_periodic_forcing())
+        for (int i = 0; i < m; ++i) kept.push_back(op.element_states[at + i]);
+      at += m;
+    }
+    op.element_states = Eigen::Map<const Eigen::VectorXd>(kept.data(), static_cast<Eigen::Index>(kept.size()));
+  }
   op.t_s = 0.5 * (w.from_s + w.to_s);
   op.stuck.resize(contacts);
   for (std::size_t c = 0; c < contacts; ++c) op.stuck[c] = 2 * stuck_count[c] > count;
@@ -56,8 +72,13 @@ rig_models::Prediction predict_clutch(BuiltNetwork& built, std::size_t clutch, c
       "contacts as they mostly were; friction slopes as dampers" +
       std::string(bc.wet ? ", every ring at the window's mean interface temperature)" : ")");
   p.margin_per_s = -std::numeric_limits<double>::infinity();
+  // A rigid-body motion (a car rolling) is a double zero eigenvalue, which the eigensolver returns
+  // as a pair with a round-off imaginary part: below 1e-6 of the largest |λ| it is no oscillation.
+  double largest = 0;
+  for (const auto& m : modes) largest = std::max(largest, std::abs(m.eigenvalue));
   for (const auto& m : modes) {
     p.margin_per_s = std::max(p.margin_per_s, m.eigenvalue.real());
+    if (std::abs(m.eigenvalue) <= 1e-6 * largest) continue;
     if (m.eigenvalue.imag() > 0 && !(m.eigenvalue.real() <= p.oscillatory_margin_per_s)) {
       p.oscillatory_margin_per_s = m.eigenvalue.real();
       p.frequency_Hz = m.frequency_Hz;

@@ -10,6 +10,7 @@
 #include "components/one_way_clutch.hpp"
 #include "core/nearest_name.hpp"
 #include "core/units.hpp"
+#include "rig_models/haldex_driveline.hpp"
 
 namespace shudder::components {
 
@@ -68,9 +69,48 @@ struct Builder {
   }
 };
 
+
+// The Haldex coupling: the pack as a wet clutch in its own oil, clamped by its hydraulics
+// (rig_models/haldex_coupling_law.hpp); the nodes its control unit reads.
+void build_haldex(const ClutchSpec& c, BuiltClutch& bc, const Builder& b, double duration_s) {
+  const HaldexSpec& h = c.haldex;
+  clutch::WetClutchParams pack = c.wet.clutch;
+  rig_models::DrivelineParams oil;
+  oil.pack_oil_volume_ml = h.pack_oil_volume_ml;
+  oil.pack_cooling_flow_ml_min = h.pack_cooling_flow_ml_min;
+  try {
+    clutch::ThermalParams with_pack_oil = pack.thermal;
+    rig_models::apply_pack_oil(oil, pack.sliding_interfaces, with_pack_oil);
+    if (!c.wet.oil_volume_given) pack.thermal.sump_volume_m3 = with_pack_oil.sump_volume_m3;
+    if (!c.wet.oil_flow_given) pack.thermal.supply_flow_m3_s = with_pack_oil.supply_flow_m3_s;
+    bc.wet = std::make_unique<clutch::WetClutch>(pack, c.wet.fluid);
+    const rig_models::HaldexHydraulics hydraulics(
+        h.hydraulics, pack.sliding_interfaces * h.nominal_friction * bc.wet->mean_radius_m());
+    const rig_models::ClutchContact contact(*bc.wet, c.wet.bearing_drag, c.wet.stick_time);
+    bc.context = std::make_shared<rig_models::ClutchContext>(
+        contact.start_inputs(rig_models::PiecewiseLinear({0.0}, {hydraulics.clamp_force_N(0.0)})));
+    bc.command = std::make_shared<rig_models::HaldexCommand>();
+    bc.command->setting_bar = h.hydraulics.relief_pressure_bar;
+    if (h.valve_pressure_bar) {
+      bc.command->setting_schedule_bar = force_schedule(*h.valve_pressure_bar, 1.0, duration_s);
+      bc.command->opening = 0.0;  // shut below the setting
+    }
+    bc.haldex = std::make_shared<const rig_models::HaldexCouplingLaw>(contact, bc.context, hydraulics, bc.command);
+  } catch (const std::invalid_argument& e) {
+    throw NetworkError(c.name, e.what());
+  }
+  bc.geometry_factor_m = pack.sliding_interfaces * bc.wet->mean_radius_m();
+  bc.front_axle_node = b.node(c.name, "front_axle", h.front_axle, false);
+  bc.rear_axle_node = b.node(c.name, "rear_axle", h.rear_axle, false);
+}
+
 }  // namespace
 
-double BuiltClutch::normal_force_N(double t_s) const { return spec->max_force_N * std::max(spec->force_signal(t_s), 0.0); }
+double BuiltClutch::scheduled_force_N(double t_s) const { return spec->max_force_N * std::max(spec->force_signal(t_s), 0.0); }
+
+double BuiltClutch::normal_force_N(const dynamics::Sample& s) const {
+  return haldex ? haldex->clamp_force_N(s.contact_states.data() + state_index) : scheduled_force_N(s.t_s);
+}
 
 std::unique_ptr<BuiltNetwork> build_network(const NetworkSpec& spec) {
   auto built = std::make_unique<BuiltNetwork>();
@@ -111,13 +151,15 @@ std::unique_ptr<BuiltNetwork> build_network(const NetworkSpec& spec) {
     const int bb = b.node(c.name, "node", c.b, true);
     b.distinct(c.name, a, bb);
     links.emplace_back(a, bb);
-    if (!(c.max_force_N > 0))
-      throw NetworkError(c.name, "max_force_N = " + std::to_string(c.max_force_N) +
-                                     " can never load the clutch; give the largest normal force in N (> 0)");
-    if (!(c.force_signal.max_over(0.0, duration) > 0))
-      throw NetworkError(c.name, "its normal_force signal never rises above 0 during the run (0 to " +
-                                     std::to_string(duration) + " s), so the clutch can never carry torque; "
-                                     "raise the signal or remove the clutch");
+    if (c.law != ClutchSpec::Law::kHaldex) {
+      if (!(c.max_force_N > 0))
+        throw NetworkError(c.name, "max_force_N = " + std::to_string(c.max_force_N) +
+                                       " can never load the clutch; give the largest normal force in N (> 0)");
+      if (!(c.force_signal.max_over(0.0, duration) > 0))
+        throw NetworkError(c.name, "its normal_force signal never rises above 0 during the run (0 to " +
+                                       std::to_string(duration) + " s), so the clutch can never carry torque; "
+                                       "raise the signal or remove the clutch");
+    }
     BuiltClutch bc;
     bc.spec = &c;
     if (c.law == ClutchSpec::Law::kPlain) {
@@ -130,7 +172,7 @@ std::unique_ptr<BuiltNetwork> build_network(const NetworkSpec& spec) {
       }
       bc.geometry_factor_m = p.geometry_factor_m;
       bc.contact = net.add_contact({c.name, a, bb, bc.plain});
-    } else {
+    } else if (c.law == ClutchSpec::Law::kWet) {
       try {
         bc.wet = std::make_unique<clutch::WetClutch>(c.wet.clutch, c.wet.fluid);
       } catch (const std::invalid_argument& e) {
@@ -141,6 +183,9 @@ std::unique_ptr<BuiltNetwork> build_network(const NetworkSpec& spec) {
           contact.start_inputs(force_schedule(c.force_signal, c.max_force_N, duration)));
       bc.geometry_factor_m = c.wet.clutch.sliding_interfaces * bc.wet->mean_radius_m();
       bc.contact = net.add_contact({c.name, a, bb, std::make_shared<rig_models::ClutchContactLaw>(contact, bc.context)});
+    } else {
+      build_haldex(c, bc, b, duration);
+      bc.contact = net.add_contact({c.name, a, bb, bc.haldex});
     }
     out.clutches.push_back(std::move(bc));
   }
@@ -219,8 +264,9 @@ std::unique_ptr<BuiltNetwork> build_network(const NetworkSpec& spec) {
     } catch (const std::invalid_argument& e) {
       throw NetworkError(t.name, e.what());
     }
+    if (!(t.path_ratio > 0)) throw NetworkError(t.name, "path_ratio must be > 0");
     links.emplace_back(w, v);
-    out.tyre_elements.push_back(net.add_force_element({t.name, w, v, vit->wheel_radius_m / t.params.radius_m, law}));
+    out.tyre_elements.push_back(net.add_force_element({t.name, w, v, t.path_ratio * vit->wheel_radius_m / t.params.radius_m, law}));
   }
   for (std::size_t i = 0; i < spec.vehicles.size(); ++i) {
     const auto& v = spec.vehicles[i];
@@ -239,6 +285,18 @@ std::unique_ptr<BuiltNetwork> build_network(const NetworkSpec& spec) {
       out.grade_sources.push_back(net.add_torque_source({v.name + ".grade", n, [torque](double) { return torque; }}));
       driven_nodes.insert(n);
     }
+  }
+
+  for (const auto& f : spec.firing_pulsations) {
+    const int n = b.node(f.name, "node", f.node, false);
+    std::shared_ptr<const dynamics::ForceLaw> law;
+    try {
+      law = std::make_shared<rig_models::EnginePulsationLaw>(f.params, units::rpm_to_rad_s(f.stall_speed_rpm),
+                                                             units::rpm_to_rad_s(f.idle_speed_rpm));
+    } catch (const std::invalid_argument& e) {
+      throw NetworkError(f.name, e.what());
+    }
+    out.pulsation_elements.push_back(net.add_force_element({f.name, n, dynamics::kGround, 1.0, law}));
   }
 
   // Sources.
@@ -379,6 +437,9 @@ std::unique_ptr<BuiltNetwork> build_network(const NetworkSpec& spec) {
   } catch (const std::invalid_argument& e) {
     throw NetworkError("", e.what());
   }
+  const auto state_at = net.contact_state_indices();
+  for (auto& bc : out.clutches)
+    if (bc.haldex) bc.state_index = state_at[static_cast<std::size_t>(bc.contact)];
   return built;
 }
 

@@ -6,7 +6,7 @@
 //   nodes      the inertias, then the vehicles (inertia m r²)
 //   contacts   the clutches and brakes, then the freewheels
 //   shafts     the shafts without lash; shafts with lash are force elements
-//   elements   lash shafts, tyres, then one road load per vehicle
+//   elements   lash shafts, tyres, then one road load per vehicle, then firing pulsations
 //   sources    torque sources, then one grade torque per vehicle with a grade; engines
 //
 // Checks (each a NetworkError naming the component and what to change): unknown nodes (with the
@@ -23,6 +23,8 @@
 
 #include "components/network_spec.hpp"
 #include "dynamics/network.hpp"
+#include "dynamics/simulation.hpp"
+#include "rig_models/haldex_coupling_law.hpp"
 
 namespace shudder::components {
 
@@ -45,7 +47,15 @@ struct BuiltClutch {
   std::shared_ptr<const PlainFrictionLaw> plain;     // plain law
   std::unique_ptr<clutch::WetClutch> wet;            // wet law: the clutch...
   std::shared_ptr<rig_models::ClutchContext> context;  // ...and the inputs its run holds
-  double normal_force_N(double t_s) const;
+  // Haldex law: the coupling's law, the command its control unit sets, the nodes it reads, and
+  // where its states (pressure, valve opening) sit in Sample::contact_states.
+  std::shared_ptr<const rig_models::HaldexCouplingLaw> haldex;
+  std::shared_ptr<rig_models::HaldexCommand> command;
+  int front_axle_node = -1, rear_axle_node = -1, state_index = -1;
+  /// The normal (clamp) force at a sample, N: the force signal's, or the coupling's hydraulics'.
+  double normal_force_N(const dynamics::Sample& s) const;
+  /// The same from the force signal alone (plain and wet laws; a Haldex coupling's is a state).
+  double scheduled_force_N(double t_s) const;
   const std::string& name() const { return spec->name; }
 };
 
@@ -56,6 +66,7 @@ struct BuiltNetwork {
   std::vector<int> lash_elements, tyre_elements, road_elements;  // force element indices
   std::vector<int> vehicle_nodes;
   std::vector<int> engine_sources, grade_sources;  // torque source indices
+  std::vector<int> pulsation_elements;             // force element indices
   Eigen::VectorXd initial_speed_rad_s;
   std::vector<std::string> node_names;
 };

@@ -42,11 +42,20 @@ std::vector<NetworkChannel> network_channels(const NetworkSpec& spec, const Buil
     ch.push_back(NetworkRecorder::sampled(name(cn, "stuck"), "1", [k](const Sample& s) {
       return static_cast<double>(s.modes[static_cast<std::size_t>(k)] == dynamics::ContactMode::kStuck);
     }));
-    ch.push_back(NetworkRecorder::sampled(name(cn, "normal_force_N"), "N", [&bc](const Sample& s) { return bc.normal_force_N(s.t_s); }));
+    ch.push_back(NetworkRecorder::sampled(name(cn, "normal_force_N"), "N", [&bc](const Sample& s) { return bc.normal_force_N(s); }));
     ch.push_back(NetworkRecorder::sampled(name(cn, "friction_coefficient"), "1", [&bc, k](const Sample& s) {
-      const double f = bc.normal_force_N(s.t_s);
+      const double f = bc.normal_force_N(s);
       return f > 0 ? std::abs(s.contact_torque_Nm[k]) / (bc.geometry_factor_m * f) : 0.0;
     }));
+    if (bc.haldex) {
+      const int z = bc.state_index;
+      ch.push_back(NetworkRecorder::sampled(name(cn, "pressure_bar"), "bar", [z](const Sample& s) {
+        return s.contact_states[z + rig_models::HaldexCouplingLaw::kPressure];
+      }));
+      ch.push_back(NetworkRecorder::sampled(name(cn, "valve_opening"), "1", [z](const Sample& s) {
+        return s.contact_states[z + rig_models::HaldexCouplingLaw::kOpening];
+      }));
+    }
     if (bc.wet) {
       const int w = wet_index[c];
       const auto& th = bc.wet->thermal();

@@ -5,9 +5,11 @@
 #include <deque>
 
 #include "components/clutch_prediction.hpp"
+#include "components/haldex_control.hpp"
 #include "components/network_builder.hpp"
 #include "components/network_channels.hpp"
 #include "rig_models/energy_scalars.hpp"
+#include "rig_models/friction_range_block.hpp"
 #include "rig_models/multirate_clutch.hpp"
 
 namespace shudder::components {
@@ -22,7 +24,15 @@ std::vector<double> input_breaks(const NetworkSpec& spec) {
     const auto k = s.knots(0.0, d);
     t.insert(t.end(), k.begin(), k.end());
   };
-  for (const auto& c : spec.clutches) add(c.force_signal);
+  for (const auto& c : spec.clutches) {
+    if (c.law != ClutchSpec::Law::kHaldex) {
+      add(c.force_signal);
+      continue;
+    }
+    add(c.haldex.pedal);
+    if (c.haldex.valve_opening) add(*c.haldex.valve_opening);
+    if (c.haldex.valve_pressure_bar) add(*c.haldex.valve_pressure_bar);
+  }
   for (const auto& s : spec.torque_sources) add(s.torque_Nm);
   for (const auto& s : spec.speed_sources) add(s.speed_rpm);
   for (const auto& m : spec.motors) add(m.speed_rpm);
@@ -49,6 +59,21 @@ NetworkRun run_network(const NetworkSpec& spec) {
       thermal.push_back(built->clutches[c].wet->initial_state());
     }
 
+  // Each Haldex coupling's control unit, its first command set before the simulation reads the
+  // valve's start opening from it.
+  std::vector<HaldexControlUnit> units;
+  std::vector<std::size_t> unit_wet;  // the unit's coupling's index into `thermal`
+  for (std::size_t c = 0; c < built->clutches.size(); ++c)
+    if (built->clutches[c].haldex) {
+      try {
+        units.emplace_back(built->clutches[c]);
+      } catch (const std::invalid_argument& e) {
+        throw NetworkError(built->clutches[c].name(), e.what());
+      }
+      unit_wet.push_back(static_cast<std::size_t>(wet_index[c]));
+      units.back().start(built->initial_speed_rad_s, thermal[unit_wet.back()]);
+    }
+
   dynamics::Simulation sim(net, cfg.integrator);
   const int n = net.nodes();
   sim.initialize(0.0, Eigen::VectorXd::Zero(n), built->initial_speed_rad_s,
@@ -73,11 +98,27 @@ NetworkRun run_network(const NetworkSpec& spec) {
   const NetworkSlow slow = &thermal;
   recorder.start(slow);
 
+  // Each wet clutch's tally of its friction law used outside its data (clutch/friction_data_range.hpp).
+  std::vector<clutch::FrictionDataRange> ranges;
+  ranges.reserve(thermal.size());
+  for (const auto& bc : built->clutches)
+    if (bc.wet) ranges.emplace_back(*bc.wet->fluid().friction);
   std::vector<rig_models::MultirateClutch> wet;
-  for (std::size_t c = 0; c < built->clutches.size(); ++c)
-    if (built->clutches[c].wet)
-      wet.push_back({built->clutches[c].context.get(), built->clutches[c].wet.get(), &thermal[static_cast<std::size_t>(wet_index[c])],
-                     built->clutches[c].contact, nullptr});
+  for (std::size_t c = 0; c < built->clutches.size(); ++c) {
+    const BuiltClutch& bc = built->clutches[c];
+    if (!bc.wet) continue;
+    const auto w = static_cast<std::size_t>(wet_index[c]);
+    wet.push_back({bc.context.get(), bc.wet.get(), &thermal[w], bc.contact, &ranges[w]});
+    if (bc.haldex) wet.back().clamp_force_N = [&bc](const dynamics::Sample& s) { return bc.normal_force_N(s); };
+  }
+  // Restarts: the inputs' jumps and the control units' instants.
+  std::vector<double> breaks = input_breaks(spec);
+  for (const auto& u : units) {
+    const auto t = u.instants(cfg.duration_s);
+    breaks.insert(breaks.end(), t.begin(), t.end());
+  }
+  std::sort(breaks.begin(), breaks.end());
+  breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
   std::vector<double> peak_C;
   for (std::size_t c = 0; c < built->clutches.size(); ++c)
     if (built->clutches[c].wet) peak_C.push_back(built->clutches[c].wet->thermal().interface_temps_C(thermal[peak_C.size()]).maxCoeff());
@@ -91,9 +132,14 @@ NetworkRun run_network(const NetworkSpec& spec) {
       [&](const rig_models::SlowStep& step) {
         for (std::size_t w = 0; w < wet.size(); ++w)
           peak_C[w] = std::max(peak_C[w], wet[w].clutch->thermal().interface_temps_C(thermal[w]).maxCoeff());
+        for (std::size_t u = 0; u < units.size(); ++u) units[u].update_oil(thermal[unit_wet[u]]);
         recorder.step(slow, step.ta_s, step.tb_s);
       },
-      input_breaks(spec));
+      breaks,
+      units.empty() ? std::function<void(double)>() : [&](double t) {
+        const dynamics::Sample s = sim.sample();
+        for (auto& u : units) u.at(t, s);
+      });
 
   // Scalars: the energy account, per clutch its heat, per wet clutch its peak temperature.
   const auto e = sim.energy();
@@ -140,6 +186,23 @@ NetworkRun run_network(const NetworkSpec& spec) {
   add_verdict_blocks(rec, run.verdicts, run.worst,
                      built->clutches.empty() ? "the network has no clutch to judge"
                                              : (run.verdicts.empty() ? "" : run.verdicts.front().reason));
+  // Per wet clutch: its friction data range block, and in its verdict block (and the run's, for
+  // the clutch it names) the share of the run its law was used outside its data: a verdict
+  // reached there is an extrapolation of the law.
+  for (std::size_t c = 0; c < built->clutches.size(); ++c) {
+    const BuiltClutch& bc = built->clutches[c];
+    if (!bc.wet) continue;
+    auto range = rig_models::friction_range_block(ranges[static_cast<std::size_t>(wet_index[c])]);
+    const auto* f = range.find_scalar("fraction_outside");
+    const double outside = f ? f->value : std::nan("");
+    range.name = std::string(rig_models::kFrictionRangeBlock) + "." + bc.name();
+    rec.blocks.push_back(std::move(range));
+    for (auto& b : rec.blocks)
+      if (b.name == "verdict." + bc.name() ||
+          (b.name == "verdict" && static_cast<int>(c) == run.worst && b.find_text("verdict")))
+        if (b.find_text("verdict") && b.find_text("verdict")->value != "not_judged")
+          b.scalars.push_back({"outside_data_fraction", "1", outside});
+  }
   return run;
 }
 

@@ -16,6 +16,9 @@
 #include "dynamics/simulation.hpp"
 #include "rig_models/clutch_contact.hpp"
 #include "rig_models/engine.hpp"
+#include "rig_models/engine_pulsation.hpp"
+#include "rig_models/haldex_controller.hpp"
+#include "rig_models/haldex_hydraulics.hpp"
 #include "rig_models/tyre.hpp"
 
 namespace shudder::components {
@@ -51,16 +54,39 @@ struct WetPackSpec {
   rig_models::BearingDrag bearing_drag;
   rig_models::StickTimeFriction stick_time;
   std::vector<std::string> enabled_effects;
+  bool oil_volume_given = false, oil_flow_given = false;  // the [clutch] table's oil.sump_volume_ml, supply_flow_ml_min
 };
-/// A clutch between a and b, or a brake (b = "ground"). Normal force F = max_force_N · max(u, 0).
+/// A Haldex limited-slip coupling's own parts beside its wet pack (rig_models/haldex_coupling_law.hpp):
+/// the hydraulics that clamp the pack (F = F_preload + A p, p a state of the run) and the control
+/// unit that sets their throttle valve every control period from two axle speeds, sampled and
+/// filtered as a real unit reads them (rig_models/haldex_controller.hpp), or raw valve schedules.
+struct HaldexSpec {
+  rig_models::HaldexHydraulicsParams hydraulics;
+  rig_models::HaldexControllerParams controller;
+  double nominal_friction = 0.12;  // μ_nom of the preload's force (estimate: wet clutch)
+  // The pack's own oil, shared by its interfaces unless the [clutch] table's oil says otherwise
+  // (rig_models/haldex_driveline.hpp apply_pack_oil).
+  double pack_oil_volume_ml = 600.0, pack_cooling_flow_ml_min = 300.0;
+  std::string front_axle, rear_axle;  // nodes whose speeds the unit reads (each axle's carrier)
+  // ρ̄ of each axle: its wheels' mean path over the vehicle's in a steady turn (1 straight); the
+  // unit takes the difference they explain as geometry, not slip.
+  double front_path_ratio = 1.0, rear_path_ratio = 1.0;
+  double wheel_radius_m = 0.0;   // maps an axle's speed to the vehicle speed the unit estimates
+  Signal pedal = Signal::constant(0.0);  // accelerator pedal 0–1 the unit reads
+  std::optional<Signal> valve_opening;       // raw opening schedule (0 shut – 1 open) instead of the unit
+  std::optional<Signal> valve_pressure_bar;  // raw pressure setting (valve shut below it) instead of the unit
+};
+/// A clutch between a and b, or a brake (b = "ground"). Normal force F = max_force_N · max(u, 0),
+/// or, for a Haldex coupling, the clamp force of its hydraulics.
 struct ClutchSpec {
-  enum class Law { kPlain, kWet };
+  enum class Law { kPlain, kWet, kHaldex };
   std::string name, a, b;
   Law law = Law::kPlain;
   double max_force_N = 0.0;
   Signal force_signal = Signal::constant(1.0);
   PlainFrictionParams plain;  // law kPlain (its max_force_N is this one's)
-  WetPackSpec wet;            // law kWet
+  WetPackSpec wet;            // law kWet and kHaldex: the pack
+  HaldexSpec haldex;          // law kHaldex
   std::string judged_on;      // a shaft whose torque the verdict is judged on; "" = the clutch's own
 };
 /// A one-way clutch: carries torque from `driving` to `driven` when driving would turn faster;
@@ -99,6 +125,13 @@ struct VehicleSpec {
 struct TyreSpec {
   std::string name, wheel, vehicle;
   rig_models::TyreParams params;
+  double path_ratio = 1.0;  // ρ: the wheel's path over the vehicle's in a steady turn (1 straight)
+};
+/// An engine's firing-order torque pulsation on a node (rig_models/engine_pulsation.hpp).
+struct FiringPulsationSpec {
+  std::string name, node;
+  rig_models::EnginePulsation params;
+  double stall_speed_rpm = 0.0, idle_speed_rpm = 0.0;
 };
 
 struct NetworkSettings {
@@ -121,6 +154,7 @@ struct NetworkSpec {
   std::vector<EngineSpec> engines;
   std::vector<VehicleSpec> vehicles;
   std::vector<TyreSpec> tyres;
+  std::vector<FiringPulsationSpec> firing_pulsations;
   NetworkSettings settings;
 };
 

@@ -4,7 +4,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "components/network_spec.hpp"
 #include "rig_models/engine.hpp"
+#include "rig_models/engine_pulsation.hpp"
 #include "rig_models/tyre.hpp"
 
 namespace shudder::io {
@@ -51,6 +53,30 @@ std::vector<KeyDecl> friction_keys() {
       table("clutch", "wet: the clutch exactly as a scenario's [clutch] (docs/scenario_format.md): `fluid` relative to this file, `sliding_interfaces`, radii, layers, oil, sensors", "required for law = \"wet\""),
       table("effects", "wet: switchable effects exactly as a scenario's [effects] (docs/effects.md)", "optional"),
       {"judged_on", KeyKind::kComponent, "", std::nullopt, {}, "a shaft whose torque the clutch's verdict is judged on (as a rig's torque cell reads its torsion bar)", "default: the clutch's own torque", {}},
+  };
+}
+
+std::vector<KeyDecl> haldex_keys() {
+  const components::HaldexSpec h;
+  return {
+      node("from", "input side (from the front axle's power take-off)"),
+      node("to", "output side (to the rear axle)"),
+      node("front_axle", "node whose speed the control unit reads as the front axle's (its differential's carrier)"),
+      node("rear_axle", "node whose speed it reads as the rear axle's"),
+      number("front_path_ratio", "1", 1.0, Range::positive(), "mean path of the front wheels over the vehicle's in the turn (1 straight): slip the geometry explains"),
+      number("rear_path_ratio", "1", 1.0, Range::positive(), "the same for the rear wheels"),
+      optional_number("wheel_radius_m", "m", Range::positive(), "rolling radius that maps an axle's speed to the vehicle speed the unit estimates", "default: the network's vehicle's wheel_radius_m (one vehicle)"),
+      signal("pedal", "1", "accelerator pedal 0..1 the control unit reads (clamped)", "default 0"),
+      signal("valve_opening", "1", "raw throttle-valve opening 0 (shut) .. 1 (open) instead of the control unit", "optional"),
+      signal("valve_pressure_bar", "bar", "raw pressure setting (valve shut below it, 0 .. relief_pressure_bar) instead of the control unit", "optional"),
+      number("nominal_friction", "1", h.nominal_friction, Range::closed(0.01, 1.0), "mu_nom that turns the preload torque into a force"),
+      number("pack_oil_volume_ml", "ml", h.pack_oil_volume_ml, Range::positive(), "the coupling's own oil, shared by its interfaces (unless the clutch's oil table gives sump_volume_ml)"),
+      number("pack_cooling_flow_ml_min", "ml/min", h.pack_cooling_flow_ml_min, Range::non_negative(), "its cooling flow, shared likewise (unless supply_flow_ml_min is given)"),
+      table("clutch", "the disc pack exactly as a scenario's [clutch] (docs/scenario_format.md): `fluid` relative to this file, `sliding_interfaces`, radii, layers", "required"),
+      table("effects", "switchable effects exactly as a scenario's [effects] (docs/effects.md)", "optional"),
+      table("hydraulics", "pump, chamber, throttle and relief valves, piston: the keys of a driveline's [driveline.hydraulics] (docs/driveline.md)", "optional: the Gen I estimates"),
+      table("controller", "the control unit's thresholds, control period and speed filter: the keys of [driveline.controller] (docs/driveline.md)", "optional: the estimates; not with a raw valve schedule"),
+      {"judged_on", KeyKind::kComponent, "", std::nullopt, {}, "a shaft whose torque the coupling's verdict is judged on", "default: the coupling's own torque", {}},
   };
 }
 
@@ -133,6 +159,15 @@ std::vector<ComponentDecl> make_components() {
       number("relaxation_length_m", "m", tyre.relaxation_length_m, Range::positive(), "sigma"),
       number("road_friction", "1", tyre.road_friction, Range::positive(), "road friction coefficient"),
       optional_number("radius_m", "m", Range::positive(), "rolling radius", "default: the vehicle's wheel_radius_m"),
+      number("path_ratio", "1", 1.0, Range::positive(), "the wheel's path over the vehicle's in a steady turn (1 straight; a turn's outer wheels > 1)"),
+  }});
+  d.push_back({"haldex_coupling", "Haldex limited-slip coupling: a wet disc pack clamped by its own pump pressure, the throttle valve set by a sampled control unit (rig_models/haldex_coupling_law.hpp)", haldex_keys()});
+  d.push_back({"firing_pulsation", "an engine's firing-order torque pulsation on a node, A s(speed) sin(z/2 crank angle) (rig_models/engine_pulsation.hpp)", {
+      node("node", "crankshaft node"),
+      number("amplitude_Nm", "N m", rig_models::EnginePulsation{}.amplitude_Nm, Range::non_negative(), "A: the pulsation that passes the flywheel and damper"),
+      integer("cylinders", rig_models::EnginePulsation{}.cylinders, 1, 16, "z, four-stroke"),
+      number("stall_speed_rpm", "rpm", engine.stall_speed_rpm, Range::positive(), "no firing below it"),
+      number("idle_speed_rpm", "rpm", engine.idle_speed_rpm, Range::positive(), "full pulsation from it (above stall_speed_rpm)"),
   }});
   return d;
 }

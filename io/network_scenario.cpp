@@ -9,6 +9,7 @@
 #include "components/network_builder.hpp"
 #include "core/nearest_name.hpp"
 #include "core/units.hpp"
+#include "io/haldex_tables.hpp"
 #include "io/input_error.hpp"
 #include "io/network_components.hpp"
 #include "io/scenario.hpp"
@@ -184,6 +185,53 @@ void read_component(TomlTable& c, const std::string& name, const std::string& pa
       sc.fluid_texts += "# file: " + k.wet.fluid_path + " (clutch " + name + ")\n" + k.wet.fluid_text + "\n";
     }
     spec.clutches.push_back(std::move(k));
+  } else if (type == "haldex_coupling") {
+    components::ClutchSpec k;
+    k.name = name;
+    k.law = components::ClutchSpec::Law::kHaldex;
+    k.a = node("from");
+    k.b = node("to");
+    auto& h = k.haldex;
+    h.front_axle = node("front_axle");
+    h.rear_axle = node("rear_axle");
+    h.front_path_ratio = num("front_path_ratio");
+    h.rear_path_ratio = num("rear_path_ratio");
+    h.wheel_radius_m = gives(c, "wheel_radius_m") ? num("wheel_radius_m") : std::nan("");  // default: the vehicle's
+    if (!gives(c, "wheel_radius_m")) c.mark_read("wheel_radius_m");
+    h.pedal = read_signal(c, "pedal", Signal::constant(0.0));
+    if (c.has("valve_opening")) h.valve_opening = read_signal(c, "valve_opening", std::nullopt);
+    if (c.has("valve_pressure_bar")) h.valve_pressure_bar = read_signal(c, "valve_pressure_bar", std::nullopt);
+    if (h.valve_opening && h.valve_pressure_bar)
+      c.fail("valve_pressure_bar", "valve_opening is given too; give one raw valve schedule, or neither (the control unit)");
+    h.nominal_friction = num("nominal_friction");
+    h.pack_oil_volume_ml = num("pack_oil_volume_ml");
+    h.pack_cooling_flow_ml_min = num("pack_cooling_flow_ml_min");
+    if (auto t = c.optional_table("hydraulics")) read_haldex_hydraulics(*t, h.hydraulics);
+    if (c.has("controller") && (h.valve_opening || h.valve_pressure_bar))
+      c.fail("controller", "is given with a raw valve schedule; give either the schedule or the controller");
+    if (auto t = c.optional_table("controller")) read_haldex_controller(*t, h.controller);
+    const double duration = sc.spec.settings.duration_s;
+    if (h.valve_opening && (h.valve_opening->min_over(0.0, duration) < 0 || h.valve_opening->max_over(0.0, duration) > 1))
+      c.fail("valve_opening", "must stay within [0, 1] (0 shut, 1 open) over the run");
+    if (h.valve_pressure_bar && (h.valve_pressure_bar->min_over(0.0, duration) < 0 ||
+                                 h.valve_pressure_bar->max_over(0.0, duration) > h.hydraulics.relief_pressure_bar))
+      c.fail("valve_pressure_bar", "must stay within [0, relief_pressure_bar = " +
+                                       std::to_string(h.hydraulics.relief_pressure_bar) + " bar] over the run");
+    if (gives(c, d.key("judged_on").key)) k.judged_on = c.string("judged_on");
+    k.wet = read_wet_pack(c, path, sc.warnings);
+    sc.fluid_paths.push_back(k.wet.fluid_path);
+    sc.fluid_texts += "# file: " + k.wet.fluid_path + " (coupling " + name + ")\n" + k.wet.fluid_text + "\n";
+    spec.clutches.push_back(std::move(k));
+  } else if (type == "firing_pulsation") {
+    components::FiringPulsationSpec f;
+    f.name = name;
+    f.node = node("node");
+    f.params.amplitude_Nm = num("amplitude_Nm");
+    f.params.cylinders = static_cast<int>(num("cylinders"));
+    f.stall_speed_rpm = num("stall_speed_rpm");
+    f.idle_speed_rpm = num("idle_speed_rpm");
+    if (!(f.idle_speed_rpm > f.stall_speed_rpm)) c.fail("idle_speed_rpm", "must exceed stall_speed_rpm");
+    spec.firing_pulsations.push_back(f);
   } else if (type == "freewheel") {
     spec.freewheels.push_back({name, node("driving"), node("driven"), num("drag_Nm")});
   } else if (type == "torque_source") {
@@ -242,6 +290,7 @@ void read_component(TomlTable& c, const std::string& name, const std::string& pa
     p.road_friction = num("road_friction");
     p.radius_m = gives(c, "radius_m") ? num("radius_m") : std::nan("");  // default: the vehicle's wheel radius
     if (!gives(c, "radius_m")) c.mark_read("radius_m");
+    t.path_ratio = num("path_ratio");
     spec.tyres.push_back(t);
   }
   c.finish();
@@ -302,6 +351,18 @@ NetworkScenario load_network_scenario_text(const std::string& text, const std::s
         if (v.name == t.vehicle) t.params.radius_m = v.wheel_radius_m;
       if (std::isnan(t.params.radius_m)) t.params.radius_m = 0.3;  // the builder names the missing vehicle
     }
+
+  // A coupling's wheel radius defaults to the network's one vehicle's.
+  for (auto& k : sc.spec.clutches) {
+    if (k.law != components::ClutchSpec::Law::kHaldex || !std::isnan(k.haldex.wheel_radius_m)) continue;
+    if (sc.spec.vehicles.size() != 1) {
+      const auto* n = doc["network"][k.name].node();
+      throw InputError(path, n ? static_cast<long>(n->source().begin.line) : 0, "network." + k.name + ".wheel_radius_m",
+                       "missing; the network has " + std::to_string(sc.spec.vehicles.size()) +
+                           " vehicles to take it from: give the rolling radius the control unit maps axle speed with");
+    }
+    k.haldex.wheel_radius_m = sc.spec.vehicles.front().wheel_radius_m;
+  }
 
   // Build once: a bad network is an input error at the component's line.
   try {

@@ -9,6 +9,7 @@
 
 #include "core/units.hpp"
 #include "io/fluid_loader.hpp"
+#include "io/haldex_tables.hpp"
 #include "io/toml_reader.hpp"
 #include "rig_models/effect_registry.hpp"
 
@@ -257,46 +258,8 @@ void read_driveline(TomlTable& root, Draft& s) {
     }
     p.pack_oil_volume_ml = d->number_or("pack_oil_volume_ml", p.pack_oil_volume_ml, Range{0.0, 1e5, true, false});
     p.pack_cooling_flow_ml_min = d->number_or("pack_cooling_flow_ml_min", p.pack_cooling_flow_ml_min, Range::closed(0.0, 1e5));
-    if (auto h = d->optional_table("hydraulics")) {
-      // A first-generation coupling (rig_models/haldex_hydraulics.hpp); the old lumped keys of a
-      // generation-mixing model are refused with what replaces them.
-      if (h->has("torque_per_bar_Nm"))
-        h->fail("torque_per_bar_Nm", "was a later generation's figure; the Gen I coupling's torque per bar follows "
-                                     "from piston_area_cm2 and the pack ([clutch] interfaces and radii)");
-      if (h->has("leak_time_constant_s"))
-        h->fail("leak_time_constant_s", "is replaced by the throttle valve (valve_area_mm2, the controller's opening) "
-                                        "and the leakage leak_cm3_s_per_bar over the compliance");
-      auto& hp = p.hydraulics;
-      const auto positive = [&](const char* key, double& v) { v = h->number_or(key, v, Range::positive()); };
-      hp.relief_pressure_bar = h->number_or("relief_pressure_bar", hp.relief_pressure_bar, Range::closed(1.0, 200.0));
-      positive("piston_area_cm2", hp.piston_area_cm2);
-      positive("pump_displacement_cm3_per_rev", hp.pump_displacement_cm3_per_rev);
-      positive("chamber_volume_cm3", hp.chamber_volume_cm3);
-      positive("bulk_modulus_bar", hp.bulk_modulus_bar);
-      positive("pack_stiffness_N_per_mm", hp.pack_stiffness_N_per_mm);
-      hp.valve_area_mm2 = h->number_or("valve_area_mm2", hp.valve_area_mm2, Range::non_negative());
-      hp.discharge_coefficient = h->number_or("discharge_coefficient", hp.discharge_coefficient, Range{0.0, 1.0, true, false});
-      hp.leak_cm3_s_per_bar = h->number_or("leak_cm3_s_per_bar", hp.leak_cm3_s_per_bar, Range::non_negative());
-      positive("oil_density_kg_m3", hp.oil_density_kg_m3);
-      hp.preload_torque_Nm = h->number_or("preload_torque_Nm", hp.preload_torque_Nm, Range::non_negative());
-      hp.valve_time_constant_ms = h->number_or("valve_time_constant_ms", hp.valve_time_constant_ms, Range{0.0, 1e4, true, false});
-      h->finish();
-    }
-    if (auto c = d->optional_table("controller")) {
-      // rig_models/haldex_controller.hpp; speeds in km/h, slip in axle rpm.
-      auto& cp = p.controller;
-      cp.lock_slip_rpm = c->number_or("lock_slip_rpm", cp.lock_slip_rpm, Range::positive());
-      cp.pedal_gain = c->number_or("pedal_gain", cp.pedal_gain, Range::closed(0.0, 1.0));
-      cp.parking_speed_km_h = c->number_or("parking_speed_km_h", cp.parking_speed_km_h, Range::closed(0.0, 300.0));
-      cp.parking_turn_ratio = c->number_or("parking_turn_ratio", cp.parking_turn_ratio, Range::positive());
-      cp.fast_speed_km_h = c->number_or("fast_speed_km_h", cp.fast_speed_km_h, Range::closed(0.0, 400.0));
-      cp.top_speed_km_h = c->number_or("top_speed_km_h", cp.top_speed_km_h, Range{cp.fast_speed_km_h, 500.0, true, false});
-      cp.fast_demand = c->number_or("fast_demand", cp.fast_demand, Range::closed(0.0, 1.0));
-      cp.control_period_ms = c->number_or("control_period_ms", cp.control_period_ms, Range{0.0, 1e3, true, false});
-      cp.speed_filter_time_constant_ms =
-          c->number_or("speed_filter_time_constant_ms", cp.speed_filter_time_constant_ms, Range::closed(0.0, 1e4));
-      c->finish();
-    }
+    if (auto h = d->optional_table("hydraulics")) read_haldex_hydraulics(*h, p.hydraulics);
+    if (auto c = d->optional_table("controller")) read_haldex_controller(*c, p.controller);
     d->finish();
   }
   auto m = root.table("manoeuvre");
@@ -563,6 +526,8 @@ components::WetPackSpec read_wet_pack(TomlTable& component, const std::string& s
   w.clutch = s.clutch;
   w.bearing_drag = s.settings.bearing_drag;
   w.stick_time = s.rig.stick_time;
+  w.oil_volume_given = s.oil_volume_given;
+  w.oil_flow_given = s.oil_flow_given;
   const auto target = effect_target(s);
   for (const auto& effect : rig_models::effect_registry())
     if (effect.enabled(target)) w.enabled_effects.push_back(effect.name);

@@ -1,5 +1,6 @@
 #include "report/network_summary.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -70,6 +71,13 @@ void print_network_summary(std::ostream& os, const io::NetworkScenario& sc, cons
      << format("%.4g s at %.4g samples/s", spec.settings.duration_s, spec.settings.sample_rate_Hz) << "\n";
   if (run.worst >= 0) {
     const auto& w = run.verdicts[static_cast<std::size_t>(run.worst)];
+    // The clutch the verdict names used its friction law outside its data for most of the run:
+    // said first, as for the model kinds (docs/run_output.md, outside_data_fraction).
+    if (const auto* b = rec.find_block("verdict"))
+      if (const auto* f = b->find_scalar("outside_data_fraction"); f && f->value > 0.5)
+        os << "WARNING: clutch '" << w.clutch << "' uses its friction law outside its data for "
+           << format("%.0f %% of the run", 100.0 * f->value)
+           << ": the verdict below is an extrapolation of the law (see its \"friction data\" line)\n";
     os << "Verdict: " << verdict_line(w.verdict) << " - clutch '" << w.clutch << "'\n";
   } else {
     os << "Verdict: not judged (" << (spec.clutches.empty() ? "no clutch in the network" : run.verdicts.front().reason)
@@ -78,7 +86,8 @@ void print_network_summary(std::ostream& os, const io::NetworkScenario& sc, cons
   for (std::size_t c = 0; c < spec.clutches.size(); ++c) {
     const auto& k = spec.clutches[c];
     const auto& v = run.verdicts[c];
-    os << "  " << k.name << " (" << (k.law == components::ClutchSpec::Law::kWet ? "wet" : "plain") << ", "
+    using Law = components::ClutchSpec::Law;
+    os << "  " << k.name << " (" << (k.law == Law::kWet ? "wet" : k.law == Law::kHaldex ? "Haldex coupling" : "plain") << ", "
        << k.a << " -> " << k.b << "): ";
     os << (v.judged ? verdict_line(v.verdict) : "not judged: " + v.reason);
     if (!k.judged_on.empty()) os << " [judged on " << k.judged_on << ".torque_Nm]";
@@ -88,10 +97,18 @@ void print_network_summary(std::ostream& os, const io::NetworkScenario& sc, cons
     const double locked = locked_from_s(rec, k.name);
     os << "    " << (std::isfinite(locked) ? format("locked from %.4g s to the end", locked) : std::string("slipping at the end"))
        << format("; friction heat %.4g kJ", scalar(rec, k.name + ".friction_work_J") * 1e-3);
-    if (k.law == components::ClutchSpec::Law::kWet) {
+    if (k.law != Law::kPlain) {
       os << format("; peak interface temperature %.4g degC", scalar(rec, k.name + ".peak_interface_temp_C"));
+      if (k.law == Law::kHaldex) {
+        const auto* p = rec.find(k.name + ".pressure_bar");
+        if (p && !p->values.empty())
+          os << format("; pressure %.3g-%.3g bar", *std::min_element(p->values.begin(), p->values.end()),
+                       *std::max_element(p->values.begin(), p->values.end()));
+      }
       os << "\n    fluid " << k.wet.fluid.name << ", effects on:";
       for (const auto& e : k.wet.enabled_effects) os << " " << e;
+      if (const auto* range = rec.find_block("friction_data_range." + k.name))
+        if (const auto* t = range->find_text("summary")) os << "\n    friction data: " << t->value;
     }
     os << "\n";
   }

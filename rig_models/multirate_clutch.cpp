@@ -67,8 +67,9 @@ void run_multirate(dynamics::Simulation& sim, const std::vector<MultirateClutch>
     const double tb = step_end(k);
     const auto sa = sim.sample();
     bool break_at_end = false;
-    for (auto br = std::upper_bound(breaks_s.begin(), breaks_s.end(), ta); br != breaks_s.end() && *br <= tb + snap_s;
-         ++br) {
+    // A break within round-off of ta was taken at the previous step's end: not again here.
+    for (auto br = std::upper_bound(breaks_s.begin(), breaks_s.end(), ta + snap_s);
+         br != breaks_s.end() && *br <= tb + snap_s; ++br) {
       if (*br >= tb - snap_s) {
         break_at_end = true;
         break;
