@@ -11,10 +11,12 @@
 #include <string>
 
 #include "components/network_run.hpp"
+#include "io/input_error.hpp"
 #include "io/network_scenario.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/model.hpp"
 #include "tests/components/network_helpers.hpp"
+#include "tests/support/cli.hpp"
 
 namespace shudder::components {
 namespace {
@@ -97,6 +99,34 @@ TEST(HaldexNetwork, TakeUpJudderEqualsTheDrivelineKind) {
   EXPECT_NEAR(v.frequency_Hz, f, 1e-3 * f);
   const double a = test::scalar(p.driveline, "coupling_oscillation_amplitude_Nm");
   EXPECT_NEAR(v.amplitude_Nm, a, 0.02 * a);
+}
+
+
+// A coupling described wrongly gets one line naming the component or key and what to change.
+std::string coupling_error(const std::string& from, const std::string& to) {
+  const std::string path = std::string(SHUDDER_SOURCE_DIR) + "/scenarios/networks/haldex_car_takeup_judder.toml";
+  std::string text = shudder::test::slurp(path);
+  const auto at = text.find(from);
+  if (at == std::string::npos) return "test setup: '" + from + "' not in the file";
+  text.replace(at, from.size(), to);
+  try {
+    io::load_network_scenario_text(text, path);
+  } catch (const io::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(HaldexNetwork, ABadCouplingIsOneHelpfulLine) {
+  std::string e = coupling_error("rear_axle = \"rear_diff\"", "rear_axle = \"rear_dif\"");
+  EXPECT_NE(e.find("network.haldex"), std::string::npos) << e;
+  EXPECT_NE(e.find("did you mean 'rear_diff'"), std::string::npos) << e;
+  e = coupling_error("valve_pressure_bar = 3.0", "valve_pressure_bar = 3.0\nvalve_opening = 0.5");
+  EXPECT_NE(e.find("give one raw valve schedule"), std::string::npos) << e;
+  e = coupling_error("valve_pressure_bar = 3.0", "valve_pressure_bar = 3.0\n[network.haldex.controller]\nlock_slip_rpm = 10");
+  EXPECT_NE(e.find("controller"), std::string::npos) << e;
+  e = coupling_error("valve_pressure_bar = 3.0", "valve_pressure_bar = 300.0");
+  EXPECT_NE(e.find("relief_pressure_bar"), std::string::npos) << e;
 }
 
 }  // namespace
