@@ -14,6 +14,7 @@
 #include "app/guarded.hpp"
 #include "core/overloaded.hpp"
 #include "core/units.hpp"
+#include "io/hdf5_run.hpp"
 #include "io/input_error.hpp"
 #include "io/kind_refusal.hpp"
 #include "io/network_scenario.hpp"
@@ -80,10 +81,24 @@ void print_driveline_modes(const rig_models::DrivelineStability& st, const char*
   }
 }
 
-void print_driveline(const io::Scenario& sc, const rig_models::DrivelineModel& model) {
+void print_driveline(const io::Scenario& sc, const rig_models::DrivelineModel& model, const std::string& run) {
   const clutch::WetClutch clutch = sc.make_clutch();
   const rig_models::HaldexDriveline dl(model.params, clutch, model.manoeuvre);
-  const auto op = rig_models::quasi_static_operating_point(dl, clutch, model.manoeuvre);
+  rig_models::DrivelineOperatingPoint op;
+  if (run.empty()) {
+    op = rig_models::quasi_static_operating_point(dl, clutch, model.manoeuvre);
+  } else {
+    // The run's mean operating point: the one its summary's shuffle mode is linearised at.
+    const dynamics::Recording rec = io::read_run_hdf5(run);
+    const auto* t = rec.find("time_s");
+    if (!t || t->values.empty()) throw io::InputError(run, 0, "time_s", "the run file has no time channel");
+    try {
+      op = rig_models::recorded_operating_point(rec, 0.0, t->values.back());
+    } catch (const std::invalid_argument& e) {
+      throw io::InputError(run, 0, "--run", std::string("is not a driveline run this command can linearise: ") + e.what());
+    }
+    std::printf("At the mean operating point of %s (0 to %.4g s)\n", run.c_str(), t->values.back());
+  }
   const auto slipping = rig_models::driveline_stability(dl, clutch, op, false);
   const auto locked = rig_models::driveline_stability(dl, clutch, op, true);
   std::printf("Scenario %s: driveline linearised at %.3g km/h, coupling slip %.4g rpm, clamp force %.5g N, "
@@ -133,6 +148,10 @@ void print_network_modes(const std::string& path) {
 
 int modes_command(const ModesOptions& opt) {
   return guarded(opt.scenario, "modal analysis", [&]() -> int {
+    if (!opt.run.empty() && io::scenario_type(opt.scenario) != "driveline")
+      throw io::InputError(opt.scenario, 0, "--run",
+                           "linearises a driveline scenario at a run's operating point; this scenario is type = \"" +
+                               io::scenario_type(opt.scenario) + "\" (remove --run)");
     if (io::scenario_type(opt.scenario) == "network") {
       print_network_modes(opt.scenario);
       return 0;
@@ -142,7 +161,7 @@ int modes_command(const ModesOptions& opt) {
     const rig_models::ModalSubject subject = io::visit_kind(
         opt.scenario, "scenario.type", sc.model, [](const auto& m) { return rig_models::modal_subject(m); });
     std::visit(overloaded{[&](const rig_models::RigModel* rig) { print_rig_modes(sc, *rig); },
-                          [&](const rig_models::DrivelineModel* dl) { print_driveline(sc, *dl); }},
+                          [&](const rig_models::DrivelineModel* dl) { print_driveline(sc, *dl, opt.run); }},
                subject);
     return 0;
   });

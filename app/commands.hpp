@@ -45,6 +45,7 @@ int convergence_command(const ConvergenceOptions& options);
 
 struct ModesOptions {
   std::string scenario;
+  std::string run;  // a driveline run's HDF5 file: linearise at its mean operating point
 };
 int modes_command(const ModesOptions& options);
 

@@ -57,6 +57,9 @@ int main(int argc, char** argv) {
   ModesOptions modes;
   auto* modes_cmd = app.add_subcommand("modes", "Natural frequencies and mode shapes of a rig or driveline scenario");
   modes_cmd->add_option("scenario", modes.scenario, "Scenario file (TOML, type = \"rig\" or \"driveline\")")->required();
+  modes_cmd->add_option("--run", modes.run,
+                        "A driveline run of this scenario (HDF5 from `shudder run`): linearise at the run's mean "
+                        "operating point, as its summary's shuffle mode is");
 
   SweepOptions sweep;
   auto* sweep_cmd = app.add_subcommand("sweep", "Run a scenario over a grid of key values, in parallel");

@@ -99,7 +99,8 @@ void print_section(std::ostream& os, const rig_models::DrivelineModel& model, co
   }
   std::snprintf(line, sizeof line,
                 "\nCoupling: heat %.1f J, peak interface %.2f C; %.0f stick and %.0f breakaway events\n"
-                "Driveline: locked shuffle mode %.2f Hz (damping ratio %.3f); mechanical energy error "
+                "Driveline: locked shuffle mode %.2f Hz (damping ratio %.3f) at the run's mean operating point "
+                "(`shudder modes SCENARIO --run RUN.h5`); mechanical energy error "
                 "%.2e (relative); %.0f integrator steps\n",
                 scalar(rec, "heat_generated_J"), scalar(rec, "peak_interface_temp_C"), scalar(rec, "stick_events"),
                 scalar(rec, "breakaway_events"), scalar(rec, "shuffle_frequency_Hz"),

@@ -392,4 +392,18 @@ Prediction predict_driveline(const DrivelineParams& params, const clutch::WetClu
   }
 }
 
+LockedShuffle run_shuffle_mode(const HaldexDriveline& dl, const clutch::WetClutch& clutch,
+                               const dynamics::Recording& rec, double to_s) {
+  constexpr double kRollingBelow_Hz = 0.5;  // the car's rolling (a rigid-body pair) is no shuffle
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  try {
+    const DrivelineOperatingPoint op = recorded_operating_point(rec, 0.0, to_s);
+    const DrivelineStability st = driveline_stability(dl, clutch, op, true);
+    for (const auto& m : st.modes)  // sorted by frequency
+      if (m.eigenvalue.imag() > 0 && m.frequency_Hz > kRollingBelow_Hz) return {m.frequency_Hz, m.damping_ratio};
+  } catch (const std::invalid_argument&) {
+  }
+  return {nan, nan};
+}
+
 }  // namespace shudder::rig_models

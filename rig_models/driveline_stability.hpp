@@ -79,6 +79,16 @@ DrivelineStability driveline_stability(const HaldexDriveline& dl, const clutch::
                                        const DrivelineOperatingPoint& op, bool coupling_locked,
                                        const Eigen::MatrixXd& extra_damping = {});
 
+/// The driveline's lowest oscillating mode with the coupling locked (the shuffle mode, from
+/// 0.5 Hz: below it the car's rolling), linearised about a recording's mean operating point over
+/// [0, to_s] (driveline_stability.hpp's recorded_operating_point and driveline_stability).
+/// NaN frequency and damping when the recording has no such point (e.g. no clamp force).
+struct LockedShuffle {
+  double frequency_Hz, damping_ratio;
+};
+LockedShuffle run_shuffle_mode(const HaldexDriveline& dl, const clutch::WetClutch& clutch,
+                               const dynamics::Recording& rec, double to_s);
+
 /// The slipping coupling's least-damped oscillatory mode: its growth rate σ (1/s, > 0 grows),
 /// frequency and damping ratio. NaN if no mode oscillates.
 struct CouplingMode {

@@ -12,6 +12,7 @@
 #include "core/units.hpp"
 #include "dynamics/signal_names.hpp"
 #include "rig_models/channel_recorder.hpp"
+#include "rig_models/driveline_stability.hpp"
 #include "rig_models/energy_scalars.hpp"
 #include "rig_models/multirate_clutch.hpp"
 #include "rig_models/recording_detection.hpp"
@@ -424,26 +425,14 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
   const double n_if = clutch.params().sliding_interfaces;
   const auto me = sim.energy();
   const auto& cnt = sim.counters();
-  // The driveline's lowest oscillating mode with the coupling locked, from the damped
-  // eigenvalues, the tyres as their standstill springs (their relaxation damping, which falls
-  // with speed, is not in the damping ratio).
-  // The engine's torque–speed slope at the end enters as a damper −dT/dω on the engine.
+  // The locked coupling's lowest oscillating mode (the shuffle), linearised about the run's mean
+  // operating point (driveline_stability.hpp: the engine's torque–speed slope, the tyres'
+  // relaxation at the run's speed, the shafts' dampers): the point and the method that
+  // `shudder modes SCENARIO --run RUN.h5` prints, so both give the same numbers.
   const dynamics::Sample end = sim.sample();
   const double engine_slope = dl.engine_slope_Nms_per_rad(end.t_s, end.omega_rad_s[D::kEngine]);
-  Eigen::MatrixXd engine_damping = Eigen::MatrixXd::Zero(D::kNodes, D::kNodes);
-  engine_damping(D::kEngine, D::kEngine) = -engine_slope;
-  const auto modes_locked = dl.network().modes({true}, engine_damping);
-  double shuffle_Hz = 0, shuffle_zeta = 0;
-  for (Eigen::Index j = 0; j < modes_locked.damped_eigenvalues.size(); ++j) {
-    const auto lambda = modes_locked.damped_eigenvalues[j];
-    // The car's rolling is a rigid-body mode (a double zero eigenvalue, which the eigensolver
-    // returns as a pair with a small spurious imaginary part): oscillations start at 0.5 Hz.
-    if (std::abs(lambda.imag()) > units::kTwoPi * 0.5) {
-      shuffle_Hz = std::abs(lambda.imag()) / units::kTwoPi;
-      shuffle_zeta = -lambda.real() / std::abs(lambda);
-      break;
-    }
-  }
+  const LockedShuffle shuffle = run_shuffle_mode(dl, clutch, rec, cfg.duration_s);
+  const double shuffle_Hz = shuffle.frequency_Hz, shuffle_zeta = shuffle.damping_ratio;
   // Judder or stick-slip of the coupling, judged on its torque and slip as on the rig, with the
   // channels and band every reader of this recording uses (rig_models/recording_detection.hpp).
   const RecordingDetection detection = *recording_detection(rec);

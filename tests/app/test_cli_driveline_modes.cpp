@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <sstream>
 #include <string>
 
 #include "tests/support/cli.hpp"
@@ -41,4 +43,43 @@ TEST(CliDrivelineModes, NegativeSlopeTakeUpIsPredictedUnstable) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("UNSTABLE (judder predicted)"));
   EXPECT_THAT(r.out, HasSubstr("coupling_out +1.00 rear_diff"));
+}
+
+// One linearisation for a run: the summary's locked shuffle mode and `modes --run` on the same
+// run print the same mode (frequency and damping ratio to the printed digits), linearised at the
+// run's mean operating point, not at the manoeuvre's quasi-static one.
+TEST(CliDrivelineModes, RunSummaryAndModesAtTheRunAgree) {
+  const auto dir = scratch_dir("dl_modes_run");
+  std::string scenario = "'";
+  scenario += source_path("scenarios/driveline_tight_turn.toml");
+  scenario += "'";
+  const auto run = run_cli("run " + scenario + " -o tight.h5", dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto at = run.out.find("locked shuffle mode ");
+  ASSERT_NE(at, std::string::npos) << run.out;
+  double f_Hz = 0, zeta = 0;
+  ASSERT_EQ(std::sscanf(run.out.c_str() + at, "locked shuffle mode %lf Hz (damping ratio %lf)", &f_Hz, &zeta), 2);
+  const auto modes = run_cli("modes " + scenario + " --run tight.h5", dir);
+  ASSERT_EQ(modes.exit_code, 0) << modes.err;
+  EXPECT_THAT(modes.out, HasSubstr("At the mean operating point of tight.h5"));
+  // The locked table's first oscillating row above 0.5 Hz.
+  const auto locked = modes.out.find("Coupling locked:");
+  ASSERT_NE(locked, std::string::npos);
+  std::istringstream rows(modes.out.substr(modes.out.find('\n', modes.out.find('\n', locked) + 1) + 1));
+  std::string row;
+  double found_Hz = -1, found_zeta = -1;
+  while (std::getline(rows, row) && !row.empty()) {
+    double re = 0, im = 0, f = 0, z = 0;
+    if (std::sscanf(row.c_str(), "%lf %lf %lf %lf", &re, &im, &f, &z) == 4 && im > 0 && f > 0.5) {
+      found_Hz = f;
+      found_zeta = z;
+      break;
+    }
+  }
+  EXPECT_NEAR(found_Hz, f_Hz, 0.006) << modes.out;   // the summary prints 2 decimals
+  EXPECT_NEAR(found_zeta, zeta, 0.0006) << modes.out;  // and 3
+  // --run on another kind says why in one line.
+  const auto refused = run_cli("modes '" + source_path("scenarios/rig_case1_25kN_378Hz.toml") + "' --run tight.h5", dir);
+  EXPECT_EQ(refused.exit_code, 2) << refused.out;
+  EXPECT_THAT(refused.err, HasSubstr("--run"));
 }
