@@ -22,7 +22,7 @@ constexpr double kGravity_m_s2 = 9.80665;
 // the signal at its knots (a jump becomes a 1 µs ramp) and, for a sine or a product, at 20000
 // points over the run besides: a sine of f Hz over D s gets 20000 / (f D) points a period, and at
 // 20 a period the chords miss it by at most 1 - cos(pi / 20) = 1.2 % of its amplitude.
-rig_models::PiecewiseLinear force_schedule(const Signal& s, double scale_N, double duration_s) {
+rig_models::PiecewiseLinear force_schedule(const Signal& s, double scale_N, double duration_s, bool clamp_at_zero = true) {
   constexpr double kJump_s = 1e-6;
   std::vector<double> t{0.0, duration_s};
   for (double k : s.knots(0.0, duration_s)) {
@@ -36,7 +36,7 @@ rig_models::PiecewiseLinear force_schedule(const Signal& s, double scale_N, doub
   std::sort(t.begin(), t.end());
   t.erase(std::unique(t.begin(), t.end(), [](double a, double b) { return b - a < 1e-12; }), t.end());
   std::vector<double> v;
-  for (double x : t) v.push_back(scale_N * std::max(s(x), 0.0));
+  for (double x : t) v.push_back(scale_N * (clamp_at_zero ? std::max(s(x), 0.0) : s(x)));
   return {t, v};
 }
 
@@ -120,13 +120,14 @@ std::unique_ptr<BuiltNetwork> build_network(const NetworkSpec& spec) {
   const double duration = spec.settings.duration_s;
 
   // Nodes.
-  std::vector<double> speeds;
+  std::vector<double> speeds, angles;
   for (const auto& i : spec.inertias) {
     if (i.name == kGroundNode) throw NetworkError(i.name, "\"ground\" is the fixed frame; give the inertia another name");
     if (!(i.inertia_kg_m2 >= 0)) throw NetworkError(i.name, "inertia_kg_m2 must be >= 0");
     b.index[i.name] = net.add_inertia({i.name, i.inertia_kg_m2});
     out.node_names.push_back(i.name);
     speeds.push_back(i.speed_rad_s);
+    angles.push_back(i.angle_rad);
   }
   for (const auto& v : spec.vehicles) {
     if (!(v.mass_kg > 0) || !(v.wheel_radius_m > 0))
@@ -136,9 +137,11 @@ std::unique_ptr<BuiltNetwork> build_network(const NetworkSpec& spec) {
     out.node_names.push_back(v.name);
     out.vehicle_nodes.push_back(n);
     speeds.push_back(v.speed_m_s / v.wheel_radius_m);
+    angles.push_back(0.0);
   }
   if (out.node_names.empty()) throw NetworkError("", "the network has no inertia; add at least one [network.NAME] with type = \"inertia\"");
   out.initial_speed_rad_s = Eigen::Map<const Eigen::VectorXd>(speeds.data(), static_cast<Eigen::Index>(speeds.size()));
+  out.initial_angle_rad = Eigen::Map<const Eigen::VectorXd>(angles.data(), static_cast<Eigen::Index>(angles.size()));
 
   // Two-node links, for the connectivity check: (a, b) per link.
   std::vector<std::pair<int, int>> links;
@@ -300,6 +303,7 @@ std::unique_ptr<BuiltNetwork> build_network(const NetworkSpec& spec) {
   }
 
   // Sources.
+  std::vector<double> motor_integrals;
   for (const auto& s : spec.torque_sources) {
     const int n = b.node(s.name, "node", s.node, false);
     driven_nodes.insert(n);
@@ -320,7 +324,12 @@ std::unique_ptr<BuiltNetwork> build_network(const NetworkSpec& spec) {
     driven_nodes.insert(n);
     net.add_motor({m.name, n, [sig = m.speed_rpm](double t) { return units::rpm_to_rad_s(sig(t)); }, m.kp_Nms_per_rad,
                    m.ki_Nm_per_rad, m.torque_limit_Nm});
+    if (m.start_torque_Nm != 0.0 && !(m.ki_Nm_per_rad > 0))
+      throw NetworkError(m.name, "start_torque_Nm needs an integral gain (ki_Nm_per_rad > 0) to hold it");
+    motor_integrals.push_back(m.ki_Nm_per_rad > 0 ? m.start_torque_Nm / m.ki_Nm_per_rad : 0.0);
   }
+  out.initial_motor_integral =
+      Eigen::Map<const Eigen::VectorXd>(motor_integrals.data(), static_cast<Eigen::Index>(motor_integrals.size()));
   for (const auto& e : spec.engines) {
     const int n = b.node(e.name, "node", e.node, false);
     std::shared_ptr<const rig_models::Engine> engine;
@@ -335,6 +344,15 @@ std::unique_ptr<BuiltNetwork> build_network(const NetworkSpec& spec) {
       return engine->torque_Nm(w, std::clamp(throttle(t), 0.0, 1.0));
     };
     out.engine_sources.push_back(net.add_torque_source(std::move(src)));
+  }
+  // A drive's torque ripple at its speed reference's revolutions (rig_models/motor_ripple.hpp).
+  for (const auto& m : spec.motors) {
+    if (m.ripple.amplitude_Nm == 0.0) continue;
+    if (!(m.ripple.amplitude_Nm > 0) || !(m.ripple.periods_per_rev > 0))
+      throw NetworkError(m.name, "ripple_amplitude_Nm must be >= 0 and ripple_periods_per_rev > 0");
+    const rig_models::MotorRippleTorque ripple(m.ripple, force_schedule(m.speed_rpm, 1.0, duration, false));
+    out.ripple_sources.push_back(
+        net.add_torque_source({m.name + ".ripple", b.node(m.name, "node", m.node, false), [ripple](double t) { return ripple(t); }}));
   }
 
   // A massless node must have its speed fixed by a gear, a differential or a speed source.

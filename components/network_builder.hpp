@@ -7,7 +7,8 @@
 //   contacts   the clutches and brakes, then the freewheels
 //   shafts     the shafts without lash; shafts with lash are force elements
 //   elements   lash shafts, tyres, then one road load per vehicle, then firing pulsations
-//   sources    torque sources, then one grade torque per vehicle with a grade; engines
+//   sources    torque sources, then one grade torque per vehicle with a grade; engines; then
+//              each motor's torque ripple (when it has one)
 //
 // Checks (each a NetworkError naming the component and what to change): unknown nodes (with the
 // nearest name), a component joined to itself, a massless node nothing fixes, gears and
@@ -67,7 +68,9 @@ struct BuiltNetwork {
   std::vector<int> vehicle_nodes;
   std::vector<int> engine_sources, grade_sources;  // torque source indices
   std::vector<int> pulsation_elements;             // force element indices
-  Eigen::VectorXd initial_speed_rad_s;
+  Eigen::VectorXd initial_speed_rad_s, initial_angle_rad;
+  Eigen::VectorXd initial_motor_integral;   // ∫(ω_ref − ω) dt per motor at t = 0, rad
+  std::vector<int> ripple_sources;          // torque source indices of the motors' ripple
   std::vector<std::string> node_names;
 };
 

@@ -75,9 +75,7 @@ NetworkRun run_network(const NetworkSpec& spec) {
     }
 
   dynamics::Simulation sim(net, cfg.integrator);
-  const int n = net.nodes();
-  sim.initialize(0.0, Eigen::VectorXd::Zero(n), built->initial_speed_rad_s,
-                 Eigen::VectorXd::Zero(static_cast<Eigen::Index>(net.motors().size())));
+  sim.initialize(0.0, built->initial_angle_rad, built->initial_speed_rad_s, built->initial_motor_integral);
 
   std::deque<std::string> names;  // the channel names the recorder's channels view
   std::vector<NetworkChannel> channels = network_channels(spec, *built, wet_index, names);

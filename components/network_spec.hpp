@@ -19,6 +19,7 @@
 #include "rig_models/engine_pulsation.hpp"
 #include "rig_models/haldex_controller.hpp"
 #include "rig_models/haldex_hydraulics.hpp"
+#include "rig_models/motor_ripple.hpp"
 #include "rig_models/tyre.hpp"
 
 namespace shudder::components {
@@ -29,6 +30,7 @@ struct InertiaSpec {
   std::string name;
   double inertia_kg_m2 = 0.0;  // >= 0; 0 only where a gear or differential fixes its speed
   double speed_rad_s = 0.0;    // at t = 0
+  double angle_rad = 0.0;      // at t = 0 (a shaft's start twist is the difference of its ends')
 };
 /// T = k (θ_a − θ_b) + c (ω_a − ω_b) from a to b; with lash > 0 a dead zone of that total width
 /// (components/lash_shaft.hpp).
@@ -107,6 +109,8 @@ struct MotorSpec {
   std::string name, node;
   Signal speed_rpm = Signal::constant(0.0);  // the speed loop's set point
   double kp_Nms_per_rad = 0.0, ki_Nm_per_rad = 0.0, torque_limit_Nm = 0.0;
+  double start_torque_Nm = 0.0;  // the integrator's torque at t = 0 (ki ∫e = start torque)
+  rig_models::MotorRipple ripple{0.0, 576.0};  // the drive's torque ripple A sin(2π N rev) (motor_ripple.hpp); A = 0: none
 };
 /// rig_models/engine.hpp's torque map on a node, driven by a throttle signal (0–1).
 struct EngineSpec {

@@ -87,6 +87,7 @@ std::vector<ComponentDecl> make_components() {
   d.push_back({"inertia", "a rigid rotating body: a node of the network", {
       number("inertia_kg_m2", "kg m^2", std::nullopt, Range::non_negative(), "rotational inertia; 0 only where a gear or differential fixes its speed"),
       number("speed_rpm", "rpm", 0.0, {}, "speed at t = 0"),
+      number("angle_deg", "deg", 0.0, {}, "angle at t = 0: a shaft starts twisted by the difference of its ends' angles (e.g. preloaded by a steady torque T: angle T / k)"),
   }});
   d.push_back({"shaft", "spring-damper between two nodes (or a node and ground), optionally with backlash", {
       node("from", "first node"),
@@ -130,6 +131,9 @@ std::vector<ComponentDecl> make_components() {
       number("kp_Nms_per_rad", "N m s/rad", std::nullopt, Range::non_negative(), "proportional gain"),
       number("ki_Nm_per_rad", "N m/rad", std::nullopt, Range::non_negative(), "integral gain (kp and ki not both 0)"),
       number("torque_limit_Nm", "N m", std::nullopt, Range::positive(), "limit on the motor torque (either sign)"),
+      number("start_torque_Nm", "N m", 0.0, {}, "the integrator's torque at t = 0 (a loop already holding a steady load; needs ki > 0)"),
+      number("ripple_amplitude_Nm", "N m", 0.0, Range::non_negative(), "the drive's torque ripple A sin(2 pi N revolutions of the set point) (rig_models/motor_ripple.hpp); 0: none"),
+      number("ripple_periods_per_rev", "1", 576.0, Range::positive(), "N: ripple periods per revolution"),
   }});
   d.push_back({"engine", "combustion engine torque from a throttle map, losses and an idle governor (rig_models/engine.hpp)", {
       node("node", "crankshaft node"),

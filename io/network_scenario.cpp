@@ -140,7 +140,8 @@ void read_component(TomlTable& c, const std::string& name, const std::string& pa
     return c.string(key);
   };
   if (type == "inertia") {
-    spec.inertias.push_back({name, num("inertia_kg_m2"), units::rpm_to_rad_s(num("speed_rpm"))});
+    spec.inertias.push_back(
+        {name, num("inertia_kg_m2"), units::rpm_to_rad_s(num("speed_rpm")), num("angle_deg") * std::numbers::pi / 180.0});
   } else if (type == "shaft") {
     components::ShaftSpec s{name, node("from"), node("to"), num("stiffness_Nm_per_rad"), num("damping_Nms_per_rad"),
                             num("lash_deg") * std::numbers::pi / 180.0};
@@ -240,7 +241,10 @@ void read_component(TomlTable& c, const std::string& name, const std::string& pa
     spec.speed_sources.push_back({name, node("node"), read_signal(c, "speed_rpm", std::nullopt)});
   } else if (type == "motor") {
     spec.motors.push_back({name, node("node"), read_signal(c, "speed_rpm", std::nullopt), num("kp_Nms_per_rad"),
-                           num("ki_Nm_per_rad"), num("torque_limit_Nm")});
+                           num("ki_Nm_per_rad"), num("torque_limit_Nm"), num("start_torque_Nm"),
+                           {num("ripple_amplitude_Nm"), num("ripple_periods_per_rev")}});
+    if (spec.motors.back().start_torque_Nm != 0 && spec.motors.back().ki_Nm_per_rad == 0)
+      c.fail("start_torque_Nm", "needs ki_Nm_per_rad > 0: the integrator holds the start torque");
     if (spec.motors.back().kp_Nms_per_rad == 0 && spec.motors.back().ki_Nm_per_rad == 0)
       c.fail("kp_Nms_per_rad", "a speed loop needs kp_Nms_per_rad > 0 or ki_Nm_per_rad > 0");
   } else if (type == "engine") {
