@@ -68,6 +68,7 @@ struct ScreenOptions {
   std::string temps;          // "40,80,120"; empty = 40/80/120 °C where the data reach
   std::string json;           // JSON output path; empty = none
 };
+/// `screen` (app/cmd_screen.cpp): exit 0 judged, 3 not judged (no index computed).
 int screen_command(const ScreenOptions& options);
 
 struct PlotOptions {
@@ -121,6 +122,19 @@ struct CharacteriseOptions {
   int inverse_iterations = 8;             // inverse: law updates per pass before "did not converge"
 };
 int characterise_command(const CharacteriseOptions& options);
+
+struct ImportOptions {
+  std::string logger;               // the logger's CSV
+  std::string output;               // measured run written (CSV, or HDF5 for .h5/.hdf5)
+  std::vector<std::string> maps;    // SOURCE=TARGET:UNIT (io/import_mapping.hpp)
+  std::string mapping;              // mapping file (TOML); empty = none
+  std::vector<std::string> metas;   // KEY=VALUE metadata
+  std::string delimiter = "auto";   // auto | , | ; | tab
+  std::string decimal = "auto";     // auto | . | ,
+  bool trust_units = false;         // skip the unit plausibility checks
+};
+/// `import` (app/cmd_import.cpp): a logger's CSV written as a measured run.
+int import_command(const ImportOptions& options);
 
 struct CompareOptions {
   std::vector<std::string> fluids;   // fluid TOML files

@@ -1,0 +1,161 @@
+// `shudder import` end to end: measured runs made by the project's own simulator, rewritten as a
+// rig's logger would write them (other names, order, units, delimiter, decimal comma, extra
+// columns, no metadata), go through `import` back to the same data and then through
+// `characterise` and `diagnose` with no edit by hand; a unit that does not fit is exit 2 with
+// one line and nothing written.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "io/fluid_loader.hpp"
+#include "io/measured_run.hpp"
+#include "tests/support/cli.hpp"
+#include "tests/support/ramp_runs.hpp"
+
+namespace {
+
+using namespace shudder;
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+// One logger column: its name, the measured-run column it holds and the factor applied.
+struct LoggerColumn {
+  std::string name, source;
+  double factor = 1.0;
+};
+
+// `run` rewritten as a logger file: no metadata, the given columns, delimiter and decimal sign,
+// and a constant extra column the import must leave out.
+void write_logger(const fs::path& file, const io::MeasuredRun& run, const std::vector<LoggerColumn>& cols,
+                  char delimiter, bool decimal_comma) {
+  std::ostringstream os;
+  os << "cycle_no";
+  for (const auto& c : cols) os << delimiter << c.name;
+  os << "\n";
+  for (std::size_t i = 0; i < run.rows(); ++i) {
+    os << 1;
+    for (const auto& c : cols) {
+      char buf[40];
+      std::snprintf(buf, sizeof buf, "%.10g", run.required(c.source)[i] * c.factor);
+      std::string s = buf;
+      if (decimal_comma)
+        for (char& ch : s)
+          if (ch == '.') ch = ',';
+      os << delimiter << s;
+    }
+    os << "\n";
+  }
+  std::ofstream(file) << os.str();
+}
+
+const std::vector<LoggerColumn> kMsKnSemicolon = {{"time_ms", "time_s", 1e3},
+                                                  {"speed_rpm", "speed_rpm"},
+                                                  {"torque_Nm", "torque_Nm"},
+                                                  {"temp_C", "temp_C"},
+                                                  {"force_kN", "normal_force_N", 1e-3}};
+const std::vector<LoggerColumn> kSecondsNewtonsComma = {{"time_s", "time_s"},
+                                                        {"speed_rpm", "speed_rpm"},
+                                                        {"torque_Nm", "torque_Nm"},
+                                                        {"temp_C", "temp_C"},
+                                                        {"force_N", "normal_force_N"}};
+
+// The data lines (after the header) of a measured-run CSV.
+std::string data_lines(const fs::path& csv) {
+  const std::string text = test::slurp(csv);
+  const auto header = text.find("\ntime_s,");
+  return header == std::string::npos ? "" : text.substr(text.find('\n', header + 1));
+}
+
+TEST(CliImport, LoggerRampsThroughImportAndCharacterise) {
+  const auto dir = test::scratch_dir("cli_import_characterise");
+  const clutch::Fluid fluid = io::load_fluid(SHUDDER_SOURCE_DIR "/scenarios/fluids/lsc_fluid_c.toml");
+  std::string originals, imported;
+  unsigned seed = 1;
+  for (double t0 : {40.0, 60.0, 80.0}) {
+    clutch::WetClutchParams p;
+    p.start_temp_C = p.sump_start_temp_C = t0;
+    rig_models::PrescribedSlipSettings s;
+    const auto cycle = test::paper_d_cycle(20000.0);
+    s.duration_s = cycle.slip_speed_rpm.times_s().back();
+    s.thermal_step_s = 0.02;
+    s.sample_rate_Hz = 50.0;
+    const auto rec = rig_models::run_prescribed_slip(clutch::WetClutch(p, fluid), cycle, s);
+    io::MeasurementOptions mo;
+    mo.noise = true;
+    mo.seed = seed;
+    const std::string name = "run" + std::to_string(seed);
+    io::write_measurement((dir / (name + ".csv")).string(), rec, mo);
+    // Alternate the two loggers of the issue: ms, kN, ';' and decimal comma; s, N and ','.
+    const bool ms_kn = seed % 2 == 1;
+    write_logger(dir / (name + ".log"), io::read_measured_run((dir / (name + ".csv")).string()),
+                 ms_kn ? kMsKnSemicolon : kSecondsNewtonsComma, ms_kn ? ';' : ',', ms_kn);
+    const auto r = test::run_cli("import " + name + ".log -o " + name + "_imported.csv", dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_THAT(r.out, HasSubstr(ms_kn ? "(semicolon-separated, decimal comma)" : "(comma-separated, decimal point)"));
+    EXPECT_THAT(r.out, HasSubstr("not written: cycle_no"));
+    EXPECT_THAT(r.err, HasSubstr("shudder: warning: " + name + ".log: metadata not given"));
+    // The same rows the simulator wrote (both print 6 significant digits of the same values).
+    EXPECT_EQ(data_lines(dir / (name + "_imported.csv")), data_lines(dir / (name + ".csv"))) << name;
+    originals += " " + name + ".csv";
+    imported += " " + name + "_imported.csv";
+    ++seed;
+  }
+  const std::string args = " --nu40-cSt 35 --nu100-cSt 6.7 --radius uniform_pressure";
+  const auto a = test::run_cli("characterise" + originals + " -o a.toml --json a.json" + args, dir);
+  const auto b = test::run_cli("characterise" + imported + " -o b.toml --json b.json" + args, dir);
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  EXPECT_THAT(b.out, HasSubstr("6 ramps used (3 up, 3 down)"));
+  // The fitted law: the same numbers from the same rows.
+  const std::string fa = test::slurp(dir / "a.toml"), fb = test::slurp(dir / "b.toml");
+  EXPECT_EQ(fa.substr(fa.find("[friction")), fb.substr(fb.find("[friction")));
+}
+
+TEST(CliImport, LoggerRunThroughImportAndDiagnose) {
+  const auto dir = test::scratch_dir("cli_import_diagnose");
+  test::write_file(dir / "hidden.toml", test::shipped_scenario_text("diagnosis_probe.toml") +
+                                            "\n[effects.bearing_drag]\nenabled = true\nequivalent_mu = 0.005\n");
+  const auto run = test::run_cli("run hidden.toml -o hidden.h5 --measurement a.csv --sample-rate 100 --noise --seed 3", dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const io::MeasuredRun measured = io::read_measured_run((dir / "a.csv").string());
+  write_logger(dir / "a.log", measured, kMsKnSemicolon, ';', true);
+  // The rig's metadata given on the command line, as a user who knows them would.
+  const auto imp = test::run_cli("import a.log -o a_imported.csv --meta 'temp_sensor=" + *measured.meta("temp_sensor") +
+                                     "' --meta oil_flow_ml_min=" + *measured.meta("oil_flow_ml_min") +
+                                     " --meta rig=lsctr",
+                                 dir);
+  ASSERT_EQ(imp.exit_code, 0) << imp.err;
+  EXPECT_EQ(imp.err, "");  // nothing defaulted, nothing to warn about
+  test::write_file(dir / "model.toml", test::shipped_scenario_text("diagnosis_probe.toml") +
+                                           "\n[effects.torque_sensor_offset]\nenabled = true\noffset_Nm = 0.0\n");
+  const auto direct = test::run_cli("diagnose model.toml a.csv --jobs 2", dir);
+  const auto via_import = test::run_cli("diagnose model.toml a_imported.csv --jobs 2", dir);
+  ASSERT_EQ(direct.exit_code, 0) << direct.err;
+  ASSERT_EQ(via_import.exit_code, 0) << via_import.err;
+  EXPECT_THAT(via_import.out, HasSubstr("Missing effects: bearing_drag"));
+}
+
+TEST(CliImport, UnitThatDoesNotFitIsOneLineAndNothingWritten) {
+  const auto dir = test::scratch_dir("cli_import_bad_unit");
+  std::ostringstream os;
+  os << "time_s;speed_rpm;torque_Nm;temp_C;force_N\n";  // force logged in kN under a name in N
+  for (int i = 0; i < 100; ++i) os << i * 0.01 << ";" << 1 + i << ";95;60;25,3\n";
+  test::write_file(dir / "log.csv", os.str());
+  const auto r = test::run_cli("import log.csv -o run.csv", dir);
+  test::expect_rejected(r, {"log.csv", "column 'force_N'", "look like kN", "--map force_N=normal_force_N:kN"});
+  EXPECT_FALSE(fs::exists(dir / "run.csv"));
+  const auto fixed = test::run_cli("import log.csv -o run.csv --map force_N=normal_force_N:kN", dir);
+  EXPECT_EQ(fixed.exit_code, 0) << fixed.err;
+  const auto bad_map = test::run_cli("import log.csv -o run.csv --map force_N=normal_force_N:lbf", dir);
+  test::expect_rejected(bad_map, {"--map force_N=normal_force_N:lbf", "unit 'lbf'", "allowed: N, kN"});
+  test::write_file(dir / "map.toml", "[columns]\nforce_N = \"normal_force:kN\"\n");
+  test::expect_rejected(test::run_cli("import log.csv -o run2.csv --mapping map.toml", dir),
+                        {"map.toml:2", "columns.force_N", "did you mean 'normal_force_N'"});
+  EXPECT_FALSE(fs::exists(dir / "run2.csv"));
+}
+
+}  // namespace
