@@ -52,7 +52,7 @@ analysis::RampRun to_ramp_run(const io::MeasuredRun& m, const std::string& temp_
   const std::vector<double>* temp = m.column(temp_channel);
   if (!temp)
     throw io::InputError(m.path, 0, "", "has no column '" + temp_channel + "' (--temperature-channel); its columns "
-                                        "are those of FORMATS.md: temp_C always, ir_temp_C when the rig logged it");
+                                        "are those of docs/formats/measured_run.md: temp_C always, ir_temp_C when the rig logged it");
   return {m.path, m.required("time_s"), m.required("speed_rpm"), m.required("normal_force_N"),
           m.required("torque_Nm"), *temp};
 }

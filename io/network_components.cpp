@@ -48,7 +48,7 @@ std::vector<KeyDecl> friction_keys() {
       optional_number("inner_radius_m", "m", Range::positive(), "plain: annulus inner radius (with outer_radius_m; uniform pressure)", "one geometry"),
       optional_number("outer_radius_m", "m", Range::positive(), "plain: annulus outer radius", "one geometry"),
       integer("interfaces", 1, 1, 64, "plain: friction interfaces n (with a radius)"),
-      table("clutch", "wet: the clutch exactly as a scenario's [clutch] (docs/scenario_format.md): `fluid` relative to this file, `sliding_interfaces`, radii, layers, oil, sensors", "required for law = \"wet\""),
+      table("clutch", "wet: the clutch exactly as a scenario's [clutch] (docs/formats/scenario_file.md): `fluid` relative to this file, `sliding_interfaces`, radii, layers, oil, sensors", "required for law = \"wet\""),
       table("effects", "wet: switchable effects exactly as a scenario's [effects] (docs/effects.md)", "optional"),
       {"judged_on", KeyKind::kComponent, "", std::nullopt, {}, "a shaft whose torque the clutch's verdict is judged on (as a rig's torque cell reads its torsion bar)", "default: the clutch's own torque", {}},
   };

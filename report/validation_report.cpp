@@ -298,7 +298,7 @@ void write_validation_doc(const std::filesystem::path& docs, const io::Validatio
        << "    ./build/app/shudder validate --scenarios scenarios --docs docs\n\n"
        << "Each case runs a scenario with the prescribed-slip rig model and compares it with "
           "the calibration issue's targets (from Paper G Figs. 8, 12–14 and Discussion, Paper "
-          "B Fig. 6; `PHYSICS.md` §5). The command exits 0 when every target passes, 1 when "
+          "B Fig. 6; `docs/physics.md` §5). The command exits 0 when every target passes, 1 when "
           "one fails.\n\n## Cases\n\n| case | scenario | description |\n|---|---|---|\n";
     for (std::size_t i = 0; i < runs.size(); ++i)
       md << "| " << runs[i].label << " | `" << runs[i].sc.name << ".toml` | "
@@ -313,7 +313,7 @@ void write_validation_doc(const std::filesystem::path& docs, const io::Validatio
       md << "| " << r.case_label << " | " << r.quantity << " | " << r.target << " | "
          << r.result << " | " << (r.pass == "NO" ? "**NO**" : r.pass) << " |\n";
     md << fmt("\n%zu of %zu targets pass. ", passed, checked)
-       << "The targets are bands around the values the papers report (`PHYSICS.md` §5), e.g. "
+       << "The targets are bands around the values the papers report (`docs/physics.md` §5), e.g. "
           "Paper B's 15.5 °C rise, where the thesis's Fig. 7 cycle gives > 20 °C.\n\n";
     write_case2(md, runs[spec.ramp_case]);
     write_energy(md, runs);

@@ -157,7 +157,7 @@ def test_the_gil_is_released_during_a_run():
     assert steps >= 20
 
 
-# A network scenario (docs/network_format.md) runs from Python as from the CLI: same signals,
+# A network scenario (docs/formats/network_file.md) runs from Python as from the CLI: same signals,
 # overrides by `network.COMPONENT.KEY`, the clutches' verdict blocks.
 def test_network_run_equals_the_cli_and_takes_overrides(tmp_path):
     net = scenario("networks/four_inertia_chain.toml")
