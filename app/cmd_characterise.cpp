@@ -21,6 +21,7 @@
 #include "io/fluid_loader.hpp"
 #include "io/input_error.hpp"
 #include "io/measured_run.hpp"
+#include "io/import_plausibility.hpp"
 #include "io/output_safety.hpp"
 #include "io/scenario.hpp"
 #include "report/characterisation_report.hpp"
@@ -101,6 +102,7 @@ int characterise_command(const CharacteriseOptions& o) {
     std::string rig, rig_file;
     for (const auto& path : o.runs) {
       const io::MeasuredRun& m = measured.emplace_back(io::read_measured_run(path));
+      io::check_measured_run_units(m);  // kN, ms or K in a measured run: one line naming the fix
       const std::string this_rig = m.meta("rig").value_or("");
       if (runs.empty()) {
         rig = this_rig;

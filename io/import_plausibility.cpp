@@ -42,10 +42,16 @@ void check_unit_plausible(const std::string& file, const ColumnMapping& mapping,
   using namespace import_plausibility_impl;
   if (values.size() < 2) return;
   const auto fail = [&](const std::string& seen, const std::string& likely) {
+    const std::string map = "--map " + mapping.source + "=" + target.column + ":" + likely;
+    if (mapping.origin == "measured run")
+      throw InputError(file, 0, "",
+                       "column '" + target.column + "': " + seen + " look like " + likely + ", not " + unit.name +
+                           " as the measured-run format has it; if so convert the file: shudder import " + file +
+                           " -o FIXED.csv " + map);
     throw InputError(file, 0, "",
                      "column '" + mapping.source + "' (" + target.column + ", read as " + unit.name + "): " + seen +
-                         " look like " + likely + ", not " + unit.name + "; if so give --map " + mapping.source + "=" +
-                         target.column + ":" + likely + " (or --trust-units if " + unit.name + " is right)");
+                         " look like " + likely + ", not " + unit.name + "; if so give " + map +
+                         " (or --trust-units if " + unit.name + " is right)");
   };
   const double lo = *std::min_element(values.begin(), values.end());
   const double hi = *std::max_element(values.begin(), values.end());
@@ -72,6 +78,20 @@ void check_unit_plausible(const std::string& file, const ColumnMapping& mapping,
     if (unit.name == "degC" && lo > 200.0 && hi < 600.0) fail("temperatures of " + g4(lo) + "-" + g4(hi) + " degC", "K");
     if (unit.name == "K" && hi < -60.0) fail("temperatures of " + g4(lo + 273.15) + "-" + g4(hi + 273.15) + " K", "degC");
   }
+}
+
+}  // namespace shudder::io
+
+namespace shudder::io {
+
+void check_measured_run_units(const MeasuredRun& run) {
+  for (const auto& target : import_targets())
+    if (const auto* values = run.column(target.column)) {
+      ColumnMapping m;
+      m.source = m.target = target.column;
+      m.origin = "measured run";
+      check_unit_plausible(run.path, m, target, target.units.front(), *values);
+    }
 }
 
 }  // namespace shudder::io

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "io/import_mapping.hpp"
+#include "io/measured_run.hpp"
 
 namespace shudder::io {
 
@@ -17,5 +18,10 @@ namespace shudder::io {
 /// the check. Throws InputError(file, 0, ...) when the column looks like another unit.
 void check_unit_plausible(const std::string& file, const ColumnMapping& mapping, const ImportTarget& target,
                           const ImportUnit& unit, const std::vector<double>& values);
+
+/// The same checks on a measured run's own columns (in their own units), for the commands that
+/// read one: a run written by hand with the force in kN fails here with the `shudder import`
+/// command that converts it, instead of later as an implausible friction coefficient.
+void check_measured_run_units(const MeasuredRun& run);
 
 }  // namespace shudder::io

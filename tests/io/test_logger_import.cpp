@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "io/import_mapping.hpp"
+#include "io/import_plausibility.hpp"
 #include "io/input_error.hpp"
 #include "io/logger_import.hpp"
 #include "io/measured_run.hpp"
@@ -268,6 +269,31 @@ TEST_F(LoggerImport, TimeGoingBackAndLargeNegativeForceNameTheLine) {
   std::ofstream(path("negative.csv")) << big.str();
   EXPECT_THAT([&] { import_logger(path("negative.csv"), {}); },
               ThrowsMessage<InputError>(AllOf(HasSubstr("negative.csv:7"), HasSubstr("must be >= 0"))));
+}
+
+// A logger's file given where a measured run is read: the reader's refusal points at `import`;
+// a measured run with a column in the wrong unit is refused with the import that converts it.
+TEST_F(LoggerImport, MeasuredRunReadersPointAtImport) {
+  std::ofstream(path("semi.csv")) << "# format: shudder-measurement/1\ntime_s;speed_rpm;normal_force_N;torque_Nm;temp_C\n";
+  EXPECT_THAT([&] { shudder::io::read_measured_run(path("semi.csv")); },
+              ThrowsMessage<InputError>(AllOf(HasSubstr("separated by ';' or tabs"), HasSubstr("shudder import LOG.csv"))));
+  std::ofstream(path("noformat.csv")) << "time_s,speed_rpm,normal_force_N,torque_Nm,temp_C\n";
+  EXPECT_THAT([&] { shudder::io::read_measured_run(path("noformat.csv")); },
+              ThrowsMessage<InputError>(HasSubstr("shudder import LOG.csv -o RUN.csv")));
+  std::ostringstream kn;
+  kn << "# format: shudder-measurement/1\ntime_s,speed_rpm,normal_force_N,torque_Nm,temp_C\n";
+  for (int i = 0; i < 20; ++i) kn << 0.01 * i << ",10,25.3,95,60\n";
+  std::ofstream(path("kn.csv")) << kn.str();
+  const auto run = shudder::io::read_measured_run(path("kn.csv"));
+  EXPECT_THAT([&] { shudder::io::check_measured_run_units(run); },
+              ThrowsMessage<InputError>(AllOf(HasSubstr("column 'normal_force_N'"), HasSubstr("look like kN"),
+                                              HasSubstr("-o FIXED.csv --map normal_force_N=normal_force_N:kN"))));
+  // ... and that import does convert it (its '# key: value' lines kept as metadata).
+  ImportSpec fix;
+  fix.maps.push_back(shudder::io::parse_map_option("normal_force_N=normal_force_N:kN"));
+  const auto fixed = import_logger(path("kn.csv"), fix);
+  EXPECT_NEAR(fixed.run.required("normal_force_N")[0], 25300.0, 1e-9);  // 25.3 x 1000 in doubles
+  EXPECT_NO_THROW(shudder::io::check_measured_run_units(fixed.run));
 }
 
 }  // namespace
