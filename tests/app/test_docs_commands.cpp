@@ -120,10 +120,12 @@ TEST(DocsCommandsConvention, ReadmeAndCommandsPageRunTheirCommands) {
 // the sources users read messages from, and relative Markdown links inside docs/.
 TEST(DocsCommandsConvention, NamedPagesExist) {
   std::vector<fs::path> files = {test::source_path("README.md")};
-  for (const char* dir : {"docs", "app", "io", "report", "python", "scenarios", "tools"})
-    for (const auto& e : fs::recursive_directory_iterator(test::source_path(dir)))
-      if (e.is_regular_file() && std::set<std::string>{".md", ".cpp", ".hpp", ".toml", ".py"}.count(e.path().extension()))
-        files.push_back(e.path());
+  const std::set<std::string> kinds = {".md", ".cpp", ".hpp", ".toml", ".py"};
+  for (const char* dir : {"docs", "app", "io", "report", "python", "scenarios", "tools"}) {
+    for (const auto& e : fs::recursive_directory_iterator(test::source_path(dir))) {
+      if (e.is_regular_file() && kinds.count(e.path().extension().string())) files.push_back(e.path());
+    }
+  }
   const std::regex named(R"(docs/[A-Za-z0-9_/]+\.md)"), link(R"(\]\(([A-Za-z0-9_./]+\.md)\))");
   int checked = 0;
   for (const auto& f : files) {
