@@ -130,11 +130,13 @@ TEST(DocsCommandsConvention, NamedPagesExist) {
   int checked = 0;
   for (const auto& f : files) {
     const std::string text = test::slurp(f);
-    for (std::sregex_iterator it(text.begin(), text.end(), named), end; it != end; ++it, ++checked)
+    for (std::sregex_iterator it(text.begin(), text.end(), named), end; it != end; ++it, ++checked) {
       EXPECT_TRUE(fs::exists(test::source_path(it->str()))) << f << " names " << it->str();
-    if (f.extension() == ".md")
-      for (std::sregex_iterator it(text.begin(), text.end(), link), end; it != end; ++it, ++checked)
-        EXPECT_TRUE(fs::exists(f.parent_path() / (*it)[1].str())) << f << " links " << (*it)[1].str();
+    }
+    if (f.extension() != ".md") continue;
+    for (std::sregex_iterator it(text.begin(), text.end(), link), end; it != end; ++it, ++checked) {
+      EXPECT_TRUE(fs::exists(f.parent_path() / (*it)[1].str())) << f << " links " << (*it)[1].str();
+    }
   }
   EXPECT_GT(checked, 100);
 }
