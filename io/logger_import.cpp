@@ -48,28 +48,35 @@ std::vector<ColumnMapping> resolve(const LoggerTable& t, const ImportSpec& spec)
                              "; map one column to each measured-run column");
     maps.push_back(m);
   }
+  // Automatic candidates per target; a name that gives its unit wins over one that does not
+  // (a stray column "n" does not compete with "speed_rpm"); two with units are ambiguous.
   std::vector<ColumnMapping> automatic;
-  for (const auto& name : t.names) {
-    if (std::any_of(maps.begin(), maps.end(), [&](const auto& m) { return m.source == name; })) continue;
-    auto m = automatic_mapping(name);
-    if (!m || std::any_of(maps.begin(), maps.end(), [&](const auto& e) { return e.target == m->target; })) continue;
-    for (const auto& other : automatic)
-      if (other.target == m->target)
-        throw InputError(t.path, 0, "",
-                         "columns '" + other.source + "' and '" + name + "' both look like " + m->target +
-                             "; choose one with --map COLUMN=" + m->target + ":UNIT");
-    const ImportTarget& target = *find_import_target(m->target);
-    if (m->unit.empty())
+  for (const auto& target : import_targets()) {
+    if (std::any_of(maps.begin(), maps.end(), [&](const auto& e) { return e.target == target.column; })) continue;
+    std::vector<ColumnMapping> with_unit, without_unit;
+    for (const auto& name : t.names) {
+      if (std::any_of(maps.begin(), maps.end(), [&](const auto& m) { return m.source == name; })) continue;
+      const auto m = automatic_mapping(name);
+      if (!m || m->target != target.column) continue;
+      (m->unit.empty() ? without_unit : with_unit).push_back(*m);
+    }
+    if (with_unit.size() > 1)
       throw InputError(t.path, 0, "",
-                       "column '" + name + "' looks like " + m->target + " (" + target.quantity +
-                           ") but its name gives no unit; give --map " + name + "=" + m->target +
-                           ":UNIT (allowed units: " + unit_list(target) + ")");
-    if (!find_import_unit(target, m->unit))
+                       "columns '" + with_unit[0].source + "' and '" + with_unit[1].source + "' both look like " +
+                           target.column + "; choose one with --map COLUMN=" + target.column + ":UNIT");
+    if (with_unit.empty() && !without_unit.empty() && target.required)
       throw InputError(t.path, 0, "",
-                       "column '" + name + "' looks like " + m->target + " in '" + m->unit +
+                       "column '" + without_unit.front().source + "' looks like " + target.column + " (" +
+                           target.quantity + ") but its name gives no unit; give --map " + without_unit.front().source +
+                           "=" + target.column + ":UNIT (allowed units: " + unit_list(target) + ")");
+    if (with_unit.empty()) continue;
+    const ColumnMapping& m = with_unit.front();
+    if (!find_import_unit(target, m.unit))
+      throw InputError(t.path, 0, "",
+                       "column '" + m.source + "' looks like " + m.target + " in '" + m.unit +
                            "', which is not a unit it can be logged in; allowed: " + unit_list(target) +
-                           " (give --map " + name + "=" + m->target + ":UNIT)");
-    automatic.push_back(*m);
+                           " (give --map " + m.source + "=" + m.target + ":UNIT)");
+    automatic.push_back(m);
   }
   maps.insert(maps.end(), automatic.begin(), automatic.end());
   for (const auto& target : import_targets())

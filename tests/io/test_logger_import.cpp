@@ -149,6 +149,24 @@ TEST_F(LoggerImport, TabRadiansKelvinExtraColumnsAndExplicitMaps) {
   EXPECT_EQ(r.run.meta("operator"), "someone");  // the logger's own '# key: value' lines are kept
 }
 
+// A column whose name is a quantity without a unit ("n", a cycle counter here) does not compete
+// with one whose name gives the unit; two that give units are ambiguous.
+TEST_F(LoggerImport, ANameWithAUnitWinsOverOneWithout) {
+  const auto file = logger("log.csv",
+                           {{"time_s", time_s}, {"n", [](int i) { return double(i); }}, {"speed_rpm", speed_rpm},
+                            {"torque_Nm", torque_Nm}, {"temp_C", temp_C}, {"force_N", force_N}},
+                           ',');
+  const auto r = import_logger(file, {});
+  expect_thesis_ramp(r.run);
+  EXPECT_EQ(r.ignored, (std::vector<std::string>{"n"}));
+  const auto two = logger("two.csv",
+                          {{"time_s", time_s}, {"speed_rad_s", speed_rpm}, {"speed_rpm", speed_rpm},
+                           {"torque_Nm", torque_Nm}, {"temp_C", temp_C}, {"force_N", force_N}},
+                          ',');
+  EXPECT_THAT([&] { import_logger(two, {}); },
+              ThrowsMessage<InputError>(AllOf(HasSubstr("both look like speed_rpm"), HasSubstr("--map COLUMN=speed_rpm:UNIT"))));
+}
+
 TEST_F(LoggerImport, MappingFileGivesColumnsMetadataAndDialect) {
   const auto file = logger("log.csv",
                            {{"A", [](int i) { return 1e3 * time_s(i); }}, {"B", speed_rpm}, {"C", force_N},
