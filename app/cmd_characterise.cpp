@@ -22,6 +22,7 @@
 #include "io/input_error.hpp"
 #include "io/measured_run.hpp"
 #include "io/import_plausibility.hpp"
+#include "io/logger_import.hpp"
 #include "io/output_safety.hpp"
 #include "io/scenario.hpp"
 #include "report/characterisation_report.hpp"
@@ -100,8 +101,10 @@ int characterise_command(const CharacteriseOptions& o) {
     std::vector<analysis::RampRun> runs;
     std::vector<io::MeasuredRun> measured;
     std::string rig, rig_file;
+    const io::ImportSpec logger = io::import_spec_of(o.maps, o.mapping);  // --map/--mapping: logger files
+    std::vector<std::string> import_warnings;
     for (const auto& path : o.runs) {
-      const io::MeasuredRun& m = measured.emplace_back(io::read_measured_run(path));
+      const io::MeasuredRun& m = measured.emplace_back(io::read_measured_or_logger(path, logger, import_warnings));
       io::check_measured_run_units(m);  // kN, ms or K in a measured run: one line naming the fix
       const std::string this_rig = m.meta("rig").value_or("");
       if (runs.empty()) {
@@ -114,6 +117,7 @@ int characterise_command(const CharacteriseOptions& o) {
       }
       runs.push_back(to_ramp_run(m, o.temperature_channel));
     }
+    for (const auto& w : import_warnings) std::cerr << "shudder: warning: " << w << "\n";
 
     analysis::Characterisation c;
     try {

@@ -94,6 +94,8 @@ struct DiagnoseOptions {
   int max_effects = static_cast<int>(rig_models::effect_registry().size());  // added at most (default: all)
   std::string tolerance;          // "torque_Nm=0.5,temp_C=2": model-form tolerance per channel
   std::string write_model;        // the baseline scenario with the named effects on; empty = none
+  std::vector<std::string> maps;  // --map: the runs are a logger's CSV files (app/cmd_import.cpp)
+  std::string mapping;            // --mapping: the same from a mapping file; empty = none
 };
 int diagnose_command(const DiagnoseOptions& options);
 
@@ -120,6 +122,8 @@ struct CharacteriseOptions {
   std::string method = "sensor";          // sensor | inverse (replayed through the model)
   std::string model;                      // inverse: scenario whose clutch is replayed; empty = Paper G defaults
   int inverse_iterations = 8;             // inverse: law updates per pass before "did not converge"
+  std::vector<std::string> maps;          // --map: the runs are a logger's CSV files (app/cmd_import.cpp)
+  std::string mapping;                    // --mapping: the same from a mapping file; empty = none
 };
 int characterise_command(const CharacteriseOptions& options);
 

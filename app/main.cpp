@@ -112,6 +112,8 @@ int main(int argc, char** argv) {
                        "docs/diagnosis.md)");
   diag_cmd->add_option("--write-model", diagnose.write_model,
                        "Write the baseline scenario with the named effects on at their fitted parameters");
+  diag_cmd->add_option("--map", diagnose.maps, "The runs are a logger's CSV: SOURCE=TARGET:UNIT as `shudder import --map`");
+  diag_cmd->add_option("--mapping", diagnose.mapping, "The runs are a logger's CSV: its mapping file (shudder import --mapping)");
 
   CharacteriseOptions characterise;
   auto* char_cmd = app.add_subcommand(
@@ -166,6 +168,9 @@ int main(int argc, char** argv) {
   char_cmd->add_option("--inverse-iterations", characterise.inverse_iterations,
                        "--method inverse: law updates per pass before it counts as not converged (default 8)")
       ->check(CLI::Range(1, 100));
+
+  char_cmd->add_option("--map", characterise.maps, "The runs are a logger's CSV: SOURCE=TARGET:UNIT as `shudder import --map`");
+  char_cmd->add_option("--mapping", characterise.mapping, "The runs are a logger's CSV: its mapping file (shudder import --mapping)");
 
   CompareOptions compare;
   auto* cmp_cmd = app.add_subcommand("compare", "Compare fluids: indices, equal viscosity, breakaway, rig margins, ranking");

@@ -176,8 +176,16 @@ char parse_decimal(const std::string& text, const std::string& where) {
   throw InputError(where, 0, "", "'" + text + "' is not a decimal separator; allowed: auto, '.', ','");
 }
 
+ImportSpec import_spec_of(const std::vector<std::string>& maps, const std::string& mapping_file) {
+  ImportSpec spec;
+  for (const auto& m : maps) spec.maps.push_back(parse_map_option(m));
+  if (!mapping_file.empty()) read_import_mapping(mapping_file, spec);
+  return spec;
+}
+
 void read_import_mapping(const std::string& path, ImportSpec& spec) {
   using namespace import_mapping_impl;
+  spec.from_mapping_file = true;
   const toml::table root = TomlTable::parse_file(path);
   TomlTable top(root, path, "");
   const auto line_of = [](const toml::node& n) { return static_cast<long>(n.source().begin.line); };

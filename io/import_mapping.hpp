@@ -51,7 +51,11 @@ struct ImportSpec {
   char delimiter = 0;                                         // 0 = detect
   char decimal = 0;                                           // 0 = detect
   bool trust_units = false;                                   // skip the plausibility checks
+  bool from_mapping_file = false;                             // read_import_mapping filled it
 };
+
+/// The spec of `--map` options and a `--mapping` file (empty: none), as every command takes them.
+ImportSpec import_spec_of(const std::vector<std::string>& maps, const std::string& mapping_file);
 
 /// `--map SOURCE=TARGET:UNIT` (UNIT optional: the target's own unit). InputError naming the
 /// option on a malformed spec, an unknown target or a unit the target cannot be logged in.

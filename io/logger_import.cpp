@@ -96,6 +96,13 @@ std::string g6(double v) {
 
 }  // namespace logger_import_impl
 
+MeasuredRun read_measured_or_logger(const std::string& path, const ImportSpec& spec, std::vector<std::string>& warnings) {
+  if (spec.maps.empty() && !spec.from_mapping_file) return read_measured_run(path);
+  ImportResult r = import_logger(path, spec);
+  warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
+  return std::move(r.run);
+}
+
 ImportResult import_logger(const std::string& logger_path, const ImportSpec& spec) {
   using namespace logger_import_impl;
   LoggerCsvOptions csv;

@@ -27,6 +27,12 @@ struct ImportResult {
   char decimal = '.';
 };
 
+/// `path` as a measured run when `spec` maps nothing and names no mapping file (`maps` empty,
+/// `from_mapping_file` false), else imported as a logger's CSV with it; the import's warnings
+/// are appended to `warnings`. For the commands that read measured runs (`characterise`,
+/// `diagnose` with --map/--mapping).
+MeasuredRun read_measured_or_logger(const std::string& path, const ImportSpec& spec, std::vector<std::string>& warnings);
+
 /// Reads and converts `logger_path`; InputError (file, line or column, what is allowed) on
 /// anything that cannot become a valid measured run.
 ImportResult import_logger(const std::string& logger_path, const ImportSpec& spec);

@@ -112,7 +112,17 @@ TEST(CliImport, LoggerRampsThroughImportAndCharacterise) {
   EXPECT_THAT(b.out, HasSubstr("6 ramps used (3 up, 3 down)"));
   // The fitted law: the same numbers from the same rows.
   const std::string fa = test::slurp(dir / "a.toml"), fb = test::slurp(dir / "b.toml");
-  EXPECT_EQ(fa.substr(fa.find("[friction")), fb.substr(fb.find("[friction")));
+  EXPECT_EQ(fa.substr(fa.find("[maki]")), fb.substr(fb.find("[maki]")));
+  // The ms/kN logger files straight into characterise with --map: the law of their imports.
+  const std::string lin = args + " --compensation linear";
+  const auto c = test::run_cli("characterise run1_imported.csv run3_imported.csv -o c.toml" + lin, dir);
+  const auto d = test::run_cli("characterise run1.log run3.log -o d.toml --map time_ms=time_s:ms "
+                               "--map force_kN=normal_force_N:kN" + lin, dir);
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  EXPECT_THAT(d.err, HasSubstr("shudder: warning: run1.log: metadata not given"));
+  const std::string fc = test::slurp(dir / "c.toml"), fd = test::slurp(dir / "d.toml");
+  EXPECT_EQ(fc.substr(fc.find("[maki]")), fd.substr(fd.find("[maki]")));
 }
 
 TEST(CliImport, LoggerRunThroughImportAndDiagnose) {
@@ -137,6 +147,12 @@ TEST(CliImport, LoggerRunThroughImportAndDiagnose) {
   ASSERT_EQ(direct.exit_code, 0) << direct.err;
   ASSERT_EQ(via_import.exit_code, 0) << via_import.err;
   EXPECT_THAT(via_import.out, HasSubstr("Missing effects: bearing_drag"));
+  // The logger file itself, with its mapping on the diagnose command line.
+  const auto direct_log = test::run_cli("diagnose model.toml a.log --jobs 2 --map time_ms=time_s:ms "
+                                        "--map force_kN=normal_force_N:kN --map temp_C=temp_C",
+                                        dir);
+  ASSERT_EQ(direct_log.exit_code, 0) << direct_log.err;
+  EXPECT_THAT(direct_log.err, HasSubstr("a.log: metadata not given, written with the defaults"));
 }
 
 TEST(CliImport, UnitThatDoesNotFitIsOneLineAndNothingWritten) {
