@@ -302,7 +302,11 @@ py::object screen(const std::string& fluid, const std::string& rig, double load_
   if (!temps.is_none()) o.temps = comma_separated(temps);
   const ScratchFile json;
   o.json = json.path;
-  command("screening", [&] { return app::screen_command(o); });
+  // Exit 3 is "NOT JUDGED" (no index computed): an answer, in the JSON's verdict_level, not an error.
+  command("screening", [&] {
+    const int rc = app::screen_command(o);
+    return rc == 3 ? 0 : rc;
+  });
   return json.json();
 }
 
