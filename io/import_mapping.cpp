@@ -50,7 +50,7 @@ struct Alias {
 const std::vector<Alias>& aliases() {
   static const std::vector<Alias> a = {
       {"time_s", {"time", "t", "timestamp", "zeit"}},
-      {"speed_rpm", {"speed", "slip", "slip_speed", "sliding_speed", "n", "rpm"}},
+      {"speed_rpm", {"speed", "slip", "slip_speed", "sliding_speed", "omega", "angular_speed", "n", "rpm"}},
       {"normal_force_N", {"normal_force", "force", "load", "clamp_force", "axial_force", "f_n", "fn"}},
       {"torque_Nm", {"torque", "friction_torque", "m", "tq"}},
       {"temp_C", {"temp", "temperature", "disc_temp", "separator_temp", "thermocouple", "tc"}},

@@ -6,6 +6,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -63,11 +64,29 @@ const std::vector<LoggerColumn> kSecondsNewtonsComma = {{"time_s", "time_s"},
                                                         {"temp_C", "temp_C"},
                                                         {"force_N", "normal_force_N"}};
 
-// The data lines (after the header) of a measured-run CSV.
-std::string data_lines(const fs::path& csv) {
-  const std::string text = test::slurp(csv);
-  const auto header = text.find("\ntime_s,");
-  return header == std::string::npos ? "" : text.substr(text.find('\n', header + 1));
+// The logged columns of two measured runs agree value by value. Tolerance: both hold 6
+// significant digits of the same number (the import's conversion ms -> s and kN -> N rounds at
+// 1e-16 before printing), so a difference is at most one unit in the 6th digit, 1e-5 relative,
+// and occurs only where the conversion's rounding lands on a printing boundary.
+void expect_same_logged_columns(const fs::path& a, const fs::path& b) {
+  const auto ra = io::read_measured_run(a.string()), rb = io::read_measured_run(b.string());
+  ASSERT_EQ(ra.rows(), rb.rows());
+  for (const char* col : {"time_s", "speed_rpm", "normal_force_N", "torque_Nm", "temp_C"}) {
+    const auto& x = ra.required(col);
+    const auto& y = rb.required(col);
+    for (std::size_t i = 0; i < x.size(); ++i)
+      ASSERT_NEAR(x[i], y[i], 1e-5 * std::abs(x[i]) + 1e-9) << col << " row " << i << " of " << b;
+  }
+}
+
+// mu of two fluid files' laws at points inside the ramps' data.
+void expect_same_law(const fs::path& a, const fs::path& b, double tolerance) {
+  const clutch::Fluid fa = io::load_fluid(a.string()), fb = io::load_fluid(b.string());
+  for (double v_mm_s : {10.0, 50.0, 200.0, 450.0})
+    for (double T : {45.0, 60.0, 75.0}) {
+      const double ma = fa.friction->mu(v_mm_s, T, 20000.0), mb = fb.friction->mu(v_mm_s, T, 20000.0);
+      EXPECT_NEAR(ma, mb, tolerance * ma) << v_mm_s << " mm/s, " << T << " degC";
+    }
 }
 
 TEST(CliImport, LoggerRampsThroughImportAndCharacterise) {
@@ -98,8 +117,8 @@ TEST(CliImport, LoggerRampsThroughImportAndCharacterise) {
     EXPECT_THAT(r.out, HasSubstr(ms_kn ? "(semicolon-separated, decimal comma)" : "(comma-separated, decimal point)"));
     EXPECT_THAT(r.out, HasSubstr("not written: cycle_no"));
     EXPECT_THAT(r.err, HasSubstr("shudder: warning: " + name + ".log: metadata not given"));
-    // The same rows the simulator wrote (both print 6 significant digits of the same values).
-    EXPECT_EQ(data_lines(dir / (name + "_imported.csv")), data_lines(dir / (name + ".csv"))) << name;
+    // The same rows the simulator wrote.
+    expect_same_logged_columns(dir / (name + ".csv"), dir / (name + "_imported.csv"));
     originals += " " + name + ".csv";
     imported += " " + name + "_imported.csv";
     ++seed;
@@ -110,9 +129,9 @@ TEST(CliImport, LoggerRampsThroughImportAndCharacterise) {
   ASSERT_EQ(a.exit_code, 0) << a.err;
   ASSERT_EQ(b.exit_code, 0) << b.err;
   EXPECT_THAT(b.out, HasSubstr("6 ramps used (3 up, 3 down)"));
-  // The fitted law: the same numbers from the same rows.
-  const std::string fa = test::slurp(dir / "a.toml"), fb = test::slurp(dir / "b.toml");
-  EXPECT_EQ(fa.substr(fa.find("[maki]")), fb.substr(fb.find("[maki]")));
+  // The fitted law: the same from the same rows. Tolerance 1e-4 of mu: the two read the same
+  // samples at 6 significant digits, differing only where an imported value rounds the other way.
+  expect_same_law(dir / "a.toml", dir / "b.toml", 1e-4);
   // The ms/kN logger files straight into characterise with --map: the law of their imports.
   const std::string lin = args + " --compensation linear";
   const auto c = test::run_cli("characterise run1_imported.csv run3_imported.csv -o c.toml" + lin, dir);
@@ -121,8 +140,10 @@ TEST(CliImport, LoggerRampsThroughImportAndCharacterise) {
   ASSERT_EQ(c.exit_code, 0) << c.err;
   ASSERT_EQ(d.exit_code, 0) << d.err;
   EXPECT_THAT(d.err, HasSubstr("shudder: warning: run1.log: metadata not given"));
-  const std::string fc = test::slurp(dir / "c.toml"), fd = test::slurp(dir / "d.toml");
-  EXPECT_EQ(fc.substr(fc.find("[maki]")), fd.substr(fd.find("[maki]")));
+  // The same law as from the imported files. Tolerance 1e-3 of mu: read directly the values keep
+  // the logger's 10 digits instead of the imported file's 6, which moves a ramp's window by a
+  // sample here and there (measured: the mean load differs by 0.03 N in 20 kN).
+  expect_same_law(dir / "c.toml", dir / "d.toml", 1e-3);
 }
 
 TEST(CliImport, LoggerRunThroughImportAndDiagnose) {
@@ -159,7 +180,7 @@ TEST(CliImport, UnitThatDoesNotFitIsOneLineAndNothingWritten) {
   const auto dir = test::scratch_dir("cli_import_bad_unit");
   std::ostringstream os;
   os << "time_s;speed_rpm;torque_Nm;temp_C;force_N\n";  // force logged in kN under a name in N
-  for (int i = 0; i < 100; ++i) os << i * 0.01 << ";" << 1 + i << ";95;60;25,3\n";
+  for (int i = 0; i < 100; ++i) os << "0," << (i < 10 ? "0" : "") << i << ";" << 1 + i << ";95;60;25,3\n";
   test::write_file(dir / "log.csv", os.str());
   const auto r = test::run_cli("import log.csv -o run.csv", dir);
   test::expect_rejected(r, {"log.csv", "column 'force_N'", "look like kN", "--map force_N=normal_force_N:kN"});
