@@ -271,6 +271,7 @@ Eigen::Array<bool, Eigen::Dynamic, Eigen::Dynamic> negative_slope_mask(const Slo
 const char* risk_level_name(RiskLevel level) {
   switch (level) {
     case RiskLevel::kLow: return "LOW RISK";
+    case RiskLevel::kNotJudged: return "NOT JUDGED";
     case RiskLevel::kCaution: return "CAUTION";
     case RiskLevel::kRisk: return "RISK";
   }
@@ -322,8 +323,16 @@ ScreeningVerdict screening_verdict(const std::vector<AntiShudderIndices>& indice
   }
 
   ScreeningVerdict v;
-  v.level = !risk.empty() ? RiskLevel::kRisk : !caution.empty() ? RiskLevel::kCaution : RiskLevel::kLow;
+  v.level = !risk.empty()      ? RiskLevel::kRisk
+            : !caution.empty()  ? RiskLevel::kCaution
+            : indices.empty()   ? RiskLevel::kNotJudged
+                                : RiskLevel::kLow;
   v.text = risk_level_name(v.level);
+  if (v.level == RiskLevel::kNotJudged) {
+    v.text += ": no anti-shudder index was computed (no screening temperature inside the law's data; give "
+              "--temps inside it); the slope map and the rigs found no risk, which alone is no verdict";
+    return v;
+  }
   v.text += ": ";
   if (v.level == RiskLevel::kLow) {
     std::string grid = "no negative isothermal slope";

@@ -1,11 +1,11 @@
 #pragma once
-// Anti-shudder indices of a fluid's friction law (PHYSICS.md §6; thesis Paper A, "anti-shudder
+// Anti-shudder indices of a fluid's friction law (docs/physics.md §6; thesis Paper A, "anti-shudder
 // performance"), the isothermal slope map dmu/dv(v, T) and the plain-language screening verdict.
 //
 // Every index is evaluated from a clutch::FrictionLaw at one temperature T (°C) and one normal
 // load F (N), exactly as the simulator evaluates the law. Speeds given in rpm are converted to
 // the LOCAL sliding speed at the mean radius r (default 46 mm, the test rig's: 1 rpm = 4.817 mm/s,
-// as the fluid files convert them; PHYSICS.md §4):   v[mm/s] = rpm · 2π/60 · r[mm].
+// as the fluid files convert them; docs/physics.md §4):   v[mm/s] = rpm · 2π/60 · r[mm].
 //
 //   index                        definition (v in mm/s unless stated)                 risk side
 //   mu1/mu50        (Ohtani)     mu(1 rpm) / mu(50 rpm)                                 > 1
@@ -33,7 +33,7 @@
 // fluid) and flagged. A temperature outside the law's temperature range is flagged separately.
 //
 // The indices are screening numbers: a positive slope is neither necessary nor sufficient for
-// stability on a real driveline (PHYSICS.md §6, Cameron); the rig's eigenvalues decide
+// stability on a real driveline (docs/physics.md §6, Cameron); the rig's eigenvalues decide
 // (rig_models/fluid_screening.hpp).
 
 #include <Eigen/Dense>
@@ -46,7 +46,7 @@
 
 namespace shudder::analysis {
 
-/// The rig's mean friction radius (PHYSICS.md §4): 1 rpm = 4.817 mm/s.
+/// The rig's mean friction radius (docs/physics.md §4): 1 rpm = 4.817 mm/s.
 inline constexpr double kRigMeanRadius_mm = 46.0;
 
 /// Local sliding speed in mm/s of `rpm` at radius `radius_mm`.
@@ -179,8 +179,10 @@ struct RigEvidence {
   RegionExtent unstable;   // points with margin > 0; grid_points = points evaluated
 };
 
-enum class RiskLevel { kLow, kCaution, kRisk };
-const char* risk_level_name(RiskLevel level);  // "LOW RISK", "CAUTION", "RISK"
+/// kNotJudged: no index could be computed, so there is no verdict (last: a fluid that could not
+/// be judged ranks after every judged one).
+enum class RiskLevel { kLow, kCaution, kRisk, kNotJudged };
+const char* risk_level_name(RiskLevel level);  // "LOW RISK", "CAUTION", "RISK", "NOT JUDGED"
 
 struct ScreeningVerdict {
   RiskLevel level = RiskLevel::kLow;
@@ -194,6 +196,8 @@ struct ScreeningVerdict {
 ///             being saturated everywhere, is not judged and is named as such);
 ///   CAUTION   otherwise, if the isothermal slope is negative somewhere or another index lies on
 ///             its risk side (the rigs damp it);
+///   NOT JUDGED otherwise, if no index was computed (no screening temperature inside the law's
+///             data): "safe" needs indices, and the maps alone do not say it;
 ///   LOW RISK  otherwise: no negative slope on the map and every index on the safe side.
 /// Indices computed from held (clamped) speeds count, and are named "(outside data)".
 ScreeningVerdict screening_verdict(const std::vector<AntiShudderIndices>& indices, const SlopeMap& slope,

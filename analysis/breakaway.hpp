@@ -1,7 +1,7 @@
 #pragma once
 // The static/dynamic (breakaway) friction ratio, measured from runs that start an up-ramp from
 // rest (Paper F ranks additives "based on the ratio between the static friction (peak
-// value) and the dynamic friction", thesis; PHYSICS.md §6).
+// value) and the dynamic friction", thesis; docs/physics.md §6).
 //
 //   start from rest   the drive speed stays within ±rest_rpm for at least rest_s, then rises
 //                     past window_factor · v_min (v_min: the law's lowest speed); the window

@@ -1,7 +1,7 @@
 #pragma once
 // Discrepancy diagnosis: where a model and measured runs disagree, which switchable effect is
-// missing, its fitted parameters, and how much closer the model gets (FORMATS.md "Diagnosis
-// result"). Model-agnostic: the caller supplies a thread-safe Simulator that replays run k
+// missing, its fitted parameters, and how much closer the model gets (docs/formats/diagnosis_json.md
+//). Model-agnostic: the caller supplies a thread-safe Simulator that replays run k
 // with the baseline plus a list of added effects; this file does the statistics.
 //
 // Method (docs/diagnosis.md has the reasoning):

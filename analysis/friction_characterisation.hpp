@@ -1,12 +1,12 @@
 #pragma once
-// From measured speed ramps to a friction law (the thesis' method, PHYSICS.md §2, §7):
+// From measured speed ramps to a friction law (the thesis' method, docs/physics.md §2, §7):
 //
 //   1. ramps   analysis/ramp_detection finds the up- and down-ramps of every run.
 //   2. mu      mu = (M / (n F r_eff)) − mu_bearing, M the torque cell, F the normal force, n the
 //              sliding interfaces, r_eff the effective friction radius:
 //                uniform wear (the thesis):     r_eff = the stated mean radius (46 mm),
 //                uniform pressure (Paper G):    r_eff = 2/3 (ro³ − ri³)/(ro² − ri²) (47.8 mm
-//                                               for 38.1–56.4 mm, PHYSICS.md §9);
+//                                               for 38.1–56.4 mm, docs/physics.md §9);
 //              the sliding speed at the same radius, v = ω r_eff (1 rpm = 4.82 mm/s at 46 mm).
 //              mu_bearing is the bearing drag as an equivalent friction coefficient at r_eff
 //              (thesis: "bearing losses equivalent to mu = 0.005").

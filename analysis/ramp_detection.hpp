@@ -1,5 +1,5 @@
 #pragma once
-// Finding the speed ramps in a measured friction run (thesis Method, PHYSICS.md §4):
+// Finding the speed ramps in a measured friction run (thesis Method, docs/physics.md §4):
 // Paper D's cycle (hold at N0, ramp up in 1–20 s, hold, ramp down, hold) and Paper E's
 // characterisation cycle (1 rpm for 3 s, then 1 -> 100 rpm in 10 s, five times per start
 // temperature) are both sequences of holds and monotone speed ramps.

@@ -3,7 +3,7 @@
 // oscillation's amplitude and dominant frequency, when it started and the operating point
 // (slip speed, interface temperature, normal force) at that time.
 //
-// Verdicts (PHYSICS.md §6):
+// Verdicts (docs/physics.md §6):
 //   none        no oscillation above the amplitude threshold;
 //   vibration   friction-induced vibration: a (near-)harmonic oscillation while the contact
 //               keeps sliding — the slip never reverses and never reaches zero;
@@ -131,7 +131,7 @@ std::string_view to_string(Verdict verdict);
 Verdict verdict_from_string(std::string_view name);
 
 struct DetectionSettings {
-  // Band searched. 5 Hz: the driveline's lowest shudder modes (~5–50 Hz, DESIGN.md); the
+  // Band searched. 5 Hz: the driveline's lowest shudder modes (~5–50 Hz, docs/architecture.md); the
   // rig's clutch-side modes are 100–500 Hz and its stick-slip ~100–300 Hz. 2 kHz covers the
   // rig's modes and a few harmonics; it is capped at 0.45 fs (below Nyquist, where the
   // one-sided spectrum has no neighbour bin to interpolate with).

@@ -1,5 +1,5 @@
 #pragma once
-// Linear stability of steady sliding for any torsional network (PHYSICS.md §6; Papers A, B, D).
+// Linear stability of steady sliding for any torsional network (docs/physics.md §6; Papers A, B, D).
 //
 // Steady sliding: every slipping contact k runs at a constant relative speed Δω_k = ω_a − ω_b
 // (rad/s) and transmits the kinetic torque M_k(|Δω_k|, t): −sign(Δω_k) M_k on a, +sign(Δω_k) M_k

@@ -21,6 +21,8 @@
 #include "io/fluid_loader.hpp"
 #include "io/input_error.hpp"
 #include "io/measured_run.hpp"
+#include "io/import_plausibility.hpp"
+#include "io/logger_import.hpp"
 #include "io/output_safety.hpp"
 #include "io/scenario.hpp"
 #include "report/characterisation_report.hpp"
@@ -52,7 +54,7 @@ analysis::RampRun to_ramp_run(const io::MeasuredRun& m, const std::string& temp_
   const std::vector<double>* temp = m.column(temp_channel);
   if (!temp)
     throw io::InputError(m.path, 0, "", "has no column '" + temp_channel + "' (--temperature-channel); its columns "
-                                        "are those of FORMATS.md: temp_C always, ir_temp_C when the rig logged it");
+                                        "are those of docs/formats/measured_run.md: temp_C always, ir_temp_C when the rig logged it");
   return {m.path, m.required("time_s"), m.required("speed_rpm"), m.required("normal_force_N"),
           m.required("torque_Nm"), *temp};
 }
@@ -99,8 +101,11 @@ int characterise_command(const CharacteriseOptions& o) {
     std::vector<analysis::RampRun> runs;
     std::vector<io::MeasuredRun> measured;
     std::string rig, rig_file;
+    const io::ImportSpec logger = io::import_spec_of(o.maps, o.mapping);  // --map/--mapping: logger files
+    std::vector<std::string> import_warnings;
     for (const auto& path : o.runs) {
-      const io::MeasuredRun& m = measured.emplace_back(io::read_measured_run(path));
+      const io::MeasuredRun& m = measured.emplace_back(io::read_measured_or_logger(path, logger, import_warnings));
+      io::check_measured_run_units(m);  // kN, ms or K in a measured run: one line naming the fix
       const std::string this_rig = m.meta("rig").value_or("");
       if (runs.empty()) {
         rig = this_rig;
@@ -112,6 +117,7 @@ int characterise_command(const CharacteriseOptions& o) {
       }
       runs.push_back(to_ramp_run(m, o.temperature_channel));
     }
+    for (const auto& w : import_warnings) std::cerr << "shudder: warning: " << w << "\n";
 
     analysis::Characterisation c;
     try {

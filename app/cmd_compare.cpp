@@ -57,7 +57,7 @@ int compare_command(const CompareOptions& o) {
     std::vector<std::pair<std::string, clutch::Fluid>> fluids;
     for (const auto& f : o.fluids) {
       if (std::error_code ec; !std::filesystem::is_regular_file(f, ec))
-        throw io::InputError(f, 0, "", "no such fluid file; give fluid TOML files (docs/fluid_format.md)");
+        throw io::InputError(f, 0, "", "no such fluid file; give fluid TOML files (docs/formats/fluid_file.md)");
       fluids.emplace_back(f, io::load_fluid(f));
     }
     rig_models::ComparisonOptions co;

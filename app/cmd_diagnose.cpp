@@ -15,6 +15,7 @@
 #include "io/diagnosis_plausibility.hpp"
 #include "io/fixed_model.hpp"
 #include "io/input_error.hpp"
+#include "io/logger_import.hpp"
 #include "io/measured_run.hpp"
 #include "io/scenario.hpp"
 #include "report/diagnosis_narrative.hpp"
@@ -65,7 +66,10 @@ int diagnose_command(const DiagnoseOptions& opt) {
     for (const auto& w : scenario.warnings) std::cerr << "shudder: warning: " << w << "\n";
     scenario.make_clutch();  // fails early, naming the scenario, if the clutch is inconsistent
     std::vector<io::MeasuredRun> runs;
-    for (const auto& path : opt.runs) runs.push_back(io::read_measured_run(path));
+    const io::ImportSpec logger = io::import_spec_of(opt.maps, opt.mapping);  // --map/--mapping: logger files
+    std::vector<std::string> import_warnings;
+    for (const auto& path : opt.runs) runs.push_back(io::read_measured_or_logger(path, logger, import_warnings));
+    for (const auto& w : import_warnings) std::cerr << "shudder: warning: " << w << "\n";
     io::DiagnosisData data = io::diagnosis_data(runs, model);
     const analysis::DiagnosisOptions defaults;
     io::check_plausibility(runs, model, defaults.statistics_block_s, data.warnings);

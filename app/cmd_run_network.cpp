@@ -1,4 +1,4 @@
-// `shudder run` on a network scenario (docs/network_format.md): load and check the network,
+// `shudder run` on a network scenario (docs/formats/network_file.md): load and check the network,
 // simulate every clutch, write the HDF5 run file and print the summary with each clutch's verdict.
 #include <chrono>
 #include <filesystem>

@@ -178,7 +178,7 @@ int screen_command(const ScreenOptions& opt) {
     // Inputs: fluid, options, optional rig scenario.
     if (std::error_code ec; !std::filesystem::is_regular_file(opt.fluid, ec))
       throw io::InputError(opt.fluid, 0, "",
-                           "no such fluid file; give a fluid TOML (docs/fluid_format.md), "
+                           "no such fluid file; give a fluid TOML (docs/formats/fluid_file.md), "
                            "e.g. scenarios/fluids/lsc_fluid_c.toml");
     const clutch::Fluid fluid = io::load_fluid(opt.fluid);
     if (!(std::isfinite(opt.load_N) && opt.load_N > 0))
@@ -215,7 +215,9 @@ int screen_command(const ScreenOptions& opt) {
     std::printf("\nVerdict: %s\n", rep.verdict.text.c_str());
 
     if (!opt.json.empty()) io::write_screening_json(rep, opt.fluid, opt.json);
-    return 0;
+    // Exit 3: no verdict (docs/screening.md); the JSON is still written, with verdict_level
+    // "NOT JUDGED".
+    return rep.verdict.level == analysis::RiskLevel::kNotJudged ? 3 : 0;
   });
 }
 

@@ -1,4 +1,4 @@
-// `shudder validate`: runs the Paper G / Paper B calibration cases (PHYSICS.md §5) listed in
+// `shudder validate`: runs the Paper G / Paper B calibration cases (docs/physics.md §5) listed in
 // <scenarios>/validation.toml, checks them against its targets, prints the table and
 // regenerates <docs>/validation.md plus PNG plots (report/validation_report). Exit: 0 all
 // targets pass, 1 a target fails (the document is still written) or the run failed, 2 bad input.

@@ -69,6 +69,7 @@ struct ScreenOptions {
   std::string temps;          // "40,80,120"; empty = 40/80/120 °C where the data reach
   std::string json;           // JSON output path; empty = none
 };
+/// `screen` (app/cmd_screen.cpp): exit 0 judged, 3 not judged (no index computed).
 int screen_command(const ScreenOptions& options);
 
 struct PlotOptions {
@@ -94,6 +95,8 @@ struct DiagnoseOptions {
   int max_effects = static_cast<int>(rig_models::effect_registry().size());  // added at most (default: all)
   std::string tolerance;          // "torque_Nm=0.5,temp_C=2": model-form tolerance per channel
   std::string write_model;        // the baseline scenario with the named effects on; empty = none
+  std::vector<std::string> maps;  // --map: the runs are a logger's CSV files (app/cmd_import.cpp)
+  std::string mapping;            // --mapping: the same from a mapping file; empty = none
 };
 int diagnose_command(const DiagnoseOptions& options);
 
@@ -120,8 +123,23 @@ struct CharacteriseOptions {
   std::string method = "sensor";          // sensor | inverse (replayed through the model)
   std::string model;                      // inverse: scenario whose clutch is replayed; empty = Paper G defaults
   int inverse_iterations = 8;             // inverse: law updates per pass before "did not converge"
+  std::vector<std::string> maps;          // --map: the runs are a logger's CSV files (app/cmd_import.cpp)
+  std::string mapping;                    // --mapping: the same from a mapping file; empty = none
 };
 int characterise_command(const CharacteriseOptions& options);
+
+struct ImportOptions {
+  std::string logger;               // the logger's CSV
+  std::string output;               // measured run written (CSV, or HDF5 for .h5/.hdf5)
+  std::vector<std::string> maps;    // SOURCE=TARGET:UNIT (io/import_mapping.hpp)
+  std::string mapping;              // mapping file (TOML); empty = none
+  std::vector<std::string> metas;   // KEY=VALUE metadata
+  std::string delimiter = "auto";   // auto | , | ; | tab
+  std::string decimal = "auto";     // auto | . | ,
+  bool trust_units = false;         // skip the unit plausibility checks
+};
+/// `import` (app/cmd_import.cpp): a logger's CSV written as a measured run.
+int import_command(const ImportOptions& options);
 
 struct CompareOptions {
   std::vector<std::string> fluids;   // fluid TOML files

@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
   auto* diag_cmd = app.add_subcommand(
       "diagnose", "Find where a model and measured runs disagree and which effect is missing");
   diag_cmd->add_option("model", diagnose.model, "Scenario file (TOML): the baseline model")->required();
-  diag_cmd->add_option("runs", diagnose.runs, "Measured runs (CSV or HDF5, FORMATS.md)")->required();
+  diag_cmd->add_option("runs", diagnose.runs, "Measured runs (CSV or HDF5, docs/formats/measured_run.md)")->required();
   diag_cmd->add_option("--json", diagnose.json, "Write the diagnosis as JSON (shudder-diagnosis/1)");
   diag_cmd->add_option("--report", diagnose.report,
                        "Also write a report directory: summary, candidate table, plots");
@@ -115,11 +115,13 @@ int main(int argc, char** argv) {
                        "docs/diagnosis.md)");
   diag_cmd->add_option("--write-model", diagnose.write_model,
                        "Write the baseline scenario with the named effects on at their fitted parameters");
+  diag_cmd->add_option("--map", diagnose.maps, "The runs are a logger's CSV: SOURCE=TARGET:UNIT as `shudder import --map`");
+  diag_cmd->add_option("--mapping", diagnose.mapping, "The runs are a logger's CSV: its mapping file (shudder import --mapping)");
 
   CharacteriseOptions characterise;
   auto* char_cmd = app.add_subcommand(
       "characterise", "Fit a fluid's friction law to measured speed ramps (docs/characterisation.md)");
-  char_cmd->add_option("runs", characterise.runs, "Measured runs (CSV or HDF5, FORMATS.md)")->required();
+  char_cmd->add_option("runs", characterise.runs, "Measured runs (CSV or HDF5, docs/formats/measured_run.md)")->required();
   char_cmd->add_option("-o,--output", characterise.output, "Fluid file written (TOML)")->required();
   char_cmd->add_option("--json", characterise.json, "Write the fit statistics (shudder-characterisation/1)");
   char_cmd->add_option("--report", characterise.report, "Write a report directory (summary, plots)");
@@ -170,6 +172,9 @@ int main(int argc, char** argv) {
                        "--method inverse: law updates per pass before it counts as not converged (default 8)")
       ->check(CLI::Range(1, 100));
 
+  char_cmd->add_option("--map", characterise.maps, "The runs are a logger's CSV: SOURCE=TARGET:UNIT as `shudder import --map`");
+  char_cmd->add_option("--mapping", characterise.mapping, "The runs are a logger's CSV: its mapping file (shudder import --mapping)");
+
   CompareOptions compare;
   auto* cmp_cmd = app.add_subcommand("compare", "Compare fluids: indices, equal viscosity, breakaway, rig margins, ranking");
   cmp_cmd->add_option("fluids", compare.fluids, "Fluid files (TOML)")->required();
@@ -180,6 +185,19 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.5, 10000.0));
   cmp_cmd->add_option("--json", compare.json, "Write the comparison as JSON (shudder-compare/1)");
   cmp_cmd->add_option("--report", compare.report, "Write a report directory (summary, overlaid mu-v plots)");
+
+  ImportOptions import;
+  auto* imp_cmd = app.add_subcommand(
+      "import", "Turn a test-rig logger's CSV into a measured run (docs/formats/import_mapping.md)");
+  imp_cmd->add_option("logger", import.logger, "Logger CSV (comma, semicolon or tab; decimal point or comma)")->required();
+  imp_cmd->add_option("-o,--output", import.output, "Measured run written (CSV; HDF5 for .h5)")->required();
+  imp_cmd->add_option("--map", import.maps,
+                      "SOURCE=TARGET:UNIT, e.g. force=normal_force_N:kN or time=time_s:ms (repeatable)");
+  imp_cmd->add_option("--mapping", import.mapping, "Mapping file (TOML) of a rig's logger: [columns], [metadata]");
+  imp_cmd->add_option("--meta", import.metas, "KEY=VALUE metadata, e.g. oil_flow_ml_min=200 (repeatable)");
+  imp_cmd->add_option("--delimiter", import.delimiter, "auto (default), ',', ';' or tab");
+  imp_cmd->add_option("--decimal", import.decimal, "auto (default), '.' or ','");
+  imp_cmd->add_flag("--trust-units", import.trust_units, "Skip the checks that values look like their units");
 
   try {
     app.parse(argc, argv);
@@ -214,5 +232,6 @@ int main(int argc, char** argv) {
   if (*diag_cmd) return diagnose_command(diagnose);
   if (*char_cmd) return characterise_command(characterise);
   if (*cmp_cmd) return compare_command(compare);
+  if (*imp_cmd) return import_command(import);
   return 2;
 }

@@ -12,7 +12,7 @@
 
 namespace shudder::app {
 
-/// Channels the rig and prescribed-slip runners record (docs/run_output.md: 15).
+/// Channels the rig and prescribed-slip runners record (docs/formats/run_output.md: 15).
 constexpr std::uint64_t kRecordedChannels = 15;
 /// Channels the driveline records: its 15 and per wheel speed and tyre force, the road load, and
 /// the coupling's thermocouple and oil temperatures.

@@ -1,4 +1,4 @@
-// Benchmarks of network scenarios (docs/network_format.md; figures in docs/performance.md):
+// Benchmarks of network scenarios (docs/formats/network_file.md; figures in docs/performance.md):
 //   Network20Bodies4WetClutches  20 bodies and 4 wet clutches, 2 s simulated (target: >= 100x
 //                                real time in-process): a motor turns a chain of 16 inertias on
 //                                shafts at 60 rpm; four wet clutches (fluid C, 10 kN) join chain

@@ -3,7 +3,7 @@
 // (breakaway) friction and its kinematic viscosity.
 //
 // Static friction: mu_s(T, F) = breakaway_ratio * mu_k(v_min, T, F), where v_min is the law's
-// lowest tabulated speed. The Mäki model has no static term (PHYSICS.md §1); the ratio is a
+// lowest tabulated speed. The Mäki model has no static term (docs/physics.md §1); the ratio is a
 // per-fluid datum (estimate unless the fluid file cites a measurement). Growth with stick time
 // is the `stick_time_static_friction` effect, applied by the dynamics, not here.
 //

@@ -1,7 +1,7 @@
 #pragma once
 // Mäki boundary-friction model (Paper G eq. 13; thesis eq. 1):
 //
-//     mu(v) = C1 * tanh(C2 * v) + C3 * v^0.1 + C4,      v in mm/s (PHYSICS.md §1)
+//     mu(v) = C1 * tanh(C2 * v) + C3 * v^0.1 + C4,      v in mm/s (docs/physics.md §1)
 //     dmu/dv = C1 * C2 * (1 - tanh²(C2 * v)) + 0.1 * C3 * v^-0.9
 //
 // Parameter sets are tabulated over normal load x temperature. For an arbitrary (F, T) the

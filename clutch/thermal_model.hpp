@@ -66,7 +66,7 @@ struct ThermalParams {
   int radial_cells = 20;
   Layer separator{0.75e-3, 7600.0, 449.0, 46.0, 4};  // half separator disc, steel
   // Lining: Paper G prints cp = 5000 J/kgK; read as 500 (one zero too many): handbook values
-  // for sintered-metal facings are ≈ 420 (PHYSICS.md §3), and 500 reproduces the no-oil-flow
+  // for sintered-metal facings are ≈ 420 (docs/physics.md §3), and 500 reproduces the no-oil-flow
   // result (> 160 °C). Density 5000 kg/m³ as printed (porous bronze).
   Layer lining{0.56e-3, 5000.0, 500.0, 15.7, 4};
   Layer core{0.55e-3, 7600.0, 449.0, 46.0, 3};  // half core disc, steel
@@ -85,13 +85,13 @@ struct ThermalParams {
   double ir_r_m = 0.048;
   double ir_spot_diameter_m = 4e-3;
 
-  // Effects that live in the thermal field (FORMATS.md names).
+  // Effects that live in the thermal field (docs/formats/diagnosis_json.md names).
   bool interface_oil_cooling = true;
   OilFlowLaw oil_flow;
   bool sump_heating = true;
   bool rig_heat_capacity = false;
-  double rig_heat_capacity_J_per_K = 150.0;  // estimate: FORMATS.md example
-  double rig_conductance_W_per_K = 10.0;     // estimate: FORMATS.md example
+  double rig_heat_capacity_J_per_K = 150.0;  // estimate (docs/effects.md)
+  double rig_conductance_W_per_K = 10.0;     // estimate (docs/effects.md)
   bool temperature_sensor_lag = false;
   double sensor_time_constant_s = 1.0;       // estimate
   // `thermocouple_offset` (measurement only): the reading is T_probe + dT [K]; estimate — a

@@ -11,7 +11,7 @@
 // n = number of sliding interfaces (Paper G simulates one). Each interface has the same
 // thermal domain by symmetry, so one ThermalModel serves them all.
 //
-// Effect switches handled here (FORMATS.md):
+// Effect switches handled here (docs/formats/diagnosis_json.md):
 //   temperature_dependent_friction  off: every ring uses the clutch start temperature
 //   load_dependent_friction         off: friction evaluated at reference_load_N
 //   viscous_shear                   adds the Couette torque of the film,

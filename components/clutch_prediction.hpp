@@ -4,7 +4,7 @@
 // motion — node speeds and force-element states averaged over the run's snapshots inside the
 // window, this clutch slipping at its mean slip, every other contact stuck or slipping as it was
 // in most of those snapshots — with each slipping contact's friction slope as a damper
-// (PHYSICS.md §6: a falling friction curve is negative damping). A wet clutch's slope is taken
+// (docs/physics.md §6: a falling friction curve is negative damping). A wet clutch's slope is taken
 // with every ring at the window's mean interface temperature (as the rig's prediction,
 // rig_models/run_verdict.hpp) at the window's middle time (its clamp force there).
 //   margin              largest real part of the eigenvalues, 1/s (> 0: unstable)

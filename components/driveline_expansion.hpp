@@ -7,7 +7,7 @@
 // signals, every part rolling with the start speed. Run through components/network_run.hpp it
 // gives the driveline kind's run (tests/components/test_driveline_expansion.cpp holds every
 // shipped driveline scenario to it), and it is what a user starts from to change the car's
-// layout (docs/network_format.md).
+// layout (docs/formats/network_file.md).
 //
 // Component names follow the driveline's nodes and shafts; the coupling is `haldex`, the
 // engine `engine_torque` (a schedule) or `engine_map` (a throttle), the pulsation `firing`,

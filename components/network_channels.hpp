@@ -1,5 +1,5 @@
 #pragma once
-// The channels a network run records (docs/network_format.md "Output"), named after the
+// The channels a network run records (docs/formats/network_file.md "Output"), named after the
 // components: `time_s`; NODE.speed_rpm; VEHICLE.speed_km_h; SHAFT.torque_Nm; per clutch
 // CLUTCH.torque_Nm, .slip_rpm, .stuck, .normal_force_N, .friction_coefficient (|T| / (R F)) and,
 // wet, .interface_mean_temp_C, .interface_max_temp_C, .temp_C (interpolated across thermal steps);

@@ -7,7 +7,7 @@
 // on a first-order hold); the stepper restarts at every jump of an input signal. A network
 // without wet clutches is integrated in one stretch between those jumps.
 //
-// Recording (docs/network_format.md "Output"): `time_s`, then channels named
+// Recording (docs/formats/network_file.md "Output"): `time_s`, then channels named
 // `<component>.<quantity>_<unit>`, e.g. `launch_clutch.slip_rpm`; summary scalars (the energy
 // account; per clutch its friction work, per wet clutch its peak interface temperature); a
 // verdict block per clutch (`verdict.<clutch>`: rig_models/run_verdict.hpp's block judged on that

@@ -1,5 +1,5 @@
 #pragma once
-// A drivetrain described by its components and the nodes they join (docs/network_format.md):
+// A drivetrain described by its components and the nodes they join (docs/formats/network_file.md):
 // the plain description a scenario file is read into (io/network_scenario.hpp) and a network is
 // built from (components/network_builder.hpp). Nodes are the inertias, named by the user;
 // "ground" is the fixed frame. Units SI (rad/s, N m, N, kg m², m); files use rpm where engineers

@@ -14,7 +14,7 @@
 //
 // Units: t in s, y in the unit of the key the signal drives (documented with each component).
 // derivative(t) is dy/dt where defined (0 at and across jumps: a speed source fed a step jumps
-// its node's speed, which the integrator meets as an event at the knot, docs/network_format.md).
+// its node's speed, which the integrator meets as an event at the knot, docs/formats/network_file.md).
 
 #include <memory>
 #include <string>

@@ -12,7 +12,7 @@ enum class ModelKind { kPrescribedSlip, kRig, kDriveline };
 inline constexpr std::array<ModelKind, 3> kModelKinds = {ModelKind::kPrescribedSlip, ModelKind::kRig,
                                                          ModelKind::kDriveline};
 
-/// The scenario file's `type` value of a kind (docs/scenario_format.md).
+/// The scenario file's `type` value of a kind (docs/formats/scenario_file.md).
 constexpr std::string_view model_kind_name(ModelKind kind) {
   switch (kind) {
     case ModelKind::kPrescribedSlip: return "prescribed_slip";

@@ -13,7 +13,7 @@
 
 namespace shudder::dynamics {
 
-/// One sampled channel. `name` follows FORMATS.md (`time_s`, `torque_Nm`, `temp_C`, ...);
+/// One sampled channel. `name` follows docs/formats/measured_run.md (`time_s`, `torque_Nm`, `temp_C`, ...);
 /// `units` is the unit string written as the HDF5 `units` attribute.
 struct Signal {
   std::string name;

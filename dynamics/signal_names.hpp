@@ -1,13 +1,13 @@
 #pragma once
 // Names of the recorded signals (`/signals/<name>` in a run's HDF5, columns of a measured-run
-// CSV): one definition, mirroring FORMATS.md ("Measured run CSV", "Simulation output") and
-// docs/run_output.md. The first block is the measured-run contract shared by the rig's logs and
+// CSV): one definition, mirroring docs/formats/measured_run.md and docs/formats/run_output.md and
+// docs/formats/run_output.md. The first block is the measured-run contract shared by the rig's logs and
 // the simulations; the rest are channels the models add. Units are in the names.
 #include <string_view>
 
 namespace shudder::dynamics::signal_names {
 
-// Measured-run columns (FORMATS.md): required ...
+// Measured-run columns (docs/formats/measured_run.md): required ...
 inline constexpr std::string_view kTime = "time_s";
 inline constexpr std::string_view kSpeed = "speed_rpm";            // drive speed (rig: the encoder)
 inline constexpr std::string_view kNormalForce = "normal_force_N";

@@ -6,7 +6,7 @@
 // Inputs are continuous and held over each fixed step (zero-order hold); outputs are the
 // values over the last fixed step (torque, heat) or the latched thermal result (temperatures,
 // rig_models/realtime_coupling.hpp). Parameters are fixed: set before or during initialisation.
-// Names and units follow the scenario format's keys (docs/scenario_format.md) where one exists.
+// Names and units follow the scenario format's keys (docs/formats/scenario_file.md) where one exists.
 
 #include <string_view>
 
@@ -93,7 +93,7 @@ inline constexpr Variable kVariables[] = {
     {vr::kSumpHeating, "sump_heating", kBoolean, kParameter, "", 1.0, "", "effect: the sump warms"},
     {vr::kBearingDrag, "bearing_drag", kBoolean, kParameter, "", 0.0, "", "effect: the torque includes bearing drag"},
     {vr::kFluidFile, "fluid_file", kString, kParameter, "", 0.0, "fluids/lsc_fluid_c.toml",
-     "fluid TOML (docs/fluid_format.md); relative paths are resolved in the FMU's resources/"},
+     "fluid TOML (docs/formats/fluid_file.md); relative paths are resolved in the FMU's resources/"},
 };
 
 }  // namespace shudder::fmu

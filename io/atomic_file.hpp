@@ -1,5 +1,5 @@
 #pragma once
-// Temp-file-then-rename for output files (FORMATS.md: "a reader never sees half a file").
+// Temp-file-then-rename for output files (docs/formats/run_output.md: a reader never sees half a file).
 // A writer fills `temp_path_for(path)`, closes it, then calls commit_temp_file(); on any failure
 // before that it calls discard_temp_file(). The rename is atomic, so a reader, and a crash of
 // shudder itself, sees either the old file or the complete new one at `path`.
@@ -9,7 +9,7 @@
 // disk's flush, longer while others write), from a tenth to all of a short run's time, so it is
 // off by default (a simulation's output can be made again; ext4 with its default auto_da_alloc
 // flushes a file that replaces another before the rename anyway). SHUDDER_FSYNC=1 in the
-// environment turns it on (docs/run_output.md).
+// environment turns it on (docs/formats/run_output.md).
 
 #include <string>
 

@@ -47,7 +47,7 @@ std::string characterised_fluid_toml(const analysis::Characterisation& c, const 
     << "; temperature compensation: " << analysis::compensation_name(s.compensation) << ".\n"
     << "# Data range: " << num(c.min_speed_mm_s, 4) << "-" << num(c.max_speed_mm_s, 4) << " mm/s, "
     << num(c.min_temp_C, 4) << "-" << num(c.max_temp_C, 4) << " °C, " << num(c.loads_N.front(), 5) << "-"
-    << num(c.loads_N.back(), 5) << " N. Format: docs/fluid_format.md.\n";
+    << num(c.loads_N.back(), 5) << " N. Format: docs/formats/fluid_file.md.\n";
   for (const auto& r : runs) o << "#   run: " << r << "\n";
   o << "\n[fluid]\nname = " << toml_string(fluid.name) << "\n";
   if (!fluid.description.empty()) o << "description = " << toml_string(fluid.description) << "\n";

@@ -1,6 +1,6 @@
 #pragma once
 // Output of `shudder characterise` (docs/characterisation.md):
-//   * the fluid file (docs/fluid_format.md): [fluid] identity and viscosity, [static_friction],
+//   * the fluid file (docs/formats/fluid_file.md): [fluid] identity and viscosity, [static_friction],
 //     and the fitted law as [maki], [linear] or [table]; the header says how it was made
 //     (runs, radius rule, compensation), so the file documents its own provenance;
 //   * FIT.json, format "shudder-characterisation/1": settings, data ranges, ramps used and

@@ -1,4 +1,4 @@
-// JSON writer for the diagnosis result; see diagnosis_json.hpp and docs/diagnosis_format.md.
+// JSON writer for the diagnosis result; see diagnosis_json.hpp and docs/formats/diagnosis_json.md.
 #include "io/diagnosis_json.hpp"
 
 #include <cmath>

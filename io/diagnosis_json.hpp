@@ -1,7 +1,7 @@
 #pragma once
 // Writes a discrepancy-diagnosis result (analysis/diagnosis.hpp) as JSON, format
-// "shudder-diagnosis/1" (FORMATS.md "Diagnosis result"; every field, required and optional, in
-// docs/diagnosis_format.md). Hand-written like io/screening_json (no JSON library in the
+// "shudder-diagnosis/1" (docs/formats/diagnosis_json.md; every field, required and optional, in
+// docs/formats/diagnosis_json.md). Hand-written like io/screening_json (no JSON library in the
 // dependencies): strings escaped per RFC 8259 by io::json_string, numbers with 10 significant
 // digits, NaN and ±infinity as null, so the text is always valid JSON.
 
@@ -13,7 +13,7 @@
 namespace shudder::io {
 
 /// The result's sentences, as report/diagnosis_narrative.hpp words them: the file carries them
-/// (FORMATS.md), the writer only places them.
+/// (docs/formats/diagnosis_json.md), the writer only places them.
 struct DiagnosisSentences {
   std::string holdout;                    // what was held out
   std::vector<std::string> step_reasons;  // why each step's effect was added (one per step)

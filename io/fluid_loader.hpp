@@ -1,5 +1,5 @@
 #pragma once
-// Loads a fluid file (TOML, docs/fluid_format.md) into a clutch::Fluid.
+// Loads a fluid file (TOML, docs/formats/fluid_file.md) into a clutch::Fluid.
 //
 //   [fluid]            name, optional description, nu40_cSt > nu100_cSt > 0 (cSt),
 //                      optional density_kg_m3 (default 868, Paper G Table 1)

@@ -1,5 +1,5 @@
 #pragma once
-// One simulation run <-> one HDF5 file (FORMATS.md "Simulation output (HDF5)").
+// One simulation run <-> one HDF5 file (docs/formats/run_output.md).
 //
 // Layout written:
 //   /signals/<name>            1-D double (n_samples), attribute `units`; `time_s` first

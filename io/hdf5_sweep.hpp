@@ -1,5 +1,5 @@
 #pragma once
-// A sweep's HDF5 file (FORMATS.md: "A sweep writes one file with a /cases table and one group
+// A sweep's HDF5 file (docs/formats/sweep_output.md: "A sweep writes one file with a /cases table and one group
 // per case"):
 //   /cases/<column>      1-D (n_cases): one double dataset per swept key (named as the key) and
 //                        per numeric result, `units` attribute; `simulated_verdict` and

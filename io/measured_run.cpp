@@ -170,6 +170,11 @@ std::vector<std::string_view> split_fields(std::string_view line) {
   }
 }
 
+// Where a logger's own file goes instead (app/cmd_import.cpp).
+constexpr const char* import_hint =
+    " (a logger's CSV, with its own names, units, delimiter or decimal comma, is brought in with "
+    "`shudder import LOG.csv -o RUN.csv`, docs/formats/import_mapping.md)";
+
 constexpr const char* number_rule =
     "allowed: a decimal number such as 12, -0.5 or 1.2e-3 (decimal point '.', no spaces, no "
     "'+')";
@@ -252,7 +257,7 @@ class CsvReader {
     header_line_ = line_;
     if (!run_.meta("format"))
       fail("format", "no '# format: " + std::string(measured_run_format) +
-                         "' metadata line before the header; " + format_rule());
+                         "' metadata line before the header; " + format_rule() + import_hint);
     const auto names = split_fields(s);
     for (std::size_t i = 0; i < names.size(); ++i) {
       const std::string name(names[i]);
@@ -268,7 +273,11 @@ class CsvReader {
                          std::to_string(i + 1) + "); column names must be unique");
       run_.columns.push_back({name, measured_run_units(name), {}});
     }
-    if (const std::string missing = missing_required(run_); !missing.empty()) fail("", missing);
+    if (const std::string missing = missing_required(run_); !missing.empty()) {
+      const bool other_delimiter = s.find(';') != std::string_view::npos || s.find('\t') != std::string_view::npos;
+      fail("", missing + (other_delimiter ? "; the header is separated by ';' or tabs, a measured run by commas"
+                                          : "") + import_hint);
+    }
     layout_ = Layout(run_);
   }
 

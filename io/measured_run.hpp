@@ -1,8 +1,8 @@
 #pragma once
-// Strict reader of a measured rig run (FORMATS.md "Measured rig run (CSV)"), as CSV or as its
+// Strict reader of a measured rig run (docs/formats/measured_run.md), as CSV or as its
 // HDF5 form, and the writer of the HDF5 form. A file that breaks a rule is rejected with an
 // io::InputError naming the file, the place (CSV: line number; HDF5: the dataset or attribute
-// and the row index) and the reason, never repaired. docs/run_output.md lists the rules.
+// and the row index) and the reason, never repaired. docs/formats/run_output.md lists the rules.
 //
 // HDF5 form: group /measurement; one 1-D float64 dataset per column, named as the column, in
 // column order (the group tracks creation order), each with a string attribute `units`; the

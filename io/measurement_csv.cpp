@@ -257,6 +257,8 @@ MeasuredRun make_measurement(const std::string& path, const dynamics::Recording&
   return run;
 }
 
+void write_measured_run_csv(const std::string& path, const MeasuredRun& run) { write_csv(path, run); }
+
 void write_measurement_csv(const std::string& path, const dynamics::Recording& rec,
                            const MeasurementOptions& opt) {
   write_csv(path, make_measurement(path, rec, opt));

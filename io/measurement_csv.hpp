@@ -1,5 +1,5 @@
 #pragma once
-// A simulated run written as a measured rig run (FORMATS.md "Measured rig run (CSV)"), so the
+// A simulated run written as a measured rig run (docs/formats/measured_run.md), so the
 // tools that read real LSCTR data can read simulations too, optionally with sensor noise. The
 // same content can be written in the format's HDF5 form (io/measured_run.hpp).
 //
@@ -7,7 +7,7 @@
 // have them), then sump_temp_C and ir_temp_C when the recording has them. Other signals are
 // model internals and are not written. Metadata lines: format, rig, fluid (when given),
 // temp_sensor, oil_flow_ml_min, and this writer's additions sample_rate_Hz, noise (on|off) and
-// seed (when noise is on); docs/run_output.md explains them.
+// seed (when noise is on); docs/formats/run_output.md explains them.
 //
 // Resampling: linear interpolation at t0 + k / rate over [t0, t_end] of the recording's time_s.
 // Noise: independent Gaussian per sample and channel with sigma = half the stated sensor
@@ -31,7 +31,7 @@
 namespace shudder::io {
 
 /// Stated accuracy (a +- bound, in the channel's unit) of each LSCTR channel.
-/// Source: PHYSICS.md §4 (thesis Method; Papers B, D).
+/// Source: docs/physics.md §4 (thesis Method; Papers B, D).
 struct SensorAccuracy {
   static constexpr double full_scale_fraction = 0.0025;  // torque and force: "< 0.25 % F.S."
   static constexpr double torque_full_scale_Nm = 500.0;  // assumed = drive's max torque, 500 Nm
@@ -64,6 +64,9 @@ MeasuredRun make_measurement(const std::string& path, const dynamics::Recording&
 /// Writes `rec` as a measured-run CSV at `path`; see the file comment.
 void write_measurement_csv(const std::string& path, const dynamics::Recording& rec,
                            const MeasurementOptions& opt);
+
+/// Writes `run` (time_s first) as a measured-run CSV: metadata lines, header, rows, as above.
+void write_measured_run_csv(const std::string& path, const MeasuredRun& run);
 
 /// write_measurement_csv, or, when `path` ends in `.h5` or `.hdf5` (any case), the same run in
 /// the HDF5 form (write_measured_run_hdf5), its values at full precision instead of printed.

@@ -50,7 +50,7 @@ std::vector<KeyDecl> friction_keys() {
       optional_number("inner_radius_m", "m", Range::positive(), "plain: annulus inner radius (with outer_radius_m; uniform pressure)", "one geometry"),
       optional_number("outer_radius_m", "m", Range::positive(), "plain: annulus outer radius", "one geometry"),
       integer("interfaces", 1, 1, 64, "plain: friction interfaces n (with a radius)"),
-      table("clutch", "wet: the clutch exactly as a scenario's [clutch] (docs/scenario_format.md): `fluid` relative to this file, `sliding_interfaces`, radii, layers, oil, sensors", "required for law = \"wet\""),
+      table("clutch", "wet: the clutch exactly as a scenario's [clutch] (docs/formats/scenario_file.md): `fluid` relative to this file, `sliding_interfaces`, radii, layers, oil, sensors", "required for law = \"wet\""),
       table("effects", "wet: switchable effects exactly as a scenario's [effects] (docs/effects.md)", "optional"),
       {"judged_on", KeyKind::kComponent, "", std::nullopt, {}, "a shaft whose torque the clutch's verdict is judged on (as a rig's torque cell reads its torsion bar)", "default: the clutch's own torque", {}},
   };
@@ -72,7 +72,7 @@ std::vector<KeyDecl> haldex_keys() {
       number("nominal_friction", "1", h.nominal_friction, Range::closed(0.01, 1.0), "mu_nom that turns the preload torque into a force"),
       number("pack_oil_volume_ml", "ml", h.pack_oil_volume_ml, Range::positive(), "the coupling's own oil, shared by its interfaces (unless the clutch's oil table gives sump_volume_ml)"),
       number("pack_cooling_flow_ml_min", "ml/min", h.pack_cooling_flow_ml_min, Range::non_negative(), "its cooling flow, shared likewise (unless supply_flow_ml_min is given)"),
-      table("clutch", "the disc pack exactly as a scenario's [clutch] (docs/scenario_format.md): `fluid` relative to this file, `sliding_interfaces`, radii, layers", "required"),
+      table("clutch", "the disc pack exactly as a scenario's [clutch] (docs/formats/scenario_file.md): `fluid` relative to this file, `sliding_interfaces`, radii, layers", "required"),
       table("effects", "switchable effects exactly as a scenario's [effects] (docs/effects.md)", "optional"),
       table("hydraulics", "pump, chamber, throttle and relief valves, piston: the keys of a driveline's [driveline.hydraulics] (docs/driveline.md)", "optional: the Gen I estimates"),
       table("controller", "the control unit's thresholds, control period and speed filter: the keys of [driveline.controller] (docs/driveline.md)", "optional: the estimates; not with a raw valve schedule"),

@@ -2,7 +2,7 @@
 // The declarations of every network component type and signal kind: each key with its kind,
 // unit, default (or required), allowed range and meaning. The reader (io/network_scenario.cpp)
 // reads every key through its declaration (so defaults and ranges live here only), and
-// docs/network_format.md's reference tables are generated from the same declarations
+// docs/formats/network_file.md's reference tables are generated from the same declarations
 // (network_reference_markdown; the test NetworkComponents.DocsTablesEqualTheDeclarations).
 
 #include <optional>
@@ -45,7 +45,7 @@ double read_number(TomlTable& t, const ComponentDecl& decl, const std::string& k
 /// Whether `t` gives the key (for keys with an optional_note).
 bool gives(const TomlTable& t, const std::string& key);
 
-/// docs/network_format.md's reference: one table per component type, one for the signal kinds.
+/// docs/formats/network_file.md's reference: one table per component type, one for the signal kinds.
 std::string network_reference_markdown();
 
 }  // namespace shudder::io

@@ -1,5 +1,5 @@
 #pragma once
-// Network scenario files (type = "network", docs/network_format.md) -> components::NetworkSpec.
+// Network scenario files (type = "network", docs/formats/network_file.md) -> components::NetworkSpec.
 // Strict like every scenario: unknown keys and component types are errors naming the file,
 // line and key, with the nearest valid name; the network is built once at load, so a bad
 // network (unknown node, massless node nothing fixes, gears over-constraining a loop, an

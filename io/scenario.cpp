@@ -73,7 +73,14 @@ void read_clutch(TomlTable& root, Draft& s) {
   const fs::file_status status = fs::status(s.fluid_path, status_error);
   if (!fs::exists(status)) {
     const bool odd = status_error && status_error != std::errc::no_such_file_or_directory;
-    c.fail("fluid", "file '" + s.fluid_path + "' does not exist" + (odd ? " (" + status_error.message() + ")" : ""));
+    const fs::path folder = fs::path(s.path).parent_path();
+    const std::string from = fs::path(fluid).is_absolute() ? ""
+                             : folder.empty()               ? "; a relative fluid path is read from the scenario's folder, "
+                                                              "here the current directory"
+                                              : "; a relative fluid path is read from the scenario's folder, '" +
+                                                    folder.string() + "'";
+    c.fail("fluid", "file '" + s.fluid_path + "' does not exist" + (odd ? " (" + status_error.message() + ")" : "") +
+                        from);
   }
   if (!fs::is_regular_file(status))
     c.fail("fluid", "'" + s.fluid_path + "' is not a regular file; expected a fluid TOML file");
@@ -436,7 +443,7 @@ Scenario load_scenario_text(const std::string& text, const std::string& path) {
   sc.name = head.string_or("name", fs::path(path).stem().string());
   s.type = head.choice_or("type", "prescribed_slip", {"prescribed_slip", "rig", "driveline", "network"});
   if (s.type == "network")
-    head.fail("type", "\"network\" scenarios (docs/network_format.md) work with `shudder run` and `shudder sweep`; "
+    head.fail("type", "\"network\" scenarios (docs/formats/network_file.md) work with `shudder run` and `shudder sweep`; "
                       "this command needs type = \"prescribed_slip\", \"rig\" or \"driveline\"");
   s.kind = kind_of_type(s.type);
   sc.description = head.string_or("description", "");

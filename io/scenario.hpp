@@ -1,6 +1,6 @@
 #pragma once
 // Scenario files (TOML) -> validated plain structs in SI units. The schema, with every key,
-// unit, default and allowed range, is documented in docs/scenario_format.md. Loading is strict:
+// unit, default and allowed range, is documented in docs/formats/scenario_file.md. Loading is strict:
 // missing required keys, unknown keys, wrong types, non-finite numbers and out-of-range values
 // are io::InputError naming the file, line, key and what is allowed.
 
@@ -47,7 +47,7 @@ Scenario load_scenario(const std::string& path);
 std::string read_scenario_text(const std::string& path);
 /// Loads scenario text; `path` names it in messages and anchors relative fluid paths.
 Scenario load_scenario_text(const std::string& text, const std::string& path);
-/// A network's wet clutch (docs/network_format.md): `component` holds a [clutch] table and an
+/// A network's wet clutch (docs/formats/network_file.md): `component` holds a [clutch] table and an
 /// optional [effects] table exactly as a scenario's root does; the fluid path is relative to
 /// the scenario file. Effects that cannot act on it are warnings (appended).
 components::WetPackSpec read_wet_pack(TomlTable& component, const std::string& scenario_path,

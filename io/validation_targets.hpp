@@ -1,6 +1,6 @@
 #pragma once
 // The cases and targets of `shudder validate`, read from a data file beside the scenarios
-// (scenarios/validation.toml; schema in docs/validation_format.md). Reading is strict like the
+// (scenarios/validation.toml; schema in docs/formats/validation_targets.md). Reading is strict like the
 // scenario loader: unknown keys, a target naming no case, a kind without its times, or bounds
 // out of order are io::InputError naming the file, line and key.
 
@@ -28,7 +28,7 @@ struct ValidationTarget {
   std::optional<std::size_t> reference_index;   // percent_* kinds
   std::string quantity;                         // as printed
   TargetKind kind = TargetKind::kValue;
-  std::string signal;                           // FORMATS.md signal name
+  std::string signal;                           // docs/formats/measured_run.md signal name
   double time_s = 0.0, from_s = 0.0, to_s = 0.0;
   std::string unit;                             // the signal's unit as printed ("Nm", "°C")
   // Pass band on the value (percent for percent_* kinds): min <= v <= max, v > greater_than.

@@ -1,6 +1,6 @@
 #pragma once
 // Writes a run's verdict block (rig_models/run_verdict.hpp, /analysis/verdict in its HDF5) as
-// JSON, format "shudder-verdict/1" (docs/run_output.md): one flat object with the block's texts
+// JSON, format "shudder-verdict/1" (docs/formats/run_output.md): one flat object with the block's texts
 // and scalars under the names the HDF5 uses, so the two never differ:
 //   {"format": "shudder-verdict/1", "verdict": "vibration", "judged_signals": "...",
 //    "operating_window": "...", "prediction": "...", "verdict_code": 1, "frequency_Hz": 377.9,

@@ -127,7 +127,18 @@ Scenario load(const py::object& path, const py::object& toml, const std::string&
   const std::string text = toml.is_none() ? "" : toml.cast<std::string>();
   if (!toml.is_none() && text.empty()) throw InputErrorPy(p + ": the TOML text is empty; give a scenario");
   const auto ov = overrides_of(overrides, p);
-  return {without_gil(p, "simulation", [&] { return python::load_with_overrides(text, p, ov); })};
+  const bool text_without_source = !toml.is_none() && source == "<string>";
+  return {without_gil(p, "simulation", [&] {
+    try {
+      return python::load_with_overrides(text, p, ov);
+    } catch (const io::InputError& e) {
+      // TOML text without source=: say how to read its relative fluid path from the scenario's folder.
+      const std::string what = e.what();
+      if (!text_without_source || what.find("key 'clutch.fluid'") == std::string::npos) throw;
+      throw io::InputError(io::InputError::Verbatim{},
+                           what + "; give source='path/to/the_scenario.toml' to read it from that file's folder");
+    }
+  })};
 }
 
 // A run's results as Python values.
@@ -193,7 +204,7 @@ Result to_python(const std::string& name, const std::string& text, const python:
 }
 
 Result run(const py::object& scenario, const py::object& overrides, const py::object& output, bool force) {
-  // A network scenario file (docs/network_format.md) runs through its own path.
+  // A network scenario file (docs/formats/network_file.md) runs through its own path.
   if (!py::isinstance<Scenario>(scenario)) {
     const std::string p = py::str(scenario).cast<std::string>();
     if (without_gil(p, "simulation", [&] { return io::scenario_type(p); }) == "network") {
@@ -291,7 +302,11 @@ py::object screen(const std::string& fluid, const std::string& rig, double load_
   if (!temps.is_none()) o.temps = comma_separated(temps);
   const ScratchFile json;
   o.json = json.path;
-  command("screening", [&] { return app::screen_command(o); });
+  // Exit 3 is "NOT JUDGED" (no index computed): an answer, in the JSON's verdict_level, not an error.
+  command("screening", [&] {
+    const int rc = app::screen_command(o);
+    return rc == 3 ? 0 : rc;
+  });
   return json.json();
 }
 
@@ -414,11 +429,32 @@ PYBIND11_MODULE(shudder, m) {
 
   m.def("load", &load, py::arg("path") = py::none(), py::kw_only(), py::arg("toml") = py::none(),
         py::arg("source") = "<string>", py::arg("overrides") = py::none(),
-        "Load a scenario from a file, or from TOML text (toml=; `source` names it in messages and is where a "
-        "relative fluid path is resolved from), with numeric keys overridden: {'clutch.normal_force_N': 2e4}");
+        "Load a scenario from a file, or from TOML text (toml=), with numeric keys overridden (the names\n"
+        "`shudder sweep --set` uses). A relative `fluid = ...` path is read from the scenario file's folder;\n"
+        "for toml= text from the folder of `source` (which also names the text in messages), or from the\n"
+        "current directory when source= is not given. An error about an override names the override.\n\n"
+        "Examples (from the repository's root; python/tests/test_docstrings.py runs them):\n\n"
+        ">>> import shudder\n"
+        ">>> s = shudder.load(\"scenarios/paper_g_case1_10kN.toml\", overrides={\"drive.normal_force_N\": 2e4})\n"
+        ">>> s.name, s.fluid_path\n"
+        "('paper_g_case1_10kN', 'scenarios/fluids/lsc_fluid_c.toml')\n"
+        ">>> text = open(\"scenarios/paper_g_case1_10kN.toml\").read()\n"
+        ">>> shudder.load(toml=text, source=\"scenarios/paper_g_case1_10kN.toml\").fluid_path\n"
+        "'scenarios/fluids/lsc_fluid_c.toml'\n"
+        ">>> shudder.load(\"scenarios/paper_g_case1_10kN.toml\", overrides={\"drive.normal_force_N\": -5})\n"
+        "Traceback (most recent call last):\n"
+        "...\n"
+        "shudder.InputError: overrides['drive.normal_force_N'] = -5: value -5 is out of range; allowed [0, 30000]\n");
   m.def("run", &run, py::arg("scenario"), py::kw_only(), py::arg("overrides") = py::none(),
         py::arg("output") = py::none(), py::arg("force") = false,
-        "Run a scenario (shudder.Scenario or a file path) as `shudder run` does; write HDF5 if output= is given");
+        "Run a scenario (shudder.Scenario or a file path) as `shudder run` does; write HDF5 if output= is given.\n\n"
+        "Example (from the repository's root; python/tests/test_docstrings.py runs it): Paper G Case 1 at\n"
+        "10.4 kN, about 45 N m and 90 degC after 10 s in the thesis (docs/validation.md)\n\n"
+        ">>> r = shudder.run(\"scenarios/paper_g_case1_10kN.toml\")\n"
+        ">>> r.units[\"torque_Nm\"], r.verdict[\"verdict\"]\n"
+        "('N m', 'none')\n"
+        ">>> bool(44 < r.signals[\"torque_Nm\"][-1] < 50), bool(85 < r.signals[\"temp_C\"][-1] < 95)\n"
+        "(True, True)\n");
   m.def("sweep", &sweep, py::arg("scenario"), py::arg("sets"), py::kw_only(), py::arg("output"),
         py::arg("jobs") = 0u, py::arg("keep_parts") = false, py::arg("report") = "", py::arg("force") = false,
         "`shudder sweep` (threads): sets = {'key': 'START:STOP:STEP' or [values]}; returns the /cases table");

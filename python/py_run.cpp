@@ -2,6 +2,7 @@
 #include "python/py_run.hpp"
 
 #include <chrono>
+#include <cstdio>
 #include <stdexcept>
 #include <variant>
 
@@ -15,11 +16,37 @@
 
 namespace shudder::python {
 
+namespace {
+
+// An error about an overridden key, said of the override ("overrides['drive.normal_force_N'] =
+// -5: value -5 is out of range; allowed [0, 30000]"), not of a line of the scenario file the
+// user did not write; other errors pass unchanged.
+[[noreturn]] void rethrow_for_overrides(const io::InputError& e,
+                                        const std::vector<std::pair<std::string, double>>& overrides) {
+  const std::string what = e.what();
+  for (const auto& [key, value] : overrides) {
+    const std::string tag = "key '" + key + "': ";
+    const auto at = what.find(tag);
+    if (at == std::string::npos) continue;
+    char number[32];
+    std::snprintf(number, sizeof number, "%.10g", value);
+    throw io::InputError("overrides['" + key + "'] = " + number, 0, "", what.substr(at + tag.size()));
+  }
+  throw e;
+}
+
+}  // namespace
+
 io::Scenario load_with_overrides(const std::string& text_or_empty, const std::string& path,
                                  const std::vector<std::pair<std::string, double>>& overrides) {
   std::string text = text_or_empty.empty() ? io::load_scenario(path).text : text_or_empty;
-  for (const auto& [key, value] : overrides) text = io::set_scenario_key(text, path, key, value);
-  return io::load_scenario_text(text, path);
+  try {
+    for (const auto& [key, value] : overrides) text = io::set_scenario_key(text, path, key, value);
+    return io::load_scenario_text(text, path);
+  } catch (const io::InputError& e) {
+    if (overrides.empty()) throw;
+    rethrow_for_overrides(e, overrides);
+  }
 }
 
 RunOutcome run(const io::Scenario& scenario, const std::string& output, bool force) {

@@ -29,7 +29,7 @@ struct RunOutcome {
 /// An energy balance that does not close throws "numerical failure: ..." after writing.
 RunOutcome run(const io::Scenario& scenario, const std::string& output, bool force);
 
-/// A network scenario (docs/network_format.md) run as `shudder run` runs it: the file's text
+/// A network scenario (docs/formats/network_file.md) run as `shudder run` runs it: the file's text
 /// with each override applied (`network.COMPONENT.KEY`), the run, the HDF5 file unless `output`
 /// is empty, the energy guard. `name` and `text` receive the scenario's name and final text.
 RunOutcome run_network(const std::string& path, const std::vector<std::pair<std::string, double>>& overrides,

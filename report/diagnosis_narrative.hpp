@@ -1,5 +1,5 @@
 #pragma once
-// The diagnosis in plain words (the sentences of FORMATS.md "Diagnosis result": a step's
+// The diagnosis in plain words (the sentences of docs/formats/diagnosis_json.md: a step's
 // "reason", the "conclusion"), written from the numbers analysis/diagnosis.hpp returns. Used by
 // the JSON writer, the Markdown report and the terminal summary, so all say the same.
 

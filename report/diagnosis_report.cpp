@@ -1,4 +1,4 @@
-// Report directory of a diagnosis; see diagnosis_report.hpp and docs/diagnosis_format.md.
+// Report directory of a diagnosis; see diagnosis_report.hpp and docs/formats/diagnosis_json.md.
 #include "report/diagnosis_report.hpp"
 
 #include <unistd.h>

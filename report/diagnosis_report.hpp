@@ -1,6 +1,6 @@
 #pragma once
 // Report directory of a discrepancy diagnosis (analysis/diagnosis.hpp; contents listed in
-// docs/diagnosis_format.md):
+// docs/formats/diagnosis_json.md):
 //
 //   summary.txt               the text the caller printed
 //   candidates.md             per step the table of every candidate tried (fit and hold-out

@@ -72,7 +72,7 @@ void print_network_summary(std::ostream& os, const io::NetworkScenario& sc, cons
   if (run.worst >= 0) {
     const auto& w = run.verdicts[static_cast<std::size_t>(run.worst)];
     // The clutch the verdict names used its friction law outside its data for most of the run:
-    // said first, as for the model kinds (docs/run_output.md, outside_data_fraction).
+    // said first, as for the model kinds (docs/formats/run_output.md, outside_data_fraction).
     if (const auto* b = rec.find_block("verdict"))
       if (const auto* f = b->find_scalar("outside_data_fraction"); f && f->value > 0.5)
         os << "WARNING: clutch '" << w.clutch << "' uses its friction law outside its data for "

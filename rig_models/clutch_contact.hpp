@@ -13,7 +13,7 @@
 //   ClutchContext     what a run changes: the HELD inputs (ring temperatures T_i, clamp force
 //                     F(t)) and the frozen-friction cache built from them. Owned by the run.
 //   ClutchContactLaw  a ClutchContact bound to one ClutchContext: what the integrator calls.
-// Ring temperatures between thermal steps (DESIGN.md multi-rate coupling): either held
+// Ring temperatures between thermal steps (docs/architecture.md multi-rate coupling): either held
 // (set_ring_temperatures: linearisation, real-time mode) or on a first-order hold across the slow
 // step (set_ring_temperature_ramp: the multi-rate runs, rig_models/multirate_clutch.hpp). On the
 // hold each ring's friction moves linearly in time between its values at the two end

@@ -1,6 +1,6 @@
 #pragma once
 // A measured vehicle run of the Haldex coupling: what an instrumented coupling in a car gives,
-// in the measured-run format (FORMATS.md "Measured rig run", io/measured_run.hpp), so that
+// in the measured-run format (docs/formats/measured_run.md, io/measured_run.hpp), so that
 // `shudder diagnose` can replay it through the coupling alone (rig_models/replay.hpp).
 //
 // The columns keep the format's meaning, read at the coupling instead of the rig's disc:
@@ -18,7 +18,7 @@
 //
 // Source: the instrumentation is an estimate of a test car (a Gen I coupling has a pressure
 // tap and an oil temperature sensor; torque flanges and plate thermocouples are what a
-// development vehicle adds). Units as FORMATS.md.
+// development vehicle adds). Units as docs/formats/measured_run.md.
 
 
 #include "dynamics/recording.hpp"

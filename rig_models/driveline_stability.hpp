@@ -1,6 +1,6 @@
 #pragma once
 // Linear stability and modes of the Haldex driveline (rig_models/haldex_driveline.hpp) about an
-// operating point, with the coupling slipping or locked (PHYSICS.md §6, §8).
+// operating point, with the coupling slipping or locked (docs/physics.md §6, §8).
 //
 // The network is linearised by dynamics/linearisation.hpp with every element's own dynamics:
 //   coupling (slipping)  damper s = dM/d|Δω| = n r F dμ/d|Δω| at the point's slip, clamp force

@@ -94,7 +94,7 @@ std::vector<EffectDefinition> build() {
        {{"reference_load_N", "N", kSameUnit, R::closed(1.0, kMaxForce_N),
          [](auto& t) -> auto& { return t.clutch.reference_load_N; }, {}}},
        {}, {}},
-      // Measurement faults (FORMATS.md names): the physics is unchanged, only the recorded
+      // Measurement faults (docs/formats/diagnosis_json.md names): the physics is unchanged, only the recorded
       // channel. Bounds are estimates: a gain beyond [0.5, 2] or a torque offset beyond ±50 N m
       // is a wrong cell or unit rather than a calibration error (the plausibility checks catch
       // those); ±10 K is over four times a type K junction's standard tolerance (±2.2 K).

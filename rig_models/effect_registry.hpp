@@ -1,5 +1,5 @@
 #pragma once
-// The one list of switchable physical effects (names fixed by FORMATS.md). Each effect is
+// The one list of switchable physical effects (names fixed by docs/formats/diagnosis_json.md). Each effect is
 // declared once, as data: its name and one-line description, its `enabled` switch, its
 // parameters (scenario key, unit, scale to the SI member, allowed range, and for the fitted
 // ones the diagnosis' bounds and starting guesses), its non-numeric choices, and the model
@@ -8,7 +8,7 @@
 //   * rig_models/replay.cpp switches effects on for the diagnosis and lists its candidates
 //   * app/                  the default and range of `shudder diagnose --max-effects`
 //   * docs/effects.md       the effects tables (tests/rig_models/test_effect_registry.cpp
-//                           checks them against this list, and the names against FORMATS.md)
+//                           checks them against this list, and the names against docs/formats/diagnosis_json.md)
 // The physics of an effect lives where the effect acts (see the comment at each entry); the
 // registry only says which members of the parameter structs carry it.
 
@@ -136,7 +136,7 @@ struct EffectDefinition {
   std::vector<InertIn> inert_in;
 };
 
-/// Every effect, in FORMATS.md order (the order of candidates, messages and docs).
+/// Every effect, in docs/formats/diagnosis_json.md order (the order of candidates, messages and docs).
 const std::vector<EffectDefinition>& effect_registry();
 /// nullptr for a name not in the registry.
 const EffectDefinition* find_effect(std::string_view name);

@@ -5,7 +5,7 @@
 //   energy_balance_relative_error     |generated - stored - to sump - to rig| / generated
 //   mechanical_energy_relative_error  |mechanical imbalance| / the model's energy scale
 //
-// Bounds (stated once, docs/run_output.md):
+// Bounds (stated once, docs/formats/run_output.md):
 //   thermal    1e-6: the implicit thermal step conserves heat to round-off; the shipped
 //              scenarios reach 1.4e-14 .. 1.7e-12, so the bound leaves a factor > 5e5.
 //   mechanical 1e-3: the adaptive Odeint integration (and its event location) leaves a small

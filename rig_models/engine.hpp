@@ -13,7 +13,7 @@
 // idle). The tanh lets the losses pass through standstill continuously.
 // Stall: the speed falling below the stall speed while the map drives the engine (the run
 // records when). The torque–speed slope dT/dω (N m s/rad) at an operating point enters the
-// driveline's modes as a damper −dT/dω on the engine (PHYSICS.md §6: a falling torque with speed
+// driveline's modes as a damper −dT/dω on the engine (docs/physics.md §6: a falling torque with speed
 // damps, a rising one feeds oscillations).
 //
 // Defaults are ESTIMATES for a 2-litre petrol engine of the thesis' era (VW 2.0 8v class: public

@@ -36,11 +36,39 @@ std::string separation(const FluidComparison& a, const FluidComparison& b) {
   if (ka[0] != kb[0])
     return std::string("verdict ") + analysis::risk_level_name(a.screen.verdict.level) + " vs " +
            analysis::risk_level_name(b.screen.verdict.level);
-  if (ka[1] != kb[1]) return "largest stability margin " + g(a.worst_margin_per_s) + " vs " + g(b.worst_margin_per_s) + " 1/s";
-  if (ka[2] != kb[2]) return "largest mu1/mu50 " + g(a.worst_mu1_over_mu50) + " vs " + g(b.worst_mu1_over_mu50);
-  if (ka[3] != kb[3]) return "breakaway ratio " + g(a.breakaway_ratio) + " vs " + g(b.breakaway_ratio);
+  if (ka[1] != kb[1])
+    return "largest clutch-mode margin " + g(a.worst_margin_per_s) + " vs " + g(b.worst_margin_per_s) +
+           " 1/s (lower is better)";
+  if (ka[2] != kb[2])
+    return "largest mu1/mu50 " + g(a.worst_mu1_over_mu50) + " vs " + g(b.worst_mu1_over_mu50) + " (lower is better)";
+  if (ka[3] != kb[3])
+    return "breakaway ratio " + g(a.breakaway_ratio) + " vs " + g(b.breakaway_ratio) + " (lower is better)";
   return "tie: verdict, margins (" + g(kMarginResolution_per_s) + " 1/s), mu1/mu50 (" + g(100 * kRatioResolution) +
          " %) and breakaway ratio (" + g(kBreakawayResolution) + ") agree within their resolution";
+}
+
+// The largest margin of the clutch-side (oscillatory) mode over the map points inside the law's
+// data. Outside them the law holds its edge value, its slope is zero and the mode's margin is the
+// rig's own damping (−ζω of the bar: −6.28 1/s on the 100 Hz bar for every fluid), and the drive
+// loop's slow real mode, which leads the map's overall margin where the clutch damps well, does
+// not depend on the fluid either. NaN when no rig has a judged point there.
+double largest_margin_inside_data(const ScreeningReport& screen, const clutch::FrictionLaw& law, double mean_radius_mm) {
+  const double v_lo = law.min_speed_mm_s(), v_hi = law.max_speed_mm_s();
+  const auto [t_lo, t_hi] = law.temp_range_C();
+  double worst = std::numeric_limits<double>::quiet_NaN();
+  for (const auto& rig : screen.rigs) {
+    const StabilityMap& m = rig.map;
+    for (std::size_t i = 0; i < m.speeds_rpm.size(); ++i) {
+      const double v = analysis::rpm_to_mm_s(m.speeds_rpm[i], mean_radius_mm);
+      if (v < v_lo || v > v_hi) continue;
+      for (std::size_t j = 0; j < m.temps_C.size(); ++j) {
+        if (m.temps_C[j] < t_lo || m.temps_C[j] > t_hi) continue;
+        const double margin = m.oscillatory_margin_per_s(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
+        if (std::isfinite(margin)) worst = std::isfinite(worst) ? std::max(worst, margin) : margin;
+      }
+    }
+  }
+  return worst;
 }
 
 }  // namespace
@@ -77,11 +105,7 @@ Comparison compare_fluids(const std::vector<std::pair<std::string, clutch::Fluid
       f.mu50.push_back(fluid.friction->mu(v50, at.temp_C, so.indices.load_N));
       f.worst_mu1_over_mu50 = std::max(f.worst_mu1_over_mu50, at[analysis::Index::kMu1OverMu50].value);
     }
-    f.worst_margin_per_s = std::numeric_limits<double>::quiet_NaN();
-    for (const auto& rig : f.screen.rigs)
-      if (rig.unstable_extent.grid_points > 0)
-        f.worst_margin_per_s = std::isfinite(f.worst_margin_per_s) ? std::max(f.worst_margin_per_s, rig.max_margin_per_s)
-                                                                   : rig.max_margin_per_s;
+    f.worst_margin_per_s = largest_margin_inside_data(f.screen, *fluid.friction, so.indices.mean_radius_mm);
     out.fluids.push_back(std::move(f));
   }
   // Rank by the rounded keys; a fluid with its predecessor's keys shares its place.

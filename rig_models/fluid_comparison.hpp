@@ -10,9 +10,11 @@
 //               dynamic friction wanted).
 //   ranking     lexicographic, each key compared only beyond its resolution so that fluids the
 //               data cannot separate share a place ("tie"):
-//                 1. verdict level (LOW RISK < CAUTION < RISK),
-//                 2. the largest stability margin over the rigs' maps (1/s; resolution 0.5 1/s,
-//                    about the maps' own step effect),
+//                 1. verdict level (LOW RISK < CAUTION < RISK < NOT JUDGED),
+//                 2. the largest margin of the clutch-side mode over the rigs' maps where the
+//                    law has data (1/s, lower is better; resolution 0.5 1/s, about the maps' own
+//                    step effect; outside the data the law's slope is zero and the margin is the
+//                    rig's own damping, the same for every fluid),
 //                 3. the largest mu1/mu50 over the chosen temperatures (Ohtani: lower is
 //                    further from shudder; resolution 0.5 %, the characterisation's accuracy),
 //                 4. the breakaway ratio (Paper F: lower is better; resolution 0.01).
@@ -37,7 +39,8 @@ struct FluidComparison {
   double breakaway_ratio = 1.0;
   std::vector<double> mu50;             // mu at 50 rpm at each screening temperature
   double worst_mu1_over_mu50 = 0.0;     // largest over the screening temperatures
-  double worst_margin_per_s = 0.0;      // largest over every rig's map (NaN: no rig judged)
+  double worst_margin_per_s = 0.0;      // clutch-side mode, largest over the rigs' maps inside the
+                                        // law's data (NaN: no judged point there)
   int rank = 0;                         // 1 = best; equal ranks = not separated by the data
 };
 

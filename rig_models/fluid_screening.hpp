@@ -10,7 +10,7 @@
 // The fluid enters only through its FrictionLaw (and viscosity for the rig's viscous shear), so
 // a law fitted to measured rig logs slots in unchanged. The rigs are the LSCTR model with the
 // screened fluid in its clutch: by default RigParams{} and WetClutchParams{} with 100, 300 and
-// 500 Hz torsion bars (the rig's 100–500 Hz range, PHYSICS.md §4), or a rig scenario's [rig]
+// 500 Hz torsion bars (the rig's 100–500 Hz range, docs/physics.md §4), or a rig scenario's [rig]
 // and [clutch] with its fluid replaced.
 
 #include <string>

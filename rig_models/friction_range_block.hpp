@@ -1,5 +1,5 @@
 #pragma once
-// The run-level result block "friction_data_range" (docs/run_output.md): how much of the run
+// The run-level result block "friction_data_range" (docs/formats/run_output.md): how much of the run
 // used the clutch's friction law outside its data (clutch/friction_data_range.hpp), written
 // under /analysis/friction_data_range and printed once in the run summary.
 //

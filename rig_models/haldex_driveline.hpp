@@ -1,5 +1,5 @@
 #pragma once
-// An all-wheel-drive car with a Haldex limited-slip coupling (thesis Introduction; PHYSICS.md §8)
+// An all-wheel-drive car with a Haldex limited-slip coupling (thesis Introduction; docs/physics.md §8)
 // as a torsional network, per wheel (left and right on each axle, open differentials):
 //
 //   engine ═(i_g·i_f)═ front_diff ⟨open diff⟩ front_side_l/r ─half-shaft─ wheel_fl/fr ~tyre(ρ_fl/fr)~ vehicle
@@ -32,7 +32,7 @@
 // Parameters are not in the thesis: every default below is an ESTIMATE for a mid-size AWD car of
 // the thesis' era (1.7 t, 1st gear; wheelbase and track of a VW Golf IV 4motion, the first
 // Haldex car), named and overridable. Together they put the first driveline (shuffle) mode at a
-// few Hz, in PHYSICS.md's 2–10 Hz.
+// few Hz, in docs/physics.md's 2–10 Hz.
 
 #include <array>
 #include <memory>

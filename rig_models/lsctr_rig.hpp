@@ -112,7 +112,7 @@ class LsctrRig {
 };
 
 /// Simulates the rig on the cycle with the clutch's thermal model (multi-rate coupling) and
-/// records the sensors (FORMATS.md names) plus internal signals.
+/// records the sensors (docs/formats/measured_run.md names) plus internal signals.
 dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& clutch,
                             const DriveCycle& cycle, const RigSettings& settings);
 

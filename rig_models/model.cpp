@@ -175,7 +175,7 @@ dynamics::Recording simulate(const DrivelineModel& model, const clutch::WetClutc
 std::vector<std::string> add_run_analysis(const DrivelineModel& model, const clutch::WetClutch& clutch,
                                           double start_temp_C, dynamics::Recording& rec) {
   add_verdict(rec, [&](const OperatingWindow& w) { return predict_driveline(model.params, clutch, model.manoeuvre, rec, w); });
-  // The clamp force's swing over an oscillation (docs/run_output.md, `clamp_force_swing`).
+  // The clamp force's swing over an oscillation (docs/formats/run_output.md, `clamp_force_swing`).
   double window_force_N = std::numeric_limits<double>::quiet_NaN();
   for (auto& b : rec.blocks) {
     if (b.name != kVerdictBlock) continue;

@@ -74,7 +74,7 @@ double duration_s(const Model& model);
 
 // ---- shudder run ----------------------------------------------------------------------------
 
-/// Runs the model and returns its recording (docs/run_output.md).
+/// Runs the model and returns its recording (docs/formats/run_output.md).
 dynamics::Recording simulate(const PrescribedSlipModel& model, const clutch::WetClutch& clutch);
 dynamics::Recording simulate(const RigModel& model, const clutch::WetClutch& clutch);
 dynamics::Recording simulate(const DrivelineModel& model, const clutch::WetClutch& clutch);

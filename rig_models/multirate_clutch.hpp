@@ -1,5 +1,5 @@
 #pragma once
-// The multi-rate coupling of DESIGN.md for a torsional network with one wet-clutch contact (the
+// The multi-rate coupling of docs/architecture.md for a torsional network with one wet-clutch contact (the
 // rig's clutch, the Haldex coupling): the torsional states are integrated adaptively to the end
 // of each slow step, sampled on the way; then the clutch's thermal model is advanced over the
 // step with the exact friction energy per ring the integrator accumulated, and the mean slip

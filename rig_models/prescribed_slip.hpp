@@ -2,7 +2,7 @@
 // Prescribed-slip simulation (Paper G's set-up): the sliding speed Δω(t) and the normal force
 // F(t) are given; the clutch's friction and thermal field evolve together.
 //
-// Coupling per thermal step [t0, t1] (the multi-rate scheme of DESIGN.md, with the fast side
+// Coupling per thermal step [t0, t1] (the multi-rate scheme of docs/architecture.md, with the fast side
 // known in closed form): ring temperatures are held at their t0 values, the friction heat of
 // every ring is integrated over the step by Simpson's rule (exact for the piecewise-linear
 // drive within a step, up to the curvature of mu(v)), and that energy is handed to one
@@ -88,7 +88,7 @@ struct PrescribedSlipSettings {
   FrictionDrift friction_drift;
 };
 
-/// Runs the cycle and returns the recording: signals named as FORMATS.md (time_s, speed_rpm,
+/// Runs the cycle and returns the recording: signals named as docs/formats/measured_run.md (time_s, speed_rpm,
 /// normal_force_N, torque_Nm, temp_C, ir_temp_C, sump_temp_C) plus internal ones, thermal
 /// snapshots and summary scalars (energy balance among them).
 dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const DriveCycle& cycle,

@@ -36,7 +36,7 @@ struct Columns {
   dynamics::Recording& rec;
   std::size_t first;
   void add(std::string_view name, std::string_view units) { rec.add_signal(std::string(name), std::string(units)); }
-  /// The channels a measured run carries (FORMATS.md), first in both runners' lists, in this order:
+  /// The channels a measured run carries (docs/formats/measured_run.md), first in both runners' lists, in this order:
   /// time, speed, normal force, torque, thermocouple, IR, sump.
   void add_measured_channels() {
     add(sn::kTime, "s");

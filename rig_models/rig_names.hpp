@@ -1,5 +1,5 @@
 #pragma once
-// The `rig` metadata of measured runs (docs/run_output.md, FORMATS.md measured-run files): which
+// The `rig` metadata of measured runs (docs/formats/run_output.md, docs/formats/measured_run.md): which
 // machine a run was logged on, so `diagnose` can warn when runs and model do not match.
 #include <string_view>
 

@@ -82,7 +82,7 @@ RunVerdict judge_detection(const RecordingDetection& detection);
 /// force, an unrecorded temperature, a motor that cannot hold the slip).
 Prediction predict_rig(const RigParams& params, const clutch::WetClutch& clutch, const OperatingWindow& window);
 
-/// The block stored with the run (docs/run_output.md "The verdict block"): texts `verdict`,
+/// The block stored with the run (docs/formats/run_output.md "The verdict block"): texts `verdict`,
 /// `judged_signals`, `operating_window`, `prediction`; scalars verdict_code, frequency_Hz,
 /// peak_frequency_Hz, amplitude_Nm, threshold_Nm, onset_time_s, window_from_s, window_to_s, slip_rpm,
 /// interface_temp_C, normal_force_N, predicted_margin_per_s, predicted_oscillatory_margin_per_s,

@@ -6,7 +6,7 @@
 
 Each probe runs the given `shudder` binary in a fresh scratch directory on the shipped inputs of
 commit 20f3647 (the audited commit; `git archive` of its scenarios/ from this repository, so the
-probes do not move when today's scenarios are retuned; FORMATS.md keeps them readable) and prints
+probes do not move when today's scenarios are retuned; docs/formats/measured_run.md keeps them readable) and prints
     finding | PASS/FAIL | what was seen
 PASS means today's promised behaviour (docs/audit_findings.md names the unit tests that also
 cover each finding). With two binaries the script also prints the table old | new and exits 0

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Reconstruct a complete Mäki friction matrix for fluid C and write it as a fluid TOML file.
 
-Model (Paper G eq. 13, PHYSICS.md §1), v = local sliding speed in mm/s:
+Model (Paper G eq. 13, docs/physics.md §1), v = local sliding speed in mm/s:
 
     mu(v) = C1 * tanh(C2 * v) + C3 * v**0.1 + C4
 
@@ -47,7 +47,7 @@ PUBLISHED = {
 }
 RECONSTRUCTED_TEMPS = [-20.0, -10.0, 0.0, 10.0, 20.0, 30.0, 40.0, 50.0, 60.0, 80.0, 90.0]
 
-V1_MM_S = 4.82     # 1 rpm at the mean radius (PHYSICS.md §4)
+V1_MM_S = 4.82     # 1 rpm at the mean radius (docs/physics.md §4)
 V50_MM_S = 241.0   # 50 rpm
 LINE1 = (-4.45e-4, 0.1004)   # fluid C mu1 line, Paper E Table 2 (alpha 1/°C, beta)
 LINE50 = (-1.72e-4, 0.1108)  # fluid C mu50 line, Paper E Table 3

@@ -6,7 +6,7 @@ import shudder
 case1 = "scenarios/paper_g_case1_10kN.toml"     # Paper G Case 1: slip 1 -> 100 rpm in 10 s
 fig, (ax_t, ax_T) = plt.subplots(2, 1, sharex=True, figsize=(7, 6))
 for force_N in (10.4e3, 20e3):
-    # The key is the scenario's own (docs/scenario_format.md), set as `sweep --set` sets it.
+    # The key is the scenario's own (docs/formats/scenario_file.md), set as `sweep --set` sets it.
     r = shudder.run(case1, overrides={"drive.normal_force_N": force_N})
     t = r.signals["time_s"]
     ax_t.plot(t, r.signals["torque_Nm"], label=f"{force_N / 1e3:.1f} kN")

@@ -91,3 +91,16 @@ def test_diagnose_finds_the_hidden_effect(tmp_path):
     d = shudder.diagnose(str(tmp_path / "model.toml"), [str(tmp_path / "a.csv")], jobs=2)
     assert d["format"] == "shudder-diagnosis/1"
     assert d["missing_effects"] == ["bearing_drag"]
+
+
+def test_screen_without_an_index_is_not_judged_not_an_exception(tmp_path):
+    # A table law measured at 20-30 degC: none of the default 40/80/120 degC is inside its data.
+    fluid = tmp_path / "cold.toml"
+    fluid.write_text('[fluid]\nname = "cold"\nnu40_cSt = 35.0\nnu100_cSt = 6.7\n'
+                     '[static_friction]\nbreakaway_ratio = 1.0\n'
+                     '[table]\nspeeds_mm_s = [5.0, 50.0, 500.0]\nloads_N = [20000.0]\n'
+                     '[[table.row]]\ntemp_C = 20.0\nmu = [[0.10, 0.11, 0.12]]\n'
+                     '[[table.row]]\ntemp_C = 30.0\nmu = [[0.09, 0.10, 0.11]]\n')
+    result = shudder.screen(str(fluid))
+    assert result["verdict_level"] == "NOT JUDGED", result["verdict"]
+    assert shudder.screen(str(fluid), temps=[25])["verdict_level"] == "LOW RISK"

@@ -106,11 +106,13 @@ def test_bad_value_in_toml_text_names_the_source_and_line():
 
 
 def test_override_of_a_text_key_is_the_sweep_set_error(tmp_path):
+    # The sweep's reason, said of the override (not of a line of the file the user did not write).
     with pytest.raises(shudder.InputError) as e:
         shudder.run(CASE1, overrides={"scenario.name": 3.0})
     code, _, err = cli("sweep", CASE1, "--set", "scenario.name=3", "-o", tmp_path / "s.h5")
     assert code == 2
-    assert err == "shudder: error: " + str(e.value) + "\n"
+    reason = err.split("key 'scenario.name': ", 1)[1].rstrip("\n")
+    assert str(e.value) == "overrides['scenario.name'] = 3: " + reason
 
 
 def test_non_numeric_override_value_is_an_input_error():
@@ -157,7 +159,7 @@ def test_the_gil_is_released_during_a_run():
     assert steps >= 20
 
 
-# A network scenario (docs/network_format.md) runs from Python as from the CLI: same signals,
+# A network scenario (docs/formats/network_file.md) runs from Python as from the CLI: same signals,
 # overrides by `network.COMPONENT.KEY`, the clutches' verdict blocks.
 def test_network_run_equals_the_cli_and_takes_overrides(tmp_path):
     net = scenario("networks/four_inertia_chain.toml")

@@ -122,7 +122,7 @@ CharacterisationSettings round_trip_settings(Compensation comp, LawKind law) {
   s.compensation = comp;
   s.law = law;
   // The model integrates uniform pressure over Paper G's 38.1–56.4 mm annulus, so its torque
-  // is mu at the uniform-pressure radius (PHYSICS.md §9); the thesis' 46 mm would read mu 4 % high.
+  // is mu at the uniform-pressure radius (docs/physics.md §9); the thesis' 46 mm would read mu 4 % high.
   s.conversion.rule = analysis::RadiusRule::kUniformPressure;
   return s;
 }

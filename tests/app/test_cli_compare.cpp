@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
 
 #include "tests/support/cli.hpp"
@@ -41,6 +42,27 @@ TEST(CliCompare, RanksPaperEFluidsAsTable4AndTiesAFluidWithItself) {
   EXPECT_EQ(j["fluids"].items.size(), 6u);
   EXPECT_THAT(r.out, ::testing::HasSubstr("paper-e-fluid-c / paper-e-fluid-c: tie"));
   EXPECT_THAT(r.out, ::testing::HasSubstr("paper-e-fluid-a / paper-e-fluid-b: largest mu1/mu50"));
+  // The direction of good is stated, and a column equal for every fluid (the breakaway ratio,
+  // 1 in every Paper E file: not measured there) is named once instead of printed five times.
+  EXPECT_THAT(r.out, ::testing::HasSubstr("(lower is better)"));
+  EXPECT_THAT(r.out, ::testing::HasSubstr("Ranking, best first:"));
+  EXPECT_THAT(r.out, ::testing::HasSubstr("The same for every fluid, so left out of the table: breakaway 1.000"));
+}
+
+// The clutch-mode margin depends on the fluid: it is taken where the law has data (outside, the
+// law is held, its slope is zero and the margin is the bar's own damping, -6.28 1/s on the 100 Hz
+// bar for every fluid).
+TEST(CliCompare, ClutchMarginDependsOnTheFluid) {
+  const auto dir = test::scratch_dir("compare_margin");
+  const auto r = test::run_cli("compare" + fluid('a') + fluid('e') + " --json cmp.json", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = test::parse(test::slurp(dir / "cmp.json"));
+  const double a = j["fluids"].items[0]["largest_margin_per_s"].number;
+  const double e = j["fluids"].items[1]["largest_margin_per_s"].number;
+  EXPECT_LT(a, 0.0);  // both stable (Paper E: no shudder)
+  EXPECT_LT(e, 0.0);
+  EXPECT_GT(std::abs(a - e), 0.01) << a << " " << e;  // differ beyond the JSON's 10 digits' noise
+  EXPECT_THAT(r.out, ::testing::Not(::testing::HasSubstr("-6.28/s")));
 }
 
 TEST(CliCompare, MissingFluidIsBadInput) {

@@ -38,7 +38,7 @@ TEST(CliDriveline, RunsTheTightTurnAndWritesItsSignals) {
   EXPECT_TRUE(std::filesystem::exists(dir / "rep" / "coupling.png"));
   EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;  // no rig plot attempted
   const auto rec = io::read_run_hdf5((dir / "turn.h5").string());
-  // The size guard's count (app/output_size.hpp, docs/run_output.md): 27 channels.
+  // The size guard's count (app/output_size.hpp, docs/formats/run_output.md): 27 channels.
   EXPECT_EQ(rec.signals.size(), 27u);
   // At the start the car rolls at 5 km/h and the axles differ by the turn: the coupling slips at
   // i_ptu (ρ̄_f − ρ̄_r) ω_v, ρ̄_f the front wheels' mean path ratio on R = 9 m (wheelbase 2.51 m,

@@ -183,22 +183,6 @@ damping_Nms_per_rad = 0.95
             rec.find("second_clutch.interface_mean_temp_C")->values.back() + 10.0);
 }
 
-// The README's two network commands, as written there (run from the repository root).
-TEST(CliNetworks, ReadmeCommandsRun) {
-  const auto dir = test::scratch_dir("network_readme");
-  const std::string readme = test::slurp(test::source_path("README.md"));
-  const std::string run = "run scenarios/networks/lockup_clutch_controlled_slip.toml -o lockup.h5";
-  const std::string sweep = "--set network.lockup_clutch.max_force_N=2600:3400:200 -o lockup_sweep.h5";
-  ASSERT_NE(readme.find(run), std::string::npos);
-  ASSERT_NE(readme.find(sweep), std::string::npos);
-  const std::string root = test::source_path("");
-  const auto r = test::run_cli("run '" + root + "scenarios/networks/lockup_clutch_controlled_slip.toml' -o lockup.h5", dir);
-  EXPECT_EQ(r.exit_code, 0) << r.err;
-  const auto s = test::run_cli("sweep '" + root + "scenarios/networks/lockup_clutch_controlled_slip.toml' " + sweep, dir);
-  EXPECT_EQ(s.exit_code, 0) << s.err;
-  EXPECT_TRUE(fs::exists(dir / "lockup_sweep.h5"));
-}
-
 // `run --measurement RUN.csv` on a network: one measured run per wet clutch, RUN.CLUTCH.csv, that
 // the measured-run reader accepts: the clutch's slip as speed, its torque, force and thermocouple.
 TEST(CliNetworks, MeasurementIsWrittenPerWetClutch) {

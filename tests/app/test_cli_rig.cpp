@@ -84,7 +84,7 @@ TEST(CliRig, ModesOnPrescribedSlipScenarioIsRejectedNamingScenarioType) {
   EXPECT_EQ(r.out, "");
 }
 
-// `shudder run RIG --measurement out.csv` writes the FORMATS.md measured-run CSV: metadata
+// `shudder run RIG --measurement out.csv` writes the docs/formats/measured_run.md measured-run CSV: metadata
 // lines starting with '#' (format first), the header with the five required columns first,
 // one row per recorded sample (Case 1: 10 s at 1 kHz, 10001 rows). Spot values: the force is
 // the scenario's 25300 N; the drive encoder follows the 1 -> 100 rpm ramp (at 5 s, 50.5 rpm,

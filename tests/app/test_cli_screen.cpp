@@ -276,6 +276,27 @@ TEST(CliScreen, PaperEFluidAIsLowRisk) {
   EXPECT_THAT(r.out, HasSubstr("every rig predicted stable"));
 }
 
+// A fluid whose data lie outside every default screening temperature (a table law measured at
+// 20-30 °C): no index is computed, so there is no verdict: "NOT JUDGED", exit 3, never "LOW RISK".
+TEST(CliScreen, NoIndexComputedIsNotJudged) {
+  const auto dir = scratch_dir("screen_not_judged");
+  write_file(dir / "cold.toml", "[fluid]\nname = \"cold\"\nnu40_cSt = 35.0\nnu100_cSt = 6.7\n"
+                                      "[static_friction]\nbreakaway_ratio = 1.0\n"
+                                      "[table]\nspeeds_mm_s = [5.0, 50.0, 500.0]\nloads_N = [20000.0]\n"
+                                      "[[table.row]]\ntemp_C = 20.0\nmu = [[0.10, 0.11, 0.12]]\n"
+                                      "[[table.row]]\ntemp_C = 30.0\nmu = [[0.09, 0.10, 0.11]]\n");
+  const auto r = run_cli("screen cold.toml --json out.json", dir);
+  EXPECT_EQ(r.exit_code, 3) << r.out << r.err;
+  EXPECT_THAT(r.out, HasSubstr("no screening temperature inside the law's data; give --temps"));
+  EXPECT_THAT(r.out, HasSubstr("Verdict: NOT JUDGED: no anti-shudder index was computed"));
+  EXPECT_THAT(r.out, ::testing::Not(HasSubstr("LOW RISK")));
+  EXPECT_THAT(slurp(dir / "out.json"), HasSubstr("\"verdict_level\": \"NOT JUDGED\""));
+  // Inside the data it is judged.
+  const auto in = run_cli("screen cold.toml --temps 25", dir);
+  EXPECT_EQ(in.exit_code, 0) << in.err;
+  EXPECT_THAT(in.out, HasSubstr("Verdict: LOW RISK"));
+}
+
 // Strings are escaped: a fluid name with a quote, a backslash and a tab round-trips.
 TEST(CliScreen, JsonEscapesStrings) {
   const auto dir = scratch_dir("screen_escape");
@@ -313,7 +334,7 @@ void expect_rejected(const Bad& b, const std::vector<std::string>& fragments) {
 
 TEST(CliScreen, UnknownFluidFileExits2) {
   expect_rejected(run_bad("nofile", "screen no_such_fluid.toml"),
-                  {"no_such_fluid.toml", "no such fluid file", "docs/fluid_format.md"});
+                  {"no_such_fluid.toml", "no such fluid file", "docs/formats/fluid_file.md"});
 }
 
 TEST(CliScreen, BadTemperaturesExit2) {

@@ -1,7 +1,7 @@
 // Fluid C consistent with the thesis (docs/fluid_c_reconstruction.md): over the
 // range its 1,750 ramps covered (-20…90 °C, 1–100 rpm, 10–25 kN; Paper G) the 175 and 378 Hz bars
 // "did not act as an initiator of shudder", and the fluids "maintained acceptable anti-shudder
-// properties even at temperatures as low as -20 °C" (thesis; PHYSICS.md §9).
+// properties even at temperatures as low as -20 °C" (thesis; docs/physics.md §9).
 //
 // Old behaviour (main 456a737): the reconstructed cold rows kept the 70 °C shape and dipped above
 // 80–160 mm/s; the 175 Hz rig was predicted unstable at 29–115 rpm, -25…40 °C (20 kN), and the

@@ -37,10 +37,10 @@ TEST(MakiSet, SeventyDegreeTwentyKiloNewtonSetMatchesHandValues) {
   // v = 4.82 mm/s (1 rpm at r = 46 mm):
   //   tanh(0.00482) = 0.00482 - 0.00482³/3 = 0.0048199627   -> C1*tanh = -0.00018797854
   //   4.82^0.1 = exp(0.1*ln 4.82) = exp(0.15727739) = 1.1703202 -> C3*... = 0.09011466
-  //   mu = -0.00018798 + 0.09011466 - 0.024 = 0.06592668            (PHYSICS.md §1: "0.066")
+  //   mu = -0.00018798 + 0.09011466 - 0.024 = 0.06592668            (docs/physics.md §1: "0.066")
   // v = 241 mm/s (50 rpm):
   //   tanh(0.241) = 0.2364401 -> -0.00922116;  241^0.1 = exp(0.54847969) = 1.7306199 -> 0.13325774
-  //   mu = -0.00922116 + 0.13325774 - 0.024 = 0.10003658           (PHYSICS.md §1: "0.100")
+  //   mu = -0.00922116 + 0.13325774 - 0.024 = 0.10003658           (docs/physics.md §1: "0.100")
   // Tolerance 1e-8: the hand values are rounded to 8 decimals.
   EXPECT_NEAR(kSet70C20kN.mu(4.82), 0.06592668, 1e-8);
   EXPECT_NEAR(kSet70C20kN.mu(241.0), 0.10003658, 1e-8);

@@ -1,4 +1,4 @@
-// Walther / ASTM D341 viscosity against the values worked out in PHYSICS.md §3 for fluid C
+// Walther / ASTM D341 viscosity against the values worked out in docs/physics.md §3 for fluid C
 // (nu40 = 35 cSt, nu100 = 6.7 cSt): A ≈ 8.4504, B ≈ 3.3093; ≈ 85 cSt at 20 °C, 10.3 cSt at
 // 80 °C, 4.7 cSt at 120 °C (quoted to 2–3 digits, hence the tolerances).
 #include <gtest/gtest.h>

@@ -198,7 +198,7 @@ TEST(WetClutch, ViscousShearAddsTheCouetteTorqueOfTheAnnulus) {
   const double B = (loglog(fluid.nu40_cSt) - loglog(fluid.nu100_cSt)) / (x100 - x40);
   const double A = loglog(fluid.nu40_cSt) + B * x40;
   const double nu_cSt = std::pow(10.0, std::pow(10.0, A - B * std::log10(temp + 273.15))) - 0.7;
-  EXPECT_NEAR(nu_cSt, 10.3, 0.05);  // PHYSICS.md §3: ≈ 10.3 cSt at 80 °C (its 3 digits)
+  EXPECT_NEAR(nu_cSt, 10.3, 0.05);  // docs/physics.md §3: ≈ 10.3 cSt at 80 °C (its 3 digits)
   const double eta = fluid.density_kg_m3 * nu_cSt * 1e-6;
 
   const int n = p.sliding_interfaces;

@@ -1,4 +1,4 @@
-// Diagnosis result -> JSON (FORMATS.md "Diagnosis result") and report directory. The JSON text
+// Diagnosis result -> JSON (docs/formats/diagnosis_json.md) and report directory. The JSON text
 // is read back by a small strict RFC 8259 parser (tests/support/json.hpp),
 // so "valid JSON" is checked on the whole text, not on substrings; one test writes a real
 // diagnosis (a fake linear model) through it. Checked: every required key
@@ -149,7 +149,7 @@ std::string slurp(const std::string& p) {
 TEST(DiagnosisJson, ARealDiagnosisIsWrittenAsStrictJsonWithEveryKey) {
   // analysis::diagnose on the linear fake model (tests/support/linear_diagnosis.hpp: the run
   // misses torque_slope = 0.3 N m/rpm) written by the product writer: the whole text must parse
-  // as strict JSON, hold every top-level key of FORMATS.md "Diagnosis result" in order, and carry
+  // as strict JSON, hold every top-level key of docs/formats/diagnosis_json.md in order, and carry
   // the result's numbers and sentences.
   const std::vector<shudder::analysis::DiagnosisRun> runs{
       shudder::test::linear_measured_run({{"torque_slope", {0.3}}})};
@@ -289,7 +289,7 @@ TEST(DiagnosisJson, OptionalFieldsAreWritten) {
 }
 
 TEST(DiagnosisJson, BackwardCheckFindingsAreWrittenWithTheirCosts) {
-  // docs/diagnosis_format.md: `withdrawn_effects` without `kept_because`, an effect kept by the
+  // docs/formats/diagnosis_json.md: `withdrawn_effects` without `kept_because`, an effect kept by the
   // tie rule under `indistinguishable_effects` with it; the summary and report say the same.
   DiagnosisResult r;
   shudder::analysis::BackwardFinding w{"torque_sensor_gain", {{"gain", 1.004}}, 0.0031, 0.0452, true, "", "", "", {}};
@@ -482,7 +482,7 @@ TEST(DiagnosisJson, AReasonPerStepIsRequired) {
 namespace {
 
 TEST(DiagnosisJson, AJointStepNamesItsMembersInJointWith) {
-  // docs/diagnosis_format.md: a joint step (analysis/joint_step.hpp) is one step whose `effect`
+  // docs/formats/diagnosis_json.md: a joint step (analysis/joint_step.hpp) is one step whose `effect`
   // is the first member and `joint_with` the others; `missing_effects` lists both; a finding of
   // the backward check on it names them too; the words say "a + b".
   DiagnosisResult r;

@@ -1,4 +1,4 @@
-// Fluid file loader (docs/fluid_format.md): a good file of each kind loads to the expected law,
+// Fluid file loader (docs/formats/fluid_file.md): a good file of each kind loads to the expected law,
 // and every bad input gives an io::InputError whose message names the file, the key and the
 // reason. Bad files are written to a temporary directory by the test.
 #include <gmock/gmock.h>

@@ -1,4 +1,4 @@
-// The fluid file's [table] law (docs/fluid_format.md): read into a clutch::TableFriction with
+// The fluid file's [table] law (docs/formats/fluid_file.md): read into a clutch::TableFriction with
 // the values as written; a wrong shape, an implausible mu and a second law are InputErrors
 // naming the file and the key.
 #include <gmock/gmock.h>

@@ -68,7 +68,7 @@ class MeasuredRunTest : public shudder::test::TestDirectory {
   }
 };
 
-// The FORMATS.md example with `n` rows; `meta` and `header` replace the defaults.
+// The docs/formats/measured_run.md example with `n` rows; `meta` and `header` replace the defaults.
 const std::string format_line = "# format: shudder-measurement/1\n";
 const std::string header_line = "time_s,speed_rpm,normal_force_N,torque_Nm,temp_C,sump_temp_C\n";
 
@@ -115,7 +115,7 @@ std::vector<std::string> names(const MeasuredRun& run) {
   return out;
 }
 
-// A valid run in memory (the FORMATS.md columns, 12 rows) for HDF5 tests to break.
+// A valid run in memory (the docs/formats/measured_run.md columns, 12 rows) for HDF5 tests to break.
 MeasuredRun valid_run() {
   MeasuredRun run;
   run.metadata = {{"format", "shudder-measurement/1"}, {"rig", "lsctr"}};

@@ -1,4 +1,4 @@
-// Recording -> measured-run CSV (FORMATS.md). Checked: metadata and header exactly as the
+// Recording -> measured-run CSV (docs/formats/measured_run.md). Checked: metadata and header exactly as the
 // format's example; linear-ramp resampling exact at the new times; noise off = the recorded
 // values; noise reproducible per seed and of the stated size; bad options and recordings
 // rejected with nothing left on disk.
@@ -104,7 +104,7 @@ MeasurementOptions lsc_fluid_c() {
 TEST_F(MeasurementCsv, MetadataAndHeaderAsInFormats) {
   write_measurement_csv(path("run.csv"), ramp_recording(), lsc_fluid_c());
   const Csv csv = parse(path("run.csv"));
-  // The first five lines are FORMATS.md's example verbatim; then this writer's additions.
+  // The first five lines are docs/formats/measured_run.md's example verbatim; then this writer's additions.
   EXPECT_THAT(csv.meta,
               testing::ElementsAre(
                   "# format: shudder-measurement/1", "# rig: lsctr", "# fluid: lsc-fluid-c",

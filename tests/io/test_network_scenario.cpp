@@ -1,4 +1,4 @@
-// Network scenario files: the reference in docs/network_format.md equals the declarations the
+// Network scenario files: the reference in docs/formats/network_file.md equals the declarations the
 // reader uses; a bad network is one line naming the component, its line and what to change.
 #include <gtest/gtest.h>
 
@@ -17,7 +17,7 @@ namespace shudder::io {
 namespace {
 
 TEST(NetworkComponents, DocsTablesEqualTheDeclarations) {
-  const std::string docs = test::slurp(test::source_path("docs/network_format.md"));
+  const std::string docs = test::slurp(test::source_path("docs/formats/network_file.md"));
   const std::string begin = "<!-- BEGIN GENERATED REFERENCE -->\n", end = "<!-- END GENERATED REFERENCE -->";
   const auto a = docs.find(begin), b = docs.find(end);
   ASSERT_NE(a, std::string::npos);
@@ -25,12 +25,12 @@ TEST(NetworkComponents, DocsTablesEqualTheDeclarations) {
   const std::string section = docs.substr(a + begin.size(), b - a - begin.size());
   // SHUDDER_WRITE_DOCS=1 rewrites the section from the declarations (after changing them).
   if (const char* w = std::getenv("SHUDDER_WRITE_DOCS"); w && std::string(w) == "1") {
-    std::ofstream(test::source_path("docs/network_format.md"))
+    std::ofstream(test::source_path("docs/formats/network_file.md"))
         << docs.substr(0, a + begin.size()) << network_reference_markdown() << docs.substr(b);
     return;
   }
   EXPECT_EQ(section, network_reference_markdown())
-      << "docs/network_format.md's reference section should read:\n\n" << network_reference_markdown();
+      << "docs/formats/network_file.md's reference section should read:\n\n" << network_reference_markdown();
 }
 
 // Two inertias joined by a plain clutch; `extra` is appended (more components or keys).

@@ -1,5 +1,5 @@
 // The validation data file (io/validation_targets.hpp): the shipped scenarios/validation.toml
-// loads with the targets the thesis bands give (PHYSICS.md §5), and a broken file is an
+// loads with the targets the thesis bands give (docs/physics.md §5), and a broken file is an
 // InputError naming the key and what is allowed.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -40,7 +40,7 @@ analysis::RampRun rig_run_from_rest(double breakaway_ratio, unsigned seed) {
 
 analysis::FrictionConversion rig_conversion() {
   analysis::FrictionConversion c;
-  // The model's torque is mu at the uniform-pressure radius of its annulus (PHYSICS.md §9).
+  // The model's torque is mu at the uniform-pressure radius of its annulus (docs/physics.md §9).
   c.rule = analysis::RadiusRule::kUniformPressure;
   return c;
 }

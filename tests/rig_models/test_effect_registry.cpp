@@ -3,8 +3,8 @@
 //   * docs/effects.md carries the registry's tables exactly (names, descriptions, defaults,
 //     parameters, units, allowed ranges, fit bounds and starts); on a mismatch the test prints
 //     the tables to paste;
-//   * FORMATS.md (../shared/FORMATS.md, outside the repository: skipped where absent) names the
-//     registry's effects plus those docs/effects.md lists as not modelled yet, and no others;
+//   * the diagnosis JSON's contract (docs/formats/diagnosis_json.md) names the registry's effects
+//     plus those docs/effects.md lists as not modelled yet, and no others;
 //   * a scenario's `[effects.NAME]` and the diagnosis' enable_effect set the same members with the
 //     same scales (values written through the registry come back equal from a loaded scenario);
 //   * enable_effect's and the scenario reader's errors name the effect or the valid ones;
@@ -116,9 +116,9 @@ std::vector<std::string> lines(const std::string& text) {
   return out;
 }
 
-// docs/effects.md's line "Named in FORMATS.md, not modelled yet: `a`, `b`."
+// docs/effects.md's line "Named in the diagnosis format, not modelled yet: `a`, `b`."
 std::set<std::string> docs_not_modelled(const std::string& docs) {
-  const std::string prefix = "Named in FORMATS.md, not modelled yet:";
+  const std::string prefix = "Named in the diagnosis format, not modelled yet:";
   for (const auto& l : lines(docs))
     if (l.rfind(prefix, 0) == 0) {
       const auto names = backticked(l);
@@ -128,7 +128,7 @@ std::set<std::string> docs_not_modelled(const std::string& docs) {
   return {};
 }
 
-// The names of FORMATS.md's effect table (header "| name | what the effect is |"); a row may
+// The names of docs/formats/diagnosis_json.md's effect table (header "| name | what the effect is |"); a row may
 // name several effects ("`torque_sensor_gain`, `torque_sensor_offset`").
 std::vector<std::string> formats_effect_names(const std::string& formats) {
   std::vector<std::string> names;
@@ -143,7 +143,7 @@ std::vector<std::string> formats_effect_names(const std::string& formats) {
     const auto first_cell = l.substr(1, l.find('|', 1) - 1);
     for (auto& n : backticked(first_cell)) names.push_back(n);
   }
-  EXPECT_TRUE(in_table) << "FORMATS.md: no effect table with header \"| name | what the effect is |\"";
+  EXPECT_TRUE(in_table) << "docs/formats/diagnosis_json.md: no effect table with header \"| name | what the effect is |\"";
   return names;
 }
 
@@ -185,23 +185,16 @@ TEST(EffectRegistry, DocsTablesEqualTheRegistry) {
         << table;
 }
 
-TEST(EffectRegistry, FormatsMdNamesTheSameEffects) {
-  const char* env = std::getenv("SHUDDER_FORMATS_MD");
-  const std::filesystem::path formats =
-      env ? std::filesystem::path(env) : std::filesystem::path(SHUDDER_SOURCE_DIR) / ".." / "shared" / "FORMATS.md";
+TEST(EffectRegistry, DiagnosisFormatNamesTheSameEffects) {
   const auto not_modelled = docs_not_modelled(test::slurp(test::source_path("docs/effects.md")));
   for (const auto& e : effect_registry())
     EXPECT_EQ(not_modelled.count(e.name), 0u) << e.name << " is modelled but docs/effects.md lists it as not yet";
-  if (!std::filesystem::exists(formats))
-    GTEST_SKIP() << formats << " does not exist (FORMATS.md lives beside the repository, not in it; "
-                 << "set SHUDDER_FORMATS_MD to check against a copy)";
-
   std::set<std::string> expected = not_modelled;
   for (const auto& e : effect_registry()) expected.insert(e.name);
-  const auto names = formats_effect_names(test::slurp(formats));
+  const auto names = formats_effect_names(test::slurp(test::source_path("docs/formats/diagnosis_json.md")));
   EXPECT_EQ(std::set<std::string>(names.begin(), names.end()), expected)
-      << "FORMATS.md's effects = the registry's + docs/effects.md's not-modelled list";
-  EXPECT_EQ(names.size(), expected.size()) << "FORMATS.md names an effect twice";
+      << "docs/formats/diagnosis_json.md's effects = the registry's + docs/effects.md's not-modelled list";
+  EXPECT_EQ(names.size(), expected.size()) << "docs/formats/diagnosis_json.md names an effect twice";
 }
 
 // A value of the parameter in its key's unit, within its range and unlike its default.

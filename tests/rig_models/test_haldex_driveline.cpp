@@ -11,7 +11,7 @@
 //   * split μ: a front wheel on ice spins, the coupling sends torque to the rear, the car
 //     accelerates at the traction its wheels can give;
 //   * an open coupling (valve shut, no preload) carries nothing to the rear axle;
-//   * the estimates put the locked shuffle mode in PHYSICS.md's 2–10 Hz;
+//   * the estimates put the locked shuffle mode in docs/physics.md's 2–10 Hz;
 //   * in a tight turn fluid C keeps the coupling sliding smoothly, a fluid with a high static
 //     friction makes it stick-slip, at the frequency the stick events give.
 #include <gtest/gtest.h>
@@ -81,7 +81,7 @@ TEST(HaldexDriveline, LockedStraightDrivingAcceleratesLikeOneInertia) {
   EXPECT_EQ(last(rec, "stuck"), 1.0);
   // Energy: the integrator's tolerance (1e-6) bounds the error per step; the account closes far below.
   EXPECT_LT(test::scalar(rec, "mechanical_energy_relative_error"), 1e-6);
-  // The estimated parameters must put the shuffle mode where PHYSICS.md §8 says vehicles have
+  // The estimated parameters must put the shuffle mode where docs/physics.md §8 says vehicles have
   // it (2–10 Hz); 3.7 Hz with these defaults.
   EXPECT_GT(test::scalar(rec, "shuffle_frequency_Hz"), 2.0);
   EXPECT_LT(test::scalar(rec, "shuffle_frequency_Hz"), 10.0);

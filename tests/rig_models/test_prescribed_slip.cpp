@@ -3,7 +3,7 @@
 //   * the generated heat equals the time integral of torque * slip of the recorded signals,
 //   * the thermal ledger closes,
 //   * halving the thermal step moves the end torque and thermocouple temperature < 0.5 %,
-//   * the recorded signals carry the FORMATS.md names and consistent units,
+//   * the recorded signals carry the docs/formats/measured_run.md names and consistent units,
 //   * bearing drag adds mu_b F r_b to the torque cell signal only.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -127,7 +127,7 @@ TEST(PrescribedSlip, HalvingTheThermalStepChangesEndTorqueAndTemperatureByLessTh
   EXPECT_GT(signal(fine, "temp_C").back(), 90.0);
 }
 
-// FORMATS.md names the measured/simulated columns; their units follow the name suffixes.
+// docs/formats/measured_run.md names the measured/simulated columns; their units follow the name suffixes.
 TEST(PrescribedSlip, RecordsTheFormatsSignalsWithConsistentUnitsAndLengths) {
   const double rate = 100.0;
   const Recording rec = run_prescribed_slip(case1_clutch(), case1_cycle(), settings(0.01, rate));

@@ -3,7 +3,7 @@
 // driven through the project's prescribed-slip clutch and thermal model (Paper G thermal
 // defaults), written as a measured run with the rig's sensor noise (io/measurement_csv).
 //
-//   Paper D cycle (PHYSICS.md §4): N0 = 1 rpm for 5 s, ramp to 100 rpm in t_ramp, hold 2 s,
+//   Paper D cycle (docs/physics.md §4): N0 = 1 rpm for 5 s, ramp to 100 rpm in t_ramp, hold 2 s,
 //                                  ramp down to 1 rpm in t_ramp, hold 3 s.
 //   Paper E cycle: five times (1 rpm for 3 s, then 1 -> 100 rpm in 10 s).
 #include <functional>

@@ -1,15 +1,15 @@
 #!/usr/bin/python3
 """An independently written simulator of the LSC test rig in prescribed slip (Paper G Case 2).
 
-Written from /work/shared/PHYSICS.md (thesis digest), the thesis (Paper G eqs. 2-13, Table 1)
-and the file contracts of FORMATS.md only -- not from shudder's C++ (clutch/, rig_models/,
+Written from docs/physics.md (thesis digest), the thesis (Paper G eqs. 2-13, Table 1)
+and the file contracts of docs/formats/ only -- not from shudder's C++ (clutch/, rig_models/,
 analysis/). Its purpose: "measured" runs from a different author's discretisation and oil-flow
 calibration, to test `shudder diagnose` outside its own model family.
 
 Physics (SI units inside; names carry units):
 * friction  mu = C1 tanh(C2 v) + C3 v^0.1 + C4, v local sliding speed in mm/s (Paper G eq. 13),
   parameters from the fluid file's Maki matrix; mu interpolated linearly between the load sets
-  and temperature rows (PHYSICS.md section 1), v clamped to the file's range, load to its loads,
+  and temperature rows (docs/physics.md section 1), v clamped to the file's range, load to its loads,
   temperature held beyond the end rows.
 * contact   one sliding interface (Paper G's simulation), uniform pressure p = F / A over the
   annulus R_in..R_out; torque M = sum_i r_i p mu_i A_i; heat flux q_i = r_i dw p mu_i (W/m^2).
@@ -25,7 +25,7 @@ Physics (SI units inside; names carry units):
 * sump      held at its start temperature (Paper D: "the oil sump temperature is constant").
 * sensors   thermocouple at r = 48 mm, z = 0.5 mm from the separator's back face (Paper G);
   IR spot: chord-weighted mean interface temperature over a 4 mm spot at r = 48 mm with its
-  30 ms response (PHYSICS.md section 4); noise sigma = half the stated accuracy (torque 0.625 N m,
+  30 ms response (docs/physics.md section 4); noise sigma = half the stated accuracy (torque 0.625 N m,
   force 37.5 N, thermocouples 0.335 C, IR 0.75 C; speed 0.005 rpm, an estimate).
 
 Discretisation (deliberately unlike a cell-centred backward-Euler 2-D solve):
@@ -54,7 +54,7 @@ import numpy as np
 
 RPM = 2.0 * math.pi / 60.0  # rad/s per rpm
 
-# Paper G Table 1 (lining c_p: 500 J/kgK, not the printed 5000 -- PHYSICS.md section 3).
+# Paper G Table 1 (lining c_p: 500 J/kgK, not the printed 5000 -- docs/physics.md section 3).
 R_IN_M, R_OUT_M = 38.1e-3, 56.4e-3
 LAYERS = (  # (thickness m, intervals, k W/mK, rho kg/m3, c J/kgK)
     (0.75e-3, 5, 46.0, 7600.0, 449.0),   # half separator

@@ -34,7 +34,7 @@ def test_friction_is_paper_g_eq13_with_the_printed_70C_20kN_set():
 
 def test_friction_interpolates_mu_between_load_sets_not_the_coefficients():
     # 22.5 kN at 70 C is midway between the printed 20 and 25 kN sets: mu is the mean of their mu
-    # values (PHYSICS.md section 1). Exact up to rounding.
+    # values (docs/physics.md section 1). Exact up to rounding.
     fr = sim.Friction(FLUID)
     v = np.array([10.0, 100.0, 400.0])
     expected = 0.5 * (law((-0.039, 0.001, 0.077, -0.024), v) + law((-0.038, 0.002, 0.089, -0.036), v))
