@@ -8,6 +8,7 @@
 #include <limits>
 #include <numeric>
 
+#include "clutch/friction_radius.hpp"
 #include "clutch/linear_friction.hpp"
 #include "core/units.hpp"
 #include "clutch/maki_friction.hpp"
@@ -37,9 +38,17 @@ const char* law_name(LawKind k) {
 }
 
 double FrictionConversion::effective_radius_mm() const {
-  if (rule == RadiusRule::kUniformWear) return mean_radius_mm;
-  const double ri = inner_radius_mm, ro = outer_radius_mm;
-  return 2.0 / 3.0 * (ro * ro * ro - ri * ri * ri) / (ro * ro - ri * ri);
+  switch (rule) {
+    case RadiusRule::kUniformWear: return mean_radius_mm;
+    case RadiusRule::kModel: return model_radius_mm;
+    case RadiusRule::kUniformPressure: break;
+  }
+  return clutch::uniform_pressure_radius(inner_radius_mm, outer_radius_mm);
+}
+
+clutch::RadiusConvention FrictionConversion::convention() const {
+  return rule == RadiusRule::kUniformWear ? clutch::RadiusConvention::kUniformWear
+                                          : clutch::RadiusConvention::kUniformPressure;
 }
 
 namespace {
@@ -181,10 +190,11 @@ std::array<double, 4> fit_maki_curve(const std::vector<double>& v, const std::ve
     const Eigen::VectorXd r = x * coef - y;
     return (w.array() * r.array().square()).sum();
   };
-  // C2 from 1e-5 to 1 per mm/s: Paper G's sets use 1e-4 … 1.3e-2; below 1e-5 tanh is linear over
-  // any measured range (C1·C2 then acts as one slope), above 1 it is a step below 1 mm/s.
+  // C2 from 1e-5 to 1 per mm/s (kMakiC2Min/Max): Paper G's sets use 1e-4 … 1.3e-2; below 1e-5
+  // tanh is linear over any measured range (C1·C2 then acts as one slope), above 1 it is a step
+  // below 1 mm/s.
   constexpr int kGrid = 61;
-  const double lo = std::log(1e-5), hi = std::log(1.0);
+  const double lo = std::log(kMakiC2Min), hi = std::log(kMakiC2Max);
   std::vector<double> cost(kGrid);
   Eigen::Vector3d coef;
   int best = 0;
@@ -334,7 +344,8 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
       if (std::abs(rpm) < 0.5) continue;  // below half an rpm the sign of slip is uncertain
       const double f = run.normal_force_N[k];
       if (!(f > 0)) continue;
-      const double mu = std::copysign(1.0, rpm) * run.torque_Nm[k] / (s.conversion.interfaces * f * r_m) -
+      const double mu = clutch::mu_from_torque(std::copysign(1.0, rpm) * run.torque_Nm[k], f, r_m,
+                                               s.conversion.interfaces) -
                         s.conversion.bearing_drag_mu;
       samples[i].push_back({std::abs(rpm) * mm_s_per_rpm, mu, run.temp_C[k]});
       out.min_temp_C = std::min(out.min_temp_C, run.temp_C[k]);
@@ -603,6 +614,15 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
       }
       row.maki = p;
       sets[cell] = {p[0], p[1], p[2], p[3]};
+      // C2 on (within kMakiBoundMargin of) its search range's end: the data do not determine it.
+      const double c2_margin = kMakiBoundMargin * std::log(kMakiC2Max / kMakiC2Min);
+      if (std::log(p[1] / kMakiC2Min) < c2_margin || std::log(kMakiC2Max / p[1]) < c2_margin)
+        out.warnings.push_back(row_name(row.load_N, row.temp_C) + ": the Mäki rate C2 = " + g(p[1], 10) +
+                               " per mm/s sits on its search bound [" + g(kMakiC2Min) + ", " + g(kMakiC2Max) + "]: " +
+                               (std::log(p[1] / kMakiC2Min) < c2_margin
+                                    ? "tanh(C2 v) is linear over the data, so only C1·C2 is determined, not C1 and C2"
+                                    : "tanh(C2 v) is a step below the data's speeds, so C1 acts as a constant") +
+                               "; the law holds inside its data, its coefficients are not the fluid's (try --law table)");
       for (int k = 0; k <= 64; ++k) {
         const double v = out.min_speed_mm_s * std::pow(out.max_speed_mm_s / out.min_speed_mm_s, k / 64.0);
         const double mu = sets[cell].mu(v);

@@ -3,7 +3,11 @@
 //
 //   1. ramps   analysis/ramp_detection finds the up- and down-ramps of every run.
 //   2. mu      mu = (M / (n F r_eff)) − mu_bearing, M the torque cell, F the normal force, n the
-//              sliding interfaces, r_eff the effective friction radius:
+//              sliding interfaces, r_eff the effective friction radius (one definition of both
+//              conversions: clutch/friction_radius.hpp):
+//                model (default of the command): the clutch model's own radius, sum r_i A_i /
+//                                               sum A_i over its rings (47.83 mm for Paper G's
+//                                               annulus), at which a model reproduces the torque;
 //                uniform wear (the thesis):     r_eff = the stated mean radius (46 mm),
 //                uniform pressure (Paper G):    r_eff = 2/3 (ro³ − ri³)/(ro² − ri²) (47.8 mm
 //                                               for 38.1–56.4 mm, PHYSICS.md §9);
@@ -48,6 +52,7 @@
 
 #include "analysis/ramp_detection.hpp"
 #include "clutch/friction_law.hpp"
+#include "clutch/friction_radius.hpp"
 
 namespace shudder::analysis {
 
@@ -61,20 +66,29 @@ class CharacterisationInputError : public std::invalid_argument {
   std::string file_;
 };
 
-enum class RadiusRule { kUniformWear, kUniformPressure };
+enum class RadiusRule { kUniformWear, kUniformPressure, kModel };
 enum class Compensation { kNone, kLinear, kQuadratic, kPiecewise };
 enum class LawKind { kMaki, kLinear, kTable };
 const char* compensation_name(Compensation c);  // "none", "linear", "quadratic", "piecewise"
 const char* law_name(LawKind k);                // "maki", "linear", "table"
+
+/// The Mäki rate C2's search range, per mm/s (fit_maki_curve), and the fraction of its log range
+/// within which a fitted C2 counts as on its bound (Characterisation::warnings): 2 %, the margin
+/// the diagnosis allows its parameters (analysis/diagnosis.hpp bound_margin), a factor 1.26.
+inline constexpr double kMakiC2Min = 1e-5, kMakiC2Max = 1.0, kMakiBoundMargin = 0.02;
 
 struct FrictionConversion {
   RadiusRule rule = RadiusRule::kUniformWear;
   double mean_radius_mm = 46.0;   // thesis: uniform wear at the mean radius 46 mm
   double inner_radius_mm = 38.1;  // Paper G's annulus (uniform pressure)
   double outer_radius_mm = 56.4;
+  double model_radius_mm = 0.0;   // kModel: the clutch model's radius (WetClutch::mean_radius_m)
   int interfaces = 1;             // sliding interfaces n (Paper G simulates one)
   double bearing_drag_mu = 0.0;   // subtracted; thesis rig: 0.005
+  std::string source;             // where the radius comes from, for the outputs ("" : the rule's name)
   double effective_radius_mm() const;
+  /// The convention recorded with the law: kModel is uniform pressure (on the model's rings).
+  clutch::RadiusConvention convention() const;
 };
 
 struct CharacterisationSettings {
@@ -140,6 +154,7 @@ struct Characterisation {
   double min_speed_mm_s = 0.0, max_speed_mm_s = 0.0;  // the law's speed range
   double min_temp_C = 0.0, max_temp_C = 0.0;          // temperature channel, all used ramps
   std::shared_ptr<const clutch::FrictionLaw> law;
+  std::vector<std::string> warnings;  // fitted parameters on a search bound (printed by the command)
 };
 
 /// `runs` in the order given (their names appear in errors and in `used`/`rejected`).

@@ -31,9 +31,7 @@ std::string nums(const std::vector<double>& v, int digits = 10) {
 
 std::string toml_string(const std::string& s) { return json_string(s); }  // basic strings share JSON's escapes
 
-const char* radius_rule(const analysis::FrictionConversion& c) {
-  return c.rule == analysis::RadiusRule::kUniformWear ? "uniform_wear" : "uniform_pressure";
-}
+const char* radius_rule(const analysis::FrictionConversion& c) { return clutch::radius_convention_name(c.convention()); }
 
 }  // namespace
 
@@ -43,7 +41,8 @@ std::string characterised_fluid_toml(const analysis::Characterisation& c, const 
   o << "# Made by `shudder characterise` from " << runs.size() << " measured run(s), " << c.used.size()
     << " ramps used, " << c.rejected.size() << " rejected (FIT.json lists them).\n"
     << "# mu = M / (n F r_eff) - mu_bearing: n = " << s.conversion.interfaces << ", r_eff = " << num(c.effective_radius_mm, 5)
-    << " mm (" << radius_rule(s.conversion) << "), mu_bearing = " << num(s.conversion.bearing_drag_mu, 4)
+    << " mm (" << radius_rule(s.conversion) << (s.conversion.source.empty() ? "" : ": " + s.conversion.source)
+    << "), mu_bearing = " << num(s.conversion.bearing_drag_mu, 4)
     << "; temperature compensation: " << analysis::compensation_name(s.compensation) << ".\n"
     << "# Data range: " << num(c.min_speed_mm_s, 4) << "-" << num(c.max_speed_mm_s, 4) << " mm/s, "
     << num(c.min_temp_C, 4) << "-" << num(c.max_temp_C, 4) << " °C, " << num(c.loads_N.front(), 5) << "-"
@@ -53,7 +52,9 @@ std::string characterised_fluid_toml(const analysis::Characterisation& c, const 
   if (!fluid.description.empty()) o << "description = " << toml_string(fluid.description) << "\n";
   o << "nu40_cSt = " << num(fluid.nu40_cSt) << "\nnu100_cSt = " << num(fluid.nu100_cSt)
     << "\ndensity_kg_m3 = " << num(fluid.density_kg_m3) << "\n\n[static_friction]\nbreakaway_ratio = "
-    << num(fluid.breakaway_ratio) << "\nsource = " << toml_string(fluid.breakaway_source) << "\n\n";
+    << num(fluid.breakaway_ratio) << "\nsource = " << toml_string(fluid.breakaway_source) << "\n\n"
+    << "[friction_radius]\n# the radius mu was read at from torque; a model of another radius converts the law\n"
+    << "convention = \"" << radius_rule(s.conversion) << "\"\nradius_mm = " << num(c.effective_radius_mm) << "\n\n";
   if (s.law == analysis::LawKind::kMaki) {
     o << "[maki]\nmin_speed_mm_s = " << num(c.min_speed_mm_s) << "\nmax_speed_mm_s = " << num(c.max_speed_mm_s)
       << "\nloads_N = " << nums(c.loads_N) << "\n";
@@ -100,7 +101,8 @@ std::string characterisation_json(const analysis::Characterisation& c, const ana
     << analysis::compensation_name(s.compensation) << "\",\n  \"alpha_per_C\": "
     << (s.compensation == analysis::Compensation::kLinear ? num(c.alpha_per_C) : "null")
     << ",\n  \"alpha_fitted\": " << (c.alpha_fitted ? "true" : "false") << ",\n  \"radius\": {\"rule\": \""
-    << radius_rule(s.conversion) << "\", \"effective_mm\": " << num(c.effective_radius_mm)
+    << radius_rule(s.conversion) << "\", \"source\": " << json_string(s.conversion.source)
+    << ", \"effective_mm\": " << num(c.effective_radius_mm)
     << ", \"interfaces\": " << s.conversion.interfaces << ", \"bearing_drag_mu\": " << num(s.conversion.bearing_drag_mu)
     << "},\n  \"ranges\": {\"speed_mm_s\": [" << num(c.min_speed_mm_s) << ", " << num(c.max_speed_mm_s)
     << "], \"temp_C\": [" << num(c.min_temp_C) << ", " << num(c.max_temp_C) << "], \"load_N\": ["
@@ -133,7 +135,9 @@ std::string characterisation_json(const analysis::Characterisation& c, const ana
         << nums({r.maki_se[0], r.maki_se[1], r.maki_se[2], r.maki_se[3]});
     o << ", \"node_mu\": " << nums(r.node_mu) << "}";
   }
-  o << "\n  ]";
+  o << "\n  ],\n  \"warnings\": [";
+  for (std::size_t i = 0; i < c.warnings.size(); ++i) o << (i ? ", " : "") << json_string(c.warnings[i]);
+  o << "]";
   if (!c.quadratic.empty()) {
     o << ",\n  \"quadratic\": [";
     for (std::size_t i = 0; i < c.quadratic.size(); ++i) {
