@@ -594,6 +594,14 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
       out.rows.push_back(std::move(row));
     }
 
+  // The law's rows stop at the highest reference temperature; above it the law holds that row.
+  if (out.max_temp_C > out.temps_C.back() + s.temp_tolerance_C)
+    out.warnings.push_back("the ramps heat the temperature channel to " + g(out.max_temp_C, 3) + " °C, " +
+                           g(out.max_temp_C - out.temps_C.back(), 2) + " K above the top row (" +
+                           g(out.temps_C.back(), 3) + " °C): above it the law holds that row's mu, so a model "
+                           "replaying the hottest runs reads it outside its data there (add ramps that start near " +
+                           g(out.max_temp_C, 3) + " °C)");
+
   // 6. The law.
   if (s.law == LawKind::kMaki) {
     std::vector<clutch::MakiSet> sets(nt * nl);
