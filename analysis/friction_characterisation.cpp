@@ -503,13 +503,25 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
   }
 
   // 5. Rows: binned means of compensated samples, up/down at the nodes.
-  std::vector<std::vector<std::size_t>> members(nt * nl);
-  for (std::size_t i = 0; i < out.used.size(); ++i)
+  // hot_row: one more row at the hottest temperature the ramps reach, made of the top row's
+  // ramps compensated up to it (the compensation's own mu(T)); without it the law holds the top
+  // row's mu above that row, where the hottest runs heat the clutch.
+  const bool hot = s.hot_row && s.compensation != Compensation::kNone && s.law != LawKind::kLinear &&
+                   out.max_temp_C > out.temps_C.back() + s.temp_tolerance_C;
+  if (hot) {
+    out.temps_C.push_back(out.max_temp_C);
+    out.hot_row_temp_C = out.max_temp_C;
+  }
+  const std::size_t nt_all = out.temps_C.size();
+  std::vector<std::vector<std::size_t>> members(nt_all * nl);
+  for (std::size_t i = 0; i < out.used.size(); ++i) {
     members[std::size_t(temp_group[i]) * nl + std::size_t(load_group[i])].push_back(i);
+    if (hot && std::size_t(temp_group[i]) == nt - 1) members[nt * nl + std::size_t(load_group[i])].push_back(i);
+  }
   const int kBins = std::max(s.speed_bins, 5);
   const double l0 = std::log(vmin), l1 = std::log(vmax);
-  std::vector<double> within_ss(nt * nl, 0.0), n_samples(nt * nl, 0.0);
-  for (std::size_t it = 0; it < nt; ++it)
+  std::vector<double> within_ss(nt_all * nl, 0.0), n_samples(nt_all * nl, 0.0);
+  for (std::size_t it = 0; it < nt_all; ++it)
     for (std::size_t il = 0; il < nl; ++il) {
       const auto& m = members[it * nl + il];
       RowFit row;
@@ -522,7 +534,7 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
           throw CharacterisationInputError(
               runs.front().name, row_name(row.load_N, row.temp_C) + " has no ramp; a " + law_name(s.law) +
                                      " law needs ramps at every load (" + std::to_string(nl) +
-                                     ") at every temperature (" + std::to_string(nt) +
+                                     ") at every temperature (" + std::to_string(nt_all) +
                                      "); add runs, pass --row-temps, or use --law linear");
         continue;
       }
@@ -600,11 +612,12 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
                            g(out.max_temp_C - out.temps_C.back(), 2) + " K above the top row (" +
                            g(out.temps_C.back(), 3) + " °C): above it the law holds that row's mu, so a model "
                            "replaying the hottest runs reads it outside its data there (add ramps that start near " +
-                           g(out.max_temp_C, 3) + " °C)");
+                           g(out.max_temp_C, 3) + " °C" +
+                           (s.compensation == Compensation::kNone ? ", or a compensation and --hot-row" : "") + ")");
 
   // 6. The law.
   if (s.law == LawKind::kMaki) {
-    std::vector<clutch::MakiSet> sets(nt * nl);
+    std::vector<clutch::MakiSet> sets(nt_all * nl);
     for (RowFit& row : out.rows) {
       const std::size_t cell = row.i_temp * nl + row.i_load;
       std::array<double, 4> p;
@@ -643,7 +656,7 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
     out.law = std::make_shared<clutch::MakiFrictionMatrix>(out.loads_N, out.temps_C, sets, out.min_speed_mm_s,
                                                            out.max_speed_mm_s);
   } else if (s.law == LawKind::kTable) {
-    std::vector<double> mu(nt * nl * nn);
+    std::vector<double> mu(nt_all * nl * nn);
     for (const RowFit& row : out.rows)
       for (std::size_t k = 0; k < nn; ++k) mu[(row.i_temp * nl + row.i_load) * nn + k] = row.node_mu[k];
     out.law = std::make_shared<clutch::TableFriction>(out.node_speeds_mm_s, out.temps_C, out.loads_N, mu);

@@ -18,6 +18,11 @@
 //              start temperature; a down-ramp takes that of the up-ramp before it in the same
 //              run (one Paper D cycle: both belong to the cycle's start temperature). Loads
 //              within ±load_tolerance and temperatures within ±temp_tolerance_C join.
+//   3b. hot row (CharacterisationSettings::hot_row; Mäki and table laws, a compensation other
+//              than none): when the ramps heat the temperature channel beyond the top row by
+//              more than temp_tolerance_C, one more row at the hottest reading, made of the top
+//              row's ramps compensated up to it. Without it the law holds the top row's mu above
+//              it, where the hottest runs heat the clutch (a replay misses there).
 //   4. compensation to the row temperature T_row, sample by sample at temperature T:
 //              none       mu as measured (the bias the thesis removes);
 //              linear     mu − alpha (T − T_row) (Papers B/C), alpha given or fitted as the
@@ -44,6 +49,7 @@
 // the file or row; a fit that fails numerically throws std::runtime_error.
 
 #include <array>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -104,6 +110,7 @@ struct CharacterisationSettings {
   std::vector<double> row_temps_C;    // empty: the clusters of the data
   double linear_load_N = 20000.0;     // the linear law's load (Paper E: 20 kN); nearest row
   int speed_bins = 48;                // log-spaced bins per row for the fit
+  bool hot_row = false;               // a row at the hottest temperature reached (file comment, 3b)
 };
 
 struct QuadraticNode {
@@ -155,6 +162,7 @@ struct Characterisation {
   double min_temp_C = 0.0, max_temp_C = 0.0;          // temperature channel, all used ramps
   std::shared_ptr<const clutch::FrictionLaw> law;
   std::vector<std::string> warnings;  // fitted parameters on a search bound (printed by the command)
+  double hot_row_temp_C = std::numeric_limits<double>::quiet_NaN();  // the hot row's, if one was added
 };
 
 /// `runs` in the order given (their names appear in errors and in `used`/`rejected`).

@@ -136,6 +136,7 @@ int characterise_command(const CharacteriseOptions& o) {
     s.linear_load_N = o.linear_load_N;
     s.row_temps_C = parse_list("--row-temps", o.row_temps);
     s.node_rpm = parse_list("--node-rpm", o.node_rpm);
+    s.hot_row = o.hot_row;
 
     // The model the fluid is for (--model): its clutch's friction radius, and the replay of
     // --method inverse.

@@ -119,6 +119,7 @@ struct CharacteriseOptions {
   std::string method = "sensor";          // sensor | inverse (replayed through the model)
   std::string model;                      // the model the fluid is for: its clutch's radius; inverse: replayed; empty = Paper G defaults
   int inverse_iterations = 8;             // inverse: law updates per pass before "did not converge"
+  bool hot_row = true;                    // a row at the hottest temperature the ramps reach (--no-hot-row: none)
 };
 int characterise_command(const CharacteriseOptions& options);
 

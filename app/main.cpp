@@ -166,6 +166,9 @@ int main(int argc, char** argv) {
   char_cmd->add_option("--model", characterise.model, "Scenario of the model the fluid is for: its clutch's friction "
                                                       "radius (--radius model) and, with --method inverse, the clutch "
                                                       "and thermal model that replay the runs (default: Paper G's clutch)");
+  char_cmd->add_flag("--hot-row,!--no-hot-row", characterise.hot_row,
+                     "Add a row at the hottest temperature the ramps reach, from the top row's ramps compensated "
+                     "to it (default; Maki and table laws). --no-hot-row: the law holds the top row's mu above it");
   char_cmd->add_option("--inverse-iterations", characterise.inverse_iterations,
                        "--method inverse: law updates per pass before it counts as not converged (default 8)")
       ->check(CLI::Range(1, 100));

@@ -60,7 +60,11 @@ std::string characterised_fluid_toml(const analysis::Characterisation& c, const 
       << "\nloads_N = " << nums(c.loads_N) << "\n";
     const auto& law = static_cast<const clutch::MakiFrictionMatrix&>(*c.law);
     for (std::size_t it = 0; it < c.temps_C.size(); ++it) {
-      o << "\n[[maki.row]]\ntemp_C = " << num(c.temps_C[it]) << "\norigin = \"fitted: shudder characterise\"\nsets = [\n";
+      o << "\n[[maki.row]]\ntemp_C = " << num(c.temps_C[it]) << "\norigin = \""
+        << (c.temps_C[it] == c.hot_row_temp_C ? "fitted: shudder characterise, the top row's ramps compensated to "
+                                                "the hottest temperature they reach (--hot-row)"
+                                              : "fitted: shudder characterise")
+        << "\"\nsets = [\n";
       for (std::size_t il = 0; il < c.loads_N.size(); ++il) {
         const auto& p = law.set(it, il);
         o << "  " << nums({p.c1, p.c2, p.c3, p.c4}) << ",  # " << num(c.loads_N[il] / 1000.0, 4) << " kN\n";
@@ -79,7 +83,11 @@ std::string characterised_fluid_toml(const analysis::Characterisation& c, const 
     o << "[table]\n# speeds: " << nums(c.node_rpm, 4) << " rpm at r_eff\nspeeds_mm_s = " << nums(c.node_speeds_mm_s)
       << "\nloads_N = " << nums(c.loads_N) << "\n";
     for (std::size_t it = 0; it < c.temps_C.size(); ++it) {
-      o << "\n[[table.row]]\ntemp_C = " << num(c.temps_C[it]) << "\norigin = \"measured: shudder characterise\"\nmu = [\n";
+      o << "\n[[table.row]]\ntemp_C = " << num(c.temps_C[it]) << "\norigin = \""
+        << (c.temps_C[it] == c.hot_row_temp_C ? "measured: shudder characterise, the top row's ramps compensated to "
+                                                "the hottest temperature they reach (--hot-row)"
+                                              : "measured: shudder characterise")
+        << "\"\nmu = [\n";
       for (std::size_t il = 0; il < c.loads_N.size(); ++il) {
         std::vector<double> row;
         for (double v : c.node_speeds_mm_s) row.push_back(c.law->mu(v, c.temps_C[it], c.loads_N[il]));
@@ -106,7 +114,8 @@ std::string characterisation_json(const analysis::Characterisation& c, const ana
     << ", \"interfaces\": " << s.conversion.interfaces << ", \"bearing_drag_mu\": " << num(s.conversion.bearing_drag_mu)
     << "},\n  \"ranges\": {\"speed_mm_s\": [" << num(c.min_speed_mm_s) << ", " << num(c.max_speed_mm_s)
     << "], \"temp_C\": [" << num(c.min_temp_C) << ", " << num(c.max_temp_C) << "], \"load_N\": ["
-    << num(c.loads_N.front()) << ", " << num(c.loads_N.back()) << "]},\n  \"loads_N\": " << nums(c.loads_N)
+    << num(c.loads_N.front()) << ", " << num(c.loads_N.back()) << "]},\n  \"hot_row_temp_C\": " << num(c.hot_row_temp_C)
+    << ",\n  \"loads_N\": " << nums(c.loads_N)
     << ",\n  \"temps_C\": " << nums(c.temps_C) << ",\n  \"node_rpm\": " << nums(c.node_rpm) << ",\n  \"ramps_used\": [";
   for (std::size_t i = 0; i < c.used.size(); ++i) {
     const auto& r = c.used[i];

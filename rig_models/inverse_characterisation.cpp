@@ -95,6 +95,7 @@ InverseCharacterisation characterise_inverse(const std::vector<analysis::RampRun
   // ramp's start differs from the sensor's by the heating of the hold before it.
   out.settings = settings;
   out.settings.row_temps_C = out.sensor.temps_C;
+  if (std::isfinite(out.sensor.hot_row_temp_C)) out.settings.row_temps_C.pop_back();  // made again from the model's
   std::vector<analysis::RampRun> model_runs = runs;
   for (int pass = 0; pass < 2; ++pass) {
     if (inv.calibrate_oil_flow) {

@@ -56,7 +56,9 @@ TEST(CliCharacterise, WritesAFluidThatScreenAndRunAcceptPlusJsonAndReport) {
   EXPECT_THAT(r.out, ::testing::HasSubstr("12 ramps used (6 up, 6 down)"));
   const auto json = test::parse(test::slurp(dir / "fit.json"));
   EXPECT_EQ(json["format"].str(), "shudder-characterisation/1");
-  EXPECT_EQ(json["rows"].items.size(), 6u);
+  // 2 loads x (40, 60, 80 °C and the hot row at the hottest reading, ~100 °C).
+  EXPECT_EQ(json["rows"].items.size(), 8u);
+  EXPECT_GT(json["hot_row_temp_C"].num(), 83.0);
   EXPECT_EQ(json["ramps_used"].items.size(), 12u);
   EXPECT_TRUE(fs::exists(dir / "rep" / "summary.txt"));
   // Paper D's cycles start at N0 = 1 rpm, never at rest: no breakaway to measure, and it says so.
@@ -74,6 +76,7 @@ TEST(CliCharacterise, WritesAFluidThatScreenAndRunAcceptPlusJsonAndReport) {
   EXPECT_EQ(pj["compensation"].str(), "piecewise");
   ASSERT_EQ(pj["piecewise"].items.size(), 2u);  // 10 and 20 kN
   for (const auto& row_temp : pj["temps_C"].items) {
+    if (row_temp.num() == pj["hot_row_temp_C"].num()) continue;  // made after the surface, from it
     bool is_knot = false;
     for (const auto& knot : pj["piecewise"].items[0]["temp_knots_C"].items) is_knot |= knot.num() == row_temp.num();
     EXPECT_TRUE(is_knot) << row_temp.num();
@@ -189,8 +192,8 @@ TEST(CliCharacterise, InverseMethodReportsBothMethods) {
   EXPECT_EQ(json["method"].str(), "inverse");
   EXPECT_EQ(json["temperature"].str(), "model_interface_mean");
   const auto& m = json["methods"];
-  ASSERT_EQ(m["sensor"]["rows"].items.size(), 6u);
-  ASSERT_EQ(m["inverse"]["rows"].items.size(), 6u);
+  ASSERT_EQ(m["sensor"]["rows"].items.size(), 8u);  // with the hot rows
+  ASSERT_EQ(m["inverse"]["rows"].items.size(), 8u);
   EXPECT_EQ(m["sensor"]["compensation"].str(), "quadratic");
   // The inverse law is the one whose replay reproduces the measured torque: its misfit must be
   // below the sensor law's (both replayed with the same calibrated thermal model).
