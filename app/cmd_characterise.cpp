@@ -199,6 +199,14 @@ int characterise_command(const CharacteriseOptions& o) {
       }
       c = inverse->inverse;
       written = inverse->settings;
+      // Where the inverse method should not be used (docs/characterisation.md 2c).
+      if (s.compensation == analysis::Compensation::kNone)
+        c.warnings.push_back("--method inverse with --compensation none: no temperature enters the law, so it equals "
+                             "the sensor method's (at many times the cost)");
+      else if (!s.hot_row && c.max_temp_C > c.temps_C.back() + s.temp_tolerance_C)
+        c.warnings.push_back("--method inverse with --no-hot-row on runs that heat above the top row: its compensation "
+                             "takes out more of the heating than the sensor method's and nothing puts it back, so it "
+                             "replays worse; drop --no-hot-row");
     }
 
     io::FluidIdentity id;

@@ -62,7 +62,8 @@ const Data& data() {
       for (int t : {40, 60, 80, 100}) {
         const std::string key = std::to_string(kN) + "_" + std::to_string(t);
         out.run[key] = test::make_measured_run(out.dir, "r" + key, case_scenario(kN * 1000.0, t), seed++);
-        out.all += " " + out.run[key].filename().string();
+        out.all += ' ';
+        out.all += out.run[key].filename().string();
       }
     return out;
   }();
