@@ -6,7 +6,7 @@
 //              sliding interfaces, r_eff the effective friction radius (one definition of both
 //              conversions: clutch/friction_radius.hpp):
 //                model (default of the command): the clutch model's own radius, sum r_i A_i /
-//                                               sum A_i over its rings (47.83 mm for Paper G's
+//                                               sum A_i over its rings (47.839 mm for Paper G's
 //                                               annulus), at which a model reproduces the torque;
 //                uniform wear (the thesis):     r_eff = the stated mean radius (46 mm),
 //                uniform pressure (Paper G):    r_eff = 2/3 (ro³ − ri³)/(ro² − ri²) (47.8 mm

@@ -186,6 +186,10 @@ int characterise_command(const CharacteriseOptions& o) {
         is.model.fluid.nu40_cSt = o.nu40_cSt;
         is.model.fluid.nu100_cSt = o.nu100_cSt;
         is.model.settings.thermal_step_s = 0.02;  // the ramps last seconds; 20 ms resolves the heating
+        if (s.conversion.rule == analysis::RadiusRule::kModel) {  // the annulus the radius was taken from
+          is.model.clutch.thermal.inner_radius_m = s.conversion.inner_radius_mm * 1e-3;
+          is.model.clutch.thermal.outer_radius_m = s.conversion.outer_radius_mm * 1e-3;
+        }
       } else {
         is.model = io::replay_model(*scenario);
       }

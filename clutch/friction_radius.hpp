@@ -12,7 +12,7 @@
 //   model              r_eff = Σ r_i A_i / Σ A_i over the clutch model's rings: the model puts a
 //                      uniform pressure on rings (clutch/wet_clutch.hpp), so for a uniform mu its
 //                      torque is exactly mu F r_eff n at this radius (the uniform-pressure value
-//                      to within the rings' discretisation: 47.83 mm for Paper G's annulus).
+//                      to within the rings' discretisation: 47.839 mm for Paper G's annulus).
 //
 // A friction law fitted from torque at one radius r_law and used by a model whose radius is
 // r_model reproduces the torque it was fitted on when it is read as

@@ -195,9 +195,11 @@ TEST(CliCharacterise, InverseMethodReportsBothMethods) {
   ASSERT_EQ(m["sensor"]["rows"].items.size(), 8u);  // with the hot rows
   ASSERT_EQ(m["inverse"]["rows"].items.size(), 8u);
   EXPECT_EQ(m["sensor"]["compensation"].str(), "quadratic");
-  // The inverse law is the one whose replay reproduces the measured torque: its misfit must be
-  // below the sensor law's (both replayed with the same calibrated thermal model).
-  EXPECT_LT(m["inverse"]["replayed_torque_rms_Nm"].num(), m["sensor"]["replayed_torque_rms_Nm"].num());
+  // On data from the model itself both laws replay the runs at the torque cell's noise (with the
+  // hot rows; docs/characterisation.md 2c: 0.665 against 0.658 N m, 1 %): the inverse law is
+  // not worse by more than 3 %, twice that. (Without the hot rows the sensor law missed the runs
+  // above its top row by 1.5-4.6 sigma and the inverse one by less.)
+  EXPECT_LT(m["inverse"]["replayed_torque_rms_Nm"].num(), 1.03 * m["sensor"]["replayed_torque_rms_Nm"].num());
   EXPECT_EQ(m["thermal_calibration"]["temp_rms_C"].items.size(), 2u);
   EXPECT_NO_THROW(io::load_fluid((dir / "inv.toml").string()));
 }
