@@ -7,8 +7,9 @@
 # characterised with every friction radius (--radius model | uniform_pressure | uniform_wear) and
 # both methods, then replayed through the model the fluid is for (`diagnose --max-effects 0`: the
 # baseline replay, JSON channels[].final_rms against .noise), and diagnosed (every candidate, no
-# tolerance): the round trip must name nothing.
+# tolerance; DIAG below): the round trip must name nothing.
 #
+#   [DIAG=each|all|0] [DATA="own indep"] [RADII=...] [METHODS=...] \
 #   scripts/characterise_round_trip.sh [build/app/shudder] [OUT_DIR]
 # Prints one line per case: data, radius, method, replayed torque RMS / noise, diagnosis.
 # Minutes: each diagnosis replays the nine runs a few hundred times.
@@ -47,11 +48,29 @@ named() {
 [u['effect'] for u in d['not_explained']])" "$1"
 }
 
-DIAG=${DIAG:-1}
-for data in own indep; do
+# DIAG=all: diagnose the nine runs together; DIAG=each: each run alone, made again with a fresh
+# noise seed (100 + its index), against the fluid characterised from the nine; DIAG=0: replay only.
+DIAG=${DIAG:-each}
+RADII=${RADII:-model uniform_pressure uniform_wear}
+METHODS=${METHODS:-sensor inverse}
+DATA=${DATA:-own indep}
+fresh() {  # data, force, temp, seed -> a fresh run's CSV
+  local out="$OUT/$1/fresh_${2}_${3}.csv"
+  if [ ! -f "$out" ]; then
+    if [ "$1" = own ]; then
+      "$SHUDDER" run "$SCEN" --set drive.normal_force_N=$2 --set clutch.start_temp_C=$3 -o "${out%.csv}.h5" \
+        --measurement "$out" --noise --seed $4 > /dev/null
+    else
+      $PY "$SRC/tools/independent_sim/indep_sim.py" run "$out" --fluid "$SRC/scenarios/fluids/lsc_fluid_c.toml" \
+        --force-N $2 --start-C $3 --seed $4
+    fi
+  fi
+  echo "$out"
+}
+for data in $DATA; do
   runs=$(ls "$OUT/$data"/r_*.csv)
-  for radius in model uniform_pressure uniform_wear; do
-    for method in sensor inverse; do
+  for radius in $RADII; do
+    for method in $METHODS; do
       fluid="$OUT/$data/fit_${radius}_${method}.toml"
       base=$(basename "$SCEN")
       "$SHUDDER" characterise $runs -o "$fluid" --nu40-cSt 35 --nu100-cSt 6.7 --radius $radius --method $method \
@@ -59,11 +78,22 @@ for data in own indep; do
       model=$(model_with "$fluid")
       "$SHUDDER" diagnose "$model" $runs --max-effects 0 --json "${fluid%.toml}_replay.json" --jobs 2 > /dev/null
       line="$data $radius $method: replayed torque $(rms "${fluid%.toml}_replay.json")"
-      if [ "$DIAG" = 1 ]; then
+      if [ "$DIAG" = all ]; then
         "$SHUDDER" diagnose "$model" $runs --json "${fluid%.toml}_diag.json" --jobs 2 > /dev/null
         line="$line; diagnosis: $(named "${fluid%.toml}_diag.json")"
       fi
       echo "$line"
+      if [ "$DIAG" = each ]; then
+        k=100
+        for f in 10000 15000 20000; do
+          for t in 40 60 80; do
+            k=$((k + 1))
+            run=$(fresh $data $f $t $k)
+            "$SHUDDER" diagnose "$model" "$run" --json "${fluid%.toml}_diag_${f}_${t}.json" --jobs 2 > /dev/null
+            echo "  $data $radius $method, $((f / 1000)) kN from $t C, seed $k: $(named "${fluid%.toml}_diag_${f}_${t}.json")"
+          done
+        done
+      fi
     done
   done
 done
