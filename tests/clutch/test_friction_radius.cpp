@@ -19,6 +19,7 @@
 #include "clutch/wet_clutch.hpp"
 #include "io/fluid_loader.hpp"
 #include "io/input_error.hpp"
+#include "rig_models/fluid_screening.hpp"
 
 namespace {
 
@@ -118,6 +119,27 @@ TEST(FrictionRadius, TheFluidFileRecordsItAndTheLoaderReadsItBack) {
   EXPECT_EQ(io::load_fluid_text(base, "g.toml").friction_radius_mm, 0.0);
   EXPECT_THAT([&] { io::load_fluid_text(base + "[friction_radius]\nconvention = \"worn\"\nradius_mm = 46.0\n", "h.toml"); },
               ::testing::ThrowsMessage<io::InputError>(::testing::HasSubstr("expected \"uniform_pressure\" or \"uniform_wear\"")));
+}
+
+TEST(FrictionRadius, ScreenReadsRpmAtTheRecordedRadius) {
+  // The screen converts rpm at the radius the fluid records (1 rpm means what it meant on the rig
+  // that measured it), at the rig's 46 mm when it records none.
+  clutch::Fluid f;
+  f.name = "linear in v";
+  f.friction = io::load_fluid_text(
+                   "[fluid]\nname = \"x\"\nnu40_cSt = 35.0\nnu100_cSt = 6.7\n[static_friction]\nbreakaway_ratio = 1.0\n"
+                   "[table]\nspeeds_mm_s = [1.0, 1000.0]\nloads_N = [20000.0]\n[[table.row]]\ntemp_C = 40.0\n"
+                   "mu = [[0.1001, 0.2]]\n",
+                   "t.toml")
+                   .friction;
+  rig_models::ScreeningOptions o;
+  o.temps_C = {40.0};
+  o.rigs = {};
+  for (const double r_mm : {0.0, 40.0}) {
+    f.friction_radius_mm = r_mm;
+    const auto rep = rig_models::screen_fluid(f, o);
+    EXPECT_EQ(rep.mean_radius_mm, r_mm > 0 ? r_mm : analysis::kRigMeanRadius_mm);
+  }
 }
 
 }  // namespace
