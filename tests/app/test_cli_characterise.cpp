@@ -217,3 +217,44 @@ TEST(CliCharacterise, InverseMethodThatDoesNotConvergeIsANumericalFailure) {
 }
 
 }  // namespace
+
+namespace {
+
+// The friction radius of --radius model (the default) from the runs' metadata: the default clutch
+// on the annulus they state, 40-60 mm: its 20 rings of 1 mm (centres 40.5 ... 59.5 mm) give
+// sum r_i A_i / sum A_i = sum r_i² / sum r_i = 50.665 mm exactly (the closed form 2/3 (60³ - 40³) /
+// (60² - 40²) = 50.667 mm less the midpoint rule's 0.0017 mm). Written with 10 digits.
+TEST(CliCharacterise, TheModelRadiusFollowsTheRunsAnnulus) {
+  const auto dir = test::scratch_dir("characterise_annulus");
+  const std::string runs = write_runs(dir);
+  std::istringstream names(runs);
+  for (std::string name; names >> name;) {
+    std::string text = test::slurp(dir / name);
+    text.insert(text.find('\n') + 1, "# inner_radius_mm: 40\n# outer_radius_mm: 60\n");  // after the format line
+    test::write_file(dir / name, text);
+  }
+  const auto r = test::run_cli("characterise" + runs + " -o f.toml --json f.json --nu40-cSt 35 --nu100-cSt 6.7", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto json = test::parse(test::slurp(dir / "f.json"));
+  double r2 = 0.0, r1 = 0.0;
+  for (int i = 0; i < 20; ++i) {
+    r2 += (40.5 + i) * (40.5 + i);
+    r1 += 40.5 + i;
+  }
+  EXPECT_NEAR(json["radius"]["effective_mm"].num(), r2 / r1, 1e-7);
+  EXPECT_EQ(json["radius"]["rule"].str(), "uniform_pressure");
+  EXPECT_THAT(r.out, ::testing::HasSubstr("the default clutch on the run's annulus 40-60 mm"));
+  // A radius that is not a number: bad input naming the file and the key.
+  const std::string first = runs.substr(1, runs.find(' ', 1) - 1);
+  std::string text = test::slurp(dir / first);
+  const auto at = text.find("# inner_radius_mm: 40");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 21, "# inner_radius_mm: forty");
+  test::write_file(dir / first, text);
+  const auto bad = test::run_cli("characterise" + runs + " -o g.toml --nu40-cSt 35 --nu100-cSt 6.7", dir);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_THAT(bad.err, ::testing::HasSubstr("inner_radius_mm"));
+  EXPECT_THAT(bad.err, ::testing::HasSubstr("'forty'"));
+}
+
+}  // namespace
