@@ -28,6 +28,7 @@
 #include "io/fluid_loader.hpp"
 #include "io/measured_run.hpp"
 #include "io/scenario.hpp"
+#include "rig_models/law_data_check.hpp"
 #include "rig_models/replay.hpp"
 #include "tests/support/cli.hpp"
 #include "tests/support/diagnosis_probe.hpp"
@@ -70,13 +71,13 @@ const Data& data() {
   return d;
 }
 
-// The fluid characterised with `radius`, and the Case 2 scenario text with it.
-std::string characterise(const std::string& radius) {
+// The fluid characterised with `radius` (and `extra` options), and the Case 2 scenario text with it.
+std::string characterise(const std::string& radius, const std::string& extra = "") {
   const Data& d = data();
-  const std::string fluid = "fit_" + radius + ".toml";
+  const std::string fluid = "fit_" + radius + (extra.empty() ? "" : "_plain") + ".toml";
   if (!fs::exists(d.dir / fluid)) {
     const auto r = test::run_cli("characterise" + d.all + " -o " + fluid + " --nu40-cSt 35 --nu100-cSt 6.7 --radius " +
-                                     radius + " --model " + test::source_path("scenarios/" + kScenario),
+                                     radius + " --model " + test::source_path("scenarios/" + kScenario) + " " + extra,
                                  d.dir);
     EXPECT_EQ(r.exit_code, 0) << r.err;
   }
@@ -123,6 +124,22 @@ TEST(RoundTripRadius, ALawReadAtTheWrongRadiusMissesByTheRadiusRatio) {
   const auto [rms, sigma] = replay_rms(test::replace(model, "fit_uniform_wear.toml", "fit_unrecorded.toml"),
                                        data().run.at("20_40"));
   EXPECT_GT(rms, 4.0 * sigma) << rms;
+}
+
+// The likely cause of a gap the law's own data explain: a run replayed above the law's top row.
+TEST(RoundTripRadius, ARunAboveTheLawsDataIsNamedAsTheLikelyCause) {
+  const auto warnings = [&](const std::string& model_text, const char* key) {
+    const io::Scenario s = io::load_scenario_text(model_text, (data().dir / "model.toml").string());
+    const auto model = io::replay_model(s);
+    const std::vector<io::MeasuredRun> runs{io::read_measured_run(data().run.at(key).string())};
+    return rig_models::law_above_its_data(model, io::diagnosis_data(runs, model).inputs, {key});
+  };
+  // Without the hot row the law ends at the 100 °C row; the run from 100 °C heats past it.
+  const auto plain = warnings(characterise("model", "--no-hot-row"), "20_100");
+  ASSERT_EQ(plain.size(), 1u);
+  EXPECT_NE(plain[0].find("above the friction law's data (its top row, 100"), std::string::npos) << plain[0];
+  // With it (the default) the law reaches the hottest reading.
+  EXPECT_TRUE(warnings(characterise("model"), "20_40").empty());
 }
 
 struct DiagnosisCase {
