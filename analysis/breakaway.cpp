@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "clutch/friction_radius.hpp"
 #include "core/units.hpp"
 
 namespace shudder::analysis {
@@ -23,7 +24,8 @@ BreakawayMeasurement measure_breakaway(const std::vector<RampRun>& runs, const F
     std::vector<double> mu(n, std::numeric_limits<double>::quiet_NaN());
     for (std::size_t k = 0; k < n; ++k)
       if (run.normal_force_N[k] > 0)
-        mu[k] = std::abs(run.torque_Nm[k]) / (conversion.interfaces * run.normal_force_N[k] * r_mm / 1000.0) -
+        mu[k] = clutch::mu_from_torque(std::abs(run.torque_Nm[k]), run.normal_force_N[k], r_mm / 1000.0,
+                                       conversion.interfaces) -
                 conversion.bearing_drag_mu;
     std::size_t k = 0;
     while (k < n) {

@@ -195,6 +195,11 @@ std::string CandidateFitter::rejection(const Config& members, const CandidateSco
       return name + " at its bound";
   if (score.signature_correlation < opt_.min_signature) return "signature does not follow the residual";
   if (score.gain < needed_gain(opt_, 1, 0, s)) return "gain too small";
+  // Without a tolerance nothing separates a model-form gap (a characterised law's own error) from
+  // a missing effect; an effect must then close at least the misfit the verdict itself counts as
+  // noise, noise_tolerance² − 1 = 0.21 of J (docs/diagnosis.md "Named only when found").
+  if (opt_.tolerance.empty() && score.gain < opt_.noise_tolerance * opt_.noise_tolerance - 1.0)
+    return "gain below the verdict's own slack (no tolerance given)";
   return {};
 }
 

@@ -10,6 +10,7 @@
 
 #include "analysis/candidate_fit.hpp"
 #include "analysis/effect_selection.hpp"
+#include "analysis/explanation_check.hpp"
 #include "analysis/misfit.hpp"
 #include "analysis/noise_estimate.hpp"
 #include "analysis/residual_tracking.hpp"
@@ -153,7 +154,6 @@ DiagnosisResult run_diagnosis(const std::vector<DiagnosisRun>& runs, const std::
   r.tracking = tracking(runs, baseline);
 
   Selection sel = select_effects(runs, candidates, fitter, misfit, opt, baseline);
-  const Predictions& full_pred = sel.full_predictions;
   for (const auto& st : sel.steps) {
     r.missing_effects.push_back(st.effect);
     r.missing_effects.insert(r.missing_effects.end(), st.joint_with.begin(), st.joint_with.end());
@@ -163,31 +163,47 @@ DiagnosisResult run_diagnosis(const std::vector<DiagnosisRun>& runs, const std::
   r.withdrawn = std::move(sel.withdrawn);
   r.indistinguishable = std::move(sel.indistinguishable);
   r.stop = std::move(sel.stop);
+  r.tolerance_given = !opt.tolerance.empty();
 
+  const auto channel_fits = [&](const Predictions& final_pred) {
+    std::vector<ChannelFit> out;
+    for (const auto& c : misfit.channels()) {
+      ChannelFit f;
+      f.signal = c.name;
+      f.comparison = c.blocks ? "block_statistics" : "pointwise";
+      f.noise = c.sigma;
+      f.baseline_rms = misfit.channel_rms(c, misfit.all(), baseline);
+      f.final_rms = misfit.channel_rms(c, misfit.all(), final_pred);
+      f.baseline_misfit = misfit.channel_misfit(c, misfit.all(), baseline);
+      f.final_misfit = misfit.channel_misfit(c, misfit.all(), final_pred);
+      f.error_scale = misfit.channel_scale(c, misfit.all());
+      f.reproduction = misfit.reproduction_rms(c);
+      f.tolerance = c.tolerance;
+      f.within = f.final_misfit <= opt.noise_tolerance * opt.noise_tolerance;
+      out.push_back(f);
+    }
+    return out;
+  };
+  r.channels = channel_fits(sel.full_predictions);
+  // Named only when found (analysis/explanation_check.hpp): otherwise nothing is named and the
+  // final model is the baseline.
+  r.not_explained = unexplained_effects(sel.full, fitter, r.channels, opt);
+  const bool found = r.not_explained.empty();
+  const Predictions& full_pred = found ? sel.full_predictions : baseline;
+  if (found) {
+    for (const auto& e : sel.full) {
+      FittedEffect f{e.effect, {}};
+      const auto& c = fitter.candidate(e.effect);
+      for (std::size_t j = 0; j < e.values.size(); ++j) f.parameters.emplace_back(c.parameter_names[j], e.values[j]);
+      r.final_effects.push_back(std::move(f));
+    }
+  } else {
+    r.missing_effects.clear();
+    r.channels = channel_fits(baseline);
+  }
   r.final = misfit.rms(misfit.all(), full_pred);
-  for (const auto& e : sel.full) {
-    FittedEffect f{e.effect, {}};
-    const auto& c = fitter.candidate(e.effect);
-    for (std::size_t j = 0; j < e.values.size(); ++j) f.parameters.emplace_back(c.parameter_names[j], e.values[j]);
-    r.final_effects.push_back(std::move(f));
-  }
-  for (const auto& c : misfit.channels()) {
-    ChannelFit f;
-    f.signal = c.name;
-    f.comparison = c.blocks ? "block_statistics" : "pointwise";
-    f.noise = c.sigma;
-    f.baseline_rms = misfit.channel_rms(c, misfit.all(), baseline);
-    f.final_rms = misfit.channel_rms(c, misfit.all(), full_pred);
-    f.baseline_misfit = misfit.channel_misfit(c, misfit.all(), baseline);
-    f.final_misfit = misfit.channel_misfit(c, misfit.all(), full_pred);
-    f.error_scale = misfit.channel_scale(c, misfit.all());
-    f.reproduction = misfit.reproduction_rms(c);
-    f.tolerance = c.tolerance;
-    f.within = f.final_misfit <= opt.noise_tolerance * opt.noise_tolerance;
-    r.channels.push_back(f);
-  }
-  r.verdict = verdict_of(r.channels, !r.missing_effects.empty());
-  r.final_holdout_misfit = misfit.misfit(misfit.holdout(), sel.fold_predictions);
+  r.verdict = found ? verdict_of(r.channels, !r.missing_effects.empty()) : DiagnosisVerdict::kNotExplained;
+  r.final_holdout_misfit = misfit.misfit(misfit.holdout(), found ? sel.fold_predictions : baseline);
   r.final_disagreements = disagreements(runs, full_pred, torque_scale, temp_scale);
 
   for (std::size_t k = 0; k < runs.size(); ++k) {

@@ -139,6 +139,14 @@ struct DiagnosisOptions {
   // simulator or a real rig differ from any model by more than their noise even when nothing
   // is missing (docs/diagnosis.md "Choosing a tolerance"). Default none.
   std::vector<std::pair<std::string, double>> tolerance;
+  // Named only when found (analysis/explanation_check.hpp): the effects the search added are
+  // reported as missing only if every one has its parameters interior on all runs (bound_margin)
+  // and, with them, every channel is within found_gap_factor × its error scale. Without a
+  // tolerance a model-form gap cannot be told from a missing effect, so any gap left above the
+  // verdict's noise_tolerance leaves them not named. 2: a gap twice its scale is a misfit J four
+  // times the noise, more than any single effect in the registry closes on data it is missing
+  // from (docs/diagnosis.md "Named only when found").
+  double found_gap_factor = 2.0;
 };
 
 /// How well one measured signal is explained. Pointwise channels: rms of model − measured
@@ -249,6 +257,17 @@ struct StopReason {
   std::string tied_with;         // kTie: best_effect and this one scored the same (best_gain: its gain)
 };
 
+/// An effect the search added but the diagnosis does not name as found, and why: a parameter
+/// the data pull to (within bound_margin of) its bound, or a gap left well above the error scale.
+struct UnexplainedEffect {
+  std::string effect;
+  std::vector<std::pair<std::string, double>> parameters;  // refitted on all runs
+  std::string parameter;  // the parameter at its bound; "" when the reason is the gap
+  double bound = 0.0;     // the bound it sits at
+  std::string reason;     // one clause: "the data pull gain to its bound 0.5" / "… leaves …"
+  std::string likely_cause;  // "" when none is known
+};
+
 /// Measured and modelled signals of one run, for plots (at the residual samples).
 struct RunTraces {
   std::string run;
@@ -277,7 +296,11 @@ struct DiagnosisResult {
   std::vector<Disagreement> final_disagreements;  // final model
   std::vector<Tracking> tracking;                 // baseline residual vs every feature
   std::vector<DiagnosisStep> steps;
-  std::vector<std::string> missing_effects;       // added, most important first
+  std::vector<std::string> missing_effects;       // added and found, most important first
+  // Added by the search but not found (analysis/explanation_check.hpp): then nothing is named,
+  // the final model is the baseline and the verdict is "not explained".
+  std::vector<UnexplainedEffect> not_explained;
+  bool tolerance_given = false;  // without one a model-form gap is not separated from an effect
   // The added effects with their parameters after the last joint refit on all runs (a step's
   // parameters are those when it was added; later effects may have moved them).
   std::vector<FittedEffect> final_effects;

@@ -8,6 +8,7 @@
 #include <limits>
 #include <numeric>
 
+#include "clutch/friction_radius.hpp"
 #include "clutch/linear_friction.hpp"
 #include "core/units.hpp"
 #include "clutch/maki_friction.hpp"
@@ -37,9 +38,17 @@ const char* law_name(LawKind k) {
 }
 
 double FrictionConversion::effective_radius_mm() const {
-  if (rule == RadiusRule::kUniformWear) return mean_radius_mm;
-  const double ri = inner_radius_mm, ro = outer_radius_mm;
-  return 2.0 / 3.0 * (ro * ro * ro - ri * ri * ri) / (ro * ro - ri * ri);
+  switch (rule) {
+    case RadiusRule::kUniformWear: return mean_radius_mm;
+    case RadiusRule::kModel: return model_radius_mm;
+    case RadiusRule::kUniformPressure: break;
+  }
+  return clutch::uniform_pressure_radius(inner_radius_mm, outer_radius_mm);
+}
+
+clutch::RadiusConvention FrictionConversion::convention() const {
+  return rule == RadiusRule::kUniformWear ? clutch::RadiusConvention::kUniformWear
+                                          : clutch::RadiusConvention::kUniformPressure;
 }
 
 namespace {
@@ -181,10 +190,11 @@ std::array<double, 4> fit_maki_curve(const std::vector<double>& v, const std::ve
     const Eigen::VectorXd r = x * coef - y;
     return (w.array() * r.array().square()).sum();
   };
-  // C2 from 1e-5 to 1 per mm/s: Paper G's sets use 1e-4 … 1.3e-2; below 1e-5 tanh is linear over
-  // any measured range (C1·C2 then acts as one slope), above 1 it is a step below 1 mm/s.
+  // C2 from 1e-5 to 1 per mm/s (kMakiC2Min/Max): Paper G's sets use 1e-4 … 1.3e-2; below 1e-5
+  // tanh is linear over any measured range (C1·C2 then acts as one slope), above 1 it is a step
+  // below 1 mm/s.
   constexpr int kGrid = 61;
-  const double lo = std::log(1e-5), hi = std::log(1.0);
+  const double lo = std::log(kMakiC2Min), hi = std::log(kMakiC2Max);
   std::vector<double> cost(kGrid);
   Eigen::Vector3d coef;
   int best = 0;
@@ -334,7 +344,8 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
       if (std::abs(rpm) < 0.5) continue;  // below half an rpm the sign of slip is uncertain
       const double f = run.normal_force_N[k];
       if (!(f > 0)) continue;
-      const double mu = std::copysign(1.0, rpm) * run.torque_Nm[k] / (s.conversion.interfaces * f * r_m) -
+      const double mu = clutch::mu_from_torque(std::copysign(1.0, rpm) * run.torque_Nm[k], f, r_m,
+                                               s.conversion.interfaces) -
                         s.conversion.bearing_drag_mu;
       samples[i].push_back({std::abs(rpm) * mm_s_per_rpm, mu, run.temp_C[k]});
       out.min_temp_C = std::min(out.min_temp_C, run.temp_C[k]);
@@ -492,13 +503,25 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
   }
 
   // 5. Rows: binned means of compensated samples, up/down at the nodes.
-  std::vector<std::vector<std::size_t>> members(nt * nl);
-  for (std::size_t i = 0; i < out.used.size(); ++i)
+  // hot_row: one more row at the hottest temperature the ramps reach, made of the top row's
+  // ramps compensated up to it (the compensation's own mu(T)); without it the law holds the top
+  // row's mu above that row, where the hottest runs heat the clutch.
+  const bool hot = s.hot_row && s.compensation != Compensation::kNone && s.law != LawKind::kLinear &&
+                   out.max_temp_C > out.temps_C.back() + s.temp_tolerance_C;
+  if (hot) {
+    out.temps_C.push_back(out.max_temp_C);
+    out.hot_row_temp_C = out.max_temp_C;
+  }
+  const std::size_t nt_all = out.temps_C.size();
+  std::vector<std::vector<std::size_t>> members(nt_all * nl);
+  for (std::size_t i = 0; i < out.used.size(); ++i) {
     members[std::size_t(temp_group[i]) * nl + std::size_t(load_group[i])].push_back(i);
+    if (hot && std::size_t(temp_group[i]) == nt - 1) members[nt * nl + std::size_t(load_group[i])].push_back(i);
+  }
   const int kBins = std::max(s.speed_bins, 5);
   const double l0 = std::log(vmin), l1 = std::log(vmax);
-  std::vector<double> within_ss(nt * nl, 0.0), n_samples(nt * nl, 0.0);
-  for (std::size_t it = 0; it < nt; ++it)
+  std::vector<double> within_ss(nt_all * nl, 0.0), n_samples(nt_all * nl, 0.0);
+  for (std::size_t it = 0; it < nt_all; ++it)
     for (std::size_t il = 0; il < nl; ++il) {
       const auto& m = members[it * nl + il];
       RowFit row;
@@ -511,7 +534,7 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
           throw CharacterisationInputError(
               runs.front().name, row_name(row.load_N, row.temp_C) + " has no ramp; a " + law_name(s.law) +
                                      " law needs ramps at every load (" + std::to_string(nl) +
-                                     ") at every temperature (" + std::to_string(nt) +
+                                     ") at every temperature (" + std::to_string(nt_all) +
                                      "); add runs, pass --row-temps, or use --law linear");
         continue;
       }
@@ -583,9 +606,18 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
       out.rows.push_back(std::move(row));
     }
 
+  // The law's rows stop at the highest reference temperature; above it the law holds that row.
+  if (out.max_temp_C > out.temps_C.back() + s.temp_tolerance_C)
+    out.warnings.push_back("the ramps heat the temperature channel to " + g(out.max_temp_C, 3) + " °C, " +
+                           g(out.max_temp_C - out.temps_C.back(), 2) + " K above the top row (" +
+                           g(out.temps_C.back(), 3) + " °C): above it the law holds that row's mu, so a model "
+                           "replaying the hottest runs reads it outside its data there (add ramps that start near " +
+                           g(out.max_temp_C, 3) + " °C" +
+                           (s.compensation == Compensation::kNone ? ", or a compensation and --hot-row" : "") + ")");
+
   // 6. The law.
   if (s.law == LawKind::kMaki) {
-    std::vector<clutch::MakiSet> sets(nt * nl);
+    std::vector<clutch::MakiSet> sets(nt_all * nl);
     for (RowFit& row : out.rows) {
       const std::size_t cell = row.i_temp * nl + row.i_load;
       std::array<double, 4> p;
@@ -603,6 +635,15 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
       }
       row.maki = p;
       sets[cell] = {p[0], p[1], p[2], p[3]};
+      // C2 on (within kMakiBoundMargin of) its search range's end: the data do not determine it.
+      const double c2_margin = kMakiBoundMargin * std::log(kMakiC2Max / kMakiC2Min);
+      if (std::log(p[1] / kMakiC2Min) < c2_margin || std::log(kMakiC2Max / p[1]) < c2_margin)
+        out.warnings.push_back(row_name(row.load_N, row.temp_C) + ": the Mäki rate C2 = " + g(p[1], 10) +
+                               " per mm/s sits on its search bound [" + g(kMakiC2Min) + ", " + g(kMakiC2Max) + "]: " +
+                               (std::log(p[1] / kMakiC2Min) < c2_margin
+                                    ? "tanh(C2 v) is linear over the data, so only C1·C2 is determined, not C1 and C2"
+                                    : "tanh(C2 v) is a step below the data's speeds, so C1 acts as a constant") +
+                               "; the law holds inside its data, its coefficients are not the fluid's (try --law table)");
       for (int k = 0; k <= 64; ++k) {
         const double v = out.min_speed_mm_s * std::pow(out.max_speed_mm_s / out.min_speed_mm_s, k / 64.0);
         const double mu = sets[cell].mu(v);
@@ -615,7 +656,7 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
     out.law = std::make_shared<clutch::MakiFrictionMatrix>(out.loads_N, out.temps_C, sets, out.min_speed_mm_s,
                                                            out.max_speed_mm_s);
   } else if (s.law == LawKind::kTable) {
-    std::vector<double> mu(nt * nl * nn);
+    std::vector<double> mu(nt_all * nl * nn);
     for (const RowFit& row : out.rows)
       for (std::size_t k = 0; k < nn; ++k) mu[(row.i_temp * nl + row.i_load) * nn + k] = row.node_mu[k];
     out.law = std::make_shared<clutch::TableFriction>(out.node_speeds_mm_s, out.temps_C, out.loads_N, mu);

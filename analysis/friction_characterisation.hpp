@@ -3,7 +3,11 @@
 //
 //   1. ramps   analysis/ramp_detection finds the up- and down-ramps of every run.
 //   2. mu      mu = (M / (n F r_eff)) − mu_bearing, M the torque cell, F the normal force, n the
-//              sliding interfaces, r_eff the effective friction radius:
+//              sliding interfaces, r_eff the effective friction radius (one definition of both
+//              conversions: clutch/friction_radius.hpp):
+//                model (default of the command): the clutch model's own radius, sum r_i A_i /
+//                                               sum A_i over its rings (47.839 mm for Paper G's
+//                                               annulus), at which a model reproduces the torque;
 //                uniform wear (the thesis):     r_eff = the stated mean radius (46 mm),
 //                uniform pressure (Paper G):    r_eff = 2/3 (ro³ − ri³)/(ro² − ri²) (47.8 mm
 //                                               for 38.1–56.4 mm, docs/physics.md §9);
@@ -14,6 +18,11 @@
 //              start temperature; a down-ramp takes that of the up-ramp before it in the same
 //              run (one Paper D cycle: both belong to the cycle's start temperature). Loads
 //              within ±load_tolerance and temperatures within ±temp_tolerance_C join.
+//   3b. hot row (CharacterisationSettings::hot_row; Mäki and table laws, a compensation other
+//              than none): when the ramps heat the temperature channel beyond the top row by
+//              more than temp_tolerance_C, one more row at the hottest reading, made of the top
+//              row's ramps compensated up to it. Without it the law holds the top row's mu above
+//              it, where the hottest runs heat the clutch (a replay misses there).
 //   4. compensation to the row temperature T_row, sample by sample at temperature T:
 //              none       mu as measured (the bias the thesis removes);
 //              linear     mu − alpha (T − T_row) (Papers B/C), alpha given or fitted as the
@@ -40,6 +49,7 @@
 // the file or row; a fit that fails numerically throws std::runtime_error.
 
 #include <array>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -48,6 +58,7 @@
 
 #include "analysis/ramp_detection.hpp"
 #include "clutch/friction_law.hpp"
+#include "clutch/friction_radius.hpp"
 
 namespace shudder::analysis {
 
@@ -61,20 +72,29 @@ class CharacterisationInputError : public std::invalid_argument {
   std::string file_;
 };
 
-enum class RadiusRule { kUniformWear, kUniformPressure };
+enum class RadiusRule { kUniformWear, kUniformPressure, kModel };
 enum class Compensation { kNone, kLinear, kQuadratic, kPiecewise };
 enum class LawKind { kMaki, kLinear, kTable };
 const char* compensation_name(Compensation c);  // "none", "linear", "quadratic", "piecewise"
 const char* law_name(LawKind k);                // "maki", "linear", "table"
+
+/// The Mäki rate C2's search range, per mm/s (fit_maki_curve), and the fraction of its log range
+/// within which a fitted C2 counts as on its bound (Characterisation::warnings): 2 %, the margin
+/// the diagnosis allows its parameters (analysis/diagnosis.hpp bound_margin), a factor 1.26.
+inline constexpr double kMakiC2Min = 1e-5, kMakiC2Max = 1.0, kMakiBoundMargin = 0.02;
 
 struct FrictionConversion {
   RadiusRule rule = RadiusRule::kUniformWear;
   double mean_radius_mm = 46.0;   // thesis: uniform wear at the mean radius 46 mm
   double inner_radius_mm = 38.1;  // Paper G's annulus (uniform pressure)
   double outer_radius_mm = 56.4;
+  double model_radius_mm = 0.0;   // kModel: the clutch model's radius (WetClutch::mean_radius_m)
   int interfaces = 1;             // sliding interfaces n (Paper G simulates one)
   double bearing_drag_mu = 0.0;   // subtracted; thesis rig: 0.005
+  std::string source;             // where the radius comes from, for the outputs ("" : the rule's name)
   double effective_radius_mm() const;
+  /// The convention recorded with the law: kModel is uniform pressure (on the model's rings).
+  clutch::RadiusConvention convention() const;
 };
 
 struct CharacterisationSettings {
@@ -90,6 +110,7 @@ struct CharacterisationSettings {
   std::vector<double> row_temps_C;    // empty: the clusters of the data
   double linear_load_N = 20000.0;     // the linear law's load (Paper E: 20 kN); nearest row
   int speed_bins = 48;                // log-spaced bins per row for the fit
+  bool hot_row = false;               // a row at the hottest temperature reached (file comment, 3b)
 };
 
 struct QuadraticNode {
@@ -140,6 +161,8 @@ struct Characterisation {
   double min_speed_mm_s = 0.0, max_speed_mm_s = 0.0;  // the law's speed range
   double min_temp_C = 0.0, max_temp_C = 0.0;          // temperature channel, all used ramps
   std::shared_ptr<const clutch::FrictionLaw> law;
+  std::vector<std::string> warnings;  // fitted parameters on a search bound (printed by the command)
+  double hot_row_temp_C = std::numeric_limits<double>::quiet_NaN();  // the hot row's, if one was added
 };
 
 /// `runs` in the order given (their names appear in errors and in `used`/`rejected`).

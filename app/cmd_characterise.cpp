@@ -3,6 +3,7 @@
 // and fits are analysis::characterise; the files come from io/characterisation_output.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -15,6 +16,7 @@
 #include "analysis/friction_characterisation.hpp"
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
+#include "clutch/friction_radius.hpp"
 #include "io/atomic_file.hpp"
 #include "io/characterisation_output.hpp"
 #include "io/diagnosis_inputs.hpp"
@@ -59,6 +61,45 @@ analysis::RampRun to_ramp_run(const io::MeasuredRun& m, const std::string& temp_
           m.required("torque_Nm"), *temp};
 }
 
+// A run's annulus radius from its metadata (`inner_radius_mm`, `outer_radius_mm`), if given.
+std::optional<double> metadata_radius_mm(const io::MeasuredRun& m, const std::string& key) {
+  const auto text = m.meta(key);
+  if (!text) return std::nullopt;
+  char* end = nullptr;
+  const double x = std::strtod(text->c_str(), &end);
+  if (end == text->c_str() || *end != '\0' || !(x > 0) || !std::isfinite(x))
+    throw io::InputError(m.path, 0, key, "is '" + *text + "'; give the friction annulus radius in mm (a positive number)");
+  return x;
+}
+
+// --radius model (the default): the radius at which the clutch model the fluid is for produces
+// torque (clutch/friction_radius.hpp): the clutch of --model, else the default clutch on the
+// annulus of the run's metadata (inner_radius_mm, outer_radius_mm) or of --inner/--outer-radius-mm.
+void set_model_radius(analysis::FrictionConversion& c, const std::optional<io::Scenario>& scenario,
+                      const io::MeasuredRun& first, const CharacteriseOptions& o) {
+  clutch::ThermalParams thermal;
+  std::string where;
+  if (scenario) {
+    thermal = scenario->clutch.thermal;
+    where = "the clutch of " + o.model;
+  } else {
+    const auto ri = metadata_radius_mm(first, "inner_radius_mm"), ro = metadata_radius_mm(first, "outer_radius_mm");
+    thermal.inner_radius_m = ri.value_or(o.inner_radius_mm) * 1e-3;
+    thermal.outer_radius_m = ro.value_or(o.outer_radius_mm) * 1e-3;
+    if (!(thermal.outer_radius_m > thermal.inner_radius_m))
+      throw io::InputError(ri || ro ? first.path : "--inner-radius-mm/--outer-radius-mm", 0, ri || ro ? "outer_radius_mm" : "",
+                           "the outer radius must exceed the inner");
+    where = std::string("the default clutch on ") + (ri || ro ? "the run's annulus " : "the annulus ");
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.4g-%.4g mm", thermal.inner_radius_m * 1e3, thermal.outer_radius_m * 1e3);
+    where += buf;
+  }
+  c.inner_radius_mm = thermal.inner_radius_m * 1e3;
+  c.outer_radius_mm = thermal.outer_radius_m * 1e3;
+  c.model_radius_mm = clutch::model_friction_radius_m(thermal) * 1e3;
+  c.source = "the model's radius, uniform pressure on its rings, " + where;
+}
+
 }  // namespace
 
 int characterise_command(const CharacteriseOptions& o) {
@@ -83,7 +124,8 @@ int characterise_command(const CharacteriseOptions& o) {
                                                   : analysis::Compensation::kQuadratic;
     if (std::isfinite(o.alpha_per_C)) s.alpha_per_C = o.alpha_per_C;
     s.conversion.rule = o.radius == "uniform_pressure" ? analysis::RadiusRule::kUniformPressure
-                                                       : analysis::RadiusRule::kUniformWear;
+                        : o.radius == "uniform_wear"   ? analysis::RadiusRule::kUniformWear
+                                                       : analysis::RadiusRule::kModel;
     s.conversion.mean_radius_mm = o.mean_radius_mm;
     s.conversion.inner_radius_mm = o.inner_radius_mm;
     s.conversion.outer_radius_mm = o.outer_radius_mm;
@@ -96,6 +138,18 @@ int characterise_command(const CharacteriseOptions& o) {
     s.linear_load_N = o.linear_load_N;
     s.row_temps_C = parse_list("--row-temps", o.row_temps);
     s.node_rpm = parse_list("--node-rpm", o.node_rpm);
+    s.hot_row = o.hot_row;
+
+    // The model the fluid is for (--model): its clutch's friction radius, and the replay of
+    // --method inverse.
+    std::optional<io::Scenario> scenario;
+    if (!o.model.empty()) {
+      scenario = io::load_scenario(o.model);
+      if (scenario->clutch.sliding_interfaces != o.interfaces)
+        throw io::InputError(o.model, 0, "clutch.sliding_interfaces",
+                             "is " + std::to_string(scenario->clutch.sliding_interfaces) + " but --interfaces is " +
+                                 std::to_string(o.interfaces) + "; the model must be the clutch the runs measured");
+    }
 
     // Read every run; the runs must come from one rig.
     std::vector<analysis::RampRun> runs;
@@ -118,6 +172,7 @@ int characterise_command(const CharacteriseOptions& o) {
       runs.push_back(to_ramp_run(m, o.temperature_channel));
     }
     for (const auto& w : import_warnings) std::cerr << "shudder: warning: " << w << "\n";
+    if (s.conversion.rule == analysis::RadiusRule::kModel) set_model_radius(s.conversion, scenario, measured.front(), o);
 
     analysis::Characterisation c;
     try {
@@ -137,13 +192,12 @@ int characterise_command(const CharacteriseOptions& o) {
         is.model.fluid.nu40_cSt = o.nu40_cSt;
         is.model.fluid.nu100_cSt = o.nu100_cSt;
         is.model.settings.thermal_step_s = 0.02;  // the ramps last seconds; 20 ms resolves the heating
+        if (s.conversion.rule == analysis::RadiusRule::kModel) {  // the annulus the radius was taken from
+          is.model.clutch.thermal.inner_radius_m = s.conversion.inner_radius_mm * 1e-3;
+          is.model.clutch.thermal.outer_radius_m = s.conversion.outer_radius_mm * 1e-3;
+        }
       } else {
-        const io::Scenario scenario = io::load_scenario(o.model);
-        is.model = io::replay_model(scenario);
-        if (is.model.clutch.sliding_interfaces != o.interfaces)
-          throw io::InputError(o.model, 0, "clutch.sliding_interfaces",
-                               "is " + std::to_string(is.model.clutch.sliding_interfaces) + " but --interfaces is " +
-                                   std::to_string(o.interfaces) + "; the model must be the clutch the runs measured");
+        is.model = io::replay_model(*scenario);
       }
       is.jobs = std::max(1u, std::thread::hardware_concurrency());
       is.max_iterations = o.inverse_iterations;
@@ -155,6 +209,14 @@ int characterise_command(const CharacteriseOptions& o) {
       }
       c = inverse->inverse;
       written = inverse->settings;
+      // Where the inverse method should not be used (docs/characterisation.md 2c).
+      if (s.compensation == analysis::Compensation::kNone)
+        c.warnings.push_back("--method inverse with --compensation none: no temperature enters the law, so it equals "
+                             "the sensor method's (at many times the cost)");
+      else if (!s.hot_row && c.max_temp_C > c.temps_C.back() + s.temp_tolerance_C)
+        c.warnings.push_back("--method inverse with --no-hot-row on runs that heat above the top row: its compensation "
+                             "takes out more of the heating than the sensor method's and nothing puts it back, so it "
+                             "replays worse; drop --no-hot-row");
     }
 
     io::FluidIdentity id;
@@ -196,6 +258,7 @@ int characterise_command(const CharacteriseOptions& o) {
     }
     io::write_text_file_atomically(o.output, toml);
     if (!o.json.empty()) io::write_text_file_atomically(o.json, json);
+    for (const auto& w : c.warnings) std::cerr << "shudder: warning: " << w << "\n";
     std::cout << summary;
     return 0;
   });

@@ -21,6 +21,7 @@
 #include "report/diagnosis_narrative.hpp"
 #include "report/diagnosis_report.hpp"
 #include "report/diagnosis_summary.hpp"
+#include "rig_models/law_data_check.hpp"
 
 namespace shudder::app {
 
@@ -74,6 +75,10 @@ int diagnose_command(const DiagnoseOptions& opt) {
     const analysis::DiagnosisOptions defaults;
     io::check_plausibility(runs, model, defaults.statistics_block_s, data.warnings);
     for (const auto& w : data.warnings) std::cerr << "shudder: warning: " << w << "\n";
+
+    // A gap the law's own data range explains (rig_models/law_data_check.hpp).
+    for (const auto& w : rig_models::law_above_its_data(model, data.inputs, opt.runs))
+      std::cerr << "shudder: warning: " << w << "\n";
 
     std::vector<std::string> skipped;
     const auto candidates = rig_models::replay_candidates(model, &skipped);

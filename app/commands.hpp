@@ -109,7 +109,7 @@ struct CharacteriseOptions {
   std::string compensation = "quadratic"; // none | linear | quadratic | piecewise
   double alpha_per_C = NAN;               // linear compensation: given alpha (NaN = fit it)
   std::string temperature_channel = "temp_C";
-  std::string radius = "uniform_wear";    // uniform_wear | uniform_pressure
+  std::string radius = "model";           // model | uniform_wear | uniform_pressure
   double mean_radius_mm = 46.0, inner_radius_mm = 38.1, outer_radius_mm = 56.4;
   int interfaces = 1;
   double bearing_drag_mu = 0.0;
@@ -121,10 +121,11 @@ struct CharacteriseOptions {
   double nu40_cSt = 0.0, nu100_cSt = 0.0;
   double breakaway_ratio = NAN;           // NaN: measured from ramps that start at rest, else 1
   std::string method = "sensor";          // sensor | inverse (replayed through the model)
-  std::string model;                      // inverse: scenario whose clutch is replayed; empty = Paper G defaults
+  std::string model;                      // the model the fluid is for: its clutch's radius; inverse: replayed; empty = Paper G defaults
   int inverse_iterations = 8;             // inverse: law updates per pass before "did not converge"
   std::vector<std::string> maps;          // --map: the runs are a logger's CSV files (app/cmd_import.cpp)
   std::string mapping;                    // --mapping: the same from a mapping file; empty = none
+  bool hot_row = true;                    // a row at the hottest temperature the ramps reach (--no-hot-row: none)
 };
 int characterise_command(const CharacteriseOptions& options);
 

@@ -135,8 +135,10 @@ int main(int argc, char** argv) {
   char_cmd->add_option("--temperature-channel", characterise.temperature_channel, "temp_C or ir_temp_C")
       ->check(CLI::IsMember({"temp_C", "ir_temp_C"}));
   char_cmd->add_option("--radius", characterise.radius,
-                       "uniform_wear (thesis: --mean-radius-mm) or uniform_pressure (--inner/--outer-radius-mm)")
-      ->check(CLI::IsMember({"uniform_wear", "uniform_pressure"}));
+                       "Friction radius: model (default: where the clutch model of --model, or the default clutch, "
+                       "produces torque), uniform_wear (thesis: --mean-radius-mm) or uniform_pressure "
+                       "(--inner/--outer-radius-mm)")
+      ->check(CLI::IsMember({"model", "uniform_wear", "uniform_pressure"}));
   char_cmd->add_option("--mean-radius-mm", characterise.mean_radius_mm, "Uniform-wear radius, mm (default 46)")
       ->check(CLI::Range(1.0, 1000.0));
   char_cmd->add_option("--inner-radius-mm", characterise.inner_radius_mm, "Friction annulus inner radius, mm (38.1)")
@@ -166,8 +168,12 @@ int main(int argc, char** argv) {
                        "sensor (compensate with the temperature channel) or inverse (replay through the clutch and "
                        "thermal model; both reported)")
       ->check(CLI::IsMember({"sensor", "inverse"}));
-  char_cmd->add_option("--model", characterise.model, "--method inverse: scenario whose clutch and thermal model replay "
-                                                      "the runs (default: Paper G's clutch)");
+  char_cmd->add_option("--model", characterise.model, "Scenario of the model the fluid is for: its clutch's friction "
+                                                      "radius (--radius model) and, with --method inverse, the clutch "
+                                                      "and thermal model that replay the runs (default: Paper G's clutch)");
+  char_cmd->add_flag("--hot-row,!--no-hot-row", characterise.hot_row,
+                     "Add a row at the hottest temperature the ramps reach, from the top row's ramps compensated "
+                     "to it (default; Maki and table laws). --no-hot-row: the law holds the top row's mu above it");
   char_cmd->add_option("--inverse-iterations", characterise.inverse_iterations,
                        "--method inverse: law updates per pass before it counts as not converged (default 8)")
       ->check(CLI::Range(1, 100));

@@ -37,6 +37,11 @@ struct Fluid {
   double nu40_cSt = 35.0;                       // Paper E Table 1, fluid C
   double nu100_cSt = 6.7;                       // Paper E Table 1, fluid C
   double density_kg_m3 = 868.0;                 // Paper G Table 1 (at 40 °C)
+  // The friction radius the law was fitted at from torque (clutch/friction_radius.hpp), mm, and
+  // its convention ("uniform_pressure", "uniform_wear"); 0 and "": the law's mu is a local
+  // coefficient (Paper G's matrix) and no model converts it.
+  double friction_radius_mm = 0.0;
+  std::string friction_radius_convention;
 
   double mu_static(double temp_C, double load_N) const {
     return breakaway_ratio * friction->mu(friction->min_speed_mm_s(), temp_C, load_N);

@@ -5,6 +5,8 @@
 #include <span>
 #include <stdexcept>
 
+#include "clutch/friction_radius.hpp"
+
 namespace shudder::clutch {
 
 WetClutch::WetClutch(WetClutchParams params, Fluid fluid)
@@ -17,15 +19,16 @@ WetClutch::WetClutch(WetClutchParams params, Fluid fluid)
     throw std::invalid_argument("sliding interfaces must be in [1, 64]");
   if (!(p_.reference_load_N > 0.0)) throw std::invalid_argument("reference load must be > 0");
   if (!(p_.viscous_gap_m > 0.0)) throw std::invalid_argument("viscous gap must be > 0");
+  // A law fitted from torque at another friction radius is read at this clutch's
+  // (clutch/friction_radius.hpp): the torque it was fitted on is reproduced.
+  fluid_ = with_friction_radius(std::move(fluid_), mean_radius_m() * 1e3);
 }
 
 ThermalState WetClutch::initial_state() const {
   return thermal_.initial_state(p_.start_temp_C, p_.start_temp_C, p_.sump_start_temp_C);
 }
 
-double WetClutch::mean_radius_m() const {
-  return thermal_.ring_radius_m().dot(thermal_.ring_area_m2()) / thermal_.contact_area_m2();
-}
+double WetClutch::mean_radius_m() const { return model_friction_radius_m(thermal_); }
 
 void WetClutch::ring_mu(double slip_rad_s, double force_N, const Eigen::VectorXd& ring_temp_C,
                         Eigen::VectorXd& mu, RingScratch* scratch) const {

@@ -8,6 +8,9 @@
 //   M      = n * sum_i r_i * p * mu_i * A_i * sign(Δω)  (+ viscous shear)   torque, N m
 //   q_i    = |Δω| * r_i * p * mu_i * A_i   heat into ring i of ONE interface (Paper G eq. 4), W
 //
+// For a uniform mu, M = mu F r_eff n with r_eff = sum(r_i A_i)/sum(A_i) (mean_radius_m): the
+// model's friction radius (clutch/friction_radius.hpp). A fluid whose law was fitted at another
+// radius (Fluid::friction_radius_mm) is converted to this one when the clutch is built.
 // n = number of sliding interfaces (Paper G simulates one). Each interface has the same
 // thermal domain by symmetry, so one ThermalModel serves them all.
 //
@@ -61,7 +64,7 @@ class WetClutch {
   const WetClutchParams& params() const { return p_; }
 
   double pressure_Pa(double force_N) const { return force_N / thermal_.contact_area_m2(); }
-  /// Area-weighted mean radius r_eff = sum(r_i A_i) / sum(A_i), m.
+  /// Area-weighted mean radius r_eff = sum(r_i A_i) / sum(A_i), m: the model's friction radius.
   double mean_radius_m() const;
 
   /// What a caller keeps across ring_mu / ring_torque_Nm / ring_heat_W calls so that calls at

@@ -31,9 +31,7 @@ std::string nums(const std::vector<double>& v, int digits = 10) {
 
 std::string toml_string(const std::string& s) { return json_string(s); }  // basic strings share JSON's escapes
 
-const char* radius_rule(const analysis::FrictionConversion& c) {
-  return c.rule == analysis::RadiusRule::kUniformWear ? "uniform_wear" : "uniform_pressure";
-}
+const char* radius_rule(const analysis::FrictionConversion& c) { return clutch::radius_convention_name(c.convention()); }
 
 }  // namespace
 
@@ -43,7 +41,8 @@ std::string characterised_fluid_toml(const analysis::Characterisation& c, const 
   o << "# Made by `shudder characterise` from " << runs.size() << " measured run(s), " << c.used.size()
     << " ramps used, " << c.rejected.size() << " rejected (FIT.json lists them).\n"
     << "# mu = M / (n F r_eff) - mu_bearing: n = " << s.conversion.interfaces << ", r_eff = " << num(c.effective_radius_mm, 5)
-    << " mm (" << radius_rule(s.conversion) << "), mu_bearing = " << num(s.conversion.bearing_drag_mu, 4)
+    << " mm (" << radius_rule(s.conversion) << (s.conversion.source.empty() ? "" : ": " + s.conversion.source)
+    << "), mu_bearing = " << num(s.conversion.bearing_drag_mu, 4)
     << "; temperature compensation: " << analysis::compensation_name(s.compensation) << ".\n"
     << "# Data range: " << num(c.min_speed_mm_s, 4) << "-" << num(c.max_speed_mm_s, 4) << " mm/s, "
     << num(c.min_temp_C, 4) << "-" << num(c.max_temp_C, 4) << " °C, " << num(c.loads_N.front(), 5) << "-"
@@ -53,13 +52,19 @@ std::string characterised_fluid_toml(const analysis::Characterisation& c, const 
   if (!fluid.description.empty()) o << "description = " << toml_string(fluid.description) << "\n";
   o << "nu40_cSt = " << num(fluid.nu40_cSt) << "\nnu100_cSt = " << num(fluid.nu100_cSt)
     << "\ndensity_kg_m3 = " << num(fluid.density_kg_m3) << "\n\n[static_friction]\nbreakaway_ratio = "
-    << num(fluid.breakaway_ratio) << "\nsource = " << toml_string(fluid.breakaway_source) << "\n\n";
+    << num(fluid.breakaway_ratio) << "\nsource = " << toml_string(fluid.breakaway_source) << "\n\n"
+    << "[friction_radius]\n# the radius mu was read at from torque; a model of another radius converts the law\n"
+    << "convention = \"" << radius_rule(s.conversion) << "\"\nradius_mm = " << num(c.effective_radius_mm) << "\n\n";
   if (s.law == analysis::LawKind::kMaki) {
     o << "[maki]\nmin_speed_mm_s = " << num(c.min_speed_mm_s) << "\nmax_speed_mm_s = " << num(c.max_speed_mm_s)
       << "\nloads_N = " << nums(c.loads_N) << "\n";
     const auto& law = static_cast<const clutch::MakiFrictionMatrix&>(*c.law);
     for (std::size_t it = 0; it < c.temps_C.size(); ++it) {
-      o << "\n[[maki.row]]\ntemp_C = " << num(c.temps_C[it]) << "\norigin = \"fitted: shudder characterise\"\nsets = [\n";
+      o << "\n[[maki.row]]\ntemp_C = " << num(c.temps_C[it]) << "\norigin = \""
+        << (c.temps_C[it] == c.hot_row_temp_C ? "fitted: shudder characterise, the top row's ramps compensated to "
+                                                "the hottest temperature they reach (--hot-row)"
+                                              : "fitted: shudder characterise")
+        << "\"\nsets = [\n";
       for (std::size_t il = 0; il < c.loads_N.size(); ++il) {
         const auto& p = law.set(it, il);
         o << "  " << nums({p.c1, p.c2, p.c3, p.c4}) << ",  # " << num(c.loads_N[il] / 1000.0, 4) << " kN\n";
@@ -78,7 +83,11 @@ std::string characterised_fluid_toml(const analysis::Characterisation& c, const 
     o << "[table]\n# speeds: " << nums(c.node_rpm, 4) << " rpm at r_eff\nspeeds_mm_s = " << nums(c.node_speeds_mm_s)
       << "\nloads_N = " << nums(c.loads_N) << "\n";
     for (std::size_t it = 0; it < c.temps_C.size(); ++it) {
-      o << "\n[[table.row]]\ntemp_C = " << num(c.temps_C[it]) << "\norigin = \"measured: shudder characterise\"\nmu = [\n";
+      o << "\n[[table.row]]\ntemp_C = " << num(c.temps_C[it]) << "\norigin = \""
+        << (c.temps_C[it] == c.hot_row_temp_C ? "measured: shudder characterise, the top row's ramps compensated to "
+                                                "the hottest temperature they reach (--hot-row)"
+                                              : "measured: shudder characterise")
+        << "\"\nmu = [\n";
       for (std::size_t il = 0; il < c.loads_N.size(); ++il) {
         std::vector<double> row;
         for (double v : c.node_speeds_mm_s) row.push_back(c.law->mu(v, c.temps_C[it], c.loads_N[il]));
@@ -100,11 +109,13 @@ std::string characterisation_json(const analysis::Characterisation& c, const ana
     << analysis::compensation_name(s.compensation) << "\",\n  \"alpha_per_C\": "
     << (s.compensation == analysis::Compensation::kLinear ? num(c.alpha_per_C) : "null")
     << ",\n  \"alpha_fitted\": " << (c.alpha_fitted ? "true" : "false") << ",\n  \"radius\": {\"rule\": \""
-    << radius_rule(s.conversion) << "\", \"effective_mm\": " << num(c.effective_radius_mm)
+    << radius_rule(s.conversion) << "\", \"source\": " << json_string(s.conversion.source)
+    << ", \"effective_mm\": " << num(c.effective_radius_mm)
     << ", \"interfaces\": " << s.conversion.interfaces << ", \"bearing_drag_mu\": " << num(s.conversion.bearing_drag_mu)
     << "},\n  \"ranges\": {\"speed_mm_s\": [" << num(c.min_speed_mm_s) << ", " << num(c.max_speed_mm_s)
     << "], \"temp_C\": [" << num(c.min_temp_C) << ", " << num(c.max_temp_C) << "], \"load_N\": ["
-    << num(c.loads_N.front()) << ", " << num(c.loads_N.back()) << "]},\n  \"loads_N\": " << nums(c.loads_N)
+    << num(c.loads_N.front()) << ", " << num(c.loads_N.back()) << "]},\n  \"hot_row_temp_C\": " << num(c.hot_row_temp_C)
+    << ",\n  \"loads_N\": " << nums(c.loads_N)
     << ",\n  \"temps_C\": " << nums(c.temps_C) << ",\n  \"node_rpm\": " << nums(c.node_rpm) << ",\n  \"ramps_used\": [";
   for (std::size_t i = 0; i < c.used.size(); ++i) {
     const auto& r = c.used[i];
@@ -133,7 +144,9 @@ std::string characterisation_json(const analysis::Characterisation& c, const ana
         << nums({r.maki_se[0], r.maki_se[1], r.maki_se[2], r.maki_se[3]});
     o << ", \"node_mu\": " << nums(r.node_mu) << "}";
   }
-  o << "\n  ]";
+  o << "\n  ],\n  \"warnings\": [";
+  for (std::size_t i = 0; i < c.warnings.size(); ++i) o << (i ? ", " : "") << json_string(c.warnings[i]);
+  o << "]";
   if (!c.quadratic.empty()) {
     o << ",\n  \"quadratic\": [";
     for (std::size_t i = 0; i < c.quadratic.size(); ++i) {

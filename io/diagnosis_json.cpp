@@ -164,6 +164,13 @@ std::string backward_finding(const analysis::BackwardFinding& f) {
   return o.text();
 }
 
+std::string unexplained(const analysis::UnexplainedEffect& u) {
+  Object o;
+  o.str("effect", u.effect).raw("parameters", object_of(u.parameters)).str("parameter_at_bound", u.parameter);
+  if (!u.parameter.empty()) o.num("bound", u.bound);
+  return o.str("reason", u.reason).str("likely_cause", u.likely_cause).text();
+}
+
 std::string fitted_effect(const analysis::FittedEffect& f) {
   return Object().str("effect", f.effect).raw("parameters", object_of(f.parameters)).text();
 }
@@ -188,6 +195,8 @@ std::string diagnosis_json(const analysis::DiagnosisResult& r, const DiagnosisSe
       .raw("tracking", list(r.tracking, "    ", tracking))
       .raw("steps", list(steps, "    ", [](const std::string& text) { return text; }))
       .raw("missing_effects", strings(r.missing_effects))
+      .raw("not_explained", list(r.not_explained, "    ", unexplained))
+      .raw("tolerance_given", r.tolerance_given ? "true" : "false")
       .raw("withdrawn_effects", list(r.withdrawn, "    ", backward_finding))
       .raw("indistinguishable_effects", list(r.indistinguishable, "    ", backward_finding))
       .raw("last_round", list(r.last_round, "    ", candidate))

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "clutch/friction_radius.hpp"
 #include "clutch/linear_friction.hpp"
 #include "clutch/maki_friction.hpp"
 #include "clutch/table_friction.hpp"
@@ -331,6 +332,19 @@ clutch::Fluid read_fluid(const toml::table& doc, const std::string& path) {
   fluid.breakaway_ratio = s.number("breakaway_ratio", Range::closed(0.5, 3.0));
   s.string_or("source", "");
   s.finish();
+
+  // [friction_radius] (optional): the radius the law was fitted at from torque; a clutch model
+  // of another radius converts the law when it is built (clutch/friction_radius.hpp).
+  if (root.has("friction_radius")) {
+    TomlTable fr = root.table("friction_radius");
+    const std::string convention = fr.string("convention");
+    clutch::RadiusConvention parsed{};
+    if (!clutch::parse_radius_convention(convention, parsed))
+      fr.fail("convention", "is '" + convention + "'; expected \"uniform_pressure\" or \"uniform_wear\"");
+    fluid.friction_radius_convention = convention;
+    fluid.friction_radius_mm = fr.number("radius_mm", Range::positive());
+    fr.finish();
+  }
 
   // Exactly one friction law.
   const char* kLaws = "[maki] (Paper G matrix), [linear] (Papers B/C/E lines) or [table] "

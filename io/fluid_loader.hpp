@@ -5,6 +5,10 @@
 //                      optional density_kg_m3 (default 868, Paper G Table 1)
 //   [static_friction]  breakaway_ratio in [0.5, 3]: mu_s = ratio * mu_k(v_min, T, F);
 //                      optional source
+//   [friction_radius]  optional: convention ("uniform_pressure" | "uniform_wear") and radius_mm,
+//                      the radius a law fitted from torque was fitted at (written by
+//                      `characterise`); a clutch model of another radius converts the law when
+//                      it is built (clutch/friction_radius.hpp)
 //   exactly one of
 //   [maki]             Paper G eq. 13 matrix over loads_N x [[maki.row]] (temp_C, sets),
 //                      v in mm/s

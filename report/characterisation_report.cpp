@@ -41,7 +41,10 @@ std::string characterisation_summary(const analysis::Characterisation& c, const 
   for (const auto& r : c.used) up += r.direction == analysis::RampDirection::kUp;
   o << "characterise: " << c.used.size() << " ramps used (" << up << " up, " << c.used.size() - std::size_t(up)
     << " down), " << c.rejected.size() << " rejected\n"
-    << "  friction radius " << f("%.4g", c.effective_radius_mm) << " mm, " << s.conversion.interfaces
+    << "  friction radius " << f("%.4g", c.effective_radius_mm) << " mm ("
+    << clutch::radius_convention_name(s.conversion.convention())
+    << (s.conversion.source.empty() ? "" : ": " + s.conversion.source) << "; recorded in the fluid file), "
+    << s.conversion.interfaces
     << " interface(s), bearing drag mu " << f("%.4g", s.conversion.bearing_drag_mu) << "\n"
     << "  compensation: " << analysis::compensation_name(s.compensation);
   if (s.compensation == analysis::Compensation::kLinear)
@@ -55,6 +58,7 @@ std::string characterisation_summary(const analysis::Characterisation& c, const 
     o << "  " << f("%6.3g", r.load_N / 1000.0) << f(" %7.3g", r.temp_C) << "      " << f("%3.0f", r.ramps_up) << "/"
       << f("%-3.0f", r.ramps_down) << "        " << f("%.2e", r.rms_residual) << "    " << f("%.2e", r.max_residual)
       << "    " << f("%.2e", r.up_down_gap_raw) << " -> " << f("%.2e", r.up_down_gap_comp) << "\n";
+  for (const auto& w : c.warnings) o << "  warning: " << w << "\n";
   for (std::size_t i = 0; i < c.rejected.size() && i < 5; ++i)
     o << "  rejected: run " << c.rejected[i].run << " " << f("%.3g", c.rejected[i].t_start_s) << "-"
       << f("%.3g", c.rejected[i].t_end_s) << " s: " << c.rejected[i].reason << "\n";

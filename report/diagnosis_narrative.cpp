@@ -95,6 +95,20 @@ std::string verdict_words(analysis::DiagnosisVerdict v) {
   return {};
 }
 
+std::string not_explained_text(const analysis::DiagnosisResult& r) {
+  std::string reasons, cause;
+  for (const auto& u : r.not_explained)
+    if (!u.parameter.empty()) {
+      reasons += (reasons.empty() ? "" : "; ") + u.reason;
+      if (cause.empty()) cause = u.likely_cause;
+    }
+  if (reasons.empty() && !r.not_explained.empty()) {  // the gap: one reason for all
+    reasons = r.not_explained.front().reason;
+    cause = r.not_explained.front().likely_cause;
+  }
+  return reasons + (cause.empty() ? "" : " (likely cause: " + cause + ")");
+}
+
 std::string verdict_sentence(const analysis::DiagnosisResult& r) {
   std::ostringstream os;
   os << "Verdict: " << verdict_words(r.verdict);
@@ -115,7 +129,10 @@ std::string verdict_sentence(const analysis::DiagnosisResult& r) {
                  " s mean " + fmt(d.mean_error);
     if (!where.empty()) gaps += " at " + where;
   }
-  if (gaps.empty()) {
+  if (!r.not_explained.empty()) {
+    os << ": " << not_explained_text(r) << "; nothing is named";
+    if (!gaps.empty()) os << "; with the baseline: " << gaps;
+  } else if (gaps.empty()) {
     os << ": every channel within its error scale";
   } else {
     if (r.stop.kind == analysis::StopReason::Kind::kTie && r.missing_effects.empty())
@@ -125,6 +142,8 @@ std::string verdict_sentence(const analysis::DiagnosisResult& r) {
       os << (r.verdict == analysis::DiagnosisVerdict::kNotExplained ? ": no candidate closes the gap; "
                                                                       : "; a gap remains: ");
     os << gaps;
+    if (!r.tolerance_given)
+      os << " (no --tolerance given: a model-form gap could not be separated from a missing effect)";
   }
   os << ".";
   return os.str();
@@ -133,7 +152,12 @@ std::string verdict_sentence(const analysis::DiagnosisResult& r) {
 std::string diagnosis_conclusion(const analysis::DiagnosisResult& r) {
   const std::string stop = stop_reason_text(r.stop);
   std::ostringstream concl;
-  if (r.missing_effects.empty() && r.stop.kind == analysis::StopReason::Kind::kTie) {
+  if (!r.not_explained.empty()) {
+    std::string tried;
+    for (const auto& u : r.not_explained) tried += (tried.empty() ? "" : ", ") + u.effect;
+    concl << "Not explained: " << not_explained_text(r) << ". The search added " << tried
+          << ", which is therefore not named as missing; the final model is the baseline.";
+  } else if (r.missing_effects.empty() && r.stop.kind == analysis::StopReason::Kind::kTie) {
     concl << "No effect is named: " << stop << ".";
   } else if (r.missing_effects.empty()) {
     concl << "Nothing is missing that the candidates could explain: " << stop << ".";

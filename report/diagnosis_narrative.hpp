@@ -20,6 +20,9 @@ std::string stop_reason_text(const analysis::StopReason& stop);
 std::string step_reason(const analysis::DiagnosisStep& step);
 /// "explained", "partly explained", "not explained".
 std::string verdict_words(analysis::DiagnosisVerdict v);
+/// Why the effects the search added are not named (DiagnosisResult::not_explained): the
+/// parameters the data pull to their bounds, or the gap left, and the likely cause; "" if none.
+std::string not_explained_text(const analysis::DiagnosisResult& result);
 /// The summary's first line: the verdict, what was named, and where and how big the gap left
 /// is per channel against its error scale.
 std::string verdict_sentence(const analysis::DiagnosisResult& result);

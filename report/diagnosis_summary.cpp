@@ -73,6 +73,11 @@ std::string diagnosis_summary(const io::Scenario& s, const analysis::DiagnosisRe
   os << "Missing effects: ";
   for (std::size_t i = 0; i < r.missing_effects.size(); ++i) os << (i ? ", " : "") << r.missing_effects[i];
   os << (r.missing_effects.empty() ? "none" : "") << "\n";
+  for (const auto& u : r.not_explained) {
+    os << "Not named (added by the search, not found): " << u.effect;
+    if (!u.parameters.empty()) os << " (" << parameters(u.parameters) << ")";
+    os << ": " << u.reason << (u.likely_cause.empty() ? "" : "; likely cause: " + u.likely_cause) << "\n";
+  }
   for (const auto& f : r.withdrawn) os << "Withdrawn by the backward check: " << backward_finding_text(f) << "\n";
   for (const auto& f : r.indistinguishable) os << "Not separable on these data: " << backward_finding_text(f) << "\n";
   if (!r.final_effects.empty()) {

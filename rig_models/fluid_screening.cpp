@@ -84,23 +84,28 @@ ScreeningReport screen_fluid(const clutch::Fluid& fluid, const ScreeningOptions&
   for (double T : opt.temps_C)
     if (!std::isfinite(T)) throw std::invalid_argument("screening: temperatures must be finite (degC)");
 
+  // rpm are read at the radius the law was fitted at when the fluid records one (a
+  // characterised fluid: 1 rpm then means what it meant on the rig), else at the rig's
+  // (clutch/friction_radius.hpp); the rigs' clutches convert the law to their own radius.
+  analysis::IndexSettings indices = opt.indices;
+  if (fluid.friction_radius_mm > 0.0) indices.mean_radius_mm = fluid.friction_radius_mm;
   ScreeningReport rep;
   rep.fluid_name = fluid.name;
-  rep.load_N = opt.indices.load_N;
-  rep.mean_radius_mm = opt.indices.mean_radius_mm;
+  rep.load_N = indices.load_N;
+  rep.mean_radius_mm = indices.mean_radius_mm;
   rep.law_temp_range_C = law.temp_range_C();
   rep.law_speed_range_mm_s = {law.min_speed_mm_s(), law.max_speed_mm_s()};
 
   // 1. Indices per screening temperature.
   const std::vector<double> temps = opt.temps_C.empty() ? analysis::default_screening_temperatures(law) : opt.temps_C;
-  for (double T : temps) rep.indices.push_back(analysis::anti_shudder_indices(law, T, opt.indices));
+  for (double T : temps) rep.indices.push_back(analysis::anti_shudder_indices(law, T, indices));
 
   // 2. Slope map and its negative region on the speed x temperature grid.
   std::vector<double> speeds = opt.map_speeds_rpm;
   if (speeds.empty())
     for (int n = 1; n <= 120; ++n) speeds.push_back(n);
   const std::vector<double> map_temps = opt.map_temps_C.empty() ? default_map_temperatures(law, temps) : opt.map_temps_C;
-  rep.slope = analysis::isothermal_slope_map(law, speeds, map_temps, opt.indices);
+  rep.slope = analysis::isothermal_slope_map(law, speeds, map_temps, indices);
   const auto negative = analysis::negative_slope_mask(rep.slope);
   const Eigen::Array<bool, Eigen::Dynamic, Eigen::Dynamic> all =
       Eigen::Array<bool, Eigen::Dynamic, Eigen::Dynamic>::Constant(negative.rows(), negative.cols(), true);
@@ -111,7 +116,7 @@ ScreeningReport screen_fluid(const clutch::Fluid& fluid, const ScreeningOptions&
   const std::vector<ScreeningRig> rigs = opt.rigs.empty() ? default_screening_rigs() : opt.rigs;
   std::vector<analysis::RigEvidence> evidence;
   for (const auto& spec : rigs) {
-    rep.rigs.push_back(screen_rig(spec, fluid, opt.indices.load_N, speeds, map_temps));
+    rep.rigs.push_back(screen_rig(spec, fluid, indices.load_N, speeds, map_temps));
     evidence.push_back({rep.rigs.back().label, rep.rigs.back().unstable_extent});
   }
 

@@ -78,18 +78,24 @@ InverseCharacterisation characterise_inverse(const std::vector<analysis::RampRun
     throw std::invalid_argument("inverse characterisation calibrates on temp_C or ir_temp_C, not " + channel);
   InverseCharacterisation out;
   out.sensor = analysis::characterise(runs, settings);
-  out.oil_flow_start = inv.model.clutch.thermal.oil_flow;
+  // The laws are read from torque at the settings' friction radius: the replays convert them to
+  // the model's (clutch/friction_radius.hpp), as every later use of the fluid file does.
+  ReplayModel model = inv.model;
+  model.fluid.friction_radius_mm = settings.conversion.effective_radius_mm();
+  model.fluid.friction_radius_convention = clutch::radius_convention_name(settings.conversion.convention());
+  out.oil_flow_start = model.clutch.thermal.oil_flow;
   std::shared_ptr<const clutch::FrictionLaw> law = out.sensor.law;
   clutch::OilFlowLaw oil = out.oil_flow_start;
   const auto replay_with = [&](const std::shared_ptr<const clutch::FrictionLaw>& l, const clutch::OilFlowLaw& o) {
     ++out.replays;
-    return replay_all(runs, inputs, channel, inv.model, l, o, inv.jobs);
+    return replay_all(runs, inputs, channel, model, l, o, inv.jobs);
   };
 
   // The inverse fit keeps the sensor method's rows: the model's interface temperature at a
   // ramp's start differs from the sensor's by the heating of the hold before it.
   out.settings = settings;
   out.settings.row_temps_C = out.sensor.temps_C;
+  if (std::isfinite(out.sensor.hot_row_temp_C)) out.settings.row_temps_C.pop_back();  // made again from the model's
   std::vector<analysis::RampRun> model_runs = runs;
   for (int pass = 0; pass < 2; ++pass) {
     if (inv.calibrate_oil_flow) {

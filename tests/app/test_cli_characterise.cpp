@@ -56,7 +56,9 @@ TEST(CliCharacterise, WritesAFluidThatScreenAndRunAcceptPlusJsonAndReport) {
   EXPECT_THAT(r.out, ::testing::HasSubstr("12 ramps used (6 up, 6 down)"));
   const auto json = test::parse(test::slurp(dir / "fit.json"));
   EXPECT_EQ(json["format"].str(), "shudder-characterisation/1");
-  EXPECT_EQ(json["rows"].items.size(), 6u);
+  // 2 loads x (40, 60, 80 °C and the hot row at the hottest reading, ~100 °C).
+  EXPECT_EQ(json["rows"].items.size(), 8u);
+  EXPECT_GT(json["hot_row_temp_C"].num(), 83.0);
   EXPECT_EQ(json["ramps_used"].items.size(), 12u);
   EXPECT_TRUE(fs::exists(dir / "rep" / "summary.txt"));
   // Paper D's cycles start at N0 = 1 rpm, never at rest: no breakaway to measure, and it says so.
@@ -74,6 +76,7 @@ TEST(CliCharacterise, WritesAFluidThatScreenAndRunAcceptPlusJsonAndReport) {
   EXPECT_EQ(pj["compensation"].str(), "piecewise");
   ASSERT_EQ(pj["piecewise"].items.size(), 2u);  // 10 and 20 kN
   for (const auto& row_temp : pj["temps_C"].items) {
+    if (row_temp.num() == pj["hot_row_temp_C"].num()) continue;  // made after the surface, from it
     bool is_knot = false;
     for (const auto& knot : pj["piecewise"].items[0]["temp_knots_C"].items) is_knot |= knot.num() == row_temp.num();
     EXPECT_TRUE(is_knot) << row_temp.num();
@@ -189,12 +192,14 @@ TEST(CliCharacterise, InverseMethodReportsBothMethods) {
   EXPECT_EQ(json["method"].str(), "inverse");
   EXPECT_EQ(json["temperature"].str(), "model_interface_mean");
   const auto& m = json["methods"];
-  ASSERT_EQ(m["sensor"]["rows"].items.size(), 6u);
-  ASSERT_EQ(m["inverse"]["rows"].items.size(), 6u);
+  ASSERT_EQ(m["sensor"]["rows"].items.size(), 8u);  // with the hot rows
+  ASSERT_EQ(m["inverse"]["rows"].items.size(), 8u);
   EXPECT_EQ(m["sensor"]["compensation"].str(), "quadratic");
-  // The inverse law is the one whose replay reproduces the measured torque: its misfit must be
-  // below the sensor law's (both replayed with the same calibrated thermal model).
-  EXPECT_LT(m["inverse"]["replayed_torque_rms_Nm"].num(), m["sensor"]["replayed_torque_rms_Nm"].num());
+  // On data from the model itself both laws replay the runs at the torque cell's noise (with the
+  // hot rows; docs/characterisation.md 2c: 0.665 against 0.658 N m, 1 %): the inverse law is
+  // not worse by more than 3 %, twice that. (Without the hot rows the sensor law missed the runs
+  // above its top row by 1.5-4.6 sigma and the inverse one by less.)
+  EXPECT_LT(m["inverse"]["replayed_torque_rms_Nm"].num(), 1.03 * m["sensor"]["replayed_torque_rms_Nm"].num());
   EXPECT_EQ(m["thermal_calibration"]["temp_rms_C"].items.size(), 2u);
   EXPECT_NO_THROW(io::load_fluid((dir / "inv.toml").string()));
 }
@@ -209,6 +214,47 @@ TEST(CliCharacterise, InverseMethodThatDoesNotConvergeIsANumericalFailure) {
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_THAT(r.err, ::testing::HasSubstr("did not converge: after 1 replays"));
   expect_nothing_written(dir);
+}
+
+}  // namespace
+
+namespace {
+
+// The friction radius of --radius model (the default) from the runs' metadata: the default clutch
+// on the annulus they state, 40-60 mm: its 20 rings of 1 mm (centres 40.5 ... 59.5 mm) give
+// sum r_i A_i / sum A_i = sum r_i² / sum r_i = 50.665 mm exactly (the closed form 2/3 (60³ - 40³) /
+// (60² - 40²) = 50.667 mm less the midpoint rule's 0.0017 mm). Written with 10 digits.
+TEST(CliCharacterise, TheModelRadiusFollowsTheRunsAnnulus) {
+  const auto dir = test::scratch_dir("characterise_annulus");
+  const std::string runs = write_runs(dir);
+  std::istringstream names(runs);
+  for (std::string name; names >> name;) {
+    std::string text = test::slurp(dir / name);
+    text.insert(text.find('\n') + 1, "# inner_radius_mm: 40\n# outer_radius_mm: 60\n");  // after the format line
+    test::write_file(dir / name, text);
+  }
+  const auto r = test::run_cli("characterise" + runs + " -o f.toml --json f.json --nu40-cSt 35 --nu100-cSt 6.7", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto json = test::parse(test::slurp(dir / "f.json"));
+  double r2 = 0.0, r1 = 0.0;
+  for (int i = 0; i < 20; ++i) {
+    r2 += (40.5 + i) * (40.5 + i);
+    r1 += 40.5 + i;
+  }
+  EXPECT_NEAR(json["radius"]["effective_mm"].num(), r2 / r1, 1e-7);
+  EXPECT_EQ(json["radius"]["rule"].str(), "uniform_pressure");
+  EXPECT_THAT(r.out, ::testing::HasSubstr("the default clutch on the run's annulus 40-60 mm"));
+  // A radius that is not a number: bad input naming the file and the key.
+  const std::string first = runs.substr(1, runs.find(' ', 1) - 1);
+  std::string text = test::slurp(dir / first);
+  const auto at = text.find("# inner_radius_mm: 40");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 21, "# inner_radius_mm: forty");
+  test::write_file(dir / first, text);
+  const auto bad = test::run_cli("characterise" + runs + " -o g.toml --nu40-cSt 35 --nu100-cSt 6.7", dir);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_THAT(bad.err, ::testing::HasSubstr("inner_radius_mm"));
+  EXPECT_THAT(bad.err, ::testing::HasSubstr("'forty'"));
 }
 
 }  // namespace

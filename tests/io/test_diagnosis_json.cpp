@@ -161,8 +161,8 @@ TEST(DiagnosisJson, ARealDiagnosisIsWrittenAsStrictJsonWithEveryKey) {
   const Json j = parse(diagnosis_json(r));
   const std::vector<std::string> keys{"format", "shudder_version", "verdict", "verdict_text", "runs", "noise",
                                       "holdout", "baseline", "disagreements", "tracking", "steps",
-                                      "missing_effects", "withdrawn_effects", "indistinguishable_effects",
-                                      "last_round", "final", "final_effects", "channels",
+                                      "missing_effects", "not_explained", "tolerance_given", "withdrawn_effects",
+                                      "indistinguishable_effects", "last_round", "final", "final_effects", "channels",
                                       "final_disagreements", "remaining", "conclusion", "timing"};
   ASSERT_EQ(j.members.size(), keys.size());
   for (std::size_t i = 0; i < keys.size(); ++i) EXPECT_EQ(j.members[i].first, keys[i]);
@@ -324,7 +324,7 @@ TEST(DiagnosisJson, BackwardCheckFindingsAreWrittenWithTheirCosts) {
 
 TEST(DiagnosisJson, EmptyResultIsValidWithEmptyArrays) {
   const Json j = parse(diagnosis_json(DiagnosisResult{}));
-  for (const char* k : {"runs", "disagreements", "steps", "missing_effects", "withdrawn_effects",
+  for (const char* k : {"runs", "disagreements", "steps", "missing_effects", "not_explained", "withdrawn_effects",
                         "indistinguishable_effects", "last_round",
                         "final_disagreements", "tracking", "channels"}) {
     EXPECT_EQ(j[k].type, Json::Type::kArray) << k;
