@@ -69,7 +69,6 @@ struct Builder {
   }
 };
 
-
 // The Haldex coupling: the pack as a wet clutch in its own oil, clamped by its hydraulics
 // (rig_models/haldex_coupling_law.hpp); the nodes its control unit reads.
 void build_haldex(const ClutchSpec& c, BuiltClutch& bc, const Builder& b, double duration_s) {

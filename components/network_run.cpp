@@ -195,11 +195,12 @@ NetworkRun run_network(const NetworkSpec& spec) {
     const double outside = f ? f->value : std::nan("");
     range.name = std::string(rig_models::kFrictionRangeBlock) + "." + bc.name();
     rec.blocks.push_back(std::move(range));
-    for (auto& b : rec.blocks)
-      if (b.name == "verdict." + bc.name() ||
-          (b.name == "verdict" && static_cast<int>(c) == run.worst && b.find_text("verdict")))
-        if (b.find_text("verdict") && b.find_text("verdict")->value != "not_judged")
-          b.scalars.push_back({"outside_data_fraction", "1", outside});
+    for (auto& b : rec.blocks) {
+      const bool of_this_clutch = b.name == "verdict." + bc.name() || (b.name == "verdict" && static_cast<int>(c) == run.worst);
+      const auto* verdict = b.find_text("verdict");
+      if (of_this_clutch && verdict && verdict->value != "not_judged")
+        b.scalars.push_back({"outside_data_fraction", "1", outside});
+    }
   }
   return run;
 }

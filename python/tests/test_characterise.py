@@ -53,7 +53,8 @@ def test_characterise_equals_the_cli_fit_and_fluid_file(ramp_logs):
     code, _, err = cli("characterise", *runs, "-o", d / "cli.toml", "--json", d / "cli.json", *FLUID_ARGS)
     assert code == 0, err
     assert fit["format"] == "shudder-characterisation/1"
-    assert len(fit["rows"]) == 6  # Maki rows: 2 loads x 3 start temperatures
+    # Maki rows: 2 loads x (3 start temperatures + the hot row at the hottest temperature reached)
+    assert len(fit["rows"]) == 8
     cli_fit = json.loads((d / "cli.json").read_text())
     # Everything but the output names is the same computation on the same files: equal exactly.
     for key in ("rows", "ramps_used"):
