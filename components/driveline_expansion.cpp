@@ -8,9 +8,7 @@ namespace shudder::components {
 
 namespace {
 
-constexpr double kGravity_m_s2 = 9.80665;  // as rig_models::HaldexDriveline
-
-Signal table(const rig_models::PiecewiseLinear& f) { return Signal::table(f.times_s(), f.values(), true); }
+Signal schedule_signal(const rig_models::PiecewiseLinear& f) { return Signal::table(f.times_s(), f.values(), true); }
 
 }  // namespace
 
@@ -38,7 +36,7 @@ NetworkSpec expand_driveline(const rig_models::DrivelineParams& p, const clutch:
     if (i != D::kVehicle) s.inertias.push_back({bodies[static_cast<std::size_t>(i)].first, bodies[static_cast<std::size_t>(i)].second, w[i]});
 
   const double theta = std::atan(in.grade_percent / 100.0);
-  const double weight_N = p.vehicle_mass_kg * kGravity_m_s2;
+  const double weight_N = p.vehicle_mass_kg * D::kGravity_m_s2;
   VehicleSpec v;
   v.name = "vehicle";
   v.mass_kg = p.vehicle_mass_kg;
@@ -84,11 +82,11 @@ NetworkSpec expand_driveline(const rig_models::DrivelineParams& p, const clutch:
     e.name = "engine_map";
     e.node = "engine";
     e.params = p.engine;
-    e.throttle = table(*in.throttle);
+    e.throttle = schedule_signal(*in.throttle);
     s.engines.push_back(e);
     pedal = e.throttle;
   } else {
-    s.torque_sources.push_back({"engine_torque", "engine", table(in.engine_torque_Nm)});
+    s.torque_sources.push_back({"engine_torque", "engine", schedule_signal(in.engine_torque_Nm)});
     const auto& full = p.engine.full_load_torque_Nm.values();
     const double peak = *std::max_element(full.begin(), full.end());
     std::vector<double> u;
@@ -116,8 +114,8 @@ NetworkSpec expand_driveline(const rig_models::DrivelineParams& p, const clutch:
   h.rear_path_ratio = 0.5 * (rho[D::kRL] + rho[D::kRR]);
   h.wheel_radius_m = r;
   h.pedal = pedal;
-  if (in.valve_opening) h.valve_opening = table(*in.valve_opening);
-  if (in.valve_pressure_bar) h.valve_pressure_bar = table(*in.valve_pressure_bar);
+  if (in.valve_opening) h.valve_opening = schedule_signal(*in.valve_opening);
+  if (in.valve_pressure_bar) h.valve_pressure_bar = schedule_signal(*in.valve_pressure_bar);
   s.clutches.push_back(c);
 
   s.settings.duration_s = cfg.duration_s;
