@@ -1,5 +1,8 @@
 #pragma once
 // Small builders for network tests: plain clutches and inertias in a few lines.
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -32,6 +35,16 @@ inline const std::vector<double>& channel(const dynamics::Recording& rec, const 
   const auto* s = rec.find(name);
   if (!s) throw std::runtime_error("no channel " + name);
   return s->values;
+}
+
+/// Largest |x − y| over a run, relative to y's range over it (infinite when the lengths differ):
+/// how two runs of the same model through different paths are compared.
+inline double relative_difference(const std::vector<double>& x, const std::vector<double>& y) {
+  if (x.size() != y.size() || y.empty()) return std::numeric_limits<double>::infinity();
+  const auto [lo, hi] = std::minmax_element(y.begin(), y.end());
+  double worst = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) worst = std::max(worst, std::abs(x[i] - y[i]));
+  return worst / std::max(*hi - *lo, 1e-12);
 }
 
 inline double scalar(const dynamics::Recording& rec, const std::string& name) {

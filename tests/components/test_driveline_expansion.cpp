@@ -18,14 +18,6 @@
 namespace shudder::components {
 namespace {
 
-double relative_difference(const std::vector<double>& x, const std::vector<double>& y) {
-  if (x.size() != y.size()) return std::numeric_limits<double>::infinity();
-  const auto [lo, hi] = std::minmax_element(y.begin(), y.end());
-  double worst = 0;
-  for (std::size_t i = 0; i < x.size(); ++i) worst = std::max(worst, std::abs(x[i] - y[i]));
-  return worst / std::max(*hi - *lo, 1e-12);
-}
-
 class DrivelineExpansion : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(DrivelineExpansion, NetworkPathGivesTheDrivelineRun) {
@@ -39,7 +31,7 @@ TEST_P(DrivelineExpansion, NetworkPathGivesTheDrivelineRun) {
            {"haldex.torque_Nm", "coupling_torque_Nm"}, {"haldex.slip_rpm", "coupling_slip_rpm"},
            {"haldex.pressure_bar", "pressure_bar"}, {"vehicle.speed_km_h", "vehicle_speed_km_h"},
            {"tyre_rl.force_N", "tyre_rl_force_N"}, {"haldex.interface_max_temp_C", "interface_max_temp_C"}}) {
-    const double d = relative_difference(test::channel(run.recording, net), test::channel(drv, kind));
+    const double d = test::relative_difference(test::channel(run.recording, net), test::channel(drv, kind));
     worst = std::max(worst, d);
   }
   // The same equations, assembled in another order (the vehicle is the network's last node):

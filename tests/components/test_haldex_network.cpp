@@ -43,10 +43,7 @@ double relative_difference(const dynamics::Recording& a, const std::string& a_na
   const auto& x = test::channel(a, a_name);
   const auto& y = test::channel(b, b_name);
   EXPECT_EQ(x.size(), y.size()) << a_name;
-  const auto [lo, hi] = std::minmax_element(y.begin(), y.end());
-  double worst = 0;
-  for (std::size_t i = 0; i < std::min(x.size(), y.size()); ++i) worst = std::max(worst, std::abs(x[i] - y[i]));
-  return worst / std::max(*hi - *lo, 1e-12);
+  return test::relative_difference(x, y);
 }
 
 // The control unit's launch from rest: the two runs start from the same exact zeros, so they

@@ -20,14 +20,6 @@
 namespace shudder::components {
 namespace {
 
-double relative_difference(const std::vector<double>& x, const std::vector<double>& y) {
-  if (x.size() != y.size()) return std::numeric_limits<double>::infinity();
-  const auto [lo, hi] = std::minmax_element(y.begin(), y.end());
-  double worst = 0;
-  for (std::size_t i = 0; i < x.size(); ++i) worst = std::max(worst, std::abs(x[i] - y[i]));
-  return worst / std::max(*hi - *lo, 1e-12);
-}
-
 class RigExpansion : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(RigExpansion, NetworkPathGivesTheRigRun) {
@@ -41,7 +33,7 @@ TEST_P(RigExpansion, NetworkPathGivesTheRigRun) {
            {"torsion_bar.torque_Nm", "torque_Nm"}, {"clutch.slip_rpm", "slip_rpm"},
            {"clutch.torque_Nm", "clutch_torque_Nm"}, {"clutch.interface_max_temp_C", "interface_max_temp_C"},
            {"clutch.temp_C", "temp_C"}})
-    worst = std::max(worst, relative_difference(test::channel(run.recording, net), test::channel(rig, kind)));
+    worst = std::max(worst, test::relative_difference(test::channel(run.recording, net), test::channel(rig, kind)));
   const auto judged = rig_models::judge_run(rig).judged;
   const auto& v = run.verdicts.at(0).verdict.judged;
   EXPECT_EQ(v.verdict, judged.verdict);

@@ -139,7 +139,7 @@ TEST(ScenarioModel, AMisspeltThermalSchemeListsTheAllowedValues) {
 namespace shudder {
 namespace {
 
-// Found by fuzz_scenario (stop 19): a fluid name with a component longer than the OS allows
+// Found by fuzz_scenario: a fluid name with a component longer than the OS allows
 // (255 bytes) made std::filesystem::exists throw filesystem_error, which escaped the loader as
 // something other than bad input. It must be an InputError naming the key and the OS's reason.
 TEST(ScenarioFuzzRegression, FluidPathTheOsRefusesIsBadInput) {

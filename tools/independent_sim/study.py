@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Issue 12 study: `shudder diagnose` on runs of the independent simulator (indep_sim.py).
+"""Study: `shudder diagnose` on runs of the independent simulator (indep_sim.py).
 
 Per case: three Paper G Case 2 runs at 10.4, 25.3 and 14.8 kN from 80 C (the loads of
 bench/bench_diagnose.cpp's every-effect-off benchmark; the 14.8 kN run last, held out), noise

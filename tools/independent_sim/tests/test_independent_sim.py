@@ -129,7 +129,7 @@ def test_bearing_drag_is_named_through_the_model_form_gap(tmp_path, tolerance):
 def test_a_thermocouple_offset_is_named_through_the_ir_spot(tmp_path, tolerance):
     # +2 K on the thermocouple: the replay's start temperature (read off the thermocouple) hides
     # it from temp_C; the thermocouple against the IR spot shows it. Named alone within 20 % (seen
-    # 2.30 K, +15 %: the oil-flow gap's share); before session 22 missed, "explained".
+    # 2.30 K, +15 %: the oil-flow gap's share).
     res = diagnose(tmp_path, sim.Hidden(tc_offset_K=2.0), tolerance)
     assert res["missing_effects"] == ["thermocouple_offset"]
     assert res["final_effects"][0]["parameters"]["offset_K"] == pytest.approx(2.0, rel=0.2)
@@ -138,7 +138,7 @@ def test_a_thermocouple_offset_is_named_through_the_ir_spot(tmp_path, tolerance)
 @needs_cli
 def test_a_half_second_sensor_lag_is_named_alone(tmp_path, tolerance):
     # A 0.5 s thermocouple lag, ~0.9 C RMS inside a 1.5 C temperature tolerance: named alone within
-    # 20 % (seen 0.565 s). Before session 22: 0.82 s (+64 %), later a 26 J/K rig mass beside it.
+    # 20 % (seen 0.565 s).
     res = diagnose(tmp_path, sim.Hidden(tc_lag_s=0.5), tolerance)
     assert res["missing_effects"] == ["temperature_sensor_lag"]
     assert res["final_effects"][0]["parameters"]["time_constant_s"] == pytest.approx(0.5, rel=0.2)
