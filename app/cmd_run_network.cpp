@@ -1,6 +1,8 @@
 // `shudder run` on a network scenario (docs/formats/network_file.md): load and check the network,
 // simulate every clutch, write the HDF5 run file and print the summary with each clutch's verdict.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -50,15 +52,37 @@ void write_clutch_measurement(const RunOptions& opt, const components::ClutchSpe
   io::write_measurement(measurement_path(opt.measurement, c.name), m, o);
 }
 
+// `--fixed-step H` (dynamics/simulation.hpp "Fixed-step mode"): the duration, the thermal step and
+// the sample interval are whole numbers of steps, so every step is H and every sample and
+// thermal update falls on a step's end.
+void require_whole_steps(const RunOptions& opt, const components::NetworkSettings& s, bool wet) {
+  const double h = opt.fixed_step_s;
+  const auto check = [&](double span_s, const char* key, const char* what) {
+    const double n = std::round(span_s / h);
+    if (n >= 1.0 && std::abs(span_s / h - n) <= 1e-9 * n) return;
+    std::ostringstream line;
+    line << "--fixed-step " << h << " s: " << what << " (" << span_s
+         << " s) must be a whole number of fixed steps; choose a step that divides it";
+    throw io::InputError(opt.scenario, 0, key, line.str());
+  };
+  if (!(h > 0) || !std::isfinite(h))
+    throw io::InputError(opt.scenario, 0, "--fixed-step", "the step must be a number > 0 (s), e.g. 1e-4");
+  check(s.duration_s, "scenario.duration_s", "the duration");
+  if (wet) check(s.thermal_step_s, "solver.thermal_step_ms", "the thermal step");
+  check(1.0 / s.sample_rate_Hz, "output.sample_rate_Hz", "the sample interval");
+}
+
 }  // namespace
 
 int run_network_command(const RunOptions& opt) {
-  const io::NetworkScenario sc = io::load_network_scenario_text(run_scenario_text(opt), opt.scenario);
+  io::NetworkScenario sc = io::load_network_scenario_text(run_scenario_text(opt), opt.scenario);
   for (const auto& w : sc.warnings) std::cerr << "shudder: warning: " << w << "\n";
-  if (opt.fixed_step_s > 0)
-    throw io::InputError(opt.scenario, 0, "--fixed-step",
-                         "the fixed-step mode runs the rig and the prescribed-slip clutch; a network runs adaptively "
-                         "(remove --fixed-step)");
+  if (opt.fixed_step_s != 0) {
+    const bool wet = std::any_of(sc.spec.clutches.begin(), sc.spec.clutches.end(),
+                                 [](const auto& c) { return c.law != components::ClutchSpec::Law::kPlain; });
+    require_whole_steps(opt, sc.spec.settings, wet);
+    sc.spec.settings.integrator.fixed_step_s = opt.fixed_step_s;
+  }
   const std::string out = opt.output.empty() ? sc.name + ".h5" : opt.output;
   std::vector<io::RolePath> inputs{{"scenario", opt.scenario}};
   for (const auto& f : sc.fluid_paths) inputs.push_back({"fluid file", f});

@@ -154,6 +154,7 @@ NetworkRun run_network(const NetworkSpec& spec) {
       {"stick_events", "1", static_cast<double>(sim.counters().stick_events)},
       {"breakaway_events", "1", static_cast<double>(sim.counters().breakaway_events)},
   };
+  if (cfg.integrator.fixed_step_s > 0) rec.scalars.push_back({"fixed_step_s", "s", cfg.integrator.fixed_step_s});
   // Each wet clutch's heat account (rig_models/energy_scalars.hpp) under its name; the run's
   // energy_balance_relative_error is the worst of them, so the energy guard judges every clutch.
   double worst_thermal = 0.0;

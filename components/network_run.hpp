@@ -5,7 +5,9 @@
 // coupled multi-rate (rig_models/multirate_clutch.hpp: each clutch's thermal model advanced
 // every thermal step with the friction heat its own contact accumulated, its ring temperatures
 // on a first-order hold); the stepper restarts at every jump of an input signal. A network
-// without wet clutches is integrated in one stretch between those jumps.
+// without wet clutches is integrated in one stretch between those jumps. With
+// settings.integrator.fixed_step_s > 0 the same right-hand side is advanced by the fixed-step
+// RK4 mode (dynamics/simulation.hpp): `shudder run --fixed-step`, the scalar `fixed_step_s` added.
 //
 // Recording (docs/formats/network_file.md "Output"): `time_s`, then channels named
 // `<component>.<quantity>_<unit>`, e.g. `launch_clutch.slip_rpm`; summary scalars (the energy

@@ -42,8 +42,9 @@ Simulation::Simulation(const TorsionalNetwork& network, IntegratorSettings setti
     : net_(network), cfg_(settings) {
   net_.validate();
   if (!(cfg_.abs_tol > 0) || !(cfg_.rel_tol > 0) || !(cfg_.max_step_s > 0) ||
-      !(cfg_.initial_step_s > 0) || !(cfg_.event_time_tol_s > 0))
-    throw std::invalid_argument("integrator tolerances and step limits must be > 0");
+      !(cfg_.initial_step_s > 0) || !(cfg_.event_time_tol_s > 0) || !(cfg_.fixed_step_s >= 0) ||
+      !std::isfinite(cfg_.fixed_step_s))
+    throw std::invalid_argument("integrator tolerances and step limits must be > 0 (a fixed step >= 0)");
   n_ = net_.nodes();
   motor_offset_ = 2 * n_;
   int off = motor_offset_ + static_cast<int>(net_.motors().size());
@@ -506,7 +507,62 @@ Sample Simulation::evaluate(const State& x, double t) const {
   return s;
 }
 
+void Simulation::advance_fixed(double t_end, const std::vector<double>& samples, const SampleCallback& cb) {
+  const double h = cfg_.fixed_step_s;
+  const double t_start = t_;
+  const double span = t_end - t_start;
+  if (!(span > 0.0)) return;
+  // Equal steps no longer than h; a span that is a whole number of steps (to round-off) takes h.
+  const long steps = std::max(1L, static_cast<long>(std::ceil(span / h - 1e-9)));
+  const double dt = span / static_cast<double>(steps);
+  const double on_step_s = 1e-9 * dt;  // a sample this close to a step's end is taken there
+  auto next = std::upper_bound(samples.begin(), samples.end(), t_);
+  const int nc = static_cast<int>(net_.contacts().size());
+  thread_local Forces f;
+  thread_local std::vector<double> g0;
+  thread_local State x1, xs;
+  g0.resize(static_cast<std::size_t>(nc));
+  compute(x_, t_, f);
+  for (int c = 0; c < nc; ++c) g0[c] = event_function(c, x_, t_, f);
+  for (long k = 1; k <= steps; ++k) {
+    const double t1 = k == steps ? t_end : t_start + static_cast<double>(k) * dt;
+    // Samples strictly inside the step: a sub-step from the step's start (header).
+    for (; next != samples.end() && *next < t1 - on_step_s; ++next) {
+      xs = x_;
+      fixed_stepper_.do_step(System{this}, xs, t_, *next - t_);
+      if (cb) cb(evaluate(xs, *next));
+    }
+    x1 = x_;
+    fixed_stepper_.do_step(System{this}, x1, t_, t1 - t_);
+    ++counters_.steps;
+    for (double v : x1)
+      if (!std::isfinite(v))
+        throw std::runtime_error("integration produced a non-finite state at t = " + std::to_string(t1) + " s");
+    x_ = x1;
+    t_ = t1;
+    for (; next != samples.end() && *next <= t1 + on_step_s; ++next)
+      if (cb) cb(evaluate(x_, t_));
+    // Events at the step's end (header): the contacts whose event function changed sign.
+    compute(x_, t_, f);
+    std::vector<int> sticking, releasing;
+    for (int c = 0; c < nc; ++c) {
+      const double g1 = event_function(c, x_, t_, f);
+      if (g1 < 0.0 && !(g0[c] <= 0.0 && g1 > -1e-13))
+        (modes_[c] == ContactMode::kStuck ? releasing : sticking).push_back(c);
+      g0[c] = g1;
+    }
+    if (sticking.empty() && releasing.empty()) continue;
+    resolve_contacts(x_, t_, sticking, releasing);
+    compute(x_, t_, f);
+    for (int c = 0; c < nc; ++c) g0[c] = event_function(c, x_, t_, f);
+  }
+}
+
 void Simulation::advance(double t_end, const std::vector<double>& samples, const SampleCallback& cb) {
+  if (cfg_.fixed_step_s > 0.0) {
+    advance_fixed(t_end, samples, cb);
+    return;
+  }
   auto next = std::upper_bound(samples.begin(), samples.end(), t_);
   const int nc = static_cast<int>(net_.contacts().size());
   std::vector<double> g0(nc);
