@@ -11,7 +11,6 @@
 #include "dynamics/signal_names.hpp"
 #include "rig_models/energy_scalars.hpp"
 #include "rig_models/realtime_coupling.hpp"
-#include "rig_models/realtime_rig.hpp"
 
 namespace shudder::rig_models {
 
@@ -107,55 +106,31 @@ dynamics::Recording run_fixed_step(const PrescribedSlipModel& model, const clutc
   return rec;
 }
 
-dynamics::Recording run_fixed_step(const RigModel& model, const clutch::WetClutch& clutch, double step_s) {
-  const auto& cfg = model.settings;
-  const RealtimeSettings rt{step_s, cfg.thermal_step_s};
-  const long n_steps = whole_steps(cfg.duration_s, step_s, "scenario.duration_s");
-  const long every = whole_steps(1.0 / cfg.sample_rate_Hz, step_s, "the sample interval 1 / output.sample_rate_Hz");
-  RealtimeRig rig(model.params, clutch, model.cycle, rt);
+namespace {
 
-  dynamics::Recording rec;
-  Columns col{rec, 0};
-  col.add_measured_channels();
-  col.add(sn::kSlip, "rpm");
-  col.add(sn::kClutchTorque, "N m");
-  col.add(sn::kMotorTorque, "N m");
-  col.add(sn::kHousingSpeed, "rpm");
-  col.add(sn::kStuck, "1");
-  col.add(sn::kInterfaceMeanTemp, "degC");
-  col.add(sn::kInterfaceMaxTemp, "degC");
-  using S = RealtimeRig;
-  const auto record = [&] {
-    const auto& x = rig.state();
-    const ThermalOutputs& th = rig.thermal();
-    col.push({rig.time_s(), units::rad_s_to_rpm(x[S::kOmegaD]), model.cycle.normal_force_N(rig.time_s()),
-              rig.bar_torque_Nm(), th.thermocouple_C, th.ir_C, th.sump_C,
-              units::rad_s_to_rpm(x[S::kOmegaD] - x[S::kOmegaH]), rig.clutch_torque_Nm(), rig.motor_torque_Nm(),
-              units::rad_s_to_rpm(x[S::kOmegaH]), rig.stuck() ? 1.0 : 0.0, th.interface_mean_C, th.interface_max_C});
-  };
-  record();
-  double peak_C = rig.thermal().interface_max_C;
-  for (long k = 0; k < n_steps; ++k) {
-    rig.step();
-    if ((k + 1) % every == 0) record();
-    peak_C = std::max(peak_C, rig.thermal().interface_max_C);
-  }
-  finish_recording(rec, rig.clutch(), step_s, n_steps / steps_per_thermal_step(rt));
-  rec.scalars.push_back({"peak_interface_temp_C", "degC", peak_C});
-  rec.scalars.push_back({"bar_stiffness_Nm_per_rad", "N m/rad", rig.rig().bar_stiffness_Nm_per_rad()});
-  rec.scalars.push_back({"clutch_side_frequency_Hz", "Hz", rig.rig().clutch_side_frequency_Hz()});
-  // The names the adaptive run uses, so the summary and the energy guard read them alike.
-  rec.scalars.push_back({"mechanical_energy_relative_error", "1", rig.energy_relative_error()});
-  rec.scalars.push_back({"integrator_steps", "1", static_cast<double>(rig.steps())});
-  rec.scalars.push_back({"rhs_evaluations", "1", static_cast<double>(4 * rig.steps() + 1)});
-  rec.scalars.push_back({"stick_events", "1", static_cast<double>(rig.stick_events())});
-  rec.scalars.push_back({"breakaway_events", "1", static_cast<double>(rig.breakaway_events())});
-  rec.scalars.push_back({"reversal_events", "1", static_cast<double>(rig.reversal_events())});
+// The kinds built on dynamics::Simulation take its fixed-step mode: the adaptive run's own
+// network, right-hand side and multi-rate thermal coupling, advanced by RK4 at the step.
+template <class KindModel>
+dynamics::Recording network_fixed_step(KindModel model, const clutch::WetClutch& clutch, double step_s,
+                                       double thermal_step_s) {
+  const auto& cfg = model.settings;
+  whole_steps(cfg.duration_s, step_s, "scenario.duration_s");
+  whole_steps(thermal_step_s, step_s, "the thermal step solver.thermal_step_ms");
+  whole_steps(1.0 / cfg.sample_rate_Hz, step_s, "the sample interval 1 / output.sample_rate_Hz");
+  model.params.integrator.fixed_step_s = step_s;
+  dynamics::Recording rec = simulate(model, clutch);
+  rec.scalars.push_back({"fixed_step_s", "s", step_s});
   return rec;
 }
 
-dynamics::Recording run_fixed_step(const DrivelineModel&, const clutch::WetClutch&, double) {
-  throw KindNotSupported("the fixed-step real-time mode covers the prescribed-slip clutch and the rig, not the driveline");
+}  // namespace
+
+dynamics::Recording run_fixed_step(const RigModel& model, const clutch::WetClutch& clutch, double step_s) {
+  return network_fixed_step(model, clutch, step_s, model.settings.thermal_step_s);
+}
+
+dynamics::Recording run_fixed_step(const DrivelineModel& model, const clutch::WetClutch& clutch, double step_s) {
+  return network_fixed_step(model, clutch, step_s, model.settings.slow_step_s);
 }
 
 }  // namespace shudder::rig_models

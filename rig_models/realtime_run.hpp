@@ -4,11 +4,13 @@
 //
 //   prescribed slip  rig_models::RealtimeCoupling, inputs Δω(t_k), F(t_k) held over each step
 //                    (what an FMU master gives it: the FMU test compares against this)
-//   rig              rig_models::RealtimeRig (RK4; stick and slip located to the step)
-//   driveline        not supported (KindNotSupported)
+//   rig, driveline   the adaptive run's own network, right-hand side and multi-rate thermal
+//                    coupling in dynamics::Simulation's fixed-step mode (RK4 at H; stick and
+//                    slip handled at the step ends)
 //
 // Samples are taken every round(1 / (rate · H)) steps, which must be a whole number; the
-// duration must be a whole number of steps. Thermal channels hold the latched thermal result.
+// duration (and for the network kinds the thermal step) must be a whole number of steps. The
+// prescribed-slip element's thermal channels hold the latched thermal result.
 
 #include "rig_models/model.hpp"
 #include "rig_models/realtime_clutch.hpp"
