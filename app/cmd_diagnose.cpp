@@ -3,11 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
+#include <memory>
+#include <optional>
 #include <iostream>
 #include <thread>
 #include <variant>
 
 #include "analysis/diagnosis.hpp"
+#include "components/clutch_replay.hpp"
+#include "components/network_builder.hpp"
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
 #include "io/diagnosis_inputs.hpp"
@@ -17,6 +22,7 @@
 #include "io/input_error.hpp"
 #include "io/logger_import.hpp"
 #include "io/measured_run.hpp"
+#include "io/network_scenario.hpp"
 #include "io/scenario.hpp"
 #include "report/diagnosis_narrative.hpp"
 #include "report/diagnosis_report.hpp"
@@ -57,20 +63,89 @@ std::vector<std::pair<std::string, double>> parse_tolerance(const std::string& t
   return out;
 }
 
+// The model the runs are replayed on, however the scenario describes it.
+struct Baseline {
+  rig_models::ReplayModel model;
+  report::DiagnosisSubject subject;
+  std::function<void(const std::vector<analysis::FittedEffect>&, const std::string&)> write_fixed;
+};
+
+// A network scenario: the clutch named by --clutch, else by the runs' `clutch` metadata, else the
+// network's only wet clutch (components/clutch_replay.hpp).
+Baseline network_baseline(const DiagnoseOptions& opt, const std::vector<io::MeasuredRun>& runs) {
+  auto sc = std::make_shared<const io::NetworkScenario>(io::load_network_scenario(opt.model));
+  for (const auto& w : sc->warnings) std::cerr << "shudder: warning: " << w << "\n";
+  const std::vector<std::string> wet = components::wet_clutch_names(sc->spec);
+  std::string clutch = opt.clutch, key = "--clutch";
+  if (clutch.empty())
+    for (const auto& run : runs)
+      if (const auto c = run.meta("clutch"); c && !c->empty()) {
+        if (!clutch.empty() && *c != clutch)
+          throw io::InputError(run.path, 0, "clutch",
+                               "this run is of clutch '" + *c + "', another of '" + clutch +
+                                   "'; diagnose one clutch's runs at a time, or name it with --clutch");
+        clutch = *c;
+        key = "clutch (the runs' metadata)";
+      }
+  if (clutch.empty()) {
+    if (wet.size() != 1) {
+      std::string list;
+      for (const auto& n : wet) list += (list.empty() ? "" : ", ") + n;
+      throw io::InputError(opt.model, 0, "--clutch",
+                           wet.empty() ? "the network has no wet clutch: a measured run is of a wet clutch"
+                                       : "the network has " + std::to_string(wet.size()) +
+                                             " wet clutches and the runs do not say which they are of; name "
+                                             "one with --clutch (" + list + ")");
+    }
+    clutch = wet.front();
+  }
+  Baseline b;
+  try {
+    b.model = components::clutch_replay_model(sc->spec, clutch);
+  } catch (const components::NetworkError& e) {
+    throw io::InputError(opt.model, 0, key, e.what());
+  }
+  const components::ClutchSpec* spec = nullptr;
+  for (const auto& c : sc->spec.clutches)
+    if (c.name == clutch) spec = &c;
+  b.subject = {opt.model, "network clutch '" + clutch + "'", spec->wet.enabled_effects};
+  b.write_fixed = [sc, clutch](const std::vector<analysis::FittedEffect>& effects, const std::string& out) {
+    io::write_fixed_network(*sc, clutch, effects, out);
+  };
+  return b;
+}
+
+Baseline scenario_baseline(const DiagnoseOptions& opt) {
+  auto scenario = std::make_shared<const io::Scenario>(io::load_scenario(opt.model));
+  Baseline b;
+  b.model = io::replay_model(*scenario);  // refuses kinds measured runs cannot come from
+  for (const auto& w : scenario->warnings) std::cerr << "shudder: warning: " << w << "\n";
+  scenario->make_clutch();  // fails early, naming the scenario, if the clutch is inconsistent
+  b.subject = report::diagnosis_subject(*scenario);
+  b.write_fixed = [scenario](const std::vector<analysis::FittedEffect>& effects, const std::string& out) {
+    io::write_fixed_model(*scenario, effects, out);
+  };
+  return b;
+}
+
 }  // namespace
 
 int diagnose_command(const DiagnoseOptions& opt) {
   return guarded(opt.model, "diagnosis", [&]() -> int {
     const auto tolerance = parse_tolerance(opt.tolerance);
-    const io::Scenario scenario = io::load_scenario(opt.model);
-    const auto model = io::replay_model(scenario);  // refuses kinds measured runs cannot come from
-    for (const auto& w : scenario.warnings) std::cerr << "shudder: warning: " << w << "\n";
-    scenario.make_clutch();  // fails early, naming the scenario, if the clutch is inconsistent
+    const bool network = io::scenario_type(opt.model) == "network";
+    std::optional<Baseline> baseline;
+    if (!network) baseline = scenario_baseline(opt);
+    if (!network && !opt.clutch.empty())
+      throw io::InputError(opt.model, 0, "--clutch", "names a clutch of a network scenario; this scenario has one clutch "
+                                                     "(remove --clutch)");
     std::vector<io::MeasuredRun> runs;
     const io::ImportSpec logger = io::import_spec_of(opt.maps, opt.mapping);  // --map/--mapping: logger files
     std::vector<std::string> import_warnings;
     for (const auto& path : opt.runs) runs.push_back(io::read_measured_or_logger(path, logger, import_warnings));
     for (const auto& w : import_warnings) std::cerr << "shudder: warning: " << w << "\n";
+    if (network) baseline = network_baseline(opt, runs);
+    const rig_models::ReplayModel& model = baseline->model;
     io::DiagnosisData data = io::diagnosis_data(runs, model);
     const analysis::DiagnosisOptions defaults;
     io::check_plausibility(runs, model, defaults.statistics_block_s, data.warnings);
@@ -92,14 +167,14 @@ int diagnose_command(const DiagnoseOptions& opt) {
         data.runs, candidates, rig_models::replay_simulator(model, std::move(data.inputs)), o, reproduce);
     for (const auto& w : result.warnings) std::cerr << "shudder: warning: " << w << "\n";
 
-    const std::string text = report::diagnosis_summary(scenario, result, skipped);
+    const std::string text = report::diagnosis_summary(baseline->subject, result, skipped);
     std::cout << text;
     if (!opt.json.empty()) {
       io::write_diagnosis_json(opt.json, result, report::diagnosis_sentences(result));
       std::cout << "JSON: " << opt.json << "\n";
     }
     if (!opt.write_model.empty()) {
-      io::write_fixed_model(scenario, result.final_effects, opt.write_model);
+      baseline->write_fixed(result.final_effects, opt.write_model);
       std::cout << "Model: " << opt.write_model << "\n";
     }
     if (!opt.report.empty()) {

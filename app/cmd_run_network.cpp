@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "app/commands.hpp"
+#include "components/network_builder.hpp"
 #include "components/network_run.hpp"
 #include "io/hdf5_run.hpp"
 #include "io/input_error.hpp"
@@ -45,10 +46,11 @@ void write_clutch_measurement(const RunOptions& opt, const components::ClutchSpe
   copy(c.name + ".temp_C", "temp_C");
   io::MeasurementOptions o;
   o.rig = std::string(rig_models::kNetworkClutchRig);
+  o.clutch = c.name;
   o.sample_rate_Hz = opt.measurement_rate_Hz;
   o.noise = opt.noise;
   o.seed = opt.seed;
-  io::describe_clutch(o, c.wet.clutch, c.wet.fluid.name);
+  io::describe_clutch(o, components::pack_params(c), c.wet.fluid.name);
   io::write_measurement(measurement_path(opt.measurement, c.name), m, o);
 }
 

@@ -97,6 +97,7 @@ struct DiagnoseOptions {
   std::string write_model;        // the baseline scenario with the named effects on; empty = none
   std::vector<std::string> maps;  // --map: the runs are a logger's CSV files (app/cmd_import.cpp)
   std::string mapping;            // --mapping: the same from a mapping file; empty = none
+  std::string clutch;             // --clutch: a network's wet clutch; empty = the runs' metadata or the only one
 };
 int diagnose_command(const DiagnoseOptions& options);
 

@@ -101,6 +101,9 @@ int main(int argc, char** argv) {
       "diagnose", "Find where a model and measured runs disagree and which effect is missing");
   diag_cmd->add_option("model", diagnose.model, "Scenario file (TOML): the baseline model")->required();
   diag_cmd->add_option("runs", diagnose.runs, "Measured runs (CSV or HDF5, docs/formats/measured_run.md)")->required();
+  diag_cmd->add_option("--clutch", diagnose.clutch,
+                       "A network scenario's wet clutch the runs are of (default: the runs' `clutch` metadata, or the "
+                       "network's only wet clutch)");
   diag_cmd->add_option("--json", diagnose.json, "Write the diagnosis as JSON (shudder-diagnosis/1)");
   diag_cmd->add_option("--report", diagnose.report,
                        "Also write a report directory: summary, candidate table, plots");

@@ -73,15 +73,8 @@ struct Builder {
 // (rig_models/haldex_coupling_law.hpp); the nodes its control unit reads.
 void build_haldex(const ClutchSpec& c, BuiltClutch& bc, const Builder& b, double duration_s) {
   const HaldexSpec& h = c.haldex;
-  clutch::WetClutchParams pack = c.wet.clutch;
-  rig_models::DrivelineParams oil;
-  oil.pack_oil_volume_ml = h.pack_oil_volume_ml;
-  oil.pack_cooling_flow_ml_min = h.pack_cooling_flow_ml_min;
   try {
-    clutch::ThermalParams with_pack_oil = pack.thermal;
-    rig_models::apply_pack_oil(oil, pack.sliding_interfaces, with_pack_oil);
-    if (!c.wet.oil_volume_given) pack.thermal.sump_volume_m3 = with_pack_oil.sump_volume_m3;
-    if (!c.wet.oil_flow_given) pack.thermal.supply_flow_m3_s = with_pack_oil.supply_flow_m3_s;
+    const clutch::WetClutchParams pack = pack_params(c);
     bc.wet = std::make_unique<clutch::WetClutch>(pack, c.wet.fluid);
     const rig_models::HaldexHydraulics hydraulics(
         h.hydraulics, pack.sliding_interfaces * h.nominal_friction * bc.wet->mean_radius_m());
@@ -98,12 +91,25 @@ void build_haldex(const ClutchSpec& c, BuiltClutch& bc, const Builder& b, double
   } catch (const std::invalid_argument& e) {
     throw NetworkError(c.name, e.what());
   }
-  bc.geometry_factor_m = pack.sliding_interfaces * bc.wet->mean_radius_m();
+  bc.geometry_factor_m = c.wet.clutch.sliding_interfaces * bc.wet->mean_radius_m();
   bc.front_axle_node = b.node(c.name, "front_axle", h.front_axle, false);
   bc.rear_axle_node = b.node(c.name, "rear_axle", h.rear_axle, false);
 }
 
 }  // namespace
+
+clutch::WetClutchParams pack_params(const ClutchSpec& c) {
+  clutch::WetClutchParams pack = c.wet.clutch;
+  if (c.law != ClutchSpec::Law::kHaldex) return pack;
+  rig_models::DrivelineParams oil;
+  oil.pack_oil_volume_ml = c.haldex.pack_oil_volume_ml;
+  oil.pack_cooling_flow_ml_min = c.haldex.pack_cooling_flow_ml_min;
+  clutch::ThermalParams with_pack_oil = pack.thermal;
+  rig_models::apply_pack_oil(oil, pack.sliding_interfaces, with_pack_oil);
+  if (!c.wet.oil_volume_given) pack.thermal.sump_volume_m3 = with_pack_oil.sump_volume_m3;
+  if (!c.wet.oil_flow_given) pack.thermal.supply_flow_m3_s = with_pack_oil.supply_flow_m3_s;
+  return pack;
+}
 
 double BuiltClutch::scheduled_force_N(double t_s) const { return spec->max_force_N * std::max(spec->force_signal(t_s), 0.0); }
 

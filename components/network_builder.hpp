@@ -74,6 +74,11 @@ struct BuiltNetwork {
   std::vector<std::string> node_names;
 };
 
+/// A wet clutch's pack parameters as the network builds them: the spec's, and for a Haldex
+/// coupling with its own oil (volume and cooling flow) unless its [clutch] table gives them.
+/// Throws std::invalid_argument for parameters the oil cannot be applied to.
+clutch::WetClutchParams pack_params(const ClutchSpec& clutch);
+
 /// Checks and builds; throws NetworkError. `spec` must outlive the result.
 std::unique_ptr<BuiltNetwork> build_network(const NetworkSpec& spec);
 

@@ -101,13 +101,14 @@ DiagnosisData diagnosis_data(const std::vector<MeasuredRun>& runs) {
 DiagnosisData diagnosis_data(const std::vector<MeasuredRun>& runs, const rig_models::ReplayModel& model) {
   DiagnosisData d = read_runs(runs);
   if (d.rig.empty()) return d;
-  if (model.kind == ModelKind::kDriveline) {
-    if (d.rig != rig_models::kCouplingRig)
-      d.warnings.push_back("the runs come from rig '" + d.rig + "'; the model is a driveline's Haldex coupling ('" +
-                           std::string(rig_models::kCouplingRig) + "')");
-  } else if (d.rig != rig_models::kLsctrRig) {
+  if (d.rig == model.rig) return d;
+  if (model.rig == rig_models::kCouplingRig)
+    d.warnings.push_back("the runs come from rig '" + d.rig + "'; the model is a driveline's Haldex coupling ('" +
+                         model.rig + "')");
+  else if (model.rig == rig_models::kNetworkClutchRig)
+    d.warnings.push_back("the runs come from rig '" + d.rig + "'; the model is a network's clutch ('" + model.rig + "')");
+  else
     d.warnings.push_back("the runs come from rig '" + d.rig + "'; the model is of the LSCTR");
-  }
   return d;
 }
 

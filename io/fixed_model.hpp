@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "analysis/diagnosis.hpp"
+#include "io/network_scenario.hpp"
 #include "io/scenario.hpp"
 
 namespace shudder::io {
@@ -22,5 +23,12 @@ std::string fixed_model_text(const Scenario& baseline, const std::vector<analysi
 /// cannot be written.
 void write_fixed_model(const Scenario& baseline, const std::vector<analysis::FittedEffect>& effects,
                        const std::string& out_path);
+
+/// The same for one clutch of a network scenario: its `[network.CLUTCH.effects.NAME]` tables set,
+/// and every wet clutch's fluid path rewritten relative to `out_path`.
+std::string fixed_network_text(const NetworkScenario& baseline, const std::string& clutch,
+                               const std::vector<analysis::FittedEffect>& effects, const std::string& out_path);
+void write_fixed_network(const NetworkScenario& baseline, const std::string& clutch,
+                         const std::vector<analysis::FittedEffect>& effects, const std::string& out_path);
 
 }  // namespace shudder::io

@@ -105,7 +105,7 @@ void check_options(const std::string& path, const MeasurementOptions& opt) {
                          "; use 0 (the recording's own rate) or a rate in (0, 1e6] Hz");
   if (!std::isfinite(opt.oil_flow_ml_min) || opt.oil_flow_ml_min < 0.0)
     throw InputError(path, 0, "oil_flow_ml_min", "must be a finite value >= 0 ml/min");
-  for (const auto& [key, text] : {std::pair{"rig", &opt.rig}, std::pair{"fluid", &opt.fluid},
+  for (const auto& [key, text] : {std::pair{"rig", &opt.rig}, std::pair{"fluid", &opt.fluid}, std::pair{"clutch", &opt.clutch},
                                   std::pair{"temp_sensor", &opt.temp_sensor}})
     if (text->find_first_of("\r\n") != std::string::npos)
       throw InputError(path, 0, key, "metadata value must be a single line");
@@ -245,6 +245,7 @@ MeasuredRun make_measurement(const std::string& path, const dynamics::Recording&
   meta.emplace_back("format", std::string(measured_run_format));
   if (!opt.rig.empty()) meta.emplace_back("rig", opt.rig);
   if (!opt.fluid.empty()) meta.emplace_back("fluid", opt.fluid);
+  if (!opt.clutch.empty()) meta.emplace_back("clutch", opt.clutch);
   if (!opt.temp_sensor.empty()) meta.emplace_back("temp_sensor", opt.temp_sensor);
   meta.emplace_back("oil_flow_ml_min", g6(opt.oil_flow_ml_min));
   meta.emplace_back("sample_rate_Hz", g6(rate));

@@ -51,6 +51,7 @@ struct MeasurementOptions {
   unsigned seed = 1;          // noise generator seed
   std::string rig = std::string(rig_models::kLsctrRig);  // metadata `rig` (omitted when empty)
   std::string fluid;          // metadata `fluid` (omitted when empty)
+  std::string clutch;         // metadata `clutch`: the network clutch the run is of (omitted when empty)
   std::string temp_sensor = "separator_thermocouple r_mm=48 z_mm=0.5";  // metadata `temp_sensor`
   double oil_flow_ml_min = 200;  // metadata `oil_flow_ml_min`, >= 0
 };

@@ -443,7 +443,8 @@ Scenario load_scenario_text(const std::string& text, const std::string& path) {
   sc.name = head.string_or("name", fs::path(path).stem().string());
   s.type = head.choice_or("type", "prescribed_slip", {"prescribed_slip", "rig", "driveline", "network"});
   if (s.type == "network")
-    head.fail("type", "\"network\" scenarios (docs/formats/network_file.md) work with `shudder run` and `shudder sweep`; "
+    head.fail("type", "\"network\" scenarios (docs/formats/network_file.md) work with `shudder run`, `sweep`, `modes`, `plot` "
+                      "and `diagnose`; "
                       "this command needs type = \"prescribed_slip\", \"rig\" or \"driveline\"");
   s.kind = kind_of_type(s.type);
   sc.description = head.string_or("description", "");

@@ -35,11 +35,15 @@ void print_candidates(std::ostream& os, const std::vector<analysis::CandidateSco
 
 }  // namespace
 
-std::string diagnosis_summary(const io::Scenario& s, const analysis::DiagnosisResult& r,
+DiagnosisSubject diagnosis_subject(const io::Scenario& scenario) {
+  return {scenario.path, std::string(model_kind_name(scenario.kind())), scenario.enabled_effects};
+}
+
+std::string diagnosis_summary(const DiagnosisSubject& s, const analysis::DiagnosisResult& r,
                               const std::vector<std::string>& skipped) {
   std::ostringstream os;
   os << verdict_sentence(r) << "\n";
-  os << "Diagnosis of " << r.runs.size() << " run(s) against " << s.path << " (" << model_kind_name(s.kind()) << ")\n";
+  os << "Diagnosis of " << r.runs.size() << " run(s) against " << s.path << " (" << s.kind << ")\n";
   os << "  baseline effects on: ";
   for (std::size_t i = 0; i < s.enabled_effects.size(); ++i) os << (i ? ", " : "") << s.enabled_effects[i];
   os << (s.enabled_effects.empty() ? "none" : "") << "\n";

@@ -10,8 +10,16 @@
 
 namespace shudder::report {
 
+/// What was diagnosed, as the summary names it.
+struct DiagnosisSubject {
+  std::string path;                          // the scenario file
+  std::string kind;                          // e.g. "rig", "network clutch 'launch_clutch'"
+  std::vector<std::string> enabled_effects;  // the baseline's
+};
+DiagnosisSubject diagnosis_subject(const io::Scenario& scenario);
+
 /// `skipped`: the effects that were no candidate, with why (rig_models::replay_candidates).
-std::string diagnosis_summary(const io::Scenario& scenario, const analysis::DiagnosisResult& result,
+std::string diagnosis_summary(const DiagnosisSubject& subject, const analysis::DiagnosisResult& result,
                               const std::vector<std::string>& skipped);
 
 }  // namespace shudder::report

@@ -224,6 +224,8 @@ CaseOutcome evaluate_case(const DrivelineModel& model, const clutch::WetClutch& 
 ReplayModel replay_model(const DrivelineModel& model, const StickTimeFriction&) {
   ReplayModel m;
   m.kind = ModelKind::kDriveline;
+  m.inputs_as_measured = true;
+  m.rig = std::string(kCouplingRig);
   m.settings.duration_s = model.settings.duration_s;
   m.settings.thermal_step_s = model.settings.slow_step_s;
   m.settings.sample_rate_Hz = model.settings.sample_rate_Hz;

@@ -116,7 +116,7 @@ ReplayOutput replay(const ReplayModel& model, const ReplayInputs& in) {
   // A coupling's slip and clamp force are continuous (its hydraulics are integrated with the
   // motion, rig_models/haldex_driveline.hpp) and recorded finely: imposed as measured. A rig's
   // inputs are averaged over windows of `input_window_s` against the sensors' noise.
-  const bool coupling = model.kind == ModelKind::kDriveline;
+  const bool coupling = model.inputs_as_measured;
   const double window_s = in.input_window_s;
   // On the rig the measured speed is the drive's; its loop's set point is what drives the model.
   const bool setpoint = model.kind == ModelKind::kRig && in.torque_Nm.size() == t.size();

@@ -38,6 +38,7 @@
 #include "rig_models/effect_registry.hpp"
 #include "rig_models/lsctr_rig.hpp"
 #include "rig_models/prescribed_slip.hpp"
+#include "rig_models/rig_names.hpp"
 
 namespace shudder::rig_models {
 
@@ -52,6 +53,12 @@ struct ReplayModel {
   clutch::Fluid fluid;
   PrescribedSlipSettings settings;  // solver steps, sampling; bearing drag for both models
   RigParams rig_params;             // used when kind is kRig
+  // A clutch inside a machine (a driveline's coupling, a network's wet clutch): its slip and
+  // clamp force follow the machine's motion and are recorded finely, so they are imposed sample
+  // by sample with the pack stepped at a tenth of the thermal step, not as window means.
+  bool inputs_as_measured = false;
+  // The `rig` metadata of the runs this model replays (a run from another rig is warned about).
+  std::string rig{kLsctrRig};
 };
 
 struct ReplayInputs {
