@@ -45,12 +45,22 @@ struct WetClutchParams {
 /// Every ring's friction at held temperatures and one load, as a function of slip only: built
 /// once per thermal step so the fast dynamics evaluate the clutch cheaply (ring_torque_Nm of a
 /// frozen state equals the direct evaluation to round-off).
+///   mu_i(v) = Σ_k rate_weight(i, k) tanh(rates[k] v) + power_weight_i v^0.1 + offset_i,
+///   v = r_i |Δω| clamped to [min_speed_mm_s, max_speed_mm_s]
+/// is ring i's SpeedCurve with its terms regrouped over the rates of all rings (a weight is 0
+/// where a ring's curve lacks that rate), so one pass over the rings at one slip takes each
+/// rate's tanh along the rings once (ring_torque_Nm).
 struct FrozenFriction {
   std::vector<SpeedCurve> curves;  // (n_r); empty if the law has no SpeedCurve form
   Eigen::VectorXd ring_temp_C;     // (n_r) held temperatures
   Eigen::VectorXd viscous_Nms;     // (n_r) viscous torque per rad/s of slip, per ring
   Eigen::VectorXd radius_pow;      // (n_r) (r_i in mm)^0.1: v_i^0.1 = r_i^0.1 · |Δω|^0.1
   double load_N = 0.0;             // load at which mu was frozen
+  // The curves regrouped (empty with `curves`):
+  std::vector<double> rates;                        // distinct b_j of all rings, 1/(mm/s)
+  Eigen::MatrixXd rate_weight;                      // (n_r, rates) a_j of ring i at rates[k]
+  Eigen::VectorXd power_weight, offset;             // (n_r) c and d of each ring
+  double min_speed_mm_s = 0.0, max_speed_mm_s = 0.0;  // the speed clamp, one for every ring
 };
 
 class WetClutch {
@@ -101,7 +111,7 @@ class WetClutch {
   /// The same for two frozen states at one force (the ends of a ring-temperature ramp):
   /// `torque_a` of `a` and `torque_b` of `b`, each equal bit for bit to ring_torque_Nm of that
   /// state. The work that depends on the speed only is done once per ring: v_i^0.1, and
-  /// tanh(C2 v_i) for every rate C2 both curves share (both ends of a ramp lie in one bracket of
+  /// tanh(C2 v_i) for every rate C2 of either state (both ends of a ramp lie in one bracket of
   /// the friction matrix almost always, and then share every rate). Allocates nothing once the
   /// outputs have n_r entries.
   void ring_torque_pair_Nm(const FrozenFriction& a, const FrozenFriction& b, double abs_slip_rad_s,
@@ -116,6 +126,10 @@ class WetClutch {
   Fluid fluid_;
   ThermalModel thermal_;
   WaltherViscosity viscosity_;
+  Eigen::VectorXd ring_radius_area_m3_;  // (n_r) r_i A_i
+  // Spacing of the ring centres r_i = r_0 + i Δr, m; 0 if they are not equally spaced (then
+  // tanh is taken ring by ring, wet_clutch.cpp).
+  double ring_pitch_m_ = 0.0;
 };
 
 }  // namespace shudder::clutch

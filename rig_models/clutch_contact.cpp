@@ -8,6 +8,7 @@
 namespace shudder::rig_models {
 
 void ClutchContext::set_ring_temperatures(const Eigen::VectorXd& ring_temp_C) {
+  static_valid_ = false;
   held_.ring_temp_C = ring_temp_C;
   frozen_valid_ = false;
   ramp_ = false;
@@ -18,6 +19,7 @@ void ClutchContext::set_ring_temperatures(const Eigen::VectorXd& ring_temp_C) {
 void ClutchContext::set_ring_temperature_ramp(const Eigen::VectorXd& start_C, const Eigen::VectorXd& end_C,
                                               double t0_s, double t1_s) {
   if (!(t1_s > t0_s)) throw std::invalid_argument("clutch context: a temperature ramp needs t1 > t0");
+  static_valid_ = false;
   // The new start is the old far end (the multi-rate runs' continuous hold): its friction is
   // already frozen, at the same load.
   if (ramp_ && frozen_end_valid_ && start_C.size() == ring_temp_end_C_.size() && start_C == ring_temp_end_C_) {
@@ -109,8 +111,14 @@ double ClutchContact::static_capacity_at_force_Nm(const ClutchContext& c, double
              clutch_->fluid().mu_static(clutch_->friction_temp_C(ring_temp_C[i]), load);
     return sum;
   };
-  double sum = weighted_sum(c.held_.ring_temp_C);
-  if (c.ramp_) sum += c.ramp_weight(t) * (weighted_sum(c.ring_temp_end_C_) - sum);
+  if (!c.static_valid_ || load != c.static_load_N_) {
+    c.static_sum_start_ = weighted_sum(c.held_.ring_temp_C);
+    c.static_sum_end_ = c.ramp_ ? weighted_sum(c.ring_temp_end_C_) : 0.0;
+    c.static_load_N_ = load;
+    c.static_valid_ = true;
+  }
+  double sum = c.static_sum_start_;
+  if (c.ramp_) sum += c.ramp_weight(t) * (c.static_sum_end_ - sum);
   double growth = 1.0;
   if (stick_.enabled) growth += stick_.max_increase * (1.0 - std::exp(-stick_time / stick_.time_constant_s));
   return p.sliding_interfaces * clutch_->pressure_Pa(force) * sum * growth + drag_torque_at_force_Nm(force);

@@ -81,6 +81,10 @@ class ClutchContext {
   clutch::FrozenFriction frozen_end_;
   bool frozen_end_valid_ = false;
   Eigen::VectorXd ring_torque_end_;  // (n_r) at the far end, cached arguments
+  // Σ r_i A_i mu_s,i at the hold's two ends and at static_load_N_: the static capacity is asked
+  // at every sample and event check, its sums change only with the temperatures or the load.
+  mutable bool static_valid_ = false;
+  mutable double static_load_N_ = 0.0, static_sum_start_ = 0.0, static_sum_end_ = 0.0;
   /// Weight s of the far end at time t (0 without a ramp).
   double ramp_weight(double t_s) const;
 };

@@ -23,9 +23,11 @@
 #include <numbers>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 #include "clutch/fluid.hpp"
 #include "clutch/friction_law.hpp"
+#include "clutch/maki_friction.hpp"
 #include "clutch/wet_clutch.hpp"
 #include "io/fluid_loader.hpp"
 
@@ -319,4 +321,36 @@ TEST(WetClutch, PairEvaluationOfTwoFrozenStatesEqualsTwoSingleEvaluationsBitForB
   EXPECT_EQ(pair_a, single_a);
   EXPECT_EQ(pair_b, single_b);
   EXPECT_LT(pair_b[0], pair_a[0]);  // the two ends really differ (mu falls with temperature)
+}
+
+// The frozen evaluation takes each rate's tanh along the rings by a recurrence on
+// e = expm1(2 b v) (RingSpeedTerms, clutch/wet_clutch.cpp), restarted from an exact expm1 every
+// 16 rings; the direct evaluation takes std::tanh ring by ring. The recurrence's round-off grows
+// by a few ε per ring carried, so with the restarts it stays below ~50 ε (1e-14) of tanh for any
+// number of rings: bound 1e-13 relative per ring torque. 200 rings (12 restarts); a Mäki matrix
+// whose four sets have four rates: slow (fluid C's size, 0.002 per mm/s), saturating (0.5: e up
+// to e^590, near the 600 carried limit), negative, and one beyond the limit (2.0: tanh ring by
+// ring); slips with every ring inside the speed clamp and with rings on both clamps.
+TEST(WetClutch, FrozenFrictionOnManyRingsStaysWithinRoundOffOfTheDirectEvaluation) {
+  Fluid f;
+  f.name = "four rates";
+  f.friction = std::make_shared<shudder::clutch::MakiFrictionMatrix>(
+      std::vector<double>{10000.0, 20000.0}, std::vector<double>{40.0, 80.0},
+      std::vector<shudder::clutch::MakiSet>{{-0.03, 0.002, 0.08, 0.02}, {0.02, 0.5, 0.07, 0.01},
+                                            {0.025, -0.3, 0.075, 0.05}, {-0.02, 2.0, 0.085, 0.03}},
+      6.0, 590.0);
+  WetClutchParams p;
+  p.thermal.radial_cells = 200;
+  const WetClutch clutch(p, f);
+  const int n = clutch.thermal().radial_cells();
+  const Eigen::VectorXd temps = Eigen::VectorXd::LinSpaced(n, 50.0, 70.0);
+  const auto frozen = clutch.freeze(temps, 15000.0);
+  ASSERT_EQ(frozen.rates.size(), 4U);
+  for (double slip : {0.15, 0.2, 1.0, 5.0, 10.0, 12.0}) {  // rad/s: lowest rings clamped ... highest rings clamped
+    Eigen::VectorXd direct, fast;
+    clutch.ring_torque_Nm(slip, 15000.0, temps, direct);
+    clutch.ring_torque_Nm(frozen, slip, 15000.0, fast);
+    for (int i = 0; i < n; ++i)
+      EXPECT_NEAR(fast[i], direct[i], 1e-13 * std::abs(direct[i])) << "slip " << slip << " ring " << i;
+  }
 }
