@@ -96,17 +96,23 @@ TEST(FixedStep, AReversingContactThatCannotHoldSlipsOnTheOtherWay) {
 // The belt-driven oscillator (test_stick_slip.cpp has its derivation).
 constexpr double kTs = 15.0, kTk = 10.0, kJm = 0.02, kK = 500.0, kV = 1.0;
 
-TEST(FixedStep, BeltOscillatorPeriodWithinTheStepBound) {
-  const double wn = std::sqrt(kK / kJm);
-  const double period = 2 * (kTs - kTk) / (kK * kV) + (std::numbers::pi + 2 * std::atan(kV * kK / (wn * (kTs - kTk)))) / wn;
-  for (const double h : {1e-4, 2e-5}) {
-    TorsionalNetwork net;
+struct Belt {
+  TorsionalNetwork net;
+  Belt() {
     const int d = net.add_inertia({"belt", 1.0});
     const int m = net.add_inertia({"mass", kJm});
     net.add_speed_source({"drive", d, [](double) { return kV; }, [](double) { return 0.0; }});
     net.add_shaft({"spring", m, kGround, kK, 0.0});
     net.add_contact({"contact", d, m, std::make_shared<CoulombLaw>(kTk, kTs)});
-    Simulation sim(net, fixed(h));
+  }
+};
+
+TEST(FixedStep, BeltOscillatorPeriodWithinTheStepBound) {
+  const double wn = std::sqrt(kK / kJm);
+  const double period = 2 * (kTs - kTk) / (kK * kV) + (std::numbers::pi + 2 * std::atan(kV * kK / (wn * (kTs - kTk)))) / wn;
+  for (const double h : {1e-4, 2e-5}) {
+    const Belt belt;
+    Simulation sim(belt.net, fixed(h));
     sim.initialize(0.0, Eigen::Vector2d::Zero(), Eigen::Vector2d(kV, kV));
     // Breakaway instants: the first sample of each slip phase, sampled at every step.
     std::vector<double> samples, breakaways;
@@ -130,13 +136,8 @@ TEST(FixedStep, BeltOscillatorPeriodWithinTheStepBound) {
 
 TEST(FixedStep, SamplesBetweenStepEndsDoNotAlterTheTrajectory) {
   const auto run = [](const std::vector<double>& samples) {
-    TorsionalNetwork net;
-    const int d = net.add_inertia({"belt", 1.0});
-    const int m = net.add_inertia({"mass", kJm});
-    net.add_speed_source({"drive", d, [](double) { return kV; }, [](double) { return 0.0; }});
-    net.add_shaft({"spring", m, kGround, kK, 0.0});
-    net.add_contact({"contact", d, m, std::make_shared<CoulombLaw>(kTk, kTs)});
-    Simulation sim(net, fixed(1e-4));
+    const Belt belt;
+    Simulation sim(belt.net, fixed(1e-4));
     sim.initialize(0.0, Eigen::Vector2d::Zero(), Eigen::Vector2d(kV, kV));
     sim.advance(0.2, samples, [](const Sample&) {});
     return sim.sample();
