@@ -40,8 +40,13 @@ inline std::filesystem::path scratch_dir(const std::string& name) {
 }
 
 /// Runs `shudder ARGS` (ARGS already shell-quoted) from `cwd`.
+/// The streams are captured in files of this call's own (process id and call count in the
+/// name), never in `cwd`: tests run concurrently from the same directory (the source tree).
 inline CliResult run_cli(const std::string& args, const std::filesystem::path& cwd) {
-  const auto out = cwd / "stdout.txt", err = cwd / "stderr.txt";
+  static int calls = 0;
+  const std::string tag = std::to_string(::getpid()) + "_" + std::to_string(++calls);
+  const auto capture = std::filesystem::temp_directory_path();
+  const auto out = capture / ("shudder_cli_" + tag + ".out"), err = capture / ("shudder_cli_" + tag + ".err");
   const std::string cmd = "cd '" + cwd.string() + "' && '" + std::string(SHUDDER_CLI) + "' " +
                           args + " >'" + out.string() + "' 2>'" + err.string() + "'";
   const int status = std::system(cmd.c_str());
@@ -49,6 +54,8 @@ inline CliResult run_cli(const std::string& args, const std::filesystem::path& c
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   r.out = slurp(out);
   r.err = slurp(err);
+  std::filesystem::remove(out);
+  std::filesystem::remove(err);
   return r;
 }
 
