@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "core/median.hpp"
 #include "dynamics/signal_names.hpp"
@@ -122,6 +123,155 @@ double stick_rate_Hz(const DetectionInput& in, std::size_t i_a, std::size_t i_b,
   return static_cast<double>(onsets - 1) / (in.time_s[last] - in.time_s[first]);
 }
 
+// Definition 6: the amplitude, half peak-to-peak of T minus its one-period moving mean, in
+// blocks of periods_per_block periods over [i_a, i_b); the median of the blocks within 80 % of
+// the largest (0 when no block fits).
+double block_amplitude_Nm(std::span<const double> T, std::size_t i_a, std::size_t i_b, double period,
+                          const DetectionSettings& cfg) {
+  const std::size_t n = T.size();
+  const std::vector<double> mean_P = moving_mean(T, period);
+  const auto half = static_cast<std::size_t>(std::ceil(0.5 * period));
+  const std::size_t k0 = std::max(i_a, half), k1 = std::min(i_b, n > half ? n - half : 0);
+  const auto block = std::max<std::size_t>(2, static_cast<std::size_t>(std::lround(cfg.periods_per_block * period)));
+  std::vector<double> blocks;
+  for (std::size_t start = k0; start < k1; start += block) {
+    const std::size_t end = std::min(k1, start + block);
+    if (end - start < block / 2 && !blocks.empty()) break;  // a short tail block is not a full measure
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (std::size_t i = start; i < end; ++i) {
+      lo = std::min(lo, T[i] - mean_P[i]);
+      hi = std::max(hi, T[i] - mean_P[i]);
+    }
+    blocks.push_back(0.5 * (hi - lo));
+  }
+  if (blocks.empty()) return 0.0;
+  const double largest = *std::max_element(blocks.begin(), blocks.end());
+  std::vector<double> strong;
+  for (double v : blocks)
+    if (v >= 0.8 * largest) strong.push_back(v);
+  return core::median(strong);
+}
+
+// Definition 7's split: the share of one-period cycles of [i_a, i_b) in which the slip reaches
+// zero (a stuck sample, |slip| <= zero_slip_rpm, or a sign change).
+double stick_cycle_share(const DetectionInput& in, std::size_t i_a, std::size_t i_b, double period,
+                         const DetectionSettings& cfg) {
+  const auto reaches_zero = [&](std::size_t i) {
+    if (!in.stuck.empty() && in.stuck[i] > 0.5) return true;
+    if (std::abs(in.slip_rpm[i]) <= cfg.zero_slip_rpm) return true;
+    return i > 0 && in.slip_rpm[i] * in.slip_rpm[i - 1] < 0.0;
+  };
+  const auto cycles = std::max<std::size_t>(1, static_cast<std::size_t>(static_cast<double>(i_b - i_a) / period));
+  std::size_t touched = 0;
+  for (std::size_t c = 0; c < cycles; ++c) {
+    const auto c0 = i_a + static_cast<std::size_t>(std::lround(static_cast<double>(c) * period));
+    const auto c1 = std::min(i_b, i_a + static_cast<std::size_t>(std::lround(static_cast<double>(c + 1) * period)));
+    for (std::size_t i = c0; i < c1; ++i)
+      if (reaches_zero(i)) {
+        ++touched;
+        break;
+      }
+  }
+  return static_cast<double>(touched) / static_cast<double>(cycles);
+}
+
+// The band power in dB per spectrogram frame, and the frames of the oscillating part.
+struct BandTrace {
+  std::span<const double> times_s;  // (frames) frame centres
+  std::vector<double> dB;           // (frames)
+  double max_dB = 0.0;
+  std::size_t ja = 0;               // first frame of the oscillating part
+};
+
+// The time `level` is crossed upwards between frame j (at or below it) and j + 1 (above it),
+// interpolated in dB.
+double crossing_time_s(const BandTrace& b, std::size_t j, double level) {
+  const double w = std::clamp((level - b.dB[j]) / (b.dB[j + 1] - b.dB[j]), 0.0, 1.0);
+  return b.times_s[j] + w * (b.times_s[j + 1] - b.times_s[j]);
+}
+
+// Definition 8, growth line and growth-rate zero: the onset from the band power's rise before
+// the oscillating part. Start level b0: mean band power of the first frames before it (none:
+// the oscillation was there from the start). Crossing level L = max(b0 + rise, b_max −
+// below_max); its last upward crossing before the oscillating part; then the least-squares
+// growth line through the frames between L and the oscillating part, extrapolated down to b0
+// (or, for kGrowthRateZero, the vertex of a parabola through them).
+void growth_onset(const BandTrace& b, std::span<const double> band_power, double t0, const DetectionSettings& cfg,
+                  ShudderResult& r) {
+  const std::size_t frames = b.dB.size(), ja = b.ja;
+  const std::size_t nb = std::min<std::size_t>(static_cast<std::size_t>(cfg.baseline_frames), ja);
+  std::size_t j_x = frames;  // last frame before the oscillating part at or below L
+  double b0 = kNaN, level = kNaN;
+  if (nb > 0) {
+    double p0 = 0.0;
+    for (std::size_t j = 0; j < nb; ++j) p0 += band_power[j];
+    b0 = to_dB(p0 / static_cast<double>(nb));
+    level = std::max(b0 + cfg.onset_rise_dB, b.max_dB - cfg.onset_below_max_dB);
+    for (std::size_t j = 0; j < ja; ++j)
+      if (b.dB[j] <= level) j_x = j;
+  }
+  r.growth_observed = j_x < frames;
+  r.onset_time_s = t0;
+  r.growth_rate_per_s = r.growth_acceleration_per_s2 = kNaN;
+  if (!r.growth_observed) return;
+  r.onset_time_s = crossing_time_s(b, j_x, level);
+  const std::size_t count = ja - j_x - 1;
+  if (count < static_cast<std::size_t>(cfg.min_growth_frames)) return;
+  // Exponential growth: the least-squares line through (t_j, b_j), j_x < j < ja.
+  double st = 0, sb = 0, stt = 0, stb = 0;
+  for (std::size_t j = j_x + 1; j < ja; ++j) {
+    st += b.times_s[j];
+    sb += b.dB[j];
+    stt += b.times_s[j] * b.times_s[j];
+    stb += b.times_s[j] * b.dB[j];
+  }
+  const double c = static_cast<double>(count);
+  const double slope_dB_per_s = (c * stb - st * sb) / (c * stt - st * st);
+  if (slope_dB_per_s > 0.0) {
+    const double intercept = (sb - slope_dB_per_s * st) / c;
+    r.growth_rate_per_s = slope_dB_per_s * std::log(10.0) / 20.0;  // amplitude ∝ e^{σ t}
+    r.onset_time_s = std::max(t0, (b0 - intercept) / slope_dB_per_s);
+  }
+  if (cfg.onset_definition != OnsetDefinition::kGrowthRateZero) return;
+  // Least-squares parabola b = c0 + c1 u + c2 u², u = t − t_mean (centred for conditioning),
+  // over the same frames; its vertex is where the growth rate is zero.
+  const double t_mean = st / c;
+  double s2 = 0, s3 = 0, s4 = 0, y0 = 0, y1 = 0, y2 = 0;
+  for (std::size_t j = j_x + 1; j < ja; ++j) {
+    const double u = b.times_s[j] - t_mean, u2 = u * u;
+    s2 += u2;
+    s3 += u2 * u;
+    s4 += u2 * u2;
+    y0 += b.dB[j];
+    y1 += u * b.dB[j];
+    y2 += u2 * b.dB[j];
+  }
+  // Normal equations [n 0 s2; 0 s2 s3; s2 s3 s4] (c0 c1 c2)ᵀ = (y0 y1 y2)ᵀ (Σu = 0).
+  Eigen::Matrix3d m;
+  m << c, 0.0, s2, 0.0, s2, s3, s2, s3, s4;
+  const Eigen::Vector3d coef = m.ldlt().solve(Eigen::Vector3d(y0, y1, y2));
+  const double c1 = coef(1), c2 = coef(2);
+  const double vertex = t_mean - c1 / (2.0 * c2);
+  if (c2 > 0.0 && std::isfinite(vertex) && vertex < b.times_s[j_x + 1]) {
+    r.onset_time_s = std::max(t0, vertex);
+    r.growth_acceleration_per_s2 = 2.0 * c2 * std::log(10.0) / 20.0;
+  }
+}
+
+// Definition 8, threshold crossing: the last upward crossing of the verdict's threshold (as
+// band power: a²/2) before the oscillating part, the level capped at the oscillating part's.
+void threshold_onset(const BandTrace& b, double t0, const DetectionSettings& cfg, ShudderResult& r) {
+  const std::size_t frames = b.dB.size();
+  const double level_e = std::min(to_dB(0.5 * r.threshold_Nm * r.threshold_Nm), b.max_dB - cfg.oscillating_part_dB);
+  std::size_t j_e = frames;
+  for (std::size_t j = 0; j < b.ja; ++j)
+    if (b.dB[j] <= level_e) j_e = j;
+  r.growth_observed = j_e < frames;
+  r.onset_time_s = t0;
+  r.growth_acceleration_per_s2 = kNaN;
+  if (r.growth_observed) r.onset_time_s = crossing_time_s(b, j_e, level_e);  // frame j_e + 1 <= ja lies above
+}
+
 }  // namespace
 
 std::string_view to_string(Verdict v) {
@@ -212,32 +362,12 @@ ShudderResult ShudderDetector::detect(const DetectionInput& in) const {
   const double f_stick = stick_rate_Hz(in, i_a, i_b, cfg);
   const double fd = f_stick > 0.0 && f_stick < peak.frequency_Hz / 1.5 ? f_stick : peak.frequency_Hz;
 
-  // 6. Amplitude: half peak-to-peak of T minus its one-period moving mean, in blocks.
+  // 6. Amplitude, in blocks of periods.
   const double period = fs / fd;  // samples
-  const std::vector<double> mean_P = moving_mean(T, period);
-  const auto half = static_cast<std::size_t>(std::ceil(0.5 * period));
-  const std::size_t k0 = std::max(i_a, half), k1 = std::min(i_b, n > half ? n - half : 0);
-  const auto block = std::max<std::size_t>(2, static_cast<std::size_t>(std::lround(cfg.periods_per_block * period)));
-  std::vector<double> blocks;
-  for (std::size_t start = k0; start < k1; start += block) {
-    const std::size_t end = std::min(k1, start + block);
-    if (end - start < block / 2 && !blocks.empty()) break;  // a short tail block is not a full measure
-    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    for (std::size_t i = start; i < end; ++i) {
-      lo = std::min(lo, T[i] - mean_P[i]);
-      hi = std::max(hi, T[i] - mean_P[i]);
-    }
-    blocks.push_back(0.5 * (hi - lo));
-  }
-  if (!blocks.empty()) {
-    const double largest = *std::max_element(blocks.begin(), blocks.end());
-    std::vector<double> strong;
-    for (double v : blocks)
-      if (v >= 0.8 * largest) strong.push_back(v);
-    r.amplitude_Nm = core::median(strong);
-  }
+  r.amplitude_Nm = block_amplitude_Nm(T, i_a, i_b, period, cfg);
 
-  // 7. Verdict none below the amplitude threshold.
+  // 7. Verdict none below the amplitude threshold; else stick-slip or vibration by the share
+  // of cycles that reach zero slip.
   r.threshold_Nm = std::max(cfg.min_amplitude_Nm, cfg.min_relative_amplitude * r.mean_torque_Nm);
   if (!(r.amplitude_Nm >= r.threshold_Nm)) {
     r.verdict = Verdict::kNone;
@@ -246,110 +376,14 @@ ShudderResult ShudderDetector::detect(const DetectionInput& in) const {
     return r;
   }
   r.frequency_Hz = fd;
-
-  // Stick-slip or vibration: share of one-period cycles of the oscillating part in which the
-  // slip reaches zero (a stuck sample, |slip| <= zero_slip_rpm, or a sign change).
-  const auto reaches_zero = [&](std::size_t i) {
-    if (!in.stuck.empty() && in.stuck[i] > 0.5) return true;
-    if (std::abs(in.slip_rpm[i]) <= cfg.zero_slip_rpm) return true;
-    return i > 0 && in.slip_rpm[i] * in.slip_rpm[i - 1] < 0.0;
-  };
-  const auto cycles = std::max<std::size_t>(1, static_cast<std::size_t>(static_cast<double>(i_b - i_a) / period));
-  std::size_t touched = 0;
-  for (std::size_t c = 0; c < cycles; ++c) {
-    const auto c0 = i_a + static_cast<std::size_t>(std::lround(static_cast<double>(c) * period));
-    const auto c1 = std::min(i_b, i_a + static_cast<std::size_t>(std::lround(static_cast<double>(c + 1) * period)));
-    for (std::size_t i = c0; i < c1; ++i)
-      if (reaches_zero(i)) {
-        ++touched;
-        break;
-      }
-  }
-  r.stick_cycle_fraction = static_cast<double>(touched) / static_cast<double>(cycles);
+  r.stick_cycle_fraction = stick_cycle_share(in, i_a, i_b, period, cfg);
   r.verdict = r.stick_cycle_fraction >= cfg.stick_cycle_fraction ? Verdict::kStickSlip : Verdict::kVibration;
 
-  // 8. Onset. Start level b0: mean band power of the first frames before the oscillating part
-  // (none: the oscillation was there from the start). Crossing level L = max(b0 + rise,
-  // b_max − below_max); t_x its last upward crossing before the oscillating part.
-  const std::size_t nb = std::min<std::size_t>(static_cast<std::size_t>(cfg.baseline_frames), ja);
-  std::size_t j_x = frames;  // last frame before the oscillating part at or below L
-  double b0 = kNaN, level = kNaN;
-  if (nb > 0) {
-    double p0 = 0.0;
-    for (std::size_t j = 0; j < nb; ++j) p0 += r.band_power[j];
-    b0 = to_dB(p0 / static_cast<double>(nb));
-    level = std::max(b0 + cfg.onset_rise_dB, b_max - cfg.onset_below_max_dB);
-    for (std::size_t j = 0; j < ja; ++j)
-      if (b[j] <= level) j_x = j;
-  }
-  r.growth_observed = j_x < frames;
-  r.onset_time_s = t0;
-  r.growth_rate_per_s = r.growth_acceleration_per_s2 = kNaN;
-  if (r.growth_observed) {
-    // Crossing, interpolated in dB between frame j_x and the next one (which is above L).
-    const double w = std::clamp((level - b[j_x]) / (b[j_x + 1] - b[j_x]), 0.0, 1.0);
-    r.onset_time_s = spec.times_s[j_x] + w * (spec.times_s[j_x + 1] - spec.times_s[j_x]);
-    // Exponential growth between L and the oscillating part: least-squares line through
-    // (t_j, b_j), j_x < j < ja, extrapolated down to the start level.
-    const std::size_t count = ja - j_x - 1;
-    if (count >= static_cast<std::size_t>(cfg.min_growth_frames)) {
-      double st = 0, sb = 0, stt = 0, stb = 0;
-      for (std::size_t j = j_x + 1; j < ja; ++j) {
-        st += spec.times_s[j];
-        sb += b[j];
-        stt += spec.times_s[j] * spec.times_s[j];
-        stb += spec.times_s[j] * b[j];
-      }
-      const double c = static_cast<double>(count);
-      const double slope_dB_per_s = (c * stb - st * sb) / (c * stt - st * st);
-      if (slope_dB_per_s > 0.0) {
-        const double intercept = (sb - slope_dB_per_s * st) / c;
-        r.growth_rate_per_s = slope_dB_per_s * std::log(10.0) / 20.0;  // amplitude ∝ e^{σ t}
-        r.onset_time_s = std::max(t0, (b0 - intercept) / slope_dB_per_s);
-      }
-      if (cfg.onset_definition == OnsetDefinition::kGrowthRateZero) {
-        // kGrowthRateZero: least-squares parabola b = c0 + c1 u + c2 u², u = t − t_mean (centred for
-        // conditioning), over the same frames; its vertex is where the growth rate is zero.
-        const double t_mean = st / c;
-        double s2 = 0, s3 = 0, s4 = 0, y0 = 0, y1 = 0, y2 = 0;
-        for (std::size_t j = j_x + 1; j < ja; ++j) {
-          const double u = spec.times_s[j] - t_mean, u2 = u * u;
-          s2 += u2;
-          s3 += u2 * u;
-          s4 += u2 * u2;
-          y0 += b[j];
-          y1 += u * b[j];
-          y2 += u2 * b[j];
-        }
-        // Normal equations [n 0 s2; 0 s2 s3; s2 s3 s4] (c0 c1 c2)ᵀ = (y0 y1 y2)ᵀ (Σu = 0).
-        Eigen::Matrix3d m;
-        m << c, 0.0, s2, 0.0, s2, s3, s2, s3, s4;
-        const Eigen::Vector3d coef = m.ldlt().solve(Eigen::Vector3d(y0, y1, y2));
-        const double c1 = coef(1), c2 = coef(2);
-        const double vertex = t_mean - c1 / (2.0 * c2);
-        if (c2 > 0.0 && std::isfinite(vertex) && vertex < spec.times_s[j_x + 1]) {
-          r.onset_time_s = std::max(t0, vertex);
-          r.growth_acceleration_per_s2 = 2.0 * c2 * std::log(10.0) / 20.0;
-        }
-      }
-    }
-  }
-
-  // kThresholdCrossing: the last upward crossing of the verdict's threshold (as band power: a²/2) before the
-  // oscillating part, the level capped at the oscillating part's.
-  if (cfg.onset_definition == OnsetDefinition::kThresholdCrossing) {
-    const double level_e = std::min(to_dB(0.5 * r.threshold_Nm * r.threshold_Nm), b_max - cfg.oscillating_part_dB);
-    std::size_t j_e = frames;
-    for (std::size_t j = 0; j < ja; ++j)
-      if (b[j] <= level_e) j_e = j;
-    r.growth_observed = j_e < frames;
-    r.onset_time_s = t0;
-    r.growth_acceleration_per_s2 = kNaN;
-    if (r.growth_observed) {  // frame j_e + 1 <= ja lies above the level
-      const double w = std::clamp((level_e - b[j_e]) / (b[j_e + 1] - b[j_e]), 0.0, 1.0);
-      r.onset_time_s = spec.times_s[j_e] + w * (spec.times_s[j_e + 1] - spec.times_s[j_e]);
-    }
-  }
+  // 8. Onset. The growth line is fitted under every definition (its rate is reported); the
+  // threshold crossing then places the onset itself.
+  const BandTrace trace{spec.times_s, std::move(b), b_max, ja};
+  growth_onset(trace, r.band_power, t0, cfg, r);
+  if (cfg.onset_definition == OnsetDefinition::kThresholdCrossing) threshold_onset(trace, t0, cfg, r);
 
   // 9. Operating point: means over one period centred at the onset.
   const double u = (r.onset_time_s - t0) * fs;

@@ -100,143 +100,184 @@ void set_model_radius(analysis::FrictionConversion& c, const std::optional<io::S
   c.source = "the model's radius, uniform pressure on its rings, " + where;
 }
 
+// Paths distinct, output directories there, viscosities usable: before anything is read.
+void check_command_line(const CharacteriseOptions& o) {
+  if (o.runs.empty()) throw io::InputError("characterise", 0, "", "no measured run given");
+  std::vector<io::RolePath> inputs, outputs{{"-o", o.output}};
+  for (const auto& r : o.runs) inputs.push_back({"measured run", r});
+  if (!o.json.empty()) outputs.push_back({"--json", o.json});
+  io::require_distinct_paths(inputs, outputs);
+  for (const auto& out : outputs) io::require_output_directory(out.path);
+  if (!(o.nu40_cSt > o.nu100_cSt) || !(o.nu100_cSt > 0))
+    throw io::InputError("--nu40-cSt/--nu100-cSt", 0, "",
+                         "give the fluid's kinematic viscosities with nu40 > nu100 > 0 cSt (Walther needs both)");
+  if (!(o.outer_radius_mm > o.inner_radius_mm))
+    throw io::InputError("--inner-radius-mm/--outer-radius-mm", 0, "", "the outer radius must exceed the inner");
+}
+
+// The fit's settings from the options (CLI11 has checked the choices' spelling).
+analysis::CharacterisationSettings settings_of(const CharacteriseOptions& o) {
+  analysis::CharacterisationSettings s;
+  s.law = o.law == "linear" ? analysis::LawKind::kLinear
+          : o.law == "table" ? analysis::LawKind::kTable
+                             : analysis::LawKind::kMaki;
+  s.compensation = o.compensation == "none"        ? analysis::Compensation::kNone
+                   : o.compensation == "linear"    ? analysis::Compensation::kLinear
+                   : o.compensation == "piecewise" ? analysis::Compensation::kPiecewise
+                                                   : analysis::Compensation::kQuadratic;
+  if (std::isfinite(o.alpha_per_C)) s.alpha_per_C = o.alpha_per_C;
+  s.conversion.rule = o.radius == "uniform_pressure" ? analysis::RadiusRule::kUniformPressure
+                      : o.radius == "uniform_wear"   ? analysis::RadiusRule::kUniformWear
+                                                     : analysis::RadiusRule::kModel;
+  s.conversion.mean_radius_mm = o.mean_radius_mm;
+  s.conversion.inner_radius_mm = o.inner_radius_mm;
+  s.conversion.outer_radius_mm = o.outer_radius_mm;
+  s.conversion.interfaces = o.interfaces;
+  s.conversion.bearing_drag_mu = o.bearing_drag_mu;
+  s.temp_tolerance_C = o.temp_tolerance_C;
+  s.min_ramps_per_row = o.min_ramps;
+  s.linear_load_N = o.linear_load_N;
+  s.row_temps_C = parse_list("--row-temps", o.row_temps);
+  s.node_rpm = parse_list("--node-rpm", o.node_rpm);
+  s.hot_row = o.hot_row;
+  return s;
+}
+
+// The model the fluid is for (--model): its clutch's friction radius, and the replay of
+// --method inverse. It must be the clutch the runs measured.
+std::optional<io::Scenario> model_of(const CharacteriseOptions& o) {
+  if (o.model.empty()) return std::nullopt;
+  io::Scenario scenario = io::load_scenario(o.model);
+  if (scenario.clutch.sliding_interfaces != o.interfaces)
+    throw io::InputError(o.model, 0, "clutch.sliding_interfaces",
+                         "is " + std::to_string(scenario.clutch.sliding_interfaces) + " but --interfaces is " +
+                             std::to_string(o.interfaces) + "; the model must be the clutch the runs measured");
+  return scenario;
+}
+
+struct ReadRuns {
+  std::vector<io::MeasuredRun> measured;  // as read (their metadata and every column)
+  std::vector<analysis::RampRun> ramps;   // the columns the fit reads
+};
+
+// Every run, as a measured run or through the logger import (--map/--mapping); the runs must
+// come from one rig.
+ReadRuns read_runs(const CharacteriseOptions& o) {
+  ReadRuns r;
+  std::string rig, rig_file;
+  io::ImportSpec logger = io::import_spec_of(o.maps, o.mapping);
+  logger.trust_units = logger.trust_units || o.trust_units;
+  std::vector<std::string> import_warnings;
+  for (const auto& path : o.runs) {
+    const io::MeasuredRun& m = r.measured.emplace_back(io::read_measured_or_logger(path, logger, import_warnings));
+    if (!logger.trust_units) io::check_measured_run_units(m);  // kN, ms or K in a measured run: one line naming the fix
+    const std::string this_rig = m.meta("rig").value_or("");
+    if (r.ramps.empty()) {
+      rig = this_rig;
+      rig_file = path;
+    } else if (this_rig != rig) {
+      throw io::InputError(path, 0, "rig", "is '" + this_rig + "' but " + rig_file + " is '" + rig +
+                                               "'; characterise one rig's runs at a time (friction radius and "
+                                               "interfaces differ between rigs)");
+    }
+    r.ramps.push_back(to_ramp_run(m, o.temperature_channel));
+  }
+  for (const auto& w : import_warnings) std::cerr << "shudder: warning: " << w << "\n";
+  return r;
+}
+
+analysis::Characterisation fit_from_sensors(const ReadRuns& runs, const analysis::CharacterisationSettings& s) {
+  try {
+    return analysis::characterise(runs.ramps, s);
+  } catch (const analysis::CharacterisationInputError& e) {
+    throw io::InputError(e.file(), 0, "", e.what());
+  }
+}
+
+// --method inverse: the same settings, replayed through the clutch and thermal model (of
+// --model, else the default clutch on the conversion's annulus); its law is the one written.
+rig_models::InverseCharacterisation fit_inverse(const ReadRuns& runs, const analysis::CharacterisationSettings& s,
+                                                const std::optional<io::Scenario>& scenario,
+                                                const CharacteriseOptions& o) {
+  rig_models::InverseSettings is;
+  if (scenario) {
+    is.model = io::replay_model(*scenario);
+  } else {
+    is.model.clutch.sliding_interfaces = o.interfaces;
+    is.model.fluid.nu40_cSt = o.nu40_cSt;
+    is.model.fluid.nu100_cSt = o.nu100_cSt;
+    is.model.settings.thermal_step_s = 0.02;  // the ramps last seconds; 20 ms resolves the heating
+    if (s.conversion.rule == analysis::RadiusRule::kModel) {  // the annulus the radius was taken from
+      is.model.clutch.thermal.inner_radius_m = s.conversion.inner_radius_mm * 1e-3;
+      is.model.clutch.thermal.outer_radius_m = s.conversion.outer_radius_mm * 1e-3;
+    }
+  }
+  is.jobs = std::max(1u, std::thread::hardware_concurrency());
+  is.max_iterations = o.inverse_iterations;
+  const io::DiagnosisData data = io::diagnosis_data(runs.measured);
+  rig_models::InverseCharacterisation inverse;
+  try {
+    inverse = rig_models::characterise_inverse(runs.ramps, data.inputs, s, o.temperature_channel, is);
+  } catch (const analysis::CharacterisationInputError& e) {
+    throw io::InputError(e.file(), 0, "", e.what());
+  }
+  // Where the inverse method should not be used (docs/characterisation.md 2c).
+  auto& warnings = inverse.inverse.warnings;
+  if (s.compensation == analysis::Compensation::kNone)
+    warnings.push_back("--method inverse with --compensation none: no temperature enters the law, so it equals "
+                       "the sensor method's (at many times the cost)");
+  else if (!s.hot_row && inverse.inverse.max_temp_C > inverse.inverse.temps_C.back() + s.temp_tolerance_C)
+    warnings.push_back("--method inverse with --no-hot-row on runs that heat above the top row: its compensation "
+                       "takes out more of the heating than the sensor method's and nothing puts it back, so it "
+                       "replays worse; drop --no-hot-row");
+  return inverse;
+}
+
+// The fluid's name, viscosities and breakaway ratio: given, else measured from the runs'
+// starts from rest against the written law.
+io::FluidIdentity identity_of(const CharacteriseOptions& o, const analysis::BreakawayMeasurement& breakaway) {
+  io::FluidIdentity id;
+  id.name = o.name.empty() ? std::filesystem::path(o.output).stem().string() : o.name;
+  id.description = "characterised by shudder from " + std::to_string(o.runs.size()) + " measured run(s)";
+  id.nu40_cSt = o.nu40_cSt;
+  id.nu100_cSt = o.nu100_cSt;
+  if (std::isfinite(o.breakaway_ratio)) {
+    id.breakaway_ratio = o.breakaway_ratio;
+    id.breakaway_source = "given on the command line (--breakaway-ratio)";
+  } else if (breakaway.ratio) {
+    id.breakaway_ratio = *breakaway.ratio;
+    id.breakaway_source = "measured: median peak/kinetic friction over " + std::to_string(breakaway.events.size()) +
+                          " start(s) from rest (" + report::breakaway_range(breakaway) + ")";
+  } else {
+    id.breakaway_ratio = 1.0;
+    id.breakaway_source = "not measured: " + breakaway.not_measured + "; mu_s = mu_k(v_min) assumed";
+  }
+  return id;
+}
+
 }  // namespace
 
 int characterise_command(const CharacteriseOptions& o) {
   return guarded(o.output, "characterise", [&] {
-    if (o.runs.empty()) throw io::InputError("characterise", 0, "", "no measured run given");
-    std::vector<io::RolePath> inputs, outputs{{"-o", o.output}};
-    for (const auto& r : o.runs) inputs.push_back({"measured run", r});
-    if (!o.json.empty()) outputs.push_back({"--json", o.json});
-    io::require_distinct_paths(inputs, outputs);
-    for (const auto& out : outputs) io::require_output_directory(out.path);
-    if (!(o.nu40_cSt > o.nu100_cSt) || !(o.nu100_cSt > 0))
-      throw io::InputError("--nu40-cSt/--nu100-cSt", 0, "",
-                           "give the fluid's kinematic viscosities with nu40 > nu100 > 0 cSt (Walther needs both)");
+    check_command_line(o);
+    analysis::CharacterisationSettings s = settings_of(o);
+    const std::optional<io::Scenario> scenario = model_of(o);
+    const ReadRuns runs = read_runs(o);
+    if (s.conversion.rule == analysis::RadiusRule::kModel) set_model_radius(s.conversion, scenario, runs.measured.front(), o);
 
-    analysis::CharacterisationSettings s;
-    s.law = o.law == "linear" ? analysis::LawKind::kLinear
-            : o.law == "table" ? analysis::LawKind::kTable
-                               : analysis::LawKind::kMaki;
-    s.compensation = o.compensation == "none"     ? analysis::Compensation::kNone
-                     : o.compensation == "linear" ? analysis::Compensation::kLinear
-                     : o.compensation == "piecewise" ? analysis::Compensation::kPiecewise
-                                                  : analysis::Compensation::kQuadratic;
-    if (std::isfinite(o.alpha_per_C)) s.alpha_per_C = o.alpha_per_C;
-    s.conversion.rule = o.radius == "uniform_pressure" ? analysis::RadiusRule::kUniformPressure
-                        : o.radius == "uniform_wear"   ? analysis::RadiusRule::kUniformWear
-                                                       : analysis::RadiusRule::kModel;
-    s.conversion.mean_radius_mm = o.mean_radius_mm;
-    s.conversion.inner_radius_mm = o.inner_radius_mm;
-    s.conversion.outer_radius_mm = o.outer_radius_mm;
-    if (!(o.outer_radius_mm > o.inner_radius_mm))
-      throw io::InputError("--inner-radius-mm/--outer-radius-mm", 0, "", "the outer radius must exceed the inner");
-    s.conversion.interfaces = o.interfaces;
-    s.conversion.bearing_drag_mu = o.bearing_drag_mu;
-    s.temp_tolerance_C = o.temp_tolerance_C;
-    s.min_ramps_per_row = o.min_ramps;
-    s.linear_load_N = o.linear_load_N;
-    s.row_temps_C = parse_list("--row-temps", o.row_temps);
-    s.node_rpm = parse_list("--node-rpm", o.node_rpm);
-    s.hot_row = o.hot_row;
-
-    // The model the fluid is for (--model): its clutch's friction radius, and the replay of
-    // --method inverse.
-    std::optional<io::Scenario> scenario;
-    if (!o.model.empty()) {
-      scenario = io::load_scenario(o.model);
-      if (scenario->clutch.sliding_interfaces != o.interfaces)
-        throw io::InputError(o.model, 0, "clutch.sliding_interfaces",
-                             "is " + std::to_string(scenario->clutch.sliding_interfaces) + " but --interfaces is " +
-                                 std::to_string(o.interfaces) + "; the model must be the clutch the runs measured");
-    }
-
-    // Read every run; the runs must come from one rig.
-    std::vector<analysis::RampRun> runs;
-    std::vector<io::MeasuredRun> measured;
-    std::string rig, rig_file;
-    const io::ImportSpec logger = io::import_spec_of(o.maps, o.mapping);  // --map/--mapping: logger files
-    std::vector<std::string> import_warnings;
-    for (const auto& path : o.runs) {
-      const io::MeasuredRun& m = measured.emplace_back(io::read_measured_or_logger(path, logger, import_warnings));
-      io::check_measured_run_units(m);  // kN, ms or K in a measured run: one line naming the fix
-      const std::string this_rig = m.meta("rig").value_or("");
-      if (runs.empty()) {
-        rig = this_rig;
-        rig_file = path;
-      } else if (this_rig != rig) {
-        throw io::InputError(path, 0, "rig", "is '" + this_rig + "' but " + rig_file + " is '" + rig +
-                                                 "'; characterise one rig's runs at a time (friction radius and "
-                                                 "interfaces differ between rigs)");
-      }
-      runs.push_back(to_ramp_run(m, o.temperature_channel));
-    }
-    for (const auto& w : import_warnings) std::cerr << "shudder: warning: " << w << "\n";
-    if (s.conversion.rule == analysis::RadiusRule::kModel) set_model_radius(s.conversion, scenario, measured.front(), o);
-
-    analysis::Characterisation c;
-    try {
-      c = analysis::characterise(runs, s);
-    } catch (const analysis::CharacterisationInputError& e) {
-      throw io::InputError(e.file(), 0, "", e.what());
-    }
-
-    // --method inverse: the same settings, replayed through the clutch and thermal model; the
-    // written law is the inverse one, the sensor fit is reported beside it.
+    // The law: from the sensors, or (--method inverse) replayed through the model, the sensor
+    // fit reported beside it.
+    analysis::Characterisation c = fit_from_sensors(runs, s);
     std::optional<rig_models::InverseCharacterisation> inverse;
     analysis::CharacterisationSettings written = s;
     if (o.method == "inverse") {
-      rig_models::InverseSettings is;
-      if (o.model.empty()) {
-        is.model.clutch.sliding_interfaces = o.interfaces;
-        is.model.fluid.nu40_cSt = o.nu40_cSt;
-        is.model.fluid.nu100_cSt = o.nu100_cSt;
-        is.model.settings.thermal_step_s = 0.02;  // the ramps last seconds; 20 ms resolves the heating
-        if (s.conversion.rule == analysis::RadiusRule::kModel) {  // the annulus the radius was taken from
-          is.model.clutch.thermal.inner_radius_m = s.conversion.inner_radius_mm * 1e-3;
-          is.model.clutch.thermal.outer_radius_m = s.conversion.outer_radius_mm * 1e-3;
-        }
-      } else {
-        is.model = io::replay_model(*scenario);
-      }
-      is.jobs = std::max(1u, std::thread::hardware_concurrency());
-      is.max_iterations = o.inverse_iterations;
-      const io::DiagnosisData data = io::diagnosis_data(measured);
-      try {
-        inverse = rig_models::characterise_inverse(runs, data.inputs, s, o.temperature_channel, is);
-      } catch (const analysis::CharacterisationInputError& e) {
-        throw io::InputError(e.file(), 0, "", e.what());
-      }
+      inverse = fit_inverse(runs, s, scenario, o);
       c = inverse->inverse;
       written = inverse->settings;
-      // Where the inverse method should not be used (docs/characterisation.md 2c).
-      if (s.compensation == analysis::Compensation::kNone)
-        c.warnings.push_back("--method inverse with --compensation none: no temperature enters the law, so it equals "
-                             "the sensor method's (at many times the cost)");
-      else if (!s.hot_row && c.max_temp_C > c.temps_C.back() + s.temp_tolerance_C)
-        c.warnings.push_back("--method inverse with --no-hot-row on runs that heat above the top row: its compensation "
-                             "takes out more of the heating than the sensor method's and nothing puts it back, so it "
-                             "replays worse; drop --no-hot-row");
     }
 
-    io::FluidIdentity id;
-    id.name = o.name.empty() ? std::filesystem::path(o.output).stem().string() : o.name;
-    id.description = "characterised by shudder from " + std::to_string(o.runs.size()) + " measured run(s)";
-    id.nu40_cSt = o.nu40_cSt;
-    id.nu100_cSt = o.nu100_cSt;
-    // Breakaway: given, else measured from the runs' starts from rest against the written law.
-    const analysis::BreakawayMeasurement breakaway = analysis::measure_breakaway(runs, s.conversion, *c.law);
-    if (std::isfinite(o.breakaway_ratio)) {
-      id.breakaway_ratio = o.breakaway_ratio;
-      id.breakaway_source = "given on the command line (--breakaway-ratio)";
-    } else if (breakaway.ratio) {
-      id.breakaway_ratio = *breakaway.ratio;
-      id.breakaway_source = "measured: median peak/kinetic friction over " + std::to_string(breakaway.events.size()) +
-                            " start(s) from rest (" + report::breakaway_range(breakaway) + ")";
-    } else {
-      id.breakaway_ratio = 1.0;
-      id.breakaway_source = "not measured: " + breakaway.not_measured + "; mu_s = mu_k(v_min) assumed";
-    }
+    const analysis::BreakawayMeasurement breakaway = analysis::measure_breakaway(runs.ramps, s.conversion, *c.law);
+    const io::FluidIdentity id = identity_of(o, breakaway);
     const std::string toml = io::characterised_fluid_toml(c, written, id, o.runs);
     // The file must load as every command loads it; a failure here is ours (exit 1).
     try {
@@ -244,6 +285,8 @@ int characterise_command(const CharacteriseOptions& o) {
     } catch (const io::InputError& e) {
       throw std::runtime_error(std::string("the fitted fluid file would not load: ") + e.what());
     }
+
+    // Summary, JSON and report; every file written whole or not at all.
     const std::string summary = report::characterisation_summary(c, written, o.output) +
                                 (inverse ? report::method_comparison_summary(*inverse, s) : std::string()) +
                                 report::breakaway_summary(breakaway, id.breakaway_ratio, id.breakaway_source);

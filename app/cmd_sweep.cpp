@@ -196,6 +196,198 @@ void progress(std::size_t done, std::size_t total, double elapsed_s) {
   std::fflush(stderr);
 }
 
+// The output may replace neither an input nor the report, and its directory must exist: the
+// parts folder beside it is created, never the directories above it.
+void check_paths(const SweepOptions& opt, const SweepBase& base) {
+  std::vector<io::RolePath> outputs{{"-o", opt.output}};
+  if (!opt.report.empty()) outputs.push_back({"--report", opt.report});
+  std::vector<io::RolePath> inputs{{"scenario", opt.scenario}};
+  for (const auto& f : base.fluid_paths) inputs.push_back({"fluid file", f});
+  io::require_distinct_paths(inputs, outputs);
+  for (const auto& o : outputs) io::require_output_directory(o.path);
+}
+
+// Case texts, each validated now so bad keys or values stop the sweep before it runs; the
+// output's size summed over the cases (a case may change the duration or the rate).
+std::vector<std::string> case_texts(const SweepOptions& opt, const SweepBase& base,
+                                    const std::vector<io::SweepAxis>& axes,
+                                    const std::vector<std::vector<double>>& rows) {
+  std::vector<std::string> texts;
+  std::uint64_t bytes = 0;
+  for (const auto& row : rows) {
+    std::string text = base.text;
+    for (std::size_t a = 0; a < axes.size(); ++a) text = io::set_scenario_key(text, opt.scenario, axes[a].key, row[a]);
+    bytes += base.network ? network_case_bytes(io::load_network_scenario_text(text, opt.scenario))
+                          : estimated_sweep_bytes(io::load_scenario_text(text, opt.scenario), 1);
+    texts.push_back(std::move(text));
+  }
+  io::require_output_size(opt.output, bytes,
+                          std::to_string(texts.size()) + " cases x samples x " + std::to_string(kSweepKeptChannels) +
+                              " kept signals x 8 bytes",
+                          opt.force);
+  return texts;
+}
+
+struct CaseParts {
+  std::vector<std::string> paths;  // one run file per case, OUT.h5.parts/case_NNNNN.h5
+  std::vector<std::size_t> todo;   // the cases still to run
+};
+
+// Resume: a part whose stored scenario equals the case's text is finished.
+CaseParts case_parts(const fs::path& parts, const std::vector<std::string>& texts) {
+  CaseParts c;
+  for (std::size_t k = 0; k < texts.size(); ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "case_%05zu.h5", k);
+    c.paths.push_back((parts / name).string());
+    bool finished = false;
+    if (std::error_code ec; fs::exists(c.paths.back(), ec)) {
+      try {
+        finished = io::read_run_attribute(c.paths.back(), "scenario") == texts[k];
+      } catch (const io::InputError&) {
+        finished = false;  // unreadable leftover: run the case again
+      }
+    }
+    if (!finished) c.todo.push_back(k);
+  }
+  return c;
+}
+
+struct PoolOutcome {
+  unsigned jobs = 1;
+  double wall_s = 0.0;
+  std::string first_error;  // the first case that threw, "" if none
+  bool out_of_memory = false;
+  std::string mpi_balance;  // --mpi: one summary line, the hand-out's balance
+};
+
+// The unfinished cases on a worker pool: threads here, or every MPI rank (app/mpi_sweep.hpp).
+PoolOutcome run_pool(const SweepOptions& opt, mpi::Session* mpi, const std::vector<std::string>& texts,
+                     const CaseParts& parts) {
+  PoolOutcome r;
+  const auto& todo = parts.todo;
+  r.jobs = mpi ? static_cast<unsigned>(mpi->ranks())
+               : std::max(1u, opt.jobs ? opt.jobs : std::thread::hardware_concurrency());
+  const bool show = isatty(STDERR_FILENO) && !opt.quiet;
+  std::atomic<std::size_t> done{0};
+  std::mutex error_mutex;
+  std::atomic<bool> out_of_memory{false};
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto elapsed_s = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+  if (mpi) {
+    const auto outcome = mpi::run_cases(
+        *mpi, todo, texts, parts.paths,
+        [&](const std::string& text, const std::string& part) { run_case(text, opt.scenario, part); },
+        show ? std::function<void(std::size_t)>([&](std::size_t n) { progress(n, todo.size(), elapsed_s()); })
+             : std::function<void(std::size_t)>());
+    r.first_error = outcome.first_error;
+    out_of_memory = outcome.out_of_memory;
+    r.mpi_balance = "Cases per MPI rank:";
+    for (const std::size_t n : outcome.cases_per_rank) r.mpi_balance += " " + std::to_string(n);
+    r.mpi_balance += "\n";
+  } else {
+    parallel_for(
+        todo.size(), r.jobs,
+        [&](std::size_t i) {
+          const std::size_t k = todo[i];
+          // What escapes run_case stops the sweep: a part that cannot be written, or memory.
+          try {
+            run_case(texts[k], opt.scenario, parts.paths[k]);
+          } catch (const std::bad_alloc&) {
+            out_of_memory = true;
+          } catch (const std::exception& e) {
+            const std::lock_guard lock(error_mutex);
+            if (r.first_error.empty()) r.first_error = "case " + std::to_string(k) + ": " + e.what();
+          }
+          ++done;
+        },
+        show ? std::function<void()>([&] { progress(done, todo.size(), elapsed_s()); }) : std::function<void()>());
+  }
+  r.wall_s = elapsed_s();
+  r.out_of_memory = out_of_memory;
+  if (show) std::fprintf(stderr, "\n");
+  return r;
+}
+
+constexpr const char* kResults[] = {"predicted_stable",       "predicted_margin_per_s", "predicted_frequency_Hz",
+                                    "simulated_frequency_Hz", "amplitude_Nm",           "onset_time_s"};
+constexpr const char* kResultUnits[] = {"1", "1/s", "Hz", "Hz", "N m", "s"};
+constexpr std::size_t kResultCount = std::size(kResults);
+
+// The sweep file's table from the parts: the axes' values, each case's results (NaN and its
+// message for a failed case). The signals are copied by the writer one case at a time, so the
+// sweep's memory does not grow with its case count.
+io::SweepOutput assemble(const SweepBase& base, const std::vector<io::SweepAxis>& axes,
+                         const std::vector<std::vector<double>>& rows, const std::vector<std::string>& texts,
+                         const CaseParts& parts, std::vector<std::size_t>& failed) {
+  io::SweepOutput out;
+  out.base_scenario_text = base.text;
+  out.fluid_text = base.fluid_text;
+  for (const auto& a : axes) out.columns.push_back({a.key, "", {}});
+  for (std::size_t r = 0; r < kResultCount; ++r) out.columns.push_back({kResults[r], kResultUnits[r], {}});
+  for (std::size_t k = 0; k < texts.size(); ++k) {
+    for (std::size_t a = 0; a < axes.size(); ++a) out.columns[a].values.push_back(rows[k][a]);
+    out.case_scenarios.push_back(texts[k]);
+    std::string message = io::read_run_attribute(parts.paths[k], io::kSweepMessageColumn);
+    if (!message.empty()) {
+      failed.push_back(k);
+      for (std::size_t r = 0; r < kResultCount; ++r) out.columns[axes.size() + r].values.push_back(std::nan(""));
+      out.text_column.emplace_back(kFailed);
+      out.message_column.push_back(std::move(message));
+      out.case_part_paths.emplace_back();
+      continue;
+    }
+    const dynamics::Recording part = io::read_run_hdf5(parts.paths[k]);
+    for (std::size_t r = 0; r < kResultCount; ++r)
+      out.columns[axes.size() + r].values.push_back(part.find_scalar(kResults[r])->value);
+    out.text_column.emplace_back(analysis::to_string(
+        analysis::kVerdicts.at(static_cast<std::size_t>(part.find_scalar("simulated_verdict_code")->value))));
+    out.message_column.emplace_back();
+    out.case_part_paths.push_back(parts.paths[k]);
+  }
+  return out;
+}
+
+// Two lines: cases, jobs, time and file; the verdicts counted (and the MPI balance).
+std::string sweep_summary(const SweepOptions& opt, const SweepBase& base, const io::SweepOutput& out,
+                          std::size_t axes, std::size_t ran, std::size_t failed, const PoolOutcome& pool) {
+  std::string summary;
+  char line[512];
+  std::snprintf(line, sizeof line, "Sweep of %s: %zu cases (%zu run now, %u jobs) in %.2f s -> %s\n",
+                base.name.c_str(), out.case_scenarios.size(), ran, pool.jobs, pool.wall_s, opt.output.c_str());
+  summary += line;
+  std::size_t counts[3] = {0, 0, 0};
+  for (const auto& v : out.text_column)
+    if (v != kFailed) counts[static_cast<int>(verdict_code(v))]++;
+  const std::string failures = failed == 0 ? "" : ", " + std::to_string(failed) + " failed";
+  const auto& stable = out.columns[axes].values;  // predicted_stable
+  std::snprintf(line, sizeof line, "Simulated: %zu none, %zu vibration, %zu stick-slip%s; predicted unstable: %zu\n",
+                counts[0], counts[1], counts[2], failures.c_str(),
+                static_cast<std::size_t>(std::count(stable.begin(), stable.end(), 0.0)));
+  summary += line;
+  return summary + pool.mpi_balance;
+}
+
+// --report DIR: summary.txt and sweep.png. Exit 1 when only the report failed (the sweep file
+// is complete); a bad report path is the user's (InputError, exit 2).
+int write_report(const SweepOptions& opt, const SweepBase& base, const io::SweepOutput& out,
+                 const std::string& summary) {
+  io::SweepTable table;
+  table.columns = out.columns;
+  table.text_column_name = out.text_column_name;
+  table.text_column = out.text_column;
+  try {
+    report::write_sweep_report(opt.report, table, base.name, summary);
+  } catch (const io::InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    std::cerr << "shudder: report failed: " << e.what() << " (the sweep itself is in " << opt.output << ")\n";
+    return 1;
+  }
+  if (!opt.quiet) std::printf("Report: %s (summary.txt, sweep.png)\n", opt.report.c_str());
+  return 0;
+}
+
 }  // namespace
 
 int sweep_command(const SweepOptions& opt) {
@@ -215,6 +407,8 @@ int sweep_command(const SweepOptions& opt) {
       }
     }
     mpi::Session* const mpi = mpi_session ? &*mpi_session : nullptr;
+
+    // The base scenario, the axes and their cases, all checked before any case runs.
     const SweepBase base = load_sweep_base(opt.scenario);
     for (const auto& w : base.warnings) std::cerr << "shudder: warning: " << w << "\n";
     if (opt.sets.empty()) throw io::InputError("--set", 0, "", "give at least one --set KEY=START:STOP:STEP");
@@ -222,173 +416,35 @@ int sweep_command(const SweepOptions& opt) {
     for (const auto& s : opt.sets) axes.push_back(io::parse_sweep_axis(s));
     io::require_distinct_keys(axes);  // else cases would repeat and /cases hold two columns of one name
     const auto rows = list_cases(axes);
+    check_paths(opt, base);
+    const std::vector<std::string> texts = case_texts(opt, base, axes, rows);
 
-    // The output may replace neither an input nor the report, and its directory must exist:
-    // the parts folder beside it is created, never the directories above it.
-    std::vector<io::RolePath> outputs{{"-o", opt.output}};
-    if (!opt.report.empty()) outputs.push_back({"--report", opt.report});
-    std::vector<io::RolePath> inputs{{"scenario", opt.scenario}};
-    for (const auto& f : base.fluid_paths) inputs.push_back({"fluid file", f});
-    io::require_distinct_paths(inputs, outputs);
-    for (const auto& o : outputs) io::require_output_directory(o.path);
-
-    // Case texts, each validated now so bad keys or values stop the sweep before it runs; the
-    // output's size summed over the cases (a case may change the duration or the rate).
-    std::vector<std::string> texts;
-    std::uint64_t bytes = 0;
-    for (const auto& row : rows) {
-      std::string text = base.text;
-      for (std::size_t a = 0; a < axes.size(); ++a) text = io::set_scenario_key(text, opt.scenario, axes[a].key, row[a]);
-      bytes += base.network ? network_case_bytes(io::load_network_scenario_text(text, opt.scenario))
-                            : estimated_sweep_bytes(io::load_scenario_text(text, opt.scenario), 1);
-      texts.push_back(std::move(text));
-    }
-    io::require_output_size(opt.output, bytes,
-                            std::to_string(texts.size()) + " cases x samples x " +
-                                std::to_string(kSweepKeptChannels) + " kept signals x 8 bytes",
-                            opt.force);
-
-    // Resume: a part whose stored scenario equals the case's text is finished.
-    const fs::path parts = opt.output + ".parts";
-    fs::create_directory(parts);
-    std::vector<std::string> part_paths;
-    std::vector<std::size_t> todo;
-    for (std::size_t k = 0; k < texts.size(); ++k) {
-      char name[32];
-      std::snprintf(name, sizeof name, "case_%05zu.h5", k);
-      part_paths.push_back((parts / name).string());
-      bool finished = false;
-      if (std::error_code ec; fs::exists(part_paths.back(), ec)) {
-        try {
-          finished = io::read_run_attribute(part_paths.back(), "scenario") == texts[k];
-        } catch (const io::InputError&) {
-          finished = false;  // unreadable leftover: run the case again
-        }
-      }
-      if (!finished) todo.push_back(k);
-    }
-    if (todo.size() < texts.size())
-      std::cerr << "shudder: resuming: " << texts.size() - todo.size() << " of " << texts.size()
-                << " cases already finished in " << parts.string() << "\n";
-
-    // Worker pool: threads here, or every MPI rank (app/mpi_sweep.hpp) with --mpi.
-    const unsigned jobs = mpi ? static_cast<unsigned>(mpi->ranks())
-                              : std::max(1u, opt.jobs ? opt.jobs : std::thread::hardware_concurrency());
-    const bool show = isatty(STDERR_FILENO) && !opt.quiet;
-    std::atomic<std::size_t> done{0};
-    std::mutex error_mutex;
-    std::string first_error;
-    std::atomic<bool> out_of_memory{false};
-    const auto t0 = std::chrono::steady_clock::now();
-    const auto elapsed_s = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-    std::string mpi_balance;  // --mpi: one summary line, the hand-out's balance
-    if (mpi) {
-      const auto outcome = mpi::run_cases(
-          *mpi, todo, texts, part_paths,
-          [&](const std::string& text, const std::string& part) { run_case(text, opt.scenario, part); },
-          show ? std::function<void(std::size_t)>([&](std::size_t n) { progress(n, todo.size(), elapsed_s()); })
-               : std::function<void(std::size_t)>());
-      first_error = outcome.first_error;
-      out_of_memory = outcome.out_of_memory;
-      mpi_balance = "Cases per MPI rank:";
-      for (const std::size_t n : outcome.cases_per_rank) mpi_balance += " " + std::to_string(n);
-      mpi_balance += "\n";
-    } else {
-      parallel_for(
-          todo.size(), jobs,
-          [&](std::size_t i) {
-            const std::size_t k = todo[i];
-            // What escapes run_case stops the sweep: a part that cannot be written, or memory.
-            try {
-              run_case(texts[k], opt.scenario, part_paths[k]);
-            } catch (const std::bad_alloc&) {
-              out_of_memory = true;
-            } catch (const std::exception& e) {
-              const std::lock_guard lock(error_mutex);
-              if (first_error.empty()) first_error = "case " + std::to_string(k) + ": " + e.what();
-            }
-            ++done;
-          },
-          show ? std::function<void()>([&] { progress(done, todo.size(), elapsed_s()); }) : std::function<void()>());
-    }
-    const double wall_s = elapsed_s();
-    if (show) std::fprintf(stderr, "\n");
-    if (out_of_memory)
+    // Run what is not finished yet.
+    const fs::path parts_dir = opt.output + ".parts";
+    fs::create_directory(parts_dir);
+    const CaseParts parts = case_parts(parts_dir, texts);
+    if (parts.todo.size() < texts.size())
+      std::cerr << "shudder: resuming: " << texts.size() - parts.todo.size() << " of " << texts.size()
+                << " cases already finished in " << parts_dir.string() << "\n";
+    const PoolOutcome pool = run_pool(opt, mpi, texts, parts);
+    if (pool.out_of_memory)
       throw io::InputError(opt.scenario, 0, "",
-                           "ran out of memory running " + std::to_string(todo.size()) + " cases on " +
-                               std::to_string(jobs) + " jobs; reduce --jobs, the duration or sample_rate_Hz "
-                               "(finished cases are kept in " + parts.string() + ")");
-    if (!first_error.empty())
-      throw std::runtime_error(first_error + " (finished cases are kept in " + parts.string() + "; rerun to resume)");
+                           "ran out of memory running " + std::to_string(parts.todo.size()) + " cases on " +
+                               std::to_string(pool.jobs) + " jobs; reduce --jobs, the duration or sample_rate_Hz "
+                               "(finished cases are kept in " + parts_dir.string() + ")");
+    if (!pool.first_error.empty())
+      throw std::runtime_error(pool.first_error + " (finished cases are kept in " + parts_dir.string() +
+                               "; rerun to resume)");
 
-    // Assemble the sweep file from the parts.
-    io::SweepOutput out;
-    out.base_scenario_text = base.text;
-    out.fluid_text = base.fluid_text;
-    for (const auto& a : axes) out.columns.push_back({a.key, "", {}});
-    const char* results[] = {"predicted_stable", "predicted_margin_per_s", "predicted_frequency_Hz",
-                             "simulated_frequency_Hz", "amplitude_Nm", "onset_time_s"};
-    const char* units[] = {"1", "1/s", "Hz", "Hz", "N m", "s"};
-    for (int r = 0; r < 6; ++r) out.columns.push_back({results[r], units[r], {}});
+    // The sweep file, then the summary and the report.
     std::vector<std::size_t> failed;
-    for (std::size_t k = 0; k < texts.size(); ++k) {
-      for (std::size_t a = 0; a < axes.size(); ++a) out.columns[a].values.push_back(rows[k][a]);
-      out.case_scenarios.push_back(texts[k]);
-      std::string message = io::read_run_attribute(part_paths[k], io::kSweepMessageColumn);
-      if (!message.empty()) {
-        failed.push_back(k);
-        for (int r = 0; r < 6; ++r) out.columns[axes.size() + r].values.push_back(std::nan(""));
-        out.text_column.emplace_back(kFailed);
-        out.message_column.push_back(std::move(message));
-        out.case_part_paths.emplace_back();
-        continue;
-      }
-      // The results now; the signals are copied by the writer one case at a time, so the
-      // sweep's memory does not grow with its case count.
-      const dynamics::Recording part = io::read_run_hdf5(part_paths[k]);
-      for (int r = 0; r < 6; ++r) out.columns[axes.size() + r].values.push_back(part.find_scalar(results[r])->value);
-      out.text_column.emplace_back(analysis::to_string(
-          analysis::kVerdicts.at(static_cast<std::size_t>(part.find_scalar("simulated_verdict_code")->value))));
-      out.message_column.emplace_back();
-      out.case_part_paths.push_back(part_paths[k]);
-    }
+    const io::SweepOutput out = assemble(base, axes, rows, texts, parts, failed);
     io::write_sweep_hdf5(opt.output, out);
-    if (!opt.keep_parts) fs::remove_all(parts);
-    std::string summary;
-    {
-      char line[512];
-      std::snprintf(line, sizeof line, "Sweep of %s: %zu cases (%zu run now, %u jobs) in %.2f s -> %s\n",
-                    base.name.c_str(), texts.size(), todo.size(), jobs, wall_s, opt.output.c_str());
-      summary += line;
-      std::size_t counts[3] = {0, 0, 0};
-      for (const auto& v : out.text_column)
-        if (v != kFailed) counts[static_cast<int>(verdict_code(v))]++;
-      const std::string failures = failed.empty() ? "" : ", " + std::to_string(failed.size()) + " failed";
-      std::snprintf(line, sizeof line, "Simulated: %zu none, %zu vibration, %zu stick-slip%s; predicted unstable: %zu\n",
-                    counts[0], counts[1], counts[2], failures.c_str(),
-                    static_cast<std::size_t>(std::count(out.columns[axes.size()].values.begin(),
-                                                        out.columns[axes.size()].values.end(), 0.0)));
-      summary += line;
-      summary += mpi_balance;
-    }
+    if (!opt.keep_parts) fs::remove_all(parts_dir);
+    const std::string summary = sweep_summary(opt, base, out, axes.size(), parts.todo.size(), failed.size(), pool);
     if (!failed.empty()) std::cerr << failure_warning(failed, texts.size(), out.message_column[failed.front()]);
     if (!opt.quiet) std::fputs(summary.c_str(), stdout);
-    if (!opt.report.empty()) {
-      io::SweepTable table;
-      table.columns = out.columns;
-      table.text_column_name = out.text_column_name;
-      table.text_column = out.text_column;
-      try {
-        report::write_sweep_report(opt.report, table, base.name, summary);
-      } catch (const io::InputError&) {
-        throw;
-      } catch (const std::exception& e) {
-        std::cerr << "shudder: report failed: " << e.what() << " (the sweep itself is in " << opt.output << ")\n";
-        return 1;
-      }
-      if (!opt.quiet) std::printf("Report: %s (summary.txt, sweep.png)\n", opt.report.c_str());
-    }
-    return 0;
+    return opt.report.empty() ? 0 : write_report(opt, base, out, summary);
   });
 }
 
