@@ -140,7 +140,8 @@ int diagnose_command(const DiagnoseOptions& opt) {
       throw io::InputError(opt.model, 0, "--clutch", "names a clutch of a network scenario; this scenario has one clutch "
                                                      "(remove --clutch)");
     std::vector<io::MeasuredRun> runs;
-    const io::ImportSpec logger = io::import_spec_of(opt.maps, opt.mapping);  // --map/--mapping: logger files
+    io::ImportSpec logger = io::import_spec_of(opt.maps, opt.mapping);  // --map/--mapping: logger files
+    logger.trust_units = logger.trust_units || opt.trust_units;
     std::vector<std::string> import_warnings;
     for (const auto& path : opt.runs) runs.push_back(io::read_measured_or_logger(path, logger, import_warnings));
     for (const auto& w : import_warnings) std::cerr << "shudder: warning: " << w << "\n";

@@ -98,6 +98,7 @@ struct DiagnoseOptions {
   std::vector<std::string> maps;  // --map: the runs are a logger's CSV files (app/cmd_import.cpp)
   std::string mapping;            // --mapping: the same from a mapping file; empty = none
   std::string clutch;             // --clutch: a network's wet clutch; empty = the runs' metadata or the only one
+  bool trust_units = false;       // --trust-units: skip the checks that values look like their units
 };
 int diagnose_command(const DiagnoseOptions& options);
 
@@ -127,6 +128,7 @@ struct CharacteriseOptions {
   std::vector<std::string> maps;          // --map: the runs are a logger's CSV files (app/cmd_import.cpp)
   std::string mapping;                    // --mapping: the same from a mapping file; empty = none
   bool hot_row = true;                    // a row at the hottest temperature the ramps reach (--no-hot-row: none)
+  bool trust_units = false;               // --trust-units: skip the checks that values look like their units
 };
 int characterise_command(const CharacteriseOptions& options);
 

@@ -120,6 +120,8 @@ int main(int argc, char** argv) {
                        "Write the baseline scenario with the named effects on at their fitted parameters");
   diag_cmd->add_option("--map", diagnose.maps, "The runs are a logger's CSV: SOURCE=TARGET:UNIT as `shudder import --map`");
   diag_cmd->add_option("--mapping", diagnose.mapping, "The runs are a logger's CSV: its mapping file (shudder import --mapping)");
+  diag_cmd->add_flag("--trust-units", diagnose.trust_units,
+                     "Skip the checks that a logger's values look like their units (as shudder import --trust-units)");
 
   CharacteriseOptions characterise;
   auto* char_cmd = app.add_subcommand(
@@ -183,6 +185,8 @@ int main(int argc, char** argv) {
 
   char_cmd->add_option("--map", characterise.maps, "The runs are a logger's CSV: SOURCE=TARGET:UNIT as `shudder import --map`");
   char_cmd->add_option("--mapping", characterise.mapping, "The runs are a logger's CSV: its mapping file (shudder import --mapping)");
+  char_cmd->add_flag("--trust-units", characterise.trust_units,
+                     "Skip the checks that the runs' values look like their units (as shudder import --trust-units)");
 
   CompareOptions compare;
   auto* cmp_cmd = app.add_subcommand("compare", "Compare fluids: indices, equal viscosity, breakaway, rig margins, ranking");

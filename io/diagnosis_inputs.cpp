@@ -1,6 +1,7 @@
 #include "io/diagnosis_inputs.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <variant>
 
@@ -38,12 +39,15 @@ DiagnosisData read_runs(const std::vector<MeasuredRun>& runs) {
       }
     }
     if (run.rows() < diagnosis_min_rows || run.duration_s() < diagnosis_min_duration_s)
-      throw InputError(run.path, 0, "",
-                       "the run has " + std::to_string(run.rows()) + " rows over " +
-                           std::to_string(run.duration_s()) + " s; the diagnosis needs at least " +
-                           std::to_string(diagnosis_min_rows) + " rows and " +
-                           std::to_string(diagnosis_min_duration_s) +
-                           " s to fit parameters and hold some data out");
+    {
+      char what[200];
+      std::snprintf(what, sizeof what,
+                    "the run has %zu rows over %.6g s; the diagnosis needs at least %zu rows and %.6g s to fit "
+                    "parameters and hold some data out",
+                    static_cast<std::size_t>(run.rows()), run.duration_s(),
+                    static_cast<std::size_t>(diagnosis_min_rows), diagnosis_min_duration_s);
+      throw InputError(run.path, 0, "", what);
+    }
 
     analysis::DiagnosisRun dr;
     dr.name = std::filesystem::path(run.path).filename().string();

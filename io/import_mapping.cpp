@@ -136,6 +136,17 @@ void split_target(const std::string& text, ColumnMapping& m) {
 
 }  // namespace import_mapping_impl
 
+std::string map_option_text(const std::string& source, const std::string& target, const std::string& unit) {
+  const std::string spec = source + "=" + target + ":" + unit;
+  const bool plain = std::all_of(source.begin(), source.end(), [](unsigned char c) {
+    return std::isalnum(c) || c == '_' || c == '.' || c == '-';
+  });
+  if (plain) return "--map " + spec;
+  std::string quoted = "'";
+  for (const char c : spec) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return "--map " + quoted + "'";
+}
+
 ColumnMapping parse_map_option(const std::string& spec) {
   using namespace import_mapping_impl;
   const auto eq = spec.find('=');

@@ -60,6 +60,9 @@ ImportSpec import_spec_of(const std::vector<std::string>& maps, const std::strin
 /// `--map SOURCE=TARGET:UNIT` (UNIT optional: the target's own unit). InputError naming the
 /// option on a malformed spec, an unknown target or a unit the target cannot be logged in.
 ColumnMapping parse_map_option(const std::string& spec);
+/// The `--map SOURCE=TARGET:UNIT` option a message suggests, single-quoted for the shell when
+/// the logger's column name holds anything but letters, digits and `_.-` ("Zeit [ms]").
+std::string map_option_text(const std::string& source, const std::string& target, const std::string& unit);
 /// `--meta KEY=VALUE`.
 std::pair<std::string, std::string> parse_meta_option(const std::string& spec);
 /// "," ";" "tab" "auto" (0) for --delimiter; "." "," "auto" (0) for --decimal.

@@ -42,7 +42,7 @@ void check_unit_plausible(const std::string& file, const ColumnMapping& mapping,
   using namespace import_plausibility_impl;
   if (values.size() < 2) return;
   const auto fail = [&](const std::string& seen, const std::string& likely) {
-    const std::string map = "--map " + mapping.source + "=" + target.column + ":" + likely;
+    const std::string map = map_option_text(mapping.source, target.column, likely);
     if (mapping.origin == "measured run")
       throw InputError(file, 0, "",
                        "column '" + target.column + "': " + seen + " look like " + likely + ", not " + unit.name +

@@ -67,15 +67,16 @@ std::vector<ColumnMapping> resolve(const LoggerTable& t, const ImportSpec& spec)
     if (with_unit.empty() && !without_unit.empty() && target.required)
       throw InputError(t.path, 0, "",
                        "column '" + without_unit.front().source + "' looks like " + target.column + " (" +
-                           target.quantity + ") but its name gives no unit; give --map " + without_unit.front().source +
-                           "=" + target.column + ":UNIT (allowed units: " + unit_list(target) + ")");
+                           target.quantity + ") but its name gives no unit; give " +
+                           map_option_text(without_unit.front().source, target.column, "UNIT") +
+                           " (allowed units: " + unit_list(target) + ")");
     if (with_unit.empty()) continue;
     const ColumnMapping& m = with_unit.front();
     if (!find_import_unit(target, m.unit))
       throw InputError(t.path, 0, "",
                        "column '" + m.source + "' looks like " + m.target + " in '" + m.unit +
                            "', which is not a unit it can be logged in; allowed: " + unit_list(target) +
-                           " (give --map " + m.source + "=" + m.target + ":UNIT)");
+                           " (give " + map_option_text(m.source, m.target, "UNIT") + ")");
     automatic.push_back(m);
   }
   maps.insert(maps.end(), automatic.begin(), automatic.end());

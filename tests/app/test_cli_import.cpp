@@ -22,6 +22,7 @@ namespace {
 using namespace shudder;
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 // One logger column: its name, the measured-run column it holds and the factor applied.
 struct LoggerColumn {
@@ -193,6 +194,29 @@ TEST(CliImport, UnitThatDoesNotFitIsOneLineAndNothingWritten) {
   test::expect_rejected(test::run_cli("import log.csv -o run2.csv --mapping map.toml", dir),
                         {"map.toml:2", "columns.force_N", "did you mean 'normal_force_N'"});
   EXPECT_FALSE(fs::exists(dir / "run2.csv"));
+}
+
+TEST(CliImport, CharacteriseAndDiagnoseTakeTrustUnitsAsImportDoes) {
+  // A force logged in N that really is small (a light-load rig): refused as kN-looking unless the
+  // user says the units are right. With --trust-units the runs get past the unit check and fail,
+  // if at all, for what the data are (here: too few rows for a ramp), never for the unit.
+  const auto dir = test::scratch_dir("cli_trust_units");
+  std::ostringstream os;
+  os << "time_s,speed_rpm,torque_Nm,temp_C,force_N\n";
+  for (int i = 0; i < 100; ++i) os << 0.01 * i << "," << 1 + i << ",0.1,60,25.3\n";
+  test::write_file(dir / "log.csv", os.str());
+  const std::string map = " --map force_N=normal_force_N", fluid = " --nu40-cSt 35 --nu100-cSt 6.7";
+  const auto refused = test::run_cli("characterise log.csv -o f.toml" + fluid + map, dir);
+  test::expect_rejected(refused, {"log.csv", "column 'force_N'", "look like kN", "--trust-units"});
+  const auto trusted = test::run_cli("characterise log.csv -o f.toml --trust-units" + fluid + map, dir);
+  EXPECT_NE(trusted.exit_code, 0);  // 100 rows of one speed ramp are not a friction law
+  EXPECT_THAT(trusted.err, Not(HasSubstr("look like")));
+  const auto diagnosed = test::run_cli(
+      "diagnose " + test::source_path("scenarios/paper_g_case2_15kN.toml") + " log.csv --trust-units" + map, dir);
+  EXPECT_THAT(diagnosed.err, Not(HasSubstr("look like")));
+  test::expect_rejected(test::run_cli("diagnose " + test::source_path("scenarios/paper_g_case2_15kN.toml") +
+                                          " log.csv" + map, dir),
+                        {"log.csv", "look like kN"});
 }
 
 }  // namespace

@@ -228,6 +228,22 @@ TEST_F(LoggerImport, UnitsThatDoNotFitTheValuesNameTheColumnAndTheFix) {
   ImportSpec trust;
   trust.trust_units = true;
   EXPECT_NO_THROW(import_logger(kn, trust));
+  // A column name with spaces and brackets: the suggested option is quoted for the shell, so it
+  // can be pasted as printed.
+  const auto spaced = logger("spaced.csv",
+                             {{"time_s", time_s}, {"speed_rpm", speed_rpm}, {"torque_Nm", torque_Nm},
+                              {"temp_C", temp_C}, {"Kraft [kN]", [](int i) { return force_N(i) / 1e3; }}},
+                             ',');
+  ImportSpec named;
+  named.maps.push_back(shudder::io::parse_map_option("Kraft [kN]=normal_force_N"));
+  EXPECT_THAT([&] { import_logger(spaced, named); },
+              ThrowsMessage<InputError>(HasSubstr("give --map 'Kraft [kN]=normal_force_N:kN'")));
+}
+
+TEST(MapOptionText, QuotesOnlyWhatTheShellWouldSplitOrExpand) {
+  EXPECT_EQ(shudder::io::map_option_text("force_kN", "normal_force_N", "kN"), "--map force_kN=normal_force_N:kN");
+  EXPECT_EQ(shudder::io::map_option_text("Zeit [ms]", "time_s", "ms"), "--map 'Zeit [ms]=time_s:ms'");
+  EXPECT_EQ(shudder::io::map_option_text("it's", "time_s", "s"), "--map 'it'\\''s=time_s:s'");
 }
 
 TEST_F(LoggerImport, BadMapsMissingColumnsAndBadFieldsAreOneLineErrors) {
