@@ -618,6 +618,7 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
   // 6. The law.
   if (s.law == LawKind::kMaki) {
     std::vector<clutch::MakiSet> sets(nt_all * nl);
+    std::vector<std::string> c2_low_rows, c2_high_rows;  // rows whose C2 sits on a search bound
     for (RowFit& row : out.rows) {
       const std::size_t cell = row.i_temp * nl + row.i_load;
       std::array<double, 4> p;
@@ -637,13 +638,10 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
       sets[cell] = {p[0], p[1], p[2], p[3]};
       // C2 on (within kMakiBoundMargin of) its search range's end: the data do not determine it.
       const double c2_margin = kMakiBoundMargin * std::log(kMakiC2Max / kMakiC2Min);
-      if (std::log(p[1] / kMakiC2Min) < c2_margin || std::log(kMakiC2Max / p[1]) < c2_margin)
-        out.warnings.push_back(row_name(row.load_N, row.temp_C) + ": the Mäki rate C2 = " + g(p[1], 10) +
-                               " per mm/s sits on its search bound [" + g(kMakiC2Min) + ", " + g(kMakiC2Max) + "]: " +
-                               (std::log(p[1] / kMakiC2Min) < c2_margin
-                                    ? "tanh(C2 v) is linear over the data, so only C1·C2 is determined, not C1 and C2"
-                                    : "tanh(C2 v) is a step below the data's speeds, so C1 acts as a constant") +
-                               "; the law holds inside its data, its coefficients are not the fluid's (try --law table)");
+      if (std::log(p[1] / kMakiC2Min) < c2_margin)
+        c2_low_rows.push_back(g(row.load_N / 1000.0) + " kN at " + g(row.temp_C, 3) + " °C");
+      else if (std::log(kMakiC2Max / p[1]) < c2_margin)
+        c2_high_rows.push_back(g(row.load_N / 1000.0) + " kN at " + g(row.temp_C, 3) + " °C");
       for (int k = 0; k <= 64; ++k) {
         const double v = out.min_speed_mm_s * std::pow(out.max_speed_mm_s / out.min_speed_mm_s, k / 64.0);
         const double mu = sets[cell].mu(v);
@@ -653,6 +651,18 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
                                    "(try --law table)");
       }
     }
+    // One warning per bound, naming its rows: the same cause on many rows reads once.
+    const auto bound_warning = [&](const std::vector<std::string>& rows, const std::string& meaning) {
+      if (rows.empty()) return;
+      std::string list;
+      for (const auto& r : rows) list += (list.empty() ? "" : ", ") + r;
+      out.warnings.push_back("the Mäki rate C2 sits on its search bound [" + g(kMakiC2Min) + ", " + g(kMakiC2Max) +
+                             "] per mm/s in " + std::to_string(rows.size()) + " of " + std::to_string(out.rows.size()) +
+                             " rows (" + list + "): " + meaning +
+                             "; the law holds inside its data, its coefficients are not the fluid's (try --law table)");
+    };
+    bound_warning(c2_low_rows, "tanh(C2 v) is linear over the data, so only C1·C2 is determined, not C1 and C2");
+    bound_warning(c2_high_rows, "tanh(C2 v) is a step below the data's speeds, so C1 acts as a constant");
     out.law = std::make_shared<clutch::MakiFrictionMatrix>(out.loads_N, out.temps_C, sets, out.min_speed_mm_s,
                                                            out.max_speed_mm_s);
   } else if (s.law == LawKind::kTable) {

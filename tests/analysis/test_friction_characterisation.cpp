@@ -266,6 +266,28 @@ TEST(CharacteriseRoundTrip, PaperELinearLawWithinOnePercentAtTheInterfaceTempera
   EXPECT_LT(err[0][1], 0.5 * err[0][0]);
 }
 
+// A Paper E fluid is linear in ln v over the data: fitted with the Mäki form, tanh(C2 v) must be
+// linear there, so C2 runs to its lower search bound on every row. The cause is one and is said
+// once, naming the rows, not once per row.
+TEST(CharacteriseWarnings, AMakiRateOnItsBoundInManyRowsIsOneWarningNamingThem) {
+  const clutch::Fluid truth = io::load_fluid(SHUDDER_SOURCE_DIR "/scenarios/fluids/paper_e_fluid_b.toml");
+  std::vector<analysis::RampRun> runs;
+  unsigned seed = 300;
+  for (double load : {12000.0, 18000.0})
+    for (double t0 : {50.0, 70.0, 90.0})
+      runs.push_back(test::simulated_ramp_run(truth, test::paper_d_cycle(load), t0, seed++, 50.0));
+  const Characterisation c = analysis::characterise(runs, round_trip_settings(Compensation::kQuadratic, LawKind::kMaki));
+  std::vector<std::string> on_bound;
+  for (const auto& w : c.warnings)
+    if (w.find("search bound") != std::string::npos) on_bound.push_back(w);
+  ASSERT_EQ(on_bound.size(), 1u) << (on_bound.empty() ? std::string("no bound warning") : on_bound[1]);
+  const std::string& w = on_bound.front();
+  EXPECT_NE(w.find("linear over the data"), std::string::npos) << w;
+  EXPECT_NE(w.find("12 kN at"), std::string::npos) << w;
+  EXPECT_NE(w.find("18 kN at"), std::string::npos) << w;
+  EXPECT_NE(w.find(" of " + std::to_string(c.rows.size()) + " rows"), std::string::npos) << w;
+}
+
 // Data from a different thermal model: twice the radial resolution, an oil flow
 // through the contact that grows with slip (a speed term the shipped calibration sets to
 // zero), and a thermocouple lagging the disc by 0.5 s. The characterisation knows none of it.
