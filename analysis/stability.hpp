@@ -12,7 +12,7 @@
 //                        b is ground). s_k is the slope at CONSTANT temperature
 //                        (ContactLaw::kinetic_torque_slope_Nms): vibrations grow on time scales
 //                        of 0.01–0.1 s on which the interface temperature does not move
-//                        (PHYSICS §6, Van de Velde). For a clutch with n interfaces at mean
+//                        (docs/physics.md §6, Van de Velde). For a clutch with n interfaces at mean
 //                        radius r under clamp force F, s_k = n F r² dmu/dv (v = r |Δω|); a
 //                        falling mu–v curve (s_k < 0) is NEGATIVE damping.
 //   stuck contact        constraint δω_a = δω_b (its torque is a reaction); 0 slip or a flag.
@@ -37,7 +37,7 @@
 // One degree of freedom (a housing J on a bar k, c driven through the contact at constant
 // speed): J δθ̈ + (c + s) δθ̇ + k δθ = 0, unstable iff c + n F r² dmu/dv < 0, growth rate
 // −(c + s)/(2J), frequency √(k/J − ((c + s)/2J)²)/2π. In a full driveline the slope sign alone
-// does not decide (Cameron, PHYSICS §6): the eigenvalues of the whole system do.
+// does not decide (Cameron, docs/physics.md §6): the eigenvalues of the whole system do.
 
 #include <Eigen/Dense>
 #include <vector>

@@ -13,7 +13,7 @@
 // Limits (tests): thick layers (L ≫ √(α/ω)): Z = 1/((e₁ + e₂) √(iω)) with the effusivities
 // e = √(k ρ c); slow (L ≪ √(α/ω)): Z = 1/(iω Σ ρ c L), the layers' heat capacity per area.
 // Left out: radial conduction and the oil's convection (a few W/K against the discs' conduction
-// at these frequencies: PHYSICS §3), so |Z| is an upper bound on the swing.
+// at these frequencies: docs/physics.md §3), so |Z| is an upper bound on the swing.
 
 #include <complex>
 

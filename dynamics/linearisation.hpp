@@ -11,7 +11,7 @@
 //                                                       motors' K_i and K_p; no force elements)
 //   slipping contact k  damper s_k = dM_k/d|Δω| (ContactLaw::kinetic_torque_slope_Nms at |Δω₀|)
 //                       between a and b: a falling friction curve is negative damping
-//                       (analysis/stability.hpp, PHYSICS §6)
+//                       (analysis/stability.hpp, docs/physics.md §6)
 //   torque source       δT = (∂T/∂ω) δω_node for a source with torque_at_speed_Nm (engine map)
 //   force element e     T = T(ω_a, ρ ω_b, z), ż = g(ω_a, ρ ω_b, z); torque −T on a, +ρ T on b:
 //       δT = T_a δω_a + T_b ρ δω_b + T_z δz,   δż = g_a δω_a + g_b ρ δω_b + g_z δz

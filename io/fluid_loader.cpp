@@ -32,7 +32,7 @@ std::string message_number(double x) {
 }
 
 // Plausible kinetic friction of a wet clutch: 0 < mu <= 1. mu <= 0 would make friction push
-// the sliding surfaces along (negative heat: the audit's sign typo in `beta` gave -4,923 J);
+// the sliding surfaces along (negative heat: a sign typo in `beta` gives -4,923 J);
 // lubricated paper/steel interfaces run at mu ~ 0.05-0.2 and even dry friction materials stay
 // below ~0.6, so mu > 1 can only be a typing error (e.g. a shifted decimal point), not a fluid.
 constexpr double kMaxPlausibleMu = 1.0;

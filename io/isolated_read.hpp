@@ -3,8 +3,8 @@
 // command down with it.
 //
 // Why: Debian's libhdf5 1.10.8 crashes (SIGSEGV, out-of-bounds reads) or hangs inside its own
-// global-heap and shared-message decoding on some damaged files (docs/fuzzing.md, findings 1-3
-// and 5); the stacks have no frame of ours below H5Aread/H5Aexists, so no check in our reader
+// global-heap and shared-message decoding on some damaged files (docs/fuzzing.md,
+// "Limits"); the stacks have no frame of ours below H5Aread/H5Aexists, so no check in our reader
 // can reach them. Re-running 40 of the fuzz campaign's crash and hang inputs through the release
 // `shudder characterise`: 32 segmentation faults and 6 hangs. The reader therefore runs in a
 // fork()ed child that sends the run (or its InputError) back through a pipe. A child killed by a

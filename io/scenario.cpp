@@ -105,7 +105,7 @@ void read_clutch(TomlTable& root, Draft& s) {
         oil->number_or("specific_heat_J_per_kgK", th.oil_specific_heat_J_per_kgK, Range::positive());
     // Mean oil film in the interface (Paper G's h_mean = 10 µm). Bounded to [0.01, 1000] µm:
     // below 0.01 µm (a few molecular layers) the film cell's heat capacity vanishes and its
-    // conductance r²/h explodes (the audit's 1e-300 µm gave 5e279 °C); above 1 mm it is no
+    // conductance r²/h explodes (1e-300 µm gives 5e279 °C); above 1 mm it is no
     // longer a film but a gap as deep as the discs are thick.
     th.film_thickness_m = oil->number_or("film_thickness_um", th.film_thickness_m * 1e6, Range::closed(0.01, 1000.0)) * 1e-6;
     th.sump_volume_m3 = oil->number_or("sump_volume_ml", th.sump_volume_m3 * 1e6, Range::positive()) * 1e-6;

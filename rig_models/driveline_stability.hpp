@@ -5,7 +5,7 @@
 // The network is linearised by dynamics/linearisation.hpp with every element's own dynamics:
 //   coupling (slipping)  damper s = dM/d|Δω| = n r F dμ/d|Δω| at the point's slip, clamp force
 //                        F and interface temperature T, all rings at T (the ISOTHERMAL slope:
-//                        temperature held, PHYSICS §6); a falling μ–v curve is negative damping.
+//                        temperature held, docs/physics.md §6); a falling μ–v curve is negative damping.
 //                        Locked: the constraint ω_in = ω_out instead.
 //   tyres                the relaxation state u of each wheel (rig_models/tyre.hpp):
 //                        δF = F'(κ')/σ δu, δu̇ = r(δω_w − ρ δω_v) − (V_t/σ) δu − κ' δV_t —

@@ -84,7 +84,7 @@ std::vector<EffectDefinition> build() {
        [](auto& t) -> auto& { return t.clutch.viscous_shear; },
        // gap in [0.01, 1e4] µm, the fit's own bounds: the Couette torque eta*v/h*A*r grows as
        // 1/h, and below 0.01 µm (a few molecular layers, no continuum film) it exceeds any
-       // clutch's capacity (the audit's 1e-300 µm gave 3.4e298 N m); above 1 cm it is nil.
+       // clutch's capacity (1e-300 µm gives 3.4e298 N m); above 1 cm it is nil.
        {{"gap_um", "µm", kMicro, R::closed(0.01, 1e4), [](auto& t) -> auto& { return t.clutch.viscous_gap_m; },
          FitSpec{0.01, 1e4, {0.3, 1.0, 3.0}}}},
        {}, {}},

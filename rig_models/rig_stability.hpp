@@ -1,6 +1,6 @@
 #pragma once
 // Stability of steady sliding on the Limited Slip Clutch Test Rig (analysis/stability.hpp on
-// the LsctrRig network, PHYSICS §6):
+// the LsctrRig network, docs/physics.md §6):
 //
 //   drive J_d ─┤clutch, slope s├─ housing J_h ─ bar k_bar, c_bar ─ ground
 //     ▲ PI loop: spring K_i, damper K_p to ground

@@ -49,7 +49,7 @@ for h in scenario fluid measured_csv measured_hdf5; do
   status=0
   # The HDF5 reader's harness runs in fork mode and goes on past findings: Debian's libhdf5
   # (1.10.8) leaks, hangs and reads out of bounds inside the library on some damaged files
-  # (docs/fuzzing.md, findings 1-3; not fixable in our reader). They are counted, not failed on.
+  # (docs/fuzzing.md, "Limits"; not fixable in our reader). They are counted, not failed on.
   extra=(-seed=1 -timeout=10)
   [ "$h" = measured_hdf5 ] &&
     extra+=(-fork=1 -ignore_timeouts=1 -ignore_ooms=1 -ignore_crashes=1 -detect_leaks=0 -timeout=3)  # a hang costs 3 s, not 10

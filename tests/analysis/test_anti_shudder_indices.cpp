@@ -33,7 +33,7 @@ std::string fluid_path(const std::string& file) {
 const double kRpm = shudder::units::kRadPerSPerRpm * 46.0;  // mm/s per rpm
 
 TEST(Indices, RpmConversionAtTheRigRadius) {
-  EXPECT_NEAR(rpm_to_mm_s(1.0), 4.817109, 1e-6);  // PHYSICS §4: 1 rpm = 4.82 mm/s
+  EXPECT_NEAR(rpm_to_mm_s(1.0), 4.817109, 1e-6);  // docs/physics.md §4: 1 rpm = 4.82 mm/s
   EXPECT_NEAR(rpm_to_mm_s(50.0), 240.8554, 1e-4);
   EXPECT_NEAR(rpm_to_mm_s(1.0, 56.4), 5.906194, 1e-6);  // a radius is a parameter
 }

@@ -102,7 +102,7 @@ TEST(DetectionOnRig, NegativeSlopeFluidIsVibrationAtTheClutchSideFrequency) {
   EXPECT_LT(r.at_onset.interface_temp_C, 65.0);
   EXPECT_LT(r.onset_time_s, r.oscillating_from_s);
 
-  // Growth rate against the linearised housing equation at the start (PHYSICS §6):
+  // Growth rate against the linearised housing equation at the start (docs/physics.md §6):
   //   J_h θ'' + (c_bar + dT_k/dΔω) θ' + k_bar θ = 0  ⇒  σ = −(c_bar + dT_k/dΔω) / (2 J_h)
   // with the kinetic-torque slope of the contact law at 30 rpm and the start temperature. The
   // drive is taken as fixed (J_d = 30 J_h: the reduced inertia J_h J_d/(J_h + J_d) is 3 %

@@ -32,7 +32,7 @@ fs::path case1_dir(const std::string& name) {
 // ---- physical guards ------------------------------------------------------------------------
 
 TEST(CliGuards, FluidWithBetaNegatedIsRejectedWhenLoaded) {
-  // Old code: a scenario with this fluid ran, exit 0, -4,923 J of heat (the audit).
+  // Unchecked, a scenario with this fluid runs to exit 0 with -4,923 J of heat.
   const auto dir = scratch_dir("guard_beta");
   write_file(dir / "neg.toml", replace(slurp(source_path("scenarios/fluids/paper_e_fluid_a.toml")),
                                        "beta = [0.1018, 0.1164]", "beta = [-0.1018, -0.1164]"));

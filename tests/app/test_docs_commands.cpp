@@ -13,8 +13,6 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <regex>
-#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -118,30 +116,7 @@ TEST(DocsCommandsConvention, ReadmeAndCommandsPageRunTheirCommands) {
     EXPECT_FALSE(sh_blocks(test::slurp(test::source_path(page))).empty()) << page << " has no sh block";
 }
 
-// Every page a page or a message names exists: `docs/….md` anywhere in the README, the docs and
-// the sources users read messages from, and relative Markdown links inside docs/.
-TEST(DocsCommandsConvention, NamedPagesExist) {
-  std::vector<fs::path> files = {test::source_path("README.md")};
-  const std::set<std::string> kinds = {".md", ".cpp", ".hpp", ".toml", ".py"};
-  for (const char* dir : {"docs", "app", "io", "report", "python", "scenarios", "tools"}) {
-    for (const auto& e : fs::recursive_directory_iterator(test::source_path(dir))) {
-      if (e.is_regular_file() && kinds.count(e.path().extension().string())) files.push_back(e.path());
-    }
-  }
-  const std::regex named(R"(docs/[A-Za-z0-9_/]+\.md)"), link(R"(\]\(([A-Za-z0-9_./]+\.md)\))");
-  int checked = 0;
-  for (const auto& f : files) {
-    const std::string text = test::slurp(f);
-    for (std::sregex_iterator it(text.begin(), text.end(), named), end; it != end; ++it, ++checked) {
-      EXPECT_TRUE(fs::exists(test::source_path(it->str()))) << f << " names " << it->str();
-    }
-    if (f.extension() != ".md") continue;
-    for (std::sregex_iterator it(text.begin(), text.end(), link), end; it != end; ++it, ++checked) {
-      EXPECT_TRUE(fs::exists(f.parent_path() / (*it)[1].str())) << f << " links " << (*it)[1].str();
-    }
-  }
-  EXPECT_GT(checked, 100);
-}
+// That every page a page or a message names exists is tests/app/test_docs_links.cpp.
 
 }  // namespace
 }  // namespace shudder

@@ -293,8 +293,8 @@ TEST(LoadFluid, TomlSyntaxErrorNamesTheLine) {
 }  // namespace
 
 // ---- Plausibility: mu in (0, 1] over the law's declared range ----------------------
-// On the old code each of these files loaded without complaint (the audit's sign typo in `beta`
-// then gave -4,923 J of friction heat and a thermocouple at -65 °C, exit 0).
+// Unchecked, each of these files would load (a sign typo in `beta` gives -4,923 J of friction
+// heat and a thermocouple at -65 °C, exit 0).
 
 TEST(LoadFluidPlausibility, EveryShippedFluidLoads) {
   int loaded = 0;

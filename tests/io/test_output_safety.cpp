@@ -79,7 +79,7 @@ TEST_F(OutputSafety, MissingOutputDirectoryIsRefused) {
 }
 
 TEST_F(OutputSafety, SizeAboveTheLimitIsRefusedUnlessForced) {
-  // 3.6e9 bytes: the audit's sample_rate_Hz = 1e6 run.
+  // 3.6e9 bytes: a rig run at sample_rate_Hz = 1e6.
   EXPECT_THAT([&] { shudder::io::require_output_size(path("o.h5"), 3'600'000'000ULL, "why", false); },
               ThrowsMessage<InputError>(AllOf(HasSubstr("estimated output size 3.60 GB (why) exceeds the limit of 2 GB"),
                                               HasSubstr("--force"))));

@@ -38,8 +38,8 @@ TEST(EnergyGuard, ThermalErrorAboveOneMillionthFailsNamingTheFigure) {
   EXPECT_THAT(v, ::testing::Not(HasSubstr("mechanical")));
 }
 
-TEST(EnergyGuard, MechanicalErrorOfTheAuditFailsAndBothAreNamed) {
-  // The audit's negated-beta run: "mechanical energy error 5.01e+00".
+TEST(EnergyGuard, LargeMechanicalErrorFailsAndBothAreNamed) {
+  // A run on a fluid with beta negated gives "mechanical energy error 5.01e+00".
   const std::string v = energy_balance_violation(with_errors(3e-6, 5.01));
   EXPECT_THAT(v, HasSubstr("thermal energy balance error 3e-06"));
   EXPECT_THAT(v, HasSubstr("; mechanical energy balance error 5.01 (relative, mechanical_energy_relative_error) "

@@ -12,7 +12,7 @@
 // Predicted onset speed v_p: the slip speed where the rig's largest OSCILLATORY real part
 // crosses zero. That real part comes from rig_stability: steady sliding at speed v, the ramp's
 // force, and every ring at the run's mean interface temperature at the time the ramp reaches v
-// (the isothermal slope of PHYSICS §6). v_p is found by a scan along the ramp in 0.25 rpm steps
+// (the isothermal slope of docs/physics.md §6). v_p is found by a scan along the ramp in 0.25 rpm steps
 // for the first sign change, then bisection on speed. It uses the oscillatory mode, not the
 // overall margin, which the drive loop's slow real mode can lead (rig_stability.hpp) and which
 // is not what shudders. The predicted frequency is that mode's damped frequency at v_p.
