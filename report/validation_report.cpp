@@ -297,7 +297,7 @@ void write_validation_doc(const std::filesystem::path& docs, const io::Validatio
           "repository root after building:\n\n"
        << "```text\n./build/app/shudder validate --scenarios scenarios --docs docs\n```\n\n"
        << "Each case runs a scenario with the prescribed-slip rig model and compares it with "
-          "the calibration issue's targets (from Paper G Figs. 8, 12–14 and Discussion, Paper "
+          "the targets of scenarios/validation.toml (from Paper G Figs. 8, 12–14 and Discussion, Paper "
           "B Fig. 6; `docs/physics.md` §5). The command exits 0 when every target passes, 1 when "
           "one fails.\n\n## Cases\n\n| case | scenario | description |\n|---|---|---|\n";
     for (std::size_t i = 0; i < runs.size(); ++i)
