@@ -304,11 +304,11 @@ void read_component(TomlTable& c, const std::string& name, const std::string& pa
       p.vertical_load_N = num("vertical_load_N");
     } else {
       if (gives(c, "vertical_load_N"))
-        c.fail("vertical_load_N", "and axle are alternatives: a tyre on an axle takes its load from the vehicle");
+        c.fail("vertical_load_N", "is not for a tyre on an axle: it takes its load from the vehicle (give one of vertical_load_N and axle)");
       c.mark_read("vertical_load_N");
     }
     if (gives(c, "slip_stiffness_N") && gives(c, "slip_stiffness_per_load"))
-      c.fail("slip_stiffness_per_load", "and slip_stiffness_N are alternatives; give one (C_kappa / F_z, or an absolute C_kappa)");
+      c.fail("slip_stiffness_per_load", "is an alternative to slip_stiffness_N; give one (C_kappa / F_z, or an absolute C_kappa)");
     if (gives(c, "slip_stiffness_N")) p.slip_stiffness_N = num("slip_stiffness_N");
     else c.mark_read("slip_stiffness_N");
     if (gives(c, "slip_stiffness_per_load")) p.slip_stiffness_per_load = num("slip_stiffness_per_load");

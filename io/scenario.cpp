@@ -222,7 +222,7 @@ void read_driveline(TomlTable& root, Draft& s) {
     positive("wheel_inertia_kg_m2", p.wheel_inertia_kg_m2);
     positive("tyre_stiffness_Nm_per_rad", p.tyre_stiffness_Nm_per_rad);
     if (d->has("tyre_slip_stiffness_N") && d->has("tyre_slip_stiffness_per_load"))
-      d->fail("tyre_slip_stiffness_per_load", "and tyre_slip_stiffness_N are alternatives; give one (C_kappa / F_z, "
+      d->fail("tyre_slip_stiffness_per_load", "is an alternative to tyre_slip_stiffness_N; give one (C_kappa / F_z, "
                                               "or an absolute C_kappa per tyre)");
     if (d->has("tyre_slip_stiffness_N")) p.tyre_slip_stiffness_N = d->number_or("tyre_slip_stiffness_N", 0.0, Range::positive());
     if (d->has("tyre_slip_stiffness_per_load"))
