@@ -49,9 +49,9 @@
 // dwEgomotionSuspensionParameters, gives 0.2–0.6 as the pitch damping ratio of passenger cars).
 // The rhs stays a pure function of the state. The load is floored at 5 % of F_z0 (a wheel lifting
 // off keeps a trace of load, so the force law stays defined; estimate, far from any shipped
-// manoeuvre). The exact pitch balance moves h/L × the ground forces, m a + F_drag + m g sin θ (the rolling resistance is a
-// ground force like the tyres'); the drag's share h F_drag/L is left out (≈ 3 N at 20 km/h,
-// against ≈ 370 N per m/s² of acceleration on the shipped 1.7 t car).
+// manoeuvre). The exact pitch balance moves h/L × the ground forces, m a + F_drag + m g sin θ
+// (the rolling resistance is a ground force like the tyres'); the drag's share h F_drag/L is
+// left out (≈ 3 N at 20 km/h, against ≈ 370 N per m/s² of acceleration on the shipped 1.7 t car).
 //
 // Energy: the force is a function of u and F_z; E(u, F_z) = ∫ F du = 3 μ² F_z² / c_x · I(a) is
 // stored (I below), and
