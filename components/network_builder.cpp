@@ -245,6 +245,30 @@ struct Assembly {
     }
   }
 
+  // A tyre on an axle: its share of the axle's static load on the grade (the vehicle's weight
+  // split, moved rearwards by m g (h/L) sin θ uphill) and the transfer ± m h/(n L) per unit
+  // acceleration, n the axle's tyres on that vehicle (rig_models/tyre.hpp).
+  rig_models::TyreParams axle_tyre_params(const TyreSpec& t, const VehicleSpec& v) const {
+    rig_models::TyreParams p = t.params;
+    p.load_transfer.path_ratio = t.path_ratio;
+    if (t.axle == TyreSpec::Axle::kNone) return p;
+    if (!v.wheelbase_m || !v.front_axle_load_share)
+      throw NetworkError(t.name, "names its axle: vehicle '" + v.name + "' needs wheelbase_m and front_axle_load_share");
+    const bool front = t.axle == TyreSpec::Axle::kFront;
+    const auto on_axle = std::count_if(spec.tyres.begin(), spec.tyres.end(),
+                                       [&](const TyreSpec& x) { return x.vehicle == t.vehicle && x.axle == t.axle; });
+    const double theta = std::atan(v.grade_percent / 100.0);
+    const double weight_N = v.mass_kg * kGravity_m_s2, lever = v.cg_height_m / *v.wheelbase_m;
+    const double share = front ? *v.front_axle_load_share : 1.0 - *v.front_axle_load_share;
+    const double axle_N = weight_N * (share * std::cos(theta) + (front ? -1.0 : 1.0) * lever * std::sin(theta));
+    if (!(axle_N > 0))
+      throw NetworkError(t.name, "its axle would lift on vehicle '" + v.name + "''s grade (cg_height_m / wheelbase_m too large)");
+    const double n = static_cast<double>(on_axle);
+    p.vertical_load_N = axle_N / n;
+    p.load_transfer.load_per_acceleration_kg = (front ? -1.0 : 1.0) * v.mass_kg * lever / n;
+    return p;
+  }
+
   void add_tyres_and_vehicles() {
     auto& links = topology.links;
     auto& driven_nodes = topology.driven_nodes;
@@ -254,13 +278,13 @@ struct Assembly {
       b.distinct(t.name, w, v);
       const auto vit = std::find_if(spec.vehicles.begin(), spec.vehicles.end(), [&](const VehicleSpec& x) { return x.name == t.vehicle; });
       if (vit == spec.vehicles.end()) throw NetworkError(t.name, "vehicle '" + t.vehicle + "' is not a component of type \"vehicle\"");
+      if (!(t.path_ratio > 0)) throw NetworkError(t.name, "path_ratio must be > 0");
       std::shared_ptr<const dynamics::ForceLaw> law;
       try {
-        law = std::make_shared<rig_models::BrushTyre>(t.params);
+        law = std::make_shared<rig_models::BrushTyre>(axle_tyre_params(t, *vit));
       } catch (const std::invalid_argument& e) {
         throw NetworkError(t.name, e.what());
       }
-      if (!(t.path_ratio > 0)) throw NetworkError(t.name, "path_ratio must be > 0");
       links.emplace_back(w, v);
       out.tyre_elements.push_back(net.add_force_element({t.name, w, v, t.path_ratio * vit->wheel_radius_m / t.params.radius_m, law}));
     }

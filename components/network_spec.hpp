@@ -123,13 +123,16 @@ struct EngineSpec {
 struct VehicleSpec {
   std::string name;
   double mass_kg = 0.0, wheel_radius_m = 0.0, speed_m_s = 0.0, grade_percent = 0.0;
+  double cg_height_m = 0.0;  // h; 0: no load transfer
+  std::optional<double> wheelbase_m, front_axle_load_share;  // required by tyres with an axle
   rig_models::RoadLoadParams road;  // rolling_resistance_N from f_r m g cos θ when not given
 };
 /// A tyre between a wheel node and a vehicle node (rig_models/tyre.hpp).
 struct TyreSpec {
   std::string name, wheel, vehicle;
-  rig_models::TyreParams params;
+  rig_models::TyreParams params;  // vertical_load_N and load_transfer set by the builder for an axle
   double path_ratio = 1.0;  // ρ: the wheel's path over the vehicle's in a steady turn (1 straight)
+  enum class Axle { kNone, kFront, kRear } axle = Axle::kNone;
 };
 /// An engine's firing-order torque pulsation on a node (rig_models/engine_pulsation.hpp).
 struct FiringPulsationSpec {

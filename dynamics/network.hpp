@@ -16,7 +16,9 @@
 // Force element (a, b, ρ):  a nonlinear element with internal states z (e.g. a tyre with its
 //                           relaxation, a road load): torque −T on a, +ρ T on b, where
 //                           T, dz/dt = law(ω_a, ρ ω_b, z); its power T (ω_a − ρ ω_b) = dE(z)/dt + P_diss
-//                           with E the law's stored energy and P_diss >= 0 what it dissipates.
+//                           with E the law's stored energy and P_diss what it dissipates (>= 0
+//                           but for a law that exchanges energy with a part the network leaves
+//                           out, e.g. a tyre's load transfer through the body's pitch).
 // Speed source on i:        ω_i = ω_ref(t)      (constraint row e_i, b = dω_ref/dt).
 // Stuck contact (a, b):     ω_a = ω_b           (constraint row e_a − e_b); its torque −μ.
 // Motor on i (PI speed loop with torque limit and anti-windup by back-calculation):
@@ -69,13 +71,16 @@ class ForceLaw {
   virtual int states() const = 0;
   struct Output {
     double torque_Nm = 0.0;     // T, acting −T on a and +ρ T on b
-    double dissipated_W = 0.0;  // P_diss >= 0
+    double dissipated_W = 0.0;  // P_diss (see the header)
   };
   /// `omega_b_at_a` = ρ ω_b; writes dz/dt (states() values) into `dzdt`.
   virtual Output evaluate(double omega_a, double omega_b_at_a, const double* z, double* dzdt) const = 0;
   virtual double stored_energy_J(const double* z) const = 0;
   /// The element as a linear spring between a and b for small motions (modes): dT/dθ at rest.
   virtual double modal_stiffness_Nm_per_rad() const = 0;
+  /// The states at the start of a run from the start speeds (default: all 0), e.g. a filter's
+  /// state at the speed it filters.
+  virtual void initial_states(double /*omega_a*/, double /*omega_b_at_a*/, double* /*z*/) const {}
   /// True for a disturbance prescribed along the motion (e.g. an engine's firing pulsation): it has
   /// no linear part about the mean motion, so linearisation leaves it and its states out.
   virtual bool is_periodic_forcing() const { return false; }

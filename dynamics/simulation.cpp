@@ -456,6 +456,12 @@ void Simulation::initialize(double t0, const Eigen::VectorXd& theta, const Eigen
   }
   project_velocities(x_, t_);
   resolve_contacts(x_, t_, sticking, {});
+  // Force elements' states from the projected start speeds.
+  for (std::size_t k = 0; k < net_.force_elements().size(); ++k) {
+    const auto& el = net_.force_elements()[k];
+    const double wa = x_[n_ + el.a], wb = el.b == kGround ? 0.0 : x_[n_ + el.b];
+    el.law->initial_states(wa, el.ratio * wb, &x_[element_state_offset_[k]]);
+  }
   // Projection losses at the start are not part of the run's energy account.
   std::fill(impact_loss_J_.begin(), impact_loss_J_.end(), 0.0);
   counters_ = {};

@@ -154,13 +154,18 @@ std::vector<ComponentDecl> make_components() {
       number("rolling_resistance_coefficient", "1", 0.012, Range::closed(0.0, 0.5), "f_r: rolling resistance f_r m g cos(grade) (Gillespie 1992, ch. 4)"),
       number("drag_area_m2", "m^2", rig_models::RoadLoadParams{}.drag_coefficient_area_m2, Range::non_negative(), "c_d A"),
       number("air_density_kg_m3", "kg/m^3", rig_models::RoadLoadParams{}.air_density_kg_m3, Range::positive(), "air density"),
+      number("cg_height_m", "m", 0.0, Range::closed(0.0, 5.0), "h: centre of gravity above the road; its tyres with an `axle` take the load transfer m a h / L (0: static loads only)"),
+      optional_number("wheelbase_m", "m", Range::positive(), "L: front to rear axle", "required when a tyre names its `axle`"),
+      optional_number("front_axle_load_share", "1", Range::closed(0.05, 0.95), "the front axle's share of the weight on the level", "required when a tyre names its `axle`"),
   }});
-  d.push_back({"tyre", "longitudinal tyre force with slip stiffness, relaxation length and road friction (rig_models/tyre.hpp)", {
+  d.push_back({"tyre", "longitudinal tyre force with slip stiffness, relaxation length, road friction and its axle's load (rig_models/tyre.hpp)", {
       node("wheel", "wheel node"),
       node("vehicle", "the vehicle component it drives"),
-      number("vertical_load_N", "N", std::nullopt, Range::positive(), "F_z on the tyre(s)"),
-      number("slip_stiffness_N", "N", tyre.slip_stiffness_N, Range::positive(), "C_kappa per unit slip"),
-      number("relaxation_length_m", "m", tyre.relaxation_length_m, Range::positive(), "sigma"),
+      choice("axle", {"none", "front", "rear"}, "the vehicle's axle it is on: its static load from the vehicle's weight split, wheelbase and grade, shared by that axle's tyres, plus the load transfer (none: `vertical_load_N`, constant)"),
+      optional_number("vertical_load_N", "N", Range::positive(), "F_z on the tyre(s), constant", "required with axle = \"none\"; not with an axle"),
+      optional_number("slip_stiffness_per_load", "1", Range::positive(), "C_kappa / F_z: the slip stiffness follows the load (Magic Formula dry tarmac B C D = 19, rig_models/tyre.hpp)", "default 19 unless `slip_stiffness_N` is given; not both"),
+      optional_number("slip_stiffness_N", "N", Range::positive(), "C_kappa per unit slip, absolute (independent of the load)", "default: slip_stiffness_per_load x F_z; not both"),
+      number("relaxation_length_m", "m", tyre.relaxation_length_m, Range::positive(), "sigma at the static load (the carcass stiffness C_kappa / sigma is kept as the load changes)"),
       number("road_friction", "1", tyre.road_friction, Range::positive(), "road friction coefficient"),
       optional_number("radius_m", "m", Range::positive(), "rolling radius", "default: the vehicle's wheel_radius_m"),
       number("path_ratio", "1", 1.0, Range::positive(), "the wheel's path over the vehicle's in a steady turn (1 straight; a turn's outer wheels > 1)"),

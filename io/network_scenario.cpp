@@ -281,6 +281,11 @@ void read_component(TomlTable& c, const std::string& name, const std::string& pa
     v.road.rolling_resistance_N = f_r * v.mass_kg * kGravity_m_s2 * std::cos(std::atan(v.grade_percent / 100.0));
     v.road.drag_coefficient_area_m2 = num("drag_area_m2");
     v.road.air_density_kg_m3 = num("air_density_kg_m3");
+    v.cg_height_m = num("cg_height_m");
+    if (gives(c, "wheelbase_m")) v.wheelbase_m = num("wheelbase_m");
+    else c.mark_read("wheelbase_m");
+    if (gives(c, "front_axle_load_share")) v.front_axle_load_share = num("front_axle_load_share");
+    else c.mark_read("front_axle_load_share");
     spec.vehicles.push_back(v);
   } else if (type == "tyre") {
     components::TyreSpec t;
@@ -288,8 +293,26 @@ void read_component(TomlTable& c, const std::string& name, const std::string& pa
     t.wheel = node("wheel");
     t.vehicle = node("vehicle");
     auto& p = t.params;
-    p.vertical_load_N = num("vertical_load_N");
-    p.slip_stiffness_N = num("slip_stiffness_N");
+    const auto& axles = d.key("axle").choices;
+    const std::string axle = c.choice_or("axle", axles.front(), axles);
+    t.axle = axle == "front" ? components::TyreSpec::Axle::kFront
+             : axle == "rear" ? components::TyreSpec::Axle::kRear
+                              : components::TyreSpec::Axle::kNone;
+    if (t.axle == components::TyreSpec::Axle::kNone) {
+      if (!gives(c, "vertical_load_N"))
+        c.fail("vertical_load_N", "is required for a tyre without an axle (or name its axle = \"front\" or \"rear\")");
+      p.vertical_load_N = num("vertical_load_N");
+    } else {
+      if (gives(c, "vertical_load_N"))
+        c.fail("vertical_load_N", "is not for a tyre on an axle: it takes its load from the vehicle (give one of vertical_load_N and axle)");
+      c.mark_read("vertical_load_N");
+    }
+    if (gives(c, "slip_stiffness_N") && gives(c, "slip_stiffness_per_load"))
+      c.fail("slip_stiffness_per_load", "is an alternative to slip_stiffness_N; give one (C_kappa / F_z, or an absolute C_kappa)");
+    if (gives(c, "slip_stiffness_N")) p.slip_stiffness_N = num("slip_stiffness_N");
+    else c.mark_read("slip_stiffness_N");
+    if (gives(c, "slip_stiffness_per_load")) p.slip_stiffness_per_load = num("slip_stiffness_per_load");
+    else c.mark_read("slip_stiffness_per_load");
     p.relaxation_length_m = num("relaxation_length_m");
     p.road_friction = num("road_friction");
     p.radius_m = gives(c, "radius_m") ? num("radius_m") : std::nan("");  // default: the vehicle's wheel radius

@@ -221,7 +221,13 @@ void read_driveline(TomlTable& root, Draft& s) {
     positive("propshaft_stiffness_Nm_per_rad", p.propshaft_stiffness_Nm_per_rad);
     positive("wheel_inertia_kg_m2", p.wheel_inertia_kg_m2);
     positive("tyre_stiffness_Nm_per_rad", p.tyre_stiffness_Nm_per_rad);
-    positive("tyre_slip_stiffness_N", p.tyre_slip_stiffness_N);
+    if (d->has("tyre_slip_stiffness_N") && d->has("tyre_slip_stiffness_per_load"))
+      d->fail("tyre_slip_stiffness_per_load", "is an alternative to tyre_slip_stiffness_N; give one (C_kappa / F_z, "
+                                              "or an absolute C_kappa per tyre)");
+    if (d->has("tyre_slip_stiffness_N")) p.tyre_slip_stiffness_N = d->number_or("tyre_slip_stiffness_N", 0.0, Range::positive());
+    if (d->has("tyre_slip_stiffness_per_load"))
+      p.tyre_slip_stiffness_per_load = d->number_or("tyre_slip_stiffness_per_load", 0.0, Range::closed(1.0, 100.0));
+    p.cg_height_m = d->number_or("cg_height_m", p.cg_height_m, Range::closed(0.0, 2.0));
     positive("side_gear_inertia_kg_m2", p.side_gear_inertia_kg_m2);
     positive("wheelbase_m", p.wheelbase_m);
     positive("track_width_m", p.track_width_m);

@@ -42,14 +42,29 @@ Eigen::VectorXd rolling_node_speeds(const HaldexDriveline& dl, double speed_m_s,
   return w;
 }
 
-// The tyre deflection u = σ κ' that carries force F on the brush curve (the edge if saturated).
-double tyre_deflection_m(const BrushTyre& tyre, double force_N) {
-  const auto& p = tyre.params();
-  const double limit = p.road_friction * p.vertical_load_N;
+// A tyre's load when the car accelerates steadily at a (m/s²): its static load and transfer.
+double tyre_load_N(const BrushTyre& tyre, double vehicle_speed_m_s, double acceleration_m_s2) {
+  std::array<double, 3> z{};
+  tyre.steady_states(0.0, vehicle_speed_m_s, acceleration_m_s2, z.data());
+  return tyre.vertical_load_N(z.data());
+}
+
+// The tyre deflection u that carries force F on the brush curve at load F_z (the edge if saturated).
+double tyre_deflection_m(const BrushTyre& tyre, double force_N, double vertical_load_N) {
+  const double limit = tyre.params().road_friction * vertical_load_N;
   const double frac = std::min(std::abs(force_N) / limit, 0.999);
   const double a = 1.0 - std::cbrt(1.0 - frac);
-  const double full_slide_slip = 3.0 * limit / p.slip_stiffness_N;
-  return std::copysign(a * full_slide_slip * p.relaxation_length_m, force_N);
+  return std::copysign(a * 3.0 * limit / tyre.carcass_stiffness_N_per_m(), force_N);
+}
+
+// The car's acceleration (m/s²) the tyre forces of a point give it (the vehicle node's balance:
+// m a = Σ ρ_i F_i − road load + grade force).
+double operating_acceleration_m_s2(const HaldexDriveline& dl, const DrivelineOperatingPoint& op) {
+  double sum_N = 0.0;
+  for (int w = 0; w < 4; ++w)
+    sum_N += dl.path_ratios()[static_cast<std::size_t>(w)] * op.tyre_force_N[static_cast<std::size_t>(w)];
+  const double r = dl.params().wheel_radius_m;
+  return (sum_N - dl.road_load().force_N(op.vehicle_speed_m_s) + dl.grade_torque_Nm() / r) / dl.params().vehicle_mass_kg;
 }
 
 }  // namespace
@@ -114,8 +129,9 @@ DrivelineOperatingPoint quasi_static_operating_point(const HaldexDriveline& dl, 
     const std::array<int, 4> side{D::kFrontSideLeft, D::kFrontSideRight, D::kRearSideLeft, D::kRearSideRight};
     for (int i = 0; i < 4; ++i) {
       const auto& tyre = dl.tyre(i);
-      const double kappa = tyre_deflection_m(tyre, op.tyre_force_N[static_cast<std::size_t>(i)]) /
-                           tyre.params().relaxation_length_m;
+      const double fz = tyre_load_N(tyre, op.vehicle_speed_m_s, dwv * r);
+      const double kappa = tyre_deflection_m(tyre, op.tyre_force_N[static_cast<std::size_t>(i)], fz) /
+                           tyre.relaxation_length_m(fz);
       const double ground = s[wheel[static_cast<std::size_t>(i)]] * wv;
       w[wheel[static_cast<std::size_t>(i)]] = w[side[static_cast<std::size_t>(i)]] =
           kappa >= 0 ? ground / (1.0 - kappa) : ground * (1.0 + kappa);
@@ -208,8 +224,18 @@ dynamics::LinearSystem linearise_driveline(const HaldexDriveline& dl, const clut
     const double scale = lop.omega_rad_s[D::kCouplingOut] != 0.0 ? mean / lop.omega_rad_s[D::kCouplingOut] : 1.0;
     for (int node : kRearGroup) lop.omega_rad_s[node] *= scale;
   }
-  lop.element_states = Eigen::VectorXd::Zero(4);
-  for (int w = 0; w < 4; ++w) lop.element_states[w] = tyre_deflection_m(dl.tyre(w), op.tyre_force_N[static_cast<std::size_t>(w)]);
+  // The tyres' states (their deflections, and the load transfer's lags behind the point's
+  // acceleration), then the road load's (none).
+  const double accel = operating_acceleration_m_s2(dl, op);
+  std::vector<double> tyre_states;
+  for (int w = 0; w < 4; ++w) {
+    const auto& tyre = dl.tyre(w);
+    std::array<double, 3> z{};
+    tyre.steady_states(0.0, op.vehicle_speed_m_s, accel, z.data());
+    z[0] = tyre_deflection_m(tyre, op.tyre_force_N[static_cast<std::size_t>(w)], tyre.vertical_load_N(z.data()));
+    tyre_states.insert(tyre_states.end(), z.begin(), z.begin() + tyre.states());
+  }
+  lop.element_states = Eigen::Map<const Eigen::VectorXd>(tyre_states.data(), static_cast<Eigen::Index>(tyre_states.size()));
   lop.stuck = {coupling_locked};
   lop.extra_damping = extra_damping;
   {

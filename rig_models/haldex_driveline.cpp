@@ -46,6 +46,14 @@ std::array<double, 4> wheel_path_ratios(const DrivelineParams& p, const Drivelin
 
 }  // namespace
 
+std::array<double, 2> static_axle_loads_N(const DrivelineParams& p, double grade_percent) {
+  const double theta = std::atan(grade_percent / 100.0);
+  const double weight_N = p.vehicle_mass_kg * HaldexDriveline::kGravity_m_s2;
+  const double pitch = p.cg_height_m / p.wheelbase_m * std::sin(theta);
+  return {weight_N * (p.front_axle_load_share * std::cos(theta) - pitch),
+          weight_N * ((1.0 - p.front_axle_load_share) * std::cos(theta) + pitch)};
+}
+
 HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::WetClutch& clutch,
                                  const DrivelineInputs& inputs)
     : p_(params),
@@ -63,7 +71,7 @@ HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::We
            {p_.halfshaft_stiffness_Nm_per_rad, "halfshaft_stiffness_Nm_per_rad"},
            {p_.side_gear_inertia_kg_m2, "side_gear_inertia_kg_m2"},
            {p_.wheel_inertia_kg_m2, "wheel_inertia_kg_m2"}, {p_.tyre_stiffness_Nm_per_rad, "tyre_stiffness_Nm_per_rad"},
-           {p_.tyre_slip_stiffness_N, "tyre_slip_stiffness_N"}, {p_.wheelbase_m, "wheelbase_m"},
+           {p_.wheelbase_m, "wheelbase_m"},
            {p_.track_width_m, "track_width_m"},
            {p_.vehicle_mass_kg, "vehicle_mass_kg"}, {p_.wheel_radius_m, "wheel_radius_m"}, {p_.ptu_ratio, "ptu_ratio"},
            {p_.ptu_inertia_kg_m2, "ptu_inertia_kg_m2"}, {p_.propshaft_stiffness_Nm_per_rad, "propshaft_stiffness_Nm_per_rad"},
@@ -77,7 +85,8 @@ HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::We
            {p_.halfshaft_damping_Nms_per_rad, "halfshaft_damping_Nms_per_rad"},
            {p_.propshaft_damping_Nms_per_rad, "propshaft_damping_Nms_per_rad"},
            {p_.rolling_resistance_coefficient, "rolling_resistance_coefficient"},
-           {p_.drag_coefficient_area_m2, "drag_coefficient_area_m2"}, {p_.air_density_kg_m3, "air_density_kg_m3"}})
+           {p_.drag_coefficient_area_m2, "drag_coefficient_area_m2"}, {p_.air_density_kg_m3, "air_density_kg_m3"},
+           {p_.cg_height_m, "cg_height_m"}})
     if (!std::isfinite(v) || v < 0) throw std::invalid_argument(std::string("driveline: ") + what + " must be >= 0");
   for (double mu : inputs.road_friction)
     if (!std::isfinite(mu) || !(mu > 0))
@@ -95,17 +104,33 @@ HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::We
         throw std::invalid_argument("driveline: valve_pressure_bar must be within [0, relief_pressure_bar]");
   path_ratios_ = wheel_path_ratios(p_, inputs);
   turn_axle_ratio_ = (path_ratios_[kFL] + path_ratios_[kFR]) / (path_ratios_[kRL] + path_ratios_[kRR]);
+  for (const auto& [v, what] : std::initializer_list<std::pair<std::optional<double>, const char*>>{
+           {p_.tyre_slip_stiffness_N, "tyre_slip_stiffness_N"},
+           {p_.tyre_slip_stiffness_per_load, "tyre_slip_stiffness_per_load"}})
+    if (v) require_positive_parameter(*v, what);
+  if (p_.tyre_slip_stiffness_N && p_.tyre_slip_stiffness_per_load)
+    throw std::invalid_argument("driveline: tyre_slip_stiffness_N and tyre_slip_stiffness_per_load are alternatives; "
+                                "give one (an absolute C_kappa, or C_kappa / F_z)");
   const double theta = std::atan(inputs.grade_percent / 100.0);
   const double weight_N = p_.vehicle_mass_kg * kGravity_m_s2;
   const double r = p_.wheel_radius_m;
+  const std::array<double, 2> axle_N = static_axle_loads_N(p_, inputs.grade_percent);
+  if (!(axle_N[0] > 0) || !(axle_N[1] > 0))
+    throw std::invalid_argument("driveline: on a grade of " + std::to_string(inputs.grade_percent) +
+                                " % the " + (axle_N[0] > 0 ? "rear" : "front") +
+                                " axle would lift (cg_height_m / wheelbase_m too large for the grade)");
+  const double transfer_kg = p_.vehicle_mass_kg * p_.cg_height_m / (2.0 * p_.wheelbase_m);
   for (int w = 0; w < 4; ++w) {
-    const double share = w < 2 ? p_.front_axle_load_share : 1.0 - p_.front_axle_load_share;
+    const bool front = w < 2;
     TyreParams t;
     t.slip_stiffness_N = p_.tyre_slip_stiffness_N;
-    t.relaxation_length_m = p_.tyre_slip_stiffness_N * r * r / p_.tyre_stiffness_Nm_per_rad;
-    t.vertical_load_N = 0.5 * share * weight_N * std::cos(theta);
+    t.slip_stiffness_per_load = p_.tyre_slip_stiffness_per_load;
+    t.vertical_load_N = 0.5 * axle_N[front ? 0 : 1];
+    t.relaxation_length_m = t.static_slip_stiffness_N() * r * r / p_.tyre_stiffness_Nm_per_rad;
     t.road_friction = inputs.road_friction[static_cast<std::size_t>(w)];
     t.radius_m = r;
+    t.load_transfer.load_per_acceleration_kg = front ? -transfer_kg : transfer_kg;
+    t.load_transfer.path_ratio = path_ratios_[static_cast<std::size_t>(w)];
     tyres_[static_cast<std::size_t>(w)] = std::make_shared<const BrushTyre>(t);
   }
   RoadLoadParams rl;

@@ -19,7 +19,12 @@
 //     (rear axle centre), wheelbase L, track w. With the coupling locked, the front axle's longer
 //     path winds the driveline up through the tyres' slip: the tight-turn case. (A legacy
 //     `turn_ratio` ρ puts both front wheels on ρ and both rear on 1.)
-//   Vertical loads: static, F_z = m g cos θ × the axle's share / 2 (no load transfer yet).
+//   Vertical loads (rig_models/tyre.hpp): each axle's static load on the grade θ (uphill > 0),
+//     F_z,front = m g (s_f cos θ − (h/L) sin θ),  F_z,rear = m g ((1 − s_f) cos θ + (h/L) sin θ),
+//   split equally between its two tyres (s_f the front axle's share on the level, h the centre of
+//   gravity's height, L the wheelbase), plus the dynamic transfer ∓ m h ā / (2 L) per tyre of the
+//   car's filtered acceleration ā; each tyre's slip stiffness C_κ = c_κ F_z follows its load
+//   (or an absolute C_κ when tyre_slip_stiffness_N is given). cg_height_m = 0: no transfer.
 //   the coupling: the wet clutch of clutch/ clamped by F = F_preload + A p from HaldexHydraulics
 //     (a Gen I coupling: pump ∝ |Δω|, throttle valve on the return, relief valve, oil and pack
 //     compliance), one contact law with the pressure and the valve's opening as its states,
@@ -65,8 +70,15 @@ struct DrivelineParams {
   // Carcass: c_x r², c_x ≈ 5e5 N/m (estimate; Pacejka §7.2 gives 3–10e5 N/m for car tyres); the
   // relaxation length is σ = C_κ r² / (c_x r²) = 0.31 m with the slip stiffness below (Pacejka:
   // σ ≈ 0.1–0.5 m, about a tyre radius).
+  // The relaxation length then follows the load: σ = C_κ r² / k_tyre (0.19 m front, 0.13 m rear
+  // on the level with c_κ = 19).
   double tyre_stiffness_Nm_per_rad = 50000.0;
-  double tyre_slip_stiffness_N = 1.5e5;     // C_κ per tyre (estimate: ~36 F_z, passenger tyre)
+  // Slip stiffness: c_κ = C_κ/F_z (default rig_models::kDefaultSlipStiffnessPerLoad, the Magic
+  // Formula's dry-tarmac B C D = 19, tyre.hpp), or an absolute C_κ per tyre (N) independent of the
+  // load; at most one of the two.
+  std::optional<double> tyre_slip_stiffness_per_load;
+  std::optional<double> tyre_slip_stiffness_N;
+  double cg_height_m = 0.55;                // h (estimate: a compact hatchback's laden CG, 0.5–0.6 m)
   double vehicle_mass_kg = 1700.0;          // estimate
   double wheelbase_m = 2.51;                // VW Golf IV (public data)
   double track_width_m = 1.51;              // VW Golf IV, mean of front and rear (public data)
@@ -194,6 +206,10 @@ class HaldexDriveline {
   std::shared_ptr<const RoadLoad> road_load_;
   double grade_torque_Nm_ = 0;
 };
+
+/// The static axle loads (front, rear; N) on a grade (%, uphill > 0): the car's weight split by
+/// front_axle_load_share on the level, moved rearwards by m g (h/L) sin θ uphill (see the header).
+std::array<double, 2> static_axle_loads_N(const DrivelineParams& params, double grade_percent);
 
 /// The coupling's own oil in the disc pack's thermal model: each of the n interfaces' domains gets
 /// 1/n of the pack's oil volume as its sump and 1/n of its cooling flow (the rig's disc has its

@@ -69,6 +69,14 @@ TEST(CliDriveline, RejectsBothTurnKeys) {
                   {"s.toml", "turn_radius_m", "either"});
 }
 
+// The tyres' slip stiffness: c_κ F_z or an absolute C_κ, not both (rig_models/tyre.hpp).
+TEST(CliDriveline, RejectsBothTyreSlipStiffnesses) {
+  expect_rejected(test::run_scenario_in("cli_driveline_kappa",
+                                        tight_turn("\n[driveline]\ntyre_slip_stiffness_N = 1.5e5\n"
+                                                   "tyre_slip_stiffness_per_load = 19.0\n")),
+                  {"s.toml", "tyre_slip_stiffness_per_load", "an alternative to tyre_slip_stiffness_N"});
+}
+
 TEST(CliDriveline, RejectsANonPositiveRoadFriction) {
   expect_rejected(test::run_scenario_in("cli_driveline_mu", tight_turn("\n[road]\nfriction = [0.1, 0.0, 1.0, 1.0]\n")),
                   {"s.toml", "friction", "(0, 2]"});

@@ -87,7 +87,7 @@ TEST(Linearisation, TyreRelaxationMatchesClosedForm) {
     const LinearSystem sys = linearise_network(net, op);
     EXPECT_EQ(sys.rigid_body_modes, 2);  // no shaft: both angles drift freely
     const double a1 = v / tp.relaxation_length_m;
-    const double a0 = tp.radius_m * tp.radius_m * tp.slip_stiffness_N / tp.relaxation_length_m * (1 / jw + 1 / jv);
+    const double a0 = tp.radius_m * tp.radius_m * (*tp.slip_stiffness_N) / tp.relaxation_length_m * (1 / jw + 1 / jv);
     const std::complex<double> expected = -a1 / 2 + std::sqrt(std::complex<double>(a1 * a1 / 4 - a0));
     const auto modes = linear_modes(sys);
     // Closest eigenvalue to the closed form; the other root is the common speed's zero.

@@ -159,6 +159,14 @@ TEST(NetworkScenario, OutOfRangeAndMalformedInputsAreInputErrors) {
   refused(two_inertias("[network.tyre]\ntype = \"tyre\"\nwheel = \"wheel_side\"\nvehicle = \"engine_side\"\n"
                        "vertical_load_N = 4000\n"),
           "not a component of type \"vehicle\"");
+  // A tyre's load and slip stiffness: one source each (rig_models/tyre.hpp).
+  const std::string car = "[network.car]\ntype = \"vehicle\"\nmass_kg = 1500\nwheel_radius_m = 0.3\n"
+                          "wheelbase_m = 2.5\nfront_axle_load_share = 0.6\ncg_height_m = 0.5\n";
+  const std::string tyre = "[network.tyre]\ntype = \"tyre\"\nwheel = \"wheel_side\"\nvehicle = \"car\"\n";
+  refused(two_inertias(car + tyre + "vertical_load_N = 4000\nslip_stiffness_N = 8e4\nslip_stiffness_per_load = 18\n"),
+          "slip_stiffness_per_load': is an alternative to slip_stiffness_N");
+  refused(two_inertias(car + tyre + "axle = \"rear\"\nvertical_load_N = 4000\n"), "vertical_load_N': is not for a tyre on an axle");
+  refused(two_inertias(car + tyre), "vertical_load_N': is required for a tyre without an axle");
 }
 
 // Magnitudes far from the examples' (a 1e-6 kg m^2 pinion, a 1e4 kg m^2 flywheel, a 100:1 gear,

@@ -101,7 +101,11 @@ TEST(DrivelinePrediction, TakeUpJudderOnsetAndFrequencyMatchTheSimulation) {
     c.inputs.engine_torque_Nm = PiecewiseLinear({0.0}, {hold});
   }
   const HaldexDriveline dl(c.params, c.clutch, c.inputs);
-  const double onset = onset_clamp_force_N(dl, c.clutch, c.inputs, 50.0, 5000.0);
+  // The bracket holds the one crossing: stable at 50 N, unstable at 3 kN (+186 1/s). Not 5 kN:
+  // with the tyres' load-proportional slip stiffness (tyre.hpp) that point is stable again
+  // (−4.4 1/s at 3.0 Hz, measured) — the clamp force lowers the point's slip, which moves it
+  // along the fluid's branch, and the growth is not monotonic in the force.
+  const double onset = onset_clamp_force_N(dl, c.clutch, c.inputs, 50.0, 3000.0);
   ASSERT_TRUE(std::isfinite(onset));
   const auto at_onset = least_damped_mode(
       driveline_stability(dl, c.clutch, quasi_static_operating_point(dl, c.clutch, c.inputs, 1.0, onset), false));

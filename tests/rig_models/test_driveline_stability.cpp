@@ -117,16 +117,26 @@ TEST(DrivelineStability, MatrixEqualsFiniteDifferenceJacobianOfTheNonlinearRhs) 
                      D::kRearRightWheel})
       w0[node] *= scale;
   }
-  Eigen::VectorXd z0(4);
+  // Each tyre's states [u, v₁, v₂]: the load transfer's lags behind the point's steady
+  // acceleration (the vehicle node's balance, m a = Σ ρ_i F_i − F_road + grade force), u carrying
+  // the point's force at that load.
+  double sum_N = 0.0;
+  for (int i = 0; i < 4; ++i) sum_N += dl.path_ratios()[static_cast<std::size_t>(i)] * op.tyre_force_N[static_cast<std::size_t>(i)];
+  const double accel = (sum_N - dl.road_load().force_N(op.vehicle_speed_m_s) +
+                        dl.grade_torque_Nm() / model.params.wheel_radius_m) / model.params.vehicle_mass_kg;
+  Eigen::VectorXd z0(12);
   for (int i = 0; i < 4; ++i) {
-    // Invert the brush curve by bisection (independent of the code under test's closed form).
     const auto& tyre = dl.tyre(i);
-    double lo = -tyre.params().relaxation_length_m, hi = -lo;
+    ASSERT_EQ(tyre.states(), 3);
+    tyre.steady_states(0.0, op.vehicle_speed_m_s, accel, z0.data() + 3 * i);
+    const double fz = tyre.vertical_load_N(z0.data() + 3 * i);
+    // Invert the brush curve by bisection (independent of the code under test's closed form).
+    double lo = -0.05, hi = 0.05;
     for (int it = 0; it < 200; ++it) {
       const double mid = 0.5 * (lo + hi);
-      (tyre.force_N(mid / tyre.params().relaxation_length_m) < op.tyre_force_N[static_cast<std::size_t>(i)] ? lo : hi) = mid;
+      (tyre.force_at_N(mid, fz) < op.tyre_force_N[static_cast<std::size_t>(i)] ? lo : hi) = mid;
     }
-    z0[i] = 0.5 * (lo + hi);
+    z0[3 * i] = 0.5 * (lo + hi);
   }
   // The coupling's pressure and valve at the operating point (as the linearisation takes them).
   dynamics::Sample at_w0;
@@ -135,10 +145,13 @@ TEST(DrivelineStability, MatrixEqualsFiniteDifferenceJacobianOfTheNonlinearRhs) 
   const Eigen::Index dim = st.system.a.rows();
   Eigen::MatrixXd jac(dim, dim);
   for (Eigen::Index j = 0; j < dim; ++j) {
-    // Steps: 1e-7 rad / rad/s for angles and speeds, 1e-9 m for deflections of ~1e-3 m, 1e-7 for
-    // the coupling's pressure (bar) and valve opening.
-    const Eigen::Index deflections_end = 2 * st.system.reduced_dofs + st.system.element_states;
-    const double h = j >= 2 * st.system.reduced_dofs && j < deflections_end ? 1e-9 : 1e-7;
+    // Steps: 1e-7 rad / rad/s for angles and speeds, 1e-9 m for deflections of ~1e-3 m, 1e-7 m/s
+    // for the load transfer's lagged speeds, 1e-7 for the coupling's pressure (bar) and valve
+    // opening.
+    const Eigen::Index elements_begin = 2 * st.system.reduced_dofs;
+    const Eigen::Index elements_end = elements_begin + st.system.element_states;
+    const bool deflection = j >= elements_begin && j < elements_end && (j - elements_begin) % 3 == 0;
+    const double h = deflection ? 1e-9 : 1e-7;
     Eigen::VectorXd xp = Eigen::VectorXd::Zero(dim), xm = xp;
     xp[j] = h;
     xm[j] = -h;

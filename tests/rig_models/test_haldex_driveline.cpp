@@ -8,8 +8,9 @@
 //     up the mismatch by slip and the axles' torques circulate; the steady slips solve the
 //     brush tyres' force balance (closed form below), the same at every speed;
 //   * coast-down: m_eff dv/dt = −(F_rr + k v²) → v(t) = a tan(atan(v0/a) − k a t/m_eff), a = √(F_rr/k);
-//   * split μ: a front wheel on ice spins, the coupling sends torque to the rear, the car
-//     accelerates at the traction its wheels can give;
+//   * split μ: a front wheel on ice spins, the coupling sends torque to the rear; the launch's
+//     load transfer unloads the ice wheel (it slides at μ F_z of its transferred load, tyre.hpp),
+//     the rear wheels grip, and the car's body obeys Newton with the tyre forces;
 //   * an open coupling (valve shut, no preload) carries nothing to the rear axle;
 //   * the estimates put the locked shuffle mode in docs/physics.md's 2–10 Hz;
 //   * in a tight turn fluid C keeps the coupling sliding smoothly, a fluid with a high static
@@ -122,7 +123,9 @@ TEST(HaldexDriveline, LockedTightTurnWindsUpTheClosedFormTorqueAtAnySpeed) {
   in.turn_radius_m = 9.0;  // ρ̄_f = 1.039: a tight turn, the brush curves at ~40 % of their limit
   const HaldexDriveline dl(p, pack.clutch, in);
   const WindUp expected = locked_turn_closed_form(dl);
-  ASSERT_GT(expected.rear_axle_torque_Nm, 1000.0);
+  // 811 N m: the tyres' slip stiffness c_κ F_z (tyre.hpp) is 0.42–0.63 of the former fixed
+  // 1.5e5 N, so the same kinematic mismatch winds up less torque.
+  ASSERT_GT(expected.rear_axle_torque_Nm, 500.0);
   in.engine_torque_Nm = PiecewiseLinear({0.0}, {expected.engine_torque_Nm});
   std::vector<double> torques;
   for (double speed_km_h : {5.0, 10.0, 20.0}) {
@@ -189,22 +192,40 @@ TEST(HaldexDriveline, SplitMuLaunchSpinsTheIceWheelAndDrivesTheRear) {
   const auto& v = test::signal(rec, "vehicle_speed_km_h");
   const auto& t = test::signal(rec, "time_s");
   const double v_end = v.back() / 3.6;
-  // The ice wheel spins: its rim runs at well over the car's speed.
-  EXPECT_GT(last(rec, "wheel_fl_speed_rpm") / units::rad_s_to_rpm(1.0) * p.wheel_radius_m, 2.0 * v_end);
+  // The ice wheel spins: its rim runs well past the car (slip 0.32 measured), far beyond the
+  // brush curve's full sliding at κ_sl = 3 μ/c_κ = 1.6 %.
+  EXPECT_GT(last(rec, "wheel_fl_speed_rpm") / units::rad_s_to_rpm(1.0) * p.wheel_radius_m, 1.2 * v_end);
   // The coupling slips and carries torque to the rear axle, which carries more than the front.
   EXPECT_GT(last(rec, "coupling_torque_Nm"), 300.0);
   EXPECT_GT(last(rec, "rear_axle_torque_Nm"), 2.0 * last(rec, "front_axle_torque_Nm"));
-  // Traction limit: the ice wheel's μ F_z, the same force at its partner (the open diff's equal
-  // torques), both rear wheels at their μ F_z (they spin too: the coupling can give more), less
-  // the road load. Over the last 0.5 s; 5 %: the partner's force differs from the ice wheel's by
-  // the ice wheel's angular acceleration × inertia / r (~2 % of the total).
-  const double f_ice = dl.tyre(HaldexDriveline::kFL).params().road_friction * dl.tyre(HaldexDriveline::kFL).params().vertical_load_N;
-  const double f_rear = 2 * dl.tyre(HaldexDriveline::kRL).params().vertical_load_N;
+  // The launch moves load off the front axle: the sliding ice tyre carries μ_ice F_z at its
+  // transferred load, F_z0 − m h a/(2L), a the car's acceleration over the last 0.5 s (5.2 m/s²,
+  // 0.97 kN off each front wheel). 2 %: the lags (τ₁ + τ₂ = 0.25 s) trail a that still changes
+  // by a few per cent over the window.
   const std::size_t i0 = t.size() - 501;
   const double accel = (v.back() - v[i0]) / 3.6 / (t.back() - t[i0]);
-  const double v_mid = 0.5 * (v.back() + v[i0]) / 3.6;
-  const double expected = (2 * f_ice + f_rear - dl.road_load().force_N(v_mid)) / p.vehicle_mass_kg;
-  EXPECT_NEAR(accel, expected, 0.05 * expected);
+  const auto& ice = dl.tyre(HaldexDriveline::kFL).params();
+  const double h_over_2l = p.cg_height_m / (2.0 * p.wheelbase_m);
+  const double f_ice = ice.road_friction * (ice.vertical_load_N - p.vehicle_mass_kg * h_over_2l * accel);
+  EXPECT_NEAR(last(rec, "tyre_fl_force_N"), f_ice, 0.02 * f_ice);
+  // The rear tyres, loaded by the same transfer, grip: below their μ F_z (the coupling, not the
+  // road, limits the rear axle now; 88 % measured), and the car's body obeys Newton with the
+  // tyre forces and the road load over the window (the vehicle node, straight: m Δv = ∫ (Σ F_i −
+  // F_road) dt; trapezoids on the 1 kHz record: 1 %).
+  const auto& rear = dl.tyre(HaldexDriveline::kRL).params();
+  const double rear_limit = rear.road_friction * (rear.vertical_load_N + p.vehicle_mass_kg * h_over_2l * accel);
+  EXPECT_LT(last(rec, "tyre_rl_force_N"), rear_limit);
+  EXPECT_GT(last(rec, "tyre_rl_force_N"), 0.5 * rear_limit);
+  const auto net_force_N = [&](std::size_t i) {
+    double f = -dl.road_load().force_N(v[i] / 3.6);
+    for (const char* c : {"tyre_fl_force_N", "tyre_fr_force_N", "tyre_rl_force_N", "tyre_rr_force_N"})
+      f += test::signal(rec, c)[i];
+    return f;
+  };
+  double impulse_Ns = 0.0;
+  for (std::size_t i = i0 + 1; i < t.size(); ++i) impulse_Ns += 0.5 * (net_force_N(i - 1) + net_force_N(i)) * (t[i] - t[i - 1]);
+  const double momentum_Ns = p.vehicle_mass_kg * (v.back() - v[i0]) / 3.6;
+  EXPECT_NEAR(momentum_Ns, impulse_Ns, 0.01 * momentum_Ns);
   EXPECT_LT(test::scalar(rec, "mechanical_energy_relative_error"), 1e-6);
 }
 
@@ -266,16 +287,18 @@ TEST(HaldexDriveline, TightTurnStickSlipsOnlyWithAHighStaticFriction) {
       last_t = t[i];
     }
   ASSERT_GT(breakaways, 10);
-  // With the Gen I hydraulics the pressure keeps rising (no leakage balance), the cycle is the
-  // driveline's shuffle: the FFT peak sits at the locked shuffle mode (3.50 against 3.71 Hz
-  // measured: the pack is not locked throughout, 10 %), while the pack breaks away about twice
-  // per shuffle cycle (6.17 Hz measured: between one and two per cycle).
+  // The frequency the FFT finds is the time domain's: the pack breaks away once per cycle
+  // (5.57 Hz by the count against the FFT's 5.90 Hz measured; 10 %: the count spans the whole
+  // run, the FFT weighs its judged window, and the pressure, still rising, shortens the cycle).
+  // The cycle is not the locked shuffle mode (3.68 Hz here): with the tyres' load-proportional
+  // slip stiffness (tyre.hpp) their slip damps the shuffle more (the shipped tight turn's locked
+  // ζ at its mean point: 0.049, against 0.030 with the former fixed C_κ) and the stick–slip
+  // cycle runs on its own, faster.
   const double event_rate_Hz = (breakaways - 1) / (last_t - first);
   const double shuffle_Hz = test::scalar(rough, "shuffle_frequency_Hz");
   const double fft_Hz = test::scalar(rough, "coupling_oscillation_frequency_Hz");
-  EXPECT_NEAR(fft_Hz, shuffle_Hz, 0.1 * shuffle_Hz);
-  EXPECT_GE(event_rate_Hz, fft_Hz);
-  EXPECT_LE(event_rate_Hz, 2.0 * fft_Hz);
+  EXPECT_NEAR(fft_Hz, event_rate_Hz, 0.1 * fft_Hz);
+  EXPECT_GT(fft_Hz, shuffle_Hz);
 }
 
 TEST(HaldexDriveline, RejectsNonPhysicalParameters) {
