@@ -16,7 +16,7 @@ namespace shudder::components {
 NetworkRun run_network(const NetworkSpec& spec) {
   const auto& cfg = spec.settings;
   NetworkStepper stepper(spec, cfg.duration_s);
-  const BuiltNetwork* built = &stepper.built();
+  BuiltNetwork* built = &stepper.built();
   const dynamics::Simulation& sim = stepper.simulation();
   const std::vector<clutch::ThermalState>& thermal = stepper.thermal();
   const std::vector<int>& wet_index = stepper.wet_index();

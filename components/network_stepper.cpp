@@ -85,7 +85,7 @@ NetworkStepper::NetworkStepper(const NetworkSpec& spec, double end_s) : built_(b
   // Without a wet clutch the network is integrated in one stretch between the breaks.
   const double slow_step = wet.empty() ? (std::isfinite(end_s) ? end_s : cfg.duration_s) : cfg.thermal_step_s;
   coupling_ = std::make_unique<rig_models::MultirateCoupling>(
-      *sim_, wet, end_s, slow_step, std::isfinite(end_s) ? cfg.sample_rate_Hz : 0.0, std::move(breaks),
+      *sim_, wet, end_s, slow_step, cfg.sample_rate_Hz, std::move(breaks),
       units_.empty() ? std::function<void(double)>() : [this](double t) {
         const dynamics::Sample s = sim_->sample();
         for (auto& u : units_) u.at(t, s);

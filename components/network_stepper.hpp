@@ -12,8 +12,8 @@
 // stepper restarts at every jump of an input signal and every control instant up to `end_s`.
 //
 // `end_s` is the scenario's duration for a run (samples at its sample rate up to it), or
-// infinity for an FMU (no samples, no end; the signals' jumps are then those up to the
-// scenario's duration).
+// infinity for an FMU (no samples delivered, no end; thermal steps end at the run's instants;
+// the signals' jumps are then those up to the scenario's duration).
 
 #include <functional>
 #include <limits>

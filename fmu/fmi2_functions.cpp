@@ -198,8 +198,8 @@ fmi2Status fmi2SetDebugLogging(fmi2Component c, fmi2Boolean loggingOn, size_t nC
     fmi2Status status = fmi2OK;
     for (size_t k = 0; k < nCategories && categories; ++k) {
       const std::string name = categories[k] ? categories[k] : "";
-      if (std::find_if(std::begin(kLogCategories), std::end(kLogCategories), [&](const char* n) { return name == n; }) ==
-          std::end(kLogCategories)) {
+      if (std::find_if(std::begin(fmu::kLogCategories), std::end(fmu::kLogCategories), [&](const char* n) { return name == n; }) ==
+          std::end(fmu::kLogCategories)) {
         inst.log(fmi2Warning, "logStatusWarning",
                  "fmi2SetDebugLogging: unknown log category '" + name + "' ignored (see modelDescription.xml)");
         status = fmi2Warning;

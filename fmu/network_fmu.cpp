@@ -28,7 +28,7 @@
 #include <stdexcept>
 #include <string>
 
-#include <toml++/toml.hpp>
+#include <toml++/toml.h>
 
 #include "components/network_channels.hpp"
 #include "components/network_stepper.hpp"

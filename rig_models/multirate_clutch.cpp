@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -46,6 +47,8 @@ MultirateCoupling::MultirateCoupling(dynamics::Simulation& sim, const std::vecto
   if (std::isfinite(end_s) && sample_rate_Hz > 0) {
     n_samples_ = static_cast<long>(std::floor(end_s * sample_rate_Hz + 1e-9));
     for (long k = 1; k <= n_samples_; ++k) sample_times_.push_back(static_cast<double>(k) / sample_rate_Hz);
+  } else if (sample_rate_Hz > 0) {
+    n_samples_ = std::numeric_limits<long>::max();  // no end: no samples, but slow steps snap onto their times
   }
   slots_.reserve(clutches.size());
   for (const auto& in : clutches) {

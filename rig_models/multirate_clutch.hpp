@@ -85,7 +85,9 @@ void run_multirate(dynamics::Simulation& sim, const std::vector<MultirateClutch>
 /// duration; an FMU calls it once per communication step. Slow steps, breaks and samples fall
 /// at the same times whatever the pieces (the ends of the pieces are not restarts), so a run in
 /// pieces follows the run in one call (the fixed-step stepper: to round-off, its steps cut at
-/// the pieces' ends). `end_s` may be infinite (no duration: no samples, slow steps unbounded).
+/// the pieces' ends). `end_s` may be infinite (no duration: slow steps unbounded, no samples
+/// delivered, but slow-step ends still snapped onto the sample times k / sample_rate_Hz as a
+/// run's are, so they fall at the same instants).
 class MultirateCoupling {
  public:
   MultirateCoupling(dynamics::Simulation& sim, const std::vector<MultirateClutch>& clutches, double end_s,
