@@ -66,7 +66,6 @@ class Instance : public fmu::InstanceBase {
   void drop_model() override {
     coupling.reset();
     clutch.reset();
-    shorter_step_logged = false;
   }
   void do_step(double tc, double H) override {
     const double h = coupling->clutch().settings().step_s;
@@ -86,22 +85,13 @@ class Instance : public fmu::InstanceBase {
       coupling->step(slip, force, take);
       left -= take;
     }
-    if (split.last_fraction > 0.0 && !shorter_step_logged) {
-      char buf[200];
-      std::snprintf(buf, sizeof buf,
-                    "fmi2DoStep: h = %.17g s is not a whole multiple of fixed_step_s; taken as %.0f internal "
-                    "steps and one of %.6g of a step (logged once)",
-                    H, split.whole_steps, split.last_fraction);
-      info(buf);
-      shorter_step_logged = true;
-    }
+    if (split.last_fraction > 0.0) log_shorter_step(H, split.whole_steps, split.last_fraction);
     // The master's own tCurrent + h: its next currentCommunicationPoint is computed the same way.
     time_s = tc + H;
     if (split.whole_steps + split.last_fraction > 0.0) update_outputs(true);
   }
 
   double built_force_N = 0.0;      // the clamp force the clutch's first frozen friction was built at
-  bool shorter_step_logged = false;
   std::unique_ptr<clutch::WetClutch> clutch;
   std::unique_ptr<rig_models::RealtimeCoupling> coupling;
 

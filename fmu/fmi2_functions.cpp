@@ -26,6 +26,17 @@ void InstanceBase::require_at(double tc, double tol) const {
   throw std::runtime_error(std::string("fmi2DoStep: ") + buf);
 }
 
+void InstanceBase::log_shorter_step(double H, double whole, double fraction) {
+  if (shorter_step_logged) return;
+  char buf[200];
+  std::snprintf(buf, sizeof buf,
+                "fmi2DoStep: h = %.17g s is not a whole multiple of fixed_step_s; taken as %.0f internal "
+                "steps and one of %.6g of a step (logged once)",
+                H, whole, fraction);
+  info(buf);
+  shorter_step_logged = true;
+}
+
 void InstanceBase::log(fmi2Status status, const char* category, const std::string& message) const {
     if (!callbacks.logger) return;
     if (status < fmi2Error && (!logging || (!categories.empty() && !categories.count(category) &&
@@ -286,6 +297,7 @@ fmi2Status fmi2Reset(fmi2Component c) {
     inst.set_starts();
     inst.start_time_s = inst.time_s = 0.0;
     inst.parameters_changed = true;
+    inst.shorter_step_logged = false;
     inst.phase = Phase::kInstantiated;
     inst.info("fmi2Reset: back to the start values");
     return fmi2OK;

@@ -71,6 +71,9 @@ class InstanceBase {
 
   /// Throws unless the master's currentCommunicationPoint tc is the instance's time to `tol_s`.
   void require_at(double tc_s, double tol_s) const;
+  /// Logs (once per instance, logEvents) that the step H was taken as `whole` internal steps and
+  /// one of `fraction` of a step.
+  void log_shorter_step(double H_s, double whole, double fraction);
   /// The index of value reference `vr` (variable_count() for none).
   std::size_t index(unsigned vr) const;
 
@@ -92,6 +95,7 @@ class InstanceBase {
   Phase phase = Phase::kInstantiated;
   double start_time_s = 0.0, time_s = 0.0;
   bool parameters_changed = true;  // since the model was built
+  bool shorter_step_logged = false;
   std::vector<double> numbers;      // per variable: Real, Integer, Boolean values
   std::vector<std::string> texts;   // per variable: String values
 };

@@ -20,7 +20,6 @@
 //
 // The calling sequence, logging and get/set are fmu/fmi2_functions.cpp's.
 #include <cmath>
-#include <cstdio>
 #include <deque>
 #include <filesystem>
 #include <limits>
@@ -71,7 +70,6 @@ class Instance : public fmu::InstanceBase {
   }
   void drop_model() override {
     stepper_.reset();
-    shorter_step_logged_ = false;
   }
   void do_step(double tc, double H) override {
     const double h = fixed_step_s();
@@ -89,15 +87,7 @@ class Instance : public fmu::InstanceBase {
       stepper_->advance_to(stepper_->simulation().time_s() + split.last_fraction * h);
       // The grid restarts from the shorter step's end.
       whole_steps_ = stepper_->simulation().time_s() / h;
-      if (!shorter_step_logged_) {
-        char buf[200];
-        std::snprintf(buf, sizeof buf,
-                      "fmi2DoStep: h = %.17g s is not a whole multiple of fixed_step_s; taken as %.0f internal "
-                      "steps and one of %.6g of a step (logged once)",
-                      H, split.whole_steps, split.last_fraction);
-        info(buf);
-        shorter_step_logged_ = true;
-      }
+      log_shorter_step(H, split.whole_steps, split.last_fraction);
     }
     time_s = tc + H;
     update_outputs();
@@ -173,7 +163,6 @@ class Instance : public fmu::InstanceBase {
   std::vector<components::NetworkChannel> channels_;
   std::vector<std::pair<std::size_t, std::size_t>> output_channel_;  // (variable, channel)
   double whole_steps_ = 0.0;  // internal steps since the start, on the current grid
-  bool shorter_step_logged_ = false;
 };
 
 }  // namespace
