@@ -1,5 +1,5 @@
 // `shudder export-fmu SCENARIO.toml -o NAME.fmu` (docs/fmu.md "Your drivetrain as an FMU"): a
-// network scenario packed as an FMI 2.0 co-simulation FMU (io/network_fmu_package.hpp) around
+// network scenario packed as an FMI 2.0 co-simulation FMU (fmu/network_fmu_package.hpp) around
 // the network FMU library the build made (fmu/network_fmu.cpp). linux64 only.
 #include <algorithm>
 #include <cstdlib>
@@ -10,7 +10,7 @@
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
 #include "io/input_error.hpp"
-#include "io/network_fmu_package.hpp"
+#include "fmu/network_fmu_package.hpp"
 #include "io/network_scenario.hpp"
 #include "io/output_safety.hpp"
 
@@ -65,7 +65,7 @@ int export_fmu_command(const ExportFmuOptions& opt) {
     io::require_distinct_paths(inputs, {{"-o", out}});
     io::require_output_directory(out);
     const std::string library = network_fmu_library();
-    const io::NetworkFmuSummary s = io::write_network_fmu(sc, opt.fixed_step_s, library, out);
+    const fmu::NetworkFmuSummary s = fmu::write_network_fmu(sc, opt.fixed_step_s, library, out);
     std::cout << "Wrote " << out << ": FMI 2.0 co-simulation, " << s.inputs << " inputs, " << s.outputs
               << " outputs, " << s.parameters << " parameter (fixed_step_s = " << opt.fixed_step_s
               << " s), GUID " << s.guid << "\n"

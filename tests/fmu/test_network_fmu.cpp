@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "fmu/content_guid.hpp"
 #include "io/hdf5_run.hpp"
 #include "tests/fmu/fmu_master.hpp"
 

@@ -1,4 +1,4 @@
-#include "io/network_fmu_package.hpp"
+#include "fmu/network_fmu_package.hpp"
 
 #include <algorithm>
 #include <filesystem>
@@ -15,7 +15,7 @@
 #include "io/scenario.hpp"
 #include "io/zip_archive.hpp"
 
-namespace shudder::io {
+namespace shudder::fmu {
 
 namespace fs = std::filesystem;
 
@@ -31,16 +31,16 @@ std::string read_binary(const std::string& path) {
 
 }  // namespace
 
-NetworkFmuSummary write_network_fmu(const NetworkScenario& sc, double fixed_step_s, const std::string& library_path,
+NetworkFmuSummary write_network_fmu(const io::NetworkScenario& sc, double fixed_step_s, const std::string& library_path,
                                     const std::string& out) {
   // The description first: what the network cannot be as an FMU fails before anything is written.
-  fmu::DescribedModel model;
+  DescribedModel model;
   try {
-    model = fmu::network_description(sc, fixed_step_s);
+    model = network_description(sc, fixed_step_s);
   } catch (const std::invalid_argument& e) {
-    throw InputError(sc.path, 0, "network", e.what());
+    throw io::InputError(sc.path, 0, "network", e.what());
   }
-  const std::string xml = fmu::model_description_xml(model);
+  const std::string xml = model_description_xml(model);
 
   // Each fluid's path relative to the scenario's folder, and how far the paths climb.
   const fs::path folder = fs::path(sc.path).parent_path();
@@ -51,7 +51,7 @@ NetworkFmuSummary write_network_fmu(const NetworkScenario& sc, double fixed_step
     const fs::path given(c.wet.fluid_path);
     const fs::path rel = (folder.empty() ? given : given.lexically_relative(folder)).lexically_normal();
     if (rel.empty() || rel.is_absolute())
-      throw InputError(sc.path, 0, "network." + c.name + ".clutch.fluid",
+      throw io::InputError(sc.path, 0, "network." + c.name + ".clutch.fluid",
                        "the fluid file '" + c.wet.fluid_path + "' is not reachable by a relative path from the scenario's "
                        "folder, so it cannot be packed; give it relative to the scenario");
     std::size_t up = 0;
@@ -68,12 +68,12 @@ NetworkFmuSummary write_network_fmu(const NetworkScenario& sc, double fixed_step
 
   std::vector<std::pair<std::string, std::string>> files;
   files.push_back({"modelDescription.xml", xml});
-  files.push_back({std::string("binaries/linux64/") + fmu::kNetworkModelIdentifier + ".so", read_binary(library_path)});
+  files.push_back({std::string("binaries/linux64/") + kNetworkModelIdentifier + ".so", read_binary(library_path)});
   std::ostringstream index;
   index.precision(17);
   index << "# Written by shudder export-fmu: the scenario the network FMU's library runs (fmu/network_fmu.cpp)\n"
         << "scenario = \"" << scenario_entry.generic_string() << "\"\nfixed_step_s = " << fixed_step_s << "\n";
-  files.push_back({std::string("resources/") + fmu::kNetworkFmuIndex, index.str()});
+  files.push_back({std::string("resources/") + kNetworkFmuIndex, index.str()});
   files.push_back({"resources/" + scenario_entry.generic_string(), sc.text});
   for (const auto& [rel, text] : fluids) {
     const std::string entry = "resources/" + (scenario_dir / rel).lexically_normal().generic_string();
@@ -81,13 +81,13 @@ NetworkFmuSummary write_network_fmu(const NetworkScenario& sc, double fixed_step
     for (const auto& f : files) seen = seen || f.first == entry;
     if (!seen) files.push_back({entry, text});
   }
-  write_text_file_atomically(out, zip_stored(files));
+  io::write_text_file_atomically(out, io::zip_stored(files));
 
   NetworkFmuSummary s;
   for (const auto& v : model.variables)
-    (v.causality == fmu::Causality::kInput ? s.inputs : v.causality == fmu::Causality::kOutput ? s.outputs : s.parameters)++;
-  s.guid = fmu::guid_of(xml);
+    (v.causality == Causality::kInput ? s.inputs : v.causality == Causality::kOutput ? s.outputs : s.parameters)++;
+  s.guid = guid_of(xml);
   return s;
 }
 
-}  // namespace shudder::io
+}  // namespace shudder::fmu

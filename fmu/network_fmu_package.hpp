@@ -17,7 +17,7 @@
 
 #include "io/network_scenario.hpp"
 
-namespace shudder::io {
+namespace shudder::fmu {
 
 struct NetworkFmuSummary {
   std::size_t inputs = 0, outputs = 0, parameters = 0;
@@ -27,7 +27,7 @@ struct NetworkFmuSummary {
 /// Packs `sc` (loaded from sc.path) into `out`; InputError naming the file and key for what
 /// the FMU cannot hold (a fluid file given by an absolute path, names that collide, a Haldex
 /// coupling), or naming `out` when it cannot be written.
-NetworkFmuSummary write_network_fmu(const NetworkScenario& sc, double fixed_step_s, const std::string& library_path,
+NetworkFmuSummary write_network_fmu(const io::NetworkScenario& sc, double fixed_step_s, const std::string& library_path,
                                     const std::string& out);
 
-}  // namespace shudder::io
+}  // namespace shudder::fmu
