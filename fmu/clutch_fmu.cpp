@@ -69,11 +69,7 @@ class Instance : public fmu::InstanceBase {
   }
   void do_step(double tc, double H) override {
     const double h = coupling->clutch().settings().step_s;
-    const double tol = fmu::step_tolerance_s(h, tc, H);
-    require_at(tc, tol);
-    const fmu::StepSplit split = fmu::split_step(H, h, tol);
-    if (split.whole_steps > 1e12)
-      throw std::runtime_error("fmi2DoStep: communicationStepSize " + std::to_string(H) + " s is more than 1e12 internal steps");
+    const fmu::StepSplit split = split_communication_step(tc, H, h);
     // Inputs held over the whole step (zero-order hold). Sub-steps never cross the end of a
     // thermal window, so the handover to the thermal model stays on the internal grid.
     const double slip = slip_rad_s(), force = force_N();

@@ -19,11 +19,17 @@ std::size_t InstanceBase::index(unsigned vr) const {
   return n;
 }
 
-void InstanceBase::require_at(double tc, double tol) const {
-  if (std::abs(tc - time_s) <= tol) return;
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "currentCommunicationPoint %.17g s differs from the FMU's time %.17g s", tc, time_s);
-  throw std::runtime_error(std::string("fmi2DoStep: ") + buf);
+StepSplit InstanceBase::split_communication_step(double tc, double H, double h) const {
+  const double tol = step_tolerance_s(h, tc, H);
+  if (std::abs(tc - time_s) > tol) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "currentCommunicationPoint %.17g s differs from the FMU's time %.17g s", tc, time_s);
+    throw CallRefused(std::string("fmi2DoStep: ") + buf);
+  }
+  const StepSplit split = split_step(H, h, tol);
+  if (split.whole_steps > 1e12)
+    throw CallRefused("fmi2DoStep: communicationStepSize " + std::to_string(H) + " s is more than 1e12 internal steps");
+  return split;
 }
 
 void InstanceBase::log_shorter_step(double H, double whole, double fraction) {
@@ -374,7 +380,11 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint, fmi2R
       return inst.fail("fmi2DoStep: communicationStepSize must be a finite number > 0 (got " + std::to_string(H) + ")");
     if (!std::isfinite(currentCommunicationPoint))
       return inst.fail("fmi2DoStep: currentCommunicationPoint must be finite");
-    inst.do_step(currentCommunicationPoint, H);
+    try {
+      inst.do_step(currentCommunicationPoint, H);
+    } catch (const fmu::CallRefused& e) {
+      return inst.fail(e.what());
+    }
     return fmi2OK;
   });
 }

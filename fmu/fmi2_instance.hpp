@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "fmu/fmi2.h"
+#include "fmu/step_split.hpp"
 
 namespace shudder::fmu {
 
@@ -69,8 +70,10 @@ class InstanceBase {
   /// One communication step from time_s (== the master's tc to the step tolerance) of H > 0 s.
   virtual void do_step(double tc_s, double H_s) = 0;
 
-  /// Throws unless the master's currentCommunicationPoint tc is the instance's time to `tol_s`.
-  void require_at(double tc_s, double tol_s) const;
+  /// The communication step from tc of H as internal steps of h (fmu/step_split.hpp); throws
+  /// CallRefused unless tc is the instance's time to the step tolerance, or for more than 1e12
+  /// internal steps.
+  StepSplit split_communication_step(double tc_s, double H_s, double h_s) const;
   /// Logs (once per instance, logEvents) that the step H was taken as `whole` internal steps and
   /// one of `fraction` of a step.
   void log_shorter_step(double H_s, double whole, double fraction);
@@ -98,6 +101,11 @@ class InstanceBase {
   bool shorter_step_logged = false;
   std::vector<double> numbers;      // per variable: Real, Integer, Boolean values
   std::vector<std::string> texts;   // per variable: String values
+};
+
+/// A call refused (fmi2Error with the message logged) after which the instance carries on.
+struct CallRefused : std::runtime_error {
+  using std::runtime_error::runtime_error;
 };
 
 /// Thrown by create_instance to refuse an instantiation (wrong GUID, unreadable resources):

@@ -73,11 +73,7 @@ class Instance : public fmu::InstanceBase {
   }
   void do_step(double tc, double H) override {
     const double h = fixed_step_s();
-    const double tol = fmu::step_tolerance_s(h, tc, H);
-    require_at(tc, tol);
-    const fmu::StepSplit split = fmu::split_step(H, h, tol);
-    if (split.whole_steps > 1e12)
-      throw std::runtime_error("fmi2DoStep: communicationStepSize " + std::to_string(H) + " s is more than 1e12 internal steps");
+    const fmu::StepSplit split = split_communication_step(tc, H, h);
     apply_inputs(true);
     // Whole steps end on the internal grid k·h (a product: no drift), then the shorter one.
     whole_steps_ += split.whole_steps;
