@@ -30,7 +30,9 @@
 #include <vector>
 
 #include "fmu/content_guid.hpp"
+#include "fmu/network_variables.hpp"
 #include "io/hdf5_run.hpp"
+#include "io/zip_archive.hpp"
 #include "tests/fmu/fmu_master.hpp"
 
 namespace shudder {
@@ -187,6 +189,26 @@ Worst master_run(double t0, int every) {
   f.fmi2Terminate(c);
   f.fmi2FreeInstance(c);
   return w;
+}
+
+TEST(NetworkFmu, NamesFollowTheStructuredRuleAndUnitsTheirFmiSpelling) {
+  // docs/fmu.md "Variables": each dot-separated part keeps [A-Za-z0-9_], any other character
+  // becomes '_', a part starting with a digit gets a leading '_'.
+  EXPECT_EQ(fmu::fmi_name("launch_clutch.slip_rpm"), "launch_clutch.slip_rpm");
+  EXPECT_EQ(fmu::fmi_name("1st-gear.torque_Nm"), "_1st_gear.torque_Nm");
+  EXPECT_EQ(fmu::fmi_name("rear axle.speed_rpm"), "rear_axle.speed_rpm");
+  EXPECT_EQ(fmu::fmi_unit("N m"), "N.m");
+  EXPECT_EQ(fmu::fmi_unit("rpm"), "rpm");
+}
+
+TEST(NetworkFmu, ZipMembersCarryTheStandardCrc32) {
+  // CRC-32/IEEE's published check value: "123456789" -> 0xCBF43926.
+  EXPECT_EQ(io::crc32_of("123456789"), 0xCBF43926ul);
+  const std::string zip = io::zip_stored({{"a.txt", "hello"}});
+  EXPECT_EQ(zip.substr(0, 4), std::string("PK\x03\x04", 4));
+  EXPECT_EQ(zip.substr(30, 5), "a.txt");  // the name after the 30-byte local header
+  EXPECT_EQ(zip.substr(35, 5), "hello");  // stored, uncompressed
+  EXPECT_THROW(io::zip_stored({{"../x", ""}}), std::invalid_argument);
 }
 
 TEST(NetworkFmu, ExportWritesADescriptionWithTheScenariosSignalsAsInputsAndItsChannelsAsOutputs) {
