@@ -54,9 +54,8 @@ void write_clutch_measurement(const RunOptions& opt, const components::ClutchSpe
   io::write_measurement(measurement_path(opt.measurement, c.name), m, o);
 }
 
-// `--fixed-step H` (dynamics/simulation.hpp "Fixed-step mode"): the duration, the thermal step and
-// the sample interval are whole numbers of steps, so every step is H and every sample and
-// thermal update falls on a step's end.
+}  // namespace
+
 void require_whole_steps(const RunOptions& opt, const components::NetworkSettings& s, bool wet) {
   const double h = opt.fixed_step_s;
   const auto check = [&](double span_s, const char* key, const char* what) {
@@ -73,8 +72,6 @@ void require_whole_steps(const RunOptions& opt, const components::NetworkSetting
   if (wet) check(s.thermal_step_s, "solver.thermal_step_ms", "the thermal step");
   check(1.0 / s.sample_rate_Hz, "output.sample_rate_Hz", "the sample interval");
 }
-
-}  // namespace
 
 int run_network_command(const RunOptions& opt) {
   io::NetworkScenario sc = io::load_network_scenario_text(run_scenario_text(opt), opt.scenario);

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "components/network_spec.hpp"
 #include "dynamics/recording.hpp"
 #include "rig_models/effect_registry.hpp"
 
@@ -31,10 +32,23 @@ int run_command(const RunOptions& options);
 std::string run_scenario_text(const RunOptions& options);
 /// `run` on a type = "network" scenario (app/cmd_run_network.cpp); run_command dispatches to it.
 int run_network_command(const RunOptions& options);
+/// `--fixed-step H` on a network (dynamics/simulation.hpp "Fixed-step mode"): the duration, the
+/// thermal step (`wet`: the network has a wet clutch) and the sample interval are whole numbers
+/// of steps, so every step is H and every sample and thermal update falls on a step's end.
+/// InputError naming opt.scenario and the key otherwise.
+void require_whole_steps(const RunOptions& opt, const components::NetworkSettings& s, bool wet);
 /// `run --report DIR`: the report directory (report/plots.hpp) with a line saying so; a report
 /// that fails after the run was written is exit code 1 with a line naming `run_file`.
 int write_report_directory(const std::string& dir, const dynamics::Recording& rec, const std::string& name,
                            const std::string& summary, bool rig_plots, const std::string& run_file);
+
+struct ExportFmuOptions {
+  std::string scenario;
+  std::string output;           // the .fmu; default "<scenario name>.fmu"
+  double fixed_step_s = 1e-4;   // the FMU's internal step (its parameter fixed_step_s' start)
+};
+/// `export-fmu` (app/cmd_export_fmu.cpp, docs/fmu.md "Your drivetrain as an FMU").
+int export_fmu_command(const ExportFmuOptions& options);
 
 struct ConvergenceOptions {
   std::string scenario;

@@ -46,6 +46,15 @@ int main(int argc, char** argv) {
                       "Run with the fixed-step real-time stepper at this step, s (docs/realtime.md)")
       ->check(CLI::Range(1e-7, 1.0));  // a step from 0.1 µs to 1 s
 
+  ExportFmuOptions export_fmu;
+  auto* fmu_cmd = app.add_subcommand(
+      "export-fmu", "Pack a network scenario as an FMI 2.0 co-simulation FMU, linux64 (docs/fmu.md)");
+  fmu_cmd->add_option("scenario", export_fmu.scenario, "Network scenario file (TOML, type = \"network\")")->required();
+  fmu_cmd->add_option("-o,--output", export_fmu.output, "FMU written (default: <scenario name>.fmu)");
+  fmu_cmd->add_option("--fixed-step", export_fmu.fixed_step_s,
+                      "The FMU's internal RK4 step, s (default 1e-4; as run --fixed-step)")
+      ->check(CLI::Range(1e-7, 1.0));
+
   ConvergenceOptions convergence;
   auto* conv_cmd = app.add_subcommand(
       "convergence", "Re-run a scenario with its numerical steps divided and show whether its verdicts change "
@@ -235,6 +244,7 @@ int main(int argc, char** argv) {
       return 2;
     }
   if (*run_cmd) return run_command(run);
+  if (*fmu_cmd) return export_fmu_command(export_fmu);
   if (*val_cmd) return validate_command(validate);
   if (*modes_cmd) return modes_command(modes);
   if (*conv_cmd) return convergence_command(convergence);

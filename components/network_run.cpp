@@ -5,77 +5,21 @@
 #include <deque>
 
 #include "components/clutch_prediction.hpp"
-#include "components/haldex_control.hpp"
 #include "components/network_builder.hpp"
 #include "components/network_channels.hpp"
+#include "components/network_stepper.hpp"
 #include "rig_models/energy_scalars.hpp"
 #include "rig_models/friction_range_block.hpp"
-#include "rig_models/multirate_clutch.hpp"
 
 namespace shudder::components {
 
-namespace {
-
-// Every signal's jumps over the run, for the stepper's restarts.
-std::vector<double> input_breaks(const NetworkSpec& spec) {
-  const double d = spec.settings.duration_s;
-  std::vector<double> t;
-  const auto add = [&](const Signal& s) {
-    const auto k = s.knots(0.0, d);
-    t.insert(t.end(), k.begin(), k.end());
-  };
-  for (const auto& c : spec.clutches) {
-    if (c.law != ClutchSpec::Law::kHaldex) {
-      add(c.force_signal);
-      continue;
-    }
-    add(c.haldex.pedal);
-    if (c.haldex.valve_opening) add(*c.haldex.valve_opening);
-    if (c.haldex.valve_pressure_bar) add(*c.haldex.valve_pressure_bar);
-  }
-  for (const auto& s : spec.torque_sources) add(s.torque_Nm);
-  for (const auto& s : spec.speed_sources) add(s.speed_rpm);
-  for (const auto& m : spec.motors) add(m.speed_rpm);
-  for (const auto& e : spec.engines) add(e.throttle);
-  std::sort(t.begin(), t.end());
-  t.erase(std::unique(t.begin(), t.end()), t.end());
-  return t;
-}
-
-}  // namespace
-
 NetworkRun run_network(const NetworkSpec& spec) {
-  const auto built = build_network(spec);
-  const auto& net = built->network;
   const auto& cfg = spec.settings;
-  if (!(cfg.duration_s > 0) || !(cfg.thermal_step_s > 0) || !(cfg.sample_rate_Hz > 0))
-    throw std::invalid_argument("duration, thermal step and sample rate must be > 0");
-
-  std::vector<clutch::ThermalState> thermal;  // one per wet clutch, in clutch order
-  std::vector<int> wet_index(built->clutches.size(), -1);
-  for (std::size_t c = 0; c < built->clutches.size(); ++c)
-    if (built->clutches[c].wet) {
-      wet_index[c] = static_cast<int>(thermal.size());
-      thermal.push_back(built->clutches[c].wet->initial_state());
-    }
-
-  // Each Haldex coupling's control unit, its first command set before the simulation reads the
-  // valve's start opening from it.
-  std::vector<HaldexControlUnit> units;
-  std::vector<std::size_t> unit_wet;  // the unit's coupling's index into `thermal`
-  for (std::size_t c = 0; c < built->clutches.size(); ++c)
-    if (built->clutches[c].haldex) {
-      try {
-        units.emplace_back(built->clutches[c]);
-      } catch (const std::invalid_argument& e) {
-        throw NetworkError(built->clutches[c].name(), e.what());
-      }
-      unit_wet.push_back(static_cast<std::size_t>(wet_index[c]));
-      units.back().start(built->initial_speed_rad_s, thermal[unit_wet.back()]);
-    }
-
-  dynamics::Simulation sim(net, cfg.integrator);
-  sim.initialize(0.0, built->initial_angle_rad, built->initial_speed_rad_s, built->initial_motor_integral);
+  NetworkStepper stepper(spec, cfg.duration_s);
+  BuiltNetwork* built = &stepper.built();
+  const dynamics::Simulation& sim = stepper.simulation();
+  const std::vector<clutch::ThermalState>& thermal = stepper.thermal();
+  const std::vector<int>& wet_index = stepper.wet_index();
 
   std::deque<std::string> names;  // the channel names the recorder's channels view
   std::vector<NetworkChannel> channels = network_channels(spec, *built, wet_index, names);
@@ -96,47 +40,21 @@ NetworkRun run_network(const NetworkSpec& spec) {
   const NetworkSlow slow = &thermal;
   recorder.start(slow);
 
-  // Each wet clutch's tally of its friction law used outside its data (clutch/friction_data_range.hpp).
-  std::vector<clutch::FrictionDataRange> ranges;
-  ranges.reserve(thermal.size());
+  std::vector<const clutch::WetClutch*> wet;  // in the order of `thermal`
   for (const auto& bc : built->clutches)
-    if (bc.wet) ranges.emplace_back(*bc.wet->fluid().friction);
-  std::vector<rig_models::MultirateClutch> wet;
-  for (std::size_t c = 0; c < built->clutches.size(); ++c) {
-    const BuiltClutch& bc = built->clutches[c];
-    if (!bc.wet) continue;
-    const auto w = static_cast<std::size_t>(wet_index[c]);
-    wet.push_back({bc.context.get(), bc.wet.get(), &thermal[w], bc.contact, &ranges[w]});
-    if (bc.haldex) wet.back().clamp_force_N = [&bc](const dynamics::Sample& s) { return bc.normal_force_N(s); };
-  }
-  // Restarts: the inputs' jumps and the control units' instants.
-  std::vector<double> breaks = input_breaks(spec);
-  for (const auto& u : units) {
-    const auto t = u.instants(cfg.duration_s);
-    breaks.insert(breaks.end(), t.begin(), t.end());
-  }
-  std::sort(breaks.begin(), breaks.end());
-  breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
+    if (bc.wet) wet.push_back(bc.wet.get());
   std::vector<double> peak_C;
-  for (std::size_t c = 0; c < built->clutches.size(); ++c)
-    if (built->clutches[c].wet) peak_C.push_back(built->clutches[c].wet->thermal().interface_temps_C(thermal[peak_C.size()]).maxCoeff());
-  const double slow_step = wet.empty() ? cfg.duration_s : cfg.thermal_step_s;
-  rig_models::run_multirate(
-      sim, wet, cfg.duration_s, slow_step, cfg.sample_rate_Hz,
+  for (std::size_t w = 0; w < wet.size(); ++w) peak_C.push_back(wet[w]->thermal().interface_temps_C(thermal[w]).maxCoeff());
+  stepper.advance_to(
+      cfg.duration_s,
       [&](const dynamics::Sample& s) {
         recorder.sample(s);
         keep_snapshot(s);
       },
       [&](const rig_models::SlowStep& step) {
         for (std::size_t w = 0; w < wet.size(); ++w)
-          peak_C[w] = std::max(peak_C[w], wet[w].clutch->thermal().interface_temps_C(thermal[w]).maxCoeff());
-        for (std::size_t u = 0; u < units.size(); ++u) units[u].update_oil(thermal[unit_wet[u]]);
+          peak_C[w] = std::max(peak_C[w], wet[w]->thermal().interface_temps_C(thermal[w]).maxCoeff());
         recorder.step(slow, step.ta_s, step.tb_s);
-      },
-      breaks,
-      units.empty() ? std::function<void(double)>() : [&](double t) {
-        const dynamics::Sample s = sim.sample();
-        for (auto& u : units) u.at(t, s);
       });
 
   // Scalars: the energy account, per clutch its heat, per wet clutch its peak temperature.
@@ -191,7 +109,7 @@ NetworkRun run_network(const NetworkSpec& spec) {
   for (std::size_t c = 0; c < built->clutches.size(); ++c) {
     const BuiltClutch& bc = built->clutches[c];
     if (!bc.wet) continue;
-    auto range = rig_models::friction_range_block(ranges[static_cast<std::size_t>(wet_index[c])]);
+    auto range = rig_models::friction_range_block(stepper.data_ranges()[static_cast<std::size_t>(wet_index[c])]);
     const auto* f = range.find_scalar("fraction_outside");
     const double outside = f ? f->value : std::nan("");
     range.name = std::string(rig_models::kFrictionRangeBlock) + "." + bc.name();

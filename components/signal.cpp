@@ -79,6 +79,14 @@ Signal Signal::product(Signal a, Signal b) {
   return s;
 }
 
+Signal Signal::held(std::shared_ptr<const double> value, Signal stands_for) {
+  Signal s;
+  s.kind_ = Kind::kHeld;
+  s.held_ = std::move(value);
+  s.f1_ = std::make_shared<const Signal>(std::move(stands_for));
+  return s;
+}
+
 double Signal::operator()(double t) const {
   switch (kind_) {
     case Kind::kConstant: return a_;
@@ -104,6 +112,7 @@ double Signal::operator()(double t) const {
       if (t >= c_ + d_) return b_;
       return a_ + (b_ - a_) * (t - c_) / d_;
     case Kind::kProduct: return (*f1_)(t) * (*f2_)(t);
+    case Kind::kHeld: return *held_;
   }
   return 0.0;
 }
@@ -112,7 +121,8 @@ double Signal::derivative(double t) const {
   switch (kind_) {
     case Kind::kConstant:
     case Kind::kStep:
-    case Kind::kPulse: return 0.0;
+    case Kind::kPulse:
+    case Kind::kHeld: return 0.0;
     case Kind::kTable: {
       if (!linear_ || t < times_.front() || t >= times_.back()) return 0.0;
       const auto hi = static_cast<std::size_t>(std::upper_bound(times_.begin(), times_.end(), t) - times_.begin());
@@ -133,7 +143,8 @@ std::vector<double> Signal::knots(double t0, double t1) const {
     if (t > t0 && t < t1) k.push_back(t);
   };
   switch (kind_) {
-    case Kind::kConstant: break;
+    case Kind::kConstant:
+    case Kind::kHeld: break;
     case Kind::kSine: add(e_); break;
     case Kind::kTable:
       for (double t : times_) add(t);
@@ -181,12 +192,14 @@ std::vector<double> probe_values(const Signal& s, double t0, double t1) {
 }  // namespace
 
 double Signal::max_over(double t0, double t1) const {
+  if (kind_ == Kind::kHeld) return f1_->max_over(t0, t1);
   if (kind_ == Kind::kSine && t1 >= e_) return std::max(a_, a_ + std::abs(b_));
   const auto v = probe_values(*this, t0, t1);
   return *std::max_element(v.begin(), v.end());
 }
 
 double Signal::min_over(double t0, double t1) const {
+  if (kind_ == Kind::kHeld) return f1_->min_over(t0, t1);
   if (kind_ == Kind::kSine && t1 >= e_) return std::min(a_, a_ - std::abs(b_));
   const auto v = probe_values(*this, t0, t1);
   return *std::min_element(v.begin(), v.end());

@@ -11,6 +11,9 @@
 //   pulse      y = high for (t − start_s) mod period_s < width_s (t >= start_s), else low
 //   ramp       y = from_value until start_s, linear to to_value at start_s + duration_s, then held
 //   product    y = y_1(t) · y_2(t)
+//   held       y = a value set from outside while the network runs (an FMU's input, fmu/network_fmu.cpp):
+//              no knots, slope 0; its range over a run (max_over, min_over) is the scenario signal's
+//              it stands in for, so the builder's checks judge the scenario as written
 //
 // Units: t in s, y in the unit of the key the signal drives (documented with each component).
 // derivative(t) is dy/dt where defined (0 at and across jumps: a speed source fed a step jumps
@@ -24,7 +27,7 @@ namespace shudder::components {
 
 class Signal {
  public:
-  enum class Kind { kConstant, kTable, kStep, kSine, kPulse, kRamp, kProduct };
+  enum class Kind { kConstant, kTable, kStep, kSine, kPulse, kRamp, kProduct, kHeld };
 
   static Signal constant(double value);
   /// times strictly increasing, one value per time (std::invalid_argument otherwise).
@@ -36,6 +39,9 @@ class Signal {
   /// duration_s >= 0 (0: a step at start_s).
   static Signal ramp(double from_value, double to_value, double start_s, double duration_s);
   static Signal product(Signal a, Signal b);
+  /// The value `*value` (which the caller changes between integration steps) in place of
+  /// `stands_for`, whose range max_over/min_over report.
+  static Signal held(std::shared_ptr<const double> value, Signal stands_for);
 
   double operator()(double t_s) const;
   double derivative(double t_s) const;
@@ -53,7 +59,8 @@ class Signal {
   std::vector<double> times_, values_;  // table
   bool linear_ = true;
   double a_ = 0, b_ = 0, c_ = 0, d_ = 0, e_ = 0;  // per kind, see the factories
-  std::shared_ptr<const Signal> f1_, f2_;           // product
+  std::shared_ptr<const Signal> f1_, f2_;           // product; held: f1_ is the signal it stands for
+  std::shared_ptr<const double> held_;              // held
 };
 
 }  // namespace shudder::components

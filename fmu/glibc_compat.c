@@ -16,6 +16,7 @@
 #include <fcntl.h>
 #include <pthread.h>
 #include <stddef.h>
+#include <stdlib.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
@@ -145,3 +146,40 @@ unsigned int __wrap_arc4random(void) {
  * process. Defined here (hidden, so the library's own references bind to it) as 0: "maybe
  * threaded", always the atomic path, which is what an older glibc means too. */
 __attribute__((visibility("hidden"))) char __libc_single_threaded = 0;
+
+/* glibc 2.18 added __cxa_thread_atexit_impl, which libstdc++ calls to run the destructors of
+ * thread_local objects when their thread ends (the network FMU has some: the fixed-step
+ * stepper's workspace, dynamics/simulation.cpp). Here the same with what 2.17 has, as
+ * libstdc++ itself does on a glibc without it: a list per thread, run newest first by a
+ * pthread key's destructor. Like that fallback it does not keep the library loaded until the
+ * destructors ran (a master that unloads the FMU while a thread that stepped it still runs
+ * must not let that thread end afterwards), and the main thread's list is left to the
+ * process's exit. */
+struct thread_dtor {
+  void (*dtor)(void*);
+  void* obj;
+  struct thread_dtor* next;
+};
+static pthread_key_t thread_dtor_key;
+static pthread_once_t thread_dtor_once = PTHREAD_ONCE_INIT;
+static void run_thread_dtors(void* p) {
+  struct thread_dtor* d = p;
+  while (d) {
+    struct thread_dtor* next = d->next;
+    d->dtor(d->obj);
+    free(d);
+    d = next;
+  }
+}
+static void make_thread_dtor_key(void) { pthread_key_create_old(&thread_dtor_key, run_thread_dtors); }
+int __wrap___cxa_thread_atexit_impl(void (*dtor)(void*), void* obj, void* dso_handle) {
+  (void)dso_handle;
+  pthread_once_old(&thread_dtor_once, make_thread_dtor_key);
+  struct thread_dtor* d = malloc(sizeof *d);
+  if (!d) return -1;
+  d->dtor = dtor;
+  d->obj = obj;
+  d->next = pthread_getspecific_old(thread_dtor_key);
+  pthread_setspecific_old(thread_dtor_key, d);
+  return 0;
+}

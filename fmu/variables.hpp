@@ -10,10 +10,9 @@
 
 #include <string_view>
 
-namespace shudder::fmu {
+#include "fmu/fmi2_instance.hpp"
 
-enum class Type { kReal, kInteger, kBoolean, kString };
-enum class Causality { kParameter, kInput, kOutput };
+namespace shudder::fmu {
 
 struct Variable {
   unsigned vr;

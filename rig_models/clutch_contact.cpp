@@ -37,6 +37,13 @@ void ClutchContext::set_ring_temperature_ramp(const Eigen::VectorXd& start_C, co
   cached_slip_ = -1.0;
 }
 
+void ClutchContext::set_normal_force(PiecewiseLinear normal_force_N) {
+  // The caches are keyed by the force they were built at: only the last query's is dropped.
+  held_.normal_force_N = std::move(normal_force_N);
+  static_valid_ = false;
+  cached_slip_ = -1.0;
+}
+
 double ClutchContext::ramp_weight(double t_s) const {
   return ramp_ ? std::clamp((t_s - ramp_t0_s_) / (ramp_t1_s_ - ramp_t0_s_), 0.0, 1.0) : 0.0;
 }

@@ -61,6 +61,8 @@ class ClutchContext {
   /// `start_C`. A ramp that starts where the previous one ended reuses its frozen friction.
   void set_ring_temperature_ramp(const Eigen::VectorXd& start_C, const Eigen::VectorXd& end_C, double t0_s,
                                  double t1_s);
+  /// Replaces the clamp force schedule (an FMU's input between communication steps).
+  void set_normal_force(PiecewiseLinear normal_force_N);
   const ClutchHeldInputs& held() const { return held_; }
 
  private:

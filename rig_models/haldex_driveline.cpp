@@ -302,15 +302,6 @@ Eigen::VectorXd HaldexDriveline::rolling_speed_ratios() const {
   return s;
 }
 
-void apply_pack_oil(const DrivelineParams& params, int sliding_interfaces, clutch::ThermalParams& thermal) {
-  if (sliding_interfaces < 1) throw std::invalid_argument("driveline: the pack needs at least one sliding interface");
-  if (!std::isfinite(params.pack_oil_volume_ml) || !(params.pack_oil_volume_ml > 0) ||
-      !std::isfinite(params.pack_cooling_flow_ml_min) || params.pack_cooling_flow_ml_min < 0)
-    throw std::invalid_argument("driveline: pack_oil_volume_ml must be > 0 and pack_cooling_flow_ml_min >= 0");
-  thermal.sump_volume_m3 = params.pack_oil_volume_ml * 1e-6 / sliding_interfaces;
-  thermal.supply_flow_m3_s = params.pack_cooling_flow_ml_min * 1e-6 / 60.0 / sliding_interfaces;
-}
-
 dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::WetClutch& clutch,
                                   const DrivelineInputs& inputs, const DrivelineSettings& cfg) {
   if (!(cfg.duration_s > 0) || !(cfg.slow_step_s > 0) || !(cfg.sample_rate_Hz > 0))

@@ -79,6 +79,43 @@ void run_multirate(dynamics::Simulation& sim, const std::vector<MultirateClutch>
                    const std::vector<double>& breaks_s = {},
                    const std::function<void(double t_s)>& at_break = nullptr);
 
+/// The coupling of run_multirate (above) taken in pieces: advance_to(t) completes every slow
+/// step that ends by t and integrates the torsional states on into the step under way, whose
+/// thermal update waits until a later call reaches its end. run_multirate is one call to the
+/// duration; an FMU calls it once per communication step. Slow steps, breaks and samples fall
+/// at the same times whatever the pieces (the ends of the pieces are not restarts), so a run in
+/// pieces follows the run in one call (the fixed-step stepper: to round-off, its steps cut at
+/// the pieces' ends). `end_s` may be infinite (no duration: slow steps unbounded, no samples
+/// delivered, but slow-step ends still snapped onto the sample times k / sample_rate_Hz as a
+/// run's are, so they fall at the same instants).
+class MultirateCoupling {
+ public:
+  MultirateCoupling(dynamics::Simulation& sim, const std::vector<MultirateClutch>& clutches, double end_s,
+                    double slow_step_s, double sample_rate_Hz, std::vector<double> breaks_s = {},
+                    std::function<void(double t_s)> at_break = nullptr);
+  ~MultirateCoupling();
+  MultirateCoupling(const MultirateCoupling&) = delete;
+  MultirateCoupling& operator=(const MultirateCoupling&) = delete;
+  /// Advances the simulation to min(t_s, end_s).
+  void advance_to(double t_s, const std::function<void(const dynamics::Sample&)>& on_sample,
+                  const std::function<void(const SlowStep&)>& after_step);
+
+ private:
+  struct Slot;
+  double step_end(long k) const;
+  void finish_slow_step(double ta, double tb, const dynamics::Sample& sb);
+
+  dynamics::Simulation& sim_;
+  double end_s_, slow_step_s_, sample_rate_Hz_, t0_s_, snap_s_;
+  long n_samples_ = 0;
+  std::vector<double> sample_times_, breaks_s_;
+  std::function<void(double)> at_break_;
+  std::vector<Slot> slots_;
+  long k_ = 1;                 // the slow step under way
+  double ta_s_ = 0.0;          // its start
+  dynamics::Sample sa_;        // the simulation there
+};
+
 /// Runs `sim` from its current time to `duration_s`; `on_sample` gets every sample at
 /// `sample_rate_Hz` (k / rate, k >= 1), `after_step` each completed slow step after the thermal
 /// update of `ts` and of the ring temperatures held in `context` (the context the network's

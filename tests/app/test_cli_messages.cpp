@@ -35,6 +35,7 @@ TEST(CliMessages, HelpAndVersionStillExitZero) {
   auto r = run_cli("--help", dir);
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_THAT(r.out, HasSubstr("Subcommands:"));
+  EXPECT_THAT(r.out, HasSubstr("export-fmu"));  // docs/fmu.md "Your drivetrain as an FMU"
   EXPECT_EQ(r.err, "");
   r = run_cli("run --help", dir);
   EXPECT_EQ(r.exit_code, 0);

@@ -27,7 +27,7 @@ const std::map<std::string, std::set<std::string>>& allowed() {
       {"components", {"core", "clutch", "dynamics", "analysis", "rig_models"}},
       {"io", {"core", "clutch", "dynamics", "analysis", "rig_models", "components"}},
       {"report", {"core", "clutch", "dynamics", "analysis", "rig_models", "components", "io"}},
-      {"app", {"core", "clutch", "dynamics", "analysis", "rig_models", "components", "io", "report"}},
+      {"app", {"core", "clutch", "dynamics", "analysis", "rig_models", "components", "io", "report", "fmu"}},
       {"python", {"core", "clutch", "dynamics", "analysis", "rig_models", "components", "io", "report", "app"}},
       {"fmu", {"core", "clutch", "dynamics", "analysis", "rig_models", "components", "io"}},  // the FMU, beside app
   };
