@@ -35,6 +35,7 @@
 #include "io/network_scenario.hpp"
 #include "io/output_safety.hpp"
 #include "report/plots.hpp"
+#include "report/run_report_directory.hpp"
 #include "io/scenario.hpp"
 #include "io/sweep_spec.hpp"
 #include "rig_models/energy_guard.hpp"
@@ -378,15 +379,18 @@ int sweep_command(const SweepOptions& opt) {
       table.columns = out.columns;
       table.text_column_name = out.text_column_name;
       table.text_column = out.text_column;
+      table.message_column = out.message_column;
+      report::Report rep;
       try {
-        report::write_sweep_report(opt.report, table, base.name, summary);
+        rep = report::write_sweep_report(opt.report, table, base.name, summary, opt.output);
       } catch (const io::InputError&) {
         throw;
       } catch (const std::exception& e) {
         std::cerr << "shudder: report failed: " << e.what() << " (the sweep itself is in " << opt.output << ")\n";
         return 1;
       }
-      if (!opt.quiet) std::printf("Report: %s (summary.txt, sweep.png)\n", opt.report.c_str());
+      if (!opt.quiet) std::printf("Report: %s (%zu files)\n", opt.report.c_str(), rep.files.size());
+      for (const auto& s : rep.skipped) std::cerr << "shudder: warning: report: " << s << "\n";
     }
     return 0;
   });

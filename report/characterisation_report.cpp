@@ -120,7 +120,7 @@ std::string method_comparison_summary(const rig_models::InverseCharacterisation&
 }
 
 Report write_characterisation_report(const std::string& dir, const analysis::Characterisation& c,
-                                     const std::string& summary_text) {
+                                     const std::string& summary_text, const std::vector<std::string>& data_files) {
   make_report_dir(dir);
   Report report;
   const auto path = [&](const std::string& file) { return (fs::path(dir) / file).string(); };
@@ -166,6 +166,11 @@ Report write_characterisation_report(const std::string& dir, const analysis::Cha
     else
       report.skipped.push_back(file + ": " + kGnuplotMissing);
   }
+  ReportIndex index;
+  index.title = "shudder characterise";
+  index.summary = summary_text;
+  index.data_files = data_files;
+  write_report_index(dir, index, report);
   return report;
 }
 

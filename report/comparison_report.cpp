@@ -106,7 +106,7 @@ std::string comparison_summary(const rig_models::Comparison& c) {
 
 Report write_comparison_report(const std::string& dir, const rig_models::Comparison& c,
                                const std::vector<std::pair<std::string, clutch::Fluid>>& fluids,
-                               const std::string& summary_text) {
+                               const std::string& summary_text, const std::vector<std::string>& data_files) {
   namespace fs = std::filesystem;
   make_report_dir(dir);
   Report report;
@@ -135,6 +135,11 @@ Report write_comparison_report(const std::string& dir, const rig_models::Compari
     }
     add_report_plot(report, dir, file, p);
   }
+  ReportIndex index;
+  index.title = "shudder compare";
+  index.summary = summary_text;
+  index.data_files = data_files;
+  write_report_index(dir, index, report);
   return report;
 }
 

@@ -206,8 +206,19 @@ std::string diagnosis_candidates_markdown(const analysis::DiagnosisResult& r) {
   return md.str();
 }
 
+/// The channels' fit as a table for index.html (the candidates.md table's columns).
+HtmlTable channel_table(const analysis::DiagnosisResult& r) {
+  HtmlTable t;
+  t.caption = "Signals";
+  t.header = {"signal", "comparison", "baseline RMS", "final RMS", "error scale", "RMS / scale", "within"};
+  for (const auto& c : r.channels)
+    t.rows.push_back({c.signal, c.comparison, fixed(c.baseline_rms), fixed(c.final_rms), fixed(c.error_scale),
+                      fixed(std::sqrt(c.final_misfit)), c.within ? "yes" : "no"});
+  return t;
+}
+
 Report write_diagnosis_report(const std::string& dir, const analysis::DiagnosisResult& r,
-                              const std::string& summary_text) {
+                              const std::string& summary_text, const std::vector<std::string>& data_files) {
   make_report_dir(dir);
   Report report;
   const auto path = [&](const std::string& f) { return (fs::path(dir) / f).string(); };
@@ -246,6 +257,14 @@ Report write_diagnosis_report(const std::string& dir, const analysis::DiagnosisR
       add_report_plot(report, dir, file, plots[i]);
     }
   }
+  ReportIndex index;
+  index.title = "shudder diagnose";
+  index.verdict = verdict_sentence(r);
+  index.verdict_class = r.verdict == analysis::DiagnosisVerdict::kExplained ? "none" : "shudder";
+  index.summary = summary_text;
+  index.tables.push_back(channel_table(r));
+  index.data_files = data_files;
+  write_report_index(dir, index, report);
   return report;
 }
 

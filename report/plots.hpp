@@ -25,6 +25,7 @@
 
 #include "dynamics/recording.hpp"
 #include "report/gnuplot.hpp"
+#include "report/report_directory.hpp"
 #include "io/hdf5_sweep.hpp"
 
 namespace shudder::report {
@@ -64,34 +65,5 @@ Series contour_series(const std::vector<double>& x, const std::vector<double>& y
 /// Reads the run or sweep file `h5_path` and writes the plot of `kind` to `out_path` (.png or
 /// .svg). io::InputError when the file is unreadable or lacks what the plot needs.
 void plot_file(const std::string& h5_path, PlotKind kind, const std::string& out_path);
-
-/// Creates the report directory `dir` (and its parents); io::InputError naming it when it cannot.
-void make_report_dir(const std::string& dir);
-
-struct Report;
-/// Writes `plot` to `dir`/`file` and lists it in `report.files`; a plot gnuplot fails to draw is
-/// listed in `report.skipped` with gnuplot's reason instead. An unwritable destination stays an
-/// io::InputError (the caller's problem, as for the report's text files).
-void add_report_plot(Report& report, const std::string& dir, const std::string& file, const Plot& plot);
-
-/// The `report.skipped` reason for plots when gnuplot is not on PATH.
-inline constexpr const char* kGnuplotMissing = "gnuplot not found; install gnuplot (Debian: gnuplot-nox)";
-
-struct Report {
-  std::vector<std::string> files;    // written, in order
-  std::vector<std::string> skipped;  // "spectrum.png: <why>" for plots the data do not support
-};
-
-/// Report directory of a run: `dir`/summary.txt (`summary`), verdict.json (the recording's
-/// verdict block, io/verdict_json.hpp; when it holds one), torque.png, temperature.png,
-/// spectrum.png and, for rig runs (`rig`), spectrogram.png and stability_map.png (the latter
-/// when the recording holds the map). Creates `dir`. A plot the data cannot support (e.g. a
-/// record too short for a spectrum) is skipped and listed, not an error.
-Report write_run_report(const std::string& dir, const dynamics::Recording& rec,
-                        const std::string& name, const std::string& summary, bool rig);
-
-/// Report directory of a sweep: `dir`/summary.txt and sweep.png.
-Report write_sweep_report(const std::string& dir, const io::SweepTable& table, const std::string& name,
-                          const std::string& summary);
 
 }  // namespace shudder::report

@@ -15,6 +15,7 @@
 #include "io/hdf5_run.hpp"
 #include "report/plots.hpp"
 #include "tests/support/cli.hpp"
+#include "tests/support/short_scenarios.hpp"
 
 using namespace shudder;
 using namespace shudder::test;
@@ -25,34 +26,6 @@ namespace fs = std::filesystem;
 namespace {
 
 bool have_gnuplot() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
-
-void replace(std::string& s, const std::string& from, const std::string& to) {
-  const auto pos = s.find(from);
-  ASSERT_NE(pos, std::string::npos) << from;
-  s.replace(pos, from.size(), to);
-}
-
-// The negative-slope rig case shortened to 0.8 s: the clutch-side mode grows at ~13 1/s from
-// the start (seeded by the motor ripple and the warming), saturating by ~0.6 s: enough for the
-// detector to call it a vibration.
-std::string short_rig_scenario() {
-  std::string s = slurp(source_path("scenarios/rig_shudder_negative_slope.toml"));
-  replace(s, "duration_s = 2.0", "duration_s = 0.8");
-  replace(s, "time_s = [0.0, 2.0]", "time_s = [0.0, 0.8]");
-  replace(s, "fluids/schematic_negative_slope.toml",
-          source_path("scenarios/fluids/schematic_negative_slope.toml"));
-  return s;
-}
-
-// Paper G Case 1 (prescribed slip) shortened to 3 s.
-std::string short_prescribed_scenario() {
-  std::string s = slurp(source_path("scenarios/paper_g_case1_10kN.toml"));
-  replace(s, "duration_s = 10.0", "duration_s = 3.0");
-  replace(s, "time_s = [0.0, 10.0]", "time_s = [0.0, 3.0]");
-  replace(s, "snapshot_times_s = [3.0, 6.0, 9.0]", "snapshot_times_s = [1.0]");
-  replace(s, "fluids/lsc_fluid_c.toml", source_path("scenarios/fluids/lsc_fluid_c.toml"));
-  return s;
-}
 
 void expect_png(const fs::path& p) {
   ASSERT_TRUE(fs::exists(p)) << p;
@@ -206,7 +179,7 @@ TEST(CliPlot, RunReportHoldsTheSummaryAndTheKeyPlots) {
   write_file(dir / "rig.toml", short_rig_scenario());
   auto r = run_cli("run rig.toml -o rig.h5 --report rep", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_THAT(r.out, HasSubstr("Report: rep (7 files)"));  // summary.txt, verdict.json, five plots
+  EXPECT_THAT(r.out, HasSubstr("Report: rep (8 files)"));  // summary.txt, verdict.json, five plots, index.html
   EXPECT_TRUE(fs::exists(dir / "rep" / "verdict.json"));
   const std::string summary = slurp(dir / "rep" / "summary.txt");
   EXPECT_THAT(summary, HasSubstr("Scenario  rig_shudder_negative_slope (rig)"));
@@ -244,7 +217,7 @@ TEST(CliPlot, RunReportSkipsPlotsWhenGnuplotFails) {
   const auto r = run_cli("run rig.toml -o rig.h5 --report rep", dir);
   ::setenv("PATH", saved.c_str(), 1);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_THAT(r.out, HasSubstr("Report: rep (2 files)"));  // summary.txt and verdict.json
+  EXPECT_THAT(r.out, HasSubstr("Report: rep (3 files)"));  // summary.txt, verdict.json, index.html
   EXPECT_TRUE(fs::exists(dir / "rep" / "summary.txt"));
   EXPECT_TRUE(fs::exists(dir / "rep" / "verdict.json"));
   EXPECT_THAT(r.err, HasSubstr("shudder: warning: report: torque.png: gnuplot could not draw"));
