@@ -47,6 +47,19 @@ std::string quoted(const std::string& s) {
   return out + "'";
 }
 
+/// A gnuplot string expression for text with line breaks: the lines quoted, joined by "\n".
+std::string multiline_quoted(const std::string& s) {
+  std::string out;
+  std::size_t from = 0;
+  for (;;) {
+    const std::size_t nl = s.find('\n', from);
+    out += quoted(s.substr(from, nl == std::string::npos ? std::string::npos : nl - from));
+    if (nl == std::string::npos) return out;
+    out += ".\"\\n\".";
+    from = nl + 1;
+  }
+}
+
 /// Removes its directory (and contents) when it goes out of scope.
 struct TempDir {
   fs::path path;
@@ -292,7 +305,7 @@ void panel_text(std::ostringstream& s, const Plot& plot, const fs::path& data, c
   for (const auto& l : plot.labels) {
     char buf[96];
     std::snprintf(buf, sizeof buf, " at %.10g,%.10g offset character 1,0.8 front boxed\n", l.x, l.y);
-    s << "set label " << label_id++ << " " << quoted(l.text) << buf;
+    s << "set label " << label_id++ << " " << multiline_quoted(l.text) << buf;
   }
   if (!plot.series_y2.empty()) {
     s << "set border 11\nset y2tics nomirror out\nset y2label " << quoted(plot.y2label) << "\n"
@@ -313,9 +326,11 @@ void panel_text(std::ostringstream& s, const Plot& plot, const fs::path& data, c
       s << " with points pt " << v.point_type << " ps " << v.point_size;
     else
       s << (v.style == SeriesStyle::kLinesPoints ? " with linespoints" : " with lines") << " lw "
-        << v.line_width << " dt " << (v.dashed ? 2 : 1);
-    if (v.style == SeriesStyle::kLinesPoints)
+        << v.line_width << " dt " << (v.dash_type > 0 ? v.dash_type : v.dashed ? 2 : 1);
+    if (v.style == SeriesStyle::kLinesPoints) {
       s << " pt " << v.point_type << " ps " << v.point_size;
+      if (v.point_interval > 0) s << " pi " << v.point_interval;
+    }
     s << " lc rgb '" << color << "' ";
     if (v.label.empty()) s << "notitle";
     else s << "title " << quoted(v.label);

@@ -35,12 +35,14 @@ struct Series {
   double point_size = 1.2;
   double line_width = 2.0;
   std::string rgb = "";        // e.g. "#000000": this colour instead of the palette's
+  int dash_type = 0;           // gnuplot dash type (2 dashed, 3 dotted, 4 dash-dot); 0 = by `dashed`
+  int point_interval = 0;      // kLinesPoints: a marker every this many points; 0 = every point
 };
 
 /// Text at a data position (left axes), drawn above the curves with a small offset.
 struct Label {
   double x = 0.0, y = 0.0;
-  std::string text;
+  std::string text;  // '\n' breaks the line
 };
 
 /// A colour map drawn under the curves (gnuplot `with image`): one pixel per grid point, a

@@ -2,11 +2,14 @@
 // The plots of `shudder plot` and of the report directories of `shudder run` / `sweep`
 // (docs/plots.md), built from what a run or sweep file holds and drawn by report/gnuplot:
 //
-//   torque         torque_Nm (and clutch_torque_Nm) vs time, sliding speed on the right axis
+//   torque         torque_Nm (and clutch_torque_Nm) vs time, sliding speed in its own panel,
+//                  detail panels of an oscillating run (report/time_plots.hpp)
 //   temperature    temp_C, ir_temp_C, sump_temp_C, interface_max_temp_C vs time
-//   spectrum       Hann-windowed amplitude spectrum of the torque over the whole record (mean
-//                  removed), log amplitude, the detected shudder peak (analysis/
-//                  shudder_detection) marked and labelled
+//   coupling       a driveline's coupling torque and slip (report/time_plots.hpp)
+//   spectrum       Hann-windowed amplitude spectrum of the judged torque (mean removed) over
+//                  the oscillating part the detector measured and over the whole record, log
+//                  amplitude, the detected shudder peak (analysis/shudder_detection) marked
+//                  and labelled with both amplitudes
 //   spectrogram    short-time torque PSD in dB over time x frequency, in the band 0.5–2.5 times
 //                  the dominant frequency, with that frequency and the onset marked
 //   stability_map  margin (1/s) of the stored /analysis/stability_map over slip speed x
@@ -26,6 +29,7 @@
 #include "dynamics/recording.hpp"
 #include "report/gnuplot.hpp"
 #include "report/report_directory.hpp"
+#include "report/time_plots.hpp"
 #include "io/hdf5_sweep.hpp"
 
 namespace shudder::report {
@@ -40,9 +44,7 @@ std::optional<PlotKind> parse_plot_kind(std::string_view name);
 std::string scenario_name(const std::string& scenario_text, const std::string& fallback);
 
 /// Builders: `name` titles the plot (the scenario's name), `source` names the data in errors.
-Plot torque_plot(const dynamics::Recording& rec, const std::string& name, const std::string& source);
-Plot temperature_plot(const dynamics::Recording& rec, const std::string& name,
-                      const std::string& source);
+/// The time histories (torque, coupling, temperature) are in report/time_plots.hpp.
 Plot spectrum_plot(const dynamics::Recording& rec, const std::string& name,
                    const std::string& source);
 Plot spectrogram_plot(const dynamics::Recording& rec, const std::string& name,
@@ -51,9 +53,9 @@ Plot stability_map_plot(const dynamics::Recording& rec, const std::string& name,
                         const std::string& source);
 Plot sweep_plot(const io::SweepTable& table, const std::string& name, const std::string& source);
 
-/// The plot of `kind` for a run recording (every kind but kSweep).
-Plot run_plot(PlotKind kind, const dynamics::Recording& rec, const std::string& name,
-              const std::string& source);
+/// The figure of `kind` for a run recording (every kind but kSweep).
+MultiPlot run_plot(PlotKind kind, const dynamics::Recording& rec, const std::string& name,
+                   const std::string& source);
 
 /// Contour line(s) of `values` (n_x x n_y on the grid x, y) at `level` by marching squares:
 /// one straight segment per grid cell the level crosses (linear interpolation along the cell

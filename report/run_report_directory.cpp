@@ -92,7 +92,7 @@ Report write_run_report(const std::string& dir, const dynamics::Recording& rec, 
                         {PlotKind::kStabilityMap, "stability_map.png", rig && rec.find_map("stability_map")}};
   for (const auto& item : items) {
     if (!item.wanted) continue;
-    Plot plot;
+    MultiPlot plot;
     try {
       plot = run_plot(item.kind, rec, name, "the run");
     } catch (const io::InputError& e) {
