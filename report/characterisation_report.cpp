@@ -155,9 +155,15 @@ Report write_characterisation_report(const std::string& dir, const analysis::Cha
       ud.series.push_back({"", c.node_speeds_mm_s, r.down_comp, colour, false, SeriesStyle::kLinesPoints, 2, 0.8, 1.5});
       colour = (colour + 1) % 8;
     }
+    mu_v.caption = "Friction coefficient against sliding speed at " + tag +
+                   ": the measured ramps' binned means (points, temperature-compensated) and the fitted law "
+                   "(lines), one colour per row temperature.";
+    ud.caption = "Up (circles) and down (crosses) ramps' node means at " + tag +
+                 ": raw dashed, temperature-compensated solid; the gap between them is what compensation removes.";
     plots.emplace_back("mu_v_" + tag + ".png", mu_v);
     plots.emplace_back("up_down_" + tag + ".png", ud);
   }
+  residuals.caption = "Fitted law minus measured friction coefficient (binned means) against sliding speed, per row.";
   plots.emplace_back("residuals.png", residuals);
   const bool gnuplot = gnuplot_on_path();
   for (auto& [file, plot] : plots) {

@@ -124,6 +124,8 @@ Report write_comparison_report(const std::string& dir, const rig_models::Compari
     p.title = "mu against slip speed at " + comparison_number("%.4g", t) + " °C, " + comparison_number("%.0f", c.load_N) + " N";
     p.xlabel = "slip speed [rpm]";
     p.ylabel = "mu [-]";
+    p.caption = "Each fluid's friction coefficient against slip speed (1–120 rpm) at " + comparison_number("%.4g", t) +
+                " °C and " + comparison_number("%.0f", c.load_N) + " N: a falling curve is the negative slope that feeds shudder.";
     for (const auto& [file_name, fluid] : fluids) {
       Series s;
       s.label = fluid.name;

@@ -103,6 +103,8 @@ Plot signal_plot(const RunTraces& tr, const char* what, const char* ylabel, cons
                  const std::vector<double>& baseline, const std::vector<double>& final) {
   Plot p;
   p.title = printable(tr.run) + ": " + what + ", measured vs model";
+  p.caption = std::string("The run's measured ") + what + " (thin black), the baseline model (orange dashed) and the "
+              "final model with the effects the diagnosis added (blue) against time.";
   p.xlabel = "time [s]";
   p.ylabel = ylabel;
   const std::size_t n = tr.time_s.size();

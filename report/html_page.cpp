@@ -94,7 +94,6 @@ std::string html_page_text(const HtmlPage& page) {
   }
   if (!page.summary.empty())
     o << "<h2>Summary</h2>\n<pre id=\"summary\">" << html_escape(page.summary) << "</pre>\n";
-  for (const auto& t : page.tables) table(o, t);
   if (!page.figures.empty()) {
     o << "<h2>Figures</h2>\n";
     for (const auto& f : page.figures) {
@@ -105,6 +104,7 @@ std::string html_page_text(const HtmlPage& page) {
         << "</figcaption>\n</figure>\n";
     }
   }
+  for (const auto& t : page.tables) table(o, t);
   if (!page.not_drawn.empty()) {
     o << "<h2>Not drawn</h2>\n<ul>\n";
     for (const auto& s : page.not_drawn) o << "<li>" << html_escape(s) << "</li>\n";

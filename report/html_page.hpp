@@ -1,9 +1,10 @@
 #pragma once
-// A report directory's index.html as text (docs/formats/report_index.md): one self-contained
+// A report directory's index.html as text (docs/plots.md "The report page"): one self-contained
 // page — inline CSS, no scripts, no external resources — with a title, a verdict line, the
-// printed summary, tables, the figures (relative links to the PNGs beside it) and links to the
-// text and data files. Every text that comes from input (scenario and run names, file names,
-// the summary, table cells) is HTML-escaped here; callers pass plain text, never markup.
+// printed summary, the figures (relative links to the PNGs beside it), tables, plots not drawn
+// and links to the text and data files, in that order. Every text that comes from input
+// (scenario and run names, file names, the summary, table cells) is HTML-escaped here; callers
+// pass plain text, never markup.
 
 #include <string>
 #include <string_view>

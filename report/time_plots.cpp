@@ -18,7 +18,8 @@ using dynamics::Recording;
 using dynamics::Signal;
 
 constexpr std::size_t kEnvelopeBins = 1500;  // ~1.5 slices per pixel of the 1000 px image
-constexpr double kDetailPeriods = 6.0;       // periods of the shudder frequency in a detail panel
+constexpr double kDetailPeriods = 8.0;       // periods of the shudder frequency in a detail panel
+constexpr double kPeriodsBeforeOnset = 1.5;  // of which before the onset: the last quiet cycles
 
 /// What one time figure shows.
 struct TimeChannels {
@@ -33,12 +34,11 @@ bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() > suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-/// A detail window [from, to] of `periods` periods at frequency f, centred on `centre` but kept
-/// inside the record [t0, t1].
-std::pair<double, double> window_around(double centre, double f, double t0, double t1) {
+/// A detail window [from, to] of kDetailPeriods periods at frequency f starting `before`
+/// periods ahead of `at`, kept inside the record [t0, t1].
+std::pair<double, double> window_from(double at, double before, double f, double t0, double t1) {
   const double len = std::min(kDetailPeriods / f, t1 - t0);
-  double from = centre - 0.5 * len;
-  from = std::clamp(from, t0, t1 - len);
+  const double from = std::clamp(at - before / f, t0, t1 - len);
   return {from, from + len};
 }
 
@@ -115,10 +115,9 @@ MultiPlot time_figure(const Recording& rec, TimeChannels ch) {
   space_markers(overview.series);
 
   Plot slip;
-  // One slip channel is named by the panel's title, leaving the panel's height to the curve.
-  slip.title = ch.slip.size() == 1 ? ch.slip.front().label : "sliding speeds";
+  // One slip channel is named by the axis, leaving the panel's height to the curve.
   slip.xlabel = "time [s]";
-  slip.ylabel = "slip [rpm]";
+  slip.ylabel = ch.slip.size() == 1 ? ch.slip.front().label + " [rpm]" : "slip [rpm]";
   for (const auto& s : ch.slip) {
     slip.series.push_back(envelope(s, kEnvelopeBins));
     slip.series.back().line_width = 1.2;
@@ -132,8 +131,8 @@ MultiPlot time_figure(const Recording& rec, TimeChannels ch) {
     const double t0 = time->values.front(), t1 = time->values.back(), fd = det->frequency_Hz;
     const double onset = std::isfinite(det->onset_time_s) ? det->onset_time_s : det->oscillating_from_s;
     const double end = std::isfinite(det->oscillating_to_s) && det->oscillating_to_s > t0 ? det->oscillating_to_s : t1;
-    const auto [a0, a1] = window_around(onset, fd, t0, t1);
-    const auto [b0, b1] = window_around(end - 0.5 * kDetailPeriods / fd, fd, t0, t1);
+    const auto [a0, a1] = window_from(onset, kPeriodsBeforeOnset, fd, t0, t1);
+    const auto [b0, b1] = window_from(end, kDetailPeriods, fd, t0, t1);
     const std::string periods = plot_number("%.0f", kDetailPeriods) + " periods of " + plot_number("%.4g", fd) + " Hz";
     details.push_back(detail_panel(ch, "onset detail (onset " + plot_number("%.3g", onset) + " s): " + periods, a0, a1));
     details.push_back(detail_panel(ch, "end detail (" + plot_number("%.4g", b0) + "–" + plot_number("%.4g", b1) +
@@ -154,7 +153,7 @@ MultiPlot time_figure(const Recording& rec, TimeChannels ch) {
   f.row_heights.push_back(3.0);
   if (!slip.series.empty()) {
     f.rows.push_back({slip});
-    f.row_heights.push_back(1.6);
+    f.row_heights.push_back(1.8);
   }
   if (!details.empty()) {
     f.rows.push_back(details);
@@ -170,6 +169,25 @@ Series line_of(const Signal& t, const Signal& y, std::string label, const std::s
   s.dash_type = dash;
   s.line_width = width;
   return s;
+}
+
+/// A torque (solid blue), a second one if recorded (dashed red) and the slip (own panel); the
+/// title holds the channels' names.
+TimeChannels torque_pair(const Recording& rec, const Signal& t, const Signal& torque, const char* label,
+                         const char* second, const char* second_label, const Signal* slip) {
+  TimeChannels ch;
+  ch.ylabel = "torque [N m]";
+  ch.main.push_back(line_of(t, torque, label, "#1f77b4", 1, 1.2));
+  ch.title = torque.name;
+  if (const Signal* other = rec.find(second)) {
+    ch.main.push_back(line_of(t, *other, second_label, "#d62728", 2, 1.2));
+    ch.title += ", " + other->name;
+  }
+  if (slip) {
+    ch.slip.push_back(line_of(t, *slip, slip->name, "#4d4d4d", 1, 1.2));
+    ch.title += "; " + slip->name + " below";
+  }
+  return ch;
 }
 
 // A network run: every clutch's torque (the channels CLUTCH.torque_Nm beside CLUTCH.slip_rpm).
@@ -236,22 +254,12 @@ MultiPlot torque_plot(const Recording& rec, const std::string& name, const std::
   if (rig_models::network_verdict_clutch(rec)) return network_torque_plot(rec, name, source);
   const Signal& t = require_signal(rec, "time_s", source, "torque");
   const Signal& torque = require_signal(rec, "torque_Nm", source, "torque");
-  TimeChannels ch;
-  ch.ylabel = "torque [N m]";
-  ch.main.push_back(line_of(t, torque, "torque_Nm: measured torque (torque cell)", "#1f77b4", 1, 1.2));
-  std::string names = "torque_Nm";
-  if (const Signal* clutch = rec.find("clutch_torque_Nm")) {
-    ch.main.push_back(line_of(t, *clutch, "clutch_torque_Nm: friction torque of the clutch (dashed)", "#d62728", 2, 1.2));
-    names += ", clutch_torque_Nm";
-  }
   // The sliding speed explains the torque's shape (ramps, breakaway): its own panel.
   const Signal* speed = rec.find("slip_rpm");
   if (!speed) speed = rec.find("speed_rpm");
-  if (speed) {
-    ch.slip.push_back(line_of(t, *speed, speed->name + ": sliding speed", "#4d4d4d", 1, 1.2));
-    names += "; " + speed->name + " below";
-  }
-  ch.title = name + ": torque (" + names + ")";
+  TimeChannels ch = torque_pair(rec, t, torque, "torque_Nm: measured torque (torque cell)", "clutch_torque_Nm",
+                                "clutch_torque_Nm: friction torque of the clutch (dashed)", speed);
+  ch.title = name + ": torque (" + ch.title + ")";
   ch.caption = "The torque cell's torque and the clutch's friction torque against time over the whole record"
                " (a record denser than the image is drawn as its envelope); the sliding speed in the panel below.";
   return time_figure(rec, ch);
@@ -260,19 +268,9 @@ MultiPlot torque_plot(const Recording& rec, const std::string& name, const std::
 MultiPlot coupling_plot(const Recording& rec, const std::string& name, const std::string& source) {
   const Signal& t = require_signal(rec, "time_s", source, "coupling");
   const Signal& torque = require_signal(rec, "coupling_torque_Nm", source, "coupling");
-  TimeChannels ch;
-  ch.ylabel = "torque [N m]";
-  ch.main.push_back(line_of(t, torque, "coupling_torque_Nm: torque through the coupling", "#1f77b4", 1, 1.2));
-  std::string names = "coupling_torque_Nm";
-  if (const Signal* rear = rec.find("rear_axle_torque_Nm")) {
-    ch.main.push_back(line_of(t, *rear, "rear_axle_torque_Nm: rear half-shafts (dashed)", "#d62728", 2, 1.2));
-    names += ", rear_axle_torque_Nm";
-  }
-  if (const Signal* slip = rec.find("coupling_slip_rpm")) {
-    ch.slip.push_back(line_of(t, *slip, "coupling_slip_rpm: slip of the coupling", "#4d4d4d", 1, 1.2));
-    names += "; coupling_slip_rpm below";
-  }
-  ch.title = name + ": Haldex coupling (" + names + ")";
+  TimeChannels ch = torque_pair(rec, t, torque, "coupling_torque_Nm: torque through the coupling", "rear_axle_torque_Nm",
+                                "rear_axle_torque_Nm: rear half-shafts (dashed)", rec.find("coupling_slip_rpm"));
+  ch.title = name + ": Haldex coupling (" + ch.title + ")";
   ch.caption = "The torque through the Haldex coupling and the rear half-shafts' torque against time; the"
                " coupling's slip, which pumps its pressure, in the panel below (docs/driveline.md).";
   return time_figure(rec, ch);

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <regex>
 
 #include "io/hdf5_run.hpp"
 #include "report/plots.hpp"
@@ -106,6 +107,25 @@ TEST(CliPlot, EveryRunPlotOfARigRunDrawsPngAndSvgTitledWithTheScenario) {
   // The spectrum names what the detector found; the spectrogram its colour scale in dB.
   EXPECT_THAT(slurp(dir / "spectrum.svg"), HasSubstr("friction-induced vibration at 37"));
   EXPECT_THAT(slurp(dir / "spectrogram.svg"), HasSubstr("dB re 1 (N m)²/Hz"));
+  // The spectrogram names its channel and a frame length one can read.
+  EXPECT_THAT(slurp(dir / "spectrogram.svg"), testing::ContainsRegex("spectrogram of torque_Nm \\(frames of [0-9.]+ ms = "));
+  // The oscillating run's torque: slip in its own panel, onset and end details.
+  const std::string torque = slurp(dir / "torque.svg");
+  for (const char* text : {"slip_rpm [rpm]", "onset detail (onset ", "end detail (", "8 periods of 37"})
+    EXPECT_THAT(torque, HasSubstr(text)) << text;
+  // The spectrum's fundamental over the oscillating part is the detector's window: it lies
+  // closer to the detector's half peak-to-peak than the whole record's, which averages in the
+  // quiet start, and not above it (the half peak-to-peak also holds the harmonics).
+  const std::string spectrum = slurp(dir / "spectrum.svg");
+  std::smatch m, d;
+  ASSERT_TRUE(std::regex_search(spectrum, m, std::regex("fundamental ([0-9.]+) N m \\(whole record: ([0-9.]+) N m\\)")));
+  ASSERT_TRUE(std::regex_search(spectrum, d, std::regex("detector amplitude ([0-9.]+) N m \\(half peak-to-peak\\)")));
+  const double part = std::stod(m[1].str()), whole = std::stod(m[2].str()), detector = std::stod(d[1].str());
+  EXPECT_LT(whole, part);
+  EXPECT_LE(part, 1.02 * detector);
+  EXPECT_LT(std::abs(detector - part), std::abs(detector - whole));
+  // The thermometers are told apart in the legend.
+  EXPECT_THAT(slurp(dir / "temperature.svg"), HasSubstr("ir_temp_C: IR pyrometer (dashed, triangles); within "));
   EXPECT_THAT(slurp(dir / "stability_map.svg"), HasSubstr("stable | unstable boundary"));
 }
 
@@ -117,6 +137,11 @@ TEST(CliPlot, PrescribedSlipRunPlotsTimeHistoriesButHasNoStabilityMap) {
     ASSERT_EQ(r.exit_code, 0) << what << "\n" << r.err;
     expect_png(dir / (std::string(what) + ".png"));
   }
+  // No shudder: the speed below the torque, no detail panels.
+  ASSERT_EQ(run_cli("plot pg.h5 --what torque -o torque.svg", dir).exit_code, 0);
+  const std::string torque = slurp(dir / "torque.svg");
+  EXPECT_THAT(torque, HasSubstr("speed_rpm [rpm]"));
+  EXPECT_THAT(torque, Not(HasSubstr("onset detail")));
   const auto r = run_cli("plot pg.h5 --what stability_map -o map.png", dir);
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("pg.h5: no /analysis/stability_map: it is written for rig scenarios"));
