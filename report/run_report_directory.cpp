@@ -34,7 +34,10 @@ double scalar_or_nan(const dynamics::ResultBlock& b, const char* name) {
 HtmlTable cases_table(const io::SweepTable& table) {
   HtmlTable t;
   t.caption = "Cases";
-  for (const auto& c : table.columns) t.header.push_back(c.name + (c.units.empty() ? "" : " [" + units_text(c.units) + "]"));
+  for (const auto& c : table.columns) {
+    const std::string units = units_text(c.units);
+    t.header.push_back(c.name + (units.empty() ? "" : " [" + units + "]"));
+  }
   if (!table.text_column.empty()) t.header.push_back(table.text_column_name);
   const bool messages = !table.message_column.empty();
   if (messages) t.header.push_back("message");

@@ -121,7 +121,8 @@ TEST(ReportIndex, SweepPageHoldsTheCasesTableAndItsPlot) {
   const fs::path page = dir / "rep" / "index.html";
   const std::string html = slurp(page);
   EXPECT_THAT(html, HasSubstr("<h1>shudder sweep: rig_shudder_negative_slope</h1>"));
-  EXPECT_THAT(html, HasSubstr("<th>rig.torsion_bar.natural_frequency_Hz [Hz]</th>"));
+  EXPECT_THAT(html, HasSubstr("<th>rig.torsion_bar.natural_frequency_Hz</th><th>predicted_stable</th>"));
+  EXPECT_THAT(html, HasSubstr("<th>simulated_frequency_Hz [Hz]</th>"));
   EXPECT_THAT(html, HasSubstr("<tr><td>200</td>"));
   EXPECT_THAT(html, HasSubstr("<tr><td>300</td>"));
   EXPECT_THAT(html, HasSubstr("<td>vibration</td>"));

@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
@@ -40,15 +41,14 @@ TEST(TimePlots, EnvelopeKeepsEachSlicesExtremesInTimeOrder) {
   ASSERT_EQ(e.x.size(), 2000u);  // two points per slice
   EXPECT_EQ(e.label, "sine");
   for (std::size_t i = 1; i < e.x.size(); ++i) EXPECT_LE(e.x[i - 1], e.x[i]) << i;
-  // Each slice of 40 samples (~0.76 periods) reaches close to both extremes of the sine:
-  // the outline 3 .. 7 is kept everywhere.
-  double lo = INFINITY, hi = -INFINITY;
-  for (double y : e.y) lo = std::min(lo, y), hi = std::max(hi, y);
-  EXPECT_NEAR(lo, 3.0, 1e-3);
-  EXPECT_NEAR(hi, 7.0, 1e-3);
-  for (std::size_t b = 0; b < 1000; ++b) {
-    EXPECT_LT(std::min(e.y[2 * b], e.y[2 * b + 1]), 3.6) << "slice " << b;
-    EXPECT_GT(std::max(e.y[2 * b], e.y[2 * b + 1]), 6.4) << "slice " << b;
+  // Two neighbouring slices of 40 samples each (~1.5 periods) hold a whole period, so their
+  // four points reach both extremes of the sine to within the sampling (53 samples a period:
+  // 2 (1 − cos(π/53)) ≈ 0.0035): the outline 3 .. 7 is kept everywhere.
+  for (std::size_t b = 0; b + 1 < 1000; ++b) {
+    const double lo = std::min({e.y[2 * b], e.y[2 * b + 1], e.y[2 * b + 2], e.y[2 * b + 3]});
+    const double hi = std::max({e.y[2 * b], e.y[2 * b + 1], e.y[2 * b + 2], e.y[2 * b + 3]});
+    EXPECT_NEAR(lo, 3.0, 0.01) << "slices " << b << ", " << b + 1;
+    EXPECT_NEAR(hi, 7.0, 0.01) << "slices " << b << ", " << b + 1;
   }
 }
 
