@@ -20,6 +20,8 @@ using dynamics::Signal;
 constexpr std::size_t kEnvelopeBins = 1500;  // ~1.5 slices per pixel of the 1000 px image
 constexpr double kDetailPeriods = 8.0;       // periods of the shudder frequency in a detail panel
 constexpr double kPeriodsBeforeOnset = 1.5;  // of which before the onset: the last quiet cycles
+constexpr double kLongestDetail = 1.0 / 3.0; // of the record: a longer window is no zoom (the
+                                             // whole-record panel shows those periods already)
 
 /// What one time figure shows.
 struct TimeChannels {
@@ -68,27 +70,30 @@ std::pair<double, double> y_range(const std::vector<Series>& series) {
   return lo <= hi ? std::make_pair(lo, hi) : std::make_pair(kNaN, kNaN);
 }
 
-/// `s` over [from, to] with x in milliseconds after `from`.
-Series detail_of(const Series& s, double from, double to) {
+/// `s` over [from, to] with x in `scale` units (1e3: ms) after `from`.
+Series detail_of(const Series& s, double from, double to, double scale) {
   Series d = slice(s, from, to);
-  for (double& x : d.x) x = 1e3 * (x - from);
+  for (double& x : d.x) x = scale * (x - from);
   d.label.clear();
   return d;
 }
 
 /// One detail panel: the quantity over [from, to] and the slip on the right axis (grey,
-/// dashed); time in ms from the window's start (seconds with four digits would crowd the tics).
+/// dashed); time from the window's start, in ms for windows under a second (seconds with four
+/// digits would crowd the tics).
 Plot detail_panel(const TimeChannels& ch, const std::string& title, double from, double to) {
+  const bool ms = to - from < 1.0;
+  const double scale = ms ? 1e3 : 1.0;
   Plot p;
   p.title = title;
-  p.xlabel = "time − " + plot_number("%.5g", from) + " s [ms]";
+  p.xlabel = "time − " + plot_number("%.5g", from) + (ms ? " s [ms]" : " s [s]");
   p.ylabel = ch.ylabel;
   for (const auto& s : ch.main) {
-    Series d = detail_of(s, from, to);
+    Series d = detail_of(s, from, to, scale);
     if (d.x.size() >= 2) p.series.push_back(std::move(d));
   }
   for (const auto& s : ch.slip) {
-    Series d = detail_of(s, from, to);
+    Series d = detail_of(s, from, to, scale);
     d.rgb = "#7f7f7f";
     d.dash_type = 2;
     d.line_width = 1.0;
@@ -97,7 +102,7 @@ Plot detail_panel(const TimeChannels& ch, const std::string& title, double from,
   if (!p.series_y2.empty()) p.y2label = "slip [rpm] (grey, dashed)";
   space_markers(p.series);
   p.x_min = 0.0;
-  p.x_max = 1e3 * (to - from);
+  p.x_max = scale * (to - from);
   return p;
 }
 
@@ -127,7 +132,8 @@ MultiPlot time_figure(const Recording& rec, TimeChannels ch) {
   // Detail windows: around the onset (or the oscillating part's start) and at its end.
   std::vector<Plot> details;
   const Signal* time = rec.find("time_s");
-  if (oscillating(det) && time && time->values.size() > 2) {
+  const double span = time && time->values.size() > 2 ? time->values.back() - time->values.front() : 0.0;
+  if (oscillating(det) && span > 0 && kDetailPeriods / det->frequency_Hz <= kLongestDetail * span) {
     const double t0 = time->values.front(), t1 = time->values.back(), fd = det->frequency_Hz;
     const double onset = std::isfinite(det->onset_time_s) ? det->onset_time_s : det->oscillating_from_s;
     const double end = std::isfinite(det->oscillating_to_s) && det->oscillating_to_s > t0 ? det->oscillating_to_s : t1;
@@ -202,6 +208,7 @@ MultiPlot network_torque_plot(const Recording& rec, const std::string& name, con
         ch.main.push_back(series_of(t, *torque, torque->name));
         ch.main.back().line_width = 1.2;
         ch.slip.push_back(series_of(t, s, s.name));
+        ch.slip.back().line_width = 1.2;
         names += (names.empty() ? "" : ", ") + torque->name;
       }
   ch.title = name + ": clutch torques (" + names + ")";

@@ -3,7 +3,8 @@
 // speed in its own panel beneath (never drawn over the torque), and, when the run oscillates
 // (the shudder detector's verdict on the recording, report/plot_data.hpp), two detail panels
 // of a few periods each: around the onset and at the end of the oscillating part, where the
-// waveform and its phase against the slip can be read. The whole-record panels draw a record
+// waveform and its phase against the slip can be read (none when those periods would take more
+// than a third of the record: the whole-record panel shows them already). The whole-record panels draw a record
 // denser than the image as its envelope (the minimum and maximum of each pixel-wide slice, in
 // time order), which keeps its outline and avoids the moiré a line through thousands of periods
 // makes.
