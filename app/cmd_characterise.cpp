@@ -296,7 +296,7 @@ int characterise_command(const CharacteriseOptions& o) {
                                                          : io::characterisation_json(c, s, o.runs, o.output),
                                                  breakaway, id.breakaway_ratio, id.breakaway_source);
     if (!o.report.empty()) {
-      const report::Report rep = report::write_characterisation_report(o.report, c, summary);
+      const report::Report rep = report::write_characterisation_report(o.report, c, summary, report::report_data_files({o.output, o.json}));
       for (const auto& why : rep.skipped) std::cerr << "shudder: note: report: skipped " << why << "\n";
     }
     io::write_text_file_atomically(o.output, toml);

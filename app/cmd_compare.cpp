@@ -77,7 +77,7 @@ int compare_command(const CompareOptions& o) {
     const rig_models::Comparison c = rig_models::compare_fluids(fluids, co);
     const std::string summary = report::comparison_summary(c);
     if (!o.report.empty()) {
-      const report::Report rep = report::write_comparison_report(o.report, c, fluids, summary);
+      const report::Report rep = report::write_comparison_report(o.report, c, fluids, summary, report::report_data_files({o.json}));
       for (const auto& why : rep.skipped) std::cerr << "shudder: note: report: skipped " << why << "\n";
     }
     if (!o.json.empty()) io::write_text_file_atomically(o.json, io::comparison_json(c));

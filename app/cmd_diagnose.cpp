@@ -179,7 +179,7 @@ int diagnose_command(const DiagnoseOptions& opt) {
       std::cout << "Model: " << opt.write_model << "\n";
     }
     if (!opt.report.empty()) {
-      const report::Report report = report::write_diagnosis_report(opt.report, result, text);
+      const report::Report report = report::write_diagnosis_report(opt.report, result, text, report::report_data_files({opt.json, opt.write_model}));
       std::cout << "Report: " << opt.report << " (" << report.files.size() << " files)\n";
       for (const auto& s : report.skipped) std::cerr << "shudder: warning: report: " << s << "\n";
     }

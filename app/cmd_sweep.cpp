@@ -35,6 +35,7 @@
 #include "io/network_scenario.hpp"
 #include "io/output_safety.hpp"
 #include "report/plots.hpp"
+#include "report/run_report_directory.hpp"
 #include "io/scenario.hpp"
 #include "io/sweep_spec.hpp"
 #include "rig_models/energy_guard.hpp"
@@ -368,23 +369,26 @@ std::string sweep_summary(const SweepOptions& opt, const SweepBase& base, const 
   return summary + pool.mpi_balance;
 }
 
-// --report DIR: summary.txt and sweep.png. Exit 1 when only the report failed (the sweep file
-// is complete); a bad report path is the user's (InputError, exit 2).
+// --report DIR: summary.txt, sweep.png and index.html. Exit 1 when only the report failed (the
+// sweep file is complete); a bad report path is the user's (InputError, exit 2).
 int write_report(const SweepOptions& opt, const SweepBase& base, const io::SweepOutput& out,
                  const std::string& summary) {
   io::SweepTable table;
   table.columns = out.columns;
   table.text_column_name = out.text_column_name;
   table.text_column = out.text_column;
+  table.message_column = out.message_column;
+  report::Report rep;
   try {
-    report::write_sweep_report(opt.report, table, base.name, summary);
+    rep = report::write_sweep_report(opt.report, table, base.name, summary, opt.output);
   } catch (const io::InputError&) {
     throw;
   } catch (const std::exception& e) {
     std::cerr << "shudder: report failed: " << e.what() << " (the sweep itself is in " << opt.output << ")\n";
     return 1;
   }
-  if (!opt.quiet) std::printf("Report: %s (summary.txt, sweep.png)\n", opt.report.c_str());
+  if (!opt.quiet) std::printf("Report: %s (%zu files)\n", opt.report.c_str(), rep.files.size());
+  for (const auto& s : rep.skipped) std::cerr << "shudder: warning: report: " << s << "\n";
   return 0;
 }
 

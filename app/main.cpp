@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--seed", run.seed, "Seed of the sensor noise (deterministic)");
   run_cmd->add_flag("--profile", run.profile, "Print the simulation's wall time");
   run_cmd->add_option("--report", run.report,
-                      "Also write a report directory: summary.txt and the key plots (PNG)");
+                      "Also write a report directory: summary.txt, the key plots (PNG) and index.html to open");
   run_cmd->add_flag("--force", run.force, "Write the output even if its estimated size exceeds 2 GB");
   run_cmd->add_option("--fixed-step", run.fixed_step_s,
                       "Run with the fixed-step real-time stepper at this step, s (docs/realtime.md)")
@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
   sweep_cmd->add_option("-o,--output", sweep.output, "Sweep HDF5 file")->required();
   sweep_cmd->add_flag("--quiet", sweep.quiet, "No progress bar or summary");
   sweep_cmd->add_flag("--keep-parts", sweep.keep_parts, "Keep the per-case files (OUT.h5.parts/)");
-  sweep_cmd->add_option("--report", sweep.report, "Also write a report directory: summary.txt and sweep.png");
+  sweep_cmd->add_option("--report", sweep.report, "Also write a report directory: summary.txt, sweep.png and index.html to open");
   sweep_cmd->add_flag("--force", sweep.force, "Write the output even if its estimated size exceeds 2 GB");
   sweep_cmd->add_flag("--mpi", sweep.mpi, "Run the cases on every MPI rank (mpirun -np N shudder sweep ...; docs/mpi.md)");
 
@@ -115,7 +115,7 @@ int main(int argc, char** argv) {
                        "network's only wet clutch)");
   diag_cmd->add_option("--json", diagnose.json, "Write the diagnosis as JSON (shudder-diagnosis/1)");
   diag_cmd->add_option("--report", diagnose.report,
-                       "Also write a report directory: summary, candidate table, plots");
+                       "Also write a report directory: summary, candidate table, plots, index.html");
   diag_cmd->add_option("--jobs", diagnose.jobs, "Parallel fits (default: all cores)")
       ->check(CLI::Range(1u, 1024u));
   const int effect_count = static_cast<int>(shudder::rig_models::effect_registry().size());
@@ -138,7 +138,7 @@ int main(int argc, char** argv) {
   char_cmd->add_option("runs", characterise.runs, "Measured runs (CSV or HDF5, docs/formats/measured_run.md)")->required();
   char_cmd->add_option("-o,--output", characterise.output, "Fluid file written (TOML)")->required();
   char_cmd->add_option("--json", characterise.json, "Write the fit statistics (shudder-characterisation/1)");
-  char_cmd->add_option("--report", characterise.report, "Write a report directory (summary, plots)");
+  char_cmd->add_option("--report", characterise.report, "Write a report directory (summary, plots, index.html)");
   char_cmd->add_option("--law", characterise.law, "maki (Paper G eq. 13), linear (Papers B/C/E) or table")
       ->check(CLI::IsMember({"maki", "linear", "table"}));
   char_cmd->add_option("--compensation", characterise.compensation,
@@ -206,7 +206,7 @@ int main(int argc, char** argv) {
   cmp_cmd->add_option("--viscosity-cSt", compare.viscosity_cSt, "Equal-viscosity comparison, cSt (default 10)")
       ->check(CLI::Range(0.5, 10000.0));
   cmp_cmd->add_option("--json", compare.json, "Write the comparison as JSON (shudder-compare/1)");
-  cmp_cmd->add_option("--report", compare.report, "Write a report directory (summary, overlaid mu-v plots)");
+  cmp_cmd->add_option("--report", compare.report, "Write a report directory (summary, overlaid mu-v plots, index.html)");
 
   ImportOptions import;
   auto* imp_cmd = app.add_subcommand(

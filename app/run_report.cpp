@@ -4,14 +4,14 @@
 
 #include "app/commands.hpp"
 #include "io/input_error.hpp"
-#include "report/plots.hpp"
+#include "report/run_report_directory.hpp"
 
 namespace shudder::app {
 
 int write_report_directory(const std::string& dir, const dynamics::Recording& rec, const std::string& name,
                            const std::string& summary, bool rig_plots, const std::string& run_file) {
   try {
-    const report::Report report = report::write_run_report(dir, rec, name, summary, rig_plots);
+    const report::Report report = report::write_run_report(dir, rec, name, summary, rig_plots, run_file);
     std::cout << "Report: " << dir << " (" << report.files.size() << " files)\n";
     for (const auto& s : report.skipped) std::cerr << "shudder: warning: report: " << s << "\n";
   } catch (const io::InputError&) {

@@ -120,7 +120,7 @@ std::string method_comparison_summary(const rig_models::InverseCharacterisation&
 }
 
 Report write_characterisation_report(const std::string& dir, const analysis::Characterisation& c,
-                                     const std::string& summary_text) {
+                                     const std::string& summary_text, const std::vector<std::string>& data_files) {
   make_report_dir(dir);
   Report report;
   const auto path = [&](const std::string& file) { return (fs::path(dir) / file).string(); };
@@ -155,9 +155,15 @@ Report write_characterisation_report(const std::string& dir, const analysis::Cha
       ud.series.push_back({"", c.node_speeds_mm_s, r.down_comp, colour, false, SeriesStyle::kLinesPoints, 2, 0.8, 1.5});
       colour = (colour + 1) % 8;
     }
+    mu_v.caption = "Friction coefficient against sliding speed at " + tag +
+                   ": the measured ramps' binned means (points, temperature-compensated) and the fitted law "
+                   "(lines), one colour per row temperature.";
+    ud.caption = "Up (circles) and down (crosses) ramps' node means at " + tag +
+                 ": raw dashed, temperature-compensated solid; the gap between them is what compensation removes.";
     plots.emplace_back("mu_v_" + tag + ".png", mu_v);
     plots.emplace_back("up_down_" + tag + ".png", ud);
   }
+  residuals.caption = "Fitted law minus measured friction coefficient (binned means) against sliding speed, per row.";
   plots.emplace_back("residuals.png", residuals);
   const bool gnuplot = gnuplot_on_path();
   for (auto& [file, plot] : plots) {
@@ -166,6 +172,11 @@ Report write_characterisation_report(const std::string& dir, const analysis::Cha
     else
       report.skipped.push_back(file + ": " + kGnuplotMissing);
   }
+  ReportIndex index;
+  index.title = "shudder characterise";
+  index.summary = summary_text;
+  index.data_files = data_files;
+  write_report_index(dir, index, report);
   return report;
 }
 

@@ -37,7 +37,9 @@ std::string breakaway_range(const analysis::BreakawayMeasurement& m);
 /// (run, time, peak mu, kinetic mu at the peak's speed, ratio).
 std::string breakaway_summary(const analysis::BreakawayMeasurement& m, double written_ratio, const std::string& source);
 
+/// Also writes index.html (report/report_directory.hpp) linking `data_files` (the fitted fluid
+/// file, the JSON).
 Report write_characterisation_report(const std::string& dir, const analysis::Characterisation& c,
-                                     const std::string& summary_text);
+                                     const std::string& summary_text, const std::vector<std::string>& data_files = {});
 
 }  // namespace shudder::report

@@ -106,7 +106,7 @@ std::string comparison_summary(const rig_models::Comparison& c) {
 
 Report write_comparison_report(const std::string& dir, const rig_models::Comparison& c,
                                const std::vector<std::pair<std::string, clutch::Fluid>>& fluids,
-                               const std::string& summary_text) {
+                               const std::string& summary_text, const std::vector<std::string>& data_files) {
   namespace fs = std::filesystem;
   make_report_dir(dir);
   Report report;
@@ -124,6 +124,8 @@ Report write_comparison_report(const std::string& dir, const rig_models::Compari
     p.title = "mu against slip speed at " + comparison_number("%.4g", t) + " °C, " + comparison_number("%.0f", c.load_N) + " N";
     p.xlabel = "slip speed [rpm]";
     p.ylabel = "mu [-]";
+    p.caption = "Each fluid's friction coefficient against slip speed (1–120 rpm) at " + comparison_number("%.4g", t) +
+                " °C and " + comparison_number("%.0f", c.load_N) + " N: a falling curve is the negative slope that feeds shudder.";
     for (const auto& [file_name, fluid] : fluids) {
       Series s;
       s.label = fluid.name;
@@ -135,6 +137,11 @@ Report write_comparison_report(const std::string& dir, const rig_models::Compari
     }
     add_report_plot(report, dir, file, p);
   }
+  ReportIndex index;
+  index.title = "shudder compare";
+  index.summary = summary_text;
+  index.data_files = data_files;
+  write_report_index(dir, index, report);
   return report;
 }
 

@@ -15,8 +15,9 @@ namespace shudder::report {
 
 std::string comparison_summary(const rig_models::Comparison& c);
 
+/// `dir`/summary.txt, one mu_v_<T>C.png per temperature and index.html linking `data_files`.
 Report write_comparison_report(const std::string& dir, const rig_models::Comparison& c,
                                const std::vector<std::pair<std::string, clutch::Fluid>>& fluids,
-                               const std::string& summary_text);
+                               const std::string& summary_text, const std::vector<std::string>& data_files = {});
 
 }  // namespace shudder::report

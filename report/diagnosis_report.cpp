@@ -103,6 +103,8 @@ Plot signal_plot(const RunTraces& tr, const char* what, const char* ylabel, cons
                  const std::vector<double>& baseline, const std::vector<double>& final) {
   Plot p;
   p.title = printable(tr.run) + ": " + what + ", measured vs model";
+  p.caption = std::string("The run's measured ") + what + " (thin black), the baseline model (orange dashed) and the "
+              "final model with the effects the diagnosis added (blue) against time.";
   p.xlabel = "time [s]";
   p.ylabel = ylabel;
   const std::size_t n = tr.time_s.size();
@@ -114,37 +116,36 @@ Plot signal_plot(const RunTraces& tr, const char* what, const char* ylabel, cons
   return p;
 }
 
-Plot residual_plot(const RunTraces& tr) {
+/// One residual panel: baseline (dashed) and final (solid) model − measured, and its zero line.
+Plot residual_panel(const RunTraces& tr, const std::string& title, const std::string& ylabel,
+                    const std::vector<double>& measured, const std::vector<double>& baseline,
+                    const std::vector<double>& final, const std::string& rgb) {
   Plot p;
-  p.title = printable(tr.run) + ": residual model − measured (dashed: baseline, solid: final)";
+  p.title = title;
   p.xlabel = "time [s]";
-  p.ylabel = "torque residual [N m]";
-  p.y2label = "temperature residual [°C]";
-  const std::size_t n = tr.time_s.size();
-  if (tr.torque_measured.size() == n) {
-    p.series.push_back(line(tr.time_s, residual(tr.torque_baseline, tr.torque_measured),
-                            "torque, baseline", "#1f77b4", true, 1.5));
-    p.series.push_back(line(tr.time_s, residual(tr.torque_final, tr.torque_measured),
-                            "torque, final", "#1f77b4", false, 2.0));
-  }
-  // The two axes scale independently, so their zeros sit at different heights: each gets its
-  // own thin zero line in its signal's colour.
-  const std::vector<double> ends = {tr.time_s.front(), tr.time_s.back()}, zeros = {0.0, 0.0};
-  if (!p.series.empty()) p.series.push_back(line(ends, zeros, "", "#1f77b4", false, 0.8));
-  if (tr.temp_measured.size() == n) {
-    p.series_y2.push_back(line(tr.time_s, residual(tr.temp_baseline, tr.temp_measured),
-                               "temp_C, baseline (right axis)", "#d62728", true, 1.5));
-    p.series_y2.push_back(line(tr.time_s, residual(tr.temp_final, tr.temp_measured),
-                               "temp_C, final (right axis)", "#d62728", false, 2.0));
-    p.series_y2.push_back(line(ends, zeros, "", "#d62728", false, 0.8));
-  }
-  // Only temperature columns: they go on the left axis (a plot needs left series).
-  if (p.series.empty()) {
-    p.series = std::move(p.series_y2);
-    p.series_y2.clear();
-    p.ylabel = p.y2label;
-  }
+  p.ylabel = ylabel;
+  p.series.push_back(line(tr.time_s, residual(baseline, measured), "baseline (dashed)", rgb, true, 1.5));
+  p.series.push_back(line(tr.time_s, residual(final, measured), "final", rgb, false, 2.0));
+  p.series.push_back(line({tr.time_s.front(), tr.time_s.back()}, {0.0, 0.0}, "", "#000000", false, 0.8));
   return p;
+}
+
+// Torque and temperature residuals in panels of their own, one above the other: each has its
+// own zero line on its own axis (two y axes on one panel put their zeros at different heights).
+MultiPlot residual_plot(const RunTraces& tr) {
+  MultiPlot f;
+  f.title = printable(tr.run) + ": residual model − measured (dashed: baseline, solid: final)";
+  f.caption = "Model minus measurement against time, before (baseline, dashed) and after (final, solid) the effects "
+              "the diagnosis added: torque above, temp_C below, each panel with its own zero line.";
+  const std::size_t n = tr.time_s.size();
+  if (tr.torque_measured.size() == n)
+    f.rows.push_back({residual_panel(tr, "torque residual", "torque residual [N m]", tr.torque_measured,
+                                     tr.torque_baseline, tr.torque_final, "#1f77b4")});
+  if (tr.temp_measured.size() == n)
+    f.rows.push_back({residual_panel(tr, "temp_C residual", "temperature residual [°C]", tr.temp_measured,
+                                     tr.temp_baseline, tr.temp_final, "#d62728")});
+  f.height_px = f.rows.size() > 1 ? 820 : 480;
+  return f;
 }
 
 }  // namespace
@@ -206,8 +207,19 @@ std::string diagnosis_candidates_markdown(const analysis::DiagnosisResult& r) {
   return md.str();
 }
 
+/// The channels' fit as a table for index.html (the candidates.md table's columns).
+HtmlTable channel_table(const analysis::DiagnosisResult& r) {
+  HtmlTable t;
+  t.caption = "Signals";
+  t.header = {"signal", "comparison", "baseline RMS", "final RMS", "error scale", "RMS / scale", "within"};
+  for (const auto& c : r.channels)
+    t.rows.push_back({c.signal, c.comparison, fixed(c.baseline_rms), fixed(c.final_rms), fixed(c.error_scale),
+                      fixed(std::sqrt(c.final_misfit)), c.within ? "yes" : "no"});
+  return t;
+}
+
 Report write_diagnosis_report(const std::string& dir, const analysis::DiagnosisResult& r,
-                              const std::string& summary_text) {
+                              const std::string& summary_text, const std::vector<std::string>& data_files) {
   make_report_dir(dir);
   Report report;
   const auto path = [&](const std::string& f) { return (fs::path(dir) / f).string(); };
@@ -231,14 +243,14 @@ Report write_diagnosis_report(const std::string& dir, const analysis::DiagnosisR
       report.skipped.push_back(files + ": the run '" + tr.run + "' has no trace samples");
       continue;
     }
-    const Plot plots[] = {
-        signal_plot(tr, "torque", "torque [N m]", tr.torque_measured, tr.torque_baseline, tr.torque_final),
-        signal_plot(tr, "temp_C", "temperature [°C]", tr.temp_measured, tr.temp_baseline, tr.temp_final),
+    const MultiPlot plots[] = {
+        single_panel(signal_plot(tr, "torque", "torque [N m]", tr.torque_measured, tr.torque_baseline, tr.torque_final)),
+        single_panel(signal_plot(tr, "temp_C", "temperature [°C]", tr.temp_measured, tr.temp_baseline, tr.temp_final)),
         residual_plot(tr)};
     const char* suffixes[] = {"_torque.png", "_temp.png", "_residuals.png"};
     for (std::size_t i = 0; i < 3; ++i) {
       const std::string file = stem + suffixes[i];
-      if (plots[i].series.empty()) {
+      if (plots[i].rows.empty() || plots[i].rows.front().front().series.empty()) {
         report.skipped.push_back(file + ": no column matches the run's " +
                                  std::to_string(tr.time_s.size()) + " time samples");
         continue;
@@ -246,6 +258,14 @@ Report write_diagnosis_report(const std::string& dir, const analysis::DiagnosisR
       add_report_plot(report, dir, file, plots[i]);
     }
   }
+  ReportIndex index;
+  index.title = "shudder diagnose";
+  index.verdict = verdict_sentence(r);
+  index.verdict_class = r.verdict == analysis::DiagnosisVerdict::kExplained ? "none" : "shudder";
+  index.summary = summary_text;
+  index.tables.push_back(channel_table(r));
+  index.data_files = data_files;
+  write_report_index(dir, index, report);
   return report;
 }
 

@@ -47,6 +47,19 @@ std::string quoted(const std::string& s) {
   return out + "'";
 }
 
+/// A gnuplot string expression for text with line breaks: the lines quoted, joined by "\n".
+std::string multiline_quoted(const std::string& s) {
+  std::string out;
+  std::size_t from = 0;
+  for (;;) {
+    const std::size_t nl = s.find('\n', from);
+    out += quoted(s.substr(from, nl == std::string::npos ? std::string::npos : nl - from));
+    if (nl == std::string::npos) return out;
+    out += ".\"\\n\".";
+    from = nl + 1;
+  }
+}
+
 /// Removes its directory (and contents) when it goes out of scope.
 struct TempDir {
   fs::path path;
@@ -215,20 +228,22 @@ std::string padded_range(const std::vector<Series>& all) {
   return buf;
 }
 
-std::string script_text(const Plot& plot, bool svg, const std::string& output,
-                        const fs::path& data, const fs::path& map_data) {
-  std::ostringstream s;
-  // Legend entries; two columns unless an entry is long (> 40 characters), which would widen
-  // the legend past the plot.
-  std::size_t entries = 0, longest = 0;
-  for (const auto* group : {&plot.series, &plot.series_y2})
-    for (const auto& v : *group) {
-      if (v.label.empty()) continue;
-      ++entries;
-      longest = std::max(longest, utf8_length(v.label));
-    }
-  const std::size_t columns = longest > 40 ? 1 : 2;
-  const std::string size = std::to_string(plot.width_px) + "," + std::to_string(plot.height_px);
+/// The figure's panels row by row.
+std::vector<const Plot*> multiplot_panels(const MultiPlot& figure) {
+  std::vector<const Plot*> out;
+  for (const auto& row : figure.rows)
+    for (const auto& p : row) out.push_back(&p);
+  return out;
+}
+
+/// Relative height of row `r` (1 where row_heights gives none).
+double row_height(const MultiPlot& figure, std::size_t r) {
+  return r < figure.row_heights.size() && figure.row_heights[r] > 0 ? figure.row_heights[r] : 1.0;
+}
+
+/// The terminal for `svg` or PNG at the figure's size, writing to `output`.
+void terminal_text(std::ostringstream& s, int width_px, int height_px, bool svg, const std::string& output) {
+  const std::string size = std::to_string(width_px) + "," + std::to_string(height_px);
   s << "set encoding utf8\n";
   if (svg) {
     s << "set terminal svg size " << size << " font 'sans,13' noenhanced background rgb 'white'\n";
@@ -240,6 +255,20 @@ std::string script_text(const Plot& plot, bool svg, const std::string& output,
       << "}\n";
   }
   s << "set output " << quoted(output) << "\n";
+}
+
+/// One panel's settings and plot command (its title, axes, legend, labels, curves, map).
+void panel_text(std::ostringstream& s, const Plot& plot, const fs::path& data, const fs::path& map_data) {
+  // Legend entries; two columns unless an entry is long (> 40 characters), which would widen
+  // the legend past the plot.
+  std::size_t entries = 0, longest = 0;
+  for (const auto* group : {&plot.series, &plot.series_y2})
+    for (const auto& v : *group) {
+      if (v.label.empty()) continue;
+      ++entries;
+      longest = std::max(longest, utf8_length(v.label));
+    }
+  const std::size_t columns = longest > 40 ? 1 : 2;
   if (!plot.title.empty()) s << "set title " << quoted(plot.title) << "\n";
   s << "set xlabel " << quoted(plot.xlabel) << "\n"
     << "set ylabel " << quoted(plot.ylabel) << "\n"
@@ -276,7 +305,7 @@ std::string script_text(const Plot& plot, bool svg, const std::string& output,
   for (const auto& l : plot.labels) {
     char buf[96];
     std::snprintf(buf, sizeof buf, " at %.10g,%.10g offset character 1,0.8 front boxed\n", l.x, l.y);
-    s << "set label " << label_id++ << " " << quoted(l.text) << buf;
+    s << "set label " << label_id++ << " " << multiline_quoted(l.text) << buf;
   }
   if (!plot.series_y2.empty()) {
     s << "set border 11\nset y2tics nomirror out\nset y2label " << quoted(plot.y2label) << "\n"
@@ -297,9 +326,11 @@ std::string script_text(const Plot& plot, bool svg, const std::string& output,
       s << " with points pt " << v.point_type << " ps " << v.point_size;
     else
       s << (v.style == SeriesStyle::kLinesPoints ? " with linespoints" : " with lines") << " lw "
-        << v.line_width << " dt " << (v.dashed ? 2 : 1);
-    if (v.style == SeriesStyle::kLinesPoints)
+        << v.line_width << " dt " << (v.dash_type > 0 ? v.dash_type : v.dashed ? 2 : 1);
+    if (v.style == SeriesStyle::kLinesPoints) {
       s << " pt " << v.point_type << " ps " << v.point_size;
+      if (v.point_interval > 0) s << " pi " << v.point_interval;
+    }
     s << " lc rgb '" << color << "' ";
     if (v.label.empty()) s << "notitle";
     else s << "title " << quoted(v.label);
@@ -307,7 +338,46 @@ std::string script_text(const Plot& plot, bool svg, const std::string& output,
   };
   for (const auto& v : plot.series) entry(v, "x1y1");
   for (const auto& v : plot.series_y2) entry(v, "x1y2");
-  s << "\nset output\n";
+  s << "\n";
+}
+
+/// The whole script: one panel as a plain plot; several as a multiplot, each panel placed by
+/// origin and size (rows top to bottom, the row's panels side by side at equal widths), with
+/// fixed left and right margins so the time axes of stacked panels line up.
+std::string script_text(const MultiPlot& figure, bool svg, const std::string& output,
+                        const std::vector<fs::path>& data, const std::vector<fs::path>& map_data) {
+  std::ostringstream s;
+  terminal_text(s, figure.width_px, figure.height_px, svg, output);
+  const std::vector<const Plot*> panels = multiplot_panels(figure);
+  if (panels.size() == 1 && figure.title.empty()) {
+    panel_text(s, *panels.front(), data.front(), map_data.front());
+  } else {
+    bool right_axis = false;
+    for (const Plot* p : panels) right_axis = right_axis || !p->series_y2.empty() || !p->map.empty();
+    // The figure's title takes a band at the top: 3 text lines' worth of the height.
+    const double top = figure.title.empty() ? 1.0 : 1.0 - std::min(0.12, 3.0 * 18.0 / figure.height_px);
+    if (!figure.title.empty()) s << "set multiplot title " << quoted(figure.title) << "\n";
+    else s << "set multiplot\n";
+    double total = 0.0;
+    for (std::size_t r = 0; r < figure.rows.size(); ++r) total += row_height(figure, r);
+    double y = top;
+    std::size_t k = 0;
+    for (std::size_t r = 0; r < figure.rows.size(); ++r) {
+      const double h = top * row_height(figure, r) / total;
+      y -= h;
+      const auto& row = figure.rows[r];
+      for (std::size_t c = 0; c < row.size(); ++c, ++k) {
+        char buf[160];
+        const double w = 1.0 / static_cast<double>(row.size());
+        std::snprintf(buf, sizeof buf, "set origin %.6f,%.6f\nset size %.6f,%.6f\n", w * static_cast<double>(c),
+                      std::max(0.0, y), w, h);
+        s << "reset\nset encoding utf8\n" << buf << "set lmargin 11\nset rmargin " << (right_axis ? 11 : 4) << "\n";
+        panel_text(s, row[c], data[k], map_data[k]);
+      }
+    }
+    s << "unset multiplot\n";
+  }
+  s << "set output\n";
   return s.str();
 }
 
@@ -352,13 +422,7 @@ std::string gnuplot_cause(const fs::path& log) {
   return warning;
 }
 
-}  // namespace
-
-void write_plot(const std::string& path, const Plot& plot) {
-  const std::string ext = fs::path(path).extension().string();
-  const bool svg = ext == ".svg";
-  if (!svg && ext != ".png")
-    throw io::InputError(path, 0, "", "unsupported plot format '" + ext + "'; use .png or .svg");
+void check_plot(const Plot& plot) {
   if (plot.series.empty() && plot.map.empty())
     throw std::invalid_argument("plot '" + plot.title + "' has no series");
   if (!plot.map.empty()) {
@@ -366,10 +430,34 @@ void write_plot(const std::string& path, const Plot& plot) {
     if (!plot.series_y2.empty())
       throw std::invalid_argument("plot '" + plot.title + "': a colour map takes no right axis");
   }
-  if (plot.width_px < 100 || plot.height_px < 100)
-    throw std::invalid_argument("plot '" + plot.title + "': image smaller than 100 px");
   for (const auto& s : plot.series) check_series(s);
   for (const auto& s : plot.series_y2) check_series(s);
+}
+
+}  // namespace
+
+MultiPlot single_panel(const Plot& plot) {
+  MultiPlot f;
+  f.caption = plot.caption;
+  f.rows = {{plot}};
+  f.width_px = plot.width_px;
+  f.height_px = plot.height_px;
+  return f;
+}
+
+void write_plot(const std::string& path, const Plot& plot) { write_multiplot(path, single_panel(plot)); }
+
+void write_multiplot(const std::string& path, const MultiPlot& figure) {
+  const std::string ext = fs::path(path).extension().string();
+  const bool svg = ext == ".svg";
+  if (!svg && ext != ".png")
+    throw io::InputError(path, 0, "", "unsupported plot format '" + ext + "'; use .png or .svg");
+  const std::vector<const Plot*> panels = multiplot_panels(figure);
+  if (panels.empty()) throw std::invalid_argument("figure '" + figure.title + "' has no panels");
+  for (const Plot* p : panels) check_plot(*p);
+  if (figure.width_px < 100 || figure.height_px < 100)
+    throw std::invalid_argument("plot '" + (figure.title.empty() ? panels.front()->title : figure.title) +
+                                "': image smaller than 100 px");
 
   // Claim the temporary output ourselves first: an unwritable destination is the user's
   // problem (io::InputError), not gnuplot's.
@@ -379,13 +467,19 @@ void write_plot(const std::string& path, const Plot& plot) {
                                       "; check the directory exists and is writable");
   try {
     TempDir dir;
-    const fs::path data = dir.path / "data.txt", script = dir.path / "plot.gp",
-                   log = dir.path / "gnuplot.log", map_data = dir.path / "map.txt";
-    write_data(data, plot);
-    if (!plot.map.empty()) write_map_data(map_data, plot.map);
+    const fs::path script = dir.path / "plot.gp", log = dir.path / "gnuplot.log";
+    // One data file (and one map file) per panel: data.txt, map.txt for the first.
+    std::vector<fs::path> data, map_data;
+    for (std::size_t k = 0; k < panels.size(); ++k) {
+      const std::string suffix = k == 0 ? "" : "_" + std::to_string(k);
+      data.push_back(dir.path / ("data" + suffix + ".txt"));
+      map_data.push_back(dir.path / ("map" + suffix + ".txt"));
+      write_data(data.back(), *panels[k]);
+      if (!panels[k]->map.empty()) write_map_data(map_data.back(), panels[k]->map);
+    }
     {
       std::ofstream out(script);
-      out << script_text(plot, svg, tmp, data, map_data);
+      out << script_text(figure, svg, tmp, data, map_data);
       if (!out.flush()) throw std::runtime_error("cannot write gnuplot script " + script.string());
     }
     const int status = run_gnuplot(script, log);

@@ -9,6 +9,9 @@
 // Beyond line plots: point markers, text labels, a logarithmic y axis and a colour map with a
 // colour bar under the curves (spectrograms, stability maps).
 //
+// Several panels in one image (MultiPlot): a time history above a zoomed detail, two quantities
+// with their own zeros.
+//
 // Errors: unsupported extension or unwritable destination -> io::InputError; empty plots,
 // series whose x and y differ in length or a malformed colour map -> std::invalid_argument;
 // gnuplot missing or failing -> std::runtime_error quoting gnuplot's own message.
@@ -32,12 +35,14 @@ struct Series {
   double point_size = 1.2;
   double line_width = 2.0;
   std::string rgb = "";        // e.g. "#000000": this colour instead of the palette's
+  int dash_type = 0;           // gnuplot dash type (2 dashed, 3 dotted, 4 dash-dot); 0 = by `dashed`
+  int point_interval = 0;      // kLinesPoints: a marker every this many points; 0 = every point
 };
 
 /// Text at a data position (left axes), drawn above the curves with a small offset.
 struct Label {
   double x = 0.0, y = 0.0;
-  std::string text;
+  std::string text;  // '\n' breaks the line
 };
 
 /// A colour map drawn under the curves (gnuplot `with image`): one pixel per grid point, a
@@ -57,6 +62,7 @@ struct ColorMap {
 
 struct Plot {
   std::string title;
+  std::string caption;                  // what the plot shows, for a report's index.html (not drawn)
   std::string xlabel, ylabel, y2label;  // include the unit, e.g. "time [s]"
   std::vector<Series> series;           // plotted against the left y axis
   std::vector<Series> series_y2;        // plotted against the right y axis (if any)
@@ -67,8 +73,26 @@ struct Plot {
   ColorMap map;                         // optional; not combined with series_y2
 };
 
+/// One image of several panels (gnuplot multiplot): `rows` from top to bottom, a row's panels
+/// side by side at equal widths, each with its own title, axes, legend and labels; stacked
+/// panels share left and right margins so their x axes line up. A figure of one panel and no
+/// title is drawn exactly as write_plot draws that panel.
+struct MultiPlot {
+  std::string title;                    // above every panel; empty = none
+  std::string caption;                  // what the figure shows, for a report's index.html (not drawn)
+  std::vector<std::vector<Plot>> rows;  // panels; a panel's own width_px/height_px are ignored
+  std::vector<double> row_heights;      // relative heights of the rows; missing = 1
+  int width_px = 1000, height_px = 600;
+};
+
+/// The figure of `plot` alone (its caption and size).
+MultiPlot single_panel(const Plot& plot);
+
 /// Renders `plot` to `path` (.png or .svg). Replaces an existing file.
 void write_plot(const std::string& path, const Plot& plot);
+
+/// Renders `figure` to `path` (.png or .svg), through a temporary name and a rename.
+void write_multiplot(const std::string& path, const MultiPlot& figure);
 
 /// True when an executable `gnuplot` is on PATH: reports list their plots as skipped without it.
 bool gnuplot_on_path();

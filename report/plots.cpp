@@ -1,6 +1,7 @@
 // Plot builders for `shudder plot` and the report directories; see plots.hpp and docs/plots.md.
 #include "report/plots.hpp"
 
+#include "report/plot_data.hpp"
 #include "report/text_format.hpp"
 
 #include <toml++/toml.h>
@@ -33,78 +34,6 @@ using dynamics::Recording;
 using dynamics::Signal;
 
 
-std::string plot_number(const char* fmt, double a) { return number(a, fmt); }
-
-/// "°C" for the files' "degC", "N m" as is, ...: the unit as printed on an axis.
-std::string display_units(const std::string& units) { return units == "degC" ? "°C" : units; }
-
-const Signal& require_signal(const Recording& rec, std::string_view name, const std::string& source,
-                             const std::string& plot) {
-  const Signal* s = rec.find(name);
-  if (!s || s->values.empty())
-    throw io::InputError(source, 0, "",
-                     "no /signals/" + std::string(name) + ": the " + plot + " plot needs it");
-  return *s;
-}
-
-/// Uniform sample rate of time_s; io::InputError for fewer than `min_samples` samples.
-double sample_rate_Hz(const Signal& time, std::size_t min_samples, const std::string& source,
-                      const std::string& plot) {
-  const std::size_t n = time.values.size();
-  if (n < min_samples)
-    throw io::InputError(source, 0, "",
-                     "the record has " + std::to_string(n) + " samples; the " + plot +
-                         " plot needs at least " + std::to_string(min_samples));
-  const double span = time.values.back() - time.values.front();
-  if (!(span > 0)) throw io::InputError(source, 0, "", "time_s does not increase");
-  return static_cast<double>(n - 1) / span;
-}
-
-Series series_of(const Signal& x, const Signal& y, std::string label) {
-  Series s;
-  s.label = std::move(label);
-  s.x = x.values;
-  s.y = y.values;
-  return s;
-}
-
-bool has_finite(const Series& s) {
-  for (std::size_t i = 0; i < s.x.size(); ++i)
-    if (std::isfinite(s.x[i]) && std::isfinite(s.y[i])) return true;
-  return false;
-}
-
-/// The shudder detector on a recording, with the channels and band its run was judged on
-/// (rig_models/recording_detection.hpp); nothing if the record cannot be analysed.
-std::optional<analysis::ShudderResult> detect(const Recording& rec) {
-  const auto detection = rig_models::recording_detection(rec);
-  if (!detection) return std::nullopt;
-  try {
-    return rig_models::judge_recording(*detection);
-  } catch (const std::invalid_argument&) {
-    return std::nullopt;
-  }
-}
-
-/// The frequency a spectral plot centres on: the detected shudder frequency, else the
-/// strongest peak the detector examined; NaN if neither.
-double focus_frequency_Hz(const std::optional<analysis::ShudderResult>& d) {
-  if (!d) return kNaN;
-  if (d->verdict != analysis::Verdict::kNone && std::isfinite(d->frequency_Hz) && d->frequency_Hz > 0)
-    return d->frequency_Hz;
-  if (std::isfinite(d->peak_frequency_Hz) && d->peak_frequency_Hz > 0) return d->peak_frequency_Hz;
-  return kNaN;
-}
-
-std::string verdict_text(analysis::Verdict v) {
-  switch (v) {
-    case analysis::Verdict::kVibration: return "friction-induced vibration";
-    case analysis::Verdict::kStickSlip: return "stick-slip";
-    case analysis::Verdict::kNone: break;
-  }
-  return "no shudder";
-}
-
 }  // namespace
 
 const std::vector<std::string>& plot_kind_names() {
@@ -130,99 +59,40 @@ std::string scenario_name(const std::string& scenario_text, const std::string& f
   return fallback;
 }
 
-// ---- time histories ----------------------------------------------------------------------
-
-// A network run: every clutch's torque (the channels CLUTCH.torque_Nm beside CLUTCH.slip_rpm).
-Plot network_torque_plot(const Recording& rec, const std::string& name, const std::string& source) {
-  const Signal& t = require_signal(rec, "time_s", source, "torque");
-  Plot p;
-  p.title = name + ": clutch torques";
-  p.xlabel = "time [s]";
-  p.ylabel = "torque [N m]";
-  const std::string suffix = ".slip_rpm";
-  for (const auto& s : rec.signals)
-    if (s.name.size() > suffix.size() && s.name.compare(s.name.size() - suffix.size(), suffix.size(), suffix) == 0)
-      if (const Signal* torque = rec.find(s.name.substr(0, s.name.size() - suffix.size()) + ".torque_Nm"))
-        p.series.push_back(series_of(t, *torque, torque->name));
-  return p;
-}
-
-Plot torque_plot(const Recording& rec, const std::string& name, const std::string& source) {
-  if (rig_models::network_verdict_clutch(rec)) return network_torque_plot(rec, name, source);
-  const Signal& t = require_signal(rec, "time_s", source, "torque");
-  const Signal& torque = require_signal(rec, "torque_Nm", source, "torque");
-  Plot p;
-  p.title = name + ": torque";
-  p.xlabel = "time [s]";
-  p.ylabel = "torque [N m]";
-  p.series.push_back(series_of(t, torque, "torque_Nm: measured torque (torque cell)"));
-  if (const Signal* clutch = rec.find("clutch_torque_Nm")) {
-    p.series.push_back(series_of(t, *clutch, "clutch_torque_Nm: friction torque of the clutch"));
-    p.series.back().dashed = true;
-    p.series.back().line_width = 1.5;
-  }
-  // The sliding speed explains the torque's shape (ramps, breakaway): right axis.
-  const Signal* speed = rec.find("slip_rpm");
-  if (!speed) speed = rec.find("speed_rpm");
-  if (speed) {
-    p.series_y2.push_back(series_of(t, *speed, speed->name + ": sliding speed (right axis)"));
-    p.series_y2.back().line_width = 1.0;
-    p.series_y2.back().rgb = "#7f7f7f";
-    p.y2label = "sliding speed [rpm]";
-  }
-  return p;
-}
-
-// A driveline run: what the Haldex coupling carries and why (its slip pumps the pressure).
-Plot coupling_plot(const Recording& rec, const std::string& name, const std::string& source) {
-  const Signal& t = require_signal(rec, "time_s", source, "coupling");
-  const Signal& torque = require_signal(rec, "coupling_torque_Nm", source, "coupling");
-  Plot p;
-  p.title = name + ": Haldex coupling";
-  p.xlabel = "time [s]";
-  p.ylabel = "torque [N m]";
-  p.series.push_back(series_of(t, torque, "coupling_torque_Nm: torque through the coupling"));
-  if (const Signal* rear = rec.find("rear_axle_torque_Nm")) {
-    p.series.push_back(series_of(t, *rear, "rear_axle_torque_Nm: rear half-shafts"));
-    p.series.back().dashed = true;
-  }
-  if (const Signal* slip = rec.find("coupling_slip_rpm")) {
-    p.series_y2.push_back(series_of(t, *slip, "coupling_slip_rpm: slip (right axis)"));
-    p.series_y2.back().line_width = 1.0;
-    p.series_y2.back().rgb = "#7f7f7f";
-    p.y2label = "coupling slip [rpm]";
-  }
-  return p;
-}
-
-Plot temperature_plot(const Recording& rec, const std::string& name, const std::string& source) {
-  const Signal& t = require_signal(rec, "time_s", source, "temperature");
-  struct Channel { const char* signal; const char* label; };
-  static constexpr Channel kChannels[] = {
-      {"temp_C", "temp_C: separator thermocouple"},
-      {"ir_temp_C", "ir_temp_C: IR pyrometer"},
-      {"sump_temp_C", "sump_temp_C: oil sump"},
-      {"interface_max_temp_C", "interface_max_temp_C: hottest point of the friction interface"}};
-  Plot p;
-  p.title = name + ": temperatures";
-  p.xlabel = "time [s]";
-  p.ylabel = "temperature [°C]";
-  for (const auto& c : kChannels)
-    if (const Signal* s = rec.find(c.signal)) p.series.push_back(series_of(t, *s, c.label));
-  // A network's wet clutches: each one's hottest interface point (CLUTCH.interface_max_temp_C).
-  const std::string network_suffix = ".interface_max_temp_C";
-  for (const auto& s : rec.signals)
-    if (s.name.size() > network_suffix.size() &&
-        s.name.compare(s.name.size() - network_suffix.size(), network_suffix.size(), network_suffix) == 0)
-      p.series.push_back(series_of(t, s, s.name));
-  if (p.series.empty())
-    throw io::InputError(source, 0, "",
-                     "no temperature signals (temp_C, ir_temp_C, sump_temp_C, "
-                     "interface_max_temp_C): the temperature plot needs at least one");
-  return p;
-}
-
 // ---- spectra -----------------------------------------------------------------------------
+
+namespace {
+
+/// Hann amplitude spectrum of x[from, to) less its mean, as a curve up to f_max (zeros left out:
+/// the axis is logarithmic).
+analysis::Spectrum part_spectrum(const std::vector<double>& x, std::size_t from, std::size_t to, double fs) {
+  std::vector<double> part(x.begin() + static_cast<long>(from), x.begin() + static_cast<long>(to));
+  const double mean = std::accumulate(part.begin(), part.end(), 0.0) / static_cast<double>(part.size());
+  for (double& v : part) v -= mean;
+  const analysis::SpectralAnalyzer spectra;
+  return spectra.amplitude_spectrum(part, fs, analysis::Window::kHann);
+}
+
+Series spectrum_curve(const analysis::Spectrum& sp, double f_max, std::string label) {
+  Series s;
+  s.label = std::move(label);
+  for (std::size_t k = 0; k < sp.frequency_Hz.size() && sp.frequency_Hz[k] <= f_max; ++k) {
+    s.x.push_back(sp.frequency_Hz[k]);
+    s.y.push_back(sp.amplitude[k] > 0 ? sp.amplitude[k] : kNaN);
+  }
+  return s;
+}
+
+/// The interpolated peak of `sp` within ±10 % of f; nothing when no bin lies there.
+std::optional<analysis::Peak> peak_near(const analysis::Spectrum& sp, double f, double fs) {
+  try {
+    return analysis::find_peak(sp, 0.9 * f, std::min(1.1 * f, 0.5 * fs));
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;
+  }
+}
+
+}  // namespace
 
 Plot spectrum_plot(const Recording& rec, const std::string& name, const std::string& source) {
   const Signal& t = require_signal(rec, "time_s", source, "spectrum");
@@ -230,62 +100,90 @@ Plot spectrum_plot(const Recording& rec, const std::string& name, const std::str
   const std::string_view torque_name = rig_models::judged_torque_signal(rec);
   const Signal& torque = require_signal(rec, torque_name, source, "spectrum");
   const double fs = sample_rate_Hz(t, 64, source, "spectrum");
-
-  // Amplitude spectrum of the torque less its mean, Hann window over the whole record.
-  std::vector<double> x = torque.values;
-  const double mean = std::accumulate(x.begin(), x.end(), 0.0) / static_cast<double>(x.size());
-  for (double& v : x) v -= mean;
-  const analysis::SpectralAnalyzer spectra;
-  const analysis::Spectrum sp = spectra.amplitude_spectrum(x, fs, analysis::Window::kHann);
+  const std::size_t n = t.values.size();
 
   const auto det = detect(rec);
   const double f_focus = focus_frequency_Hz(det);
+  const bool shudder = oscillating(det);
   // Up to the third harmonic of a detected shudder; else the detector's whole band.
-  const bool shudder = det && det->verdict != analysis::Verdict::kNone && std::isfinite(f_focus);
   const double f_max = shudder ? std::min(0.5 * fs, 3.0 * f_focus) : std::min(0.5 * fs, 2000.0);
+  const analysis::Spectrum whole = part_spectrum(torque.values, 0, n, fs);
+
+  // The oscillating part the detector measured (its definition 4): where the oscillation has
+  // grown to within a factor 10 of its largest. A shorter window than the record when the run
+  // is quiet before the onset.
+  std::size_t from = 0, to = n;
+  if (shudder) {
+    const auto& tv = t.values;
+    from = static_cast<std::size_t>(std::lower_bound(tv.begin(), tv.end(), det->oscillating_from_s) - tv.begin());
+    to = static_cast<std::size_t>(std::upper_bound(tv.begin(), tv.end(), det->oscillating_to_s) - tv.begin());
+    if (to < from + 64 || (from == 0 && to == n)) from = 0, to = n;
+  }
+  const bool part = from > 0 || to < n;
 
   Plot p;
-  p.title = name + ": torque amplitude spectrum (Hann window, whole record " +
-            plot_number("%.3g", t.values.back() - t.values.front()) + " s, bin " +
-            plot_number("%.3g", sp.bin_width_Hz) + " Hz)";
+  p.title = name + ": amplitude spectrum of " + std::string(torque_name) + " (Hann window, bin " +
+            plot_number("%.3g", whole.bin_width_Hz) + " Hz over the whole record of " +
+            duration_text(t.values.back() - t.values.front()) + ")";
   p.xlabel = "frequency [Hz]";
   p.ylabel = "torque amplitude [N m]";
   p.log_y = true;
   p.x_min = 0.0;
   p.x_max = f_max;
-  Series s;
-  s.label = std::string(torque_name) + " less its mean";
-  for (std::size_t k = 0; k < sp.frequency_Hz.size() && sp.frequency_Hz[k] <= f_max; ++k) {
-    s.x.push_back(sp.frequency_Hz[k]);
-    s.y.push_back(sp.amplitude[k] > 0 ? sp.amplitude[k] : kNaN);  // log axis: no zeros
+  Series w = spectrum_curve(whole, f_max, std::string(torque_name) + " less its mean, whole record " +
+                                              plot_number("%.4g", t.values.front()) + "–" +
+                                              plot_number("%.4g", t.values.back()) + " s");
+  w.line_width = part ? 1.0 : 1.5;
+  if (part) w.rgb = "#9a9a9a";
+  p.series.push_back(std::move(w));
+  std::optional<analysis::Spectrum> osc;
+  if (part) {
+    osc = part_spectrum(torque.values, from, to, fs);
+    Series o = spectrum_curve(*osc, f_max, "oscillating part " + plot_number("%.4g", t.values[from]) + "–" +
+                                               plot_number("%.4g", t.values[to - 1]) + " s (the detector's window)");
+    o.rgb = "#1f77b4";
+    o.line_width = 1.5;
+    p.series.push_back(std::move(o));
   }
-  s.line_width = 1.5;
-  p.series.push_back(std::move(s));
 
-  // The detected peak, interpolated in the spectrum around the detector's frequency.
-  if (std::isfinite(f_focus) && f_focus < 0.5 * fs) {
-    try {
-      const analysis::Peak peak = analysis::find_peak(sp, 0.9 * f_focus, std::min(1.1 * f_focus, 0.5 * fs));
-      Series mark;
-      mark.label = shudder ? "detected shudder frequency" : "largest peak (no shudder detected)";
-      mark.x = {peak.frequency_Hz};
-      mark.y = {peak.amplitude};
-      mark.style = SeriesStyle::kPoints;
-      mark.point_type = shudder ? 7 : 6;
-      mark.point_size = 2.0;
-      mark.color = 1;
-      p.series.push_back(std::move(mark));
-      char text[160];
-      if (shudder)
-        std::snprintf(text, sizeof text, "%s at %.1f Hz; detector amplitude %.3g N m",
-                      verdict_text(det->verdict).c_str(), det->frequency_Hz, det->amplitude_Nm);
-      else
-        std::snprintf(text, sizeof text, "%.1f Hz: no shudder detected", peak.frequency_Hz);
-      p.labels.push_back({peak.frequency_Hz, peak.amplitude, text});
-    } catch (const std::invalid_argument&) {
-      // No bin in the band (record too short for that frequency): nothing to mark.
-    }
+  // The detected peak, interpolated in the spectrum the detector's frequency comes from.
+  if (!(std::isfinite(f_focus) && f_focus < 0.5 * fs)) return p;
+  const auto peak = peak_near(osc ? *osc : whole, f_focus, fs);
+  if (!peak) return p;  // no bin in the band (record too short for that frequency)
+  const auto whole_peak = peak_near(whole, f_focus, fs);
+  Series mark;
+  mark.label = shudder ? "detected shudder frequency" : "largest peak (no shudder detected)";
+  mark.x = {peak->frequency_Hz};
+  mark.y = {peak->amplitude};
+  mark.style = SeriesStyle::kPoints;
+  mark.point_type = shudder ? 7 : 6;
+  mark.point_size = 2.0;
+  mark.color = 1;
+  p.series.push_back(std::move(mark));
+  if (!shudder) {
+    p.labels.push_back({peak->frequency_Hz, peak->amplitude,
+                        plot_number("%.1f", peak->frequency_Hz) + " Hz: no shudder detected"});
+    p.caption = "Amplitude spectrum of the judged torque over the whole record; the open circle marks the"
+                " strongest peak the shudder detector examined, which stayed under its threshold.";
+    return p;
   }
+  const std::string detector = plot_number("%.3g", det->amplitude_Nm);
+  p.labels.push_back({peak->frequency_Hz, peak->amplitude,
+                      verdict_text(det->verdict) + " at " + plot_number("%.1f", det->frequency_Hz) +
+                          " Hz\nfundamental " + plot_number("%.3g", peak->amplitude) + " N m" +
+                          (part && whole_peak ? " (whole record: " + plot_number("%.3g", whole_peak->amplitude) + " N m)" : "") +
+                          "\ndetector amplitude " + detector + " N m (half peak-to-peak)"});
+  // Why the numbers differ, in the page's caption.
+  p.caption =
+      "The spectrum's peak is the amplitude of the oscillation's fundamental, averaged over the analysed "
+      "window with the Hann window's weight (largest mid-window). Over the whole record that average "
+      "includes the quiet time before the onset and the growth, so it reads lower" +
+      (whole_peak ? " (" + plot_number("%.3g", whole_peak->amplitude) + " N m)" : std::string()) +
+      "; over the oscillating part the detector measured it reads " + plot_number("%.3g", peak->amplitude) +
+      " N m. The detector's amplitude, " + detector +
+      " N m, is half the peak-to-peak of the torque less its one-period moving mean in the saturated "
+      "oscillation (analysis/shudder_detection.hpp, definition 6): it includes the harmonics and any "
+      "remaining growth or beating, so it is at or above the fundamental's amplitude.";
   return p;
 }
 
@@ -348,8 +246,12 @@ Plot spectrogram_plot(const Recording& rec, const std::string& name, const std::
   map.label = "torque PSD [dB re 1 (N m)²/Hz]";
 
   Plot p;
-  p.title = name + ": torque spectrogram (frames of " + plot_number("%.3g", 1e3 * static_cast<double>(len) / fs) +
-            " ms, Hann)";
+  p.title = name + ": spectrogram of " + torque.name + " (frames of " +
+            duration_text(static_cast<double>(len) / fs) + " = " + plot_number("%.3g", static_cast<double>(len) * f / fs) +
+            " periods of " + plot_number("%.4g", f) + " Hz, Hann)";
+  p.caption = "Short-time power spectral density of " + torque.name + " in dB over time and frequency, in the band "
+              "0.5–2.5 times the dominant frequency (white dashed line); the orange line marks the detected onset. "
+              "Each column is one frame of " + duration_text(static_cast<double>(len) / fs) + ".";
   p.xlabel = "time [s] (frame centre)";
   p.ylabel = "frequency [Hz]";
   p.map = std::move(map);
@@ -460,6 +362,10 @@ Plot stability_map_plot(const Recording& rec, const std::string& name, const std
   for (std::size_t i = 0; i < m->x.size(); ++i)
     for (std::size_t j = 0; j < m->y.size(); ++j)
       p.map.values[i * m->y.size() + j] = margin->values(static_cast<long>(i), static_cast<long>(j));
+  p.caption = "Stability of steady sliding on the linearised rig: the margin (largest real part of its "
+              "eigenvalues) over slip speed and interface temperature, blue stable, red unstable (an "
+              "oscillation grows), the black line the boundary; grey where the motor cannot hold the slip. "
+              "The green line is this run's own path.";
   p.map.diverging = true;
   p.map.label = "margin [" + display_units(margin->units) + "] (> 0: grows; grey: no steady sliding)";
 
@@ -547,6 +453,9 @@ Plot sweep_plot(const io::SweepTable& table, const std::string& name, const std:
   p.xlabel = key.name + (key.units.empty() ? std::string() : " [" + display_units(key.units) + "]");
   p.ylabel = "frequency [Hz]";
   p.y2label = "predicted margin [1/s] (> 0: unstable)";
+  p.caption = "Against " + key.name + ": the predicted frequency (line) and the simulated one (crosses) on the "
+              "left axis; the predicted margin on the right axis (dashed) with each case's simulated verdict as "
+              "its marker, so prediction and simulation can be compared case by case.";
   // Markers on the first and last case stay clear of the borders.
   const double pad = x.back() > x.front() ? 0.04 * (x.back() - x.front())
                                           : 0.5 * std::max(1.0, std::abs(x.front()));
@@ -607,13 +516,13 @@ Plot sweep_plot(const io::SweepTable& table, const std::string& name, const std:
 
 // ---- files -------------------------------------------------------------------------------
 
-Plot run_plot(PlotKind kind, const Recording& rec, const std::string& name, const std::string& source) {
+MultiPlot run_plot(PlotKind kind, const Recording& rec, const std::string& name, const std::string& source) {
   switch (kind) {
     case PlotKind::kTorque: return torque_plot(rec, name, source);
     case PlotKind::kTemperature: return temperature_plot(rec, name, source);
-    case PlotKind::kSpectrum: return spectrum_plot(rec, name, source);
-    case PlotKind::kSpectrogram: return spectrogram_plot(rec, name, source);
-    case PlotKind::kStabilityMap: return stability_map_plot(rec, name, source);
+    case PlotKind::kSpectrum: return single_panel(spectrum_plot(rec, name, source));
+    case PlotKind::kSpectrogram: return single_panel(spectrogram_plot(rec, name, source));
+    case PlotKind::kStabilityMap: return single_panel(stability_map_plot(rec, name, source));
     case PlotKind::kCoupling: return coupling_plot(rec, name, source);
     case PlotKind::kSweep: break;
   }
@@ -660,71 +569,7 @@ void plot_file(const std::string& h5_path, PlotKind kind, const std::string& out
                      "no /signals: a sweep file; use --what sweep, or plot one case's run file");
   }
   const std::string name = scenario_name(io::read_run_attribute(h5_path, "scenario"), fallback);
-  write_plot(out_path, run_plot(kind, rec, name, h5_path));
-}
-
-Report write_run_report(const std::string& dir, const Recording& rec, const std::string& name,
-                        const std::string& summary, bool rig) {
-  make_report_dir(dir);
-  Report report;
-  const auto path = [&](const char* f) { return (fs::path(dir) / f).string(); };
-  io::write_text_file_atomically(path("summary.txt"), summary);
-  report.files.push_back(path("summary.txt"));
-  if (const auto* verdict = rec.find_block(rig_models::kVerdictBlock)) {
-    io::write_verdict_json(*verdict, path("verdict.json"));
-    report.files.push_back(path("verdict.json"));
-  }
-  struct Item { PlotKind kind; const char* file; bool wanted; };
-  // A driveline run has no torque cell: its coupling takes the torque plot's place.
-  const bool driveline = rec.find("coupling_torque_Nm") != nullptr;
-  const Item items[] = {{PlotKind::kTorque, "torque.png", !driveline},
-                        {PlotKind::kCoupling, "coupling.png", driveline},
-                        {PlotKind::kTemperature, "temperature.png", true},
-                        {PlotKind::kSpectrum, "spectrum.png", !driveline},
-                        {PlotKind::kSpectrogram, "spectrogram.png", rig},
-                        {PlotKind::kStabilityMap, "stability_map.png", rig && rec.find_map("stability_map")}};
-  for (const auto& item : items) {
-    if (!item.wanted) continue;
-    Plot plot;
-    try {
-      plot = run_plot(item.kind, rec, name, "the run");
-    } catch (const io::InputError& e) {
-      report.skipped.push_back(std::string(item.file) + ": " + e.what());
-      continue;
-    }
-    add_report_plot(report, dir, item.file, plot);  // a gnuplot failure skips the plot, as elsewhere
-  }
-  return report;
-}
-
-Report write_sweep_report(const std::string& dir, const io::SweepTable& table, const std::string& name,
-                          const std::string& summary) {
-  make_report_dir(dir);
-  Report report;
-  report.files = {(fs::path(dir) / "summary.txt").string(), (fs::path(dir) / "sweep.png").string()};
-  io::write_text_file_atomically(report.files[0], summary);
-  write_plot(report.files[1], sweep_plot(table, name, "the sweep"));
-  return report;
-}
-
-void make_report_dir(const std::string& dir) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir))
-    throw io::InputError(dir, 0, "", "cannot create the report directory: " + ec.message());
-}
-
-void add_report_plot(Report& report, const std::string& dir, const std::string& file, const Plot& plot) {
-  const std::string path = (fs::path(dir) / file).string();
-  try {
-    write_plot(path, plot);
-  } catch (const io::InputError&) {
-    throw;
-  } catch (const std::exception& e) {
-    report.skipped.push_back(file + ": " + e.what());
-    return;
-  }
-  report.files.push_back(path);
+  write_multiplot(out_path, run_plot(kind, rec, name, h5_path));
 }
 
 }  // namespace shudder::report

@@ -17,6 +17,7 @@ rest_packages=(
   libgtest-dev libgmock-dev  # unit tests
   libbenchmark-dev       # benchmarks
   gnuplot-nox            # plots (PNG/SVG), driven by the program
+  chromium               # the report tests load index.html headless and fail on a missing image or script error
   clang                  # libFuzzer harnesses (fuzz/, scripts/sanitize.sh): -fsanitize=fuzzer is clang-only
   libclang-rt-14-dev     # clang 14's runtimes: libFuzzer, ASan and UBSan (libfuzzer-14-dev is not needed)
   pybind11-dev python3-dev  # the Python module (python/; docs/python.md), for Debian's /usr/bin/python3

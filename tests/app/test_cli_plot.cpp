@@ -11,10 +11,12 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <regex>
 
 #include "io/hdf5_run.hpp"
 #include "report/plots.hpp"
 #include "tests/support/cli.hpp"
+#include "tests/support/short_scenarios.hpp"
 
 using namespace shudder;
 using namespace shudder::test;
@@ -25,34 +27,6 @@ namespace fs = std::filesystem;
 namespace {
 
 bool have_gnuplot() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
-
-void replace(std::string& s, const std::string& from, const std::string& to) {
-  const auto pos = s.find(from);
-  ASSERT_NE(pos, std::string::npos) << from;
-  s.replace(pos, from.size(), to);
-}
-
-// The negative-slope rig case shortened to 0.8 s: the clutch-side mode grows at ~13 1/s from
-// the start (seeded by the motor ripple and the warming), saturating by ~0.6 s: enough for the
-// detector to call it a vibration.
-std::string short_rig_scenario() {
-  std::string s = slurp(source_path("scenarios/rig_shudder_negative_slope.toml"));
-  replace(s, "duration_s = 2.0", "duration_s = 0.8");
-  replace(s, "time_s = [0.0, 2.0]", "time_s = [0.0, 0.8]");
-  replace(s, "fluids/schematic_negative_slope.toml",
-          source_path("scenarios/fluids/schematic_negative_slope.toml"));
-  return s;
-}
-
-// Paper G Case 1 (prescribed slip) shortened to 3 s.
-std::string short_prescribed_scenario() {
-  std::string s = slurp(source_path("scenarios/paper_g_case1_10kN.toml"));
-  replace(s, "duration_s = 10.0", "duration_s = 3.0");
-  replace(s, "time_s = [0.0, 10.0]", "time_s = [0.0, 3.0]");
-  replace(s, "snapshot_times_s = [3.0, 6.0, 9.0]", "snapshot_times_s = [1.0]");
-  replace(s, "fluids/lsc_fluid_c.toml", source_path("scenarios/fluids/lsc_fluid_c.toml"));
-  return s;
-}
 
 void expect_png(const fs::path& p) {
   ASSERT_TRUE(fs::exists(p)) << p;
@@ -133,6 +107,25 @@ TEST(CliPlot, EveryRunPlotOfARigRunDrawsPngAndSvgTitledWithTheScenario) {
   // The spectrum names what the detector found; the spectrogram its colour scale in dB.
   EXPECT_THAT(slurp(dir / "spectrum.svg"), HasSubstr("friction-induced vibration at 37"));
   EXPECT_THAT(slurp(dir / "spectrogram.svg"), HasSubstr("dB re 1 (N m)²/Hz"));
+  // The spectrogram names its channel and a frame length one can read.
+  EXPECT_THAT(slurp(dir / "spectrogram.svg"), testing::ContainsRegex("spectrogram of torque_Nm \\(frames of [0-9.]+ ms = "));
+  // The oscillating run's torque: slip in its own panel, onset and end details.
+  const std::string torque = slurp(dir / "torque.svg");
+  for (const char* text : {"slip_rpm [rpm]", "onset detail (onset ", "end detail (", "8 periods of 37"})
+    EXPECT_THAT(torque, HasSubstr(text)) << text;
+  // The spectrum's fundamental over the oscillating part is the detector's window: it lies
+  // closer to the detector's half peak-to-peak than the whole record's, which averages in the
+  // quiet start, and not above it (the half peak-to-peak also holds the harmonics).
+  const std::string spectrum = slurp(dir / "spectrum.svg");
+  std::smatch m, d;
+  ASSERT_TRUE(std::regex_search(spectrum, m, std::regex("fundamental ([0-9.]+) N m \\(whole record: ([0-9.]+) N m\\)")));
+  ASSERT_TRUE(std::regex_search(spectrum, d, std::regex("detector amplitude ([0-9.]+) N m \\(half peak-to-peak\\)")));
+  const double part = std::stod(m[1].str()), whole = std::stod(m[2].str()), detector = std::stod(d[1].str());
+  EXPECT_LT(whole, part);
+  EXPECT_LE(part, 1.02 * detector);
+  EXPECT_LT(std::abs(detector - part), std::abs(detector - whole));
+  // The thermometers are told apart in the legend.
+  EXPECT_THAT(slurp(dir / "temperature.svg"), HasSubstr("ir_temp_C: IR pyrometer (dashed, triangles); within "));
   EXPECT_THAT(slurp(dir / "stability_map.svg"), HasSubstr("stable | unstable boundary"));
 }
 
@@ -144,6 +137,11 @@ TEST(CliPlot, PrescribedSlipRunPlotsTimeHistoriesButHasNoStabilityMap) {
     ASSERT_EQ(r.exit_code, 0) << what << "\n" << r.err;
     expect_png(dir / (std::string(what) + ".png"));
   }
+  // No shudder: the speed below the torque, no detail panels.
+  ASSERT_EQ(run_cli("plot pg.h5 --what torque -o torque.svg", dir).exit_code, 0);
+  const std::string torque = slurp(dir / "torque.svg");
+  EXPECT_THAT(torque, HasSubstr("speed_rpm [rpm]"));
+  EXPECT_THAT(torque, Not(HasSubstr("onset detail")));
   const auto r = run_cli("plot pg.h5 --what stability_map -o map.png", dir);
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("pg.h5: no /analysis/stability_map: it is written for rig scenarios"));
@@ -206,7 +204,7 @@ TEST(CliPlot, RunReportHoldsTheSummaryAndTheKeyPlots) {
   write_file(dir / "rig.toml", short_rig_scenario());
   auto r = run_cli("run rig.toml -o rig.h5 --report rep", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_THAT(r.out, HasSubstr("Report: rep (7 files)"));  // summary.txt, verdict.json, five plots
+  EXPECT_THAT(r.out, HasSubstr("Report: rep (8 files)"));  // summary.txt, verdict.json, five plots, index.html
   EXPECT_TRUE(fs::exists(dir / "rep" / "verdict.json"));
   const std::string summary = slurp(dir / "rep" / "summary.txt");
   EXPECT_THAT(summary, HasSubstr("Scenario  rig_shudder_negative_slope (rig)"));
@@ -244,7 +242,7 @@ TEST(CliPlot, RunReportSkipsPlotsWhenGnuplotFails) {
   const auto r = run_cli("run rig.toml -o rig.h5 --report rep", dir);
   ::setenv("PATH", saved.c_str(), 1);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_THAT(r.out, HasSubstr("Report: rep (2 files)"));  // summary.txt and verdict.json
+  EXPECT_THAT(r.out, HasSubstr("Report: rep (3 files)"));  // summary.txt, verdict.json, index.html
   EXPECT_TRUE(fs::exists(dir / "rep" / "summary.txt"));
   EXPECT_TRUE(fs::exists(dir / "rep" / "verdict.json"));
   EXPECT_THAT(r.err, HasSubstr("shudder: warning: report: torque.png: gnuplot could not draw"));

@@ -433,7 +433,7 @@ TEST_F(DiagnosisFiles, ReportWritesTextFilesAndPlots) {
   for (const auto& f : fs::directory_iterator(dir))
     EXPECT_NE(f.path().extension(), ".tmp") << f.path();
   if (!gnuplot_installed()) {
-    EXPECT_EQ(rep.files.size(), 2u);
+    EXPECT_EQ(rep.files.size(), 3u);  // summary.txt, candidates.md, index.html
     EXPECT_EQ(rep.skipped.size(), 3u);
     GTEST_SKIP() << "gnuplot not installed: PNGs not checked";
   }
@@ -442,7 +442,13 @@ TEST_F(DiagnosisFiles, ReportWritesTextFilesAndPlots) {
   for (const char* stem : {"a", "b", "b_2"})
     for (const char* kind : {"_torque.png", "_temp.png", "_residuals.png"})
       expected.push_back(dir + "/" + stem + kind);
+  expected.push_back(dir + "/index.html");
   EXPECT_EQ(rep.files, expected);
+  // The page shows every plot and links the text files.
+  const std::string html = slurp(dir + "/index.html");
+  EXPECT_THAT(html, HasSubstr("<img src=\"b_2_residuals.png\""));
+  EXPECT_THAT(html, HasSubstr("<a href=\"candidates.md\">candidates.md</a>"));
+  EXPECT_THAT(html, HasSubstr("torque above, temp_C below, each panel with its own zero line"));
   for (const auto& f : expected) {
     ASSERT_TRUE(fs::exists(f)) << f;
     if (fs::path(f).extension() == ".png") {
@@ -457,7 +463,7 @@ TEST_F(DiagnosisFiles, ReportSkipsARunWithoutSamples) {
   r.traces.resize(1);
   r.traces[0].time_s.clear();
   const shudder::report::Report rep = shudder::report::write_diagnosis_report(path("rep"), r, "");
-  EXPECT_EQ(rep.files.size(), 2u);
+  EXPECT_EQ(rep.files.size(), 3u);  // summary.txt, candidates.md, index.html
   ASSERT_EQ(rep.skipped.size(), 1u);
   EXPECT_THAT(rep.skipped[0], HasSubstr("a_{torque,temp,residuals}.png"));
 }
