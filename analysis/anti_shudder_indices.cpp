@@ -23,14 +23,14 @@ void check_settings(const IndexSettings& s) {
   if (!(std::isfinite(s.mean_radius_mm) && s.mean_radius_mm > 0))
     throw std::invalid_argument("anti-shudder indices: the mean radius must be finite and > 0 mm");
   if (s.jaso_degree < 1 || s.jaso_fit_points <= s.jaso_degree)
-    throw std::invalid_argument("anti-shudder indices: the JASO fit needs degree >= 1 and more samples than the degree");
+    throw std::invalid_argument(
+        "anti-shudder indices: the JASO fit needs degree >= 1 and more samples than the degree");
   if (!(std::isfinite(s.jaso_top_speed_mm_s) && s.jaso_top_speed_mm_s > 0))
     throw std::invalid_argument("anti-shudder indices: the JASO top speed must be finite and > 0 mm/s");
 }
 
 bool outside_speed_data(const clutch::FrictionLaw& law, double v_mm_s) {
-  return v_mm_s < law.min_speed_mm_s() * (1.0 - kRangeSlack) ||
-         v_mm_s > law.max_speed_mm_s() * (1.0 + kRangeSlack);
+  return v_mm_s < law.min_speed_mm_s() * (1.0 - kRangeSlack) || v_mm_s > law.max_speed_mm_s() * (1.0 + kRangeSlack);
 }
 
 // mu at one speed and whether that speed is outside the data.
@@ -43,9 +43,7 @@ Probe probe(const clutch::FrictionLaw& law, double v_mm_s, double temp_C, double
   return {law.mu(v_mm_s, temp_C, load_N), outside_speed_data(law, v_mm_s)};
 }
 
-IndexValue ratio(const Probe& num, const Probe& den) {
-  return {num.mu / den.mu, num.clamped || den.clamped};
-}
+IndexValue ratio(const Probe& num, const Probe& den) { return {num.mu / den.mu, num.clamped || den.clamped}; }
 
 // Murakami: (mu(hi) − mu(lo)) / (V_hi − V_lo), V in m/s.
 IndexValue secant_slope(const Probe& lo, double v_lo_mm_s, const Probe& hi, double v_hi_mm_s) {
@@ -106,15 +104,13 @@ double PolynomialFit::derivative_per_mm_s(double v_mm_s) const {
   return dp * 2.0 / (hi_mm_s - lo_mm_s);
 }
 
-PolynomialFit least_squares_polynomial(const Eigen::VectorXd& speeds_mm_s, const Eigen::VectorXd& mu,
-                                       int degree) {
+PolynomialFit least_squares_polynomial(const Eigen::VectorXd& speeds_mm_s, const Eigen::VectorXd& mu, int degree) {
   if (degree < 0) throw std::invalid_argument("polynomial fit: degree must be >= 0");
   if (speeds_mm_s.size() != mu.size())
     throw std::invalid_argument("polynomial fit: speeds and mu must have the same length");
   if (!speeds_mm_s.allFinite() || !mu.allFinite())
     throw std::invalid_argument("polynomial fit: samples must be finite");
-  if (speeds_mm_s.size() <= degree)
-    throw std::invalid_argument("polynomial fit: needs more samples than the degree");
+  if (speeds_mm_s.size() <= degree) throw std::invalid_argument("polynomial fit: needs more samples than the degree");
   PolynomialFit fit;
   fit.lo_mm_s = speeds_mm_s.minCoeff();
   fit.hi_mm_s = speeds_mm_s.maxCoeff();
@@ -128,8 +124,7 @@ PolynomialFit least_squares_polynomial(const Eigen::VectorXd& speeds_mm_s, const
   for (Eigen::Index k = 1; k < m; ++k) a.col(k) = a.col(k - 1).array() * x.matrix().array();
 
   const auto qr = a.colPivHouseholderQr();
-  if (qr.rank() < m)
-    throw std::invalid_argument("polynomial fit: needs more distinct speeds than the degree");
+  if (qr.rank() < m) throw std::invalid_argument("polynomial fit: needs more distinct speeds than the degree");
   fit.coefficients = qr.solve(mu);
   fit.rms_residual = std::sqrt((a * fit.coefficients - mu).squaredNorm() / static_cast<double>(n));
   return fit;
@@ -145,10 +140,10 @@ PolynomialFit fit_law_polynomial(const clutch::FrictionLaw& law, double temp_C, 
   return least_squares_polynomial(v, mu, degree);
 }
 
-AntiShudderIndices anti_shudder_indices(const clutch::FrictionLaw& law, double temp_C,
-                                        const IndexSettings& s) {
+AntiShudderIndices anti_shudder_indices(const clutch::FrictionLaw& law, double temp_C, const IndexSettings& s) {
   check_settings(s);
-  if (!std::isfinite(temp_C)) throw std::invalid_argument("anti-shudder indices: the temperature must be finite (degC)");
+  if (!std::isfinite(temp_C))
+    throw std::invalid_argument("anti-shudder indices: the temperature must be finite (degC)");
   const double F = s.load_N;
   const auto rpm = [&](double n) { return rpm_to_mm_s(n, s.mean_radius_mm); };
   const auto at = [&](double v_mm_s) { return probe(law, v_mm_s, temp_C, F); };
@@ -283,7 +278,7 @@ std::string describe_extent(const RegionExtent& e) {
 }
 
 ScreeningVerdict screening_verdict(const std::vector<AntiShudderIndices>& indices, const SlopeMap& slope,
-                          const RegionExtent& negative_slope, const std::vector<RigEvidence>& rigs) {
+                                   const RegionExtent& negative_slope, const std::vector<RigEvidence>& rigs) {
   std::vector<std::string> risk, caution;
 
   // Rigs with no evaluated point (motor saturated everywhere) are no evidence either way.
@@ -298,9 +293,12 @@ ScreeningVerdict screening_verdict(const std::vector<AntiShudderIndices>& indice
   // The isothermal slope: evidence of risk by itself only when no rig was judged.
   if (negative_slope.points > 0) {
     std::string why = "negative isothermal slope at " + describe_extent(negative_slope);
-    if (!any_judged) risk.push_back(why);
-    else if (any_unstable) risk.push_back(why);
-    else caution.insert(caution.begin(), why + ", but every rig is predicted stable");
+    if (!any_judged)
+      risk.push_back(why);
+    else if (any_unstable)
+      risk.push_back(why);
+    else
+      caution.insert(caution.begin(), why + ", but every rig is predicted stable");
   }
   for (const auto& r : rigs)
     if (r.unstable.points > 0) risk.push_back(r.label + " predicted unstable at " + describe_extent(r.unstable));
@@ -324,13 +322,14 @@ ScreeningVerdict screening_verdict(const std::vector<AntiShudderIndices>& indice
 
   ScreeningVerdict v;
   v.level = !risk.empty()      ? RiskLevel::kRisk
-            : !caution.empty()  ? RiskLevel::kCaution
-            : indices.empty()   ? RiskLevel::kNotJudged
-                                : RiskLevel::kLow;
+            : !caution.empty() ? RiskLevel::kCaution
+            : indices.empty()  ? RiskLevel::kNotJudged
+                               : RiskLevel::kLow;
   v.text = risk_level_name(v.level);
   if (v.level == RiskLevel::kNotJudged) {
-    v.text += ": no anti-shudder index was computed (no screening temperature inside the law's data; give "
-              "--temps inside it); the slope map and the rigs found no risk, which alone is no verdict";
+    v.text +=
+        ": no anti-shudder index was computed (no screening temperature inside the law's data; give "
+        "--temps inside it); the slope map and the rigs found no risk, which alone is no verdict";
     return v;
   }
   v.text += ": ";

@@ -68,11 +68,11 @@ inline constexpr std::size_t kIndexCount = 10;
 
 /// Static description of an index: how to name, print and judge it.
 struct IndexInfo {
-  const char* key;         // JSON key, e.g. "mu1_over_mu50"
-  const char* label;       // short printed label, e.g. "mu1/mu50 (Ohtani)"
-  const char* unit;        // "-" for ratios, "s/m", "1000 s/m"
-  bool risk_above;         // true: value > limit is on the risk side; false: value < limit
-  double limit;            // 1 for ratios, 0 for slopes
+  const char* key;    // JSON key, e.g. "mu1_over_mu50"
+  const char* label;  // short printed label, e.g. "mu1/mu50 (Ohtani)"
+  const char* unit;   // "-" for ratios, "s/m", "1000 s/m"
+  bool risk_above;    // true: value > limit is on the risk side; false: value < limit
+  double limit;       // 1 for ratios, 0 for slopes
 };
 
 /// The table of the ten indices, in Index order.
@@ -128,12 +128,11 @@ struct PolynomialFit {
 /// column-pivoting QR). Needs more distinct samples than the degree; throws
 /// std::invalid_argument otherwise or for non-finite samples. Also the entry point for fitting
 /// measured mu–v points.
-PolynomialFit least_squares_polynomial(const Eigen::VectorXd& speeds_mm_s, const Eigen::VectorXd& mu,
-                                       int degree);
+PolynomialFit least_squares_polynomial(const Eigen::VectorXd& speeds_mm_s, const Eigen::VectorXd& mu, int degree);
 
 /// The JASO fit of a law at (T, F): `n_points` samples uniform in v over [lo, hi] mm/s.
-PolynomialFit fit_law_polynomial(const clutch::FrictionLaw& law, double temp_C, double load_N,
-                                 double lo_mm_s, double hi_mm_s, int degree, int n_points);
+PolynomialFit fit_law_polynomial(const clutch::FrictionLaw& law, double temp_C, double load_N, double lo_mm_s,
+                                 double hi_mm_s, int degree, int n_points);
 
 /// Isothermal slope dmu/dv over speed x temperature at one load.
 struct SlopeMap {
@@ -157,8 +156,8 @@ struct RegionRun {
 
 /// Bounding box and size of a region on a speed x temperature grid.
 struct RegionExtent {
-  int points = 0;        // grid points in the region
-  int grid_points = 0;   // grid points evaluated (NaN cells excluded)
+  int points = 0;       // grid points in the region
+  int grid_points = 0;  // grid points evaluated (NaN cells excluded)
   double min_rpm = 0.0, max_rpm = 0.0, min_temp_C = 0.0, max_temp_C = 0.0;  // if points > 0
 };
 
@@ -175,8 +174,8 @@ Eigen::Array<bool, Eigen::Dynamic, Eigen::Dynamic> negative_slope_mask(const Slo
 
 /// What a stability map on one rig says, for the verdict.
 struct RigEvidence {
-  std::string label;       // e.g. "rig (378 Hz bar)"
-  RegionExtent unstable;   // points with margin > 0; grid_points = points evaluated
+  std::string label;      // e.g. "rig (378 Hz bar)"
+  RegionExtent unstable;  // points with margin > 0; grid_points = points evaluated
 };
 
 /// kNotJudged: no index could be computed, so there is no verdict (last: a fluid that could not
@@ -201,7 +200,7 @@ struct ScreeningVerdict {
 ///   LOW RISK  otherwise: no negative slope on the map and every index on the safe side.
 /// Indices computed from held (clamped) speeds count, and are named "(outside data)".
 ScreeningVerdict screening_verdict(const std::vector<AntiShudderIndices>& indices, const SlopeMap& slope,
-                          const RegionExtent& negative_slope, const std::vector<RigEvidence>& rigs);
+                                   const RegionExtent& negative_slope, const std::vector<RigEvidence>& rigs);
 
 /// "10–100 rpm, 40–120 °C" (or "30 rpm, 80 °C" for a single point).
 std::string describe_extent(const RegionExtent& extent);

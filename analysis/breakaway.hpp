@@ -45,7 +45,7 @@ struct BreakawayMeasurement {
   std::vector<BreakawayEvent> events;
   std::optional<double> ratio;  // median of the events' ratios
   double min_ratio = 0.0, max_ratio = 0.0;
-  std::string not_measured;     // why, when !ratio
+  std::string not_measured;  // why, when !ratio
 };
 
 BreakawayMeasurement measure_breakaway(const std::vector<RampRun>& runs, const FrictionConversion& conversion,

@@ -15,8 +15,7 @@ double needed_gain(const DiagnosisOptions& o, std::size_t members, std::size_t p
   return (o.min_gain * static_cast<double>(members) + o.penalty_per_parameter * static_cast<double>(parameters)) * s;
 }
 
-Predictions CandidateFitter::predict(const Config& config, const std::vector<std::size_t>& which,
-                                     unsigned jobs) const {
+Predictions CandidateFitter::predict(const Config& config, const std::vector<std::size_t>& which, unsigned jobs) const {
   Predictions out(runs_.size());
   parallel_for(which.size(), jobs, [&](std::size_t i) {
     const std::size_t k = which[i];
@@ -25,8 +24,8 @@ Predictions CandidateFitter::predict(const Config& config, const std::vector<std
     bool ok = true;
     for (const auto& c : misfit_.channels()) ok = ok && predicted_values(p, c.signal).size() == n;
     if (!ok)
-      throw std::runtime_error("the simulator returned a prediction of the wrong length for run '" +
-                               runs_[k].name + "'");
+      throw std::runtime_error("the simulator returned a prediction of the wrong length for run '" + runs_[k].name +
+                               "'");
     out[k] = std::move(p);
   });
   return out;
@@ -54,7 +53,7 @@ Config CandidateFitter::FlatConfig::with(const std::vector<double>& v) const {
 }
 
 Predictions CandidateFitter::complete(const Config& config, Predictions known, const std::vector<std::size_t>& which,
-                                     unsigned jobs) const {
+                                      unsigned jobs) const {
   std::vector<std::size_t> lacking;
   for (std::size_t k : which)
     if (!known[k]) lacking.push_back(k);
@@ -146,8 +145,7 @@ CandidateOutcome CandidateFitter::fit_joint(const Config& start, std::size_t mem
   const FlatConfig flat = flatten(start);
   try {
     Predictions at_best;
-    const auto fitted =
-        fit_config(flat, {flat.values}, misfit_.fit(), 1, o.score.evaluations, at_best, &at_start);
+    const auto fitted = fit_config(flat, {flat.values}, misfit_.fit(), 1, o.score.evaluations, at_best, &at_start);
     if (!fitted) {
       o.score.failure = "no parameter values could be simulated";
       return o;
@@ -167,7 +165,8 @@ void CandidateFitter::score_outcome(CandidateOutcome& o, std::size_t members, co
   std::size_t k = 0;
   for (const auto& e : own) {
     const auto& c = candidate(e.effect);
-    for (std::size_t j = 0; j < e.values.size(); ++j) o.score.parameters.emplace_back(c.parameter_names[j], e.values[j]);
+    for (std::size_t j = 0; j < e.values.size(); ++j)
+      o.score.parameters.emplace_back(c.parameter_names[j], e.values[j]);
     k += e.values.size();
   }
   o.score.fit_misfit = misfit_.misfit(misfit_.fit(), o.predictions);
@@ -223,9 +222,10 @@ double CandidateFitter::relative_move(const EffectCandidate& c, const std::vecto
     // Log parameters by their ratio; signed ones by the change against their size (at least
     // bound_margin of the range, so that a move near zero is not made huge by dividing by ~0).
     const double move =
-        linear ? std::abs(after[j] - before[j]) /
-                     (opt_.stand_in_shift * std::max(std::abs(before[j]), opt_.bound_margin * (c.upper[j] - c.lower[j])))
-               : std::abs(std::log(after[j] / before[j])) / std::log1p(opt_.stand_in_shift);
+        linear
+            ? std::abs(after[j] - before[j]) /
+                  (opt_.stand_in_shift * std::max(std::abs(before[j]), opt_.bound_margin * (c.upper[j] - c.lower[j])))
+            : std::abs(std::log(after[j] / before[j])) / std::log1p(opt_.stand_in_shift);
     if (move > largest) {
       largest = move;
       which = j;

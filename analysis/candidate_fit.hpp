@@ -92,8 +92,8 @@ class CandidateFitter {
   /// during the fit: they are not simulated again). `at_start`, if given, holds the
   /// predictions at flat.values (used instead of simulating that point).
   std::optional<Config> fit_config(const FlatConfig& flat, std::vector<std::vector<double>> starts,
-                                   const SampleSet& set, unsigned jobs, int& evaluations,
-                                   Predictions& at_best, const Predictions* at_start = nullptr) const;
+                                   const SampleSet& set, unsigned jobs, int& evaluations, Predictions& at_best,
+                                   const Predictions* at_start = nullptr) const;
   /// Fills the scores of `o` (o.config fitted, o.predictions of fit and hold-out runs) for the
   /// last `members` effects of o.config, against `current`.
   void score_outcome(CandidateOutcome& o, std::size_t members, const Predictions& current) const;

@@ -24,8 +24,7 @@ void check_inputs(const std::vector<DiagnosisRun>& runs, const std::vector<Effec
   if (runs.empty()) throw std::invalid_argument("no measured runs given");
   for (const auto& r : runs) {
     const std::size_t n = r.time_s.size();
-    if (r.speed_rpm.size() != n || r.normal_force_N.size() != n || r.torque_Nm.size() != n ||
-        r.temp_C.size() != n)
+    if (r.speed_rpm.size() != n || r.normal_force_N.size() != n || r.torque_Nm.size() != n || r.temp_C.size() != n)
       throw std::invalid_argument("run '" + r.name + "': columns differ in length");
     if (n < 20)
       throw std::invalid_argument("run '" + r.name + "' has " + std::to_string(n) +
@@ -235,9 +234,8 @@ double thread_cpu_s() {
 
 // Every clock of the diagnosis is read here: the wall time and process CPU time around the
 // method, and each simulation's thread CPU time through a wrapper of the Simulator.
-DiagnosisResult diagnose(const std::vector<DiagnosisRun>& runs,
-                         const std::vector<EffectCandidate>& candidates, const Simulator& simulate,
-                         const DiagnosisOptions& options, const Reproducer& reproduce) {
+DiagnosisResult diagnose(const std::vector<DiagnosisRun>& runs, const std::vector<EffectCandidate>& candidates,
+                         const Simulator& simulate, const DiagnosisOptions& options, const Reproducer& reproduce) {
   const std::clock_t cpu0 = std::clock();
   const auto wall0 = std::chrono::steady_clock::now();
   std::mutex timing_mutex;

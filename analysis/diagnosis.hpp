@@ -54,9 +54,9 @@ struct DiagnosisRun {
 /// effect without parameters is just switched on.
 struct EffectCandidate {
   std::string name;
-  std::string description;                    // one line: what the effect does (for the reason)
-  std::vector<std::string> parameter_names;   // scenario keys, e.g. "heat_capacity_J_per_K"
-  std::vector<std::vector<double>> starts;    // initial guesses (each of parameter_names' size)
+  std::string description;                   // one line: what the effect does (for the reason)
+  std::vector<std::string> parameter_names;  // scenario keys, e.g. "heat_capacity_J_per_K"
+  std::vector<std::vector<double>> starts;   // initial guesses (each of parameter_names' size)
   std::vector<double> lower, upper;
   std::vector<bool> linear;  // empty, or per parameter (log_parameter_fit.hpp)
 };
@@ -81,8 +81,7 @@ struct Prediction {
 /// Replays run `run` (index into the runs given to diagnose) with the baseline model plus
 /// `added`. Must be thread-safe. Throws std::exception if the model cannot be simulated with
 /// these parameters (the fit then treats them as infeasible).
-using Simulator =
-    std::function<Prediction(const std::vector<EffectSetting>& added, std::size_t run)>;
+using Simulator = std::function<Prediction(const std::vector<EffectSetting>& added, std::size_t run)>;
 
 /// Replays run `run`'s inputs with the baseline model, but with `pseudo` (a run the baseline
 /// model made, sensor noise added) in place of the measured signals. Its difference from the
@@ -91,15 +90,15 @@ using Simulator =
 using Reproducer = std::function<Prediction(const DiagnosisRun& pseudo, std::size_t run)>;
 
 struct DiagnosisOptions {
-  unsigned jobs = 1;                  // threads (candidates are fitted in parallel)
-  double noise_tolerance = 1.1;       // "within noise": every signal's RMS <= this × its error scale
+  unsigned jobs = 1;             // threads (candidates are fitted in parallel)
+  double noise_tolerance = 1.1;  // "within noise": every signal's RMS <= this × its error scale
   // Acceptance of a candidate (docs/diagnosis.md "Fair selection"), s = max(1, J_ref) with
   // J_ref the hold-out misfit of the earlier effects refitted alone on the same fit set:
   //   score = J_holdout + penalty_per_parameter · k · s,  gain = J_ref − score >= min_gain · s
   //   (a joint pair pays min_gain · s more; analysis/candidate_fit.hpp needed_gain),
   //   every own parameter interior (log-distance to each bound >= bound_margin of the log range),
   //   signature r >= min_signature.
-  double min_gain = 0.02;             // hold-out misfit drop needed (noise variance units, × s)
+  double min_gain = 0.02;               // hold-out misfit drop needed (noise variance units, × s)
   double penalty_per_parameter = 0.02;  // per fitted parameter, same units (× s)
   double bound_margin = 0.02;
   double min_signature = 0.3;
@@ -179,10 +178,10 @@ struct Misfit {
 /// A stretch of one run where one signal's residual stands above the noise.
 struct Disagreement {
   std::string run;
-  std::string signal;      // "torque_Nm" or "temp_C"
+  std::string signal;  // "torque_Nm" or "temp_C"
   double t_start_s = 0.0, t_end_s = 0.0;
-  double mean_error = 0.0; // model − measured, the signal's unit
-  std::string tracks;      // feature the run's residual follows most closely
+  double mean_error = 0.0;   // model − measured, the signal's unit
+  std::string tracks;        // feature the run's residual follows most closely
   double correlation = 0.0;  // Pearson r of block-mean residual and that feature
 };
 
@@ -195,16 +194,16 @@ struct Tracking {
 struct CandidateScore {
   std::string effect;
   std::vector<std::pair<std::string, double>> parameters;  // fitted on the fit set
-  double fit_misfit = 0.0;      // J on the fit set
-  double holdout_misfit = 0.0;  // J on the hold-out
-  double score = 0.0;           // holdout_misfit + penalty × parameters (+ min_gain × extra members)
-  double gain = 0.0;            // current hold-out J − score
+  double fit_misfit = 0.0;                                 // J on the fit set
+  double holdout_misfit = 0.0;                             // J on the hold-out
+  double score = 0.0;                  // holdout_misfit + penalty × parameters (+ min_gain × extra members)
+  double gain = 0.0;                   // current hold-out J − score
   double signature_correlation = 0.0;  // r(current residual, change this effect makes)
   // Simulations of every fit run the fit made (the solver's start replay and, for a joint
   // candidate, its screen not counted); the runs not yet simulated at the fitted values (the
   // hold-out; all for a switch with nothing to fit: 0 evaluations) are then simulated once.
   int evaluations = 0;
-  std::string failure;          // non-empty if every simulation failed
+  std::string failure;  // non-empty if every simulation failed
   // Why the candidate may not be added although fitted (empty: it may): a parameter at its
   // bound, a signature that does not follow the residual, or a gain below the needed one.
   std::string rejection;
@@ -215,12 +214,12 @@ struct CandidateScore {
 
 struct DiagnosisStep {
   std::string effect;
-  std::string description;        // the candidate's one-line description
+  std::string description;                                 // the candidate's one-line description
   std::vector<std::pair<std::string, double>> parameters;  // refitted on all runs
-  Misfit misfit;                  // all runs, after adding the effect (all-runs parameters)
-  Misfit holdout;                 // hold-out samples, fit-set parameters
+  Misfit misfit;                                           // all runs, after adding the effect (all-runs parameters)
+  Misfit holdout;                                          // hold-out samples, fit-set parameters
   double holdout_misfit_before = 0.0, holdout_misfit_after = 0.0;  // J
-  std::vector<CandidateScore> candidates;  // every candidate tried in this round, best first
+  std::vector<CandidateScore> candidates;                          // every candidate tried in this round, best first
   // Features the torque and temp_C residuals followed before this effect (pooled over the
   // runs, strongest first): the evidence the report's "why" sentence names.
   std::vector<std::pair<std::string, double>> torque_tracking_before, temp_tracking_before;
@@ -237,9 +236,9 @@ struct BackwardFinding {
   double holdout_cost = 0.0;  // hold-out J without it (the others refitted on the fit set) − J with it
   double needed_gain = 0.0;   // (min_gain + penalty · its parameters) · s
   bool withdrawn = false;
-  std::string stand_in;       // the effect that took over its share ("" if none moved)
-  std::string stand_in_move;  // e.g. "heat_capacity_J_per_K 306.9 -> 2510" ("" if none)
-  std::string kept_because;   // withdrawn == false: the tie rule's reason
+  std::string stand_in;                 // the effect that took over its share ("" if none moved)
+  std::string stand_in_move;            // e.g. "heat_capacity_J_per_K 306.9 -> 2510" ("" if none)
+  std::string kept_because;             // withdrawn == false: the tie rule's reason
   std::vector<std::string> joint_with;  // a joint step's other members: tried and withdrawn together
 };
 
@@ -249,12 +248,12 @@ struct StopReason {
   Kind kind = Kind::kAllAdded;
   double noise_tolerance = 0.0;  // kWithinNoise: the tolerance, and per channel rms / noise
   std::vector<std::pair<std::string, double>> rms_over_noise;
-  int max_effects = 0;           // kEffectLimit
-  double needed_gain = 0.0;      // kNoGain: the gain the best candidate needed, its name, its gain
+  int max_effects = 0;       // kEffectLimit
+  double needed_gain = 0.0;  // kNoGain: the gain the best candidate needed, its name, its gain
   std::string best_effect;
   double best_gain = 0.0;
-  std::string best_rejection;    // kNoGain: why the best-scored candidate was not added
-  std::string tied_with;         // kTie: best_effect and this one scored the same (best_gain: its gain)
+  std::string best_rejection;  // kNoGain: why the best-scored candidate was not added
+  std::string tied_with;       // kTie: best_effect and this one scored the same (best_gain: its gain)
 };
 
 /// An effect the search added but the diagnosis does not name as found, and why: a parameter
@@ -262,9 +261,9 @@ struct StopReason {
 struct UnexplainedEffect {
   std::string effect;
   std::vector<std::pair<std::string, double>> parameters;  // refitted on all runs
-  std::string parameter;  // the parameter at its bound; "" when the reason is the gap
-  double bound = 0.0;     // the bound it sits at
-  std::string reason;     // one clause: "the data pull gain to its bound 0.5" / "… leaves …"
+  std::string parameter;                                   // the parameter at its bound; "" when the reason is the gap
+  double bound = 0.0;                                      // the bound it sits at
+  std::string reason;        // one clause: "the data pull gain to its bound 0.5" / "… leaves …"
   std::string likely_cause;  // "" when none is known
 };
 
@@ -290,13 +289,13 @@ struct DiagnosisResult {
   double noise_torque_Nm = 0.0, noise_temp_C = 0.0;  // estimated sigma
   HoldoutSplit holdout;
   Misfit baseline, final;
-  std::vector<ChannelFit> channels;  // every compared signal (torque and temp first)
+  std::vector<ChannelFit> channels;                                  // every compared signal (torque and temp first)
   double baseline_holdout_misfit = 0.0, final_holdout_misfit = 0.0;  // J
-  std::vector<Disagreement> disagreements;        // baseline model
-  std::vector<Disagreement> final_disagreements;  // final model
-  std::vector<Tracking> tracking;                 // baseline residual vs every feature
+  std::vector<Disagreement> disagreements;                           // baseline model
+  std::vector<Disagreement> final_disagreements;                     // final model
+  std::vector<Tracking> tracking;                                    // baseline residual vs every feature
   std::vector<DiagnosisStep> steps;
-  std::vector<std::string> missing_effects;       // added and found, most important first
+  std::vector<std::string> missing_effects;  // added and found, most important first
   // Added by the search but not found (analysis/explanation_check.hpp): then nothing is named,
   // the final model is the baseline and the verdict is "not explained".
   std::vector<UnexplainedEffect> not_explained;
@@ -304,7 +303,7 @@ struct DiagnosisResult {
   // The added effects with their parameters after the last joint refit on all runs (a step's
   // parameters are those when it was added; later effects may have moved them).
   std::vector<FittedEffect> final_effects;
-  std::vector<CandidateScore> last_round;         // the round that stopped the search
+  std::vector<CandidateScore> last_round;  // the round that stopped the search
   // The backward check: effects withdrawn (their steps are not in `steps`), in the order
   // withdrawn, and effects kept by its tie rule although the others could stand in for them.
   std::vector<BackwardFinding> withdrawn, indistinguishable;
@@ -322,9 +321,7 @@ struct DiagnosisResult {
 /// or an empty hold-out/fit split), if columns differ in length, if no runs are given, or if a
 /// run's temperature rises 6–15 × what the baseline predicts from its speeds (a speed_rpm
 /// column in rad/s reads 9.55 × low; above that range only a warning).
-DiagnosisResult diagnose(const std::vector<DiagnosisRun>& runs,
-                         const std::vector<EffectCandidate>& candidates,
-                         const Simulator& simulate, const DiagnosisOptions& options,
-                         const Reproducer& reproduce = {});
+DiagnosisResult diagnose(const std::vector<DiagnosisRun>& runs, const std::vector<EffectCandidate>& candidates,
+                         const Simulator& simulate, const DiagnosisOptions& options, const Reproducer& reproduce = {});
 
 }  // namespace shudder::analysis

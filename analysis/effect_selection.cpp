@@ -163,9 +163,9 @@ void withdraw_redundant(Selection& sel, Config& fold, const CandidateFitter& fit
     fold = std::move(chosen->refit);
     sel.fold_predictions = std::move(chosen->predictions);
     sel.full = fitter.refit_all(full, {}, sel.full_predictions);
-    sel.steps.erase(std::remove_if(sel.steps.begin(), sel.steps.end(),
-                                   [&](const DiagnosisStep& st) { return st.effect == name; }),
-                    sel.steps.end());
+    sel.steps.erase(
+        std::remove_if(sel.steps.begin(), sel.steps.end(), [&](const DiagnosisStep& st) { return st.effect == name; }),
+        sel.steps.end());
     for (auto& st : sel.steps) {
       std::size_t at = 0;  // a joint step's parameters are its members', in order
       for (const auto& member : members_of(st))
@@ -180,8 +180,8 @@ void withdraw_redundant(Selection& sel, Config& fold, const CandidateFitter& fit
 }  // namespace
 
 Selection select_effects(const std::vector<DiagnosisRun>& runs, const std::vector<EffectCandidate>& candidates,
-                         const CandidateFitter& fitter, const MisfitModel& misfit,
-                         const DiagnosisOptions& opt, const Predictions& baseline) {
+                         const CandidateFitter& fitter, const MisfitModel& misfit, const DiagnosisOptions& opt,
+                         const Predictions& baseline) {
   Selection sel;
   Config fold;
   Config& full = sel.full;

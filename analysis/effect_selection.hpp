@@ -20,7 +20,7 @@ struct Selection {
   std::vector<DiagnosisStep> steps;
   std::vector<CandidateScore> last_round;  // the round that stopped the search (if by gain)
   StopReason stop;
-  Config full;                  // added effects, last joint refit on all runs
+  Config full;                   // added effects, last joint refit on all runs
   Predictions fold_predictions;  // fit/hold-out predictions of the last accepted fold
   Predictions full_predictions;  // all runs with `full`
   // Added in the greedy search, then taken out by the backward check (a stand-in for an
@@ -30,7 +30,7 @@ struct Selection {
 };
 
 Selection select_effects(const std::vector<DiagnosisRun>& runs, const std::vector<EffectCandidate>& candidates,
-                         const CandidateFitter& fitter, const MisfitModel& misfit,
-                         const DiagnosisOptions& options, const Predictions& baseline);
+                         const CandidateFitter& fitter, const MisfitModel& misfit, const DiagnosisOptions& options,
+                         const Predictions& baseline);
 
 }  // namespace shudder::analysis

@@ -29,7 +29,7 @@ namespace shudder::analysis {
 extern const char* const kShippedFftwWisdom;
 
 /// The r2c transform lengths the shipped wisdom was made for: 2^4 … 2^16.
-inline constexpr std::size_t kShippedFftwLengths[] = {16,   32,   64,    128,   256,   512,  1024,
+inline constexpr std::size_t kShippedFftwLengths[] = {16,   32,   64,   128,   256,   512,  1024,
                                                       2048, 4096, 8192, 16384, 32768, 65536};
 
 /// FFTW's wisdom text after planning each length as FftPlan does, starting from no wisdom

@@ -58,7 +58,6 @@ const char* const kShippedFftwWisdom =
     "  (fftw_codelet_r2cf_64 2 #x31bff #x31bff #x0 #xd45f9e06 #x62f3aaad #xc721ba3c #x83b0ced2)\n"
     "  (fftw_codelet_hc2cfdftv_8_avx 1 #x31bff #x31bff #x0 #x38fd6706 #x083035f7 #x260cf2bb #x8cf8a21c)\n"
     "  (fftw_codelet_r2cf_8 0 #x31bff #x31bff #x0 #x187fafdd #xad3d5ee3 #xf43d233c #x658bbea2)\n"
-    ")\n"
-    ;
+    ")\n";
 
 }  // namespace shudder::analysis

@@ -53,7 +53,6 @@ clutch::RadiusConvention FrictionConversion::convention() const {
 
 namespace {
 
-
 std::string g(double x, int digits = 4) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*g", digits, x);
@@ -66,8 +65,7 @@ std::string row_name(double load_N, double temp_C) {
 
 // Groups sorted values: a new group starts where the gap to the previous value exceeds
 // tol(previous). Returns each value's group and the groups' means.
-std::pair<std::vector<int>, std::vector<double>> cluster(const std::vector<double>& x,
-                                                         const auto& tol) {
+std::pair<std::vector<int>, std::vector<double>> cluster(const std::vector<double>& x, const auto& tol) {
   std::vector<std::size_t> order(x.size());
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](auto a, auto b) { return x[a] < x[b]; });
@@ -159,8 +157,7 @@ Eigen::VectorXd wls(const Eigen::MatrixXd& x, const Eigen::VectorXd& y, const Ei
   if (cov) {
     const Eigen::MatrixXd n = xs.transpose() * xs;
     Eigen::FullPivLU<Eigen::MatrixXd> lu(n);
-    *cov = lu.isInvertible() ? Eigen::MatrixXd(lu.inverse())
-                             : Eigen::MatrixXd::Constant(n.rows(), n.cols(), kNaN);
+    *cov = lu.isInvertible() ? Eigen::MatrixXd(lu.inverse()) : Eigen::MatrixXd::Constant(n.rows(), n.cols(), kNaN);
   }
   return beta;
 }
@@ -168,8 +165,7 @@ Eigen::VectorXd wls(const Eigen::MatrixXd& x, const Eigen::VectorXd& y, const Ei
 }  // namespace
 
 std::array<double, 4> fit_maki_curve(const std::vector<double>& v, const std::vector<double>& mu,
-                                     const std::vector<double>& weight, double sigma2,
-                                     std::array<double, 4>* se) {
+                                     const std::vector<double>& weight, double sigma2, std::array<double, 4>* se) {
   const long n = long(v.size());
   if (n < 5) throw std::runtime_error("a Mäki fit needs at least 5 speeds; got " + std::to_string(n));
   Eigen::VectorXd y(n), w(n);
@@ -210,9 +206,17 @@ std::array<double, 4> fit_maki_curve(const std::vector<double>& v, const std::ve
   double fc = solve(std::exp(c), coef), fd = solve(std::exp(d), coef);
   for (int it = 0; it < 60; ++it) {
     if (fc < fd) {
-      b = d; d = c; fd = fc; c = b - phi * (b - a); fc = solve(std::exp(c), coef);
+      b = d;
+      d = c;
+      fd = fc;
+      c = b - phi * (b - a);
+      fc = solve(std::exp(c), coef);
     } else {
-      a = c; c = d; fc = fd; d = a + phi * (b - a); fd = solve(std::exp(d), coef);
+      a = c;
+      c = d;
+      fc = fd;
+      d = a + phi * (b - a);
+      fd = solve(std::exp(d), coef);
     }
   }
   const double c2 = std::exp(0.5 * (a + b));
@@ -251,8 +255,8 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
     if (found.ramps.empty())
       throw CharacterisationInputError(
           runs[r].name, found.rejected.empty()
-                            ? "no speed ramp found (the speed never changes faster than " +
-                                  g(s.ramps.min_rate_rpm_s) + " rpm/s over " + g(s.ramps.min_span_rpm) +
+                            ? "no speed ramp found (the speed never changes faster than " + g(s.ramps.min_rate_rpm_s) +
+                                  " rpm/s over " + g(s.ramps.min_span_rpm) +
                                   " rpm); characterise needs up- or down-ramps (Paper D/E cycles)"
                             : "no usable speed ramp: " + std::to_string(found.rejected.size()) +
                                   " candidate(s) rejected, the first because it " + found.rejected.front().reason);
@@ -293,8 +297,8 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
           best = int(k);
       if (best < 0) {
         out.rejected.push_back({out.used[i].run, out.used[i].t_start_s, out.used[i].t_end_s,
-                                "starts at " + g(out.used_ref_temp_C[i], 3) + " °C, outside ±" +
-                                    g(s.temp_tolerance_C) + " °C of every requested row temperature"});
+                                "starts at " + g(out.used_ref_temp_C[i], 3) + " °C, outside ±" + g(s.temp_tolerance_C) +
+                                    " °C of every requested row temperature"});
         continue;
       }
       kept.push_back(out.used[i]);
@@ -334,19 +338,23 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
     // ±5 % of the node (the torque cell's noise: 1 % in mu each at 10 kN), the hold ~50 at the
     // same temperature.
     std::size_t first = ramp.first, last = ramp.last;
-    const auto at_low_end = [&](std::size_t k) { return std::abs(std::abs(run.speed_rpm[k]) - ramp.min_rpm) <= 0.02 * ramp.min_rpm; };
+    const auto at_low_end = [&](std::size_t k) {
+      return std::abs(std::abs(run.speed_rpm[k]) - ramp.min_rpm) <= 0.02 * ramp.min_rpm;
+    };
     if (ramp.direction == RampDirection::kUp)
       while (first > 0 && at_low_end(first - 1) && run.time_s[ramp.first] - run.time_s[first - 1] <= 1.0) --first;
     else
-      while (last + 1 < run.time_s.size() && at_low_end(last + 1) && run.time_s[last + 1] - run.time_s[ramp.last] <= 1.0) ++last;
+      while (last + 1 < run.time_s.size() && at_low_end(last + 1) &&
+             run.time_s[last + 1] - run.time_s[ramp.last] <= 1.0)
+        ++last;
     for (std::size_t k = first; k <= last; ++k) {
       const double rpm = run.speed_rpm[k];
       if (std::abs(rpm) < 0.5) continue;  // below half an rpm the sign of slip is uncertain
       const double f = run.normal_force_N[k];
       if (!(f > 0)) continue;
-      const double mu = clutch::mu_from_torque(std::copysign(1.0, rpm) * run.torque_Nm[k], f, r_m,
-                                               s.conversion.interfaces) -
-                        s.conversion.bearing_drag_mu;
+      const double mu =
+          clutch::mu_from_torque(std::copysign(1.0, rpm) * run.torque_Nm[k], f, r_m, s.conversion.interfaces) -
+          s.conversion.bearing_drag_mu;
       samples[i].push_back({std::abs(rpm) * mm_s_per_rpm, mu, run.temp_C[k]});
       out.min_temp_C = std::min(out.min_temp_C, run.temp_C[k]);
       out.max_temp_C = std::max(out.max_temp_C, run.temp_C[k]);
@@ -357,7 +365,8 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
   double vmin = 0.0, vmax = std::numeric_limits<double>::infinity();
   for (const auto& smp : samples) {
     if (smp.empty()) continue;
-    const auto [mn, mx] = std::minmax_element(smp.begin(), smp.end(), [](auto& a, auto& b) { return a.v_mm_s < b.v_mm_s; });
+    const auto [mn, mx] =
+        std::minmax_element(smp.begin(), smp.end(), [](auto& a, auto& b) { return a.v_mm_s < b.v_mm_s; });
     vmin = std::max(vmin, mn->v_mm_s);
     vmax = std::min(vmax, mx->v_mm_s);
   }
@@ -394,12 +403,17 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
       // Within-group slope of mu on T; groups = load x 64 log speed bins (fixed effects).
       constexpr int kBins = 64;
       const double l0 = std::log(vmin), l1 = std::log(vmax);
-      std::vector<double> n(nl * kBins, 0), st(nl * kBins, 0), sm(nl * kBins, 0), stt(nl * kBins, 0), stm(nl * kBins, 0);
+      std::vector<double> n(nl * kBins, 0), st(nl * kBins, 0), sm(nl * kBins, 0), stt(nl * kBins, 0),
+          stm(nl * kBins, 0);
       for (std::size_t i = 0; i < out.used.size(); ++i)
         for (const Sample& p : samples[i]) {
           const int b = std::clamp(int((std::log(p.v_mm_s) - l0) / (l1 - l0) * kBins), 0, kBins - 1);
           const std::size_t k = std::size_t(load_group[i]) * kBins + std::size_t(b);
-          n[k] += 1; st[k] += p.temp_C; sm[k] += p.mu; stt[k] += p.temp_C * p.temp_C; stm[k] += p.temp_C * p.mu;
+          n[k] += 1;
+          st[k] += p.temp_C;
+          sm[k] += p.mu;
+          stt[k] += p.temp_C * p.temp_C;
+          stm[k] += p.temp_C * p.mu;
         }
       double sxx = 0, sxy = 0;
       for (std::size_t k = 0; k < n.size(); ++k)
@@ -408,8 +422,9 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
           sxy += stm[k] - st[k] * sm[k] / n[k];
         }
       if (!(sxx > 0))
-        throw CharacterisationInputError(runs.front().name, "linear compensation cannot fit alpha: the temperature "
-                                                            "does not vary at any speed; give --alpha");
+        throw CharacterisationInputError(runs.front().name,
+                                         "linear compensation cannot fit alpha: the temperature "
+                                         "does not vary at any speed; give --alpha");
       out.alpha_per_C = sxy / sxx;
     }
     const double alpha = out.alpha_per_C;
@@ -491,8 +506,8 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
       try {
         surfaces[l] = std::make_shared<TemperatureSurface>(out.node_speeds_mm_s, std::move(knots), pts);
       } catch (const std::invalid_argument& e) {
-        throw CharacterisationInputError(runs.front().name, "piecewise compensation at " +
-                                                                g(out.loads_N[l] / 1000.0) + " kN: " + e.what());
+        throw CharacterisationInputError(
+            runs.front().name, "piecewise compensation at " + g(out.loads_N[l] / 1000.0) + " kN: " + e.what());
       }
       out.piecewise.push_back({out.loads_N[l], surfaces[l]->temp_knots_C(), surfaces[l]->rms_residual()});
     }
@@ -531,11 +546,11 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
       row.temp_C = out.temps_C[it];
       if (m.empty()) {
         if (s.law != LawKind::kLinear)
-          throw CharacterisationInputError(
-              runs.front().name, row_name(row.load_N, row.temp_C) + " has no ramp; a " + law_name(s.law) +
-                                     " law needs ramps at every load (" + std::to_string(nl) +
-                                     ") at every temperature (" + std::to_string(nt_all) +
-                                     "); add runs, pass --row-temps, or use --law linear");
+          throw CharacterisationInputError(runs.front().name, row_name(row.load_N, row.temp_C) + " has no ramp; a " +
+                                                                  law_name(s.law) + " law needs ramps at every load (" +
+                                                                  std::to_string(nl) + ") at every temperature (" +
+                                                                  std::to_string(nt_all) +
+                                                                  "); add runs, pass --row-temps, or use --law linear");
         continue;
       }
       if (int(m.size()) < s.min_ramps_per_row)
@@ -557,7 +572,11 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
           const int b = std::clamp(int((std::log(p.v_mm_s) - l0) / (l1 - l0) * kBins), 0, kBins - 1);
           if (p.v_mm_s < vmin * 0.999 || p.v_mm_s > vmax * 1.001) continue;
           const auto bb = std::size_t(b);
-          n[bb] += 1; sv[bb] += p.v_mm_s; sm[bb] += mc; smm[bb] += mc * mc; sr[bb] += p.mu;
+          n[bb] += 1;
+          sv[bb] += p.v_mm_s;
+          sm[bb] += mc;
+          smm[bb] += mc * mc;
+          sr[bb] += p.mu;
           row.min_speed_mm_s = std::min(row.min_speed_mm_s, p.v_mm_s);
           row.max_speed_mm_s = std::max(row.max_speed_mm_s, p.v_mm_s);
           row.min_temp_C = std::min(row.min_temp_C, p.temp_C);
@@ -610,7 +629,8 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
   if (out.max_temp_C > out.temps_C.back() + s.temp_tolerance_C)
     out.warnings.push_back("the ramps heat the temperature channel to " + g(out.max_temp_C, 3) + " °C, " +
                            g(out.max_temp_C - out.temps_C.back(), 2) + " K above the top row (" +
-                           g(out.temps_C.back(), 3) + " °C): above it the law holds that row's mu, so a model "
+                           g(out.temps_C.back(), 3) +
+                           " °C): above it the law holds that row's mu, so a model "
                            "replaying the hottest runs reads it outside its data there (add ramps that start near " +
                            g(out.max_temp_C, 3) + " °C" +
                            (s.compensation == Compensation::kNone ? ", or a compensation and --hot-row" : "") + ")");
@@ -647,7 +667,8 @@ Characterisation characterise(const std::vector<RampRun>& runs, const Characteri
         const double mu = sets[cell].mu(v);
         if (!(mu > 0.0 && mu <= 1.0))
           throw std::runtime_error(row_name(row.load_N, row.temp_C) + ": the fitted Mäki set gives mu = " + g(mu) +
-                                   " at " + g(v) + " mm/s, outside (0, 1]; the fit did not converge to a plausible law "
+                                   " at " + g(v) +
+                                   " mm/s, outside (0, 1]; the fit did not converge to a plausible law "
                                    "(try --law table)");
       }
     }

@@ -88,10 +88,10 @@ struct FrictionConversion {
   double mean_radius_mm = 46.0;   // thesis: uniform wear at the mean radius 46 mm
   double inner_radius_mm = 38.1;  // Paper G's annulus (uniform pressure)
   double outer_radius_mm = 56.4;
-  double model_radius_mm = 0.0;   // kModel: the clutch model's radius (WetClutch::mean_radius_m)
-  int interfaces = 1;             // sliding interfaces n (Paper G simulates one)
-  double bearing_drag_mu = 0.0;   // subtracted; thesis rig: 0.005
-  std::string source;             // where the radius comes from, for the outputs ("" : the rule's name)
+  double model_radius_mm = 0.0;  // kModel: the clutch model's radius (WetClutch::mean_radius_m)
+  int interfaces = 1;            // sliding interfaces n (Paper G simulates one)
+  double bearing_drag_mu = 0.0;  // subtracted; thesis rig: 0.005
+  std::string source;            // where the radius comes from, for the outputs ("" : the rule's name)
   double effective_radius_mm() const;
   /// The convention recorded with the law: kModel is uniform pressure (on the model's rings).
   clutch::RadiusConvention convention() const;
@@ -103,21 +103,21 @@ struct CharacterisationSettings {
   Compensation compensation = Compensation::kQuadratic;
   std::optional<double> alpha_per_C;  // linear compensation: given instead of fitted
   LawKind law = LawKind::kMaki;
-  double temp_tolerance_C = 3.0;      // reference temperatures within this join one row
-  double load_tolerance = 0.05;       // loads within ±5 % join one row
-  int min_ramps_per_row = 2;          // one up and one down, or two up
-  std::vector<double> node_rpm;       // empty: Paper D's 1, 5, 10, …, 100 rpm
-  std::vector<double> row_temps_C;    // empty: the clusters of the data
-  double linear_load_N = 20000.0;     // the linear law's load (Paper E: 20 kN); nearest row
-  int speed_bins = 48;                // log-spaced bins per row for the fit
-  bool hot_row = false;               // a row at the hottest temperature reached (file comment, 3b)
+  double temp_tolerance_C = 3.0;    // reference temperatures within this join one row
+  double load_tolerance = 0.05;     // loads within ±5 % join one row
+  int min_ramps_per_row = 2;        // one up and one down, or two up
+  std::vector<double> node_rpm;     // empty: Paper D's 1, 5, 10, …, 100 rpm
+  std::vector<double> row_temps_C;  // empty: the clusters of the data
+  double linear_load_N = 20000.0;   // the linear law's load (Paper E: 20 kN); nearest row
+  int speed_bins = 48;              // log-spaced bins per row for the fit
+  bool hot_row = false;             // a row at the hottest temperature reached (file comment, 3b)
 };
 
 struct QuadraticNode {
   double load_N = 0.0, rpm = 0.0;
   double a = 0.0, b = 0.0, c = 0.0;  // mu = a + b T + c T², T in °C
   int ramps = 0;
-  double rms = 0.0;                  // residual of the ramps' node values
+  double rms = 0.0;  // residual of the ramps' node values
 };
 
 struct PiecewiseSurfaceInfo {  // --compensation piecewise, per load
@@ -130,14 +130,14 @@ struct RowFit {
   std::size_t i_temp = 0, i_load = 0;
   double load_N = 0.0, temp_C = 0.0;
   int ramps_up = 0, ramps_down = 0;
-  double min_speed_mm_s = 0.0, max_speed_mm_s = 0.0;  // data range of the row
-  double min_temp_C = 0.0, max_temp_C = 0.0;          // temperature channel over its ramps
+  double min_speed_mm_s = 0.0, max_speed_mm_s = 0.0;                  // data range of the row
+  double min_temp_C = 0.0, max_temp_C = 0.0;                          // temperature channel over its ramps
   std::vector<double> bin_speed_mm_s, bin_mu_raw, bin_mu, bin_count;  // binned means
-  std::vector<double> up_raw, down_raw, up_comp, down_comp;  // means at the node speeds (NaN: none)
-  double up_down_gap_raw = 0.0, up_down_gap_comp = 0.0;      // mean |up − down| over the nodes
-  std::vector<double> node_mu;                               // compensated curve at the nodes
-  std::array<double, 4> maki{}, maki_se{};                   // C1..C4 and standard errors
-  double rms_residual = 0.0, max_residual = 0.0;             // law − bin means
+  std::vector<double> up_raw, down_raw, up_comp, down_comp;           // means at the node speeds (NaN: none)
+  double up_down_gap_raw = 0.0, up_down_gap_comp = 0.0;               // mean |up − down| over the nodes
+  std::vector<double> node_mu;                                        // compensated curve at the nodes
+  std::array<double, 4> maki{}, maki_se{};                            // C1..C4 and standard errors
+  double rms_residual = 0.0, max_residual = 0.0;                      // law − bin means
 };
 
 struct LinearLine {
@@ -149,14 +149,14 @@ struct Characterisation {
   std::vector<Ramp> used;
   std::vector<double> used_ref_temp_C;
   std::vector<RejectedRamp> rejected;
-  std::vector<double> loads_N, temps_C;          // the grid's axes
+  std::vector<double> loads_N, temps_C;  // the grid's axes
   std::vector<double> node_rpm, node_speeds_mm_s;
-  std::vector<RowFit> rows;                       // every cell that has ramps, temp-major
-  double alpha_per_C = 0.0;                       // linear compensation
+  std::vector<RowFit> rows;  // every cell that has ramps, temp-major
+  double alpha_per_C = 0.0;  // linear compensation
   bool alpha_fitted = false;
   std::vector<QuadraticNode> quadratic;
   std::vector<PiecewiseSurfaceInfo> piecewise;
-  std::vector<LinearLine> lines;                  // linear law
+  std::vector<LinearLine> lines;  // linear law
   double linear_load_N = 0.0;
   double min_speed_mm_s = 0.0, max_speed_mm_s = 0.0;  // the law's speed range
   double min_temp_C = 0.0, max_temp_C = 0.0;          // temperature channel, all used ramps

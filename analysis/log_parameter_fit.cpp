@@ -136,7 +136,7 @@ LogParameterFit fit_log_parameters(const LogParameterProblem& p) {
   if (!origin.empty() && tracker.evaluations < p.max_evaluations) {
     Functor f(tracker, origin, static_cast<int>(n), p.residuals);
     Eigen::LevenbergMarquardt<Functor> lm(f);
-    lm.setFactor(1.0);     // first step at most a factor e in each parameter
+    lm.setFactor(1.0);  // first step at most a factor e in each parameter
     // Stop at 0.1 % parameter change or 0.01 % misfit change: the misfit is in noise units, so
     // a relative 1e-4 of J ≈ 1–100 is far below what the selection can tell apart (0.05), and
     // 0.1 % is far inside the 20 % an identifiable parameter must meet. Tighter tolerances

@@ -78,10 +78,8 @@ void MisfitModel::build_sample_sets() {
     // ending at the run's end; a run shorter than one block is one block.
     const double length = std::min(opt_.statistics_block_s, t.back() - t.front());
     std::vector<double> starts;
-    for (double t0 = t.front(); t0 + length <= t.back() + 1e-9 * length; t0 += 0.5 * length)
-      starts.push_back(t0);
-    if (starts.empty() || starts.back() + length < t.back() - 0.25 * length)
-      starts.push_back(t.back() - length);
+    for (double t0 = t.front(); t0 + length <= t.back() + 1e-9 * length; t0 += 0.5 * length) starts.push_back(t0);
+    if (starts.empty() || starts.back() + length < t.back() - 0.25 * length) starts.push_back(t.back() - length);
     for (double t0 : starts) {
       StatBlock blk{0, 0, t0, length, 0.0};
       blk.first = static_cast<std::size_t>(std::lower_bound(t.begin(), t.end(), t0) - t.begin());
@@ -112,9 +110,7 @@ void MisfitModel::build_sample_sets() {
   // One run: alternate tenths of its duration; hold out the odd ones.
   const auto& t = runs_[0].time_s;
   const double tenth = (t.back() - t.front()) / 10.0;
-  const auto odd = [&](double time) {
-    return std::min(9, static_cast<int>((time - t.front()) / tenth)) % 2 == 1;
-  };
+  const auto odd = [&](double time) { return std::min(9, static_cast<int>((time - t.front()) / tenth)) % 2 == 1; };
   for (std::size_t i : all_.index[0]) (odd(t[i]) ? holdout_ : fit_).index[0].push_back(i);
   for (std::size_t b : all_.blocks[0]) {
     const StatBlock& blk = stat_blocks_[0][b];
@@ -343,8 +339,7 @@ bool MisfitModel::residual_vector(const SampleSet& set, const Predictions& p, Ei
 std::size_t MisfitModel::residual_count(const SampleSet& set) const {
   std::size_t n = 0;
   for (const auto& c : channels_)
-    for (std::size_t k = 0; k < runs_.size(); ++k)
-      n += c.blocks ? 2 * set.blocks[k].size() : set.index[k].size();
+    for (std::size_t k = 0; k < runs_.size(); ++k) n += c.blocks ? 2 * set.blocks[k].size() : set.index[k].size();
   return n;
 }
 
@@ -394,8 +389,8 @@ void MisfitModel::choose_channels() {
     }
     std::vector<const std::vector<double>*> signals;
     for (const auto& d : differences) signals.push_back(&d);
-    channels_.push_back({Signal::kTempMinusIr, "temp_minus_ir_C", pooled_noise_sigma(signals, opt_.min_noise_temp_C),
-                         false});
+    channels_.push_back(
+        {Signal::kTempMinusIr, "temp_minus_ir_C", pooled_noise_sigma(signals, opt_.min_noise_temp_C), false});
   }
   // temp_C's tolerance also serves the other thermometers unless they have their own: they
   // watch the same thermal model, whose form error they share (not their difference, above).

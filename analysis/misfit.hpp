@@ -57,8 +57,8 @@ SignalValues predicted_values(const Prediction& p, Signal s);
 struct Channel {
   Signal signal;
   std::string name;
-  double sigma = 0.0;   // noise of one sample
-  bool blocks = false;  // compared by block statistics
+  double sigma = 0.0;      // noise of one sample
+  bool blocks = false;     // compared by block statistics
   double tolerance = 0.0;  // model-form tolerance (signal unit), DiagnosisOptions::tolerance
 };
 
@@ -125,8 +125,7 @@ class MisfitModel {
   struct Sums {
     double normalised = 0.0, unit = 0.0, scale2 = 0.0;  // Σ (r/s)², Σ r², Σ s²
   };
-  Sums channel_sums(const Channel& c, const SampleSet& set, const Predictions& p,
-                    std::vector<double>* entries) const;
+  Sums channel_sums(const Channel& c, const SampleSet& set, const Predictions& p, std::vector<double>* entries) const;
   std::size_t channel_index(const Channel& c) const;
   double channel_weight(const Channel& c) const;
   void choose_channels();

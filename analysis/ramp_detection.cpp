@@ -18,11 +18,11 @@ std::string fmt(const char* f, double a, double b = 0.0) {
 }
 
 // Mean of `x` over samples whose time lies within `window_s` of time[at] on the side `dir`.
-double window_mean(const std::vector<double>& t, const std::vector<double>& x, std::size_t at,
-                   int dir, double window_s) {
+double window_mean(const std::vector<double>& t, const std::vector<double>& x, std::size_t at, int dir,
+                   double window_s) {
   double sum = 0.0;
   int n = 0;
-  for (std::size_t i = at; i < t.size(); i = dir > 0 ? i + 1 : i - 1) {
+  for (std::size_t i = at; i<t.size(); i = dir> 0 ? i + 1 : i - 1) {
     if (std::abs(t[i] - t[at]) > window_s && n > 0) break;
     sum += x[i];
     ++n;
@@ -34,8 +34,8 @@ double window_mean(const std::vector<double>& t, const std::vector<double>& x, s
 }  // namespace
 
 RampSearch find_ramps(const RampRun& run, std::size_t run_index, const RampSettings& s) {
-  if (!(s.smoothing_s > 0) || !(s.min_rate_rpm_s > 0) || !(s.min_span_rpm > 0) ||
-      !(s.min_duration_s >= 0) || !(s.max_load_spread > 0))
+  if (!(s.smoothing_s > 0) || !(s.min_rate_rpm_s > 0) || !(s.min_span_rpm > 0) || !(s.min_duration_s >= 0) ||
+      !(s.max_load_spread > 0))
     throw std::invalid_argument("ramp search settings must be positive");
   const std::size_t n = run.time_s.size();
   const auto& t = run.time_s;

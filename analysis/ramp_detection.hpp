@@ -36,8 +36,8 @@ struct Ramp {
   std::size_t run = 0;              // index of the run it came from
   std::size_t first = 0, last = 0;  // sample range [first, last] in the run
   RampDirection direction = RampDirection::kUp;
-  double load_N = 0.0;              // mean normal force
-  double start_temp_C = 0.0;        // temperature channel at the ramp's first samples
+  double load_N = 0.0;        // mean normal force
+  double start_temp_C = 0.0;  // temperature channel at the ramp's first samples
   double end_temp_C = 0.0;
   double min_rpm = 0.0, max_rpm = 0.0;
   double t_start_s = 0.0, t_end_s = 0.0;
@@ -50,13 +50,13 @@ struct RejectedRamp {
 };
 
 struct RampSettings {
-  double smoothing_s = 0.1;        // half-width of the rate's centred difference
-  double min_rate_rpm_s = 1.0;     // Paper D's slowest ramp: 99 rpm in 20 s = 5 rpm/s
-  double min_span_rpm = 20.0;      // a ramp must reach from low speeds past ~20 rpm
-  double min_duration_s = 0.5;     // Paper D's fastest ramp: 1 s
-  double max_load_spread = 0.05;   // ±5 % of the mean load
-  double flicker_rpm = 2.0;        // candidates spanning less than this are noise
-  double temp_window_s = 0.1;      // start/end temperature: mean over this time
+  double smoothing_s = 0.1;       // half-width of the rate's centred difference
+  double min_rate_rpm_s = 1.0;    // Paper D's slowest ramp: 99 rpm in 20 s = 5 rpm/s
+  double min_span_rpm = 20.0;     // a ramp must reach from low speeds past ~20 rpm
+  double min_duration_s = 0.5;    // Paper D's fastest ramp: 1 s
+  double max_load_spread = 0.05;  // ±5 % of the mean load
+  double flicker_rpm = 2.0;       // candidates spanning less than this are noise
+  double temp_window_s = 0.1;     // start/end temperature: mean over this time
 };
 
 struct RampSearch {

@@ -81,8 +81,9 @@ BlockFeatures block_features(const std::vector<double>& t, const std::vector<dou
   for (std::size_t b = 0; b < nb; ++b) rise[b] = temp[b] - temp.front();
 
   BlockFeatures f;
-  f.names = {"time", "temperature_rise", "temperature_rate", "sliding_speed",
-             "speed_change_direction", "low_speed_dwell", "normal_force"};
+  f.names = {"time",          "temperature_rise",       "temperature_rate",
+             "sliding_speed", "speed_change_direction", "low_speed_dwell",
+             "normal_force"};
   f.values = {tm, rise, temp_rate, speed, direction, dwell, force};
   return f;
 }
@@ -102,8 +103,7 @@ double pearson(const std::vector<double>& a, const std::vector<double>& b) {
   }
   // A feature that is constant up to round-off has no correlation with anything.
   const double tiny = 1e-24 * static_cast<double>(n);
-  if (saa <= tiny * scale_a * scale_a || sbb <= tiny * scale_b * scale_b || saa == 0 || sbb == 0)
-    return 0.0;
+  if (saa <= tiny * scale_a * scale_a || sbb <= tiny * scale_b * scale_b || saa == 0 || sbb == 0) return 0.0;
   return sab / std::sqrt(saa * sbb);
 }
 
@@ -143,8 +143,7 @@ std::vector<Segment> residual_segments(const std::vector<double>& residual, doub
   return out;
 }
 
-std::vector<std::pair<std::string, double>> rank_features(const std::vector<double>& r,
-                                                          const BlockFeatures& features) {
+std::vector<std::pair<std::string, double>> rank_features(const std::vector<double>& r, const BlockFeatures& features) {
   std::vector<std::pair<std::string, double>> ranked;
   for (std::size_t f = 0; f < features.names.size(); ++f)
     ranked.emplace_back(features.names[f], pearson(r, features.values[f]));
@@ -158,9 +157,8 @@ std::vector<std::pair<std::string, double>> rank_features(const std::vector<doub
     // Mostly constant: |mean| carries > 90 % of the rms, i.e. the spread is < 44 % of it.
     if (offset > 0.9) ranked.emplace_back("offset", offset);
   }
-  std::stable_sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) {
-    return std::abs(a.second) > std::abs(b.second);
-  });
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [](const auto& a, const auto& b) { return std::abs(a.second) > std::abs(b.second); });
   return ranked;
 }
 

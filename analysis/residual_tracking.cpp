@@ -4,8 +4,8 @@
 
 namespace shudder::analysis {
 
-std::vector<std::pair<std::string, double>> pooled_tracking(const std::vector<DiagnosisRun>& runs,
-                                                            const Predictions& p, bool torque) {
+std::vector<std::pair<std::string, double>> pooled_tracking(const std::vector<DiagnosisRun>& runs, const Predictions& p,
+                                                            bool torque) {
   std::vector<double> residual;
   BlockFeatures pooled;
   for (std::size_t k = 0; k < runs.size(); ++k) {

@@ -15,8 +15,8 @@ namespace shudder::analysis {
 
 /// Features the torque (or temp_C) residual follows, pooled over the runs with a prediction,
 /// strongest first.
-std::vector<std::pair<std::string, double>> pooled_tracking(const std::vector<DiagnosisRun>& runs,
-                                                            const Predictions& p, bool torque);
+std::vector<std::pair<std::string, double>> pooled_tracking(const std::vector<DiagnosisRun>& runs, const Predictions& p,
+                                                            bool torque);
 /// Disagreeing segments of torque then temp_C in every run (every run must have a prediction).
 std::vector<Disagreement> disagreements(const std::vector<DiagnosisRun>& runs, const Predictions& p,
                                         double sigma_torque_Nm, double sigma_temp_C);

@@ -40,8 +40,7 @@ std::size_t prev_pow2(std::size_t n) {
 std::size_t nice_length(std::size_t n) {
   std::size_t best = 1;
   for (std::size_t p5 = 1; p5 <= n; p5 *= 5)
-    for (std::size_t p3 = p5; p3 <= n; p3 *= 3)
-      best = std::max(best, p3 * prev_pow2(n / p3));
+    for (std::size_t p3 = p5; p3 <= n; p3 *= 3) best = std::max(best, p3 * prev_pow2(n / p3));
   return best;
 }
 
@@ -87,8 +86,8 @@ void check_input(const DetectionInput& in) {
                                 " samples of time_s, got " + std::to_string(n));
   const auto same = [n](std::span<const double> s, const char* name, bool optional) {
     if (optional && s.empty()) return;
-    require(s.size() == n, std::string("shudder detection: signal ") + name + " has " +
-                               std::to_string(s.size()) + " samples, time_s has " + std::to_string(n));
+    require(s.size() == n, std::string("shudder detection: signal ") + name + " has " + std::to_string(s.size()) +
+                               " samples, time_s has " + std::to_string(n));
   };
   same(in.torque_Nm, "torque_Nm", false);
   same(in.slip_rpm, "slip_rpm", false);
@@ -102,9 +101,8 @@ void check_input(const DetectionInput& in) {
   for (std::size_t i = 1; i < n; ++i)
     if (!(std::abs(in.time_s[i] - in.time_s[i - 1] - dt) <= 1e-3 * dt))
       require(false, "shudder detection needs uniform sampling: time_s steps by " +
-                         std::to_string(in.time_s[i] - in.time_s[i - 1]) + " s at t = " +
-                         std::to_string(in.time_s[i]) + " s against a mean step of " +
-                         std::to_string(dt) + " s; resample first");
+                         std::to_string(in.time_s[i] - in.time_s[i - 1]) + " s at t = " + std::to_string(in.time_s[i]) +
+                         " s against a mean step of " + std::to_string(dt) + " s; resample first");
 }
 
 // Stuck phases per second over samples [i_a, i_b) (header, step 5): the mean rate between the
@@ -180,7 +178,7 @@ struct BandTrace {
   std::span<const double> times_s;  // (frames) frame centres
   std::vector<double> dB;           // (frames)
   double max_dB = 0.0;
-  std::size_t ja = 0;               // first frame of the oscillating part
+  std::size_t ja = 0;  // first frame of the oscillating part
 };
 
 // The time `level` is crossed upwards between frame j (at or below it) and j + 1 (above it),
@@ -388,7 +386,8 @@ ShudderResult ShudderDetector::detect(const DetectionInput& in) const {
   // 9. Operating point: means over one period centred at the onset.
   const double u = (r.onset_time_s - t0) * fs;
   const auto p0 = static_cast<std::size_t>(std::clamp(std::lround(u - 0.5 * period), 0L, static_cast<long>(n - 1)));
-  const auto p1 = static_cast<std::size_t>(std::clamp(std::lround(u + 0.5 * period), static_cast<long>(p0 + 1), static_cast<long>(n)));
+  const auto p1 = static_cast<std::size_t>(
+      std::clamp(std::lround(u + 0.5 * period), static_cast<long>(p0 + 1), static_cast<long>(n)));
   r.at_onset.time_s = r.onset_time_s;
   r.at_onset.slip_rpm = mean_over(in.slip_rpm, p0, p1);
   r.at_onset.interface_temp_C = mean_over(in.interface_temp_C, p0, p1);

@@ -120,8 +120,8 @@ inline constexpr std::array<Verdict, 3> kVerdicts = {Verdict::kNone, Verdict::kV
 
 /// How the onset time is placed on the growth (definition 8 in the header comment).
 enum class OnsetDefinition {
-  kGrowthLine,      // c: the fitted exponential growth extrapolated down to the start level
-  kGrowthRateZero,  // d (ramps): where the growth rate, fitted as linear in time, crosses zero
+  kGrowthLine,         // c: the fitted exponential growth extrapolated down to the start level
+  kGrowthRateZero,     // d (ramps): where the growth rate, fitted as linear in time, crosses zero
   kThresholdCrossing,  // e (runs' verdicts): the band amplitude's last rise through the verdict threshold
 };
 
@@ -201,16 +201,17 @@ struct ShudderResult {
   double frequency_Hz = 0.0;       // dominant frequency f_d; NaN for none
   double peak_frequency_Hz = 0.0;  // strongest peak examined (f_d, also for none)
   double onset_time_s = 0.0;       // definition 8; NaN for none
-  bool growth_observed = false;    // the band power rose from its starting level (threshold crossing: through the threshold)
+  bool growth_observed =
+      false;  // the band power rose from its starting level (threshold crossing: through the threshold)
   double growth_rate_per_s = 0.0;  // σ of the fitted growth (the growth line); NaN if not fitted
   // dσ/dt of the parabola of kGrowthRateZero, 1/s²; NaN unless that definition placed the onset.
   double growth_acceleration_per_s2 = 0.0;
-  OperatingPoint at_onset;         // definition 9; NaN fields for none
-  double mean_torque_Nm = 0.0;     // mean |T| over the record
-  double stick_cycle_fraction = 0.0;  // cycles of the oscillating part that reached zero slip
+  OperatingPoint at_onset;                                  // definition 9; NaN fields for none
+  double mean_torque_Nm = 0.0;                              // mean |T| over the record
+  double stick_cycle_fraction = 0.0;                        // cycles of the oscillating part that reached zero slip
   double oscillating_from_s = 0.0, oscillating_to_s = 0.0;  // definition 4
-  std::vector<double> band_times_s;  // (n_frames) spectrogram frame centres
-  std::vector<double> band_power;    // (n_frames) band power around f_1, N² m²
+  std::vector<double> band_times_s;                         // (n_frames) spectrogram frame centres
+  std::vector<double> band_power;                           // (n_frames) band power around f_1, N² m²
 };
 
 /// Runs definitions 1–9. Holds a SpectralAnalyzer so repeated detections on records of equal

@@ -91,8 +91,8 @@ std::size_t argmax_in_band(std::span<const double> f, std::span<const double> v,
     if (f[k] < lo || f[k] > hi) continue;
     if (best == f.size() || v[k] > v[best]) best = k;
   }
-  require_valid(best < f.size(), "no spectral bin lies in the band " + std::to_string(lo) + " – " +
-                               std::to_string(hi) + " Hz; widen the band or use a longer record");
+  require_valid(best < f.size(), "no spectral bin lies in the band " + std::to_string(lo) + " – " + std::to_string(hi) +
+                                     " Hz; widen the band or use a longer record");
   return best;
 }
 
@@ -101,8 +101,8 @@ std::size_t argmax_in_band(std::span<const double> f, std::span<const double> v,
 // blind to tones a few bins from DC (the window's leakage), so removing it leaves their
 // energy unchanged; the plain mean of a sine over a non-integer number of cycles (~A/(π k))
 // would add its square to the windowed energy (2e-4 of it at k ≈ 20).
-void windowed_segment(std::span<const double> x, std::size_t start, const std::vector<double>& w,
-                      bool remove_mean, std::vector<double>& buf) {
+void windowed_segment(std::span<const double> x, std::size_t start, const std::vector<double>& w, bool remove_mean,
+                      std::vector<double>& buf) {
   const std::size_t n = w.size();
   double mean = 0.0;
   if (remove_mean) {
@@ -178,9 +178,9 @@ FftPlan& FftPlan::operator=(FftPlan&& other) noexcept {
 void FftPlan::execute(std::span<const double> in, std::span<std::complex<double>> out) const {
   require_valid(plan_ != nullptr, "FftPlan used after being moved from");
   require_valid(in.size() == n_ && out.size() == bins(),
-          "FftPlan of length " + std::to_string(n_) + " needs " + std::to_string(n_) + " inputs and " +
-              std::to_string(bins()) + " outputs, got " + std::to_string(in.size()) + " and " +
-              std::to_string(out.size()));
+                "FftPlan of length " + std::to_string(n_) + " needs " + std::to_string(n_) + " inputs and " +
+                    std::to_string(bins()) + " outputs, got " + std::to_string(in.size()) + " and " +
+                    std::to_string(out.size()));
   // r2c out-of-place preserves its input (FFTW_PRESERVE_INPUT is the default for r2c), so the
   // const_cast only satisfies the C signature. std::complex<double> is layout-compatible with
   // fftw_complex (FFTW manual §4.1.1).
@@ -222,7 +222,7 @@ Spectrum amplitude_spectrum(const FftPlan& plan, std::span<const double> x, doub
   require_valid(fs > 0.0, "sample rate must be > 0 Hz");
   const std::size_t n = plan.size();
   require_valid(x.size() == n, "amplitude_spectrum: signal of " + std::to_string(x.size()) +
-                             " samples for a plan of length " + std::to_string(n));
+                                   " samples for a plan of length " + std::to_string(n));
   const std::vector<double> w = window_coefficients(window, n);
   const double s1 = sum(w);
   std::vector<double> buf(n);
@@ -255,12 +255,13 @@ Peak find_peak(const Spectrum& s, double f_lo_Hz, double f_hi_Hz) {
 
 Psd welch_psd(const FftPlan& plan, std::span<const double> x, double fs, const WelchSettings& cfg) {
   require_valid(fs > 0.0, "sample rate must be > 0 Hz");
-  require_valid(cfg.overlap >= 0.0 && cfg.overlap < 1.0, "Welch overlap must be in [0, 1), got " + std::to_string(cfg.overlap));
+  require_valid(cfg.overlap >= 0.0 && cfg.overlap < 1.0,
+                "Welch overlap must be in [0, 1), got " + std::to_string(cfg.overlap));
   const std::size_t L = plan.size();
   require_valid(x.size() >= L, "Welch PSD: signal of " + std::to_string(x.size()) +
-                             " samples is shorter than one segment (" + std::to_string(L) + ")");
-  const std::size_t step = std::max<std::size_t>(
-      1, static_cast<std::size_t>(std::lround(static_cast<double>(L) * (1.0 - cfg.overlap))));
+                                   " samples is shorter than one segment (" + std::to_string(L) + ")");
+  const std::size_t step =
+      std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(static_cast<double>(L) * (1.0 - cfg.overlap))));
   const std::vector<double> w = window_coefficients(cfg.window, L);
   const double s2 = sum_of_squares(w);
 
@@ -293,13 +294,13 @@ double peak_frequency_Hz(const Psd& psd, Window window, double f_lo_Hz, double f
   return (static_cast<double>(k) + interpolate_offset(mag, k, window)) * psd.bin_width_Hz;
 }
 
-Spectrogram spectrogram(const FftPlan& plan, std::span<const double> x, double fs,
-                        const SpectrogramSettings& cfg, double t0_s) {
+Spectrogram spectrogram(const FftPlan& plan, std::span<const double> x, double fs, const SpectrogramSettings& cfg,
+                        double t0_s) {
   require_valid(fs > 0.0, "sample rate must be > 0 Hz");
   require_valid(cfg.hop >= 1, "spectrogram hop must be >= 1 sample");
   const std::size_t L = plan.size();
   require_valid(x.size() >= L, "spectrogram: signal of " + std::to_string(x.size()) +
-                             " samples is shorter than one frame (" + std::to_string(L) + ")");
+                                   " samples is shorter than one frame (" + std::to_string(L) + ")");
   const std::size_t regular = 1 + (x.size() - L) / cfg.hop;
   const bool tail = cfg.end_frame && (regular - 1) * cfg.hop + L < x.size();
   const std::size_t frames = regular + (tail ? 1 : 0);
@@ -374,8 +375,8 @@ Psd SpectralAnalyzer::welch_psd(std::span<const double> x, double fs, const Welc
   return analysis::welch_psd(plan(cfg.segment_length), x, fs, cfg);
 }
 
-Spectrogram SpectralAnalyzer::spectrogram(std::span<const double> x, double fs,
-                                          const SpectrogramSettings& cfg, double t0_s) const {
+Spectrogram SpectralAnalyzer::spectrogram(std::span<const double> x, double fs, const SpectrogramSettings& cfg,
+                                          double t0_s) const {
   return analysis::spectrogram(plan(cfg.segment_length), x, fs, cfg, t0_s);
 }
 

@@ -55,9 +55,9 @@
 //   (n_frames x n_bins). With end_frame (the shudder detector's choice), when the last regular
 //   frame ends short of the record's end (by < hop samples) one more frame ends at the last
 //   sample, so an oscillation in the record's last samples is seen; frame times are then not
-//   uniform at the end (plots, which need a uniform grid, leave it off). Band power b_j = Σ_{f_lo ≤ f_k ≤ f_hi} P_jk df is the mean square of
-//   the part of the signal in that band (unit²), the quantity used to find when an
-//   oscillation starts.
+//   uniform at the end (plots, which need a uniform grid, leave it off). Band power b_j = Σ_{f_lo ≤ f_k ≤ f_hi} P_jk df
+//   is the mean square of the part of the signal in that band (unit²), the quantity used to find when an oscillation
+//   starts.
 //
 // FFTW: an FftPlan is one r2c plan for one length (FFTW_ESTIMATE | FFTW_UNALIGNED, so it can
 // be executed on any caller-owned arrays). FFTW's planner is not thread-safe: plan creation
@@ -152,10 +152,10 @@ struct SpectrogramSettings {
 
 struct Spectrogram {
   double bin_width_Hz = 0.0;
-  std::vector<double> times_s;          // (n_frames) frame centres
+  std::vector<double> times_s;           // (n_frames) frame centres
   std::vector<std::size_t> frame_start;  // (n_frames) index of each frame's first sample
-  std::vector<double> frequency_Hz;  // (n_bins)
-  Eigen::MatrixXd power;             // (n_frames x n_bins) one-sided PSD, unit²/Hz
+  std::vector<double> frequency_Hz;      // (n_bins)
+  Eigen::MatrixXd power;                 // (n_frames x n_bins) one-sided PSD, unit²/Hz
 };
 
 /// Amplitude spectrum of x (x.size() == plan.size()). Throws std::invalid_argument on a size
@@ -188,8 +188,7 @@ std::vector<double> band_power(const Spectrogram& spectrogram, double f_lo_Hz, d
 
 /// First time at which `values` reaches `level`, linearly interpolated between the two
 /// samples around the crossing; NaN if it never does. times and values have equal length.
-double first_time_at_or_above(std::span<const double> times, std::span<const double> values,
-                              double level);
+double first_time_at_or_above(std::span<const double> times, std::span<const double> values, double level);
 
 /// Caches one FftPlan per transform length and runs the spectra above with them. plan() is
 /// thread-safe; references to plans stay valid for the analyser's lifetime.
@@ -198,12 +197,10 @@ class SpectralAnalyzer {
   const FftPlan& plan(std::size_t n) const;
   std::size_t cached_plans() const;
 
-  Spectrum amplitude_spectrum(std::span<const double> x, double sample_rate_Hz,
-                              Window window = Window::kHann) const;
-  Psd welch_psd(std::span<const double> x, double sample_rate_Hz,
-                const WelchSettings& settings = {}) const;
-  Spectrogram spectrogram(std::span<const double> x, double sample_rate_Hz,
-                          const SpectrogramSettings& settings = {}, double t0_s = 0.0) const;
+  Spectrum amplitude_spectrum(std::span<const double> x, double sample_rate_Hz, Window window = Window::kHann) const;
+  Psd welch_psd(std::span<const double> x, double sample_rate_Hz, const WelchSettings& settings = {}) const;
+  Spectrogram spectrogram(std::span<const double> x, double sample_rate_Hz, const SpectrogramSettings& settings = {},
+                          double t0_s = 0.0) const;
 
  private:
   mutable std::mutex mutex_;

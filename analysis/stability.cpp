@@ -31,14 +31,12 @@ void check_input(const dynamics::TorsionalNetwork& net, const SteadySliding& s) 
                                 " contact slips, but the network has " + std::to_string(n) +
                                 " contacts; give one slip (rad/s, 0 = stuck) per contact");
   if (!s.stuck.empty() && s.stuck.size() != n)
-    throw std::invalid_argument("steady sliding gives " + std::to_string(s.stuck.size()) +
-                                " stuck flags for " + std::to_string(n) +
-                                " contacts; give one per contact or none");
+    throw std::invalid_argument("steady sliding gives " + std::to_string(s.stuck.size()) + " stuck flags for " +
+                                std::to_string(n) + " contacts; give one per contact or none");
   if (!std::isfinite(s.t_s)) throw std::invalid_argument("steady sliding time must be finite");
   for (std::size_t k = 0; k < n; ++k)
     if (!std::isfinite(s.slip_rad_s[k]))
-      throw std::invalid_argument("slip of contact '" + net.contacts()[k].name +
-                                  "' must be finite (rad/s)");
+      throw std::invalid_argument("slip of contact '" + net.contacts()[k].name + "' must be finite (rad/s)");
 }
 
 }  // namespace

@@ -55,21 +55,20 @@ struct SteadySliding {
 
 /// Result of a linearisation.
 struct StabilityPoint {
-  double margin_per_s = 0.0;   // largest real part (rigid-body drift excluded), 1/s; > 0 unstable
-  double frequency_Hz = 0.0;   // |Im λ|/2π of that mode (0 if it is a real eigenvalue)
+  double margin_per_s = 0.0;  // largest real part (rigid-body drift excluded), 1/s; > 0 unstable
+  double frequency_Hz = 0.0;  // |Im λ|/2π of that mode (0 if it is a real eigenvalue)
   // The oscillatory mode (Im λ ≠ 0) with the largest real part; NaN if there is none.
   double oscillatory_margin_per_s = 0.0;
   double oscillatory_frequency_Hz = 0.0;
-  bool stable = true;          // margin_per_s <= 1e-8 · max|λ| (neutral counts as stable)
-  int rigid_body_modes = 0;    // zero eigenvalues left out of the margin
+  bool stable = true;            // margin_per_s <= 1e-8 · max|λ| (neutral counts as stable)
+  int rigid_body_modes = 0;      // zero eigenvalues left out of the margin
   Eigen::VectorXcd eigenvalues;  // (2r) all eigenvalues of A, 1/s (sorted by |Im|)
 };
 
 /// The friction-slope damping S (n x n) of the slipping contacts (see the header comment).
 /// Throws std::invalid_argument if the slip vector does not match the contacts or a value or
 /// a law's slope is not finite.
-Eigen::MatrixXd friction_slope_damping(const dynamics::TorsionalNetwork& network,
-                                       const SteadySliding& steady);
+Eigen::MatrixXd friction_slope_damping(const dynamics::TorsionalNetwork& network, const SteadySliding& steady);
 
 /// Linearises the network about the steady sliding and returns its eigenvalues and margin.
 /// The network must be valid (TorsionalNetwork::validate); input errors as above.

@@ -19,8 +19,8 @@ std::pair<std::size_t, double> locate(const std::vector<double>& xs, double x) {
 
 // Adds lambda · (second difference along x)² for every line of the grid: unknown (m, o) is at
 // m·stride + o·other_stride.
-void add_second_differences(Eigen::MatrixXd& a, const std::vector<double>& x, std::size_t stride,
-                            std::size_t n_other, std::size_t other_stride, double lambda) {
+void add_second_differences(Eigen::MatrixXd& a, const std::vector<double>& x, std::size_t stride, std::size_t n_other,
+                            std::size_t other_stride, double lambda) {
   for (std::size_t m = 1; m + 1 < x.size(); ++m) {
     const double h0 = x[m] - x[m - 1], h1 = x[m + 1] - x[m], hm = 0.5 * (h0 + h1);
     const double c[3] = {hm / h0, -hm / h0 - hm / h1, hm / h1};
@@ -35,7 +35,8 @@ void add_second_differences(Eigen::MatrixXd& a, const std::vector<double>& x, st
 void check_axis(const std::vector<double>& xs, const char* what) {
   if (xs.size() < 2) throw std::invalid_argument(std::string("a temperature surface needs 2 or more ") + what);
   for (std::size_t k = 1; k < xs.size(); ++k)
-    if (!(xs[k] > xs[k - 1])) throw std::invalid_argument(std::string("temperature surface: ") + what + " not increasing");
+    if (!(xs[k] > xs[k - 1]))
+      throw std::invalid_argument(std::string("temperature surface: ") + what + " not increasing");
 }
 
 }  // namespace
@@ -43,7 +44,7 @@ void check_axis(const std::vector<double>& xs, const char* what) {
 std::vector<double> temperature_knots(std::vector<double> rows_C, double min_C, double max_C) {
   std::sort(rows_C.begin(), rows_C.end());
   rows_C.erase(std::unique(rows_C.begin(), rows_C.end()), rows_C.end());  // equal rows: h = 0 never ends
-  double h = 10.0;  // one row: the spacing of Paper G's matrix
+  double h = 10.0;                                                        // one row: the spacing of Paper G's matrix
   if (rows_C.size() > 1) {
     h = rows_C[1] - rows_C[0];
     for (std::size_t k = 2; k < rows_C.size(); ++k) h = std::min(h, rows_C[k] - rows_C[k - 1]);

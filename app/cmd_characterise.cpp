@@ -55,10 +55,13 @@ std::vector<double> parse_list(const std::string& option, const std::string& tex
 analysis::RampRun to_ramp_run(const io::MeasuredRun& m, const std::string& temp_channel) {
   const std::vector<double>* temp = m.column(temp_channel);
   if (!temp)
-    throw io::InputError(m.path, 0, "", "has no column '" + temp_channel + "' (--temperature-channel); its columns "
-                                        "are those of docs/formats/measured_run.md: temp_C always, ir_temp_C when the rig logged it");
-  return {m.path, m.required("time_s"), m.required("speed_rpm"), m.required("normal_force_N"),
-          m.required("torque_Nm"), *temp};
+    throw io::InputError(
+        m.path, 0, "",
+        "has no column '" + temp_channel +
+            "' (--temperature-channel); its columns "
+            "are those of docs/formats/measured_run.md: temp_C always, ir_temp_C when the rig logged it");
+  return {m.path, m.required("time_s"), m.required("speed_rpm"), m.required("normal_force_N"), m.required("torque_Nm"),
+          *temp};
 }
 
 // A run's annulus radius from its metadata (`inner_radius_mm`, `outer_radius_mm`), if given.
@@ -68,7 +71,8 @@ std::optional<double> metadata_radius_mm(const io::MeasuredRun& m, const std::st
   char* end = nullptr;
   const double x = std::strtod(text->c_str(), &end);
   if (end == text->c_str() || *end != '\0' || !(x > 0) || !std::isfinite(x))
-    throw io::InputError(m.path, 0, key, "is '" + *text + "'; give the friction annulus radius in mm (a positive number)");
+    throw io::InputError(m.path, 0, key,
+                         "is '" + *text + "'; give the friction annulus radius in mm (a positive number)");
   return x;
 }
 
@@ -87,8 +91,8 @@ void set_model_radius(analysis::FrictionConversion& c, const std::optional<io::S
     thermal.inner_radius_m = ri.value_or(o.inner_radius_mm) * 1e-3;
     thermal.outer_radius_m = ro.value_or(o.outer_radius_mm) * 1e-3;
     if (!(thermal.outer_radius_m > thermal.inner_radius_m))
-      throw io::InputError(ri || ro ? first.path : "--inner-radius-mm/--outer-radius-mm", 0, ri || ro ? "outer_radius_mm" : "",
-                           "the outer radius must exceed the inner");
+      throw io::InputError(ri || ro ? first.path : "--inner-radius-mm/--outer-radius-mm", 0,
+                           ri || ro ? "outer_radius_mm" : "", "the outer radius must exceed the inner");
     where = std::string("the default clutch on ") + (ri || ro ? "the run's annulus " : "the annulus ");
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.4g-%.4g mm", thermal.inner_radius_m * 1e3, thermal.outer_radius_m * 1e3);
@@ -118,7 +122,7 @@ void check_command_line(const CharacteriseOptions& o) {
 // The fit's settings from the options (CLI11 has checked the choices' spelling).
 analysis::CharacterisationSettings settings_of(const CharacteriseOptions& o) {
   analysis::CharacterisationSettings s;
-  s.law = o.law == "linear" ? analysis::LawKind::kLinear
+  s.law = o.law == "linear"  ? analysis::LawKind::kLinear
           : o.law == "table" ? analysis::LawKind::kTable
                              : analysis::LawKind::kMaki;
   s.compensation = o.compensation == "none"        ? analysis::Compensation::kNone
@@ -176,9 +180,10 @@ ReadRuns read_runs(const CharacteriseOptions& o) {
       rig = this_rig;
       rig_file = path;
     } else if (this_rig != rig) {
-      throw io::InputError(path, 0, "rig", "is '" + this_rig + "' but " + rig_file + " is '" + rig +
-                                               "'; characterise one rig's runs at a time (friction radius and "
-                                               "interfaces differ between rigs)");
+      throw io::InputError(path, 0, "rig",
+                           "is '" + this_rig + "' but " + rig_file + " is '" + rig +
+                               "'; characterise one rig's runs at a time (friction radius and "
+                               "interfaces differ between rigs)");
     }
     r.ramps.push_back(to_ramp_run(m, o.temperature_channel));
   }
@@ -206,7 +211,7 @@ rig_models::InverseCharacterisation fit_inverse(const ReadRuns& runs, const anal
     is.model.clutch.sliding_interfaces = o.interfaces;
     is.model.fluid.nu40_cSt = o.nu40_cSt;
     is.model.fluid.nu100_cSt = o.nu100_cSt;
-    is.model.settings.thermal_step_s = 0.02;  // the ramps last seconds; 20 ms resolves the heating
+    is.model.settings.thermal_step_s = 0.02;                  // the ramps last seconds; 20 ms resolves the heating
     if (s.conversion.rule == analysis::RadiusRule::kModel) {  // the annulus the radius was taken from
       is.model.clutch.thermal.inner_radius_m = s.conversion.inner_radius_mm * 1e-3;
       is.model.clutch.thermal.outer_radius_m = s.conversion.outer_radius_mm * 1e-3;
@@ -224,12 +229,14 @@ rig_models::InverseCharacterisation fit_inverse(const ReadRuns& runs, const anal
   // Where the inverse method should not be used (docs/characterisation.md 2c).
   auto& warnings = inverse.inverse.warnings;
   if (s.compensation == analysis::Compensation::kNone)
-    warnings.push_back("--method inverse with --compensation none: no temperature enters the law, so it equals "
-                       "the sensor method's (at many times the cost)");
+    warnings.push_back(
+        "--method inverse with --compensation none: no temperature enters the law, so it equals "
+        "the sensor method's (at many times the cost)");
   else if (!s.hot_row && inverse.inverse.max_temp_C > inverse.inverse.temps_C.back() + s.temp_tolerance_C)
-    warnings.push_back("--method inverse with --no-hot-row on runs that heat above the top row: its compensation "
-                       "takes out more of the heating than the sensor method's and nothing puts it back, so it "
-                       "replays worse; drop --no-hot-row");
+    warnings.push_back(
+        "--method inverse with --no-hot-row on runs that heat above the top row: its compensation "
+        "takes out more of the heating than the sensor method's and nothing puts it back, so it "
+        "replays worse; drop --no-hot-row");
   return inverse;
 }
 
@@ -263,7 +270,8 @@ int characterise_command(const CharacteriseOptions& o) {
     analysis::CharacterisationSettings s = settings_of(o);
     const std::optional<io::Scenario> scenario = model_of(o);
     const ReadRuns runs = read_runs(o);
-    if (s.conversion.rule == analysis::RadiusRule::kModel) set_model_radius(s.conversion, scenario, runs.measured.front(), o);
+    if (s.conversion.rule == analysis::RadiusRule::kModel)
+      set_model_radius(s.conversion, scenario, runs.measured.front(), o);
 
     // The law: from the sensors, or (--method inverse) replayed through the model, the sensor
     // fit reported beside it.
@@ -296,7 +304,8 @@ int characterise_command(const CharacteriseOptions& o) {
                                                          : io::characterisation_json(c, s, o.runs, o.output),
                                                  breakaway, id.breakaway_ratio, id.breakaway_source);
     if (!o.report.empty()) {
-      const report::Report rep = report::write_characterisation_report(o.report, c, summary, report::report_data_files({o.output, o.json}));
+      const report::Report rep =
+          report::write_characterisation_report(o.report, c, summary, report::report_data_files({o.output, o.json}));
       for (const auto& why : rep.skipped) std::cerr << "shudder: note: report: skipped " << why << "\n";
     }
     io::write_text_file_atomically(o.output, toml);

@@ -33,7 +33,8 @@ std::vector<double> parse_temps(const std::string& text) {
     char* end = nullptr;
     const double x = std::strtod(item.c_str(), &end);
     if (item.empty() || end == item.c_str() || *end != '\0' || !std::isfinite(x) || x < -273.15 || x > 1000.0)
-      throw io::InputError("--temps", 0, "", "'" + item + "' is not a temperature; give degC separated by commas, e.g. 30,60,90");
+      throw io::InputError("--temps", 0, "",
+                           "'" + item + "' is not a temperature; give degC separated by commas, e.g. 30,60,90");
     out.push_back(x);
     if (comma == std::string::npos) break;
     start = comma + 1;
@@ -77,7 +78,8 @@ int compare_command(const CompareOptions& o) {
     const rig_models::Comparison c = rig_models::compare_fluids(fluids, co);
     const std::string summary = report::comparison_summary(c);
     if (!o.report.empty()) {
-      const report::Report rep = report::write_comparison_report(o.report, c, fluids, summary, report::report_data_files({o.json}));
+      const report::Report rep =
+          report::write_comparison_report(o.report, c, fluids, summary, report::report_data_files({o.json}));
       for (const auto& why : rep.skipped) std::cerr << "shudder: note: report: skipped " << why << "\n";
     }
     if (!o.json.empty()) io::write_text_file_atomically(o.json, io::comparison_json(c));

@@ -38,7 +38,7 @@ constexpr double kAmplitudeLimit = 0.25;
 struct JudgedVerdict {
   std::string subject;  // "run" or the clutch's name
   bool judged = false;
-  std::string reason;   // why not judged
+  std::string reason;  // why not judged
   analysis::ShudderResult result;
 };
 
@@ -74,16 +74,16 @@ Outcome evaluate(const std::string& text, const std::string& path) {
   }
   const io::Scenario sc = io::load_scenario_text(text, path);
   const clutch::WetClutch clutch = sc.make_clutch();
-  std::visit(overloaded{[&](const rig_models::PrescribedSlipModel& m) { o.steps.thermal_s = m.settings.thermal_step_s; },
-                        [&](const rig_models::RigModel& m) {
-                          o.steps = {m.settings.thermal_step_s, m.params.integrator.max_step_s};
-                        },
-                        [&](const rig_models::DrivelineModel& m) {
-                          o.steps = {m.settings.slow_step_s, m.params.integrator.max_step_s};
-                        }},
-             sc.model);
-  const dynamics::Recording rec =
-      std::visit([&](const auto& m) { return rig_models::simulate(m, clutch); }, sc.model);
+  std::visit(
+      overloaded{[&](const rig_models::PrescribedSlipModel& m) { o.steps.thermal_s = m.settings.thermal_step_s; },
+                 [&](const rig_models::RigModel& m) {
+                   o.steps = {m.settings.thermal_step_s, m.params.integrator.max_step_s};
+                 },
+                 [&](const rig_models::DrivelineModel& m) {
+                   o.steps = {m.settings.slow_step_s, m.params.integrator.max_step_s};
+                 }},
+      sc.model);
+  const dynamics::Recording rec = std::visit([&](const auto& m) { return rig_models::simulate(m, clutch); }, sc.model);
   o.verdicts.push_back(judged_run(rec));
   return o;
 }
@@ -120,8 +120,7 @@ bool compare(const JudgedVerdict& a, const JudgedVerdict& b) {
     std::printf("    %-11s %-18s %-18s %-10s %s\n", "frequency", figure(a.result.frequency_Hz, "Hz").c_str(),
                 figure(b.result.frequency_Hz, "Hz").c_str(), (pct(df) + (f_ok ? "" : " !")).c_str(), "within 3 %");
     std::printf("    %-11s %-18s %-18s %-10s %s\n", "amplitude", figure(a.result.amplitude_Nm, "N m").c_str(),
-                figure(b.result.amplitude_Nm, "N m").c_str(), (pct(da) + (a_ok ? "" : " !")).c_str(),
-                "within 25 %");
+                figure(b.result.amplitude_Nm, "N m").c_str(), (pct(da) + (a_ok ? "" : " !")).c_str(), "within 25 %");
   }
   if (!a.judged) std::printf("    not judged: %s\n", a.reason.c_str());
   return same_class && f_ok && a_ok;
@@ -140,8 +139,8 @@ int convergence_command(const ConvergenceOptions& opt) {
       refined = io::set_scenario_key(refined, opt.scenario, "solver.thermal_step_ms",
                                      1e3 * base.steps.thermal_s / opt.factor);
     if (std::isfinite(base.steps.max_step_s))
-      refined = io::set_scenario_key(refined, opt.scenario, "solver.max_step_ms",
-                                     1e3 * base.steps.max_step_s / opt.factor);
+      refined =
+          io::set_scenario_key(refined, opt.scenario, "solver.max_step_ms", 1e3 * base.steps.max_step_s / opt.factor);
     const Outcome fine = evaluate(refined, opt.scenario);
 
     std::printf("Convergence of %s: every numerical step divided by %g\n", opt.scenario.c_str(), opt.factor);
@@ -157,8 +156,9 @@ int convergence_command(const ConvergenceOptions& opt) {
       std::printf("CONVERGED: the verdicts do not depend on the steps.\n");
       return 0;
     }
-    std::printf("NOT CONVERGED: a verdict depends on the step size; give the scenario smaller steps "
-                "([solver] thermal_step_ms, max_step_ms) until this check passes.\n");
+    std::printf(
+        "NOT CONVERGED: a verdict depends on the step size; give the scenario smaller steps "
+        "([solver] thermal_step_ms, max_step_ms) until this check passes.\n");
     return 3;
   });
 }

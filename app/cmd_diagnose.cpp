@@ -37,8 +37,9 @@ namespace {
 // unknown channel, a value that is not a number >= 0, or a channel given twice.
 std::vector<std::pair<std::string, double>> parse_tolerance(const std::string& text) {
   static const char* const kChannels[] = {"torque_Nm", "temp_C", "sump_temp_C", "ir_temp_C", "temp_minus_ir_C"};
-  const std::string allowed = "give CHANNEL=VALUE[,CHANNEL=VALUE…] with CHANNEL one of torque_Nm, temp_C, "
-                              "sump_temp_C, ir_temp_C, temp_minus_ir_C and VALUE >= 0 in the channel's unit";
+  const std::string allowed =
+      "give CHANNEL=VALUE[,CHANNEL=VALUE…] with CHANNEL one of torque_Nm, temp_C, "
+      "sump_temp_C, ir_temp_C, temp_minus_ir_C and VALUE >= 0 in the channel's unit";
   std::vector<std::pair<std::string, double>> out;
   std::size_t pos = 0;
   while (!text.empty() && pos <= text.size()) {
@@ -95,7 +96,8 @@ Baseline network_baseline(const DiagnoseOptions& opt, const std::vector<io::Meas
                            wet.empty() ? "the network has no wet clutch: a measured run is of a wet clutch"
                                        : "the network has " + std::to_string(wet.size()) +
                                              " wet clutches and the runs do not say which they are of; name "
-                                             "one with --clutch (" + list + ")");
+                                             "one with --clutch (" +
+                                             list + ")");
     }
     clutch = wet.front();
   }
@@ -137,8 +139,9 @@ int diagnose_command(const DiagnoseOptions& opt) {
     std::optional<Baseline> baseline;
     if (!network) baseline = scenario_baseline(opt);
     if (!network && !opt.clutch.empty())
-      throw io::InputError(opt.model, 0, "--clutch", "names a clutch of a network scenario; this scenario has one clutch "
-                                                     "(remove --clutch)");
+      throw io::InputError(opt.model, 0, "--clutch",
+                           "names a clutch of a network scenario; this scenario has one clutch "
+                           "(remove --clutch)");
     std::vector<io::MeasuredRun> runs;
     io::ImportSpec logger = io::import_spec_of(opt.maps, opt.mapping);  // --map/--mapping: logger files
     logger.trust_units = logger.trust_units || opt.trust_units;
@@ -164,8 +167,8 @@ int diagnose_command(const DiagnoseOptions& opt) {
     o.max_effects = opt.max_effects;
     o.tolerance = tolerance;
     const auto reproduce = rig_models::replay_reproducer(model, data.inputs);
-    const auto result = analysis::diagnose(
-        data.runs, candidates, rig_models::replay_simulator(model, std::move(data.inputs)), o, reproduce);
+    const auto result = analysis::diagnose(data.runs, candidates,
+                                           rig_models::replay_simulator(model, std::move(data.inputs)), o, reproduce);
     for (const auto& w : result.warnings) std::cerr << "shudder: warning: " << w << "\n";
 
     const std::string text = report::diagnosis_summary(baseline->subject, result, skipped);
@@ -179,7 +182,8 @@ int diagnose_command(const DiagnoseOptions& opt) {
       std::cout << "Model: " << opt.write_model << "\n";
     }
     if (!opt.report.empty()) {
-      const report::Report report = report::write_diagnosis_report(opt.report, result, text, report::report_data_files({opt.json, opt.write_model}));
+      const report::Report report = report::write_diagnosis_report(
+          opt.report, result, text, report::report_data_files({opt.json, opt.write_model}));
       std::cout << "Report: " << opt.report << " (" << report.files.size() << " files)\n";
       for (const auto& s : report.skipped) std::cerr << "shudder: warning: report: " << s << "\n";
     }

@@ -25,8 +25,8 @@ namespace fs = std::filesystem;
 std::string network_fmu_library() {
   if (const char* env = std::getenv("SHUDDER_NETWORK_FMU_LIBRARY"); env && *env) {
     if (!fs::is_regular_file(env))
-      throw io::InputError("SHUDDER_NETWORK_FMU_LIBRARY", 0, "", std::string("'") + env +
-                           "' is not a file; point it at shudder_network.so or unset it");
+      throw io::InputError("SHUDDER_NETWORK_FMU_LIBRARY", 0, "",
+                           std::string("'") + env + "' is not a file; point it at shudder_network.so or unset it");
     return env;
   }
   std::vector<fs::path> candidates;
@@ -38,8 +38,9 @@ std::string network_fmu_library() {
   if (!ec) candidates.push_back(exe.parent_path().parent_path() / "share/shudder/fmu/linux64/shudder_network.so");
   for (const auto& c : candidates)
     if (fs::is_regular_file(c, ec)) return c.string();
-  throw std::runtime_error("the network FMU library shudder_network.so was not found (build it: cmake -DSHUDDER_FMU=ON, "
-                           "target shudder_network_fmu; or set SHUDDER_NETWORK_FMU_LIBRARY)");
+  throw std::runtime_error(
+      "the network FMU library shudder_network.so was not found (build it: cmake -DSHUDDER_FMU=ON, "
+      "target shudder_network_fmu; or set SHUDDER_NETWORK_FMU_LIBRARY)");
 }
 
 }  // namespace
@@ -50,7 +51,8 @@ int export_fmu_command(const ExportFmuOptions& opt) {
     if (type != "network")
       throw io::InputError(opt.scenario, 0, "scenario.type",
                            "export-fmu packs network scenarios (type = \"network\", docs/formats/network_file.md), "
-                           "this one is \"" + type + "\"; for the clutch alone use build/fmu/shudder_clutch.fmu");
+                           "this one is \"" +
+                               type + "\"; for the clutch alone use build/fmu/shudder_clutch.fmu");
     io::NetworkScenario sc = io::load_network_scenario(opt.scenario);
     for (const auto& w : sc.warnings) std::cerr << "shudder: warning: " << w << "\n";
     const bool wet = std::any_of(sc.spec.clutches.begin(), sc.spec.clutches.end(),
@@ -66,9 +68,8 @@ int export_fmu_command(const ExportFmuOptions& opt) {
     io::require_output_directory(out);
     const std::string library = network_fmu_library();
     const fmu::NetworkFmuSummary s = fmu::write_network_fmu(sc, opt.fixed_step_s, library, out);
-    std::cout << "Wrote " << out << ": FMI 2.0 co-simulation, " << s.inputs << " inputs, " << s.outputs
-              << " outputs, " << s.parameters << " parameter (fixed_step_s = " << opt.fixed_step_s
-              << " s), GUID " << s.guid << "\n"
+    std::cout << "Wrote " << out << ": FMI 2.0 co-simulation, " << s.inputs << " inputs, " << s.outputs << " outputs, "
+              << s.parameters << " parameter (fixed_step_s = " << opt.fixed_step_s << " s), GUID " << s.guid << "\n"
               << "Platforms: linux64 only (no win64 binary: docs/fmu.md \"Your drivetrain as an FMU\")\n";
     return 0;
   });

@@ -53,8 +53,8 @@ int import_command(const ImportOptions& o) {
       io::write_measured_run_csv(o.output, r.run);
     const auto& t = r.run.required("time_s");
     std::printf("Imported %s (%s-separated, decimal %s): %zu rows, %.6g-%.6g s\n", o.logger.c_str(),
-                io::delimiter_name(r.delimiter).c_str(), r.decimal == ',' ? "comma" : "point", r.run.rows(),
-                t.front(), t.back());
+                io::delimiter_name(r.delimiter).c_str(), r.decimal == ',' ? "comma" : "point", r.run.rows(), t.front(),
+                t.back());
     for (const auto& m : r.mapping) std::printf("  %s\n", m.c_str());
     if (!r.ignored.empty()) {
       std::string names;

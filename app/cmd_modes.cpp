@@ -41,10 +41,11 @@ void print_modes(const dynamics::TorsionalNetwork& net, const dynamics::Modes& m
   std::printf("     real [1/s]      imag [1/s]   frequency [Hz]   damping ratio\n");
   for (Eigen::Index k = 0; k < m.damped_eigenvalues.size(); ++k) {
     auto l = m.damped_eigenvalues[k];
-    if (std::abs(l.imag()) < 1e-6 * std::max(1.0, std::abs(l))) l.imag(0.0);  // real (a double root splits by ~sqrt(eps))
+    if (std::abs(l.imag()) < 1e-6 * std::max(1.0, std::abs(l)))
+      l.imag(0.0);  // real (a double root splits by ~sqrt(eps))
     if (l.imag() < 0) continue;
-    std::printf("  %12.4f  %14.4f   %14.3f   %13.5f\n", l.real(), l.imag(),
-                l.imag() / units::kTwoPi, -l.real() / std::abs(l));
+    std::printf("  %12.4f  %14.4f   %14.3f   %13.5f\n", l.real(), l.imag(), l.imag() / units::kTwoPi,
+                -l.real() / std::abs(l));
   }
 }
 
@@ -52,10 +53,10 @@ void print_rig_modes(const io::Scenario& sc, const rig_models::RigModel& model) 
   const clutch::WetClutch clutch = sc.make_clutch();
   const rig_models::LsctrRig rig(model.params, clutch, model.cycle);
   const auto& net = rig.network();
-  std::printf("Scenario %s: torsion bar %.6g N m/rad (c = %.4g N m s/rad), speed loop Kp %.4g N m s/rad, "
-              "Ki %.4g N m/rad\n\n",
-              sc.name.c_str(), rig.bar_stiffness_Nm_per_rad(), rig.bar_damping_Nms_per_rad(),
-              rig.motor_kp(), rig.motor_ki());
+  std::printf(
+      "Scenario %s: torsion bar %.6g N m/rad (c = %.4g N m s/rad), speed loop Kp %.4g N m s/rad, "
+      "Ki %.4g N m/rad\n\n",
+      sc.name.c_str(), rig.bar_stiffness_Nm_per_rad(), rig.bar_damping_Nms_per_rad(), rig.motor_kp(), rig.motor_ki());
   print_modes(net, net.modes({false}), "Clutch slipping:");
   std::printf("\n");
   print_modes(net, net.modes({true}), "Clutch stuck:");
@@ -73,9 +74,12 @@ void print_driveline_modes(const rig_models::DrivelineStability& st, const char*
     for (Eigen::Index i = 0; i < m.node_amplitude.size(); ++i) {
       if (m.node_amplitude[i] < 0.1) continue;
       const double deg = m.node_phase_rad[i] * 180.0 / 3.141592653589793;
-      if (std::abs(deg) < 20.0) std::printf(" %s %+.2f", st.node_names[static_cast<std::size_t>(i)].c_str(), m.node_amplitude[i]);
-      else if (std::abs(deg) > 160.0) std::printf(" %s %+.2f", st.node_names[static_cast<std::size_t>(i)].c_str(), -m.node_amplitude[i]);
-      else std::printf(" %s %.2f@%.0fdeg", st.node_names[static_cast<std::size_t>(i)].c_str(), m.node_amplitude[i], deg);
+      if (std::abs(deg) < 20.0)
+        std::printf(" %s %+.2f", st.node_names[static_cast<std::size_t>(i)].c_str(), m.node_amplitude[i]);
+      else if (std::abs(deg) > 160.0)
+        std::printf(" %s %+.2f", st.node_names[static_cast<std::size_t>(i)].c_str(), -m.node_amplitude[i]);
+      else
+        std::printf(" %s %.2f@%.0fdeg", st.node_names[static_cast<std::size_t>(i)].c_str(), m.node_amplitude[i], deg);
     }
     std::printf("\n");
   }
@@ -95,17 +99,18 @@ void print_driveline(const io::Scenario& sc, const rig_models::DrivelineModel& m
     try {
       op = rig_models::recorded_operating_point(rec, 0.0, t->values.back());
     } catch (const std::invalid_argument& e) {
-      throw io::InputError(run, 0, "--run", std::string("is not a driveline run this command can linearise: ") + e.what());
+      throw io::InputError(run, 0, "--run",
+                           std::string("is not a driveline run this command can linearise: ") + e.what());
     }
     std::printf("At the mean operating point of %s (0 to %.4g s)\n", run.c_str(), t->values.back());
   }
   const auto slipping = rig_models::driveline_stability(dl, clutch, op, false);
   const auto locked = rig_models::driveline_stability(dl, clutch, op, true);
-  std::printf("Scenario %s: driveline linearised at %.3g km/h, coupling slip %.4g rpm, clamp force %.5g N, "
-              "interface %.4g degC; tyre forces FL/FR/RL/RR %.4g/%.4g/%.4g/%.4g N\n",
-              sc.name.c_str(), op.vehicle_speed_m_s * 3.6, units::rad_s_to_rpm(op.coupling_slip_rad_s),
-              op.clamp_force_N, op.interface_temp_C, op.tyre_force_N[0], op.tyre_force_N[1], op.tyre_force_N[2],
-              op.tyre_force_N[3]);
+  std::printf(
+      "Scenario %s: driveline linearised at %.3g km/h, coupling slip %.4g rpm, clamp force %.5g N, "
+      "interface %.4g degC; tyre forces FL/FR/RL/RR %.4g/%.4g/%.4g/%.4g N\n",
+      sc.name.c_str(), op.vehicle_speed_m_s * 3.6, units::rad_s_to_rpm(op.coupling_slip_rad_s), op.clamp_force_N,
+      op.interface_temp_C, op.tyre_force_N[0], op.tyre_force_N[1], op.tyre_force_N[2], op.tyre_force_N[3]);
   std::printf("Coupling friction slope (isothermal) dM/d|dw| = %.5g N m s/rad\n\n", slipping.coupling_slope_Nms);
   print_driveline_modes(slipping, "Coupling slipping:");
   std::printf("\n");
@@ -127,7 +132,8 @@ void print_network_modes(const std::string& path) {
   const std::size_t nc = built->clutches.size(), nf = built->freewheel_contacts.size();
   const auto stuck_set = [&](int slipping) {  // -1: all slipping, -2: all stuck, c: only c slipping
     std::vector<bool> stuck(nc + nf, true);
-    for (std::size_t c = 0; c < nc; ++c) stuck[c] = slipping == -2 || (slipping >= 0 && static_cast<int>(c) != slipping);
+    for (std::size_t c = 0; c < nc; ++c)
+      stuck[c] = slipping == -2 || (slipping >= 0 && static_cast<int>(c) != slipping);
     return stuck;
   };
   std::printf("Scenario %s (network): %d nodes, %zu clutches, %zu freewheels (locked)\n\n", sc.name.c_str(),
@@ -158,8 +164,8 @@ int modes_command(const ModesOptions& opt) {
     }
     const io::Scenario sc = io::load_scenario(opt.scenario);
     for (const auto& w : sc.warnings) std::cerr << "shudder: warning: " << w << "\n";
-    const rig_models::ModalSubject subject = io::visit_kind(
-        opt.scenario, "scenario.type", sc.model, [](const auto& m) { return rig_models::modal_subject(m); });
+    const rig_models::ModalSubject subject = io::visit_kind(opt.scenario, "scenario.type", sc.model,
+                                                            [](const auto& m) { return rig_models::modal_subject(m); });
     std::visit(overloaded{[&](const rig_models::RigModel* rig) { print_rig_modes(sc, *rig); },
                           [&](const rig_models::DrivelineModel* dl) { print_driveline(sc, *dl, opt.run); }},
                subject);

@@ -70,8 +70,10 @@ std::string pad(const std::string& s, std::size_t width) {
 }
 
 void print_indices(const rig_models::ScreeningReport& rep) {
-  std::printf("\nAnti-shudder indices at %.0f N (* speed outside the law's data: held friction; "
-              "! on the risk side):\n", rep.load_N);
+  std::printf(
+      "\nAnti-shudder indices at %.0f N (* speed outside the law's data: held friction; "
+      "! on the risk side):\n",
+      rep.load_N);
   std::printf("  %-28s %-9s", "index", "unit");
   for (const auto& at : rep.indices)
     std::printf(" %s", pad(fmt("%.4g", at.temp_C) + (at.temp_outside_data ? "(x)" : "") + " \u00b0C", 10).c_str());
@@ -136,11 +138,12 @@ void print_slope(const rig_models::ScreeningReport& rep) {
   const auto& t = rep.slope.temps_C;
   Eigen::Index i_min = 0, j_min = 0, i_max = 0, j_max = 0;
   const double lo = m.minCoeff(&i_min, &j_min), hi = m.maxCoeff(&i_max, &j_max);
-  std::printf("\nIsothermal slope dmu/dv over %s rpm x %s \u00b0C (s/m): min %.4g at %g rpm, %g \u00b0C; "
-              "max %.4g at %g rpm, %g \u00b0C\n",
-              range(s.front(), s.back(), "%.4g").c_str(), range(t.front(), t.back(), "%.4g").c_str(), lo,
-              s[static_cast<std::size_t>(i_min)], t[static_cast<std::size_t>(j_min)], hi,
-              s[static_cast<std::size_t>(i_max)], t[static_cast<std::size_t>(j_max)]);
+  std::printf(
+      "\nIsothermal slope dmu/dv over %s rpm x %s \u00b0C (s/m): min %.4g at %g rpm, %g \u00b0C; "
+      "max %.4g at %g rpm, %g \u00b0C\n",
+      range(s.front(), s.back(), "%.4g").c_str(), range(t.front(), t.back(), "%.4g").c_str(), lo,
+      s[static_cast<std::size_t>(i_min)], t[static_cast<std::size_t>(j_min)], hi, s[static_cast<std::size_t>(i_max)],
+      t[static_cast<std::size_t>(j_max)]);
   const auto& e = rep.negative_slope_extent;
   if (e.points == 0) {
     std::printf("  no negative slope on the grid\n");
@@ -163,8 +166,8 @@ void print_stability(const rig_models::ScreeningReport& rep) {
     else
       std::printf("UNSTABLE at %d of %d points, %s", e.points, e.grid_points, analysis::describe_extent(e).c_str());
     if (e.grid_points > 0)
-      std::printf("; largest margin %.4g 1/s at %g rpm, %g \u00b0C (%.1f Hz)", rig.max_margin_per_s,
-                  rig.max_margin_rpm, rig.max_margin_temp_C, rig.max_margin_frequency_Hz);
+      std::printf("; largest margin %.4g 1/s at %g rpm, %g \u00b0C (%.1f Hz)", rig.max_margin_per_s, rig.max_margin_rpm,
+                  rig.max_margin_temp_C, rig.max_margin_frequency_Hz);
     if (rig.saturated_points > 0) std::printf("; %d points beyond the motor's torque", rig.saturated_points);
     std::printf("\n");
     if (e.points > 0) print_runs(rig.unstable, rig.map.temps_C);
@@ -191,10 +194,9 @@ int screen_command(const ScreenOptions& opt) {
       const io::Scenario sc = io::load_scenario(opt.rig);
       for (const auto& w : sc.warnings) std::cerr << "shudder: warning: " << w << "\n";
       rig_models::ScreeningRig rig;
-      rig.params = io::visit_kind(opt.rig, "scenario.type", sc.model,
-                                  [](const auto& m) -> const rig_models::RigParams& {
-                                    return rig_models::screening_rig(m);
-                                  });
+      rig.params =
+          io::visit_kind(opt.rig, "scenario.type", sc.model,
+                         [](const auto& m) -> const rig_models::RigParams& { return rig_models::screening_rig(m); });
       rig.clutch = sc.clutch;
       so.rigs.push_back(rig);
     }

@@ -171,7 +171,8 @@ std::vector<std::vector<double>> list_cases(const std::vector<io::SweepAxis>& ax
     return io::sweep_cases(axes);
   } catch (const std::bad_alloc&) {
     char what[160];
-    std::snprintf(what, sizeof what, "the grid has %.3g cases: ran out of memory listing them; reduce the --set ranges", n);
+    std::snprintf(what, sizeof what, "the grid has %.3g cases: ran out of memory listing them; reduce the --set ranges",
+                  n);
     throw io::InputError("--set", 0, "", what);
   }
 }
@@ -181,10 +182,9 @@ std::string failure_warning(const std::vector<std::size_t>& failed, std::size_t 
   std::string ids;
   for (std::size_t i = 0; i < failed.size() && i < 10; ++i) ids += (i ? ", " : "") + std::to_string(failed[i]);
   if (failed.size() > 10) ids += ", ...";
-  return "shudder: warning: " + std::to_string(failed.size()) + " of " + std::to_string(total) +
-         " cases failed (" + (failed.size() > 1 ? "cases " : "case ") + ids + "); case " +
-         std::to_string(failed.front()) + ": " + first + "; /cases marks them 'failed' with the message in " +
-         io::kSweepMessageColumn + "\n";
+  return "shudder: warning: " + std::to_string(failed.size()) + " of " + std::to_string(total) + " cases failed (" +
+         (failed.size() > 1 ? "cases " : "case ") + ids + "); case " + std::to_string(failed.front()) + ": " + first +
+         "; /cases marks them 'failed' with the message in " + io::kSweepMessageColumn + "\n";
 }
 
 void progress(std::size_t done, std::size_t total, double elapsed_s) {
@@ -192,8 +192,8 @@ void progress(std::size_t done, std::size_t total, double elapsed_s) {
   const int filled = total ? static_cast<int>(kWidth * done / total) : kWidth;
   const double eta = done ? elapsed_s * static_cast<double>(total - done) / static_cast<double>(done) : 0.0;
   std::fprintf(stderr, "\r[%.*s%.*s] %zu/%zu cases, %.1f s elapsed, ~%.0f s left ", filled,
-               "##############################", kWidth - filled, "..............................",
-               done, total, elapsed_s, eta);
+               "##############################", kWidth - filled, "..............................", done, total,
+               elapsed_s, eta);
   std::fflush(stderr);
 }
 
@@ -350,12 +350,12 @@ io::SweepOutput assemble(const SweepBase& base, const std::vector<io::SweepAxis>
 }
 
 // Two lines: cases, jobs, time and file; the verdicts counted (and the MPI balance).
-std::string sweep_summary(const SweepOptions& opt, const SweepBase& base, const io::SweepOutput& out,
-                          std::size_t axes, std::size_t ran, std::size_t failed, const PoolOutcome& pool) {
+std::string sweep_summary(const SweepOptions& opt, const SweepBase& base, const io::SweepOutput& out, std::size_t axes,
+                          std::size_t ran, std::size_t failed, const PoolOutcome& pool) {
   std::string summary;
   char line[512];
-  std::snprintf(line, sizeof line, "Sweep of %s: %zu cases (%zu run now, %u jobs) in %.2f s -> %s\n",
-                base.name.c_str(), out.case_scenarios.size(), ran, pool.jobs, pool.wall_s, opt.output.c_str());
+  std::snprintf(line, sizeof line, "Sweep of %s: %zu cases (%zu run now, %u jobs) in %.2f s -> %s\n", base.name.c_str(),
+                out.case_scenarios.size(), ran, pool.jobs, pool.wall_s, opt.output.c_str());
   summary += line;
   std::size_t counts[3] = {0, 0, 0};
   for (const auto& v : out.text_column)
@@ -400,13 +400,13 @@ int sweep_command(const SweepOptions& opt) {
     std::optional<mpi::Session> mpi_session;
     if (opt.mpi) {
       if (opt.jobs)
-        throw io::InputError("--jobs", 0, "", "not with --mpi: each MPI rank runs one case at a time; "
-                                              "choose the number of ranks with mpirun -np N");
+        throw io::InputError("--jobs", 0, "",
+                             "not with --mpi: each MPI rank runs one case at a time; "
+                             "choose the number of ranks with mpirun -np N");
       mpi_session.emplace();
       if (!mpi_session->coordinator()) {
-        mpi::serve_cases(*mpi_session, [&](const std::string& text, const std::string& part) {
-          run_case(text, opt.scenario, part);
-        });
+        mpi::serve_cases(*mpi_session,
+                         [&](const std::string& text, const std::string& part) { run_case(text, opt.scenario, part); });
         return 0;
       }
     }
@@ -434,8 +434,10 @@ int sweep_command(const SweepOptions& opt) {
     if (pool.out_of_memory)
       throw io::InputError(opt.scenario, 0, "",
                            "ran out of memory running " + std::to_string(parts.todo.size()) + " cases on " +
-                               std::to_string(pool.jobs) + " jobs; reduce --jobs, the duration or sample_rate_Hz "
-                               "(finished cases are kept in " + parts_dir.string() + ")");
+                               std::to_string(pool.jobs) +
+                               " jobs; reduce --jobs, the duration or sample_rate_Hz "
+                               "(finished cases are kept in " +
+                               parts_dir.string() + ")");
     if (!pool.first_error.empty())
       throw std::runtime_error(pool.first_error + " (finished cases are kept in " + parts_dir.string() +
                                "; rerun to resume)");

@@ -60,8 +60,9 @@ int validate_command(const ValidateOptions& opt) {
     report::print_validation_table(std::cout, rows);
     std::size_t failed = 0;
     for (const auto& r : rows) failed += r.pass == "NO";
-    std::cout << "\n" << (failed ? std::to_string(failed) + " target(s) FAIL" : std::string("All targets pass"))
-              << "; wrote " << (docs / "validation.md").string();
+    std::cout << "\n"
+              << (failed ? std::to_string(failed) + " target(s) FAIL" : std::string("All targets pass")) << "; wrote "
+              << (docs / "validation.md").string();
     if (opt.plots) std::cout << " and " << figs.size() << " plots";
     std::cout << "\n";
     return failed ? 1 : 0;

@@ -15,16 +15,16 @@ namespace shudder::app {
 
 struct RunOptions {
   std::string scenario;
-  std::string output;                  // HDF5 path; default "<scenario name>.h5"
-  std::string measurement;             // measured-run CSV path; empty = none
-  double measurement_rate_Hz = 0.0;    // 0 = the recording's rate
+  std::string output;                // HDF5 path; default "<scenario name>.h5"
+  std::string measurement;           // measured-run CSV path; empty = none
+  double measurement_rate_Hz = 0.0;  // 0 = the recording's rate
   bool noise = false;
   unsigned seed = 1;
   bool profile = false;
-  std::string report;                  // report directory (summary.txt + plots); empty = none
-  bool force = false;                  // write even above io::kMaxOutputBytesWithoutForce
-  double fixed_step_s = 0.0;           // > 0: the fixed-step real-time mode (docs/realtime.md)
-  std::vector<std::string> sets;       // KEY=VALUE overrides, the sweep's key names (io/sweep_spec.hpp)
+  std::string report;             // report directory (summary.txt + plots); empty = none
+  bool force = false;             // write even above io::kMaxOutputBytesWithoutForce
+  double fixed_step_s = 0.0;      // > 0: the fixed-step real-time mode (docs/realtime.md)
+  std::vector<std::string> sets;  // KEY=VALUE overrides, the sweep's key names (io/sweep_spec.hpp)
 };
 int run_command(const RunOptions& options);
 /// The scenario file's text with `run --set` applied (the sweep's parser and key setter); the
@@ -44,8 +44,8 @@ int write_report_directory(const std::string& dir, const dynamics::Recording& re
 
 struct ExportFmuOptions {
   std::string scenario;
-  std::string output;           // the .fmu; default "<scenario name>.fmu"
-  double fixed_step_s = 1e-4;   // the FMU's internal step (its parameter fixed_step_s' start)
+  std::string output;          // the .fmu; default "<scenario name>.fmu"
+  double fixed_step_s = 1e-4;  // the FMU's internal step (its parameter fixed_step_s' start)
 };
 /// `export-fmu` (app/cmd_export_fmu.cpp, docs/fmu.md "Your drivetrain as an FMU").
 int export_fmu_command(const ExportFmuOptions& options);
@@ -69,19 +69,19 @@ struct SweepOptions {
   unsigned jobs = 0;              // 0 = all cores
   std::string output;
   bool quiet = false;
-  bool keep_parts = false;        // keep OUT.h5.parts/ after assembling (default: remove)
-  std::string report;             // report directory (summary.txt + sweep.png); empty = none
-  bool force = false;             // write even above io::kMaxOutputBytesWithoutForce
-  bool mpi = false;               // run the cases on the MPI ranks (mpirun; app/mpi_sweep.hpp)
+  bool keep_parts = false;  // keep OUT.h5.parts/ after assembling (default: remove)
+  std::string report;       // report directory (summary.txt + sweep.png); empty = none
+  bool force = false;       // write even above io::kMaxOutputBytesWithoutForce
+  bool mpi = false;         // run the cases on the MPI ranks (mpirun; app/mpi_sweep.hpp)
 };
 int sweep_command(const SweepOptions& options);
 
 struct ScreenOptions {
-  std::string fluid;          // fluid TOML
-  std::string rig;            // rig scenario TOML; empty = default rigs (100, 300, 500 Hz bars)
-  double load_N = 20000.0;    // normal load of the indices and maps
-  std::string temps;          // "40,80,120"; empty = 40/80/120 °C where the data reach
-  std::string json;           // JSON output path; empty = none
+  std::string fluid;        // fluid TOML
+  std::string rig;          // rig scenario TOML; empty = default rigs (100, 300, 500 Hz bars)
+  double load_N = 20000.0;  // normal load of the indices and maps
+  std::string temps;        // "40,80,120"; empty = 40/80/120 °C where the data reach
+  std::string json;         // JSON output path; empty = none
 };
 /// `screen` (app/cmd_screen.cpp): exit 0 judged, 3 not judged (no index computed).
 int screen_command(const ScreenOptions& options);
@@ -101,11 +101,11 @@ struct ValidateOptions {
 int validate_command(const ValidateOptions& options);
 
 struct DiagnoseOptions {
-  std::string model;              // scenario TOML: the baseline model
-  std::vector<std::string> runs;  // measured runs (CSV or HDF5)
-  std::string json;               // diagnosis JSON path; empty = none
-  std::string report;             // report directory; empty = none
-  unsigned jobs = 0;              // 0 = all cores
+  std::string model;                                                         // scenario TOML: the baseline model
+  std::vector<std::string> runs;                                             // measured runs (CSV or HDF5)
+  std::string json;                                                          // diagnosis JSON path; empty = none
+  std::string report;                                                        // report directory; empty = none
+  unsigned jobs = 0;                                                         // 0 = all cores
   int max_effects = static_cast<int>(rig_models::effect_registry().size());  // added at most (default: all)
   std::string tolerance;          // "torque_Nm=0.5,temp_C=2": model-form tolerance per channel
   std::string write_model;        // the baseline scenario with the named effects on; empty = none
@@ -117,54 +117,54 @@ struct DiagnoseOptions {
 int diagnose_command(const DiagnoseOptions& options);
 
 struct CharacteriseOptions {
-  std::vector<std::string> runs;          // measured runs (CSV or HDF5)
-  std::string output;                     // fluid TOML written
-  std::string json;                       // FIT.json; empty = none
-  std::string report;                     // report directory; empty = none
-  std::string law = "maki";               // maki | linear | table
-  std::string compensation = "quadratic"; // none | linear | quadratic | piecewise
-  double alpha_per_C = NAN;               // linear compensation: given alpha (NaN = fit it)
+  std::vector<std::string> runs;           // measured runs (CSV or HDF5)
+  std::string output;                      // fluid TOML written
+  std::string json;                        // FIT.json; empty = none
+  std::string report;                      // report directory; empty = none
+  std::string law = "maki";                // maki | linear | table
+  std::string compensation = "quadratic";  // none | linear | quadratic | piecewise
+  double alpha_per_C = NAN;                // linear compensation: given alpha (NaN = fit it)
   std::string temperature_channel = "temp_C";
-  std::string radius = "model";           // model | uniform_wear | uniform_pressure
+  std::string radius = "model";  // model | uniform_wear | uniform_pressure
   double mean_radius_mm = 46.0, inner_radius_mm = 38.1, outer_radius_mm = 56.4;
   int interfaces = 1;
   double bearing_drag_mu = 0.0;
   double temp_tolerance_C = 3.0;
   int min_ramps = 2;
   double linear_load_N = 20000.0;
-  std::string row_temps, node_rpm;        // comma lists; empty = from the data / Paper D nodes
-  std::string name;                       // fluid name; empty = output file stem
+  std::string row_temps, node_rpm;  // comma lists; empty = from the data / Paper D nodes
+  std::string name;                 // fluid name; empty = output file stem
   double nu40_cSt = 0.0, nu100_cSt = 0.0;
-  double breakaway_ratio = NAN;           // NaN: measured from ramps that start at rest, else 1
-  std::string method = "sensor";          // sensor | inverse (replayed through the model)
-  std::string model;                      // the model the fluid is for: its clutch's radius; inverse: replayed; empty = Paper G defaults
-  int inverse_iterations = 8;             // inverse: law updates per pass before "did not converge"
-  std::vector<std::string> maps;          // --map: the runs are a logger's CSV files (app/cmd_import.cpp)
-  std::string mapping;                    // --mapping: the same from a mapping file; empty = none
-  bool hot_row = true;                    // a row at the hottest temperature the ramps reach (--no-hot-row: none)
-  bool trust_units = false;               // --trust-units: skip the checks that values look like their units
+  double breakaway_ratio = NAN;   // NaN: measured from ramps that start at rest, else 1
+  std::string method = "sensor";  // sensor | inverse (replayed through the model)
+  std::string model;  // the model the fluid is for: its clutch's radius; inverse: replayed; empty = Paper G defaults
+  int inverse_iterations = 8;     // inverse: law updates per pass before "did not converge"
+  std::vector<std::string> maps;  // --map: the runs are a logger's CSV files (app/cmd_import.cpp)
+  std::string mapping;            // --mapping: the same from a mapping file; empty = none
+  bool hot_row = true;            // a row at the hottest temperature the ramps reach (--no-hot-row: none)
+  bool trust_units = false;       // --trust-units: skip the checks that values look like their units
 };
 int characterise_command(const CharacteriseOptions& options);
 
 struct ImportOptions {
-  std::string logger;               // the logger's CSV
-  std::string output;               // measured run written (CSV, or HDF5 for .h5/.hdf5)
-  std::vector<std::string> maps;    // SOURCE=TARGET:UNIT (io/import_mapping.hpp)
-  std::string mapping;              // mapping file (TOML); empty = none
-  std::vector<std::string> metas;   // KEY=VALUE metadata
-  std::string delimiter = "auto";   // auto | , | ; | tab
-  std::string decimal = "auto";     // auto | . | ,
-  bool trust_units = false;         // skip the unit plausibility checks
+  std::string logger;              // the logger's CSV
+  std::string output;              // measured run written (CSV, or HDF5 for .h5/.hdf5)
+  std::vector<std::string> maps;   // SOURCE=TARGET:UNIT (io/import_mapping.hpp)
+  std::string mapping;             // mapping file (TOML); empty = none
+  std::vector<std::string> metas;  // KEY=VALUE metadata
+  std::string delimiter = "auto";  // auto | , | ; | tab
+  std::string decimal = "auto";    // auto | . | ,
+  bool trust_units = false;        // skip the unit plausibility checks
 };
 /// `import` (app/cmd_import.cpp): a logger's CSV written as a measured run.
 int import_command(const ImportOptions& options);
 
 struct CompareOptions {
-  std::vector<std::string> fluids;   // fluid TOML files
-  std::vector<std::string> rigs;     // rig scenarios; empty = the screening's default rigs
-  std::string temps;                 // "30,60,90"; empty = 30, 60, 90 °C
+  std::vector<std::string> fluids;  // fluid TOML files
+  std::vector<std::string> rigs;    // rig scenarios; empty = the screening's default rigs
+  std::string temps;                // "30,60,90"; empty = 30, 60, 90 °C
   double load_N = 20000.0;
-  double viscosity_cSt = 10.0;       // equal-viscosity comparison (Paper E Table 5)
+  double viscosity_cSt = 10.0;  // equal-viscosity comparison (Paper E Table 5)
   std::string json, report;
 };
 int compare_command(const CompareOptions& options);

@@ -28,13 +28,14 @@ int main(int argc, char** argv) {
   RunOptions run;
   auto* run_cmd = app.add_subcommand("run", "Run a scenario; write HDF5 and print a summary");
   run_cmd->add_option("scenario", run.scenario, "Scenario file (TOML)")->required();
-  run_cmd->add_option("--set", run.sets, "KEY=VALUE: set a numeric scenario key for this run, as `sweep --set` "
-                                         "names it (repeatable)");
+  run_cmd->add_option("--set", run.sets,
+                      "KEY=VALUE: set a numeric scenario key for this run, as `sweep --set` "
+                      "names it (repeatable)");
   run_cmd->add_option("-o,--output", run.output, "HDF5 output (default: <scenario name>.h5)");
-  run_cmd->add_option("--measurement", run.measurement,
-                      "Also write the sensor signals as a measured-run CSV");
-  run_cmd->add_option("--sample-rate", run.measurement_rate_Hz,
-                      "Sample rate of the measured-run CSV, Hz (default: recording rate)")
+  run_cmd->add_option("--measurement", run.measurement, "Also write the sensor signals as a measured-run CSV");
+  run_cmd
+      ->add_option("--sample-rate", run.measurement_rate_Hz,
+                   "Sample rate of the measured-run CSV, Hz (default: recording rate)")
       ->check(CLI::Range(1e-3, 1e6));
   run_cmd->add_flag("--noise", run.noise, "Add sensor noise of the rig's stated accuracy");
   run_cmd->add_option("--seed", run.seed, "Seed of the sensor noise (deterministic)");
@@ -42,30 +43,34 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--report", run.report,
                       "Also write a report directory: summary.txt, the key plots (PNG) and index.html to open");
   run_cmd->add_flag("--force", run.force, "Write the output even if its estimated size exceeds 2 GB");
-  run_cmd->add_option("--fixed-step", run.fixed_step_s,
-                      "Run with the fixed-step real-time stepper at this step, s (docs/realtime.md)")
+  run_cmd
+      ->add_option("--fixed-step", run.fixed_step_s,
+                   "Run with the fixed-step real-time stepper at this step, s (docs/realtime.md)")
       ->check(CLI::Range(1e-7, 1.0));  // a step from 0.1 µs to 1 s
 
   ExportFmuOptions export_fmu;
-  auto* fmu_cmd = app.add_subcommand(
-      "export-fmu", "Pack a network scenario as an FMI 2.0 co-simulation FMU, linux64 (docs/fmu.md)");
+  auto* fmu_cmd = app.add_subcommand("export-fmu",
+                                     "Pack a network scenario as an FMI 2.0 co-simulation FMU, linux64 (docs/fmu.md)");
   fmu_cmd->add_option("scenario", export_fmu.scenario, "Network scenario file (TOML, type = \"network\")")->required();
   fmu_cmd->add_option("-o,--output", export_fmu.output, "FMU written (default: <scenario name>.fmu)");
-  fmu_cmd->add_option("--fixed-step", export_fmu.fixed_step_s,
-                      "The FMU's internal RK4 step, s (default 1e-4; as run --fixed-step)")
+  fmu_cmd
+      ->add_option("--fixed-step", export_fmu.fixed_step_s,
+                   "The FMU's internal RK4 step, s (default 1e-4; as run --fixed-step)")
       ->check(CLI::Range(1e-7, 1.0));
 
   ConvergenceOptions convergence;
-  auto* conv_cmd = app.add_subcommand(
-      "convergence", "Re-run a scenario with its numerical steps divided and show whether its verdicts change "
-                     "(exit 0 converged, 3 not)");
+  auto* conv_cmd =
+      app.add_subcommand("convergence",
+                         "Re-run a scenario with its numerical steps divided and show whether its verdicts change "
+                         "(exit 0 converged, 3 not)");
   conv_cmd->add_option("scenario", convergence.scenario, "Scenario file (TOML)")->required();
   conv_cmd->add_option("--factor", convergence.factor, "Divide every exposed step by this (default 4)")
       ->check(CLI::Range(1.5, 100.0));
 
   ModesOptions modes;
   auto* modes_cmd = app.add_subcommand("modes", "Natural frequencies and mode shapes of a rig or driveline scenario");
-  modes_cmd->add_option("scenario", modes.scenario, "Scenario file (TOML, type = \"rig\" or \"driveline\")")->required();
+  modes_cmd->add_option("scenario", modes.scenario, "Scenario file (TOML, type = \"rig\" or \"driveline\")")
+      ->required();
   modes_cmd->add_option("--run", modes.run,
                         "A driveline run of this scenario (HDF5 from `shudder run`): linearise at the run's mean "
                         "operating point, as its summary's shuffle mode is");
@@ -78,16 +83,20 @@ int main(int argc, char** argv) {
   sweep_cmd->add_option("-o,--output", sweep.output, "Sweep HDF5 file")->required();
   sweep_cmd->add_flag("--quiet", sweep.quiet, "No progress bar or summary");
   sweep_cmd->add_flag("--keep-parts", sweep.keep_parts, "Keep the per-case files (OUT.h5.parts/)");
-  sweep_cmd->add_option("--report", sweep.report, "Also write a report directory: summary.txt, sweep.png and index.html to open");
+  sweep_cmd->add_option("--report", sweep.report,
+                        "Also write a report directory: summary.txt, sweep.png and index.html to open");
   sweep_cmd->add_flag("--force", sweep.force, "Write the output even if its estimated size exceeds 2 GB");
-  sweep_cmd->add_flag("--mpi", sweep.mpi, "Run the cases on every MPI rank (mpirun -np N shudder sweep ...; docs/mpi.md)");
+  sweep_cmd->add_flag("--mpi", sweep.mpi,
+                      "Run the cases on every MPI rank (mpirun -np N shudder sweep ...; docs/mpi.md)");
 
   ScreenOptions screen;
   auto* screen_cmd = app.add_subcommand("screen", "Screen a fluid's friction data for vibration risk");
   screen_cmd->add_option("fluid", screen.fluid, "Fluid file (TOML)")->required();
-  screen_cmd->add_option("--rig", screen.rig, "Rig scenario (TOML, type = \"rig\"); default: rigs with 100, 300, 500 Hz bars");
+  screen_cmd->add_option("--rig", screen.rig,
+                         "Rig scenario (TOML, type = \"rig\"); default: rigs with 100, 300, 500 Hz bars");
   screen_cmd->add_option("--load-N", screen.load_N, "Normal load, N (default 20000)");
-  screen_cmd->add_option("--temps", screen.temps, "Temperatures, degC, comma-separated (default 40,80,120 where the data reach)");
+  screen_cmd->add_option("--temps", screen.temps,
+                         "Temperatures, degC, comma-separated (default 40,80,120 where the data reach)");
   screen_cmd->add_option("--json", screen.json, "Write the results as JSON");
 
   PlotOptions plot;
@@ -95,7 +104,8 @@ int main(int argc, char** argv) {
   plot_cmd->add_option("file", plot.file, "Run or sweep HDF5 file")->required();
   plot_cmd->add_option("--what", plot.what, "torque|temperature|spectrum|spectrogram|stability_map|sweep|coupling")
       ->required()
-      ->check(CLI::IsMember({"torque", "temperature", "spectrum", "spectrogram", "stability_map", "sweep", "coupling"}));
+      ->check(
+          CLI::IsMember({"torque", "temperature", "spectrum", "spectrogram", "stability_map", "sweep", "coupling"}));
   plot_cmd->add_option("-o,--output", plot.output, "Image to write (.png or .svg)")->required();
 
   ValidateOptions validate;
@@ -106,8 +116,8 @@ int main(int argc, char** argv) {
   val_cmd->add_flag("!--no-plots", validate.plots, "Skip the PNG plots (no gnuplot needed)");
 
   DiagnoseOptions diagnose;
-  auto* diag_cmd = app.add_subcommand(
-      "diagnose", "Find where a model and measured runs disagree and which effect is missing");
+  auto* diag_cmd =
+      app.add_subcommand("diagnose", "Find where a model and measured runs disagree and which effect is missing");
   diag_cmd->add_option("model", diagnose.model, "Scenario file (TOML): the baseline model")->required();
   diag_cmd->add_option("runs", diagnose.runs, "Measured runs (CSV or HDF5, docs/formats/measured_run.md)")->required();
   diag_cmd->add_option("--clutch", diagnose.clutch,
@@ -116,42 +126,48 @@ int main(int argc, char** argv) {
   diag_cmd->add_option("--json", diagnose.json, "Write the diagnosis as JSON (shudder-diagnosis/1)");
   diag_cmd->add_option("--report", diagnose.report,
                        "Also write a report directory: summary, candidate table, plots, index.html");
-  diag_cmd->add_option("--jobs", diagnose.jobs, "Parallel fits (default: all cores)")
-      ->check(CLI::Range(1u, 1024u));
+  diag_cmd->add_option("--jobs", diagnose.jobs, "Parallel fits (default: all cores)")->check(CLI::Range(1u, 1024u));
   const int effect_count = static_cast<int>(shudder::rig_models::effect_registry().size());
-  diag_cmd->add_option("--max-effects", diagnose.max_effects,
-                       "Add at most this many effects (default " + std::to_string(effect_count) + ": no limit)")
+  diag_cmd
+      ->add_option("--max-effects", diagnose.max_effects,
+                   "Add at most this many effects (default " + std::to_string(effect_count) + ": no limit)")
       ->check(CLI::Range(0, effect_count));
   diag_cmd->add_option("--tolerance", diagnose.tolerance,
                        "Model-form tolerance per channel, e.g. torque_Nm=0.5,temp_C=2 (signal units; "
                        "docs/diagnosis.md)");
   diag_cmd->add_option("--write-model", diagnose.write_model,
                        "Write the baseline scenario with the named effects on at their fitted parameters");
-  diag_cmd->add_option("--map", diagnose.maps, "The runs are a logger's CSV: SOURCE=TARGET:UNIT as `shudder import --map`");
-  diag_cmd->add_option("--mapping", diagnose.mapping, "The runs are a logger's CSV: its mapping file (shudder import --mapping)");
+  diag_cmd->add_option("--map", diagnose.maps,
+                       "The runs are a logger's CSV: SOURCE=TARGET:UNIT as `shudder import --map`");
+  diag_cmd->add_option("--mapping", diagnose.mapping,
+                       "The runs are a logger's CSV: its mapping file (shudder import --mapping)");
   diag_cmd->add_flag("--trust-units", diagnose.trust_units,
                      "Skip the checks that a logger's values look like their units (as shudder import --trust-units)");
 
   CharacteriseOptions characterise;
-  auto* char_cmd = app.add_subcommand(
-      "characterise", "Fit a fluid's friction law to measured speed ramps (docs/characterisation.md)");
-  char_cmd->add_option("runs", characterise.runs, "Measured runs (CSV or HDF5, docs/formats/measured_run.md)")->required();
+  auto* char_cmd = app.add_subcommand("characterise",
+                                      "Fit a fluid's friction law to measured speed ramps (docs/characterisation.md)");
+  char_cmd->add_option("runs", characterise.runs, "Measured runs (CSV or HDF5, docs/formats/measured_run.md)")
+      ->required();
   char_cmd->add_option("-o,--output", characterise.output, "Fluid file written (TOML)")->required();
   char_cmd->add_option("--json", characterise.json, "Write the fit statistics (shudder-characterisation/1)");
   char_cmd->add_option("--report", characterise.report, "Write a report directory (summary, plots, index.html)");
   char_cmd->add_option("--law", characterise.law, "maki (Paper G eq. 13), linear (Papers B/C/E) or table")
       ->check(CLI::IsMember({"maki", "linear", "table"}));
-  char_cmd->add_option("--compensation", characterise.compensation,
-                       "Temperature compensation: none, linear (Papers B/C), quadratic (Paper D) or piecewise (linear in T between the rows, all samples at once)")
+  char_cmd
+      ->add_option("--compensation", characterise.compensation,
+                   "Temperature compensation: none, linear (Papers B/C), quadratic (Paper D) or piecewise (linear in T "
+                   "between the rows, all samples at once)")
       ->check(CLI::IsMember({"none", "linear", "quadratic", "piecewise"}));
   char_cmd->add_option("--alpha", characterise.alpha_per_C, "Linear compensation's alpha, 1/degC (default: fitted)")
       ->check(CLI::Range(-0.1, 0.1));
   char_cmd->add_option("--temperature-channel", characterise.temperature_channel, "temp_C or ir_temp_C")
       ->check(CLI::IsMember({"temp_C", "ir_temp_C"}));
-  char_cmd->add_option("--radius", characterise.radius,
-                       "Friction radius: model (default: where the clutch model of --model, or the default clutch, "
-                       "produces torque), uniform_wear (thesis: --mean-radius-mm) or uniform_pressure "
-                       "(--inner/--outer-radius-mm)")
+  char_cmd
+      ->add_option("--radius", characterise.radius,
+                   "Friction radius: model (default: where the clutch model of --model, or the default clutch, "
+                   "produces torque), uniform_wear (thesis: --mean-radius-mm) or uniform_pressure "
+                   "(--inner/--outer-radius-mm)")
       ->check(CLI::IsMember({"model", "uniform_wear", "uniform_pressure"}));
   char_cmd->add_option("--mean-radius-mm", characterise.mean_radius_mm, "Uniform-wear radius, mm (default 46)")
       ->check(CLI::Range(1.0, 1000.0));
@@ -161,11 +177,13 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1.0, 1000.0));
   char_cmd->add_option("--interfaces", characterise.interfaces, "Sliding interfaces (default 1)")
       ->check(CLI::Range(1, 100));
-  char_cmd->add_option("--bearing-drag-mu", characterise.bearing_drag_mu,
-                       "Bearing drag as an equivalent mu, subtracted (thesis rig: 0.005; default 0)")
+  char_cmd
+      ->add_option("--bearing-drag-mu", characterise.bearing_drag_mu,
+                   "Bearing drag as an equivalent mu, subtracted (thesis rig: 0.005; default 0)")
       ->check(CLI::Range(0.0, 0.1));
-  char_cmd->add_option("--temp-tolerance", characterise.temp_tolerance_C,
-                       "Ramps starting within this many degC share a row (default 3)")
+  char_cmd
+      ->add_option("--temp-tolerance", characterise.temp_tolerance_C,
+                   "Ramps starting within this many degC share a row (default 3)")
       ->check(CLI::Range(0.1, 50.0));
   char_cmd->add_option("--min-ramps", characterise.min_ramps, "Fewest ramps per row (default 2)")
       ->check(CLI::Range(1, 1000));
@@ -176,29 +194,37 @@ int main(int argc, char** argv) {
   char_cmd->add_option("--name", characterise.name, "Fluid name (default: the output's stem)");
   char_cmd->add_option("--nu40-cSt", characterise.nu40_cSt, "Kinematic viscosity at 40 degC, cSt")->required();
   char_cmd->add_option("--nu100-cSt", characterise.nu100_cSt, "Kinematic viscosity at 100 degC, cSt")->required();
-  char_cmd->add_option("--breakaway-ratio", characterise.breakaway_ratio, "mu_s / mu_k(v_min) (default: measured from ramps that start at rest, else 1)")
+  char_cmd
+      ->add_option("--breakaway-ratio", characterise.breakaway_ratio,
+                   "mu_s / mu_k(v_min) (default: measured from ramps that start at rest, else 1)")
       ->check(CLI::Range(0.5, 3.0));
-  char_cmd->add_option("--method", characterise.method,
-                       "sensor (compensate with the temperature channel) or inverse (replay through the clutch and "
-                       "thermal model; both reported)")
+  char_cmd
+      ->add_option("--method", characterise.method,
+                   "sensor (compensate with the temperature channel) or inverse (replay through the clutch and "
+                   "thermal model; both reported)")
       ->check(CLI::IsMember({"sensor", "inverse"}));
-  char_cmd->add_option("--model", characterise.model, "Scenario of the model the fluid is for: its clutch's friction "
-                                                      "radius (--radius model) and, with --method inverse, the clutch "
-                                                      "and thermal model that replay the runs (default: Paper G's clutch)");
+  char_cmd->add_option("--model", characterise.model,
+                       "Scenario of the model the fluid is for: its clutch's friction "
+                       "radius (--radius model) and, with --method inverse, the clutch "
+                       "and thermal model that replay the runs (default: Paper G's clutch)");
   char_cmd->add_flag("--hot-row,!--no-hot-row", characterise.hot_row,
                      "Add a row at the hottest temperature the ramps reach, from the top row's ramps compensated "
                      "to it (default; Maki and table laws). --no-hot-row: the law holds the top row's mu above it");
-  char_cmd->add_option("--inverse-iterations", characterise.inverse_iterations,
-                       "--method inverse: law updates per pass before it counts as not converged (default 8)")
+  char_cmd
+      ->add_option("--inverse-iterations", characterise.inverse_iterations,
+                   "--method inverse: law updates per pass before it counts as not converged (default 8)")
       ->check(CLI::Range(1, 100));
 
-  char_cmd->add_option("--map", characterise.maps, "The runs are a logger's CSV: SOURCE=TARGET:UNIT as `shudder import --map`");
-  char_cmd->add_option("--mapping", characterise.mapping, "The runs are a logger's CSV: its mapping file (shudder import --mapping)");
+  char_cmd->add_option("--map", characterise.maps,
+                       "The runs are a logger's CSV: SOURCE=TARGET:UNIT as `shudder import --map`");
+  char_cmd->add_option("--mapping", characterise.mapping,
+                       "The runs are a logger's CSV: its mapping file (shudder import --mapping)");
   char_cmd->add_flag("--trust-units", characterise.trust_units,
                      "Skip the checks that the runs' values look like their units (as shudder import --trust-units)");
 
   CompareOptions compare;
-  auto* cmp_cmd = app.add_subcommand("compare", "Compare fluids: indices, equal viscosity, breakaway, rig margins, ranking");
+  auto* cmp_cmd =
+      app.add_subcommand("compare", "Compare fluids: indices, equal viscosity, breakaway, rig margins, ranking");
   cmp_cmd->add_option("fluids", compare.fluids, "Fluid files (TOML)")->required();
   cmp_cmd->add_option("--rig", compare.rigs, "Rig scenario(s) (type = \"rig\"); default: 100, 300, 500 Hz bars");
   cmp_cmd->add_option("--temps", compare.temps, "Temperatures, degC, comma-separated (default 30,60,90)");
@@ -206,12 +232,14 @@ int main(int argc, char** argv) {
   cmp_cmd->add_option("--viscosity-cSt", compare.viscosity_cSt, "Equal-viscosity comparison, cSt (default 10)")
       ->check(CLI::Range(0.5, 10000.0));
   cmp_cmd->add_option("--json", compare.json, "Write the comparison as JSON (shudder-compare/1)");
-  cmp_cmd->add_option("--report", compare.report, "Write a report directory (summary, overlaid mu-v plots, index.html)");
+  cmp_cmd->add_option("--report", compare.report,
+                      "Write a report directory (summary, overlaid mu-v plots, index.html)");
 
   ImportOptions import;
-  auto* imp_cmd = app.add_subcommand(
-      "import", "Turn a test-rig logger's CSV into a measured run (docs/formats/import_mapping.md)");
-  imp_cmd->add_option("logger", import.logger, "Logger CSV (comma, semicolon or tab; decimal point or comma)")->required();
+  auto* imp_cmd =
+      app.add_subcommand("import", "Turn a test-rig logger's CSV into a measured run (docs/formats/import_mapping.md)");
+  imp_cmd->add_option("logger", import.logger, "Logger CSV (comma, semicolon or tab; decimal point or comma)")
+      ->required();
   imp_cmd->add_option("-o,--output", import.output, "Measured run written (CSV; HDF5 for .h5)")->required();
   imp_cmd->add_option("--map", import.maps,
                       "SOURCE=TARGET:UNIT, e.g. force=normal_force_N:kN or time=time_s:ms (repeatable)");

@@ -143,8 +143,8 @@ void serve_cases(Session& session, const CaseRunner& run) {
     if (k < 0) return;
     const std::string text = receive_bytes(0);
     // A node-local scratch part: only rank 0 writes into the output's directory.
-    const fs::path part = fs::temp_directory_path() /
-                          ("shudder_mpi_" + std::to_string(getpid()) + "_" + std::to_string(k) + ".h5");
+    const fs::path part =
+        fs::temp_directory_path() / ("shudder_mpi_" + std::to_string(getpid()) + "_" + std::to_string(k) + ".h5");
     std::string payload;
     Status status = run_guarded(run, static_cast<std::size_t>(k), text, part.string(), payload);
     if (status == kPartWritten) {
@@ -163,9 +163,9 @@ void serve_cases(Session& session, const CaseRunner& run) {
   }
 }
 
-CasesOutcome run_cases(Session& session, const std::vector<std::size_t>& todo,
-                       const std::vector<std::string>& texts, const std::vector<std::string>& part_paths,
-                       const CaseRunner& run, const std::function<void(std::size_t)>& on_progress) {
+CasesOutcome run_cases(Session& session, const std::vector<std::size_t>& todo, const std::vector<std::string>& texts,
+                       const std::vector<std::string>& part_paths, const CaseRunner& run,
+                       const std::function<void(std::size_t)>& on_progress) {
   Dispatcher d{session};
   std::atomic<std::size_t> next{0}, done{0};
   std::mutex outcome_mutex;

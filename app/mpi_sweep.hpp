@@ -52,15 +52,15 @@ void serve_cases(Session& session, const CaseRunner& run);
 
 /// What escaped run for some case (as the threaded sweep reports it).
 struct CasesOutcome {
-  std::string first_error;     // "case K: what"; empty if none
-  bool out_of_memory = false;  // some case ran out of memory
+  std::string first_error;                  // "case K: what"; empty if none
+  bool out_of_memory = false;               // some case ran out of memory
   std::vector<std::size_t> cases_per_rank;  // how many cases each rank ran (the hand-out's balance)
 };
 
 /// Rank 0: runs the cases `todo` (indices into texts/part_paths) on every rank; on_progress
 /// (may be empty) is called on the calling thread with the number finished, about every 200 ms.
-CasesOutcome run_cases(Session& session, const std::vector<std::size_t>& todo,
-                       const std::vector<std::string>& texts, const std::vector<std::string>& part_paths,
-                       const CaseRunner& run, const std::function<void(std::size_t)>& on_progress);
+CasesOutcome run_cases(Session& session, const std::vector<std::size_t>& todo, const std::vector<std::string>& texts,
+                       const std::vector<std::string>& part_paths, const CaseRunner& run,
+                       const std::function<void(std::size_t)>& on_progress);
 
 }  // namespace shudder::app::mpi

@@ -24,13 +24,16 @@ std::uint64_t snapshot_count(const rig_models::Model& model) {
 
 std::uint64_t estimated_samples(const io::Scenario& scenario) {
   const auto [duration, rate] = std::visit(
-      [](const auto& m) { return std::pair{m.settings.duration_s, m.settings.sample_rate_Hz}; }, scenario.model);
+      [](const auto& m) {
+        return std::pair{m.settings.duration_s, m.settings.sample_rate_Hz};
+      },
+      scenario.model);
   return static_cast<std::uint64_t>(std::floor(duration * rate)) + 1;
 }
 
 std::uint64_t recorded_channels(const io::Scenario& scenario) {
   return std::holds_alternative<rig_models::DrivelineModel>(scenario.model) ? kDrivelineRecordedChannels
-                                                                             : kRecordedChannels;
+                                                                            : kRecordedChannels;
 }
 
 std::uint64_t estimated_run_bytes(const io::Scenario& scenario) {

@@ -84,18 +84,18 @@ const Case2Runs& case2_runs() {
                              "enabled = true\n"
                              "heat_capacity_J_per_K = 300.0\n"
                              "conductance_W_per_K = 20.0\n";
-    const auto dir = std::filesystem::temp_directory_path() /
-                     ("shudder_bench_diagnose_" + std::to_string(::getpid()));
+    const auto dir = std::filesystem::temp_directory_path() / ("shudder_bench_diagnose_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     const struct {
       double force_N;
       const char* name;
       unsigned seed;
-    } loads[] = {{10400.0, "case2_10.4kN.csv", 1}, {25300.0, "case2_25.3kN.csv", 2},
+    } loads[] = {{10400.0, "case2_10.4kN.csv", 1},
+                 {25300.0, "case2_25.3kN.csv", 2},
                  {14800.0, "case2_14.8kN.csv", 3}};  // last = held out
     for (const auto& l : loads) {
-      const auto sc = io::load_scenario_text(
-          io::set_scenario_key(text, kCase2Path, "drive.normal_force_N", l.force_N), kCase2Path);
+      const auto sc =
+          io::load_scenario_text(io::set_scenario_key(text, kCase2Path, "drive.normal_force_N", l.force_N), kCase2Path);
       const auto clutch = sc.make_clutch();
       const auto rec = rig_models::simulate(std::get<rig_models::PrescribedSlipModel>(sc.model), clutch);
       // As `shudder run --measurement x.csv --sample-rate 100 --noise --seed N` writes it.
@@ -142,8 +142,8 @@ void run_diagnosis(benchmark::State& state, const std::string& model_text, const
     io::DiagnosisData data = io::diagnosis_data(runs);
     // As `shudder diagnose` does: the replay's reproduction error measured too (one run each).
     const auto reproduce = rig_models::replay_reproducer(model, data.inputs);
-    r = analysis::diagnose(data.runs, candidates,
-                           rig_models::replay_simulator(model, std::move(data.inputs)), o, reproduce);
+    r = analysis::diagnose(data.runs, candidates, rig_models::replay_simulator(model, std::move(data.inputs)), o,
+                           reproduce);
     state.counters["verdict"] = static_cast<double>(r.verdict);
     benchmark::DoNotOptimize(r);
   }
@@ -165,9 +165,8 @@ void run_diagnosis(benchmark::State& state, const std::string& model_text, const
   for (const auto& st : r.steps) {
     std::cerr << "  + " << shudder::report::effects_label(st.effect, st.joint_with);
     for (const auto& [k, v] : st.parameters) std::cerr << " " << k << "=" << v;
-    std::cerr << "  held-out J " << st.holdout_misfit_before << " -> " << st.holdout_misfit_after
-              << ", torque RMS " << st.misfit.torque_rms_Nm << " Nm, temp RMS " << st.misfit.temp_rms_C
-              << " C\n    round:";
+    std::cerr << "  held-out J " << st.holdout_misfit_before << " -> " << st.holdout_misfit_after << ", torque RMS "
+              << st.misfit.torque_rms_Nm << " Nm, temp RMS " << st.misfit.temp_rms_C << " C\n    round:";
     for (const auto& c : st.candidates)
       std::cerr << " " << shudder::report::effects_label(c.effect, c.joint_with) << " (J " << c.holdout_misfit
                 << ", gain " << c.gain << ")";
@@ -217,5 +216,8 @@ void BM_Diagnose_Case2_Defaults(benchmark::State& state) {
 
 BENCHMARK(BM_Diagnose_Case2_AllOff)
     ->Arg(static_cast<int>(rig_models::effect_registry().size()))
-    ->Arg(4)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+    ->Arg(4)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1)
+    ->UseRealTime();
 BENCHMARK(BM_Diagnose_Case2_Defaults)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();

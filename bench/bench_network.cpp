@@ -39,9 +39,9 @@ std::string network_text(int chain, int clutches) {
     os << "[network.housing_" << c << "]\ntype = \"inertia\"\ninertia_kg_m2 = 0.02\n";
     os << "[network.bar_" << c << "]\ntype = \"shaft\"\nfrom = \"housing_" << c
        << "\"\nto = \"ground\"\nstiffness_Nm_per_rad = 1e5\ndamping_Nms_per_rad = 1\n";
-    os << "[network.clutch_" << c << "]\ntype = \"clutch\"\nlaw = \"wet\"\nfrom = \"body_" << at << "\"\nto = \"housing_"
-       << c << "\"\nmax_force_N = 10000\n[network.clutch_" << c << ".clutch]\nfluid = \"" SHUDDER_SOURCE_DIR
-       << "/scenarios/fluids/lsc_fluid_c.toml\"\nstart_temp_C = 40\n";
+    os << "[network.clutch_" << c << "]\ntype = \"clutch\"\nlaw = \"wet\"\nfrom = \"body_" << at
+       << "\"\nto = \"housing_" << c << "\"\nmax_force_N = 10000\n[network.clutch_" << c
+       << ".clutch]\nfluid = \"" SHUDDER_SOURCE_DIR << "/scenarios/fluids/lsc_fluid_c.toml\"\nstart_temp_C = 40\n";
   }
   return os.str();
 }
@@ -71,6 +71,13 @@ void BM_NetworkScaling(benchmark::State& state) {
 
 BENCHMARK(BM_Network20Bodies4WetClutches)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_NetworkScaling)
-    ->Args({8, 0})->Args({16, 0})->Args({32, 0})->Args({64, 0})
-    ->Args({16, 1})->Args({16, 2})->Args({16, 4})->Args({16, 8})
-    ->Unit(benchmark::kMillisecond)->Iterations(2);
+    ->Args({8, 0})
+    ->Args({16, 0})
+    ->Args({32, 0})
+    ->Args({64, 0})
+    ->Args({16, 1})
+    ->Args({16, 2})
+    ->Args({16, 4})
+    ->Args({16, 8})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(2);

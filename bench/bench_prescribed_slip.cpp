@@ -27,9 +27,7 @@ io::Scenario case1_25kN(int refine) {
   return sc;
 }
 
-double last(const dynamics::Recording& rec, const char* name) {
-  return rec.find(name)->values.back();
-}
+double last(const dynamics::Recording& rec, const char* name) { return rec.find(name)->values.back(); }
 
 void BM_Case1_25kN(benchmark::State& state) {
   const auto sc = case1_25kN(static_cast<int>(state.range(0)));
@@ -49,4 +47,3 @@ void BM_Case1_25kN(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_Case1_25kN)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
-

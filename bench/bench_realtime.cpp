@@ -109,7 +109,8 @@ void time_steps(benchmark::State& state, long pacing, const rig_models::Realtime
     if (pacing == kSleeping) start_ts = {start_ts.tv_sec + 1, static_cast<long>(kStep_s * 0.5e9)};
     for (long k = 0; k < kSteps; ++k) {
       if (pacing == kSpinning) {
-        const auto release = start + std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(k * kStep_s));
+        const auto release =
+            start + std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(k * kStep_s));
         while (clock::now() < release) {
         }
       } else if (pacing == kSleeping) {
@@ -223,6 +224,18 @@ void BM_RealtimeThermalWindow(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_RealtimeThermalWindow)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_RealtimeCoupling)->ArgName("paced")->Arg(kUnpaced)->Arg(kSpinning)->Arg(kSleeping)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RealtimeCoupling)
+    ->ArgName("paced")
+    ->Arg(kUnpaced)
+    ->Arg(kSpinning)
+    ->Arg(kSleeping)
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FixedStepRig)->Unit(benchmark::kMillisecond)->Iterations(3);
-BENCHMARK(BM_RealtimeNullStep)->ArgName("paced")->Arg(kUnpaced)->Arg(kSpinning)->Arg(kSleeping)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RealtimeNullStep)
+    ->ArgName("paced")
+    ->Arg(kUnpaced)
+    ->Arg(kSpinning)
+    ->Arg(kSleeping)
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);

@@ -29,9 +29,7 @@ void run_case2(benchmark::State& state, const char* fluid) {
 }
 
 void BM_RigCase2_378Hz_FluidC(benchmark::State& state) { run_case2(state, nullptr); }
-void BM_RigCase2_378Hz_NegativeSlope(benchmark::State& state) {
-  run_case2(state, "schematic_negative_slope.toml");
-}
+void BM_RigCase2_378Hz_NegativeSlope(benchmark::State& state) { run_case2(state, "schematic_negative_slope.toml"); }
 
 }  // namespace
 

@@ -105,8 +105,9 @@ void BM_Scaling_Case1WholeProcess(benchmark::State& state) {
   fs::create_directories(dir);
   for (long k = 0; k < state.range(0); ++k) std::ofstream(dir / ("other_" + std::to_string(k) + ".txt"));
   const fs::path out = dir / "case1.h5";
-  const std::string cmd = std::string("'") + SHUDDER_CLI + "' run '" SHUDDER_SOURCE_DIR
-                          "/scenarios/paper_g_case1_25kN.toml' -o '" + out.string() + "' >/dev/null";
+  const std::string cmd = std::string("'") + SHUDDER_CLI +
+                          "' run '" SHUDDER_SOURCE_DIR "/scenarios/paper_g_case1_25kN.toml' -o '" + out.string() +
+                          "' >/dev/null";
   long peak_kB = 0;
   const double cpu0 = children_cpu_s();
   for (auto _ : state) state.SetIterationTime(run_timed(cmd, peak_kB));
@@ -153,10 +154,10 @@ void BM_Scaling_ThermalBandSolve(benchmark::State& state) {
 void BM_Scaling_SweepCases(benchmark::State& state) {
   const long cases = state.range(0);
   const fs::path out = fs::temp_directory_path() / ("shudder_bench_sweep_" + std::to_string(cases) + ".h5");
-  const std::string cmd = std::string("'") + SHUDDER_CLI + "' sweep '" SHUDDER_SOURCE_DIR
+  const std::string cmd = std::string("'") + SHUDDER_CLI +
+                          "' sweep '" SHUDDER_SOURCE_DIR
                           "/scenarios/paper_g_case1_25kN.toml' --set drive.normal_force_N=10000:" +
-                          std::to_string(10000 + 100 * (cases - 1)) + ":100 --jobs 2 --quiet -o '" +
-                          out.string() + "'";
+                          std::to_string(10000 + 100 * (cases - 1)) + ":100 --jobs 2 --quiet -o '" + out.string() + "'";
   long peak_kB = 0;
   double wall = 0.0;
   for (auto _ : state) {
@@ -173,11 +174,18 @@ void BM_Scaling_SweepCases(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_Scaling_Case1Grid)
-    ->ArgsProduct({{10, 20, 40, 80}, {1, 2, 4}})
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Scaling_Case1Grid)->ArgsProduct({{10, 20, 40, 80}, {1, 2, 4}})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Scaling_Case1Duration)->Arg(5)->Arg(10)->Arg(20)->Arg(40)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Scaling_Case1WholeProcess)->Arg(0)->Arg(5000)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(20);
+BENCHMARK(BM_Scaling_Case1WholeProcess)
+    ->Arg(0)
+    ->Arg(5000)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(20);
 BENCHMARK(BM_Scaling_CliHelp)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(20);
-BENCHMARK(BM_Scaling_ThermalBandSolve)->Args({240, 12})->Args({480, 12})->Args({240, 24})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Scaling_ThermalBandSolve)
+    ->Args({240, 12})
+    ->Args({480, 12})
+    ->Args({240, 24})
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Scaling_SweepCases)->Arg(10)->Arg(40)->UseManualTime()->Unit(benchmark::kSecond)->Iterations(1);

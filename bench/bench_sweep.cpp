@@ -25,9 +25,11 @@ double run_sweep_s(const fs::path& dir, int jobs) {
   const fs::path out = dir / ("sweep_jobs" + std::to_string(jobs) + ".h5");
   fs::remove(out);
   fs::remove_all(out.string() + ".parts");
-  const std::string cmd = std::string("'") + SHUDDER_CLI + "' sweep '" SHUDDER_SOURCE_DIR
+  const std::string cmd = std::string("'") + SHUDDER_CLI +
+                          "' sweep '" SHUDDER_SOURCE_DIR
                           "/scenarios/sweep_torsion_bar.toml' --set rig.torsion_bar.natural_frequency_Hz=100:500:10"
-                          " --jobs " + std::to_string(jobs) + " --quiet -o '" + out.string() + "'";
+                          " --jobs " +
+                          std::to_string(jobs) + " --quiet -o '" + out.string() + "'";
   const auto t0 = std::chrono::steady_clock::now();
   if (std::system(cmd.c_str()) != 0) throw std::runtime_error("sweep failed: " + cmd);
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

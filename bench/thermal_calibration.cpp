@@ -81,8 +81,10 @@ std::vector<Anchor> evaluate(const Candidate& k) {
       {"no oil flow torque drop [%]", 100.0 * (1.0 - at(noflow, "torque_Nm", 10.0) / tq25), 10.0, 2.5, 0},
       {"constant-T torque gain >= 5 [%]", 100.0 * (at(constT, "torque_Nm", 10.0) / tq25 - 1.0), 5.0, 1.0, +1},
       {"Paper B IR rise (Paper B 15.5) [C]", at(pb, "ir_temp_C", 20.0) - at(pb, "ir_temp_C", 10.0), 15.5, 2.5, 0},
-      {"Paper B IR rise (thesis Fig. 7 > 20) [C]", at(pb, "ir_temp_C", 20.0) - at(pb, "ir_temp_C", 10.0), 20.0, 2.5, +1},
-      {"Case 2 sump rise (Paper D constant) [C]", at(c2, "sump_temp_C", 30.0) - at(c2, "sump_temp_C", 0.0), 0.0, 1.0, 0},
+      {"Paper B IR rise (thesis Fig. 7 > 20) [C]", at(pb, "ir_temp_C", 20.0) - at(pb, "ir_temp_C", 10.0), 20.0, 2.5,
+       +1},
+      {"Case 2 sump rise (Paper D constant) [C]", at(c2, "sump_temp_C", 30.0) - at(c2, "sump_temp_C", 0.0), 0.0, 1.0,
+       0},
   };
 }
 
@@ -104,8 +106,8 @@ void print(const Candidate& k, const std::vector<Anchor>& anchors) {
 int main(int argc, char** argv) {
   const std::string mode = argc > 1 ? argv[1] : "grid";
   if (mode == "eval" && argc == 8) {
-    Candidate k{std::atof(argv[2]), std::atof(argv[3]), std::atof(argv[4]), std::atof(argv[5]), std::atof(argv[6]),
-                std::atoi(argv[7]) != 0};
+    Candidate k{std::atof(argv[2]), std::atof(argv[3]), std::atof(argv[4]),
+                std::atof(argv[5]), std::atof(argv[6]), std::atoi(argv[7]) != 0};
     print(k, evaluate(k));
     return 0;
   }

@@ -76,8 +76,7 @@ Sweep sweep_for(int b) { return b >= 1 && b <= kMaxFixedWidth ? kSweeps[static_c
 
 }  // namespace
 
-BandedLu::BandedLu(int n, int half_band)
-    : n_(n), b_(half_band), width_(static_cast<std::size_t>(2 * half_band + 1)) {
+BandedLu::BandedLu(int n, int half_band) : n_(n), b_(half_band), width_(static_cast<std::size_t>(2 * half_band + 1)) {
   if (n < 1 || half_band < 0) throw std::invalid_argument("band matrix needs n >= 1 and b >= 0");
   data_.assign(static_cast<std::size_t>(n) * width_, 0.0);
   lower_.assign(static_cast<std::size_t>(n) * half_band, 0.0);

@@ -28,8 +28,8 @@ struct FrictionDataRange {
   explicit FrictionDataRange(const FrictionLaw& law);
 
   /// One step: `slip_rad_s` the (mean) slip over it, `ring_radius_m` and `ring_temp_C` (n_r).
-  void add(double dt_s, double slip_rad_s, const Eigen::VectorXd& ring_radius_m,
-           const Eigen::VectorXd& ring_temp_C, double load_N);
+  void add(double dt_s, double slip_rad_s, const Eigen::VectorXd& ring_radius_m, const Eigen::VectorXd& ring_temp_C,
+           double load_N);
 
   // The law's data ranges.
   double speed_lo_mm_s, speed_hi_mm_s, temp_lo_C, temp_hi_C, load_lo_N, load_hi_N;

@@ -40,8 +40,8 @@ class FrictionLaw {
   virtual double mu(double speed_mm_s, double temp_C, double load_N) const = 0;
   /// mu at several points of one load: out[i] = mu(speed_mm_s[i], temp_C[i], load_N), the same
   /// numbers bit for bit. A law may reuse speed-only work in `terms` while the speeds repeat.
-  virtual void mu_at_load(std::span<const double> speed_mm_s, std::span<const double> temp_C,
-                          double load_N, std::span<double> out, SpeedTerms& /*terms*/) const {
+  virtual void mu_at_load(std::span<const double> speed_mm_s, std::span<const double> temp_C, double load_N,
+                          std::span<double> out, SpeedTerms& /*terms*/) const {
     for (std::size_t i = 0; i < out.size(); ++i) out[i] = mu(speed_mm_s[i], temp_C[i], load_N);
   }
 
@@ -72,9 +72,7 @@ class FrictionLaw {
 
   /// The law at fixed (T, F) as a SpeedCurve, if it has that form (false otherwise; callers
   /// then evaluate mu() directly).
-  virtual bool speed_curve(double /*temp_C*/, double /*load_N*/, SpeedCurve& /*out*/) const {
-    return false;
-  }
+  virtual bool speed_curve(double /*temp_C*/, double /*load_N*/, SpeedCurve& /*out*/) const { return false; }
 };
 
 }  // namespace shudder::clutch

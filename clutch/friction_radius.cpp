@@ -10,9 +10,12 @@ const char* radius_convention_name(RadiusConvention c) {
 }
 
 bool parse_radius_convention(std::string_view name, RadiusConvention& out) {
-  if (name == "uniform_pressure") out = RadiusConvention::kUniformPressure;
-  else if (name == "uniform_wear") out = RadiusConvention::kUniformWear;
-  else return false;
+  if (name == "uniform_pressure")
+    out = RadiusConvention::kUniformPressure;
+  else if (name == "uniform_wear")
+    out = RadiusConvention::kUniformWear;
+  else
+    return false;
   return true;
 }
 

@@ -14,8 +14,9 @@ using cd = std::complex<double>;
 cd face_admittance(const Layer& layer, double omega, cd behind_admittance) {
   if (!(layer.thickness_m > 0) || !(layer.density_kg_m3 > 0) || !(layer.specific_heat_J_per_kgK > 0) ||
       !(layer.conductivity_W_per_mK > 0))
-    throw std::invalid_argument("thermal impedance: every layer needs thickness, density, heat capacity and "
-                                "conductivity > 0");
+    throw std::invalid_argument(
+        "thermal impedance: every layer needs thickness, density, heat capacity and "
+        "conductivity > 0");
   const double alpha = layer.conductivity_W_per_mK / (layer.density_kg_m3 * layer.specific_heat_J_per_kgK);
   const cd gamma = std::sqrt(cd(0.0, omega / alpha));
   const cd yc = layer.conductivity_W_per_mK * gamma;  // 1/Z_c

@@ -21,25 +21,22 @@ LinearTemperatureFriction::LinearTemperatureFriction(std::vector<LinearTemperatu
 
 double LinearTemperatureFriction::mu(double speed_mm_s, double temp_C, double) const {
   const double v = std::abs(speed_mm_s);
-  const auto line = [temp_C](const LinearTemperaturePoint& p) {
-    return p.alpha_per_C * temp_C + p.beta;
-  };
+  const auto line = [temp_C](const LinearTemperaturePoint& p) { return p.alpha_per_C * temp_C + p.beta; };
   if (v <= points_.front().speed_mm_s) return line(points_.front());
   if (v >= points_.back().speed_mm_s) return line(points_.back());
-  const auto it = std::upper_bound(points_.begin(), points_.end(), v,
-                                   [](double x, const auto& p) { return x < p.speed_mm_s; });
+  const auto it =
+      std::upper_bound(points_.begin(), points_.end(), v, [](double x, const auto& p) { return x < p.speed_mm_s; });
   const auto& hi = *it;
   const auto& lo = *(it - 1);
   const double w = std::log(v / lo.speed_mm_s) / std::log(hi.speed_mm_s / lo.speed_mm_s);
   return (1.0 - w) * line(lo) + w * line(hi);
 }
 
-double LinearTemperatureFriction::dmu_dv_per_mm_s(double speed_mm_s, double temp_C,
-                                                  double) const {
+double LinearTemperatureFriction::dmu_dv_per_mm_s(double speed_mm_s, double temp_C, double) const {
   const double v = std::abs(speed_mm_s);
   if (v <= points_.front().speed_mm_s || v >= points_.back().speed_mm_s) return 0.0;
-  const auto it = std::upper_bound(points_.begin(), points_.end(), v,
-                                   [](double x, const auto& p) { return x < p.speed_mm_s; });
+  const auto it =
+      std::upper_bound(points_.begin(), points_.end(), v, [](double x, const auto& p) { return x < p.speed_mm_s; });
   const auto& hi = *it;
   const auto& lo = *(it - 1);
   const double dmu = (hi.alpha_per_C - lo.alpha_per_C) * temp_C + (hi.beta - lo.beta);

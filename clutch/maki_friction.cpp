@@ -28,19 +28,16 @@ namespace {
 void require_increasing(const std::vector<double>& axis, const char* what) {
   if (axis.empty()) throw std::invalid_argument(std::string(what) + " must not be empty");
   for (std::size_t i = 0; i < axis.size(); ++i) {
-    if (!std::isfinite(axis[i]))
-      throw std::invalid_argument(std::string(what) + " holds a non-finite value");
+    if (!std::isfinite(axis[i])) throw std::invalid_argument(std::string(what) + " holds a non-finite value");
     if (i > 0 && axis[i] <= axis[i - 1])
       throw std::invalid_argument(std::string(what) + " must be strictly increasing");
   }
 }
 
-
 }  // namespace
 
 MakiFrictionMatrix::MakiFrictionMatrix(std::vector<double> loads_N, std::vector<double> temps_C,
-                                       std::vector<MakiSet> sets, double min_speed_mm_s,
-                                       double max_speed_mm_s)
+                                       std::vector<MakiSet> sets, double min_speed_mm_s, double max_speed_mm_s)
     : loads_N_(std::move(loads_N)),
       temps_C_(std::move(temps_C)),
       sets_(std::move(sets)),
@@ -53,8 +50,7 @@ MakiFrictionMatrix::MakiFrictionMatrix(std::vector<double> loads_N, std::vector<
                                 " parameter sets; loads x temperatures needs " +
                                 std::to_string(loads_N_.size() * temps_C_.size()));
   for (const auto& s : sets_)
-    if (!std::isfinite(s.c1) || !std::isfinite(s.c2) || !std::isfinite(s.c3) ||
-        !std::isfinite(s.c4))
+    if (!std::isfinite(s.c1) || !std::isfinite(s.c2) || !std::isfinite(s.c3) || !std::isfinite(s.c4))
       throw std::invalid_argument("friction matrix holds a non-finite coefficient");
   if (!(min_speed_mm_s_ > 0.0) || !(max_speed_mm_s_ > min_speed_mm_s_))
     throw std::invalid_argument("friction speed range must satisfy 0 < min < max");
@@ -83,8 +79,8 @@ namespace {
 // weight zero (an operating point on an axis or clamped beyond it) is skipped, which drops
 // the exact zero (1 - w) * f or w * f would have added.
 template <class SetMu>
-double blend_sets(std::pair<std::size_t, double> at_temp, std::pair<std::size_t, double> at_load,
-                  std::size_t n_temp, std::size_t n_load, const SetMu& f) {
+double blend_sets(std::pair<std::size_t, double> at_temp, std::pair<std::size_t, double> at_load, std::size_t n_temp,
+                  std::size_t n_load, const SetMu& f) {
   const std::size_t it = at_temp.first, il = at_load.first;
   const double wt = at_temp.second, wl = at_load.second;
   const std::size_t it1 = std::min(it + 1, n_temp - 1);
@@ -110,8 +106,8 @@ double MakiFrictionMatrix::mu(double speed_mm_s, double temp_C, double load_N) c
   // once; a tanh whose rate equals the previous set's is reused.
   const double v_pow = std::pow(v, 0.1);
   double last_rate = std::numeric_limits<double>::quiet_NaN(), last_tanh = 0.0;
-  return blend_sets(axis_bracket(temps_C_, temp_C), axis_bracket(loads_N_, load_N), temps_C_.size(),
-                    loads_N_.size(), [&](std::size_t k) {
+  return blend_sets(axis_bracket(temps_C_, temp_C), axis_bracket(loads_N_, load_N), temps_C_.size(), loads_N_.size(),
+                    [&](std::size_t k) {
                       const MakiSet& s = sets_[k];
                       if (!(s.c2 == last_rate)) {
                         last_rate = s.c2;
@@ -121,8 +117,8 @@ double MakiFrictionMatrix::mu(double speed_mm_s, double temp_C, double load_N) c
                     });
 }
 
-void MakiFrictionMatrix::mu_at_load(std::span<const double> speed_mm_s, std::span<const double> temp_C,
-                                    double load_N, std::span<double> out, SpeedTerms& terms) const {
+void MakiFrictionMatrix::mu_at_load(std::span<const double> speed_mm_s, std::span<const double> temp_C, double load_N,
+                                    std::span<double> out, SpeedTerms& terms) const {
   // terms.values per point: [v, v^0.1, tanh(rate_0 v), tanh(rate_1 v), ...], a tanh not yet
   // taken held as NaN (taken on first use: a point uses only the rates of its four sets).
   const std::size_t n = out.size(), stride = 2 + rates_.size();
@@ -138,18 +134,17 @@ void MakiFrictionMatrix::mu_at_load(std::span<const double> speed_mm_s, std::spa
   const std::pair<std::size_t, double> at_load = axis_bracket(loads_N_, load_N);
   for (std::size_t i = 0; i < n; ++i) {
     double* p = &terms.values[i * stride];
-    out[i] = blend_sets(axis_bracket(temps_C_, temp_C[i]), at_load, temps_C_.size(), loads_N_.size(),
-                        [&](std::size_t k) {
-                          const MakiSet& s = sets_[k];
-                          double& th = p[2 + rate_of_set_[k]];
-                          if (std::isnan(th)) th = std::tanh(s.c2 * p[0]);
-                          return s.c1 * th + s.c3 * p[1] + s.c4;
-                        });
+    out[i] =
+        blend_sets(axis_bracket(temps_C_, temp_C[i]), at_load, temps_C_.size(), loads_N_.size(), [&](std::size_t k) {
+          const MakiSet& s = sets_[k];
+          double& th = p[2 + rate_of_set_[k]];
+          if (std::isnan(th)) th = std::tanh(s.c2 * p[0]);
+          return s.c1 * th + s.c3 * p[1] + s.c4;
+        });
   }
 }
 
-double MakiFrictionMatrix::dmu_dv_per_mm_s(double speed_mm_s, double temp_C,
-                                           double load_N) const {
+double MakiFrictionMatrix::dmu_dv_per_mm_s(double speed_mm_s, double temp_C, double load_N) const {
   const double v = std::abs(speed_mm_s);
   // Held constant outside the measured speed range: zero slope there.
   if (v < min_speed_mm_s_ || v > max_speed_mm_s_) return 0.0;

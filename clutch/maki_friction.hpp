@@ -35,17 +35,15 @@ struct MakiSet {
 
 /// The Paper G rule for rows beyond the measured range: same shape (C1..C3) as `edge`,
 /// C4 shifted by -slope * (temp_C - edge_temp_C) (friction falls 2.1e-4 per °C as T rises).
-MakiSet shifted_row(const MakiSet& edge, double edge_temp_C, double temp_C,
-                    double slope_per_C = 2.1e-4);
+MakiSet shifted_row(const MakiSet& edge, double edge_temp_C, double temp_C, double slope_per_C = 2.1e-4);
 
 class MakiFrictionMatrix final : public FrictionLaw {
  public:
   /// `sets` is row-major: sets[i_temp * loads_N.size() + i_load].
   /// Throws std::invalid_argument if axes are not strictly increasing, sizes disagree,
   /// a value is not finite, or the speed range is empty.
-  MakiFrictionMatrix(std::vector<double> loads_N, std::vector<double> temps_C,
-                     std::vector<MakiSet> sets, double min_speed_mm_s = 6.0,
-                     double max_speed_mm_s = 590.0);
+  MakiFrictionMatrix(std::vector<double> loads_N, std::vector<double> temps_C, std::vector<MakiSet> sets,
+                     double min_speed_mm_s = 6.0, double max_speed_mm_s = 590.0);
 
   double mu(double speed_mm_s, double temp_C, double load_N) const override;
   /// The load is bracketed once; v^0.1 and tanh(C2 v) are kept in `terms` per speed (and per
@@ -64,19 +62,17 @@ class MakiFrictionMatrix final : public FrictionLaw {
 
   const std::vector<double>& loads_N() const { return loads_N_; }
   const std::vector<double>& temps_C() const { return temps_C_; }
-  const MakiSet& set(std::size_t i_temp, std::size_t i_load) const {
-    return sets_[i_temp * loads_N_.size() + i_load];
-  }
+  const MakiSet& set(std::size_t i_temp, std::size_t i_load) const { return sets_[i_temp * loads_N_.size() + i_load]; }
 
  private:
   // Bilinear blend of f(set) over the four surrounding sets after clamping T and F.
   template <class F>
   double blend(double temp_C, double load_N, F&& f) const;
 
-  std::vector<double> loads_N_;  // (n_load) strictly increasing
-  std::vector<double> temps_C_;  // (n_temp) strictly increasing
-  std::vector<MakiSet> sets_;    // (n_temp * n_load) row-major
-  std::vector<double> rates_;    // the distinct C2 of the sets
+  std::vector<double> loads_N_;           // (n_load) strictly increasing
+  std::vector<double> temps_C_;           // (n_temp) strictly increasing
+  std::vector<MakiSet> sets_;             // (n_temp * n_load) row-major
+  std::vector<double> rates_;             // the distinct C2 of the sets
   std::vector<std::size_t> rate_of_set_;  // index into rates_ per set
   double min_speed_mm_s_;
   double max_speed_mm_s_;

@@ -21,13 +21,11 @@ void require_axis(const std::vector<double>& axis, const char* what) {
   }
 }
 
-
 }  // namespace
 
-TableFriction::TableFriction(std::vector<double> speeds_mm_s, std::vector<double> temps_C,
-                             std::vector<double> loads_N, std::vector<double> mu)
-    : speeds_(std::move(speeds_mm_s)), temps_(std::move(temps_C)), loads_(std::move(loads_N)),
-      mu_(std::move(mu)) {
+TableFriction::TableFriction(std::vector<double> speeds_mm_s, std::vector<double> temps_C, std::vector<double> loads_N,
+                             std::vector<double> mu)
+    : speeds_(std::move(speeds_mm_s)), temps_(std::move(temps_C)), loads_(std::move(loads_N)), mu_(std::move(mu)) {
   require_axis(speeds_, "speeds");
   require_axis(temps_, "temperatures");
   require_axis(loads_, "loads");
@@ -57,9 +55,8 @@ double TableFriction::mu(double speed_mm_s, double temp_C, double load_N) const 
   std::size_t k = static_cast<std::size_t>(std::upper_bound(speeds_.begin(), speeds_.end(), v) - speeds_.begin());
   k = std::clamp<std::size_t>(k, 1, speeds_.size() - 1) - 1;
   const double w = std::log(v / speeds_[k]) / std::log(speeds_[k + 1] / speeds_[k]);
-  return blend(temp_C, load_N, [&](std::size_t a, std::size_t b) {
-    return (1.0 - w) * value(a, b, k) + w * value(a, b, k + 1);
-  });
+  return blend(temp_C, load_N,
+               [&](std::size_t a, std::size_t b) { return (1.0 - w) * value(a, b, k) + w * value(a, b, k + 1); });
 }
 
 double TableFriction::dmu_dv_per_mm_s(double speed_mm_s, double temp_C, double load_N) const {
@@ -69,9 +66,8 @@ double TableFriction::dmu_dv_per_mm_s(double speed_mm_s, double temp_C, double l
   k = std::clamp<std::size_t>(k, 1, speeds_.size() - 1) - 1;
   // d/dv of w(v) = ln(v/v_k)/ln(v_k+1/v_k) is 1 / (v ln(v_k+1/v_k)).
   const double dw = 1.0 / (v * std::log(speeds_[k + 1] / speeds_[k]));
-  return blend(temp_C, load_N, [&](std::size_t a, std::size_t b) {
-    return (value(a, b, k + 1) - value(a, b, k)) * dw;
-  });
+  return blend(temp_C, load_N,
+               [&](std::size_t a, std::size_t b) { return (value(a, b, k + 1) - value(a, b, k)) * dw; });
 }
 
 }  // namespace shudder::clutch

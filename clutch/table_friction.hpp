@@ -25,8 +25,8 @@ class TableFriction final : public FrictionLaw {
   /// `mu` is ordered [i_temp][i_load][i_speed] (flattened, speed fastest). Throws
   /// std::invalid_argument if an axis is empty, not strictly increasing or not finite, a speed
   /// is <= 0, the size disagrees with the axes or a value is not finite.
-  TableFriction(std::vector<double> speeds_mm_s, std::vector<double> temps_C,
-                std::vector<double> loads_N, std::vector<double> mu);
+  TableFriction(std::vector<double> speeds_mm_s, std::vector<double> temps_C, std::vector<double> loads_N,
+                std::vector<double> mu);
 
   double mu(double speed_mm_s, double temp_C, double load_N) const override;
   double dmu_dv_per_mm_s(double speed_mm_s, double temp_C, double load_N) const override;

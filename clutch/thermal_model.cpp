@@ -14,8 +14,7 @@ namespace shudder::clutch {
 namespace {
 
 void require_positive(double x, const std::string& what) {
-  if (!std::isfinite(x) || !(x > 0.0))
-    throw std::invalid_argument(what + " must be a positive finite number");
+  if (!std::isfinite(x) || !(x > 0.0)) throw std::invalid_argument(what + " must be a positive finite number");
 }
 
 void require_layer(const Layer& l, const std::string& name) {
@@ -46,10 +45,8 @@ ThermalWorkspace::ThermalWorkspace(const ThermalModel& model)
 ThermalModel::ThermalModel(ThermalParams params) : p_(std::move(params)) {
   require_positive(p_.inner_radius_m, "inner radius");
   require_positive(p_.outer_radius_m, "outer radius");
-  if (!(p_.outer_radius_m > p_.inner_radius_m))
-    throw std::invalid_argument("outer radius must exceed inner radius");
-  if (p_.radial_cells < 2 || p_.radial_cells > 2000)
-    throw std::invalid_argument("radial cells must be in [2, 2000]");
+  if (!(p_.outer_radius_m > p_.inner_radius_m)) throw std::invalid_argument("outer radius must exceed inner radius");
+  if (p_.radial_cells < 2 || p_.radial_cells > 2000) throw std::invalid_argument("radial cells must be in [2, 2000]");
   require_layer(p_.separator, "separator");
   require_layer(p_.lining, "lining");
   require_layer(p_.core, "core");
@@ -59,8 +56,7 @@ ThermalModel::ThermalModel(ThermalParams params) : p_(std::move(params)) {
   require_positive(p_.sump_volume_m3, "sump volume");
   if (!(p_.supply_flow_m3_s >= 0.0)) throw std::invalid_argument("oil supply flow must be >= 0");
   require_positive(p_.rig_heat_capacity_J_per_K, "rig heat capacity");
-  if (!(p_.rig_conductance_W_per_K >= 0.0))
-    throw std::invalid_argument("rig conductance must be >= 0");
+  if (!(p_.rig_conductance_W_per_K >= 0.0)) throw std::invalid_argument("rig conductance must be >= 0");
   require_positive(p_.sensor_time_constant_s, "sensor time constant");
   require_positive(p_.ir_spot_diameter_m, "IR spot diameter");
   build_grid();
@@ -123,8 +119,7 @@ void ThermalModel::build_grid() {
     for (int jj = 0; jj < nz_; ++jj) {
       const int a = node(i, jj);
       // Storage.
-      capacity_J_per_K_[a] = is_film(jj) ? film_rhoc * p_.film_thickness_m * area_[i]
-                                         : rhoc[jj] * dz[jj] * area_[i];
+      capacity_J_per_K_[a] = is_film(jj) ? film_rhoc * p_.film_thickness_m * area_[i] : rhoc[jj] * dz[jj] * area_[i];
       cap.emplace_back(a, a, capacity_J_per_K_[a]);
       // Axial conduction to the next node up (series half-cell resistances; the film node
       // has no thickness of its own).
@@ -142,16 +137,15 @@ void ThermalModel::build_grid() {
     }
     // Rig heat path from the separator's back face (z = 0), shared in proportion to area.
     if (p_.rig_heat_capacity && p_.rig_conductance_W_per_K > 0.0) {
-      const double g_face = p_.rig_conductance_W_per_K * area_[i] / (std::numbers::pi * (
-          p_.outer_radius_m * p_.outer_radius_m - p_.inner_radius_m * p_.inner_radius_m));
+      const double g_face =
+          p_.rig_conductance_W_per_K * area_[i] /
+          (std::numbers::pi * (p_.outer_radius_m * p_.outer_radius_m - p_.inner_radius_m * p_.inner_radius_m));
       const double g_half = area_[i] * p_.separator.conductivity_W_per_mK / (0.5 * dz[0]);
       g_rig_[i] = 1.0 / (1.0 / g_face + 1.0 / g_half);
       cond.emplace_back(node(i, 0), node(i, 0), g_rig_[i]);
     }
     // Upwind film advection, per unit rho*cp*Q (see oil_flow.hpp for the two forms).
-    adv_weight_[i] = p_.oil_flow.form == FilmAdvectionForm::kPaperGLiteral
-                         ? r_[i] * r_[i] / p_.film_thickness_m
-                         : 1.0;
+    adv_weight_[i] = p_.oil_flow.form == FilmAdvectionForm::kPaperGLiteral ? r_[i] * r_[i] / p_.film_thickness_m : 1.0;
     const int f = node(i, film_j_);
     adv.emplace_back(f, f, adv_weight_[i]);
     if (i > 0) adv.emplace_back(f, node(i - 1, film_j_), -adv_weight_[i]);
@@ -185,8 +179,7 @@ void ThermalModel::build_grid() {
   }
 }
 
-ThermalState ThermalModel::initial_state(double start_temp_C, double inner_temp_C,
-                                         double sump_temp_C) const {
+ThermalState ThermalModel::initial_state(double start_temp_C, double inner_temp_C, double sump_temp_C) const {
   ThermalState s;
   s.temp_C = Eigen::VectorXd::Constant(nr_ * nz_, start_temp_C);
   s.inner_temp_C = inner_temp_C;
@@ -213,8 +206,7 @@ void ThermalModel::factorise_if_changed(ThermalWorkspace& w, double storage_step
   const double* c = conduction_.valuePtr();
   const double* a = advection_.valuePtr();
   const double* cap = identity_.valuePtr();
-  for (Eigen::Index e = 0; e < w.system_.nonZeros(); ++e)
-    m[e] = cap[e] / storage_step_s + c[e] + flow_W_per_K * a[e];
+  for (Eigen::Index e = 0; e < w.system_.nonZeros(); ++e) m[e] = cap[e] / storage_step_s + c[e] + flow_W_per_K * a[e];
   if (!w.lu_.factorize(w.system_))
     throw std::runtime_error("thermal solve: factorisation failed at t = " + std::to_string(time_s) + " s");
   w.factored_storage_step_s_ = storage_step_s;
@@ -261,11 +253,11 @@ void ThermalModel::finish_step(ThermalState& s, double dt, double to_sump_J, dou
                         : probe_now;
 }
 
-void ThermalModel::step(ThermalState& s, ThermalWorkspace& w, double dt,
-                        const Eigen::VectorXd& ring_heat_W, double slip_rad_s) const {
+void ThermalModel::step(ThermalState& s, ThermalWorkspace& w, double dt, const Eigen::VectorXd& ring_heat_W,
+                        double slip_rad_s) const {
   if (!(dt > 0.0)) throw std::invalid_argument("thermal step must be > 0");
-  const double flow_W_per_K = p_.oil_density_kg_m3 * p_.oil_specific_heat_J_per_kgK *
-                              interface_flow_m3_s(slip_rad_s, mean_interface_temp_C(s));
+  const double flow_W_per_K =
+      p_.oil_density_kg_m3 * p_.oil_specific_heat_J_per_kgK * interface_flow_m3_s(slip_rad_s, mean_interface_temp_C(s));
   factorise_if_changed(w, dt, flow_W_per_K, s.time_s);
 
   // Right-hand side: storage, boundary temperatures, heat input, oil inlet, rig mass.
@@ -279,13 +271,13 @@ void ThermalModel::step(ThermalState& s, ThermalWorkspace& w, double dt,
   s.energy.to_sump_J += to_sump;
   s.energy.to_rig_J += to_rig;
 
-  s.temp_C.swap(w.rhs_);  // the new field; the old one's storage is the next right-hand side
+  s.temp_C.swap(w.rhs_);   // the new field; the old one's storage is the next right-hand side
   s.history.step_s = 0.0;  // a BDF2 step after this one has no valid history
   finish_step(s, dt, to_sump, to_rig);
 }
 
-void ThermalModel::step_bdf2(ThermalState& s, ThermalWorkspace& w, double dt,
-                             const Eigen::VectorXd& ring_heat_end_W, double slip_end_rad_s) const {
+void ThermalModel::step_bdf2(ThermalState& s, ThermalWorkspace& w, double dt, const Eigen::VectorXd& ring_heat_end_W,
+                             double slip_end_rad_s) const {
   if (!(dt > 0.0)) throw std::invalid_argument("thermal step must be > 0");
   auto& h = s.history;
   const Eigen::Index n = s.temp_C.size();
@@ -305,8 +297,8 @@ void ThermalModel::step_bdf2(ThermalState& s, ThermalWorkspace& w, double dt,
   const double a = (1.0 + 2.0 * ratio) / (1.0 + ratio), b = 1.0 + ratio, c = ratio * ratio / (1.0 + ratio);
   const double mean_now_C = film_mean_C(s.temp_C);
   const double mean_end_C = mean_now_C + ratio * (mean_now_C - film_mean_C(h.temp_C));
-  const double flow_W_per_K = p_.oil_density_kg_m3 * p_.oil_specific_heat_J_per_kgK *
-                              interface_flow_m3_s(slip_end_rad_s, mean_end_C);
+  const double flow_W_per_K =
+      p_.oil_density_kg_m3 * p_.oil_specific_heat_J_per_kgK * interface_flow_m3_s(slip_end_rad_s, mean_end_C);
   factorise_if_changed(w, dt / a, flow_W_per_K, s.time_s);
 
   w.rhs_ = capacity_J_per_K_.cwiseProduct(b * s.temp_C - c * h.temp_C) / dt + g_inner_ * s.inner_temp_C +
@@ -398,9 +390,7 @@ Eigen::MatrixXd ThermalModel::field_C(const ThermalState& s) const {
   return f;
 }
 
-double ThermalModel::stored_energy_J(const ThermalState& s) const {
-  return capacity_J_per_K_.dot(s.temp_C);
-}
+double ThermalModel::stored_energy_J(const ThermalState& s) const { return capacity_J_per_K_.dot(s.temp_C); }
 
 double ThermalModel::energy_imbalance_J(const ThermalState& s) const {
   const auto& e = s.energy;

@@ -74,9 +74,9 @@ struct ThermalParams {
   // Oil (Paper G Table 1; supply flow Paper D).
   double oil_density_kg_m3 = 868.0;
   double oil_specific_heat_J_per_kgK = 2040.0;
-  double film_thickness_m = 10e-6;           // h_mean
-  double sump_volume_m3 = 500e-6;            // V_sump
-  double supply_flow_m3_s = 200e-6 / 60.0;   // Q_oiltot = 200 ml/min
+  double film_thickness_m = 10e-6;          // h_mean
+  double sump_volume_m3 = 500e-6;           // V_sump
+  double supply_flow_m3_s = 200e-6 / 60.0;  // Q_oiltot = 200 ml/min
 
   // Probes: thermocouple at the back of the separator (Paper G: r = 48 mm, z = 0.5 mm from the
   // separator's back face); IR pyrometer spot (4 mm) on the interface.
@@ -93,7 +93,7 @@ struct ThermalParams {
   double rig_heat_capacity_J_per_K = 150.0;  // estimate (docs/effects.md)
   double rig_conductance_W_per_K = 10.0;     // estimate (docs/effects.md)
   bool temperature_sensor_lag = false;
-  double sensor_time_constant_s = 1.0;       // estimate
+  double sensor_time_constant_s = 1.0;  // estimate
   // `thermocouple_offset` (measurement only): the reading is T_probe + dT [K]; estimate — a
   // type K junction's standard tolerance is ±2.2 K, hence the fit's ±10 K bounds.
   bool thermocouple_offset = false;
@@ -102,20 +102,20 @@ struct ThermalParams {
 
 /// Running energy account of one interface's domain, joules since the start.
 struct EnergyLedger {
-  double generated_J = 0.0;      // friction (and viscous) heat put into the film
-  double to_sump_J = 0.0;        // left the discs through R_in, R_out and the film outlet
-  double to_rig_J = 0.0;         // taken by the lumped rig mass
-  double initial_stored_J = 0.0; // sum C*T of discs and film at the start (reference 0 °C)
-  double scheme_storage_J = 0.0; // BDF2 only: its storage term beyond the change of sum C*T
+  double generated_J = 0.0;       // friction (and viscous) heat put into the film
+  double to_sump_J = 0.0;         // left the discs through R_in, R_out and the film outlet
+  double to_rig_J = 0.0;          // taken by the lumped rig mass
+  double initial_stored_J = 0.0;  // sum C*T of discs and film at the start (reference 0 °C)
+  double scheme_storage_J = 0.0;  // BDF2 only: its storage term beyond the change of sum C*T
 };
 
 struct ThermalState {
   double time_s = 0.0;
-  Eigen::VectorXd temp_C;        // (n_nodes) ring-major: node = ring * nodes_per_ring + j
-  double inner_temp_C = 0.0;     // Dirichlet value at R_in (held)
-  double sump_temp_C = 0.0;      // Dirichlet value at R_out (stirred sump)
-  double rig_temp_C = 0.0;       // lumped rig mass
-  double sensor_temp_C = 0.0;    // thermocouple reading after its lag (and offset)
+  Eigen::VectorXd temp_C;      // (n_nodes) ring-major: node = ring * nodes_per_ring + j
+  double inner_temp_C = 0.0;   // Dirichlet value at R_in (held)
+  double sump_temp_C = 0.0;    // Dirichlet value at R_out (stirred sump)
+  double rig_temp_C = 0.0;     // lumped rig mass
+  double sensor_temp_C = 0.0;  // thermocouple reading after its lag (and offset)
   EnergyLedger energy;
   // BDF2's history: the field one step back, that step's length, and the heat and outflow
   // rates at its end (for the ledger's trapezoidal sums). step_s = 0 means none (before the
@@ -157,15 +157,15 @@ class ThermalModel {
   /// Advances by dt. ring_heat_W (n_r): mean heat power delivered to each ring's film over the
   /// step (energy = ring_heat_W * dt exactly); slip_rad_s sets the interface oil flow.
   /// `workspace` (made for this model) carries the factorisation from step to step.
-  void step(ThermalState& state, ThermalWorkspace& workspace, double dt_s,
-            const Eigen::VectorXd& ring_heat_W, double slip_rad_s) const;
+  void step(ThermalState& state, ThermalWorkspace& workspace, double dt_s, const Eigen::VectorXd& ring_heat_W,
+            double slip_rad_s) const;
 
   /// Advances by dt with BDF2 (second order; see the header). ring_heat_end_W (n_r): the heat
   /// power into each ring's film at the step's end, t + dt (energy booked = ring_heat_end_W * dt);
   /// slip_end_rad_s: the slip there. The oil flow's temperature is the film mean extrapolated to
   /// t + dt. Keeps the history in `state`; its first step is backward Euler.
-  void step_bdf2(ThermalState& state, ThermalWorkspace& workspace, double dt_s,
-                 const Eigen::VectorXd& ring_heat_end_W, double slip_end_rad_s) const;
+  void step_bdf2(ThermalState& state, ThermalWorkspace& workspace, double dt_s, const Eigen::VectorXd& ring_heat_end_W,
+                 double slip_end_rad_s) const;
 
   /// The film (interface) temperatures extrapolated linearly from the last two fields to
   /// t + dt_s, T0 + w (T0 - T-1) with w = dt_s / previous_step_s: what a friction law needs at
@@ -176,19 +176,19 @@ class ThermalModel {
   int radial_cells() const { return nr_; }
   int nodes_per_ring() const { return nz_; }
   int film_index() const { return film_j_; }
-  const Eigen::VectorXd& ring_radius_m() const { return r_; }  // (n_r) ring centres
-  const Eigen::VectorXd& ring_area_m2() const { return area_; } // (n_r) annulus areas
-  const Eigen::VectorXd& node_z_m() const { return z_; }        // (nodes_per_ring)
+  const Eigen::VectorXd& ring_radius_m() const { return r_; }    // (n_r) ring centres
+  const Eigen::VectorXd& ring_area_m2() const { return area_; }  // (n_r) annulus areas
+  const Eigen::VectorXd& node_z_m() const { return z_; }         // (nodes_per_ring)
   double contact_area_m2() const { return area_.sum(); }
   const ThermalParams& params() const { return p_; }
 
   Eigen::VectorXd interface_temps_C(const ThermalState& s) const;  // (n_r) film nodes
   double mean_interface_temp_C(const ThermalState& s) const;       // area-weighted
   double max_temp_C(const ThermalState& s) const;
-  double thermocouple_C(const ThermalState& s) const;              // at (r, z), no lag
-  double ir_C(const ThermalState& s) const;                        // spot mean on interface
-  Eigen::MatrixXd field_C(const ThermalState& s) const;            // (nodes_per_ring x n_r)
-  double stored_energy_J(const ThermalState& s) const;             // sum C*T, 0 °C reference
+  double thermocouple_C(const ThermalState& s) const;    // at (r, z), no lag
+  double ir_C(const ThermalState& s) const;              // spot mean on interface
+  Eigen::MatrixXd field_C(const ThermalState& s) const;  // (nodes_per_ring x n_r)
+  double stored_energy_J(const ThermalState& s) const;   // sum C*T, 0 °C reference
   /// generated - (stored - initial) - scheme_storage - to_sump - to_rig, joules (round-off).
   double energy_imbalance_J(const ThermalState& s) const;
   double sump_heat_capacity_J_per_K() const;
@@ -206,8 +206,7 @@ class ThermalModel {
   ProbeWeights probe_weights(double r_m, double z_m) const;
   double probe(const ThermalState& s, const ProbeWeights& w) const;
   double film_mean_C(const Eigen::VectorXd& field) const;  // area-weighted film temperature
-  void factorise_if_changed(ThermalWorkspace& w, double storage_step_s, double flow_W_per_K,
-                            double time_s) const;
+  void factorise_if_changed(ThermalWorkspace& w, double storage_step_s, double flow_W_per_K, double time_s) const;
   // Adds the boundary, heat, oil-inlet and rig terms to w.rhs_ (storage term already there).
   void add_sources(const ThermalState& s, ThermalWorkspace& w, const Eigen::VectorXd& ring_heat_W,
                    double flow_W_per_K) const;
@@ -220,11 +219,11 @@ class ThermalModel {
 
   ThermalParams p_;
   int nr_ = 0, nz_ = 0, film_j_ = 0;
-  Eigen::VectorXd r_, area_, z_;          // ring centres, ring areas, node z positions
-  Eigen::VectorXd capacity_J_per_K_;      // (n_nodes)
-  Eigen::VectorXd g_inner_, g_outer_;     // (n_nodes) conductance to R_in / R_out, W/K
-  Eigen::VectorXd g_rig_;                 // (n_r) separator back cell -> rig mass, W/K
-  Eigen::VectorXd adv_weight_;            // (n_r) advective conductance per unit rho*cp*Q
+  Eigen::VectorXd r_, area_, z_;            // ring centres, ring areas, node z positions
+  Eigen::VectorXd capacity_J_per_K_;        // (n_nodes)
+  Eigen::VectorXd g_inner_, g_outer_;       // (n_nodes) conductance to R_in / R_out, W/K
+  Eigen::VectorXd g_rig_;                   // (n_r) separator back cell -> rig mass, W/K
+  Eigen::VectorXd adv_weight_;              // (n_r) advective conductance per unit rho*cp*Q
   Eigen::SparseMatrix<double> conduction_;  // (n_nodes^2) Laplacian incl. boundary terms
   Eigen::SparseMatrix<double> advection_;   // same pattern, per unit rho*cp*Q
   Eigen::SparseMatrix<double> identity_;    // same pattern, capacity on the diagonal

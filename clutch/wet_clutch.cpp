@@ -37,10 +37,10 @@ constexpr Eigen::Index kBlockRings = 32;
 
 // The speed-only factors of one block of rings at one slip.
 struct SpeedBlock {
-  Eigen::Index first = 0, rings = 0;       // rings first .. first + rings - 1
-  double speed_mm_s[kBlockRings];          // v_i, clamped to the law's speeds
-  double speed_pow[kBlockRings];           // v_i^0.1
-  signed char side[kBlockRings];           // -1: v_i clamped up to the lowest speed, 0: inside, +1: above
+  Eigen::Index first = 0, rings = 0;        // rings first .. first + rings - 1
+  double speed_mm_s[kBlockRings];           // v_i, clamped to the law's speeds
+  double speed_pow[kBlockRings];            // v_i^0.1
+  signed char side[kBlockRings];            // -1: v_i clamped up to the lowest speed, 0: inside, +1: above
   double tanh[kCarriedRates][kBlockRings];  // tanh(b_k v_i) of the carried rates
 };
 
@@ -58,9 +58,15 @@ class SpeedTermsAlongRings {
  public:
   SpeedTermsAlongRings(const Eigen::VectorXd& r_m, double ring_pitch_m, const FrozenFriction& f,
                        std::span<const double> rates, double abs_slip_rad_s)
-      : r_m_(r_m), radius_pow_(f.radius_pow), rates_(rates), abs_slip_(abs_slip_rad_s),
-        v_min_(f.min_speed_mm_s), v_max_(f.max_speed_mm_s), slip_pow_(std::pow(abs_slip_rad_s, 0.1)),
-        speed_step_mm_s_(ring_pitch_m * abs_slip_rad_s * 1e3), carried_(std::min(rates.size(), kCarriedRates)) {
+      : r_m_(r_m),
+        radius_pow_(f.radius_pow),
+        rates_(rates),
+        abs_slip_(abs_slip_rad_s),
+        v_min_(f.min_speed_mm_s),
+        v_max_(f.max_speed_mm_s),
+        slip_pow_(std::pow(abs_slip_rad_s, 0.1)),
+        speed_step_mm_s_(ring_pitch_m * abs_slip_rad_s * 1e3),
+        carried_(std::min(rates.size(), kCarriedRates)) {
     for (std::size_t k = 0; k < carried_; ++k) {
       carry_[k] = ring_pitch_m > 0.0 && std::abs(2.0 * rates[k] * v_max_) <= kMaxCarriedExponent;
       since_anchor_[k] = kRingsPerAnchor;  // the first ring inside the speeds is an anchor
@@ -228,8 +234,8 @@ ThermalState WetClutch::initial_state() const {
 
 double WetClutch::mean_radius_m() const { return model_friction_radius_m(thermal_); }
 
-void WetClutch::ring_mu(double slip_rad_s, double force_N, const Eigen::VectorXd& ring_temp_C,
-                        Eigen::VectorXd& mu, RingScratch* scratch) const {
+void WetClutch::ring_mu(double slip_rad_s, double force_N, const Eigen::VectorXd& ring_temp_C, Eigen::VectorXd& mu,
+                        RingScratch* scratch) const {
   const auto& r = thermal_.ring_radius_m();
   const double load = friction_load_N(force_N);
   mu.resize(r.size());
@@ -250,9 +256,8 @@ void WetClutch::ring_mu(double slip_rad_s, double force_N, const Eigen::VectorXd
   fluid_.friction->mu_at_load(w.speed_mm_s, w.temp_C, load, std::span<double>(mu.data(), n), w.terms);
 }
 
-void WetClutch::ring_torque_Nm(double slip_rad_s, double force_N,
-                               const Eigen::VectorXd& ring_temp_C, Eigen::VectorXd& torque,
-                               RingScratch* scratch) const {
+void WetClutch::ring_torque_Nm(double slip_rad_s, double force_N, const Eigen::VectorXd& ring_temp_C,
+                               Eigen::VectorXd& torque, RingScratch* scratch) const {
   const auto& r = thermal_.ring_radius_m();
   const auto& a = thermal_.ring_area_m2();
   ring_mu(slip_rad_s, force_N, ring_temp_C, torque, scratch);
@@ -266,8 +271,7 @@ void WetClutch::ring_torque_Nm(double slip_rad_s, double force_N,
   }
 }
 
-double WetClutch::torque_Nm(double slip_rad_s, double force_N,
-                            const Eigen::VectorXd& ring_temp_C) const {
+double WetClutch::torque_Nm(double slip_rad_s, double force_N, const Eigen::VectorXd& ring_temp_C) const {
   Eigen::VectorXd t;
   ring_torque_Nm(slip_rad_s, force_N, ring_temp_C, t);
   return std::copysign(p_.sliding_interfaces * t.sum(), slip_rad_s);
@@ -298,8 +302,8 @@ FrozenFriction WetClutch::freeze(const Eigen::VectorXd& ring_temp_C, double forc
   regroup_by_rate(f);
   if (p_.viscous_shear)
     for (Eigen::Index i = 0; i < r.size(); ++i)
-      f.viscous_Nms[i] = fluid_.density_kg_m3 * viscosity_.kinematic_cSt(ring_temp_C[i]) * 1e-6 *
-                         r[i] * r[i] * a[i] / p_.viscous_gap_m;
+      f.viscous_Nms[i] = fluid_.density_kg_m3 * viscosity_.kinematic_cSt(ring_temp_C[i]) * 1e-6 * r[i] * r[i] * a[i] /
+                         p_.viscous_gap_m;
   return f;
 }
 
@@ -320,23 +324,24 @@ void WetClutch::ring_torque_Nm(const FrozenFriction& f, double abs_slip, double 
   }
 }
 
-void WetClutch::ring_torque_pair_Nm(const FrozenFriction& fa, const FrozenFriction& fb, double abs_slip,
-                                    double force_N, Eigen::VectorXd& torque_a, Eigen::VectorXd& torque_b) const {
+void WetClutch::ring_torque_pair_Nm(const FrozenFriction& fa, const FrozenFriction& fb, double abs_slip, double force_N,
+                                    Eigen::VectorXd& torque_a, Eigen::VectorXd& torque_b) const {
   // One list of rates for both: a's, then b's that a lacks (none when both ends lie in one
   // bracket of the matrix, the common case).
   std::size_t b_at[kCarriedRates];
   double rates[kCarriedRates];
   std::size_t n_rates = fa.rates.size();
   bool shared = !fa.curves.empty() && !fb.curves.empty() && fa.min_speed_mm_s == fb.min_speed_mm_s &&
-                fa.max_speed_mm_s == fb.max_speed_mm_s && n_rates <= kCarriedRates &&
-                fb.rates.size() <= kCarriedRates;
+                fa.max_speed_mm_s == fb.max_speed_mm_s && n_rates <= kCarriedRates && fb.rates.size() <= kCarriedRates;
   if (shared) {
     std::copy(fa.rates.begin(), fa.rates.end(), rates);
     for (std::size_t j = 0; j < fb.rates.size() && shared; ++j) {
       const auto at = static_cast<std::size_t>(std::find(rates, rates + n_rates, fb.rates[j]) - rates);
       if (at == n_rates) {
-        if (n_rates == kCarriedRates) shared = false;  // more rates than are carried: two passes
-        else rates[n_rates++] = fb.rates[j];
+        if (n_rates == kCarriedRates)
+          shared = false;  // more rates than are carried: two passes
+        else
+          rates[n_rates++] = fb.rates[j];
       }
       b_at[j] = at;
     }

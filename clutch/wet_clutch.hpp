@@ -31,15 +31,15 @@
 namespace shudder::clutch {
 
 struct WetClutchParams {
-  int sliding_interfaces = 1;         // Paper G: one
-  double start_temp_C = 20.0;         // discs and inner boundary at t = 0
-  double sump_start_temp_C = 20.0;    // sump (outer boundary) at t = 0
+  int sliding_interfaces = 1;       // Paper G: one
+  double start_temp_C = 20.0;       // discs and inner boundary at t = 0
+  double sump_start_temp_C = 20.0;  // sump (outer boundary) at t = 0
   ThermalParams thermal;
   bool temperature_dependent_friction = true;
   bool load_dependent_friction = true;
   double reference_load_N = 20000.0;  // used when load_dependent_friction is off (Paper E load)
   bool viscous_shear = false;
-  double viscous_gap_m = 10e-6;       // estimate: Paper G's mean film thickness h_mean
+  double viscous_gap_m = 10e-6;  // estimate: Paper G's mean film thickness h_mean
 };
 
 /// Every ring's friction at held temperatures and one load, as a function of slip only: built
@@ -57,9 +57,9 @@ struct FrozenFriction {
   Eigen::VectorXd radius_pow;      // (n_r) (r_i in mm)^0.1: v_i^0.1 = r_i^0.1 · |Δω|^0.1
   double load_N = 0.0;             // load at which mu was frozen
   // The curves regrouped (empty with `curves`):
-  std::vector<double> rates;                        // distinct b_j of all rings, 1/(mm/s)
-  Eigen::MatrixXd rate_weight;                      // (n_r, rates) a_j of ring i at rates[k]
-  Eigen::VectorXd power_weight, offset;             // (n_r) c and d of each ring
+  std::vector<double> rates;                          // distinct b_j of all rings, 1/(mm/s)
+  Eigen::MatrixXd rate_weight;                        // (n_r, rates) a_j of ring i at rates[k]
+  Eigen::VectorXd power_weight, offset;               // (n_r) c and d of each ring
   double min_speed_mm_s = 0.0, max_speed_mm_s = 0.0;  // the speed clamp, one for every ring
 };
 
@@ -85,21 +85,19 @@ class WetClutch {
     SpeedTerms terms;
   };
   /// Friction coefficient per ring (n_r) at the given slip, force and ring temperatures.
-  void ring_mu(double slip_rad_s, double force_N, const Eigen::VectorXd& ring_temp_C,
-               Eigen::VectorXd& mu, RingScratch* scratch = nullptr) const;
+  void ring_mu(double slip_rad_s, double force_N, const Eigen::VectorXd& ring_temp_C, Eigen::VectorXd& mu,
+               RingScratch* scratch = nullptr) const;
   /// Total torque of all sliding interfaces, signed like slip_rad_s, N m.
   double torque_Nm(double slip_rad_s, double force_N, const Eigen::VectorXd& ring_temp_C) const;
   /// Heat power into each ring of one interface's domain (n_r), W, >= 0.
-  void ring_heat_W(double slip_rad_s, double force_N, const Eigen::VectorXd& ring_temp_C,
-                   Eigen::VectorXd& heat, RingScratch* scratch = nullptr) const;
+  void ring_heat_W(double slip_rad_s, double force_N, const Eigen::VectorXd& ring_temp_C, Eigen::VectorXd& heat,
+                   RingScratch* scratch = nullptr) const;
 
   /// Freezes the friction of every ring at the given temperatures and force.
   FrozenFriction freeze(const Eigen::VectorXd& ring_temp_C, double force_N) const;
   /// Load at which mu is evaluated for a clamp force (the reference load when
   /// load_dependent_friction is off). The one place that switch is read.
-  double friction_load_N(double force_N) const {
-    return p_.load_dependent_friction ? force_N : p_.reference_load_N;
-  }
+  double friction_load_N(double force_N) const { return p_.load_dependent_friction ? force_N : p_.reference_load_N; }
   /// Temperature at which a ring's mu is evaluated (the clutch start temperature when
   /// temperature_dependent_friction is off). The one place that switch is read.
   double friction_temp_C(double ring_temp_C) const {
@@ -114,12 +112,12 @@ class WetClutch {
   /// tanh(C2 v_i) for every rate C2 of either state (both ends of a ramp lie in one bracket of
   /// the friction matrix almost always, and then share every rate). Allocates nothing once the
   /// outputs have n_r entries.
-  void ring_torque_pair_Nm(const FrozenFriction& a, const FrozenFriction& b, double abs_slip_rad_s,
-                           double force_N, Eigen::VectorXd& torque_a, Eigen::VectorXd& torque_b) const;
+  void ring_torque_pair_Nm(const FrozenFriction& a, const FrozenFriction& b, double abs_slip_rad_s, double force_N,
+                           Eigen::VectorXd& torque_a, Eigen::VectorXd& torque_b) const;
   /// Torque per ring of ONE interface (n_r), N m, for |slip| (>= 0 whatever slip's sign):
   /// torque_Nm is copysign(sliding_interfaces * sum, slip) of it, ring_heat_W it times |slip|.
-  void ring_torque_Nm(double slip_rad_s, double force_N, const Eigen::VectorXd& ring_temp_C,
-                      Eigen::VectorXd& torque, RingScratch* scratch = nullptr) const;
+  void ring_torque_Nm(double slip_rad_s, double force_N, const Eigen::VectorXd& ring_temp_C, Eigen::VectorXd& torque,
+                      RingScratch* scratch = nullptr) const;
 
  private:
   WetClutchParams p_;

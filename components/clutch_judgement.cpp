@@ -35,16 +35,18 @@ std::pair<std::size_t, std::size_t> loaded_window(const std::vector<double>& stu
 // A verdict needs the oscillation to repeat (components/transient_oscillation.hpp): stick-slip at
 // least two stick onsets in the window; a vibration kMinJudgedCycles cycles whose swings pass
 // half the verdict's threshold, and an amplitude over the window's last two periods at least half
-// the largest period's (a ringing that dies out is the drivetrain answering a step, not judder). One transient (a force ramp's corner) reads as none, its
-// amplitude and peak frequency kept, as the detector's own rule for a record without oscillation.
+// the largest period's (a ringing that dies out is the drivetrain answering a step, not judder). One transient (a force
+// ramp's corner) reads as none, its amplitude and peak frequency kept, as the detector's own rule for a record without
+// oscillation.
 void confirm_repeated(const rig_models::RecordingDetection& d, analysis::ShudderResult& r) {
   if (r.verdict == analysis::Verdict::kNone || !(r.frequency_Hz > 0)) return;
   if (r.verdict == analysis::Verdict::kStickSlip && stick_onsets(d.input.stuck) >= 2) return;
   const int swings = oscillation_swings(d.input.time_s, d.input.torque_Nm, r.frequency_Hz, 0.5 * r.threshold_Nm);
   const auto periods = period_amplitudes_from_end(d.input.time_s, d.input.torque_Nm, r.frequency_Hz);
-  const bool sustained = periods.size() >= 2 &&
-                         0.5 * (periods[0] + periods[1]) >= 0.5 * *std::max_element(periods.begin(), periods.end());
-  if (r.verdict == analysis::Verdict::kVibration && swings >= static_cast<int>(2 * kMinJudgedCycles) && sustained) return;
+  const bool sustained =
+      periods.size() >= 2 && 0.5 * (periods[0] + periods[1]) >= 0.5 * *std::max_element(periods.begin(), periods.end());
+  if (r.verdict == analysis::Verdict::kVibration && swings >= static_cast<int>(2 * kMinJudgedCycles) && sustained)
+    return;
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   r.verdict = analysis::Verdict::kNone;
   r.frequency_Hz = r.onset_time_s = r.growth_rate_per_s = r.growth_acceleration_per_s2 = kNaN;
@@ -74,9 +76,8 @@ ClutchVerdict judge_clutch(const dynamics::Recording& rec, const std::string& cl
   const std::size_t i0 = window.first, i1 = window.second;  // plain names: lambdas below capture them
   const double span_s = i1 > i0 ? time.values[i1 - 1] - time.values[i0] : 0.0;
   if (i1 - i0 < kMinJudgedSamples) {
-    cv.reason = i1 > i0 ? "it slips under load for only " + std::to_string(span_s) + " s (" +
-                              std::to_string(i1 - i0) + " samples; at least " + std::to_string(kMinJudgedSamples) +
-                              " are judged)"
+    cv.reason = i1 > i0 ? "it slips under load for only " + std::to_string(span_s) + " s (" + std::to_string(i1 - i0) +
+                              " samples; at least " + std::to_string(kMinJudgedSamples) + " are judged)"
                         : "it never slips under load";
   } else {
     rig_models::RecordingDetection d;
@@ -93,7 +94,8 @@ ClutchVerdict judge_clutch(const dynamics::Recording& rec, const std::string& cl
     d.settings.min_frequency_Hz = std::max(kNetworkMinFrequency_Hz, kMinJudgedCycles / span_s);
     if (d.settings.min_frequency_Hz >= 0.4 * sample_rate_Hz) {
       cv.reason = "its loaded slip (" + std::to_string(span_s) + " s) is too short to hold " +
-                  std::to_string(static_cast<int>(kMinJudgedCycles)) + " cycles below 0.4 x the sample rate (the highest frequency judged)";
+                  std::to_string(static_cast<int>(kMinJudgedCycles)) +
+                  " cycles below 0.4 x the sample rate (the highest frequency judged)";
     } else {
       d.settings.max_frequency_Hz = std::min(d.settings.max_frequency_Hz, 0.4 * sample_rate_Hz);
       try {

@@ -56,8 +56,7 @@ rig_models::Prediction predict_clutch(BuiltNetwork& built, std::size_t clutch, c
   op.stuck[static_cast<std::size_t>(bc.contact)] = false;
   if (bc.wet) {
     if (!std::isfinite(w.interface_temp_C)) return Prediction::none("the interface temperature is not recorded");
-    bc.context->set_ring_temperatures(
-        Eigen::VectorXd::Constant(bc.wet->thermal().radial_cells(), w.interface_temp_C));
+    bc.context->set_ring_temperatures(Eigen::VectorXd::Constant(bc.wet->thermal().radial_cells(), w.interface_temp_C));
   }
   std::vector<dynamics::LinearMode> modes;
   try {

@@ -22,7 +22,8 @@ namespace shudder::components {
 /// The prediction for clutch `clutch` (index into built.clutches) over `window`, from the run's
 /// `snapshots` (samples with element states, ascending in time). Prediction::none with the reason
 /// where it cannot be made (no snapshot in the window, an unloaded clutch).
-rig_models::Prediction predict_clutch(BuiltNetwork& built, std::size_t clutch, const rig_models::OperatingWindow& window,
+rig_models::Prediction predict_clutch(BuiltNetwork& built, std::size_t clutch,
+                                      const rig_models::OperatingWindow& window,
                                       const std::vector<dynamics::Sample>& snapshots);
 
 }  // namespace shudder::components

@@ -24,16 +24,25 @@ NetworkSpec expand_driveline(const rig_models::DrivelineParams& p, const clutch:
   NetworkSpec s;
 
   // Bodies in the driveline's node order (the vehicle is a node of its own kind, last).
-  const std::array<std::pair<const char*, double>, D::kNodes> bodies{{
-      {"engine", p.engine_inertia_kg_m2}, {"front_diff", p.front_diff_inertia_kg_m2},
-      {"front_side_left", p.side_gear_inertia_kg_m2}, {"front_side_right", p.side_gear_inertia_kg_m2},
-      {"wheel_fl", p.wheel_inertia_kg_m2}, {"wheel_fr", p.wheel_inertia_kg_m2}, {"vehicle", 0.0},
-      {"ptu", p.ptu_inertia_kg_m2}, {"coupling_in", p.coupling_half_inertia_kg_m2},
-      {"coupling_out", p.coupling_half_inertia_kg_m2}, {"rear_diff", p.rear_diff_inertia_kg_m2},
-      {"rear_side_left", p.side_gear_inertia_kg_m2}, {"rear_side_right", p.side_gear_inertia_kg_m2},
-      {"wheel_rl", p.wheel_inertia_kg_m2}, {"wheel_rr", p.wheel_inertia_kg_m2}}};
+  const std::array<std::pair<const char*, double>, D::kNodes> bodies{{{"engine", p.engine_inertia_kg_m2},
+                                                                      {"front_diff", p.front_diff_inertia_kg_m2},
+                                                                      {"front_side_left", p.side_gear_inertia_kg_m2},
+                                                                      {"front_side_right", p.side_gear_inertia_kg_m2},
+                                                                      {"wheel_fl", p.wheel_inertia_kg_m2},
+                                                                      {"wheel_fr", p.wheel_inertia_kg_m2},
+                                                                      {"vehicle", 0.0},
+                                                                      {"ptu", p.ptu_inertia_kg_m2},
+                                                                      {"coupling_in", p.coupling_half_inertia_kg_m2},
+                                                                      {"coupling_out", p.coupling_half_inertia_kg_m2},
+                                                                      {"rear_diff", p.rear_diff_inertia_kg_m2},
+                                                                      {"rear_side_left", p.side_gear_inertia_kg_m2},
+                                                                      {"rear_side_right", p.side_gear_inertia_kg_m2},
+                                                                      {"wheel_rl", p.wheel_inertia_kg_m2},
+                                                                      {"wheel_rr", p.wheel_inertia_kg_m2}}};
   for (int i = 0; i < D::kNodes; ++i)
-    if (i != D::kVehicle) s.inertias.push_back({bodies[static_cast<std::size_t>(i)].first, bodies[static_cast<std::size_t>(i)].second, w[i]});
+    if (i != D::kVehicle)
+      s.inertias.push_back(
+          {bodies[static_cast<std::size_t>(i)].first, bodies[static_cast<std::size_t>(i)].second, w[i]});
 
   const double theta = std::atan(in.grade_percent / 100.0);
   const double weight_N = p.vehicle_mass_kg * D::kGravity_m_s2;
@@ -49,11 +58,12 @@ NetworkSpec expand_driveline(const rig_models::DrivelineParams& p, const clutch:
   s.vehicles.push_back(v);
 
   const double k_h = p.halfshaft_stiffness_Nm_per_rad, c_h = p.halfshaft_damping_Nms_per_rad;
-  s.shafts = {{"front_left_halfshaft", "front_side_left", "wheel_fl", k_h, c_h, 0.0},
-              {"front_right_halfshaft", "front_side_right", "wheel_fr", k_h, c_h, 0.0},
-              {"propshaft", "ptu", "coupling_in", p.propshaft_stiffness_Nm_per_rad, p.propshaft_damping_Nms_per_rad, 0.0},
-              {"rear_left_halfshaft", "rear_side_left", "wheel_rl", k_h, c_h, 0.0},
-              {"rear_right_halfshaft", "rear_side_right", "wheel_rr", k_h, c_h, 0.0}};
+  s.shafts = {
+      {"front_left_halfshaft", "front_side_left", "wheel_fl", k_h, c_h, 0.0},
+      {"front_right_halfshaft", "front_side_right", "wheel_fr", k_h, c_h, 0.0},
+      {"propshaft", "ptu", "coupling_in", p.propshaft_stiffness_Nm_per_rad, p.propshaft_damping_Nms_per_rad, 0.0},
+      {"rear_left_halfshaft", "rear_side_left", "wheel_rl", k_h, c_h, 0.0},
+      {"rear_right_halfshaft", "rear_side_right", "wheel_rr", k_h, c_h, 0.0}};
   s.gears = {{"gearbox_and_final_drive", "engine", "front_diff", p.gear_ratio * p.final_drive_ratio},
              {"power_take_off", "ptu", "front_diff", p.ptu_ratio},
              {"rear_final_drive", "coupling_out", "rear_diff", p.rear_diff_ratio}};
@@ -72,7 +82,8 @@ NetworkSpec expand_driveline(const rig_models::DrivelineParams& p, const clutch:
     s.tyres.push_back(t);
   }
   if (p.engine_pulsation.amplitude_Nm > 0)
-    s.firing_pulsations.push_back({"firing", "engine", p.engine_pulsation, p.engine.stall_speed_rpm, p.engine.idle_speed_rpm});
+    s.firing_pulsations.push_back(
+        {"firing", "engine", p.engine_pulsation, p.engine.stall_speed_rpm, p.engine.idle_speed_rpm});
 
   // The engine: its map with the throttle, or the raw torque schedule; the pedal the control
   // unit reads is the throttle, or the raw torque over the full-load curve's peak.

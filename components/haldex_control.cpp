@@ -26,7 +26,8 @@ void HaldexControlUnit::start(const Eigen::VectorXd& speed_rad_s, const clutch::
 
 std::vector<double> HaldexControlUnit::instants(double duration_s) const {
   std::vector<double> t;
-  for (long k = 1; static_cast<double>(k) * period_s_ < duration_s - 1e-12; ++k) t.push_back(static_cast<double>(k) * period_s_);
+  for (long k = 1; static_cast<double>(k) * period_s_ < duration_s - 1e-12; ++k)
+    t.push_back(static_cast<double>(k) * period_s_);
   return t;
 }
 

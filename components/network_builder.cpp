@@ -23,7 +23,8 @@ constexpr double kGravity_m_s2 = 9.80665;
 // the signal at its knots (a jump becomes a 1 µs ramp) and, for a sine or a product, at 20000
 // points over the run besides: a sine of f Hz over D s gets 20000 / (f D) points a period, and at
 // 20 a period the chords miss it by at most 1 - cos(pi / 20) = 1.2 % of its amplitude.
-rig_models::PiecewiseLinear force_schedule(const Signal& s, double scale_N, double duration_s, bool clamp_at_zero = true) {
+rig_models::PiecewiseLinear force_schedule(const Signal& s, double scale_N, double duration_s,
+                                           bool clamp_at_zero = true) {
   constexpr double kJump_s = 1e-6;
   std::vector<double> t{0.0, duration_s};
   for (double k : s.knots(0.0, duration_s)) {
@@ -48,8 +49,7 @@ struct Builder {
 
   int node(const std::string& component, const std::string& role, const std::string& name, bool ground_ok) const {
     if (name == kGroundNode) {
-      if (!ground_ok)
-        throw NetworkError(component, role + " cannot be \"ground\"; name an inertia or vehicle");
+      if (!ground_ok) throw NetworkError(component, role + " cannot be \"ground\"; name an inertia or vehicle");
       return dynamics::kGround;
     }
     const auto it = index.find(name);
@@ -60,7 +60,8 @@ struct Builder {
     std::string list;
     for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
     throw NetworkError(component, role + " '" + name + "' is no node of the network" +
-                                      (near.empty() ? "" : "; did you mean '" + near + "'?") + " (nodes: " + list + ")");
+                                      (near.empty() ? "" : "; did you mean '" + near + "'?") + " (nodes: " + list +
+                                      ")");
   }
   void distinct(const std::string& component, int a, int b) const {
     if (a == b)
@@ -111,7 +112,8 @@ struct Assembly {
   void add_nodes() {
     std::vector<double> speeds, angles;
     for (const auto& i : spec.inertias) {
-      if (i.name == kGroundNode) throw NetworkError(i.name, "\"ground\" is the fixed frame; give the inertia another name");
+      if (i.name == kGroundNode)
+        throw NetworkError(i.name, "\"ground\" is the fixed frame; give the inertia another name");
       if (!(i.inertia_kg_m2 >= 0)) throw NetworkError(i.name, "inertia_kg_m2 must be >= 0");
       b.index[i.name] = net.add_inertia({i.name, i.inertia_kg_m2});
       out.node_names.push_back(i.name);
@@ -128,10 +130,11 @@ struct Assembly {
       speeds.push_back(v.speed_m_s / v.wheel_radius_m);
       angles.push_back(0.0);
     }
-    if (out.node_names.empty()) throw NetworkError("", "the network has no inertia; add at least one [network.NAME] with type = \"inertia\"");
-    out.initial_speed_rad_s = Eigen::Map<const Eigen::VectorXd>(speeds.data(), static_cast<Eigen::Index>(speeds.size()));
+    if (out.node_names.empty())
+      throw NetworkError("", "the network has no inertia; add at least one [network.NAME] with type = \"inertia\"");
+    out.initial_speed_rad_s =
+        Eigen::Map<const Eigen::VectorXd>(speeds.data(), static_cast<Eigen::Index>(speeds.size()));
     out.initial_angle_rad = Eigen::Map<const Eigen::VectorXd>(angles.data(), static_cast<Eigen::Index>(angles.size()));
-
   }
 
   // Clutches and brakes first: contact index = position.
@@ -148,7 +151,8 @@ struct Assembly {
                                          " can never load the clutch; give the largest normal force in N (> 0)");
         if (!(c.force_signal.max_over(0.0, duration) > 0))
           throw NetworkError(c.name, "its normal_force signal never rises above 0 during the run (0 to " +
-                                         std::to_string(duration) + " s), so the clutch can never carry torque; "
+                                         std::to_string(duration) +
+                                         " s), so the clutch can never carry torque; "
                                          "raise the signal or remove the clutch");
       }
       BuiltClutch bc;
@@ -173,7 +177,8 @@ struct Assembly {
         bc.context = std::make_shared<rig_models::ClutchContext>(
             contact.start_inputs(force_schedule(c.force_signal, c.max_force_N, duration)));
         bc.geometry_factor_m = c.wet.clutch.sliding_interfaces * bc.wet->mean_radius_m();
-        bc.contact = net.add_contact({c.name, a, bb, std::make_shared<rig_models::ClutchContactLaw>(contact, bc.context)});
+        bc.contact =
+            net.add_contact({c.name, a, bb, std::make_shared<rig_models::ClutchContactLaw>(contact, bc.context)});
       } else {
         build_haldex(c, bc, b, duration);
         bc.contact = net.add_contact({c.name, a, bb, bc.haldex});
@@ -197,7 +202,6 @@ struct Assembly {
       links.emplace_back(a, bb);
       out.freewheel_contacts.push_back(net.add_contact({f.name, a, bb, std::make_shared<OneWayClutchLaw>(f.drag_Nm)}));
     }
-
   }
 
   void add_shafts() {
@@ -211,10 +215,13 @@ struct Assembly {
         throw NetworkError(s.name, "needs stiffness_Nm_per_rad >= 0 and damping_Nms_per_rad >= 0, not both 0");
       links.emplace_back(a, bb);
       if (s.lash_rad > 0) {
-        if (!(s.stiffness_Nm_per_rad > 0)) throw NetworkError(s.name, "a shaft with lash needs stiffness_Nm_per_rad > 0");
-        if (bb == dynamics::kGround) throw NetworkError(s.name, "a shaft with lash joins two nodes; ground is not allowed");
+        if (!(s.stiffness_Nm_per_rad > 0))
+          throw NetworkError(s.name, "a shaft with lash needs stiffness_Nm_per_rad > 0");
+        if (bb == dynamics::kGround)
+          throw NetworkError(s.name, "a shaft with lash joins two nodes; ground is not allowed");
         out.lash_elements.push_back(net.add_force_element(
-            {s.name, a, bb, 1.0, std::make_shared<LashShaft>(s.stiffness_Nm_per_rad, s.damping_Nms_per_rad, s.lash_rad)}));
+            {s.name, a, bb, 1.0,
+             std::make_shared<LashShaft>(s.stiffness_Nm_per_rad, s.damping_Nms_per_rad, s.lash_rad)}));
       } else {
         net.add_shaft({s.name, a, bb, s.stiffness_Nm_per_rad, s.damping_Nms_per_rad});
       }
@@ -237,7 +244,8 @@ struct Assembly {
       const int c = b.node(d.name, "carrier", d.carrier, false);
       const int l = b.node(d.name, "left", d.left, false);
       const int r = b.node(d.name, "right", d.right, false);
-      if (c == l || c == r || l == r) throw NetworkError(d.name, "carrier, left and right must be three different nodes");
+      if (c == l || c == r || l == r)
+        throw NetworkError(d.name, "carrier, left and right must be three different nodes");
       links.emplace_back(c, l);
       links.emplace_back(c, r);
       fixed_nodes.insert({c, l, r});
@@ -253,7 +261,8 @@ struct Assembly {
     p.load_transfer.path_ratio = t.path_ratio;
     if (t.axle == TyreSpec::Axle::kNone) return p;
     if (!v.wheelbase_m || !v.front_axle_load_share)
-      throw NetworkError(t.name, "names its axle: vehicle '" + v.name + "' needs wheelbase_m and front_axle_load_share");
+      throw NetworkError(t.name,
+                         "names its axle: vehicle '" + v.name + "' needs wheelbase_m and front_axle_load_share");
     const bool front = t.axle == TyreSpec::Axle::kFront;
     const auto on_axle = std::count_if(spec.tyres.begin(), spec.tyres.end(),
                                        [&](const TyreSpec& x) { return x.vehicle == t.vehicle && x.axle == t.axle; });
@@ -262,7 +271,8 @@ struct Assembly {
     const double share = front ? *v.front_axle_load_share : 1.0 - *v.front_axle_load_share;
     const double axle_N = weight_N * (share * std::cos(theta) + (front ? -1.0 : 1.0) * lever * std::sin(theta));
     if (!(axle_N > 0))
-      throw NetworkError(t.name, "its axle would lift on vehicle '" + v.name + "''s grade (cg_height_m / wheelbase_m too large)");
+      throw NetworkError(
+          t.name, "its axle would lift on vehicle '" + v.name + "''s grade (cg_height_m / wheelbase_m too large)");
     const double n = static_cast<double>(on_axle);
     p.vertical_load_N = axle_N / n;
     p.load_transfer.load_per_acceleration_kg = (front ? -1.0 : 1.0) * v.mass_kg * lever / n;
@@ -276,8 +286,10 @@ struct Assembly {
       const int w = b.node(t.name, "wheel", t.wheel, false);
       const int v = b.node(t.name, "vehicle", t.vehicle, false);
       b.distinct(t.name, w, v);
-      const auto vit = std::find_if(spec.vehicles.begin(), spec.vehicles.end(), [&](const VehicleSpec& x) { return x.name == t.vehicle; });
-      if (vit == spec.vehicles.end()) throw NetworkError(t.name, "vehicle '" + t.vehicle + "' is not a component of type \"vehicle\"");
+      const auto vit = std::find_if(spec.vehicles.begin(), spec.vehicles.end(),
+                                    [&](const VehicleSpec& x) { return x.name == t.vehicle; });
+      if (vit == spec.vehicles.end())
+        throw NetworkError(t.name, "vehicle '" + t.vehicle + "' is not a component of type \"vehicle\"");
       if (!(t.path_ratio > 0)) throw NetworkError(t.name, "path_ratio must be > 0");
       std::shared_ptr<const dynamics::ForceLaw> law;
       try {
@@ -286,7 +298,8 @@ struct Assembly {
         throw NetworkError(t.name, e.what());
       }
       links.emplace_back(w, v);
-      out.tyre_elements.push_back(net.add_force_element({t.name, w, v, t.path_ratio * vit->wheel_radius_m / t.params.radius_m, law}));
+      out.tyre_elements.push_back(
+          net.add_force_element({t.name, w, v, t.path_ratio * vit->wheel_radius_m / t.params.radius_m, law}));
     }
     for (std::size_t i = 0; i < spec.vehicles.size(); ++i) {
       const auto& v = spec.vehicles[i];
@@ -301,12 +314,12 @@ struct Assembly {
       }
       out.road_elements.push_back(net.add_force_element({v.name + ".road_load", n, dynamics::kGround, 1.0, law}));
       if (v.grade_percent != 0.0) {
-        const double torque = -v.mass_kg * kGravity_m_s2 * std::sin(std::atan(v.grade_percent / 100.0)) * v.wheel_radius_m;
+        const double torque =
+            -v.mass_kg * kGravity_m_s2 * std::sin(std::atan(v.grade_percent / 100.0)) * v.wheel_radius_m;
         out.grade_sources.push_back(net.add_torque_source({v.name + ".grade", n, [torque](double) { return torque; }}));
         driven_nodes.insert(n);
       }
     }
-
   }
 
   void add_firing_pulsations() {
@@ -321,7 +334,6 @@ struct Assembly {
       }
       out.pulsation_elements.push_back(net.add_force_element({f.name, n, dynamics::kGround, 1.0, law}));
     }
-
   }
 
   void add_sources() {
@@ -344,7 +356,8 @@ struct Assembly {
       const int n = b.node(m.name, "node", m.node, false);
       if (!(m.kp_Nms_per_rad >= 0) || !(m.ki_Nm_per_rad >= 0) || !(m.kp_Nms_per_rad + m.ki_Nm_per_rad > 0) ||
           !(m.torque_limit_Nm > 0))
-        throw NetworkError(m.name, "needs kp_Nms_per_rad >= 0, ki_Nm_per_rad >= 0 (not both 0) and torque_limit_Nm > 0");
+        throw NetworkError(m.name,
+                           "needs kp_Nms_per_rad >= 0, ki_Nm_per_rad >= 0 (not both 0) and torque_limit_Nm > 0");
       driven_nodes.insert(n);
       net.add_motor({m.name, n, [sig = m.speed_rpm](double t) { return units::rpm_to_rad_s(sig(t)); }, m.kp_Nms_per_rad,
                      m.ki_Nm_per_rad, m.torque_limit_Nm});
@@ -375,10 +388,9 @@ struct Assembly {
       if (!(m.ripple.amplitude_Nm > 0) || !(m.ripple.periods_per_rev > 0))
         throw NetworkError(m.name, "ripple_amplitude_Nm must be >= 0 and ripple_periods_per_rev > 0");
       const rig_models::MotorRippleTorque ripple(m.ripple, force_schedule(m.speed_rpm, 1.0, duration, false));
-      out.ripple_sources.push_back(
-          net.add_torque_source({m.name + ".ripple", b.node(m.name, "node", m.node, false), [ripple](double t) { return ripple(t); }}));
+      out.ripple_sources.push_back(net.add_torque_source(
+          {m.name + ".ripple", b.node(m.name, "node", m.node, false), [ripple](double t) { return ripple(t); }}));
     }
-
   }
 
   void finish() {
@@ -408,7 +420,9 @@ clutch::WetClutchParams pack_params(const ClutchSpec& c) {
   return pack;
 }
 
-double BuiltClutch::scheduled_force_N(double t_s) const { return spec->max_force_N * std::max(spec->force_signal(t_s), 0.0); }
+double BuiltClutch::scheduled_force_N(double t_s) const {
+  return spec->max_force_N * std::max(spec->force_signal(t_s), 0.0);
+}
 
 double BuiltClutch::normal_force_N(const dynamics::Sample& s) const {
   return haldex ? haldex->clamp_force_N(s.contact_states.data() + state_index) : scheduled_force_N(s.t_s);

@@ -44,9 +44,9 @@ class NetworkError : public std::invalid_argument {
 struct BuiltClutch {
   const ClutchSpec* spec = nullptr;
   int contact = -1;
-  double geometry_factor_m = 0.0;                    // torque per unit μ F: plain R, wet n r_mean
-  std::shared_ptr<const PlainFrictionLaw> plain;     // plain law
-  std::unique_ptr<clutch::WetClutch> wet;            // wet law: the clutch...
+  double geometry_factor_m = 0.0;                      // torque per unit μ F: plain R, wet n r_mean
+  std::shared_ptr<const PlainFrictionLaw> plain;       // plain law
+  std::unique_ptr<clutch::WetClutch> wet;              // wet law: the clutch...
   std::shared_ptr<rig_models::ClutchContext> context;  // ...and the inputs its run holds
   // Haldex law: the coupling's law, the command its control unit sets, the nodes it reads, and
   // where its states (pressure, valve opening) sit in Sample::contact_states.
@@ -62,15 +62,15 @@ struct BuiltClutch {
 
 struct BuiltNetwork {
   dynamics::TorsionalNetwork network;
-  std::vector<BuiltClutch> clutches;        // contact c for clutches[c]
-  std::vector<int> freewheel_contacts;      // spec.freewheels[i] is contact freewheel_contacts[i]
+  std::vector<BuiltClutch> clutches;                             // contact c for clutches[c]
+  std::vector<int> freewheel_contacts;                           // spec.freewheels[i] is contact freewheel_contacts[i]
   std::vector<int> lash_elements, tyre_elements, road_elements;  // force element indices
   std::vector<int> vehicle_nodes;
   std::vector<int> engine_sources, grade_sources;  // torque source indices
   std::vector<int> pulsation_elements;             // force element indices
   Eigen::VectorXd initial_speed_rad_s, initial_angle_rad;
-  Eigen::VectorXd initial_motor_integral;   // ∫(ω_ref − ω) dt per motor at t = 0, rad
-  std::vector<int> ripple_sources;          // torque source indices of the motors' ripple
+  Eigen::VectorXd initial_motor_integral;  // ∫(ω_ref − ω) dt per motor at t = 0, rad
+  std::vector<int> ripple_sources;         // torque source indices of the motors' ripple
   std::vector<std::string> node_names;
 };
 

@@ -42,9 +42,10 @@ void check_constraints(const NetworkSpec& spec, const BuiltNetwork& out) {
     Eigen::FullPivLU<Eigen::MatrixXd> lu(h);
     lu.setThreshold(1e-10);
     if (lu.rank() <= g.rows())
-      throw NetworkError(who, "over-constrains the network: the speeds it ties are already fixed by the gears, "
-                              "differentials and speed sources before it (a closed loop of gears); remove it or "
-                              "replace one gear of the loop by a shaft or a clutch");
+      throw NetworkError(who,
+                         "over-constrains the network: the speeds it ties are already fixed by the gears, "
+                         "differentials and speed sources before it (a closed loop of gears); remove it or "
+                         "replace one gear of the loop by a shaft or a clutch");
     // Gears and differentials alone must leave every node free to turn: a loop whose ratios
     // disagree admits only standstill (a tie-up).
     if (!prescribes) {

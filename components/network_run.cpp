@@ -44,7 +44,8 @@ NetworkRun run_network(const NetworkSpec& spec) {
   for (const auto& bc : built->clutches)
     if (bc.wet) wet.push_back(bc.wet.get());
   std::vector<double> peak_C;
-  for (std::size_t w = 0; w < wet.size(); ++w) peak_C.push_back(wet[w]->thermal().interface_temps_C(thermal[w]).maxCoeff());
+  for (std::size_t w = 0; w < wet.size(); ++w)
+    peak_C.push_back(wet[w]->thermal().interface_temps_C(thermal[w]).maxCoeff());
   stepper.advance_to(
       cfg.duration_s,
       [&](const dynamics::Sample& s) {
@@ -94,8 +95,9 @@ NetworkRun run_network(const NetworkSpec& spec) {
 
   // Verdicts, each on its clutch's loaded window (components/clutch_judgement.hpp).
   for (const BuiltClutch& bc : built->clutches)
-    run.verdicts.push_back(judge_clutch(
-        rec, bc.name(), (bc.spec->judged_on.empty() ? bc.name() : bc.spec->judged_on) + ".torque_Nm", cfg.sample_rate_Hz));
+    run.verdicts.push_back(judge_clutch(rec, bc.name(),
+                                        (bc.spec->judged_on.empty() ? bc.name() : bc.spec->judged_on) + ".torque_Nm",
+                                        cfg.sample_rate_Hz));
   for (std::size_t c = 0; c < run.verdicts.size(); ++c)
     if (run.verdicts[c].judged)
       run.verdicts[c].verdict.prediction = predict_clutch(*built, c, run.verdicts[c].verdict.window, snapshots);
@@ -115,7 +117,8 @@ NetworkRun run_network(const NetworkSpec& spec) {
     range.name = std::string(rig_models::kFrictionRangeBlock) + "." + bc.name();
     rec.blocks.push_back(std::move(range));
     for (auto& b : rec.blocks) {
-      const bool of_this_clutch = b.name == "verdict." + bc.name() || (b.name == "verdict" && static_cast<int>(c) == run.worst);
+      const bool of_this_clutch =
+          b.name == "verdict." + bc.name() || (b.name == "verdict" && static_cast<int>(c) == run.worst);
       const auto* verdict = b.find_text("verdict");
       if (of_this_clutch && verdict && verdict->value != "not_judged")
         b.scalars.push_back({"outside_data_fraction", "1", outside});

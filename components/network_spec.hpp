@@ -73,8 +73,8 @@ struct HaldexSpec {
   // ρ̄ of each axle: its wheels' mean path over the vehicle's in a steady turn (1 straight); the
   // unit takes the difference they explain as geometry, not slip.
   double front_path_ratio = 1.0, rear_path_ratio = 1.0;
-  double wheel_radius_m = 0.0;   // maps an axle's speed to the vehicle speed the unit estimates
-  Signal pedal = Signal::constant(0.0);  // accelerator pedal 0–1 the unit reads
+  double wheel_radius_m = 0.0;               // maps an axle's speed to the vehicle speed the unit estimates
+  Signal pedal = Signal::constant(0.0);      // accelerator pedal 0–1 the unit reads
   std::optional<Signal> valve_opening;       // raw opening schedule (0 shut – 1 open) instead of the unit
   std::optional<Signal> valve_pressure_bar;  // raw pressure setting (valve shut below it) instead of the unit
 };
@@ -110,7 +110,8 @@ struct MotorSpec {
   Signal speed_rpm = Signal::constant(0.0);  // the speed loop's set point
   double kp_Nms_per_rad = 0.0, ki_Nm_per_rad = 0.0, torque_limit_Nm = 0.0;
   double start_torque_Nm = 0.0;  // the integrator's torque at t = 0 (ki ∫e = start torque)
-  rig_models::MotorRipple ripple{0.0, 576.0};  // the drive's torque ripple A sin(2π N rev) (motor_ripple.hpp); A = 0: none
+  rig_models::MotorRipple ripple{0.0,
+                                 576.0};  // the drive's torque ripple A sin(2π N rev) (motor_ripple.hpp); A = 0: none
 };
 /// rig_models/engine.hpp's torque map on a node, driven by a throttle signal (0–1).
 struct EngineSpec {
@@ -123,15 +124,15 @@ struct EngineSpec {
 struct VehicleSpec {
   std::string name;
   double mass_kg = 0.0, wheel_radius_m = 0.0, speed_m_s = 0.0, grade_percent = 0.0;
-  double cg_height_m = 0.0;  // h; 0: no load transfer
+  double cg_height_m = 0.0;                                  // h; 0: no load transfer
   std::optional<double> wheelbase_m, front_axle_load_share;  // required by tyres with an axle
-  rig_models::RoadLoadParams road;  // rolling_resistance_N from f_r m g cos θ when not given
+  rig_models::RoadLoadParams road;                           // rolling_resistance_N from f_r m g cos θ when not given
 };
 /// A tyre between a wheel node and a vehicle node (rig_models/tyre.hpp).
 struct TyreSpec {
   std::string name, wheel, vehicle;
   rig_models::TyreParams params;  // vertical_load_N and load_transfer set by the builder for an axle
-  double path_ratio = 1.0;  // ρ: the wheel's path over the vehicle's in a steady turn (1 straight)
+  double path_ratio = 1.0;        // ρ: the wheel's path over the vehicle's in a steady turn (1 straight)
   enum class Axle { kNone, kFront, kRear } axle = Axle::kNone;
 };
 /// An engine's firing-order torque pulsation on a node (rig_models/engine_pulsation.hpp).

@@ -7,7 +7,8 @@
 
 namespace shudder::components {
 
-PlainFrictionLaw::PlainFrictionLaw(PlainFrictionParams p, Signal force_signal) : p_(std::move(p)), force_(std::move(force_signal)) {
+PlainFrictionLaw::PlainFrictionLaw(PlainFrictionParams p, Signal force_signal)
+    : p_(std::move(p)), force_(std::move(force_signal)) {
   if (p_.mu.empty() || p_.mu.size() != p_.slip_rpm.size())
     throw std::invalid_argument("a friction table needs one mu per slip speed and at least one point");
   for (std::size_t i = 0; i < p_.mu.size(); ++i) {

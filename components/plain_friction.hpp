@@ -22,11 +22,11 @@
 namespace shudder::components {
 
 struct PlainFrictionParams {
-  std::vector<double> slip_rpm;       // μ table abscissa, ascending from >= 0; one point: constant
-  std::vector<double> mu;             // μ_k at those slips, each > 0
-  double peak_ratio = 1.0;            // μ_s / μ_k(0), >= 1
-  double geometry_factor_m = 0.0;     // R
-  double max_force_N = 0.0;           // F_max
+  std::vector<double> slip_rpm;    // μ table abscissa, ascending from >= 0; one point: constant
+  std::vector<double> mu;          // μ_k at those slips, each > 0
+  double peak_ratio = 1.0;         // μ_s / μ_k(0), >= 1
+  double geometry_factor_m = 0.0;  // R
+  double max_force_N = 0.0;        // F_max
 };
 
 class PlainFrictionLaw final : public dynamics::ContactLaw {

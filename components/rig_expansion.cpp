@@ -49,7 +49,8 @@ NetworkSpec expand_rig(const rig_models::RigParams& p, const clutch::WetClutchPa
   c.wet.stick_time = p.stick_time;
   c.judged_on = "torsion_bar";
   s.clutches.push_back(c);
-  s.shafts.push_back({"torsion_bar", "housing", kGroundNode, rig.bar_stiffness_Nm_per_rad(), rig.bar_damping_Nms_per_rad(), 0.0});
+  s.shafts.push_back(
+      {"torsion_bar", "housing", kGroundNode, rig.bar_stiffness_Nm_per_rad(), rig.bar_damping_Nms_per_rad(), 0.0});
 
   s.settings.duration_s = cfg.duration_s;
   s.settings.sample_rate_Hz = cfg.sample_rate_Hz;

@@ -100,8 +100,7 @@ double Signal::operator()(double t) const {
       return values_[lo] + w * (values_[hi] - values_[lo]);
     }
     case Kind::kStep: return t < a_ ? b_ : c_;
-    case Kind::kSine:
-      return t < e_ ? a_ : a_ + b_ * std::sin(2.0 * std::numbers::pi * c_ * (t - e_) + d_);
+    case Kind::kSine: return t < e_ ? a_ : a_ + b_ * std::sin(2.0 * std::numbers::pi * c_ * (t - e_) + d_);
     case Kind::kPulse: {
       if (t < e_) return a_;
       const double phase = std::fmod(t - e_, c_);
@@ -132,7 +131,7 @@ double Signal::derivative(double t) const {
     case Kind::kSine:
       return t < e_ ? 0.0 : b_ * 2.0 * std::numbers::pi * c_ * std::cos(2.0 * std::numbers::pi * c_ * (t - e_) + d_);
     case Kind::kRamp: return (d_ > 0 && t >= c_ && t < c_ + d_) ? (b_ - a_) / d_ : 0.0;
-    case Kind::kProduct: return f1_->derivative(t) * (*f2_)(t) + (*f1_)(t) * f2_->derivative(t);
+    case Kind::kProduct: return f1_->derivative(t) * (*f2_)(t) + (*f1_)(t)*f2_->derivative(t);
   }
   return 0.0;
 }

@@ -59,8 +59,8 @@ class Signal {
   std::vector<double> times_, values_;  // table
   bool linear_ = true;
   double a_ = 0, b_ = 0, c_ = 0, d_ = 0, e_ = 0;  // per kind, see the factories
-  std::shared_ptr<const Signal> f1_, f2_;           // product; held: f1_ is the signal it stands for
-  std::shared_ptr<const double> held_;              // held
+  std::shared_ptr<const Signal> f1_, f2_;         // product; held: f1_ is the signal it stands for
+  std::shared_ptr<const double> held_;            // held
 };
 
 }  // namespace shudder::components

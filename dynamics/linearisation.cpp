@@ -100,9 +100,19 @@ LinearSystem linearise_network(const TorsionalNetwork& net, const LinearOperatin
       double a_p = wa, a_m = wa, b_p = wb, b_m = wb;
       std::vector<double> z_p = z, z_m = z;
       double h;
-      if (j == 0) { h = fd_step(wa); a_p += h; a_m -= h; }
-      else if (j == 1) { h = fd_step(wb); b_p += h; b_m -= h; }
-      else { h = std::max(1e-9, 1e-6 * std::abs(z[static_cast<std::size_t>(j - 2)])); z_p[j - 2] += h; z_m[j - 2] -= h; }
+      if (j == 0) {
+        h = fd_step(wa);
+        a_p += h;
+        a_m -= h;
+      } else if (j == 1) {
+        h = fd_step(wb);
+        b_p += h;
+        b_m -= h;
+      } else {
+        h = std::max(1e-9, 1e-6 * std::abs(z[static_cast<std::size_t>(j - 2)]));
+        z_p[j - 2] += h;
+        z_m[j - 2] -= h;
+      }
       const double tp = e.law->evaluate(a_p, b_p, z_p.data(), dz_p.data()).torque_Nm;
       const double tm = e.law->evaluate(a_m, b_m, z_m.data(), dz_m.data()).torque_Nm;
       jac(0, j) = (tp - tm) / (2 * h);

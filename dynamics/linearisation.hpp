@@ -54,12 +54,12 @@ struct LinearOperatingPoint {
 
 /// ẋ = A x with x = [δq; δv; δz; δz_c] (see the header).
 struct LinearSystem {
-  Eigen::MatrixXd a;               // (2r + m) x (2r + m)
-  Eigen::MatrixXd basis;           // N (n x r)
-  int reduced_dofs = 0;            // r
-  int element_states = 0;          // m
-  int contact_states = 0;          // m_c: the contact laws' internal states, after the elements' 
-  int rigid_body_modes = 0;        // r − rank(K_r)
+  Eigen::MatrixXd a;                      // (2r + m) x (2r + m)
+  Eigen::MatrixXd basis;                  // N (n x r)
+  int reduced_dofs = 0;                   // r
+  int element_states = 0;                 // m
+  int contact_states = 0;                 // m_c: the contact laws' internal states, after the elements'
+  int rigid_body_modes = 0;               // r − rank(K_r)
   std::vector<double> contact_slope_Nms;  // (n_contacts) s_k used (0 for stuck contacts)
   /// Node speeds (n) of an eigenvector of A (its δv part mapped through N).
   Eigen::VectorXcd node_speeds(const Eigen::VectorXcd& eigenvector) const;

@@ -50,8 +50,8 @@ int TorsionalNetwork::add_force_element(ForceElement e) {
 void TorsionalNetwork::check_node(int node, const std::string& what, bool ground_ok) const {
   if (node == kGround && ground_ok) return;
   if (node < 0 || node >= nodes())
-    throw std::invalid_argument(what + " refers to node " + std::to_string(node) +
-                                ", but the network has nodes 0.." + std::to_string(nodes() - 1));
+    throw std::invalid_argument(what + " refers to node " + std::to_string(node) + ", but the network has nodes 0.." +
+                                std::to_string(nodes() - 1));
 }
 
 void TorsionalNetwork::validate() const {
@@ -69,8 +69,9 @@ void TorsionalNetwork::validate() const {
   for (std::size_t i = 0; i < inertias_.size(); ++i) {
     const double j = inertias_[i].inertia_kg_m2;
     if (!(positive(j) || (j == 0.0 && tied[i])))
-      throw std::invalid_argument("inertia '" + inertias_[i].name +
-                                  "' must be > 0 kg m^2 (0 only where a gear, differential or speed source fixes its speed)");
+      throw std::invalid_argument(
+          "inertia '" + inertias_[i].name +
+          "' must be > 0 kg m^2 (0 only where a gear, differential or speed source fixes its speed)");
   }
   for (const auto& s : shafts_) {
     check_node(s.a, "shaft '" + s.name + "'", false);
@@ -105,8 +106,7 @@ void TorsionalNetwork::validate() const {
   for (const auto& s : speed_sources_) check_node(s.node, "speed source '" + s.name + "'", false);
   for (const auto& m : motors_) {
     check_node(m.node, "motor '" + m.name + "'", false);
-    if (!non_negative(m.kp_Nms_per_rad) || !non_negative(m.ki_Nm_per_rad) ||
-        !positive(m.torque_limit_Nm))
+    if (!non_negative(m.kp_Nms_per_rad) || !non_negative(m.ki_Nm_per_rad) || !positive(m.torque_limit_Nm))
       throw std::invalid_argument("motor '" + m.name + "' needs gains >= 0 and a torque limit > 0");
   }
   for (const auto& c : contacts_) {
@@ -181,8 +181,7 @@ Eigen::MatrixXd TorsionalNetwork::constraint_basis(const std::vector<bool>& stuc
   return svd.matrixV().rightCols(nodes() - rank);
 }
 
-Modes TorsionalNetwork::modes(const std::vector<bool>& stuck,
-                              const Eigen::MatrixXd& extra_damping) const {
+Modes TorsionalNetwork::modes(const std::vector<bool>& stuck, const Eigen::MatrixXd& extra_damping) const {
   const Eigen::MatrixXd n = constraint_basis(stuck);
   const Eigen::MatrixXd m = n.transpose() * mass_matrix() * n;
   const Eigen::MatrixXd k = n.transpose() * stiffness_matrix() * n;
@@ -214,8 +213,7 @@ Modes TorsionalNetwork::modes(const std::vector<bool>& stuck,
   Eigen::VectorXcd ev = es.eigenvalues();
   std::vector<std::complex<double>> sorted(ev.data(), ev.data() + ev.size());
   std::sort(sorted.begin(), sorted.end(), [](const auto& x, const auto& y) {
-    return std::abs(x.imag()) != std::abs(y.imag()) ? std::abs(x.imag()) < std::abs(y.imag())
-                                                    : x.imag() > y.imag();
+    return std::abs(x.imag()) != std::abs(y.imag()) ? std::abs(x.imag()) < std::abs(y.imag()) : x.imag() > y.imag();
   });
   out.damped_eigenvalues = Eigen::Map<Eigen::VectorXcd>(sorted.data(), static_cast<Eigen::Index>(sorted.size()));
   return out;

@@ -109,9 +109,9 @@ struct Motor {
   std::string name;
   int node = kGround;
   TimeFunction speed_ref_rad_s;
-  double kp_Nms_per_rad = 0.0;    // proportional gain
-  double ki_Nm_per_rad = 0.0;     // integral gain
-  double torque_limit_Nm = 0.0;   // |T_m| <= limit
+  double kp_Nms_per_rad = 0.0;   // proportional gain
+  double ki_Nm_per_rad = 0.0;    // integral gain
+  double torque_limit_Nm = 0.0;  // |T_m| <= limit
 };
 struct FrictionContact {
   std::string name;
@@ -121,8 +121,8 @@ struct FrictionContact {
 
 /// Modal data of the undamped system K φ = ω² M φ (gears and constraints eliminated).
 struct Modes {
-  Eigen::VectorXd frequencies_Hz;   // ascending; rigid-body modes have 0
-  Eigen::MatrixXd shapes;           // columns: node amplitudes, max |entry| = 1
+  Eigen::VectorXd frequencies_Hz;       // ascending; rigid-body modes have 0
+  Eigen::MatrixXd shapes;               // columns: node amplitudes, max |entry| = 1
   Eigen::VectorXcd damped_eigenvalues;  // of the first-order system, 1/s (sorted by |imag|)
 };
 

@@ -45,12 +45,12 @@ struct Map2D {
     std::string units;       // e.g. "1/s"
     Eigen::MatrixXd values;  // (n_x x n_y); NaN where undefined
   };
-  std::string name;           // e.g. "stability_map"
-  std::string description;    // one line: what the map is and how it was computed
+  std::string name;         // e.g. "stability_map"
+  std::string description;  // one line: what the map is and how it was computed
   std::string x_name, x_units;
-  std::vector<double> x;      // (n_x), increasing
+  std::vector<double> x;  // (n_x), increasing
   std::string y_name, y_units;
-  std::vector<double> y;      // (n_y), increasing
+  std::vector<double> y;  // (n_y), increasing
   std::vector<Layer> layers;
   std::vector<Scalar> scalars;
 
@@ -93,13 +93,13 @@ struct ResultBlock {
 };
 
 struct Recording {
-  std::vector<Signal> signals;            // equal lengths; `time_s` first
-  std::vector<double> grid_r_m;           // (n_r) cell-centre radii of the thermal grid
-  std::vector<double> grid_z_m;           // (n_z) cell-centre axial positions
-  std::vector<ThermalSnapshot> snapshots; // thermal field at chosen times
-  std::vector<Scalar> scalars;            // summary values
-  std::vector<Map2D> maps;                // 2-D results (e.g. "stability_map")
-  std::vector<ResultBlock> blocks;        // other results (e.g. "verdict")
+  std::vector<Signal> signals;             // equal lengths; `time_s` first
+  std::vector<double> grid_r_m;            // (n_r) cell-centre radii of the thermal grid
+  std::vector<double> grid_z_m;            // (n_z) cell-centre axial positions
+  std::vector<ThermalSnapshot> snapshots;  // thermal field at chosen times
+  std::vector<Scalar> scalars;             // summary values
+  std::vector<Map2D> maps;                 // 2-D results (e.g. "stability_map")
+  std::vector<ResultBlock> blocks;         // other results (e.g. "verdict")
 
   Signal& add_signal(std::string name, std::string units) {
     signals.push_back(Signal{std::move(name), std::move(units), {}});

@@ -9,10 +9,10 @@ namespace shudder::dynamics::signal_names {
 
 // Measured-run columns (docs/formats/measured_run.md): required ...
 inline constexpr std::string_view kTime = "time_s";
-inline constexpr std::string_view kSpeed = "speed_rpm";            // drive speed (rig: the encoder)
+inline constexpr std::string_view kSpeed = "speed_rpm";  // drive speed (rig: the encoder)
 inline constexpr std::string_view kNormalForce = "normal_force_N";
-inline constexpr std::string_view kTorque = "torque_Nm";          // torque cell (through the bar)
-inline constexpr std::string_view kTemp = "temp_C";               // the disc temperature sensor
+inline constexpr std::string_view kTorque = "torque_Nm";  // torque cell (through the bar)
+inline constexpr std::string_view kTemp = "temp_C";       // the disc temperature sensor
 // ... and optional.
 inline constexpr std::string_view kSumpTemp = "sump_temp_C";
 inline constexpr std::string_view kIrTemp = "ir_temp_C";

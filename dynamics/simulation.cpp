@@ -13,14 +13,14 @@ namespace shudder::dynamics {
 namespace odeint = boost::numeric::odeint;
 
 struct Simulation::Forces {
-  Eigen::VectorXd tau;         // (n) applied torques, constraint torques excluded
-  Eigen::VectorXd acc;         // (n)
-  Eigen::VectorXd motor_T;     // (n_motors)
-  Eigen::VectorXd motor_dI;    // (n_motors) d/dt of the integral state
-  Eigen::VectorXd shaft_T;     // (n_shafts)
-  Eigen::VectorXd contact_T;   // (n_contacts) torque on b (−it on a)
-  Eigen::VectorXd friction_P;  // (n_contacts) dissipated power, W
-  Eigen::VectorXd element_T;   // (n_force_elements)
+  Eigen::VectorXd tau;             // (n) applied torques, constraint torques excluded
+  Eigen::VectorXd acc;             // (n)
+  Eigen::VectorXd motor_T;         // (n_motors)
+  Eigen::VectorXd motor_dI;        // (n_motors) d/dt of the integral state
+  Eigen::VectorXd shaft_T;         // (n_shafts)
+  Eigen::VectorXd contact_T;       // (n_contacts) torque on b (−it on a)
+  Eigen::VectorXd friction_P;      // (n_contacts) dissipated power, W
+  Eigen::VectorXd element_T;       // (n_force_elements)
   std::vector<double> element_dz;  // d/dt of the force elements' states
   double source_P = 0.0, damper_P = 0.0;
   Eigen::VectorXd kkt_rhs, kkt_sol;  // (n + rows) the constraint solve's right-hand side and solution
@@ -38,12 +38,10 @@ ContactMode slip_mode(double direction) {
 }
 }  // namespace
 
-Simulation::Simulation(const TorsionalNetwork& network, IntegratorSettings settings)
-    : net_(network), cfg_(settings) {
+Simulation::Simulation(const TorsionalNetwork& network, IntegratorSettings settings) : net_(network), cfg_(settings) {
   net_.validate();
-  if (!(cfg_.abs_tol > 0) || !(cfg_.rel_tol > 0) || !(cfg_.max_step_s > 0) ||
-      !(cfg_.initial_step_s > 0) || !(cfg_.event_time_tol_s > 0) || !(cfg_.fixed_step_s >= 0) ||
-      !std::isfinite(cfg_.fixed_step_s))
+  if (!(cfg_.abs_tol > 0) || !(cfg_.rel_tol > 0) || !(cfg_.max_step_s > 0) || !(cfg_.initial_step_s > 0) ||
+      !(cfg_.event_time_tol_s > 0) || !(cfg_.fixed_step_s >= 0) || !std::isfinite(cfg_.fixed_step_s))
     throw std::invalid_argument("integrator tolerances and step limits must be > 0 (a fixed step >= 0)");
   n_ = net_.nodes();
   motor_offset_ = 2 * n_;
@@ -73,8 +71,8 @@ Simulation::Simulation(const TorsionalNetwork& network, IntegratorSettings setti
   stick_start_s_.assign(net_.contacts().size(), 0.0);
   impact_loss_J_.assign(net_.contacts().size(), 0.0);
   x_.assign(size_, 0.0);
-  stepper_ = odeint::make_dense_output(cfg_.abs_tol, cfg_.rel_tol, cfg_.max_step_s,
-                                       odeint::runge_kutta_dopri5<State>());
+  stepper_ =
+      odeint::make_dense_output(cfg_.abs_tol, cfg_.rel_tol, cfg_.max_step_s, odeint::runge_kutta_dopri5<State>());
 }
 
 double Simulation::stick_time(int c, double t) const {
@@ -141,8 +139,7 @@ void Simulation::compute(const State& x, double t, Forces& f) const {
   for (std::size_t k = 0; k < shafts.size(); ++k) {
     const auto& s = shafts[k];
     const double dw = node_speed(s.a) - node_speed(s.b);
-    const double T = s.stiffness_Nm_per_rad * (node_angle(s.a) - node_angle(s.b)) +
-                     s.damping_Nms_per_rad * dw;
+    const double T = s.stiffness_Nm_per_rad * (node_angle(s.a) - node_angle(s.b)) + s.damping_Nms_per_rad * dw;
     f.shaft_T[k] = T;
     f.tau[s.a] -= T;
     if (s.b != kGround) f.tau[s.b] += T;
@@ -229,7 +226,8 @@ void Simulation::compute(const State& x, double t, Forces& f) const {
     const ConstraintRow& w = k.rows[static_cast<std::size_t>(r)];
     const double mu = f.kkt_sol[n_ + r];
     if (w.contact >= 0) f.contact_T[w.contact] = mu;
-    if (w.speed_source >= 0) f.source_P += -mu * om[net_.speed_sources()[static_cast<std::size_t>(w.speed_source)].node];
+    if (w.speed_source >= 0)
+      f.source_P += -mu * om[net_.speed_sources()[static_cast<std::size_t>(w.speed_source)].node];
   }
   equalise_stuck_groups(k.same_speed_as, f.acc.data());
 }
@@ -245,7 +243,14 @@ const Simulation::Constraints& Simulation::constraints() const {
   //   g_a ω̇_a + g_b ω̇_b + g_c ω̇_c = b,  and the KKT system [M Gᵀ; G 0] [ω̇; λ] = [τ; b].
   Constraints k;
   for (const auto m : modes_) k.modes_stuck.push_back(m == ContactMode::kStuck);
-  struct Coefficients { int a; double ga; int b; double gb; int c = kGround; double gc = 0; };
+  struct Coefficients {
+    int a;
+    double ga;
+    int b;
+    double gb;
+    int c = kGround;
+    double gc = 0;
+  };
   std::vector<Coefficients> g;
   for (const auto& gear : net_.gears()) {
     g.push_back({gear.a, 1.0, gear.b, -gear.ratio});
@@ -389,13 +394,11 @@ double Simulation::project_velocities(State& x, double t) {
   equalise_stuck_groups(stuck_groups(), om.data());
   // Kinetic energy taken out by the projection.
   double lost = 0.0;
-  for (int i = 0; i < n_; ++i)
-    lost += 0.5 * net_.inertias()[i].inertia_kg_m2 * (before[i] * before[i] - om[i] * om[i]);
+  for (int i = 0; i < n_; ++i) lost += 0.5 * net_.inertias()[i].inertia_kg_m2 * (before[i] * before[i] - om[i] * om[i]);
   return lost;
 }
 
-void Simulation::resolve_contacts(State& x, double t, std::vector<int> sticking,
-                                  std::vector<int> releasing) {
+void Simulation::resolve_contacts(State& x, double t, std::vector<int> sticking, std::vector<int> releasing) {
   Forces f;
   if (!releasing.empty()) compute(x, t, f);
   for (int c : releasing) {
@@ -415,8 +418,8 @@ void Simulation::resolve_contacts(State& x, double t, std::vector<int> sticking,
     double worst_ratio = 1.0 + 1e-12;
     for (std::size_t c = 0; c < modes_.size(); ++c) {
       if (modes_[c] != ContactMode::kStuck) continue;
-      const double cap = net_.contacts()[c].law->holding_capacity_Nm(t, stick_time(static_cast<int>(c), t),
-                                                                      f.contact_T[c], x.data() + contact_state_offset_[c]);
+      const double cap = net_.contacts()[c].law->holding_capacity_Nm(
+          t, stick_time(static_cast<int>(c), t), f.contact_T[c], x.data() + contact_state_offset_[c]);
       const double ratio = std::abs(f.contact_T[c]) / std::max(cap, 1e-300);
       if (ratio > worst_ratio) {
         worst_ratio = ratio;
@@ -443,7 +446,8 @@ void Simulation::initialize(double t0, const Eigen::VectorXd& theta, const Eigen
   }
   for (Eigen::Index m = 0; m < motor_integral.size() && m < static_cast<Eigen::Index>(net_.motors().size()); ++m)
     x_[motor_offset_ + m] = motor_integral[m];
-  for (std::size_t c = 0; c < net_.contacts().size(); ++c) net_.contacts()[c].law->initial_states(&x_[contact_state_offset_[c]]);
+  for (std::size_t c = 0; c < net_.contacts().size(); ++c)
+    net_.contacts()[c].law->initial_states(&x_[contact_state_offset_[c]]);
   t_ = t0;
   // Classify the contacts on the given speeds, then project those onto the gears and speed
   // sources (no contact stuck yet), then let the candidates stick (projecting again).

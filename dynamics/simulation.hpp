@@ -52,9 +52,9 @@
 namespace shudder::dynamics {
 
 struct IntegratorSettings {
-  double abs_tol = 1e-9;          // absolute error per step (rad, rad/s, J)
-  double rel_tol = 1e-8;          // relative error per step
-  double max_step_s = 1e-3;       // upper bound on the step (keeps sampling and events honest)
+  double abs_tol = 1e-9;     // absolute error per step (rad, rad/s, J)
+  double rel_tol = 1e-8;     // relative error per step
+  double max_step_s = 1e-3;  // upper bound on the step (keeps sampling and events honest)
   double initial_step_s = 1e-6;
   double event_time_tol_s = 1e-12;  // width of the bracket left by event root finding
   /// > 0: the fixed-step mode (below) at this step, s; 0: the adaptive dopri5 run.
@@ -66,27 +66,27 @@ enum class ContactMode { kSlipPositive, kSlipNegative, kStuck };
 /// Everything derived from the state at one instant.
 struct Sample {
   double t_s = 0.0;
-  Eigen::VectorXd theta_rad, omega_rad_s;   // (n)
-  Eigen::VectorXd motor_torque_Nm;          // (n_motors)
-  Eigen::VectorXd shaft_torque_Nm;          // (n_shafts) k Δθ + c Δω, as carried by the shaft
-  Eigen::VectorXd contact_torque_Nm;        // (n_contacts) torque transmitted from a to b
-  Eigen::VectorXd contact_slip_rad_s;       // (n_contacts) Δω = ω_a − ω_b
-  Eigen::VectorXd element_torque_Nm;        // (n_force_elements) T of each force element
-  Eigen::VectorXd element_states;           // (all force elements' states, in element order)
-  Eigen::VectorXd contact_states;           // (all contact laws' internal states, in contact order)
+  Eigen::VectorXd theta_rad, omega_rad_s;  // (n)
+  Eigen::VectorXd motor_torque_Nm;         // (n_motors)
+  Eigen::VectorXd shaft_torque_Nm;         // (n_shafts) k Δθ + c Δω, as carried by the shaft
+  Eigen::VectorXd contact_torque_Nm;       // (n_contacts) torque transmitted from a to b
+  Eigen::VectorXd contact_slip_rad_s;      // (n_contacts) Δω = ω_a − ω_b
+  Eigen::VectorXd element_torque_Nm;       // (n_force_elements) T of each force element
+  Eigen::VectorXd element_states;          // (all force elements' states, in element order)
+  Eigen::VectorXd contact_states;          // (all contact laws' internal states, in contact order)
   std::vector<ContactMode> modes;
 };
 
 struct EnergyAccount {
-  double source_work_J = 0.0;       // torque/speed sources and motors
+  double source_work_J = 0.0;  // torque/speed sources and motors
   double kinetic_J = 0.0, initial_kinetic_J = 0.0;
   double elastic_J = 0.0, initial_elastic_J = 0.0;
-  double friction_heat_J = 0.0;     // all contacts, incl. the tiny losses of stick impacts
-  double damper_loss_J = 0.0;       // dampers and the force elements' dissipation
+  double friction_heat_J = 0.0;  // all contacts, incl. the tiny losses of stick impacts
+  double damper_loss_J = 0.0;    // dampers and the force elements' dissipation
   /// source work − Δkinetic − Δelastic − friction heat − damper losses
   double imbalance_J() const {
-    return source_work_J - (kinetic_J - initial_kinetic_J) - (elastic_J - initial_elastic_J) -
-           friction_heat_J - damper_loss_J;
+    return source_work_J - (kinetic_J - initial_kinetic_J) - (elastic_J - initial_elastic_J) - friction_heat_J -
+           damper_loss_J;
   }
 };
 
@@ -110,8 +110,7 @@ class Simulation {
                   const Eigen::VectorXd& motor_integral = {}, double stick_speed_tol = 0.0);
 
   /// Integrates to t_end; calls `on_sample` for each time of `sample_times_s` in (t, t_end].
-  void advance(double t_end_s, const std::vector<double>& sample_times_s = {},
-               const SampleCallback& on_sample = {});
+  void advance(double t_end_s, const std::vector<double>& sample_times_s = {}, const SampleCallback& on_sample = {});
 
   /// The right-hand side changed (a contact law's held inputs were updated): restart the
   /// stepper from the current state.
@@ -188,8 +187,7 @@ class Simulation {
   double initial_kinetic_J_ = 0.0, initial_elastic_J_ = 0.0;
   mutable Counters counters_;
   using Stepper = boost::numeric::odeint::dense_output_runge_kutta<
-      boost::numeric::odeint::controlled_runge_kutta<
-          boost::numeric::odeint::runge_kutta_dopri5<State>>>;
+      boost::numeric::odeint::controlled_runge_kutta<boost::numeric::odeint::runge_kutta_dopri5<State>>>;
   Stepper stepper_;
   boost::numeric::odeint::runge_kutta4<State> fixed_stepper_;
   double last_dt_ = 0.0;

@@ -59,8 +59,10 @@ class Instance : public fmu::InstanceBase {
   void exit_initialisation() override {
     // Build if no output was read in initialisation mode or a parameter changed since; if only
     // the inputs changed, restart at the current clamp force (the first frozen friction's).
-    if (!coupling || parameters_changed) build();
-    else if (force_N() != built_force_N) coupling->reset(built_force_N = force_N());
+    if (!coupling || parameters_changed)
+      build();
+    else if (force_N() != built_force_N)
+      coupling->reset(built_force_N = force_N());
     update_outputs(false);
   }
   void drop_model() override {
@@ -87,7 +89,7 @@ class Instance : public fmu::InstanceBase {
     if (split.whole_steps + split.last_fraction > 0.0) update_outputs(true);
   }
 
-  double built_force_N = 0.0;      // the clamp force the clutch's first frozen friction was built at
+  double built_force_N = 0.0;  // the clamp force the clutch's first frozen friction was built at
   std::unique_ptr<clutch::WetClutch> clutch;
   std::unique_ptr<rig_models::RealtimeCoupling> coupling;
 
@@ -115,7 +117,8 @@ class Instance : public fmu::InstanceBase {
     th.supply_flow_m3_s = units::ml_min_to_m3_s(num(v::kSupplyFlow));
     th.interface_oil_cooling = num(v::kInterfaceOilCooling) != 0.0;
     th.sump_heating = num(v::kSumpHeating) != 0.0;
-    if (!(th.outer_radius_m > th.inner_radius_m)) throw std::invalid_argument("outer_radius_mm must exceed inner_radius_mm");
+    if (!(th.outer_radius_m > th.inner_radius_m))
+      throw std::invalid_argument("outer_radius_mm must exceed inner_radius_mm");
     if (!(num(v::kPistonArea) >= 0.0)) throw std::invalid_argument("piston_area_m2 must be >= 0");
     const std::filesystem::path fluid(texts[index(v::kFluidFile)]);
     if (!fluid.is_absolute() && !resources_problem.empty())
@@ -123,7 +126,8 @@ class Instance : public fmu::InstanceBase {
                                   resources_problem + "; give an absolute fluid_file");
     const std::filesystem::path path = fluid.is_absolute() ? fluid : resources / fluid;
     if (std::error_code ec; !std::filesystem::is_regular_file(path, ec))
-      throw std::invalid_argument("fluid_file: '" + path.string() + "' is not a readable file; give a fluid TOML "
+      throw std::invalid_argument("fluid_file: '" + path.string() +
+                                  "' is not a readable file; give a fluid TOML "
                                   "(absolute, or relative to the FMU's resources/)");
     coupling.reset();  // it refers to the clutch it replaces
     clutch = std::make_unique<clutch::WetClutch>(p, io::load_fluid(path.string()));
@@ -152,9 +156,7 @@ class Instance : public fmu::InstanceBase {
       switch (var.type) {
         case Type::kString: out.append("'").append(texts[i]).append("'"); break;
         case Type::kBoolean: out.append(numbers[i] != 0.0 ? "true" : "false"); break;
-        default:
-          std::snprintf(buf, sizeof buf, "%.15g", numbers[i]);
-          out.append(buf);
+        default: std::snprintf(buf, sizeof buf, "%.15g", numbers[i]); out.append(buf);
       }
       if (!var.unit.empty() && var.type == Type::kReal) out.append(" ").append(var.unit);
     }
@@ -178,7 +180,8 @@ class Instance : public fmu::InstanceBase {
     } else {
       const double w = slip_rad_s(), f = force_N();
       const double kinetic = coupling->clutch().kinetic_torque_Nm(std::abs(w), f);
-      const double drag = num(v::kBearingDrag) != 0.0 ? num(v::kBearingDragMu) * f * num(v::kBearingDragRadius) * 1e-3 : 0.0;
+      const double drag =
+          num(v::kBearingDrag) != 0.0 ? num(v::kBearingDragMu) * f * num(v::kBearingDragRadius) * 1e-3 : 0.0;
       torque = std::copysign(kinetic, w);
       clutch_torque = std::copysign(kinetic - drag, w);
       heat = clutch->params().sliding_interfaces * coupling->clutch().ring_torque_Nm().sum() * std::abs(w);

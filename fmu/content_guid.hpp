@@ -34,10 +34,14 @@ inline std::array<std::uint8_t, 20> sha1(std::string_view data) {
     std::uint32_t a = h[0], b = h[1], c = h[2], d = h[3], e = h[4];
     for (int t = 0; t < 80; ++t) {
       std::uint32_t f, k;
-      if (t < 20) f = (b & c) | (~b & d), k = 0x5A827999u;
-      else if (t < 40) f = b ^ c ^ d, k = 0x6ED9EBA1u;
-      else if (t < 60) f = (b & c) | (b & d) | (c & d), k = 0x8F1BBCDCu;
-      else f = b ^ c ^ d, k = 0xCA62C1D6u;
+      if (t < 20)
+        f = (b & c) | (~b & d), k = 0x5A827999u;
+      else if (t < 40)
+        f = b ^ c ^ d, k = 0x6ED9EBA1u;
+      else if (t < 60)
+        f = (b & c) | (b & d) | (c & d), k = 0x8F1BBCDCu;
+      else
+        f = b ^ c ^ d, k = 0xCA62C1D6u;
       const std::uint32_t temp = rotl(a, 5) + f + e + k + w[t];
       e = d, d = c, c = rotl(b, 30), b = a, a = temp;
     }
@@ -72,7 +76,7 @@ inline std::string uuid_v5(const std::array<std::uint8_t, 16>& ns, std::string_v
 /// The RFC 4122 URL namespace (6ba7b811-9dad-11d1-80b4-00c04fd430c8); the name hashed in it
 /// is "shudder-fmu:" followed by the description's text with the placeholder GUID.
 inline constexpr std::array<std::uint8_t, 16> kUrlNamespace = {0x6b, 0xa7, 0xb8, 0x11, 0x9d, 0xad, 0x11, 0xd1,
-                                                              0x80, 0xb4, 0x00, 0xc0, 0x4f, 0xd4, 0x30, 0xc8};
+                                                               0x80, 0xb4, 0x00, 0xc0, 0x4f, 0xd4, 0x30, 0xc8};
 
 inline std::string content_guid(std::string_view description_with_placeholder) {
   return uuid_v5(kUrlNamespace, std::string("shudder-fmu:") + std::string(description_with_placeholder));

@@ -44,17 +44,17 @@ void InstanceBase::log_shorter_step(double H, double whole, double fraction) {
 }
 
 void InstanceBase::log(fmi2Status status, const char* category, const std::string& message) const {
-    if (!callbacks.logger) return;
-    if (status < fmi2Error && (!logging || (!categories.empty() && !categories.count(category) &&
-                                            !categories.count("logAll"))))
-      return;
-    std::string m;
-    for (char c : message) {
-      if (c == '%' || c == '#') m += c;
-      m += c;
-    }
-    callbacks.logger(callbacks.componentEnvironment, name.c_str(), status, category, m.c_str());
+  if (!callbacks.logger) return;
+  if (status < fmi2Error &&
+      (!logging || (!categories.empty() && !categories.count(category) && !categories.count("logAll"))))
+    return;
+  std::string m;
+  for (char c : message) {
+    if (c == '%' || c == '#') m += c;
+    m += c;
   }
+  callbacks.logger(callbacks.componentEnvironment, name.c_str(), status, category, m.c_str());
+}
 
 ResourceLocation resources_from_uri(fmi2String uri) {
   if (!uri || !*uri) return {{}, "no resource location was given"};
@@ -74,7 +74,10 @@ ResourceLocation resources_from_uri(fmi2String uri) {
   for (std::size_t k = 0; k < s.size(); ++k) {
     if (s[k] == '%') {
       const auto hex = [](char ch) {
-        return ch >= '0' && ch <= '9' ? ch - '0' : ch >= 'a' && ch <= 'f' ? ch - 'a' + 10 : ch >= 'A' && ch <= 'F' ? ch - 'A' + 10 : -1;
+        return ch >= '0' && ch <= '9'   ? ch - '0'
+               : ch >= 'a' && ch <= 'f' ? ch - 'a' + 10
+               : ch >= 'A' && ch <= 'F' ? ch - 'A' + 10
+                                        : -1;
       };
       if (k + 2 >= s.size() || hex(s[k + 1]) < 0 || hex(s[k + 2]) < 0)
         return {{}, "the resource location '" + std::string(uri) + "' has a malformed %-escape"};
@@ -85,7 +88,8 @@ ResourceLocation resources_from_uri(fmi2String uri) {
     }
   }
   std::string lower_host = host;
-  std::transform(lower_host.begin(), lower_host.end(), lower_host.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  std::transform(lower_host.begin(), lower_host.end(), lower_host.begin(),
+                 [](unsigned char ch) { return std::tolower(ch); });
 #ifdef _WIN32
   // "/C:/dir" is the drive path "C:/dir"; another host is the share \\host\path.
   if (out.size() >= 3 && out[0] == '/' && std::isalpha(static_cast<unsigned char>(out[1])) && out[2] == ':')
@@ -93,12 +97,12 @@ ResourceLocation resources_from_uri(fmi2String uri) {
   if (!lower_host.empty() && lower_host != "localhost") return {"//" + host + out, ""};
 #else
   if (!lower_host.empty() && lower_host != "localhost")
-    return {{}, "the resource location '" + std::string(uri) + "' names the host '" + host +
-                    "', and only this machine's files can be read here"};
+    return {{},
+            "the resource location '" + std::string(uri) + "' names the host '" + host +
+                "', and only this machine's files can be read here"};
 #endif
   return {out, ""};
 }
-
 
 }  // namespace shudder::fmu
 
@@ -137,7 +141,8 @@ fmi2Status get_values(fmi2Component c, const char* function, Type type, const fm
     for (size_t k = 0; k < nvr; ++k) {
       const std::size_t i = inst.index(vr[k]);
       if (i == inst.variable_count() || inst.variable(i).type != type)
-        return inst.fail(std::string(function) + ": unknown value reference " + std::to_string(vr[k]) + " for this type");
+        return inst.fail(std::string(function) + ": unknown value reference " + std::to_string(vr[k]) +
+                         " for this type");
       if (inst.variable(i).causality == Causality::kOutput) {
         if (inst.phase == Phase::kInstantiated)
           return inst.fail(std::string(function) + ": output " + std::string(inst.variable(i).name) +
@@ -160,7 +165,8 @@ fmi2Status set_values(fmi2Component c, const char* function, Type type, const fm
     for (size_t k = 0; k < nvr; ++k) {
       const std::size_t i = inst.index(vr[k]);
       if (i == inst.variable_count() || inst.variable(i).type != type)
-        return inst.fail(std::string(function) + ": unknown value reference " + std::to_string(vr[k]) + " for this type");
+        return inst.fail(std::string(function) + ": unknown value reference " + std::to_string(vr[k]) +
+                         " for this type");
       const fmu::VariableInfo var = inst.variable(i);
       if (var.causality == Causality::kOutput)
         return inst.fail(std::string(function) + ": " + std::string(var.name) + " is an output and cannot be set");
@@ -215,8 +221,8 @@ fmi2Status fmi2SetDebugLogging(fmi2Component c, fmi2Boolean loggingOn, size_t nC
     fmi2Status status = fmi2OK;
     for (size_t k = 0; k < nCategories && categories; ++k) {
       const std::string name = categories[k] ? categories[k] : "";
-      if (std::find_if(std::begin(fmu::kLogCategories), std::end(fmu::kLogCategories), [&](const char* n) { return name == n; }) ==
-          std::end(fmu::kLogCategories)) {
+      if (std::find_if(std::begin(fmu::kLogCategories), std::end(fmu::kLogCategories),
+                       [&](const char* n) { return name == n; }) == std::end(fmu::kLogCategories)) {
         inst.log(fmi2Warning, "logStatusWarning",
                  "fmi2SetDebugLogging: unknown log category '" + name + "' ignored (see modelDescription.xml)");
         status = fmi2Warning;
@@ -236,8 +242,8 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
   if (!functions) return nullptr;
   const auto refuse = [&](const std::string& why) -> fmi2Component {
     if (functions->logger)
-      functions->logger(functions->componentEnvironment, instanceName ? instanceName : "", fmi2Error,
-                        "logStatusError", why.c_str());
+      functions->logger(functions->componentEnvironment, instanceName ? instanceName : "", fmi2Error, "logStatusError",
+                        why.c_str());
     return nullptr;
   };
   try {
@@ -319,9 +325,8 @@ fmi2Status fmi2GetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t
                     [](const Instance& inst, std::size_t i) { return static_cast<fmi2Integer>(inst.numbers[i]); });
 }
 fmi2Status fmi2GetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2Boolean value[]) {
-  return get_values(c, "fmi2GetBoolean", Type::kBoolean, vr, nvr, value, [](const Instance& inst, std::size_t i) {
-    return inst.numbers[i] != 0.0 ? fmi2True : fmi2False;
-  });
+  return get_values(c, "fmi2GetBoolean", Type::kBoolean, vr, nvr, value,
+                    [](const Instance& inst, std::size_t i) { return inst.numbers[i] != 0.0 ? fmi2True : fmi2False; });
 }
 fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2String value[]) {
   return get_values(c, "fmi2GetString", Type::kString, vr, nvr, value,

@@ -27,8 +27,8 @@ enum class Causality { kParameter, kInput, kOutput };
 enum class Phase { kInstantiated, kInitialising, kStepping, kTerminated, kError };
 
 /// The log categories of every modelDescription.xml (fmu/model_description_xml.hpp writes them).
-inline constexpr const char* kLogCategories[] = {"logEvents", "logStatusWarning", "logStatusDiscard",
-                                                 "logStatusError", "logAll"};
+inline constexpr const char* kLogCategories[] = {"logEvents", "logStatusWarning", "logStatusDiscard", "logStatusError",
+                                                 "logAll"};
 
 struct ResourceLocation {
   std::filesystem::path path;
@@ -52,7 +52,9 @@ struct VariableInfo {
 class InstanceBase {
  public:
   InstanceBase(std::string instance_name, const fmi2CallbackFunctions& cb, ResourceLocation where)
-      : name(std::move(instance_name)), callbacks(cb), resources(std::move(where.path)),
+      : name(std::move(instance_name)),
+        callbacks(cb),
+        resources(std::move(where.path)),
         resources_problem(std::move(where.problem)) {}
   virtual ~InstanceBase() = default;
 
@@ -99,8 +101,8 @@ class InstanceBase {
   double start_time_s = 0.0, time_s = 0.0;
   bool parameters_changed = true;  // since the model was built
   bool shorter_step_logged = false;
-  std::vector<double> numbers;      // per variable: Real, Integer, Boolean values
-  std::vector<std::string> texts;   // per variable: String values
+  std::vector<double> numbers;     // per variable: Real, Integer, Boolean values
+  std::vector<std::string> texts;  // per variable: String values
 };
 
 /// A call refused (fmi2Error with the message logged) after which the instance carries on.

@@ -87,7 +87,8 @@ int __wrap_pthread_cond_clockwait(pthread_cond_t* cond, pthread_mutex_t* mutex, 
   struct timespec now_clock, now_real, deadline;
   clock_gettime(clock, &now_clock);
   clock_gettime(CLOCK_REALTIME, &now_real);
-  long long ns = (long long)(abstime->tv_sec - now_clock.tv_sec) * 1000000000LL + (abstime->tv_nsec - now_clock.tv_nsec);
+  long long ns =
+      (long long)(abstime->tv_sec - now_clock.tv_sec) * 1000000000LL + (abstime->tv_nsec - now_clock.tv_nsec);
   if (ns < 0) ns = 0;
   ns += now_real.tv_nsec;
   deadline.tv_sec = now_real.tv_sec + (time_t)(ns / 1000000000LL);

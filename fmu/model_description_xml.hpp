@@ -107,7 +107,9 @@ inline std::string model_description_xml(const DescribedModel& m) {
   for (const auto& u : kKnownUnits) {
     bool used = false;
     for (const auto& v : m.variables) used = used || v.unit == u.name;
-    if (used) x << "    <Unit name=\"" << xml_escape(u.name) << "\"><BaseUnit" << (u.base.empty() ? "" : " ") << u.base << "/></Unit>\n";
+    if (used)
+      x << "    <Unit name=\"" << xml_escape(u.name) << "\"><BaseUnit" << (u.base.empty() ? "" : " ") << u.base
+        << "/></Unit>\n";
   }
   x << "  </UnitDefinitions>\n"
     << "  <LogCategories>\n"
@@ -117,8 +119,8 @@ inline std::string model_description_xml(const DescribedModel& m) {
     << "    <Category name=\"logStatusError\" description=\"errors: bad parameters, calls out of sequence\"/>\n"
     << "    <Category name=\"logAll\" description=\"every message\"/>\n"
     << "  </LogCategories>\n"
-    << "  <DefaultExperiment startTime=\"" << xml_number(m.start_time_s) << "\" stopTime=\"" << xml_number(m.stop_time_s)
-    << "\" stepSize=\"" << xml_number(m.step_size_s) << "\"/>\n"
+    << "  <DefaultExperiment startTime=\"" << xml_number(m.start_time_s) << "\" stopTime=\""
+    << xml_number(m.stop_time_s) << "\" stepSize=\"" << xml_number(m.step_size_s) << "\"/>\n"
     << "  <ModelVariables>\n";
   int index = 0;
   std::vector<int> output_indices;

@@ -68,9 +68,7 @@ class Instance : public fmu::InstanceBase {
     build();  // from the inputs as they are now: the start state (stuck contacts, speeds) depends on them
     update_outputs();
   }
-  void drop_model() override {
-    stepper_.reset();
-  }
+  void drop_model() override { stepper_.reset(); }
   void do_step(double tc, double H) override {
     const double h = fixed_step_s();
     const fmu::StepSplit split = split_communication_step(tc, H, h);
@@ -118,7 +116,8 @@ class Instance : public fmu::InstanceBase {
     for (std::size_t i = 0; i < model_.variables.size(); ++i) {
       if (model_.variables[i].causality != fmu::Causality::kOutput) continue;
       for (std::size_t c = 0; c < channels_.size(); ++c)
-        if (fmu::fmi_name(std::string(channels_[c].name)) == model_.variables[i].name) output_channel_.push_back({i, c});
+        if (fmu::fmi_name(std::string(channels_[c].name)) == model_.variables[i].name)
+          output_channel_.push_back({i, c});
     }
     whole_steps_ = 0.0;
     parameters_changed = false;
@@ -183,7 +182,8 @@ std::unique_ptr<InstanceBase> create_instance(const std::string& instance_name, 
   DescribedModel model = network_description(sc, *step);
   const std::string expected = guid_of(model_description_xml(model));
   if (guid != expected)
-    throw Refusal("GUID " + std::string(guid) + " does not match the scenario in the FMU's resources (" + expected + ")");
+    throw Refusal("GUID " + std::string(guid) + " does not match the scenario in the FMU's resources (" + expected +
+                  ")");
   return std::make_unique<Instance>(instance_name, cb, where, std::move(sc), std::move(model));
 }
 

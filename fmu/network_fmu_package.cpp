@@ -52,8 +52,9 @@ NetworkFmuSummary write_network_fmu(const io::NetworkScenario& sc, double fixed_
     const fs::path rel = (folder.empty() ? given : given.lexically_relative(folder)).lexically_normal();
     if (rel.empty() || rel.is_absolute())
       throw io::InputError(sc.path, 0, "network." + c.name + ".clutch.fluid",
-                       "the fluid file '" + c.wet.fluid_path + "' is not reachable by a relative path from the scenario's "
-                       "folder, so it cannot be packed; give it relative to the scenario");
+                           "the fluid file '" + c.wet.fluid_path +
+                               "' is not reachable by a relative path from the scenario's "
+                               "folder, so it cannot be packed; give it relative to the scenario");
     std::size_t up = 0;
     for (const auto& part : rel) {
       if (part != "..") break;

@@ -14,12 +14,15 @@ std::vector<NetworkInput> network_inputs(components::NetworkSpec& spec) {
   std::vector<NetworkInput> in;
   for (auto& c : spec.clutches) {
     if (c.law == components::ClutchSpec::Law::kHaldex)
-      throw std::invalid_argument("component '" + c.name + "': a haldex_coupling cannot be exported as an FMU "
+      throw std::invalid_argument("component '" + c.name +
+                                  "': a haldex_coupling cannot be exported as an FMU "
                                   "(its control unit runs on the scenario's clock); export a network without it");
-    in.push_back({c.name + ".normal_force", "1", "normalised normal force u: F = max_force_N max(u, 0)", &c.force_signal});
+    in.push_back(
+        {c.name + ".normal_force", "1", "normalised normal force u: F = max_force_N max(u, 0)", &c.force_signal});
   }
   for (auto& s : spec.torque_sources)
-    in.push_back({s.name + ".torque_Nm", "N.m", "torque on node " + s.node + ", positive along its speed", &s.torque_Nm});
+    in.push_back(
+        {s.name + ".torque_Nm", "N.m", "torque on node " + s.node + ", positive along its speed", &s.torque_Nm});
   for (auto& s : spec.speed_sources)
     in.push_back({s.name + ".speed_rpm", "rpm", "speed of node " + s.node, &s.speed_rpm});
   for (auto& m : spec.motors)
@@ -55,11 +58,12 @@ DescribedModel network_description(const io::NetworkScenario& sc, double fixed_s
   DescribedModel m;
   m.model_name = sc.name;
   m.model_identifier = kNetworkModelIdentifier;
-  m.description = (sc.description.empty() ? "network scenario " + sc.name : sc.description) +
-                  " (shudder network, fixed-step RK4)";
+  m.description =
+      (sc.description.empty() ? "network scenario " + sc.name : sc.description) + " (shudder network, fixed-step RK4)";
   m.naming_convention = "structured";
-  m.log_events = "what the instance does: instantiation, the scenario and fluids loaded, initialisation, steps that "
-                 "end with a shorter internal step, reset, termination";
+  m.log_events =
+      "what the instance does: instantiation, the scenario and fluids loaded, initialisation, steps that "
+      "end with a shorter internal step, reset, termination";
   m.stop_time_s = sc.spec.settings.duration_s;
   m.step_size_s = 1.0 / sc.spec.settings.sample_rate_Hz;
 
@@ -89,9 +93,9 @@ DescribedModel network_description(const io::NetworkScenario& sc, double fixed_s
     const std::string name(ch.name);
     if (name == dynamics::signal_names::kTime) continue;
     if (std::find(input_names.begin(), input_names.end(), name) != input_names.end()) continue;
-    m.variables.push_back({vr++, claim(name), Type::kReal, Causality::kOutput, fmi_unit(std::string(ch.units)), 0.0,
-                           "", ch.interpolated ? "recorded channel " + name + " (at the last thermal step's end)"
-                                               : "recorded channel " + name});
+    m.variables.push_back({vr++, claim(name), Type::kReal, Causality::kOutput, fmi_unit(std::string(ch.units)), 0.0, "",
+                           ch.interpolated ? "recorded channel " + name + " (at the last thermal step's end)"
+                                           : "recorded channel " + name});
   }
   m.variables.push_back({kFixedStepVr, "fixed_step_s", Type::kReal, Causality::kParameter, "s", fixed_step_s, "",
                          "internal RK4 step; the thermal step must be a whole multiple of it"});

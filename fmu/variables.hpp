@@ -19,9 +19,9 @@ struct Variable {
   std::string_view name;
   Type type;
   Causality causality;
-  std::string_view unit;         // "" for none
-  double start;                  // Real/Integer/Boolean start (unused for outputs and strings)
-  std::string_view start_text;   // String start
+  std::string_view unit;        // "" for none
+  double start;                 // Real/Integer/Boolean start (unused for outputs and strings)
+  std::string_view start_text;  // String start
   std::string_view description;
 };
 
@@ -61,7 +61,8 @@ inline constexpr Variable kVariables[] = {
     {vr::kHeat, "heat_power_W", kReal, kOutput, "W", 0.0, "", "friction heat power of all interfaces"},
     {vr::kInterfaceMean, "interface_mean_temp_C", kReal, kOutput, "degC", 0.0, "",
      "area-weighted mean interface (film) temperature"},
-    {vr::kInterfaceMax, "interface_max_temp_C", kReal, kOutput, "degC", 0.0, "", "hottest ring's interface temperature"},
+    {vr::kInterfaceMax, "interface_max_temp_C", kReal, kOutput, "degC", 0.0, "",
+     "hottest ring's interface temperature"},
     {vr::kThermocouple, "thermocouple_temp_C", kReal, kOutput, "degC", 0.0, "",
      "separator thermocouple (Paper G: r = 48 mm, 0.5 mm from the back face)"},
     {vr::kIr, "ir_temp_C", kReal, kOutput, "degC", 0.0, "", "IR pyrometer spot on the interface"},

@@ -73,9 +73,9 @@ bool output_fsync_requested() {
   const std::string v = value ? value : "";
   if (v.empty() || v == "0") return false;
   if (v == "1") return true;
-  throw InputError("environment", 0, "SHUDDER_FSYNC",
-                   "'" + v + "' is not 0 or 1; 1 flushes every output file to disk before its rename, " +
-                       "0 or unset does not");
+  throw InputError(
+      "environment", 0, "SHUDDER_FSYNC",
+      "'" + v + "' is not 0 or 1; 1 flushes every output file to disk before its rename, " + "0 or unset does not");
 }
 
 void commit_temp_file(const std::string& tmp, const std::string& path) {
@@ -90,9 +90,8 @@ void commit_temp_file(const std::string& tmp, const std::string& path) {
     const int err = errno;
     discard_temp_file(tmp);
     throw InputError(path, 0, "",
-                     std::string("cannot ") + step + " temporary file '" + tmp +
-                         "': " + std::strerror(err) + "; check the directory is writable and " +
-                         "the target is not a directory");
+                     std::string("cannot ") + step + " temporary file '" + tmp + "': " + std::strerror(err) +
+                         "; check the directory is writable and " + "the target is not a directory");
   };
   if (flush) {
     // Data on disk before the rename, so an OS crash cannot leave a short file at `path`.
@@ -110,8 +109,7 @@ void write_text_file_atomically(const std::string& path, const std::string& text
   const std::string tmp = temp_path_for(path);
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out)
-      throw InputError(path, 0, "", "cannot create '" + tmp + "'; check the directory exists and is writable");
+    if (!out) throw InputError(path, 0, "", "cannot create '" + tmp + "'; check the directory exists and is writable");
     out << text;
     out.close();
     if (out.fail()) {

@@ -31,7 +31,9 @@ std::string nums(const std::vector<double>& v, int digits = 10) {
 
 std::string toml_string(const std::string& s) { return json_string(s); }  // basic strings share JSON's escapes
 
-const char* radius_rule(const analysis::FrictionConversion& c) { return clutch::radius_convention_name(c.convention()); }
+const char* radius_rule(const analysis::FrictionConversion& c) {
+  return clutch::radius_convention_name(c.convention());
+}
 
 }  // namespace
 
@@ -40,8 +42,9 @@ std::string characterised_fluid_toml(const analysis::Characterisation& c, const 
   std::ostringstream o;
   o << "# Made by `shudder characterise` from " << runs.size() << " measured run(s), " << c.used.size()
     << " ramps used, " << c.rejected.size() << " rejected (FIT.json lists them).\n"
-    << "# mu = M / (n F r_eff) - mu_bearing: n = " << s.conversion.interfaces << ", r_eff = " << num(c.effective_radius_mm, 5)
-    << " mm (" << radius_rule(s.conversion) << (s.conversion.source.empty() ? "" : ": " + s.conversion.source)
+    << "# mu = M / (n F r_eff) - mu_bearing: n = " << s.conversion.interfaces
+    << ", r_eff = " << num(c.effective_radius_mm, 5) << " mm (" << radius_rule(s.conversion)
+    << (s.conversion.source.empty() ? "" : ": " + s.conversion.source)
     << "), mu_bearing = " << num(s.conversion.bearing_drag_mu, 4)
     << "; temperature compensation: " << analysis::compensation_name(s.compensation) << ".\n"
     << "# Data range: " << num(c.min_speed_mm_s, 4) << "-" << num(c.max_speed_mm_s, 4) << " mm/s, "
@@ -51,8 +54,9 @@ std::string characterised_fluid_toml(const analysis::Characterisation& c, const 
   o << "\n[fluid]\nname = " << toml_string(fluid.name) << "\n";
   if (!fluid.description.empty()) o << "description = " << toml_string(fluid.description) << "\n";
   o << "nu40_cSt = " << num(fluid.nu40_cSt) << "\nnu100_cSt = " << num(fluid.nu100_cSt)
-    << "\ndensity_kg_m3 = " << num(fluid.density_kg_m3) << "\n\n[static_friction]\nbreakaway_ratio = "
-    << num(fluid.breakaway_ratio) << "\nsource = " << toml_string(fluid.breakaway_source) << "\n\n"
+    << "\ndensity_kg_m3 = " << num(fluid.density_kg_m3)
+    << "\n\n[static_friction]\nbreakaway_ratio = " << num(fluid.breakaway_ratio)
+    << "\nsource = " << toml_string(fluid.breakaway_source) << "\n\n"
     << "[friction_radius]\n# the radius mu was read at from torque; a model of another radius converts the law\n"
     << "convention = \"" << radius_rule(s.conversion) << "\"\nradius_mm = " << num(c.effective_radius_mm) << "\n\n";
   if (s.law == analysis::LawKind::kMaki) {
@@ -106,16 +110,15 @@ std::string characterisation_json(const analysis::Characterisation& c, const ana
     << ",\n  \"runs\": [";
   for (std::size_t i = 0; i < runs.size(); ++i) o << (i ? ", " : "") << json_string(runs[i]);
   o << "],\n  \"law\": \"" << analysis::law_name(s.law) << "\",\n  \"compensation\": \""
-    << analysis::compensation_name(s.compensation) << "\",\n  \"alpha_per_C\": "
-    << (s.compensation == analysis::Compensation::kLinear ? num(c.alpha_per_C) : "null")
+    << analysis::compensation_name(s.compensation)
+    << "\",\n  \"alpha_per_C\": " << (s.compensation == analysis::Compensation::kLinear ? num(c.alpha_per_C) : "null")
     << ",\n  \"alpha_fitted\": " << (c.alpha_fitted ? "true" : "false") << ",\n  \"radius\": {\"rule\": \""
     << radius_rule(s.conversion) << "\", \"source\": " << json_string(s.conversion.source)
-    << ", \"effective_mm\": " << num(c.effective_radius_mm)
-    << ", \"interfaces\": " << s.conversion.interfaces << ", \"bearing_drag_mu\": " << num(s.conversion.bearing_drag_mu)
-    << "},\n  \"ranges\": {\"speed_mm_s\": [" << num(c.min_speed_mm_s) << ", " << num(c.max_speed_mm_s)
-    << "], \"temp_C\": [" << num(c.min_temp_C) << ", " << num(c.max_temp_C) << "], \"load_N\": ["
-    << num(c.loads_N.front()) << ", " << num(c.loads_N.back()) << "]},\n  \"hot_row_temp_C\": " << num(c.hot_row_temp_C)
-    << ",\n  \"loads_N\": " << nums(c.loads_N)
+    << ", \"effective_mm\": " << num(c.effective_radius_mm) << ", \"interfaces\": " << s.conversion.interfaces
+    << ", \"bearing_drag_mu\": " << num(s.conversion.bearing_drag_mu) << "},\n  \"ranges\": {\"speed_mm_s\": ["
+    << num(c.min_speed_mm_s) << ", " << num(c.max_speed_mm_s) << "], \"temp_C\": [" << num(c.min_temp_C) << ", "
+    << num(c.max_temp_C) << "], \"load_N\": [" << num(c.loads_N.front()) << ", " << num(c.loads_N.back())
+    << "]},\n  \"hot_row_temp_C\": " << num(c.hot_row_temp_C) << ",\n  \"loads_N\": " << nums(c.loads_N)
     << ",\n  \"temps_C\": " << nums(c.temps_C) << ",\n  \"node_rpm\": " << nums(c.node_rpm) << ",\n  \"ramps_used\": [";
   for (std::size_t i = 0; i < c.used.size(); ++i) {
     const auto& r = c.used[i];
@@ -135,13 +138,13 @@ std::string characterisation_json(const analysis::Characterisation& c, const ana
     const auto& r = c.rows[i];
     o << (i ? "," : "") << "\n    {\"load_N\": " << num(r.load_N) << ", \"temp_C\": " << num(r.temp_C)
       << ", \"ramps_up\": " << r.ramps_up << ", \"ramps_down\": " << r.ramps_down << ", \"speed_mm_s\": ["
-      << num(r.min_speed_mm_s) << ", " << num(r.max_speed_mm_s) << "], \"temp_range_C\": [" << num(r.min_temp_C)
-      << ", " << num(r.max_temp_C) << "], \"rms_residual\": " << num(r.rms_residual)
+      << num(r.min_speed_mm_s) << ", " << num(r.max_speed_mm_s) << "], \"temp_range_C\": [" << num(r.min_temp_C) << ", "
+      << num(r.max_temp_C) << "], \"rms_residual\": " << num(r.rms_residual)
       << ", \"max_residual\": " << num(r.max_residual) << ", \"up_down_gap_raw\": " << num(r.up_down_gap_raw)
       << ", \"up_down_gap_compensated\": " << num(r.up_down_gap_comp);
     if (s.law == analysis::LawKind::kMaki)
-      o << ", \"maki\": " << nums({r.maki[0], r.maki[1], r.maki[2], r.maki[3]}) << ", \"maki_standard_error\": "
-        << nums({r.maki_se[0], r.maki_se[1], r.maki_se[2], r.maki_se[3]});
+      o << ", \"maki\": " << nums({r.maki[0], r.maki[1], r.maki[2], r.maki[3]})
+        << ", \"maki_standard_error\": " << nums({r.maki_se[0], r.maki_se[1], r.maki_se[2], r.maki_se[3]});
     o << ", \"node_mu\": " << nums(r.node_mu) << "}";
   }
   o << "\n  ],\n  \"warnings\": [";
@@ -198,8 +201,8 @@ std::string method_json(const analysis::Characterisation& c, const analysis::Cha
     o << (i ? "," : "") << "\n      {\"load_N\": " << num(r.load_N) << ", \"temp_C\": " << num(r.temp_C)
       << ", \"rms_residual\": " << num(r.rms_residual) << ", \"max_residual\": " << num(r.max_residual);
     if (s.law == analysis::LawKind::kMaki)
-      o << ", \"maki\": " << nums({r.maki[0], r.maki[1], r.maki[2], r.maki[3]}) << ", \"maki_standard_error\": "
-        << nums({r.maki_se[0], r.maki_se[1], r.maki_se[2], r.maki_se[3]});
+      o << ", \"maki\": " << nums({r.maki[0], r.maki[1], r.maki[2], r.maki[3]})
+        << ", \"maki_standard_error\": " << nums({r.maki_se[0], r.maki_se[1], r.maki_se[2], r.maki_se[3]});
     std::vector<double> law_mu;
     for (double v : c.node_speeds_mm_s) law_mu.push_back(c.law->mu(v, r.temp_C, r.load_N));
     o << ", \"law_node_mu\": " << nums(law_mu) << "}";
@@ -219,13 +222,16 @@ std::string method_json(const analysis::Characterisation& c, const analysis::Cha
 
 }  // namespace
 
-std::string characterisation_json(const rig_models::InverseCharacterisation& r, const analysis::CharacterisationSettings& s,
-                                  const std::vector<std::string>& runs, const std::string& fluid_path) {
+std::string characterisation_json(const rig_models::InverseCharacterisation& r,
+                                  const analysis::CharacterisationSettings& s, const std::vector<std::string>& runs,
+                                  const std::string& fluid_path) {
   std::string doc = characterisation_json(r.inverse, r.settings, runs, fluid_path);
   doc.resize(doc.size() - 3);  // "\n}\n": the document continues
   std::ostringstream o;
-  o << doc << ",\n  \"method\": \"inverse\",\n  \"temperature\": \"model_interface_mean\",\n  \"methods\": {\n    \"node_rpm\": " << nums(r.inverse.node_rpm)
-    << ",\n    \"sensor\": " << method_json(r.sensor, s, r.torque_rms_sensor_Nm)
+  o << doc
+    << ",\n  \"method\": \"inverse\",\n  \"temperature\": \"model_interface_mean\",\n  \"methods\": {\n    "
+       "\"node_rpm\": "
+    << nums(r.inverse.node_rpm) << ",\n    \"sensor\": " << method_json(r.sensor, s, r.torque_rms_sensor_Nm)
     << ",\n    \"inverse\": " << method_json(r.inverse, r.settings, r.torque_rms_Nm)
     << ",\n    \"thermal_calibration\": {\"oil_flow_e\": [" << num(r.oil_flow_start.e) << ", " << num(r.oil_flow.e)
     << "], \"oil_flow_a\": [" << num(r.oil_flow_start.a) << ", " << num(r.oil_flow.a)
@@ -246,9 +252,9 @@ std::string with_breakaway_json(std::string doc, const analysis::BreakawayMeasur
   for (std::size_t i = 0; i < m.events.size(); ++i) {
     const auto& e = m.events[i];
     o << (i ? "," : "") << "\n    {\"run\": " << e.run << ", \"t_peak_s\": " << num(e.t_peak_s)
-      << ", \"speed_rpm\": " << num(e.speed_rpm) << ", \"temp_C\": " << num(e.temp_C) << ", \"load_N\": "
-      << num(e.load_N) << ", \"mu_peak\": " << num(e.mu_peak) << ", \"mu_kinetic\": " << num(e.mu_kinetic)
-      << ", \"ratio\": " << num(e.ratio) << "}";
+      << ", \"speed_rpm\": " << num(e.speed_rpm) << ", \"temp_C\": " << num(e.temp_C)
+      << ", \"load_N\": " << num(e.load_N) << ", \"mu_peak\": " << num(e.mu_peak)
+      << ", \"mu_kinetic\": " << num(e.mu_kinetic) << ", \"ratio\": " << num(e.ratio) << "}";
   }
   o << "]}\n}\n";
   return o.str();

@@ -40,8 +40,9 @@ std::string characterisation_json(const analysis::Characterisation& c, const ana
 /// RMS and max residual and the parameters (Mäki sets or node mu), the replayed torque's RMS
 /// misfit with each method's law, the thermal calibration (oil flow before/after, temperature
 /// RMS) and the iteration count. `s` are the sensor method's settings.
-std::string characterisation_json(const rig_models::InverseCharacterisation& r, const analysis::CharacterisationSettings& s,
-                                  const std::vector<std::string>& runs, const std::string& fluid_path);
+std::string characterisation_json(const rig_models::InverseCharacterisation& r,
+                                  const analysis::CharacterisationSettings& s, const std::vector<std::string>& runs,
+                                  const std::string& fluid_path);
 
 /// FIT.json `doc` (either form above) with a "breakaway" object appended: the ratio written, its
 /// source, and each start from rest (run index from 0, peak time, speed, temperature, load, peak mu,

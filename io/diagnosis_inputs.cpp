@@ -34,12 +34,11 @@ DiagnosisData read_runs(const std::vector<MeasuredRun>& runs) {
         rig_source = run.path;
       } else if (*rig != d.rig) {
         throw InputError(run.path, 0, "rig",
-                         "this run comes from rig '" + *rig + "' but " + rig_source + " from rig '" +
-                             d.rig + "'; diagnose runs of one rig at a time");
+                         "this run comes from rig '" + *rig + "' but " + rig_source + " from rig '" + d.rig +
+                             "'; diagnose runs of one rig at a time");
       }
     }
-    if (run.rows() < diagnosis_min_rows || run.duration_s() < diagnosis_min_duration_s)
-    {
+    if (run.rows() < diagnosis_min_rows || run.duration_s() < diagnosis_min_duration_s) {
       char what[200];
       std::snprintf(what, sizeof what,
                     "the run has %zu rows over %.6g s; the diagnosis needs at least %zu rows and %.6g s to fit "
@@ -71,16 +70,14 @@ DiagnosisData read_runs(const std::vector<MeasuredRun>& runs) {
       char* end = nullptr;
       const double v = std::strtod(flow->c_str(), &end);
       if (end == flow->c_str() || *end != '\0' || !std::isfinite(v) || v < 0)
-        throw InputError(run.path, 0, "oil_flow_ml_min",
-                         "'" + *flow + "' is not a flow; give a number >= 0 (ml/min)");
+        throw InputError(run.path, 0, "oil_flow_ml_min", "'" + *flow + "' is not a flow; give a number >= 0 (ml/min)");
       in.oil_flow_ml_min = v;
     }
     if (const auto sensor = run.meta("temp_sensor")) {
       try {
         rig_models::parse_temp_sensor(*sensor, in);
       } catch (const std::exception&) {
-        throw InputError(run.path, 0, "temp_sensor",
-                         "'" + *sensor + "' has an r_mm or z_mm that is not a number");
+        throw InputError(run.path, 0, "temp_sensor", "'" + *sensor + "' has an r_mm or z_mm that is not a number");
       }
       if (!in.thermocouple_r_mm && !in.thermocouple_z_mm)
         d.warnings.push_back(run.path + ": temp_sensor '" + *sensor +
@@ -110,7 +107,8 @@ DiagnosisData diagnosis_data(const std::vector<MeasuredRun>& runs, const rig_mod
     d.warnings.push_back("the runs come from rig '" + d.rig + "'; the model is a driveline's Haldex coupling ('" +
                          model.rig + "')");
   else if (model.rig == rig_models::kNetworkClutchRig)
-    d.warnings.push_back("the runs come from rig '" + d.rig + "'; the model is a network's clutch ('" + model.rig + "')");
+    d.warnings.push_back("the runs come from rig '" + d.rig + "'; the model is a network's clutch ('" + model.rig +
+                         "')");
   else
     d.warnings.push_back("the runs come from rig '" + d.rig + "'; the model is of the LSCTR");
   return d;

@@ -23,7 +23,7 @@ rig_models::ReplayModel replay_model(const Scenario& scenario);
 struct DiagnosisData {
   std::vector<analysis::DiagnosisRun> runs;
   std::vector<rig_models::ReplayInputs> inputs;
-  std::string rig;                    // the runs' common `rig` metadata ("" if none says)
+  std::string rig;  // the runs' common `rig` metadata ("" if none says)
   std::vector<std::string> warnings;
 };
 

@@ -19,8 +19,8 @@ namespace shudder::io {
 namespace {
 
 using analysis::CandidateScore;
-using analysis::Disagreement;
 using analysis::DiagnosisStep;
+using analysis::Disagreement;
 using analysis::Misfit;
 using analysis::Tracking;
 using Pairs = std::vector<std::pair<std::string, double>>;
@@ -79,21 +79,37 @@ std::string list(const std::vector<T>& v, const std::string& indent, F element) 
 }
 
 std::string misfit(const Misfit& m, double holdout_misfit) {
-  return Object().num("torque_rms_Nm", m.torque_rms_Nm).num("temp_rms_C", m.temp_rms_C)
-      .num("holdout_misfit", holdout_misfit).text();
+  return Object()
+      .num("torque_rms_Nm", m.torque_rms_Nm)
+      .num("temp_rms_C", m.temp_rms_C)
+      .num("holdout_misfit", holdout_misfit)
+      .text();
 }
 
 std::string disagreement(const Disagreement& d) {
-  return Object().str("run", d.run).str("signal", d.signal).num("t_start_s", d.t_start_s)
-      .num("t_end_s", d.t_end_s).num("mean_error", d.mean_error).str("tracks", d.tracks)
-      .num("correlation", d.correlation).text();
+  return Object()
+      .str("run", d.run)
+      .str("signal", d.signal)
+      .num("t_start_s", d.t_start_s)
+      .num("t_end_s", d.t_end_s)
+      .num("mean_error", d.mean_error)
+      .str("tracks", d.tracks)
+      .num("correlation", d.correlation)
+      .text();
 }
 
 std::string channel(const analysis::ChannelFit& c) {
-  return Object().str("signal", c.signal).str("comparison", c.comparison).num("noise", c.noise)
-      .num("baseline_rms", c.baseline_rms).num("final_rms", c.final_rms)
-      .num("baseline_misfit", c.baseline_misfit).num("final_misfit", c.final_misfit)
-      .num("error_scale", c.error_scale).num("reproduction", c.reproduction).num("tolerance", c.tolerance)
+  return Object()
+      .str("signal", c.signal)
+      .str("comparison", c.comparison)
+      .num("noise", c.noise)
+      .num("baseline_rms", c.baseline_rms)
+      .num("final_rms", c.final_rms)
+      .num("baseline_misfit", c.baseline_misfit)
+      .num("final_misfit", c.final_misfit)
+      .num("error_scale", c.error_scale)
+      .num("reproduction", c.reproduction)
+      .num("tolerance", c.tolerance)
       .text();
 }
 
@@ -105,8 +121,11 @@ std::string candidate(const CandidateScore& c) {
   Object o;
   o.str("effect", c.effect);
   if (!c.joint_with.empty()) o.raw("joint_with", strings(c.joint_with));
-  o.raw("parameters", object_of(c.parameters)).num("fit_misfit", c.fit_misfit)
-      .num("holdout_misfit", c.holdout_misfit).num("score", c.score).num("gain", c.gain)
+  o.raw("parameters", object_of(c.parameters))
+      .num("fit_misfit", c.fit_misfit)
+      .num("holdout_misfit", c.holdout_misfit)
+      .num("score", c.score)
+      .num("gain", c.gain)
       .num("signature_correlation", c.signature_correlation)
       .raw("evaluations", std::to_string(c.evaluations));
   // Present only for a failed candidate, so "has failure" is the test a reader needs.
@@ -121,11 +140,13 @@ std::string step(const DiagnosisStep& st, const std::string& reason) {
   o.str("effect", st.effect);
   if (!st.joint_with.empty()) o.raw("joint_with", strings(st.joint_with));
   o.raw("parameters", object_of(st.parameters))
-      .num("torque_rms_Nm", st.misfit.torque_rms_Nm).num("temp_rms_C", st.misfit.temp_rms_C)
+      .num("torque_rms_Nm", st.misfit.torque_rms_Nm)
+      .num("temp_rms_C", st.misfit.temp_rms_C)
       .num("holdout_torque_rms_Nm", st.holdout.torque_rms_Nm)
       .num("holdout_temp_rms_C", st.holdout.temp_rms_C)
       .num("holdout_misfit_before", st.holdout_misfit_before)
-      .num("holdout_misfit_after", st.holdout_misfit_after).str("reason", reason)
+      .num("holdout_misfit_after", st.holdout_misfit_after)
+      .str("reason", reason)
       .raw("candidates", list(st.candidates, "        ", candidate));
   const std::string t = o.text();
   std::ostringstream os;
@@ -148,9 +169,14 @@ std::string remaining(const analysis::DiagnosisResult& r) {
     std::vector<Disagreement> open;
     for (const auto& d : r.final_disagreements)
       if (d.signal == c.signal) open.push_back(d);
-    return Object().str("signal", c.signal).num("rms", c.final_rms).num("error_scale", c.error_scale)
-        .num("rms_over_scale", std::sqrt(c.final_misfit)).raw("within", c.within ? "true" : "false")
-        .raw("segments", list(open, "      ", disagreement)).text();
+    return Object()
+        .str("signal", c.signal)
+        .num("rms", c.final_rms)
+        .num("error_scale", c.error_scale)
+        .num("rms_over_scale", std::sqrt(c.final_misfit))
+        .raw("within", c.within ? "true" : "false")
+        .raw("segments", list(open, "      ", disagreement))
+        .text();
   });
 }
 
@@ -158,8 +184,11 @@ std::string backward_finding(const analysis::BackwardFinding& f) {
   Object o;
   o.str("effect", f.effect);
   if (!f.joint_with.empty()) o.raw("joint_with", strings(f.joint_with));
-  o.raw("parameters", object_of(f.parameters)).num("holdout_cost", f.holdout_cost)
-      .num("needed_gain", f.needed_gain).str("stand_in", f.stand_in).str("stand_in_move", f.stand_in_move);
+  o.raw("parameters", object_of(f.parameters))
+      .num("holdout_cost", f.holdout_cost)
+      .num("needed_gain", f.needed_gain)
+      .str("stand_in", f.stand_in)
+      .str("stand_in_move", f.stand_in_move);
   if (!f.withdrawn) o.str("kept_because", f.kept_because);
   return o.text();
 }

@@ -26,7 +26,6 @@ std::string diagnosis_json(const analysis::DiagnosisResult& r, const DiagnosisSe
 
 /// Writes diagnosis_json() to `path` through a temporary file and a rename (atomic_file.hpp).
 /// Throws InputError naming `path` if it cannot be written.
-void write_diagnosis_json(const std::string& path, const analysis::DiagnosisResult& r,
-                          const DiagnosisSentences& words);
+void write_diagnosis_json(const std::string& path, const analysis::DiagnosisResult& r, const DiagnosisSentences& words);
 
 }  // namespace shudder::io

@@ -33,9 +33,9 @@ void check_units(const MeasuredRun& run, std::vector<std::string>& warnings) {
     double top = 0;
     for (double x : *f) top = std::max(top, std::abs(x));
     if (top < 100.0)
-      throw InputError(run.path, 0, std::string(sn::kNormalForce),
-                       "the largest force is " + fmt(top) +
-                           " N, which looks like kN (the rig applies 1-30 kN); give newtons");
+      throw InputError(
+          run.path, 0, std::string(sn::kNormalForce),
+          "the largest force is " + fmt(top) + " N, which looks like kN (the rig applies 1-30 kN); give newtons");
     if (top < 500.0)
       warnings.push_back(run.path + ": the largest normal force is " + fmt(top) +
                          " N, far below the rig's 1-30 kN; is normal_force_N in newtons?");
@@ -82,8 +82,8 @@ void check_plausibility(const std::vector<MeasuredRun>& runs, const rig_models::
                            fmt(min_s) + " s); give a longer run");
     // Half-overlapping blocks: a run of D s holds 2D/L − 1 of them; the jitter needs 5.
     if (model.kind == ModelKind::kRig && run.duration_s() < 3.0 * statistics_block_s - 1e-9)
-      warnings.push_back(run.path + ": the run lasts " + fmt(run.duration_s()) + " s, under 3 torque statistics blocks of " +
-                         fmt(statistics_block_s) +
+      warnings.push_back(run.path + ": the run lasts " + fmt(run.duration_s()) +
+                         " s, under 3 torque statistics blocks of " + fmt(statistics_block_s) +
                          " s; the block jitter is not estimated and the torque scale is the noise alone");
     total_s += run.duration_s();
   }

@@ -11,8 +11,8 @@
 //                given twice): the hold-out would be fit data → exit 2.
 //   too short    a run shorter than 20 of the model's thermal steps (nothing thermal can be
 //                fitted) → exit 2; a rig run shorter than 3 statistics blocks (under 5
-//                half-overlapping blocks: the block jitter cannot be estimated) or all runs together shorter than 3 × the model's
-//                slowest enabled time constant (rig heat capacity C/G, sensor lag) → warning.
+//                half-overlapping blocks: the block jitter cannot be estimated) or all runs together shorter than 3 ×
+//                the model's slowest enabled time constant (rig heat capacity C/G, sensor lag) → warning.
 // Speed in rad/s under speed_rpm needs the model: analysis/diagnosis.cpp compares the measured
 // temperature rise with the baseline's.
 

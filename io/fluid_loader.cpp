@@ -52,7 +52,8 @@ constexpr int kMakiSpeedSamples = 256;
 // mu must lie in (0, kMaxPlausibleMu]; "" if it does, else what is wrong.
 std::string implausible_mu(double mu) {
   if (!(mu > 0.0))
-    return "gives mu = " + message_number(mu) + " <= 0 (friction would drive the sliding surfaces and "
+    return "gives mu = " + message_number(mu) +
+           " <= 0 (friction would drive the sliding surfaces and "
            "generate negative heat)";
   if (mu > kMaxPlausibleMu)
     return "gives mu = " + message_number(mu) + " > " + message_number(kMaxPlausibleMu) +
@@ -89,8 +90,8 @@ struct MakiSpeedSamples {
 // Rejects a [maki] set whose mu leaves (0, 1] anywhere in [vmin, vmax]. The matrix blends the
 // mu VALUES of its sets bilinearly in load and temperature (clamped at the ends), so mu at any
 // (T, F) is a convex combination of the sets' values: checking each set checks the whole law.
-void check_maki_set(TomlTable& row, const clutch::MakiSet& set, std::size_t j, double load_N,
-                    double temp_C, MakiSpeedSamples& speeds) {
+void check_maki_set(TomlTable& row, const clutch::MakiSet& set, std::size_t j, double load_N, double temp_C,
+                    MakiSpeedSamples& speeds) {
   const std::vector<double>& th = speeds.tanh_of(set.c2);
   for (std::size_t k = 0; k < speeds.v.size(); ++k) {
     const double mu = set.c1 * th[k] + set.c3 * speeds.v_pow[k] + set.c4;
@@ -107,36 +108,34 @@ void check_maki_set(TomlTable& row, const clutch::MakiSet& set, std::size_t j, d
 void require_increasing(TomlTable& t, const std::string& key, const std::vector<double>& axis) {
   for (std::size_t i = 1; i < axis.size(); ++i)
     if (!(axis[i] > axis[i - 1]))
-      t.fail(key, "element " + std::to_string(i) + " = " + message_number(axis[i]) +
-                      " is not greater than element " + std::to_string(i - 1) + " = " +
-                      message_number(axis[i - 1]) + "; values must be strictly increasing");
+      t.fail(key, "element " + std::to_string(i) + " = " + message_number(axis[i]) + " is not greater than element " +
+                      std::to_string(i - 1) + " = " + message_number(axis[i - 1]) +
+                      "; values must be strictly increasing");
 }
 
 // One row's `sets`: an array with one [C1, C2, C3, C4] per load, all finite numbers.
-std::vector<clutch::MakiSet> read_sets(TomlTable& row, const toml::table& raw_row,
-                                       const std::vector<double>& loads_N, double temp_C) {
-  const std::string shape = "expected an array of " + std::to_string(loads_N.size()) +
-                            " sets [C1, C2, C3, C4], one per load in maki.loads_N";
+std::vector<clutch::MakiSet> read_sets(TomlTable& row, const toml::table& raw_row, const std::vector<double>& loads_N,
+                                       double temp_C) {
+  const std::string shape =
+      "expected an array of " + std::to_string(loads_N.size()) + " sets [C1, C2, C3, C4], one per load in maki.loads_N";
   const toml::node* node = raw_row.get("sets");
   if (!node) row.fail("sets", "missing; " + shape);
   row.mark_read("sets");
   const toml::array* sets = node->as_array();
   if (!sets) row.fail("sets", "is " + std::string(toml_type_name(*node)) + "; " + shape);
   if (sets->size() != loads_N.size())
-    row.fail("sets", "has " + std::to_string(sets->size()) +
-                         " sets; expected one per load (" + std::to_string(loads_N.size()) +
-                         ") in the row at temp_C = " + message_number(temp_C));
+    row.fail("sets", "has " + std::to_string(sets->size()) + " sets; expected one per load (" +
+                         std::to_string(loads_N.size()) + ") in the row at temp_C = " + message_number(temp_C));
 
   std::vector<clutch::MakiSet> out;
   for (std::size_t j = 0; j < sets->size(); ++j) {
-    const std::string which =
-        "set " + std::to_string(j) + " (load " + message_number(loads_N[j]) + " N)";
+    const std::string which = "set " + std::to_string(j) + " (load " + message_number(loads_N[j]) + " N)";
     const toml::array* c = sets->get(j)->as_array();
-    if (!c) row.fail("sets", which + " is " + std::string(toml_type_name(*sets->get(j))) +
-                                 "; expected an array [C1, C2, C3, C4]");
+    if (!c)
+      row.fail("sets",
+               which + " is " + std::string(toml_type_name(*sets->get(j))) + "; expected an array [C1, C2, C3, C4]");
     if (c->size() != 4)
-      row.fail("sets", which + " has " + std::to_string(c->size()) +
-                           " numbers; expected 4 [C1, C2, C3, C4]");
+      row.fail("sets", which + " has " + std::to_string(c->size()) + " numbers; expected 4 [C1, C2, C3, C4]");
     double v[4] = {};
     for (std::size_t k = 0; k < 4; ++k) {
       const toml::node& e = *c->get(k);
@@ -147,8 +146,7 @@ std::vector<clutch::MakiSet> read_sets(TomlTable& row, const toml::table& raw_ro
         v[k] = static_cast<double>(i->get());
       else
         row.fail("sets", elem + " is " + std::string(toml_type_name(e)) + "; expected a finite number");
-      if (!std::isfinite(v[k]))
-        row.fail("sets", elem + " is not finite (nan/inf); expected a finite number");
+      if (!std::isfinite(v[k])) row.fail("sets", elem + " is not finite (nan/inf); expected a finite number");
     }
     out.push_back({v[0], v[1], v[2], v[3]});
   }
@@ -160,8 +158,8 @@ std::vector<clutch::MakiSet> read_sets(TomlTable& row, const toml::table& raw_ro
 double read_row_temp(TomlTable& row, std::vector<double>& temps) {
   const double t = row.number("temp_C", Range::closed(-273.15, 1000.0));
   if (!temps.empty() && !(t > temps.back()))
-    row.fail("temp_C", "value " + message_number(t) + " is not above the previous row's " + message_number(temps.back()) +
-                           "; rows must be strictly increasing in temp_C");
+    row.fail("temp_C", "value " + message_number(t) + " is not above the previous row's " +
+                           message_number(temps.back()) + "; rows must be strictly increasing in temp_C");
   temps.push_back(t);
   row.string_or("origin", "");
   return t;
@@ -171,8 +169,8 @@ std::shared_ptr<const clutch::FrictionLaw> read_maki(TomlTable& maki, const toml
   const double vmin = maki.number_or("min_speed_mm_s", kDefaultMinSpeed_mm_s, Range::positive());
   const double vmax = maki.number_or("max_speed_mm_s", kDefaultMaxSpeed_mm_s, Range::positive());
   if (!(vmax > vmin))
-    maki.fail("max_speed_mm_s", "value " + message_number(vmax) + " must exceed min_speed_mm_s = " +
-                                    message_number(vmin));
+    maki.fail("max_speed_mm_s",
+              "value " + message_number(vmax) + " must exceed min_speed_mm_s = " + message_number(vmin));
   const std::vector<double> loads = maki.numbers("loads_N", Range::positive());
   require_increasing(maki, "loads_N", loads);
 
@@ -187,8 +185,7 @@ std::shared_ptr<const clutch::FrictionLaw> read_maki(TomlTable& maki, const toml
     TomlTable& row = rows[i];
     const double t = read_row_temp(row, temps);
     const auto row_sets = read_sets(row, *raw_rows.get(i)->as_table(), loads, t);
-    for (std::size_t j = 0; j < row_sets.size(); ++j)
-      check_maki_set(row, row_sets[j], j, loads[j], t, speeds);
+    for (std::size_t j = 0; j < row_sets.size(); ++j) check_maki_set(row, row_sets[j], j, loads[j], t, speeds);
     sets.insert(sets.end(), row_sets.begin(), row_sets.end());
     row.finish();
   }
@@ -209,8 +206,10 @@ std::shared_ptr<const clutch::FrictionLaw> read_linear(TomlTable& lin) {
   const std::vector<double> beta = lin.numbers("beta");
   for (const auto& [key, v] : {std::pair{"alpha_per_C", &alpha}, std::pair{"beta", &beta}})
     if (v->size() != rpm.size())
-      lin.fail(key, "has " + std::to_string(v->size()) + " elements; expected one per speed in "
-                    "speeds_rpm (" + std::to_string(rpm.size()) + ")");
+      lin.fail(key, "has " + std::to_string(v->size()) +
+                        " elements; expected one per speed in "
+                        "speeds_rpm (" +
+                        std::to_string(rpm.size()) + ")");
   // mu in (0, 1] over the checked temperatures. Between speeds mu is a convex blend of two
   // lines (weights in [0, 1]) and held beyond the ends, so each line at the two temperature
   // ends covers the whole law exactly.
@@ -220,8 +219,9 @@ std::shared_ptr<const clutch::FrictionLaw> read_linear(TomlTable& lin) {
       if (!what.empty())
         lin.fail("beta", "the line at speed " + message_number(rpm[i]) + " rpm (alpha_per_C[" + std::to_string(i) +
                              "] * T + beta[" + std::to_string(i) + "]) " + what + " at temperature " +
-                             message_number(t) + " °C (any load); mu must lie in (0, " + message_number(kMaxPlausibleMu) +
-                             "] from " + message_number(kLinearCheckLow_C) + " to " + message_number(kLinearCheckHigh_C) + " °C");
+                             message_number(t) + " °C (any load); mu must lie in (0, " +
+                             message_number(kMaxPlausibleMu) + "] from " + message_number(kLinearCheckLow_C) + " to " +
+                             message_number(kLinearCheckHigh_C) + " °C");
     }
   lin.finish();
 
@@ -251,8 +251,9 @@ std::vector<std::vector<double>> read_mu_grid(TomlTable& row, const toml::table&
   std::vector<std::vector<double>> out;
   for (std::size_t j = 0; j < outer->size(); ++j) {
     const toml::array* inner = outer->get(j)->as_array();
-    if (!inner) row.fail("mu", "element " + std::to_string(j) + " is " +
-                                   std::string(toml_type_name(*outer->get(j))) + "; " + shape);
+    if (!inner)
+      row.fail("mu",
+               "element " + std::to_string(j) + " is " + std::string(toml_type_name(*outer->get(j))) + "; " + shape);
     std::vector<double> values;
     for (std::size_t k = 0; k < inner->size(); ++k) {
       const toml::node& e = *inner->get(k);
@@ -288,13 +289,17 @@ std::shared_ptr<const clutch::FrictionLaw> read_table(TomlTable& tab, const toml
     read_row_temp(row, temps);
     const std::vector<std::vector<double>> grid = read_mu_grid(row, *raw_rows.get(i)->as_table());
     if (grid.size() != loads.size())
-      row.fail("mu", "has " + std::to_string(grid.size()) + " arrays; expected one per load in "
-                     "table.loads_N (" + std::to_string(loads.size()) + ")");
+      row.fail("mu", "has " + std::to_string(grid.size()) +
+                         " arrays; expected one per load in "
+                         "table.loads_N (" +
+                         std::to_string(loads.size()) + ")");
     for (std::size_t j = 0; j < grid.size(); ++j) {
       if (grid[j].size() != speeds.size())
         row.fail("mu", "array " + std::to_string(j) + " (load " + message_number(loads[j]) + " N) has " +
-                           std::to_string(grid[j].size()) + " values; expected one per speed in "
-                           "table.speeds_mm_s (" + std::to_string(speeds.size()) + ")");
+                           std::to_string(grid[j].size()) +
+                           " values; expected one per speed in "
+                           "table.speeds_mm_s (" +
+                           std::to_string(speeds.size()) + ")");
       for (std::size_t k = 0; k < speeds.size(); ++k) {
         const std::string what = implausible_mu(grid[j][k]);
         if (!what.empty())
@@ -347,8 +352,9 @@ clutch::Fluid read_fluid(const toml::table& doc, const std::string& path) {
   }
 
   // Exactly one friction law.
-  const char* kLaws = "[maki] (Paper G matrix), [linear] (Papers B/C/E lines) or [table] "
-                      "(mu on a speed x temperature x load grid)";
+  const char* kLaws =
+      "[maki] (Paper G matrix), [linear] (Papers B/C/E lines) or [table] "
+      "(mu on a speed x temperature x load grid)";
   const int n_laws = int(root.has("maki")) + int(root.has("linear")) + int(root.has("table"));
   if (n_laws > 1)
     root.fail(root.has("maki") && root.has("linear") ? "linear" : "table",

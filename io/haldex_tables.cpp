@@ -6,11 +6,13 @@ void read_haldex_hydraulics(TomlTable& h, rig_models::HaldexHydraulicsParams& hp
   // A first-generation coupling; the lumped keys of a generation-mixing model are refused with
   // what replaces them.
   if (h.has("torque_per_bar_Nm"))
-    h.fail("torque_per_bar_Nm", "was a later generation's figure; the Gen I coupling's torque per bar follows "
-                                "from piston_area_cm2 and the pack (the clutch's interfaces and radii)");
+    h.fail("torque_per_bar_Nm",
+           "was a later generation's figure; the Gen I coupling's torque per bar follows "
+           "from piston_area_cm2 and the pack (the clutch's interfaces and radii)");
   if (h.has("leak_time_constant_s"))
-    h.fail("leak_time_constant_s", "is replaced by the throttle valve (valve_area_mm2, the controller's opening) "
-                                   "and the leakage leak_cm3_s_per_bar over the compliance");
+    h.fail("leak_time_constant_s",
+           "is replaced by the throttle valve (valve_area_mm2, the controller's opening) "
+           "and the leakage leak_cm3_s_per_bar over the compliance");
   const auto positive = [&](const char* key, double& v) { v = h.number_or(key, v, Range::positive()); };
   hp.relief_pressure_bar = h.number_or("relief_pressure_bar", hp.relief_pressure_bar, Range::closed(1.0, 200.0));
   positive("piston_area_cm2", hp.piston_area_cm2);
@@ -19,11 +21,13 @@ void read_haldex_hydraulics(TomlTable& h, rig_models::HaldexHydraulicsParams& hp
   positive("bulk_modulus_bar", hp.bulk_modulus_bar);
   positive("pack_stiffness_N_per_mm", hp.pack_stiffness_N_per_mm);
   hp.valve_area_mm2 = h.number_or("valve_area_mm2", hp.valve_area_mm2, Range::non_negative());
-  hp.discharge_coefficient = h.number_or("discharge_coefficient", hp.discharge_coefficient, Range{0.0, 1.0, true, false});
+  hp.discharge_coefficient =
+      h.number_or("discharge_coefficient", hp.discharge_coefficient, Range{0.0, 1.0, true, false});
   hp.leak_cm3_s_per_bar = h.number_or("leak_cm3_s_per_bar", hp.leak_cm3_s_per_bar, Range::non_negative());
   positive("oil_density_kg_m3", hp.oil_density_kg_m3);
   hp.preload_torque_Nm = h.number_or("preload_torque_Nm", hp.preload_torque_Nm, Range::non_negative());
-  hp.valve_time_constant_ms = h.number_or("valve_time_constant_ms", hp.valve_time_constant_ms, Range{0.0, 1e4, true, false});
+  hp.valve_time_constant_ms =
+      h.number_or("valve_time_constant_ms", hp.valve_time_constant_ms, Range{0.0, 1e4, true, false});
   h.finish();
 }
 

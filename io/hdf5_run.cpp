@@ -41,11 +41,9 @@ constexpr unsigned kMaxCompactLinks = 64;
 // A group whose links remember creation order, so readers can return them in write order.
 Handle make_group(hid_t parent, const std::string& name) {
   const Handle gcpl = own(H5Pcreate(H5P_GROUP_CREATE), H5Pclose, "create property list");
-  ok(H5Pset_link_creation_order(gcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED),
-     "track creation order");
+  ok(H5Pset_link_creation_order(gcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED), "track creation order");
   ok(H5Pset_link_phase_change(gcpl, kMaxCompactLinks, kMaxCompactLinks * 3 / 4), "set compact link storage");
-  return own(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, gcpl, H5P_DEFAULT), H5Gclose,
-             "create group '" + name + "'");
+  return own(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, gcpl, H5P_DEFAULT), H5Gclose, "create group '" + name + "'");
 }
 
 // Datasets of at least this many values (512 kB) are chunked and compressed; below it deflate
@@ -66,7 +64,8 @@ constexpr unsigned kDeflateLevel = 4;
 Handle creation_properties(const std::vector<hsize_t>& dims, hsize_t count, bool compress) {
   // Contiguous: the library's default list, which is not ours to close (a list of our own per
   // dataset cost a create and a close each, ≈ 2 % of a short run).
-  if (!compress || dims.empty() || count < kCompressFromValues) return Handle(H5P_DEFAULT, [](hid_t) -> herr_t { return 0; });
+  if (!compress || dims.empty() || count < kCompressFromValues)
+    return Handle(H5P_DEFAULT, [](hid_t) -> herr_t { return 0; });
   Handle dcpl = own(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "create dataset properties");
   const hsize_t row = count / dims.front();  // values per index of the first axis
   std::vector<hsize_t> chunk = dims;
@@ -78,21 +77,18 @@ Handle creation_properties(const std::vector<hsize_t>& dims, hsize_t count, bool
 }
 
 // A double dataset of shape `dims` (empty = scalar), row-major `data`, with a `units` attribute.
-void write_doubles(hid_t parent, const std::string& name, const std::vector<hsize_t>& dims,
-                   const double* data, const std::string& units, bool compress = true) {
-  const Handle space =
-      dims.empty() ? own(H5Screate(H5S_SCALAR), H5Sclose, "create dataspace")
-                   : own(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
-                         H5Sclose, "create dataspace for '" + name + "'");
+void write_doubles(hid_t parent, const std::string& name, const std::vector<hsize_t>& dims, const double* data,
+                   const std::string& units, bool compress = true) {
+  const Handle space = dims.empty() ? own(H5Screate(H5S_SCALAR), H5Sclose, "create dataspace")
+                                    : own(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
+                                          H5Sclose, "create dataspace for '" + name + "'");
   hsize_t count = 1;
   for (hsize_t d : dims) count *= d;
   const Handle dcpl = creation_properties(dims, count, compress);
-  const Handle dset = own(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT,
-                                     dcpl, H5P_DEFAULT),
+  const Handle dset = own(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT),
                           H5Dclose, "create dataset '" + name + "'");
   if (count > 0)
-    ok(H5Dwrite(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
-       "write dataset '" + name + "'");
+    ok(H5Dwrite(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "write dataset '" + name + "'");
   write_string_attr(dset, "units", units);
 }
 
@@ -107,9 +103,7 @@ std::string utc_now_iso8601() {
 
 // Checks everything that can be checked before touching the disk.
 void validate(const std::string& path, const Recording& rec) {
-  const auto bad = [&](const std::string& key, const std::string& msg) {
-    throw InputError(path, 0, key, msg);
-  };
+  const auto bad = [&](const std::string& key, const std::string& msg) { throw InputError(path, 0, key, msg); };
   const auto check_names = [&](const auto& items, const char* what) {
     std::set<std::string> seen;
     for (const auto& item : items) {
@@ -122,9 +116,8 @@ void validate(const std::string& path, const Recording& rec) {
   check_names(rec.scalars, "scalar");
   for (const auto& s : rec.signals)
     if (s.values.size() != rec.signals.front().values.size())
-      bad(s.name, "signal has " + std::to_string(s.values.size()) + " samples but '" +
-                      rec.signals.front().name + "' has " +
-                      std::to_string(rec.signals.front().values.size()) +
+      bad(s.name, "signal has " + std::to_string(s.values.size()) + " samples but '" + rec.signals.front().name +
+                      "' has " + std::to_string(rec.signals.front().values.size()) +
                       "; all signals must have the same length");
   check_names(rec.maps, "map");
   for (const auto& m : rec.maps) {
@@ -145,8 +138,7 @@ void validate(const std::string& path, const Recording& rec) {
       if (axis->empty()) bad(where, "map axes must have at least one value");
     if (m.layers.empty()) bad(where, "a map needs at least one layer of values");
     for (const auto& l : m.layers)
-      if (l.values.rows() != static_cast<long>(m.x.size()) ||
-          l.values.cols() != static_cast<long>(m.y.size()))
+      if (l.values.rows() != static_cast<long>(m.x.size()) || l.values.cols() != static_cast<long>(m.y.size()))
         bad(where + "/" + l.name, "layer is " + std::to_string(l.values.rows()) + " x " +
                                       std::to_string(l.values.cols()) + " but the grid is " +
                                       std::to_string(m.x.size()) + " (" + m.x_name + ") x " +
@@ -159,7 +151,8 @@ void validate(const std::string& path, const Recording& rec) {
     if (b.name == "summary" || rec.find_map(b.name)) bad(where, "result block name is taken by the summary or a map");
     std::set<std::string> datasets, texts{"description"};
     for (const auto& sc : b.scalars)
-      if (sc.name.empty() || sc.name == "." || sc.name.find('/') != std::string::npos || !datasets.insert(sc.name).second)
+      if (sc.name.empty() || sc.name == "." || sc.name.find('/') != std::string::npos ||
+          !datasets.insert(sc.name).second)
         bad(where, "scalar name '" + sc.name + "' must be non-empty, unique and contain no '/'");
     for (const auto& t : b.texts)
       if (t.name.empty() || !texts.insert(t.name).second)
@@ -173,18 +166,16 @@ void validate(const std::string& path, const Recording& rec) {
         (!rec.grid_r_m.empty() && snap.temp_C.cols() != static_cast<long>(rec.grid_r_m.size())))
       bad("thermal/temp_C", "snapshot shape " + std::to_string(snap.temp_C.rows()) + " x " +
                                 std::to_string(snap.temp_C.cols()) + " does not match grid " +
-                                std::to_string(rec.grid_z_m.size()) + " (z) x " +
-                                std::to_string(rec.grid_r_m.size()) + " (r)");
+                                std::to_string(rec.grid_z_m.size()) + " (z) x " + std::to_string(rec.grid_r_m.size()) +
+                                " (r)");
   }
 }
 
 void write_thermal(hid_t file, const Recording& rec) {
   if (rec.grid_r_m.empty() && rec.grid_z_m.empty() && rec.snapshots.empty()) return;
   const Handle thermal = make_group(file, "thermal");
-  if (!rec.grid_r_m.empty())
-    write_doubles(thermal, "r_m", {rec.grid_r_m.size()}, rec.grid_r_m.data(), "m");
-  if (!rec.grid_z_m.empty())
-    write_doubles(thermal, "z_m", {rec.grid_z_m.size()}, rec.grid_z_m.data(), "m");
+  if (!rec.grid_r_m.empty()) write_doubles(thermal, "r_m", {rec.grid_r_m.size()}, rec.grid_r_m.data(), "m");
+  if (!rec.grid_z_m.empty()) write_doubles(thermal, "z_m", {rec.grid_z_m.size()}, rec.grid_z_m.data(), "m");
   if (rec.snapshots.empty()) return;
   // Flatten to (n_snap x n_z x n_r), row-major (Eigen's own storage is column-major).
   const auto n_snap = rec.snapshots.size();
@@ -195,8 +186,7 @@ void write_thermal(hid_t file, const Recording& rec) {
     times[k] = rec.snapshots[k].time_s;
     for (std::size_t i = 0; i < n_z; ++i)
       for (std::size_t j = 0; j < n_r; ++j)
-        temps[(k * n_z + i) * n_r + j] =
-            rec.snapshots[k].temp_C(static_cast<long>(i), static_cast<long>(j));
+        temps[(k * n_z + i) * n_r + j] = rec.snapshots[k].temp_C(static_cast<long>(i), static_cast<long>(j));
   }
   write_doubles(thermal, "times_s", {n_snap}, times.data(), "s");
   write_doubles(thermal, "temp_C", {n_snap, n_z, n_r}, temps.data(), "degC");
@@ -270,11 +260,9 @@ std::optional<std::string> read_string_attr(hid_t obj, const std::string& name) 
   const htri_t exists = H5Aexists(obj, name.c_str());
   ok(exists, "look up attribute '" + name + "'");
   if (exists == 0) return std::nullopt;
-  const Handle attr =
-      own(H5Aopen(obj, name.c_str(), H5P_DEFAULT), H5Aclose, "open attribute '" + name + "'");
+  const Handle attr = own(H5Aopen(obj, name.c_str(), H5P_DEFAULT), H5Aclose, "open attribute '" + name + "'");
   const Handle file_type = own(H5Aget_type(attr), H5Tclose, "read type of '" + name + "'");
-  if (H5Tget_class(file_type) != H5T_STRING)
-    throw Failure("attribute '" + name + "' is not a string");
+  if (H5Tget_class(file_type) != H5T_STRING) throw Failure("attribute '" + name + "' is not a string");
   return read_string_value(attr, file_type, name);
 }
 
@@ -285,27 +273,23 @@ struct Array {
 };
 
 Array read_doubles(hid_t parent, const std::string& name) {
-  const Handle dset =
-      own(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), H5Dclose, "open dataset '" + name + "'");
+  const Handle dset = own(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), H5Dclose, "open dataset '" + name + "'");
   {
     const Handle type = own(H5Dget_type(dset), H5Tclose, "read type of '" + name + "'");
     const H5T_class_t cls = H5Tget_class(type);
-    if (cls != H5T_FLOAT && cls != H5T_INTEGER)
-      throw Failure("dataset '" + name + "' is not numeric");
+    if (cls != H5T_FLOAT && cls != H5T_INTEGER) throw Failure("dataset '" + name + "' is not numeric");
   }
   const Handle space = own(H5Dget_space(dset), H5Sclose, "read shape of '" + name + "'");
   const int rank = H5Sget_simple_extent_ndims(space);
   if (rank < 0) throw Failure("cannot read shape of '" + name + "'" + hdf5_reason());
   Array a;
   a.dims.resize(static_cast<std::size_t>(rank));
-  if (rank > 0)
-    ok(H5Sget_simple_extent_dims(space, a.dims.data(), nullptr), "read shape of '" + name + "'");
+  if (rank > 0) ok(H5Sget_simple_extent_dims(space, a.dims.data(), nullptr), "read shape of '" + name + "'");
   hsize_t count = 1;
   for (hsize_t d : a.dims) count *= d;
   a.values.resize(count);
   if (count > 0)
-    ok(H5Dread(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, a.values.data()),
-       "read dataset '" + name + "'");
+    ok(H5Dread(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, a.values.data()), "read dataset '" + name + "'");
   a.units = read_string_attr(dset, "units").value_or("");
   return a;
 }
@@ -317,9 +301,8 @@ void read_signals(hid_t file, Recording& rec) {
     Array a = read_doubles(group, name);
     if (a.dims.size() != 1) throw Failure("signal '" + name + "' is not 1-D");
     if (!rec.signals.empty() && a.values.size() != rec.signals.front().values.size())
-      throw Failure("signal '" + name + "' has " + std::to_string(a.values.size()) +
-                    " samples but '" + rec.signals.front().name + "' has " +
-                    std::to_string(rec.signals.front().values.size()));
+      throw Failure("signal '" + name + "' has " + std::to_string(a.values.size()) + " samples but '" +
+                    rec.signals.front().name + "' has " + std::to_string(rec.signals.front().values.size()));
     rec.signals.push_back({name, std::move(a.units), std::move(a.values)});
   }
   std::stable_partition(rec.signals.begin(), rec.signals.end(),
@@ -353,8 +336,7 @@ void read_scalars(hid_t file, Recording& rec) {
   if (!has_link(file, "analysis")) return;
   const Handle analysis = own(H5Gopen2(file, "analysis", H5P_DEFAULT), H5Gclose, "open /analysis");
   if (!has_link(analysis, "summary")) return;
-  const Handle summary =
-      own(H5Gopen2(analysis, "summary", H5P_DEFAULT), H5Gclose, "open /analysis/summary");
+  const Handle summary = own(H5Gopen2(analysis, "summary", H5P_DEFAULT), H5Gclose, "open /analysis/summary");
   for (const auto& name : link_names(summary)) {
     Array a = read_doubles(summary, name);
     if (a.values.size() != 1) throw Failure("summary value '" + name + "' is not a scalar");
@@ -390,8 +372,10 @@ dynamics::ResultBlock read_block(hid_t group, const std::string& name) {
       if (H5Tget_class(type) != H5T_STRING) continue;
     }
     std::string value = read_string_attr(group, attr).value_or("");
-    if (attr == "description") b.description = std::move(value);
-    else b.texts.push_back({attr, std::move(value)});
+    if (attr == "description")
+      b.description = std::move(value);
+    else
+      b.texts.push_back({attr, std::move(value)});
   }
   for (const auto& dname : link_names(group)) {
     const Handle obj = own(H5Oopen(group, dname.c_str(), H5P_DEFAULT), H5Oclose, "open " + where + "/" + dname);
@@ -413,12 +397,10 @@ void read_maps(hid_t file, Recording& rec) {
   for (const auto& name : link_names(analysis)) {
     if (name == "summary") continue;
     {
-      const Handle obj = own(H5Oopen(analysis, name.c_str(), H5P_DEFAULT), H5Oclose,
-                             "open /analysis/" + name);
+      const Handle obj = own(H5Oopen(analysis, name.c_str(), H5P_DEFAULT), H5Oclose, "open /analysis/" + name);
       if (H5Iget_type(obj) != H5I_GROUP) continue;
     }
-    const Handle group = own(H5Gopen2(analysis, name.c_str(), H5P_DEFAULT), H5Gclose,
-                             "open /analysis/" + name);
+    const Handle group = own(H5Gopen2(analysis, name.c_str(), H5P_DEFAULT), H5Gclose, "open /analysis/" + name);
     const auto x_name = read_string_attr(group, "x"), y_name = read_string_attr(group, "y");
     if (!x_name || !y_name) {
       rec.blocks.push_back(read_block(group, name));
@@ -446,14 +428,12 @@ void read_maps(hid_t file, Recording& rec) {
         continue;
       }
       if (a.dims.size() != 2 || a.dims[0] != m.x.size() || a.dims[1] != m.y.size())
-        throw Failure(where + "/" + dname + ": a map layer must be (n_x x n_y) = (" +
-                      std::to_string(m.x.size()) + " x " + std::to_string(m.y.size()) + ")");
+        throw Failure(where + "/" + dname + ": a map layer must be (n_x x n_y) = (" + std::to_string(m.x.size()) +
+                      " x " + std::to_string(m.y.size()) + ")");
       // Row-major (n_x x n_y) in the file.
       m.layers.push_back({dname, std::move(a.units),
-                          Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic,
-                                                         Eigen::RowMajor>>(
-                              a.values.data(), static_cast<long>(a.dims[0]),
-                              static_cast<long>(a.dims[1]))});
+                          Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+                              a.values.data(), static_cast<long>(a.dims[0]), static_cast<long>(a.dims[1]))});
     }
     rec.maps.push_back(std::move(m));
   }
@@ -462,8 +442,7 @@ void read_maps(hid_t file, Recording& rec) {
 // Opens `path` read-only after checking it exists and is HDF5; throws InputError otherwise.
 Handle open_for_reading(const std::string& path) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError(path, 0, "", "cannot read run file: no such file");
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, 0, "", "cannot read run file: no such file");
   if (H5Fis_hdf5(path.c_str()) <= 0)
     throw InputError(path, 0, "", "cannot read run file: not an HDF5 file" + hdf5_reason());
   try {
@@ -475,9 +454,8 @@ Handle open_for_reading(const std::string& path) {
 
 }  // namespace
 
-void write_run_hdf5(const std::string& path, const Recording& rec,
-                    const std::string& scenario_text, const std::string& fluid_text,
-                    RunCompression compression) {
+void write_run_hdf5(const std::string& path, const Recording& rec, const std::string& scenario_text,
+                    const std::string& fluid_text, RunCompression compression) {
   validate(path, rec);
   const bool deflate = compression == RunCompression::kDeflate;
   write_file_atomically(path, "run file",
@@ -515,8 +493,7 @@ namespace detail {
 long open_hdf5_identifiers() {
   const QuietHdf5 quiet;
   long total = 0;
-  for (H5I_type_t type :
-       {H5I_FILE, H5I_GROUP, H5I_DATATYPE, H5I_DATASPACE, H5I_DATASET, H5I_ATTR, H5I_GENPROP_LST}) {
+  for (H5I_type_t type : {H5I_FILE, H5I_GROUP, H5I_DATATYPE, H5I_DATASPACE, H5I_DATASET, H5I_ATTR, H5I_GENPROP_LST}) {
     hsize_t n = 0;
     if (H5Inmembers(type, &n) >= 0) total += static_cast<long>(n);
   }
@@ -583,19 +560,21 @@ void write_sweep_file(const std::string& file_name, const SweepOutput& sw) {
 void write_sweep_hdf5(const std::string& path, const SweepOutput& sweep) {
   const std::size_t n = sweep.text_column.size();
   if (sweep.message_column.size() != n)
-    throw InputError(path, 0, "", "sweep message column has " + std::to_string(sweep.message_column.size()) +
-                                      " rows, expected " + std::to_string(n));
+    throw InputError(path, 0, "",
+                     "sweep message column has " + std::to_string(sweep.message_column.size()) + " rows, expected " +
+                         std::to_string(n));
   for (const auto& c : sweep.columns)
     if (c.values.size() != n)
-      throw InputError(path, 0, "", "sweep column '" + c.name + "' has " + std::to_string(c.values.size()) +
-                                        " rows, expected " + std::to_string(n));
+      throw InputError(path, 0, "",
+                       "sweep column '" + c.name + "' has " + std::to_string(c.values.size()) + " rows, expected " +
+                           std::to_string(n));
   write_file_atomically(path, "sweep file", [&](const std::string& tmp) { write_sweep_file(tmp, sweep); });
 }
 
 void write_failed_case_part(const std::string& path, const std::string& scenario_text, const std::string& message) {
   write_file_atomically(path, "sweep part", [&](const std::string& tmp) {
-    Handle file = own(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
-                      "create file '" + tmp + "'");
+    Handle file =
+        own(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose, "create file '" + tmp + "'");
     write_string_attr(file, "scenario", scenario_text);
     write_string_attr(file, kSweepMessageColumn, message);
     write_string_attr(file, "shudder_version", SHUDDER_VERSION);

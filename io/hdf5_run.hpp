@@ -39,9 +39,8 @@ namespace shudder::io {
 /// Signals are deflated (RunCompression::kDeflate) unless the file is a scratch copy read back at
 /// once (a sweep's part files: kNone, where deflate costs ~25 % of a short case's time).
 enum class RunCompression { kDeflate, kNone };
-void write_run_hdf5(const std::string& path, const dynamics::Recording& rec,
-                    const std::string& scenario_text, const std::string& fluid_text = "",
-                    RunCompression compression = RunCompression::kDeflate);
+void write_run_hdf5(const std::string& path, const dynamics::Recording& rec, const std::string& scenario_text,
+                    const std::string& fluid_text = "", RunCompression compression = RunCompression::kDeflate);
 
 /// Reads a file written by write_run_hdf5 (or any file with the same layout). Signals come in
 /// file order with `time_s` moved first; a missing `units` attribute reads as "". Throws

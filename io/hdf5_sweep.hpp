@@ -30,8 +30,8 @@ struct SweepColumn {
 
 struct SweepOutput {
   std::string base_scenario_text;
-  std::string fluid_text;                            // the base scenario's fluid file; "" = none
-  std::vector<SweepColumn> columns;                  // swept keys first, then results
+  std::string fluid_text;            // the base scenario's fluid file; "" = none
+  std::vector<SweepColumn> columns;  // swept keys first, then results
   std::string text_column_name = "simulated_verdict";
   std::vector<std::string> text_column;              // (n_cases)
   std::vector<std::string> message_column;           // (n_cases) "" unless the case failed

@@ -46,8 +46,7 @@ std::vector<std::string> link_names(hid_t group) {
   }
   std::vector<std::string> names;
   for (hsize_t i = 0; i < info.nlinks; ++i) {
-    const ssize_t len =
-        H5Lget_name_by_idx(group, ".", index, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
+    const ssize_t len = H5Lget_name_by_idx(group, ".", index, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
     if (len < 0) throw Error("cannot read link name" + hdf5_reason());
     std::vector<char> buf(static_cast<std::size_t>(len) + 1, '\0');
     H5Lget_name_by_idx(group, ".", index, H5_ITER_INC, i, buf.data(), buf.size(), H5P_DEFAULT);
@@ -66,8 +65,8 @@ Handle vlen_string_type() {
 void write_string_attr(hid_t obj, const std::string& name, const std::string& value) {
   const Handle type = vlen_string_type();
   const Handle space = own(H5Screate(H5S_SCALAR), H5Sclose, "create dataspace");
-  const Handle attr = own(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT),
-                          H5Aclose, "create attribute '" + name + "'");
+  const Handle attr = own(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+                          "create attribute '" + name + "'");
   const char* text = value.c_str();
   ok(H5Awrite(attr, type, &text), "write attribute '" + name + "'");
 }

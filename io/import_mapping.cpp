@@ -63,10 +63,9 @@ const std::vector<Alias>& aliases() {
 // Unit suffixes of logger names ("force_kN"): the spelling after the last '_' and the unit.
 const std::vector<std::pair<std::string, std::string>>& unit_suffixes() {
   static const std::vector<std::pair<std::string, std::string>> s = {
-      {"ms", "ms"},       {"s", "s"},        {"rpm", "rpm"},     {"RPM", "rpm"},   {"rad_s", "rad/s"},
-      {"rads", "rad/s"},  {"kN", "kN"},      {"KN", "kN"},       {"N", "N"},       {"kNm", "kN m"},
-      {"kN_m", "kN m"},   {"Nm", "N m"},     {"N_m", "N m"},     {"C", "degC"},    {"degC", "degC"},
-      {"K", "K"}};
+      {"ms", "ms"},   {"s", "s"},    {"rpm", "rpm"},   {"RPM", "rpm"},  {"rad_s", "rad/s"}, {"rads", "rad/s"},
+      {"kN", "kN"},   {"KN", "kN"},  {"N", "N"},       {"kNm", "kN m"}, {"kN_m", "kN m"},   {"Nm", "N m"},
+      {"N_m", "N m"}, {"C", "degC"}, {"degC", "degC"}, {"K", "K"}};
   return s;
 }
 
@@ -123,8 +122,9 @@ void check_mapping(const ColumnMapping& m, const std::string& where, long line, 
                          (near.empty() ? "" : " (did you mean '" + near + "'?)") + "; allowed: " + target_list());
   }
   if (!m.unit.empty() && !find_import_unit(*target, m.unit))
-    throw InputError(where, line, key,
-                     "unit '" + m.unit + "' is not one " + m.target + " can be logged in; allowed: " + unit_list(*target));
+    throw InputError(
+        where, line, key,
+        "unit '" + m.unit + "' is not one " + m.target + " can be logged in; allowed: " + unit_list(*target));
 }
 
 // "TARGET:UNIT" or "TARGET" into `m`.
@@ -138,9 +138,8 @@ void split_target(const std::string& text, ColumnMapping& m) {
 
 std::string map_option_text(const std::string& source, const std::string& target, const std::string& unit) {
   const std::string spec = source + "=" + target + ":" + unit;
-  const bool plain = std::all_of(source.begin(), source.end(), [](unsigned char c) {
-    return std::isalnum(c) || c == '_' || c == '.' || c == '-';
-  });
+  const bool plain = std::all_of(source.begin(), source.end(),
+                                 [](unsigned char c) { return std::isalnum(c) || c == '_' || c == '.' || c == '-'; });
   if (plain) return "--map " + spec;
   std::string quoted = "'";
   for (const char c : spec) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
@@ -152,8 +151,9 @@ ColumnMapping parse_map_option(const std::string& spec) {
   const auto eq = spec.find('=');
   if (eq == std::string::npos || eq == 0 || eq + 1 == spec.size())
     throw InputError("--map", 0, "",
-                     "'" + spec + "' is not SOURCE=TARGET:UNIT; e.g. --map force_kN=normal_force_N:kN (the unit may be "
-                                  "left out when the column is in the target's own unit)");
+                     "'" + spec +
+                         "' is not SOURCE=TARGET:UNIT; e.g. --map force_kN=normal_force_N:kN (the unit may be "
+                         "left out when the column is in the target's own unit)");
   ColumnMapping m;
   m.source = spec.substr(0, eq);
   split_target(spec.substr(eq + 1), m);
@@ -167,8 +167,7 @@ std::pair<std::string, std::string> parse_meta_option(const std::string& spec) {
   if (eq == std::string::npos || eq == 0)
     throw InputError("--meta", 0, "", "'" + spec + "' is not KEY=VALUE; e.g. --meta oil_flow_ml_min=200");
   std::string key = spec.substr(0, eq);
-  if (key == "format")
-    throw InputError("--meta", 0, "", "'format' is written by the import itself; give other keys");
+  if (key == "format") throw InputError("--meta", 0, "", "'format' is written by the import itself; give other keys");
   return {key, spec.substr(eq + 1)};
 }
 
@@ -246,7 +245,8 @@ void read_import_mapping(const std::string& path, ImportSpec& spec) {
         throw InputError(path, line_of(value), "metadata." + k, "must be a string or a number");
       }
       if (k == "format") throw InputError(path, line_of(value), "metadata.format", "is written by the import itself");
-      const bool given = std::any_of(spec.metadata.begin(), spec.metadata.end(), [&](const auto& kv) { return kv.first == k; });
+      const bool given =
+          std::any_of(spec.metadata.begin(), spec.metadata.end(), [&](const auto& kv) { return kv.first == k; });
       if (!given) spec.metadata.emplace_back(k, v);
     }
   }
@@ -263,8 +263,8 @@ std::optional<ColumnMapping> automatic_mapping(const std::string& name) {
   using namespace import_mapping_impl;
   std::string base = name, unit;
   // "time [ms]", "force (kN)", "torque / N m"
-  if (const auto open = name.find_first_of("[("); open != std::string::npos && open > 0 &&
-                                                  (name.back() == ']' || name.back() == ')')) {
+  if (const auto open = name.find_first_of("[(");
+      open != std::string::npos && open > 0 && (name.back() == ']' || name.back() == ')')) {
     base = name.substr(0, open);
     unit = name.substr(open + 1, name.size() - open - 2);
   } else if (const auto slash = name.find(" / "); slash != std::string::npos) {

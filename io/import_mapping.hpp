@@ -21,8 +21,8 @@ struct ImportUnit {
 /// One measured-run column an import can write, with the units it may be logged in (the first
 /// is the column's own unit).
 struct ImportTarget {
-  std::string column;                // "normal_force_N"
-  std::string quantity;              // "normal force"
+  std::string column;    // "normal_force_N"
+  std::string quantity;  // "normal force"
   bool required = false;
   std::vector<ImportUnit> units;
 };

@@ -68,15 +68,18 @@ void check_unit_plausible(const std::string& file, const ColumnMapping& mapping,
     if (unit.name == "N" && hi > 0.0 && hi < 200.0) fail("forces of at most " + g4(hi) + " N", "kN");
     if (unit.name == "kN" && hi > 1e6) fail("forces up to " + g4(hi / 1e3) + " kN", "N");
   } else if (col == "torque_Nm") {
-    if (unit.name == "kN m" && max_abs(values) > 1e5) fail("torques up to " + g4(max_abs(values) / 1e3) + " kN m", "N m");
+    if (unit.name == "kN m" && max_abs(values) > 1e5)
+      fail("torques up to " + g4(max_abs(values) / 1e3) + " kN m", "N m");
   } else if (col == "speed_rpm") {
     if (unit.name == "rad/s" && max_abs(values) > 1e5)
       fail("speeds up to " + g4(max_abs(values) / (60.0 / (2.0 * 3.141592653589793))) + " rad/s", "rpm");
   } else if (target.quantity.find("temperature") != std::string::npos) {
     // Degrees Celsius read from kelvin: a wet clutch's oil and discs start between -40 and
     // 200 degC; a column that never drops below 200 "degC" is 473 K or more throughout.
-    if (unit.name == "degC" && lo > 200.0 && hi < 600.0) fail("temperatures of " + g4(lo) + "-" + g4(hi) + " degC", "K");
-    if (unit.name == "K" && hi < -60.0) fail("temperatures of " + g4(lo + 273.15) + "-" + g4(hi + 273.15) + " K", "degC");
+    if (unit.name == "degC" && lo > 200.0 && hi < 600.0)
+      fail("temperatures of " + g4(lo) + "-" + g4(hi) + " degC", "K");
+    if (unit.name == "K" && hi < -60.0)
+      fail("temperatures of " + g4(lo + 273.15) + "-" + g4(hi + 273.15) + " K", "degC");
   }
 }
 

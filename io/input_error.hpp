@@ -12,16 +12,14 @@ namespace shudder::io {
 
 class InputError : public std::runtime_error {
  public:
-  InputError(const std::string& file, long line, const std::string& key,
-             const std::string& message)
+  InputError(const std::string& file, long line, const std::string& key, const std::string& message)
       : std::runtime_error(compose(file, line, key, message)) {}
   /// An error composed elsewhere, passed on unchanged (io/isolated_read: from a child process).
   struct Verbatim {};
   InputError(Verbatim, const std::string& what) : std::runtime_error(what) {}
 
  private:
-  static std::string compose(const std::string& file, long line, const std::string& key,
-                             const std::string& message) {
+  static std::string compose(const std::string& file, long line, const std::string& key, const std::string& message) {
     // Built with an ostringstream: GCC 12 flags chained std::string `+` here with a
     // false-positive -Wrestrict at -O3.
     std::ostringstream os;

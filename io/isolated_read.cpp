@@ -165,9 +165,7 @@ constexpr const char* kWhatToDo =
 
 }  // namespace
 
-double isolated_read_time_limit_s(std::uintmax_t file_bytes) {
-  return 30.0 + static_cast<double>(file_bytes) / 10e6;
-}
+double isolated_read_time_limit_s(std::uintmax_t file_bytes) { return 30.0 + static_cast<double>(file_bytes) / 10e6; }
 
 MeasuredRun read_measured_run_hdf5_isolated(const std::string& path) {
   std::error_code ec;
@@ -178,8 +176,7 @@ MeasuredRun read_measured_run_hdf5_isolated(const std::string& path) {
 
 namespace detail {
 
-MeasuredRun run_isolated(const std::string& path, double time_limit_s,
-                         const std::function<MeasuredRun()>& read) {
+MeasuredRun run_isolated(const std::string& path, double time_limit_s, const std::function<MeasuredRun()>& read) {
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0)
     throw std::runtime_error("cannot create a pipe to read " + path + ": " + std::strerror(errno));
@@ -197,8 +194,8 @@ MeasuredRun run_isolated(const std::string& path, double time_limit_s,
   ::close(fds[1]);
 
   using clock = std::chrono::steady_clock;
-  const auto deadline = clock::now() + std::chrono::duration_cast<clock::duration>(
-                                           std::chrono::duration<double>(time_limit_s));
+  const auto deadline =
+      clock::now() + std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(time_limit_s));
   std::string answer;
   char buffer[1 << 16];
   bool timed_out = false;
@@ -242,16 +239,12 @@ MeasuredRun run_isolated(const std::string& path, double time_limit_s,
     throw std::runtime_error("the process reading " + path + " ended without an answer (exit status " +
                              std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")");
   switch (static_cast<Status>(answer.front())) {
-    case Status::kOk:
-      try {
-        return decode(path, answer);
+    case Status::kOk: try { return decode(path, answer);
       } catch (const std::exception& e) {
         throw std::runtime_error("the process reading " + path + " sent a damaged answer (" + e.what() + ")");
       }
-    case Status::kInputError:
-      throw InputError(InputError::Verbatim{}, answer.substr(1));
-    case Status::kOtherError:
-      throw std::runtime_error(answer.substr(1));
+    case Status::kInputError: throw InputError(InputError::Verbatim{}, answer.substr(1));
+    case Status::kOtherError: throw std::runtime_error(answer.substr(1));
   }
   throw std::runtime_error("the process reading " + path + " sent an answer of unknown kind");
 }

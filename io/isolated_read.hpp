@@ -34,8 +34,7 @@ MeasuredRun read_measured_run_hdf5_isolated(const std::string& path);
 
 namespace detail {
 /// The mechanism, for tests: runs `read` in a child, `path` only names the file in messages.
-MeasuredRun run_isolated(const std::string& path, double time_limit_s,
-                         const std::function<MeasuredRun()>& read);
+MeasuredRun run_isolated(const std::string& path, double time_limit_s, const std::function<MeasuredRun()>& read);
 }  // namespace detail
 
 }  // namespace shudder::io

@@ -97,8 +97,9 @@ LoggerTable read_logger_csv(const std::string& path, const LoggerCsvOptions& opt
   }
   if (in.bad()) throw InputError(path, 0, "", "read error");
   if (!header_line)
-    throw InputError(path, 1, "", "no header line: the file is empty or only '#' lines; a logger file is a header "
-                                  "naming the columns, then one row of numbers per sample");
+    throw InputError(path, 1, "",
+                     "no header line: the file is empty or only '#' lines; a logger file is a header "
+                     "naming the columns, then one row of numbers per sample");
 
   t.delimiter = options.delimiter ? options.delimiter : detect_delimiter(header);
   auto names = fields_of(header, t.delimiter);
@@ -116,8 +117,8 @@ LoggerTable read_logger_csv(const std::string& path, const LoggerCsvOptions& opt
   }
   if (t.names.size() < 2)
     throw InputError(path, header_line, "",
-                     "the header has one column ('" + t.names.front() +
-                         "'); the delimiter was taken as " + delimiter_name(t.delimiter) +
+                     "the header has one column ('" + t.names.front() + "'); the delimiter was taken as " +
+                         delimiter_name(t.delimiter) +
                          "; allowed delimiters: comma, semicolon, tab (or give --delimiter)");
 
   // Decimal comma: only possible when ',' is not the delimiter; decided by any field holding one.
@@ -131,15 +132,17 @@ LoggerTable read_logger_csv(const std::string& path, const LoggerCsvOptions& opt
       throw InputError(path, row.number, "",
                        "row has " + std::to_string(f.size()) + " field(s) but the header (line " +
                            std::to_string(header_line) + ") has " + std::to_string(t.names.size()) +
-                           " columns (delimiter: " + delimiter_name(t.delimiter) + "); every row needs one value per column");
+                           " columns (delimiter: " + delimiter_name(t.delimiter) +
+                           "); every row needs one value per column");
     if (!options.decimal && t.delimiter != ',')
       for (const auto& field : f)
         if (field.find(',') != std::string_view::npos) t.decimal = ',';
     split.push_back(std::move(f));
   }
   if (t.decimal == ',' && t.delimiter == ',')
-    throw InputError(path, header_line, "", "decimal comma with comma-separated columns cannot be read; allowed: "
-                                            "decimal ',' with ';' or tab as the delimiter");
+    throw InputError(path, header_line, "",
+                     "decimal comma with comma-separated columns cannot be read; allowed: "
+                     "decimal ',' with ';' or tab as the delimiter");
 
   t.columns.assign(t.names.size(), {});
   for (auto& c : t.columns) c.reserve(rows.size());
@@ -148,8 +151,7 @@ LoggerTable read_logger_csv(const std::string& path, const LoggerCsvOptions& opt
     for (std::size_t c = 0; c < t.names.size(); ++c) {
       const std::string_view field = split[r][c];
       const auto fail = [&](const std::string& why) {
-        throw InputError(path, rows[r].number, "",
-                         "column '" + t.names[c] + "': '" + std::string(field) + "' " + why);
+        throw InputError(path, rows[r].number, "", "column '" + t.names[c] + "': '" + std::string(field) + "' " + why);
       };
       if (field.empty()) fail("is empty; every field must be a number");
       number.assign(field);

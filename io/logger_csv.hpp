@@ -21,9 +21,9 @@ struct LoggerTable {
   char delimiter = ',';
   char decimal = '.';
   std::vector<std::pair<std::string, std::string>> metadata;  // '# key: value' lines
-  std::vector<std::string> names;                              // header fields, trimmed
-  std::vector<std::vector<double>> columns;                    // one per name, equal lengths
-  std::vector<long> row_lines;                                 // file line of each row
+  std::vector<std::string> names;                             // header fields, trimmed
+  std::vector<std::vector<double>> columns;                   // one per name, equal lengths
+  std::vector<long> row_lines;                                // file line of each row
 };
 
 /// Reads `path`; InputError (file, line, column, what is allowed) on anything it cannot read.

@@ -38,8 +38,8 @@ std::vector<ColumnMapping> resolve(const LoggerTable& t, const ImportSpec& spec)
       const std::string near = nearest_key(m.source, t.names);
       throw InputError(m.origin, 0, "",
                        "the logger file " + t.path + " has no column '" + m.source + "'" +
-                           (near.empty() ? "" : " (did you mean '" + near + "'?)") + "; its columns: " +
-                           quoted_names(t.names));
+                           (near.empty() ? "" : " (did you mean '" + near + "'?)") +
+                           "; its columns: " + quoted_names(t.names));
     }
     for (const auto& other : maps)
       if (other.target == m.target)
@@ -75,17 +75,18 @@ std::vector<ColumnMapping> resolve(const LoggerTable& t, const ImportSpec& spec)
     if (!find_import_unit(target, m.unit))
       throw InputError(t.path, 0, "",
                        "column '" + m.source + "' looks like " + m.target + " in '" + m.unit +
-                           "', which is not a unit it can be logged in; allowed: " + unit_list(target) +
-                           " (give " + map_option_text(m.source, m.target, "UNIT") + ")");
+                           "', which is not a unit it can be logged in; allowed: " + unit_list(target) + " (give " +
+                           map_option_text(m.source, m.target, "UNIT") + ")");
     automatic.push_back(m);
   }
   maps.insert(maps.end(), automatic.begin(), automatic.end());
   for (const auto& target : import_targets())
-    if (target.required && std::none_of(maps.begin(), maps.end(), [&](const auto& m) { return m.target == target.column; }))
+    if (target.required &&
+        std::none_of(maps.begin(), maps.end(), [&](const auto& m) { return m.target == target.column; }))
       throw InputError(t.path, 0, "",
-                       "no column for " + target.column + " (" + target.quantity + "); the file's columns: " +
-                           quoted_names(t.names) + "; give --map COLUMN=" + target.column + ":UNIT (units: " +
-                           unit_list(target) + ") or a mapping file (--mapping)");
+                       "no column for " + target.column + " (" + target.quantity +
+                           "); the file's columns: " + quoted_names(t.names) + "; give --map COLUMN=" + target.column +
+                           ":UNIT (units: " + unit_list(target) + ") or a mapping file (--mapping)");
   return maps;
 }
 
@@ -97,7 +98,8 @@ std::string g6(double v) {
 
 }  // namespace logger_import_impl
 
-MeasuredRun read_measured_or_logger(const std::string& path, const ImportSpec& spec, std::vector<std::string>& warnings) {
+MeasuredRun read_measured_or_logger(const std::string& path, const ImportSpec& spec,
+                                    std::vector<std::string>& warnings) {
   if (spec.maps.empty() && !spec.from_mapping_file) return read_measured_run(path);
   ImportResult r = import_logger(path, spec);
   warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
@@ -125,8 +127,8 @@ ImportResult import_logger(const std::string& logger_path, const ImportSpec& spe
   for (const auto& target : import_targets()) {
     const auto m = std::find_if(maps.begin(), maps.end(), [&](const auto& x) { return x.target == target.column; });
     if (m == maps.end()) continue;
-    const std::size_t source = static_cast<std::size_t>(
-        std::find(t.names.begin(), t.names.end(), m->source) - t.names.begin());
+    const std::size_t source =
+        static_cast<std::size_t>(std::find(t.names.begin(), t.names.end(), m->source) - t.names.begin());
     const ImportUnit& unit = m->unit.empty() ? target.units.front() : *find_import_unit(target, m->unit);
     std::vector<double> values = t.columns[source];
     for (double& v : values) v = unit.scale * v + unit.offset;
@@ -156,8 +158,9 @@ ImportResult import_logger(const std::string& logger_path, const ImportSpec& spe
     // A load cell's zero offset or noise at no load: up to 1 % of the largest force (or 100 N).
     if (force[r] < -std::max(100.0, 0.01 * f_max))
       throw InputError(logger_path, t.row_lines[r], "",
-                       "normal force " + g6(force[r]) + " N is negative beyond a load cell's offset (1 % of the "
-                       "largest force, at least 100 N); a normal force must be >= 0");
+                       "normal force " + g6(force[r]) +
+                           " N is negative beyond a load cell's offset (1 % of the "
+                           "largest force, at least 100 N); a normal force must be >= 0");
     force[r] = 0.0;
     ++clipped;
   }

@@ -31,7 +31,8 @@ struct ImportResult {
 /// `from_mapping_file` false), else imported as a logger's CSV with it; the import's warnings
 /// are appended to `warnings`. For the commands that read measured runs (`characterise`,
 /// `diagnose` with --map/--mapping).
-MeasuredRun read_measured_or_logger(const std::string& path, const ImportSpec& spec, std::vector<std::string>& warnings);
+MeasuredRun read_measured_or_logger(const std::string& path, const ImportSpec& spec,
+                                    std::vector<std::string>& warnings);
 
 /// Reads and converts `logger_path`; InputError (file, line or column, what is allowed) on
 /// anything that cannot become a valid measured run.

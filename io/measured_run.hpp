@@ -23,9 +23,8 @@ namespace shudder::io {
 inline constexpr std::string_view measured_run_format = "shudder-measurement/1";
 
 /// The columns every measured run has, in the order the writers put them.
-inline constexpr std::string_view measured_run_required[] = {"time_s", "speed_rpm",
-                                                              "normal_force_N", "torque_Nm",
-                                                              "temp_C"};
+inline constexpr std::string_view measured_run_required[] = {"time_s", "speed_rpm", "normal_force_N", "torque_Nm",
+                                                             "temp_C"};
 
 /// Fewest data rows a measured run may have.
 inline constexpr std::size_t measured_run_min_rows = 10;
@@ -72,9 +71,8 @@ namespace detail {
 /// For tests of the reader's rejections: writes `run` as write_measured_run_hdf5 does but
 /// without any check, and adds each of `number_attributes` to /measurement as a float64
 /// attribute (which the reader must reject). Throws InputError only if HDF5 fails.
-void write_measured_run_hdf5_unchecked(
-    const std::string& path, const MeasuredRun& run,
-    const std::vector<std::pair<std::string, double>>& number_attributes = {});
+void write_measured_run_hdf5_unchecked(const std::string& path, const MeasuredRun& run,
+                                       const std::vector<std::pair<std::string, double>>& number_attributes = {});
 }  // namespace detail
 
 }  // namespace shudder::io

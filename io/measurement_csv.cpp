@@ -27,8 +27,8 @@ namespace {
 // One output column: its recorded values and the noise it gets.
 struct Column {
   std::string_view name;  // dynamics/signal_names.hpp
-  double sigma;       // noise standard deviation, column unit
-  bool non_negative;  // clip noisy values at 0 (normal force)
+  double sigma;           // noise standard deviation, column unit
+  bool non_negative;      // clip noisy values at 0 (normal force)
   std::vector<double> values;
 };
 
@@ -105,8 +105,8 @@ void check_options(const std::string& path, const MeasurementOptions& opt) {
                          "; use 0 (the recording's own rate) or a rate in (0, 1e6] Hz");
   if (!std::isfinite(opt.oil_flow_ml_min) || opt.oil_flow_ml_min < 0.0)
     throw InputError(path, 0, "oil_flow_ml_min", "must be a finite value >= 0 ml/min");
-  for (const auto& [key, text] : {std::pair{"rig", &opt.rig}, std::pair{"fluid", &opt.fluid}, std::pair{"clutch", &opt.clutch},
-                                  std::pair{"temp_sensor", &opt.temp_sensor}})
+  for (const auto& [key, text] : {std::pair{"rig", &opt.rig}, std::pair{"fluid", &opt.fluid},
+                                  std::pair{"clutch", &opt.clutch}, std::pair{"temp_sensor", &opt.temp_sensor}})
     if (text->find_first_of("\r\n") != std::string::npos)
       throw InputError(path, 0, key, "metadata value must be a single line");
 }
@@ -117,12 +117,10 @@ std::vector<Column> sensor_columns(const std::string& path, const dynamics::Reco
   using A = SensorAccuracy;
   constexpr double k = A::sigma_per_accuracy;
   namespace sn = dynamics::signal_names;
-  std::vector<Column> cols = {{sn::kSpeed, k * A::speed_rpm, false, {}},
-                              {sn::kNormalForce, k * A::normal_force_N, true, {}},
-                              {sn::kTorque, k * A::torque_Nm, false, {}},
-                              {sn::kTemp, k * A::thermocouple_C, false, {}},
-                              {sn::kSumpTemp, k * A::thermocouple_C, false, {}},
-                              {sn::kIrTemp, k * A::ir_C, false, {}}};
+  std::vector<Column> cols = {
+      {sn::kSpeed, k * A::speed_rpm, false, {}},         {sn::kNormalForce, k * A::normal_force_N, true, {}},
+      {sn::kTorque, k * A::torque_Nm, false, {}},        {sn::kTemp, k * A::thermocouple_C, false, {}},
+      {sn::kSumpTemp, k * A::thermocouple_C, false, {}}, {sn::kIrTemp, k * A::ir_C, false, {}}};
   constexpr std::size_t n_required = 4;
   std::vector<Column> present;
   for (std::size_t c = 0; c < cols.size(); ++c) {
@@ -132,15 +130,12 @@ std::vector<Column> sensor_columns(const std::string& path, const dynamics::Reco
                        "recording has no such signal; a measured run needs time_s, speed_rpm, "
                        "normal_force_N, torque_Nm and temp_C");
     if (!s) continue;
-    if (s->values.size() != time.size())
-      throw InputError(path, 0, s->name, "signal length differs from time_s");
+    if (s->values.size() != time.size()) throw InputError(path, 0, s->name, "signal length differs from time_s");
     for (std::size_t i = 0; i < time.size(); ++i) {
       if (!std::isfinite(s->values[i]))
-        throw InputError(path, 0, s->name,
-                         "non-finite value at t = " + std::to_string(time[i]) + " s");
+        throw InputError(path, 0, s->name, "non-finite value at t = " + std::to_string(time[i]) + " s");
       if (cols[c].non_negative && s->values[i] < 0.0)
-        throw InputError(path, 0, s->name,
-                         "negative value at t = " + std::to_string(time[i]) + " s");
+        throw InputError(path, 0, s->name, "negative value at t = " + std::to_string(time[i]) + " s");
     }
     cols[c].values = s->values;
     present.push_back(std::move(cols[c]));
@@ -151,12 +146,10 @@ std::vector<Column> sensor_columns(const std::string& path, const dynamics::Reco
 const std::vector<double>& recorded_time(const std::string& path, const dynamics::Recording& rec) {
   const dynamics::Signal* t = rec.find(dynamics::signal_names::kTime);
   if (!t) throw InputError(path, 0, "time_s", "recording has no time_s signal");
-  if (t->values.size() < 2)
-    throw InputError(path, 0, "time_s", "recording has fewer than 2 samples");
+  if (t->values.size() < 2) throw InputError(path, 0, "time_s", "recording has fewer than 2 samples");
   for (std::size_t i = 0; i < t->values.size(); ++i)
     if (!std::isfinite(t->values[i]) || (i > 0 && !(t->values[i] > t->values[i - 1])))
-      throw InputError(path, 0, "time_s",
-                       "not finite and strictly increasing at sample " + std::to_string(i));
+      throw InputError(path, 0, "time_s", "not finite and strictly increasing at sample " + std::to_string(i));
   return t->values;
 }
 
@@ -166,12 +159,9 @@ void write_csv(const std::string& path, const MeasuredRun& run) {
   const std::string tmp = temp_path_for(path);
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out)
-      throw InputError(path, 0, "",
-                       "cannot create '" + tmp + "'; check the directory exists and is writable");
+    if (!out) throw InputError(path, 0, "", "cannot create '" + tmp + "'; check the directory exists and is writable");
     for (const auto& [key, value] : run.metadata) out << "# " << key << ": " << value << '\n';
-    for (std::size_t c = 0; c < run.columns.size(); ++c)
-      out << (c == 0 ? "" : ",") << run.columns[c].name;
+    for (std::size_t c = 0; c < run.columns.size(); ++c) out << (c == 0 ? "" : ",") << run.columns[c].name;
     out << '\n';
     const std::vector<double>& time = run.columns.front().values;
     const int decimals = time_decimals(time);
@@ -194,8 +184,7 @@ void write_csv(const std::string& path, const MeasuredRun& run) {
 
 bool has_hdf5_extension(const std::string& path) {
   const auto ends_with = [&](std::string_view ext) {
-    return path.size() > ext.size() &&
-           std::equal(ext.rbegin(), ext.rend(), path.rbegin(), [](char a, char b) {
+    return path.size() > ext.size() && std::equal(ext.rbegin(), ext.rend(), path.rbegin(), [](char a, char b) {
              return a == std::tolower(static_cast<unsigned char>(b));
            });
   };
@@ -204,8 +193,7 @@ bool has_hdf5_extension(const std::string& path) {
 
 }  // namespace
 
-MeasuredRun make_measurement(const std::string& path, const dynamics::Recording& rec,
-                             const MeasurementOptions& opt) {
+MeasuredRun make_measurement(const std::string& path, const dynamics::Recording& rec, const MeasurementOptions& opt) {
   check_options(path, opt);
   const std::vector<double>& t_rec = recorded_time(path, rec);
   std::vector<Column> cols = sensor_columns(path, rec, t_rec);
@@ -219,14 +207,13 @@ MeasuredRun make_measurement(const std::string& path, const dynamics::Recording&
   } else {
     const auto n = static_cast<std::size_t>(std::floor((t_end - t0) * rate + 1e-9)) + 1;
     time.resize(n);
-    for (std::size_t k = 0; k < n; ++k)
-      time[k] = std::min(t0 + static_cast<double>(k) / rate, t_end);
+    for (std::size_t k = 0; k < n; ++k) time[k] = std::min(t0 + static_cast<double>(k) / rate, t_end);
     for (auto& c : cols) c.values = interpolate(t_rec, c.values, time);
   }
   if (time.size() < measured_run_min_rows)
-    throw InputError(path, 0, "sample_rate_Hz",
-                     "only " + std::to_string(time.size()) +
-                         " rows; the format needs at least 10: raise the rate or record longer");
+    throw InputError(
+        path, 0, "sample_rate_Hz",
+        "only " + std::to_string(time.size()) + " rows; the format needs at least 10: raise the rate or record longer");
 
   // Sensor noise, drawn row by row, columns in output order.
   if (opt.noise) {
@@ -251,22 +238,19 @@ MeasuredRun make_measurement(const std::string& path, const dynamics::Recording&
   meta.emplace_back("sample_rate_Hz", g6(rate));
   meta.emplace_back("noise", opt.noise ? "on" : "off");
   if (opt.noise) meta.emplace_back("seed", std::to_string(opt.seed));
-  run.columns.push_back({std::string(dynamics::signal_names::kTime), measured_run_units(dynamics::signal_names::kTime),
-                         std::move(time)});
-  for (auto& c : cols)
-    run.columns.push_back({std::string(c.name), measured_run_units(c.name), std::move(c.values)});
+  run.columns.push_back(
+      {std::string(dynamics::signal_names::kTime), measured_run_units(dynamics::signal_names::kTime), std::move(time)});
+  for (auto& c : cols) run.columns.push_back({std::string(c.name), measured_run_units(c.name), std::move(c.values)});
   return run;
 }
 
 void write_measured_run_csv(const std::string& path, const MeasuredRun& run) { write_csv(path, run); }
 
-void write_measurement_csv(const std::string& path, const dynamics::Recording& rec,
-                           const MeasurementOptions& opt) {
+void write_measurement_csv(const std::string& path, const dynamics::Recording& rec, const MeasurementOptions& opt) {
   write_csv(path, make_measurement(path, rec, opt));
 }
 
-void write_measurement(const std::string& path, const dynamics::Recording& rec,
-                       const MeasurementOptions& opt) {
+void write_measurement(const std::string& path, const dynamics::Recording& rec, const MeasurementOptions& opt) {
   if (has_hdf5_extension(path))
     write_measured_run_hdf5(path, make_measurement(path, rec, opt));
   else

@@ -46,33 +46,30 @@ struct SensorAccuracy {
 };
 
 struct MeasurementOptions {
-  double sample_rate_Hz = 0;  // 0 = the recording's own samples; else (0, 1e6] Hz
-  bool noise = false;         // add Gaussian sensor noise (see SensorAccuracy)
-  unsigned seed = 1;          // noise generator seed
+  double sample_rate_Hz = 0;                             // 0 = the recording's own samples; else (0, 1e6] Hz
+  bool noise = false;                                    // add Gaussian sensor noise (see SensorAccuracy)
+  unsigned seed = 1;                                     // noise generator seed
   std::string rig = std::string(rig_models::kLsctrRig);  // metadata `rig` (omitted when empty)
-  std::string fluid;          // metadata `fluid` (omitted when empty)
-  std::string clutch;         // metadata `clutch`: the network clutch the run is of (omitted when empty)
+  std::string fluid;                                     // metadata `fluid` (omitted when empty)
+  std::string clutch;  // metadata `clutch`: the network clutch the run is of (omitted when empty)
   std::string temp_sensor = "separator_thermocouple r_mm=48 z_mm=0.5";  // metadata `temp_sensor`
-  double oil_flow_ml_min = 200;  // metadata `oil_flow_ml_min`, >= 0
+  double oil_flow_ml_min = 200;                                         // metadata `oil_flow_ml_min`, >= 0
 };
 
 /// What the writers below write, in memory: time_s then the sensor columns (units from
 /// measured_run_units), resampled and with noise added, at full precision; the metadata in file
 /// order. `path` is the output named in errors (and the run's `path`). Throws like the writers.
-MeasuredRun make_measurement(const std::string& path, const dynamics::Recording& rec,
-                             const MeasurementOptions& opt);
+MeasuredRun make_measurement(const std::string& path, const dynamics::Recording& rec, const MeasurementOptions& opt);
 
 /// Writes `rec` as a measured-run CSV at `path`; see the file comment.
-void write_measurement_csv(const std::string& path, const dynamics::Recording& rec,
-                           const MeasurementOptions& opt);
+void write_measurement_csv(const std::string& path, const dynamics::Recording& rec, const MeasurementOptions& opt);
 
 /// Writes `run` (time_s first) as a measured-run CSV: metadata lines, header, rows, as above.
 void write_measured_run_csv(const std::string& path, const MeasuredRun& run);
 
 /// write_measurement_csv, or, when `path` ends in `.h5` or `.hdf5` (any case), the same run in
 /// the HDF5 form (write_measured_run_hdf5), its values at full precision instead of printed.
-void write_measurement(const std::string& path, const dynamics::Recording& rec,
-                       const MeasurementOptions& opt);
+void write_measurement(const std::string& path, const dynamics::Recording& rec, const MeasurementOptions& opt);
 
 /// The metadata a wet clutch's run carries: its fluid's name, its oil flow and its thermocouple
 /// (`separator_thermocouple r_mm=R z_mm=Z`); the rig, rate, noise and seed are the caller's.

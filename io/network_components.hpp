@@ -22,7 +22,7 @@ struct KeyDecl {
   std::optional<double> fallback;  // numbers, integers: the default; absent: required unless `optional_note`
   Range range;                     // numbers, integers
   std::string meaning;
-  std::string optional_note;       // a key that is neither required nor defaulted: what happens without it
+  std::string optional_note;         // a key that is neither required nor defaulted: what happens without it
   std::vector<std::string> choices;  // kChoice; the first is the default
 };
 

@@ -49,7 +49,8 @@ Signal read_signal_table(TomlTable& t) {
     const auto times = t.numbers("time_s", Range::non_negative(), 1);
     const auto values = t.numbers("value", {}, 1);
     if (values.size() != times.size())
-      t.fail("value", "has " + std::to_string(values.size()) + " values but time_s has " + std::to_string(times.size()));
+      t.fail("value",
+             "has " + std::to_string(values.size()) + " values but time_s has " + std::to_string(times.size()));
     for (std::size_t i = 1; i < times.size(); ++i)
       if (!(times[i] > times[i - 1])) t.fail("time_s", "must be strictly increasing");
     const auto& interp = d.key("interpolation").choices;
@@ -78,7 +79,8 @@ Signal read_signal_table(TomlTable& t) {
 /// `key` as a signal table, or a plain number meaning a constant; `fallback` when absent.
 Signal read_signal(TomlTable& c, const std::string& key, std::optional<Signal> fallback) {
   if (!c.has(key)) {
-    if (!fallback) c.fail(key, "missing; give a signal: a number, or a table with kind = one of " + list(signal_kinds()));
+    if (!fallback)
+      c.fail(key, "missing; give a signal: a number, or a table with kind = one of " + list(signal_kinds()));
     c.mark_read(key);
     return *fallback;
   }
@@ -103,7 +105,8 @@ components::PlainFrictionParams read_plain(TomlTable& c, const ComponentDecl& d)
     p.slip_rpm = t.numbers("slip_rpm", Range::non_negative(), 1);
     p.mu = t.numbers("mu", Range::positive(), 1);
     if (p.mu.size() != p.slip_rpm.size())
-      t.fail("mu", "has " + std::to_string(p.mu.size()) + " values but slip_rpm has " + std::to_string(p.slip_rpm.size()));
+      t.fail("mu",
+             "has " + std::to_string(p.mu.size()) + " values but slip_rpm has " + std::to_string(p.slip_rpm.size()));
     for (std::size_t i = 1; i < p.slip_rpm.size(); ++i)
       if (!(p.slip_rpm[i] > p.slip_rpm[i - 1])) t.fail("slip_rpm", "must be strictly increasing");
     t.finish();
@@ -140,10 +143,14 @@ void read_component(TomlTable& c, const std::string& name, const std::string& pa
     return c.string(key);
   };
   if (type == "inertia") {
-    spec.inertias.push_back(
-        {name, num("inertia_kg_m2"), units::rpm_to_rad_s(num("speed_rpm")), num("angle_deg") * std::numbers::pi / 180.0});
+    spec.inertias.push_back({name, num("inertia_kg_m2"), units::rpm_to_rad_s(num("speed_rpm")),
+                             num("angle_deg") * std::numbers::pi / 180.0});
   } else if (type == "shaft") {
-    components::ShaftSpec s{name, node("from"), node("to"), num("stiffness_Nm_per_rad"), num("damping_Nms_per_rad"),
+    components::ShaftSpec s{name,
+                            node("from"),
+                            node("to"),
+                            num("stiffness_Nm_per_rad"),
+                            num("damping_Nms_per_rad"),
                             num("lash_deg") * std::numbers::pi / 180.0};
     if (s.stiffness_Nm_per_rad == 0 && s.damping_Nms_per_rad == 0)
       c.fail("stiffness_Nm_per_rad", "a shaft needs stiffness_Nm_per_rad > 0 or damping_Nms_per_rad > 0");
@@ -179,8 +186,9 @@ void read_component(TomlTable& c, const std::string& name, const std::string& pa
       for (const char* plain_only : {"mu", "mu_table", "peak_ratio", "geometry_factor_m", "mean_radius_m",
                                      "inner_radius_m", "outer_radius_m", "interfaces"})
         if (c.has(plain_only))
-          c.fail(plain_only, "belongs to law = \"plain\"; a wet clutch's friction comes from its fluid and its "
-                             "geometry from its [clutch] table");
+          c.fail(plain_only,
+                 "belongs to law = \"plain\"; a wet clutch's friction comes from its fluid and its "
+                 "geometry from its [clutch] table");
       k.wet = read_wet_pack(c, path, sc.warnings);
       sc.fluid_paths.push_back(k.wet.fluid_path);
       sc.fluid_texts += "# file: " + k.wet.fluid_path + " (clutch " + name + ")\n" + k.wet.fluid_text + "\n";
@@ -203,7 +211,8 @@ void read_component(TomlTable& c, const std::string& name, const std::string& pa
     if (c.has("valve_opening")) h.valve_opening = read_signal(c, "valve_opening", std::nullopt);
     if (c.has("valve_pressure_bar")) h.valve_pressure_bar = read_signal(c, "valve_pressure_bar", std::nullopt);
     if (h.valve_opening && h.valve_pressure_bar)
-      c.fail("valve_pressure_bar", "valve_opening is given too; give one raw valve schedule, or neither (the control unit)");
+      c.fail("valve_pressure_bar",
+             "valve_opening is given too; give one raw valve schedule, or neither (the control unit)");
     h.nominal_friction = num("nominal_friction");
     h.pack_oil_volume_ml = num("pack_oil_volume_ml");
     h.pack_cooling_flow_ml_min = num("pack_cooling_flow_ml_min");
@@ -212,7 +221,8 @@ void read_component(TomlTable& c, const std::string& name, const std::string& pa
       c.fail("controller", "is given with a raw valve schedule; give either the schedule or the controller");
     if (auto t = c.optional_table("controller")) read_haldex_controller(*t, h.controller);
     const double duration = sc.spec.settings.duration_s;
-    if (h.valve_opening && (h.valve_opening->min_over(0.0, duration) < 0 || h.valve_opening->max_over(0.0, duration) > 1))
+    if (h.valve_opening &&
+        (h.valve_opening->min_over(0.0, duration) < 0 || h.valve_opening->max_over(0.0, duration) > 1))
       c.fail("valve_opening", "must stay within [0, 1] (0 shut, 1 open) over the run");
     if (h.valve_pressure_bar && (h.valve_pressure_bar->min_over(0.0, duration) < 0 ||
                                  h.valve_pressure_bar->max_over(0.0, duration) > h.hydraulics.relief_pressure_bar))
@@ -240,8 +250,13 @@ void read_component(TomlTable& c, const std::string& name, const std::string& pa
   } else if (type == "speed_source") {
     spec.speed_sources.push_back({name, node("node"), read_signal(c, "speed_rpm", std::nullopt)});
   } else if (type == "motor") {
-    spec.motors.push_back({name, node("node"), read_signal(c, "speed_rpm", std::nullopt), num("kp_Nms_per_rad"),
-                           num("ki_Nm_per_rad"), num("torque_limit_Nm"), num("start_torque_Nm"),
+    spec.motors.push_back({name,
+                           node("node"),
+                           read_signal(c, "speed_rpm", std::nullopt),
+                           num("kp_Nms_per_rad"),
+                           num("ki_Nm_per_rad"),
+                           num("torque_limit_Nm"),
+                           num("start_torque_Nm"),
                            {num("ripple_amplitude_Nm"), num("ripple_periods_per_rev")}});
     if (spec.motors.back().start_torque_Nm != 0 && spec.motors.back().ki_Nm_per_rad == 0)
       c.fail("start_torque_Nm", "needs ki_Nm_per_rad > 0: the integrator holds the start torque");
@@ -282,10 +297,14 @@ void read_component(TomlTable& c, const std::string& name, const std::string& pa
     v.road.drag_coefficient_area_m2 = num("drag_area_m2");
     v.road.air_density_kg_m3 = num("air_density_kg_m3");
     v.cg_height_m = num("cg_height_m");
-    if (gives(c, "wheelbase_m")) v.wheelbase_m = num("wheelbase_m");
-    else c.mark_read("wheelbase_m");
-    if (gives(c, "front_axle_load_share")) v.front_axle_load_share = num("front_axle_load_share");
-    else c.mark_read("front_axle_load_share");
+    if (gives(c, "wheelbase_m"))
+      v.wheelbase_m = num("wheelbase_m");
+    else
+      c.mark_read("wheelbase_m");
+    if (gives(c, "front_axle_load_share"))
+      v.front_axle_load_share = num("front_axle_load_share");
+    else
+      c.mark_read("front_axle_load_share");
     spec.vehicles.push_back(v);
   } else if (type == "tyre") {
     components::TyreSpec t;
@@ -295,7 +314,7 @@ void read_component(TomlTable& c, const std::string& name, const std::string& pa
     auto& p = t.params;
     const auto& axles = d.key("axle").choices;
     const std::string axle = c.choice_or("axle", axles.front(), axles);
-    t.axle = axle == "front" ? components::TyreSpec::Axle::kFront
+    t.axle = axle == "front"  ? components::TyreSpec::Axle::kFront
              : axle == "rear" ? components::TyreSpec::Axle::kRear
                               : components::TyreSpec::Axle::kNone;
     if (t.axle == components::TyreSpec::Axle::kNone) {
@@ -304,15 +323,22 @@ void read_component(TomlTable& c, const std::string& name, const std::string& pa
       p.vertical_load_N = num("vertical_load_N");
     } else {
       if (gives(c, "vertical_load_N"))
-        c.fail("vertical_load_N", "is not for a tyre on an axle: it takes its load from the vehicle (give one of vertical_load_N and axle)");
+        c.fail(
+            "vertical_load_N",
+            "is not for a tyre on an axle: it takes its load from the vehicle (give one of vertical_load_N and axle)");
       c.mark_read("vertical_load_N");
     }
     if (gives(c, "slip_stiffness_N") && gives(c, "slip_stiffness_per_load"))
-      c.fail("slip_stiffness_per_load", "is an alternative to slip_stiffness_N; give one (C_kappa / F_z, or an absolute C_kappa)");
-    if (gives(c, "slip_stiffness_N")) p.slip_stiffness_N = num("slip_stiffness_N");
-    else c.mark_read("slip_stiffness_N");
-    if (gives(c, "slip_stiffness_per_load")) p.slip_stiffness_per_load = num("slip_stiffness_per_load");
-    else c.mark_read("slip_stiffness_per_load");
+      c.fail("slip_stiffness_per_load",
+             "is an alternative to slip_stiffness_N; give one (C_kappa / F_z, or an absolute C_kappa)");
+    if (gives(c, "slip_stiffness_N"))
+      p.slip_stiffness_N = num("slip_stiffness_N");
+    else
+      c.mark_read("slip_stiffness_N");
+    if (gives(c, "slip_stiffness_per_load"))
+      p.slip_stiffness_per_load = num("slip_stiffness_per_load");
+    else
+      c.mark_read("slip_stiffness_per_load");
     p.relaxation_length_m = num("relaxation_length_m");
     p.road_friction = num("road_friction");
     p.radius_m = gives(c, "radius_m") ? num("radius_m") : std::nan("");  // default: the vehicle's wheel radius
@@ -334,7 +360,9 @@ std::string scenario_type_of_text(const std::string& text, const std::string& pa
   return "prescribed_slip";
 }
 
-NetworkScenario load_network_scenario(const std::string& path) { return load_network_scenario_text(read_scenario_text(path), path); }
+NetworkScenario load_network_scenario(const std::string& path) {
+  return load_network_scenario_text(read_scenario_text(path), path);
+}
 
 NetworkScenario load_network_scenario_text(const std::string& text, const std::string& path) {
   NetworkScenario sc;
@@ -352,7 +380,8 @@ NetworkScenario load_network_scenario_text(const std::string& text, const std::s
     head.finish();
   }
   if (auto solver = root.optional_table("solver")) {
-    cfg.thermal_step_s = solver->number_or("thermal_step_ms", cfg.thermal_step_s * 1e3, Range::closed(1e-3, 1e4)) * 1e-3;
+    cfg.thermal_step_s =
+        solver->number_or("thermal_step_ms", cfg.thermal_step_s * 1e3, Range::closed(1e-3, 1e4)) * 1e-3;
     auto& integ = cfg.integrator;
     integ.abs_tol = solver->number_or("abs_tol", integ.abs_tol, Range::closed(1e-15, 1e-2));
     integ.rel_tol = solver->number_or("rel_tol", integ.rel_tol, Range::closed(1e-15, 1e-2));

@@ -46,8 +46,9 @@ void require_output_directory(const std::string& path) {
   std::error_code ec;
   if (!fs::is_directory(parent, ec))
     throw InputError(path, 0, "",
-                     "directory '" + parent.string() + "' does not exist; create it first (shudder "
-                     "does not create directories for its outputs)");
+                     "directory '" + parent.string() +
+                         "' does not exist; create it first (shudder "
+                         "does not create directories for its outputs)");
 }
 
 void require_output_size(const std::string& path, std::uint64_t estimated_bytes, const std::string& what, bool force) {

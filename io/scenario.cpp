@@ -19,8 +19,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kMaxForce_N = 30000.0;     // rig cylinder maximum (thesis Method)
-constexpr double kMaxSlip_rpm = 1000.0;     // beyond any LSC use; friction data end at 100 rpm
+constexpr double kMaxForce_N = 30000.0;             // rig cylinder maximum (thesis Method)
+constexpr double kMaxSlip_rpm = 1000.0;             // beyond any LSC use; friction data end at 100 rpm
 const Range kTemp_C = Range::closed(-60.0, 250.0);  // friction matrix spans -40..200 °C
 
 // The scenario as read, before it becomes a typed model: every kind's pieces side by side, so
@@ -34,11 +34,11 @@ struct Draft {
   std::string fluid_text;
   clutch::Fluid fluid;
   clutch::WetClutchParams clutch;
-  rig_models::DriveCycle cycle;                 // prescribed_slip and rig
-  rig_models::PrescribedSlipSettings settings;  // duration, steps, sampling, bearing drag
-  rig_models::RigParams rig;                    // rig (stick-time friction: every kind)
-  rig_models::DrivelineParams driveline;        // driveline
-  rig_models::DrivelineInputs manoeuvre;        // driveline
+  rig_models::DriveCycle cycle;                           // prescribed_slip and rig
+  rig_models::PrescribedSlipSettings settings;            // duration, steps, sampling, bearing drag
+  rig_models::RigParams rig;                              // rig (stick-time friction: every kind)
+  rig_models::DrivelineParams driveline;                  // driveline
+  rig_models::DrivelineInputs manoeuvre;                  // driveline
   bool oil_volume_given = false, oil_flow_given = false;  // [clutch.oil]: else the driveline's pack oil
   std::vector<std::string> warnings;
 };
@@ -56,8 +56,7 @@ void read_layer(TomlTable& parent, const std::string& key, clutch::Layer& layer)
   layer.density_kg_m3 = t->number_or("density_kg_m3", layer.density_kg_m3, Range::positive());
   layer.specific_heat_J_per_kgK =
       t->number_or("specific_heat_J_per_kgK", layer.specific_heat_J_per_kgK, Range::positive());
-  layer.conductivity_W_per_mK =
-      t->number_or("conductivity_W_per_mK", layer.conductivity_W_per_mK, Range::positive());
+  layer.conductivity_W_per_mK = t->number_or("conductivity_W_per_mK", layer.conductivity_W_per_mK, Range::positive());
   layer.cells = static_cast<int>(t->integer_or("cells", layer.cells, 1, 200));
   t->finish();
 }
@@ -74,13 +73,13 @@ void read_clutch(TomlTable& root, Draft& s) {
   if (!fs::exists(status)) {
     const bool odd = status_error && status_error != std::errc::no_such_file_or_directory;
     const fs::path folder = fs::path(s.path).parent_path();
-    const std::string from = fs::path(fluid).is_absolute() ? ""
-                             : folder.empty()               ? "; a relative fluid path is read from the scenario's folder, "
-                                                              "here the current directory"
-                                              : "; a relative fluid path is read from the scenario's folder, '" +
-                                                    folder.string() + "'";
-    c.fail("fluid", "file '" + s.fluid_path + "' does not exist" + (odd ? " (" + status_error.message() + ")" : "") +
-                        from);
+    const std::string from =
+        fs::path(fluid).is_absolute() ? ""
+        : folder.empty()              ? "; a relative fluid path is read from the scenario's folder, "
+                                        "here the current directory"
+                         : "; a relative fluid path is read from the scenario's folder, '" + folder.string() + "'";
+    c.fail("fluid",
+           "file '" + s.fluid_path + "' does not exist" + (odd ? " (" + status_error.message() + ")" : "") + from);
   }
   if (!fs::is_regular_file(status))
     c.fail("fluid", "'" + s.fluid_path + "' is not a regular file; expected a fluid TOML file");
@@ -92,8 +91,7 @@ void read_clutch(TomlTable& root, Draft& s) {
   p.sump_start_temp_C = c.number_or("sump_start_temp_C", p.start_temp_C, kTemp_C);
   th.inner_radius_m = c.number_or("inner_radius_mm", th.inner_radius_m * 1e3, Range::positive()) * 1e-3;
   th.outer_radius_m = c.number_or("outer_radius_mm", th.outer_radius_m * 1e3, Range::positive()) * 1e-3;
-  if (!(th.outer_radius_m > th.inner_radius_m))
-    c.fail("outer_radius_mm", "must exceed inner_radius_mm");
+  if (!(th.outer_radius_m > th.inner_radius_m)) c.fail("outer_radius_mm", "must exceed inner_radius_mm");
   read_layer(c, "separator", th.separator);
   read_layer(c, "lining", th.lining);
   read_layer(c, "core", th.core);
@@ -107,7 +105,8 @@ void read_clutch(TomlTable& root, Draft& s) {
     // below 0.01 µm (a few molecular layers) the film cell's heat capacity vanishes and its
     // conductance r²/h explodes (1e-300 µm gives 5e279 °C); above 1 mm it is no
     // longer a film but a gap as deep as the discs are thick.
-    th.film_thickness_m = oil->number_or("film_thickness_um", th.film_thickness_m * 1e6, Range::closed(0.01, 1000.0)) * 1e-6;
+    th.film_thickness_m =
+        oil->number_or("film_thickness_um", th.film_thickness_m * 1e6, Range::closed(0.01, 1000.0)) * 1e-6;
     th.sump_volume_m3 = oil->number_or("sump_volume_ml", th.sump_volume_m3 * 1e6, Range::positive()) * 1e-6;
     th.supply_flow_m3_s = units::ml_min_to_m3_s(oil->number_or(  // rig pump: 0–1000 ml/min
         "supply_flow_ml_min", units::m3_s_to_ml_min(th.supply_flow_m3_s), Range::closed(0.0, 1000.0)));
@@ -128,14 +127,14 @@ void read_clutch(TomlTable& root, Draft& s) {
   c.finish();
 }
 
-rig_models::PiecewiseLinear read_schedule(TomlTable& drive, const std::string& key,
-                                          const std::vector<double>& times, Range range) {
+rig_models::PiecewiseLinear read_schedule(TomlTable& drive, const std::string& key, const std::vector<double>& times,
+                                          Range range) {
   // A single number means constant; an array must align with time_s.
   if (!drive.is_array(key)) return {{0.0}, {drive.number(key, range)}};
   const auto values = drive.numbers(key, range, 1);
   if (values.size() != times.size())
-    drive.fail(key, "has " + std::to_string(values.size()) + " values but time_s has " +
-                        std::to_string(times.size()) + "; give one value per time or a single number");
+    drive.fail(key, "has " + std::to_string(values.size()) + " values but time_s has " + std::to_string(times.size()) +
+                        "; give one value per time or a single number");
   return {times, values};
 }
 
@@ -166,9 +165,9 @@ void read_rig(TomlTable& root, Draft& s) {
       if (by_f) {
         r.bar_natural_frequency_Hz = bar->number("natural_frequency_Hz", Range::closed(1.0, 10000.0));
         if (r.bar_natural_frequency_Hz < 100.0 || r.bar_natural_frequency_Hz > 500.0)
-          s.warnings.push_back(s.path + ": rig.torsion_bar.natural_frequency_Hz = " +
-                               std::to_string(r.bar_natural_frequency_Hz) +
-                               " Hz lies outside the rig's 100-500 Hz bars (accepted as another bar)");
+          s.warnings.push_back(
+              s.path + ": rig.torsion_bar.natural_frequency_Hz = " + std::to_string(r.bar_natural_frequency_Hz) +
+              " Hz lies outside the rig's 100-500 Hz bars (accepted as another bar)");
         bar->mark_read("stiffness_Nm_per_rad");
       } else {
         r.bar_stiffness_Nm_per_rad = bar->number("stiffness_Nm_per_rad", Range::positive());
@@ -178,12 +177,14 @@ void read_rig(TomlTable& root, Draft& s) {
       bar->finish();
     }
     if (auto motor = rig->optional_table("motor")) {
-      r.speed_loop_bandwidth_Hz = motor->number_or("speed_loop_bandwidth_Hz", r.speed_loop_bandwidth_Hz, Range::closed(0.01, 1000.0));
+      r.speed_loop_bandwidth_Hz =
+          motor->number_or("speed_loop_bandwidth_Hz", r.speed_loop_bandwidth_Hz, Range::closed(0.01, 1000.0));
       r.motor_torque_limit_Nm = motor->number_or("torque_limit_Nm", r.motor_torque_limit_Nm, Range::positive());
       // Torque ripple, the seed of friction-induced vibration (rig_models/motor_ripple.hpp).
       // Bounds: up to 10 % of the rated 500 N m (more is a faulty drive, not a ripple); up to
       // 2000 periods/rev (4 kHz at 125 rpm: beyond, the integrator's step is set by the ripple).
-      r.motor_ripple.amplitude_Nm = motor->number_or("torque_ripple_Nm", r.motor_ripple.amplitude_Nm, Range::closed(0.0, 50.0));
+      r.motor_ripple.amplitude_Nm =
+          motor->number_or("torque_ripple_Nm", r.motor_ripple.amplitude_Nm, Range::closed(0.0, 50.0));
       r.motor_ripple.periods_per_rev =
           motor->number_or("torque_ripple_periods_per_rev", r.motor_ripple.periods_per_rev, Range::closed(1.0, 2000.0));
       motor->finish();
@@ -196,8 +197,8 @@ void read_rig(TomlTable& root, Draft& s) {
       drive.mark_read("time_s");
       drive.mark_read("speed_rpm");
       drive.mark_read("normal_force_N");
-      drive.fail("speed_rpm", "value " + std::to_string(v) +
-                                  " rpm is outside the rig motor's range; allowed [0.5, 125] rpm");
+      drive.fail("speed_rpm",
+                 "value " + std::to_string(v) + " rpm is outside the rig motor's range; allowed [0.5, 125] rpm");
     }
 }
 
@@ -206,8 +207,9 @@ void read_rig(TomlTable& root, Draft& s) {
 void read_driveline(TomlTable& root, Draft& s) {
   auto& p = s.driveline;
   if (root.has("drive"))
-    root.fail("drive", "[drive] belongs to prescribed_slip and rig scenarios; a driveline scenario is "
-                       "driven by [manoeuvre] (time_s, engine_torque_Nm, valve_pressure_bar)");
+    root.fail("drive",
+              "[drive] belongs to prescribed_slip and rig scenarios; a driveline scenario is "
+              "driven by [manoeuvre] (time_s, engine_torque_Nm, valve_pressure_bar)");
   bool controller_given = false;
   if (auto d = root.optional_table("driveline")) {
     controller_given = d->has("controller");
@@ -222,9 +224,11 @@ void read_driveline(TomlTable& root, Draft& s) {
     positive("wheel_inertia_kg_m2", p.wheel_inertia_kg_m2);
     positive("tyre_stiffness_Nm_per_rad", p.tyre_stiffness_Nm_per_rad);
     if (d->has("tyre_slip_stiffness_N") && d->has("tyre_slip_stiffness_per_load"))
-      d->fail("tyre_slip_stiffness_per_load", "is an alternative to tyre_slip_stiffness_N; give one (C_kappa / F_z, "
-                                              "or an absolute C_kappa per tyre)");
-    if (d->has("tyre_slip_stiffness_N")) p.tyre_slip_stiffness_N = d->number_or("tyre_slip_stiffness_N", 0.0, Range::positive());
+      d->fail("tyre_slip_stiffness_per_load",
+              "is an alternative to tyre_slip_stiffness_N; give one (C_kappa / F_z, "
+              "or an absolute C_kappa per tyre)");
+    if (d->has("tyre_slip_stiffness_N"))
+      p.tyre_slip_stiffness_N = d->number_or("tyre_slip_stiffness_N", 0.0, Range::positive());
     if (d->has("tyre_slip_stiffness_per_load"))
       p.tyre_slip_stiffness_per_load = d->number_or("tyre_slip_stiffness_per_load", 0.0, Range::closed(1.0, 100.0));
     p.cg_height_m = d->number_or("cg_height_m", p.cg_height_m, Range::closed(0.0, 2.0));
@@ -234,7 +238,8 @@ void read_driveline(TomlTable& root, Draft& s) {
     p.front_axle_load_share = d->number_or("front_axle_load_share", p.front_axle_load_share, Range::closed(0.05, 0.95));
     p.rolling_resistance_coefficient =
         d->number_or("rolling_resistance_coefficient", p.rolling_resistance_coefficient, Range::closed(0.0, 0.1));
-    p.drag_coefficient_area_m2 = d->number_or("drag_coefficient_area_m2", p.drag_coefficient_area_m2, Range::closed(0.0, 10.0));
+    p.drag_coefficient_area_m2 =
+        d->number_or("drag_coefficient_area_m2", p.drag_coefficient_area_m2, Range::closed(0.0, 10.0));
     p.air_density_kg_m3 = d->number_or("air_density_kg_m3", p.air_density_kg_m3, Range::closed(0.0, 2.0));
     positive("vehicle_mass_kg", p.vehicle_mass_kg);
     positive("wheel_radius_m", p.wheel_radius_m);
@@ -251,13 +256,15 @@ void read_driveline(TomlTable& root, Draft& s) {
           if (speeds[i] <= speeds[i - 1]) e->fail("full_load_speed_rpm", "must be strictly increasing");
         const auto torques = e->numbers("full_load_torque_Nm", Range::closed(0.0, 2000.0), 1);
         if (torques.size() != speeds.size())
-          e->fail("full_load_torque_Nm", "needs one value per full_load_speed_rpm (" + std::to_string(speeds.size()) + ")");
+          e->fail("full_load_torque_Nm",
+                  "needs one value per full_load_speed_rpm (" + std::to_string(speeds.size()) + ")");
         ep.full_load_torque_Nm = rig_models::PiecewiseLinear(speeds, torques);
       }
       ep.stall_speed_rpm = e->number_or("stall_speed_rpm", ep.stall_speed_rpm, Range::closed(50.0, 2000.0));
-      ep.idle_speed_rpm = e->number_or("idle_speed_rpm", ep.idle_speed_rpm,
-                                       Range{ep.stall_speed_rpm, 3000.0, true, false});
-      ep.max_speed_rpm = e->number_or("max_speed_rpm", ep.max_speed_rpm, Range{ep.idle_speed_rpm, 20000.0, true, false});
+      ep.idle_speed_rpm =
+          e->number_or("idle_speed_rpm", ep.idle_speed_rpm, Range{ep.stall_speed_rpm, 3000.0, true, false});
+      ep.max_speed_rpm =
+          e->number_or("max_speed_rpm", ep.max_speed_rpm, Range{ep.idle_speed_rpm, 20000.0, true, false});
       ep.idle_governor_gain_Nms_per_rad =
           e->number_or("idle_governor_gain_Nms_per_rad", ep.idle_governor_gain_Nms_per_rad, Range::closed(0.0, 1000.0));
       ep.loss_torque_idle_Nm = e->number_or("loss_torque_idle_Nm", ep.loss_torque_idle_Nm, Range::closed(0.0, 500.0));
@@ -270,7 +277,8 @@ void read_driveline(TomlTable& root, Draft& s) {
       e->finish();
     }
     p.pack_oil_volume_ml = d->number_or("pack_oil_volume_ml", p.pack_oil_volume_ml, Range{0.0, 1e5, true, false});
-    p.pack_cooling_flow_ml_min = d->number_or("pack_cooling_flow_ml_min", p.pack_cooling_flow_ml_min, Range::closed(0.0, 1e5));
+    p.pack_cooling_flow_ml_min =
+        d->number_or("pack_cooling_flow_ml_min", p.pack_cooling_flow_ml_min, Range::closed(0.0, 1e5));
     if (auto h = d->optional_table("hydraulics")) read_haldex_hydraulics(*h, p.hydraulics);
     if (auto c = d->optional_table("controller")) read_haldex_controller(*c, p.controller);
     d->finish();
@@ -291,8 +299,9 @@ void read_driveline(TomlTable& root, Draft& s) {
   // controller model of [driveline.controller]; without them the controller decides.
   const bool raw_valve = m.has("valve_opening") || m.has("valve_pressure_bar");
   if (raw_valve && controller_given)
-    m.fail(m.has("valve_opening") ? "valve_opening" : "valve_pressure_bar",
-           "is a raw valve schedule and [driveline.controller] is given too; give either the schedule or the controller");
+    m.fail(
+        m.has("valve_opening") ? "valve_opening" : "valve_pressure_bar",
+        "is a raw valve schedule and [driveline.controller] is given too; give either the schedule or the controller");
   if (m.has("valve_opening"))
     s.manoeuvre.valve_opening = read_schedule(m, "valve_opening", times, Range::closed(0.0, 1.0));
   if (m.has("valve_pressure_bar"))
@@ -306,10 +315,11 @@ void read_driveline(TomlTable& root, Draft& s) {
     const double engine_rpm = s.manoeuvre.start_speed_km_h / 3.6 / p.wheel_radius_m * p.gear_ratio *
                               p.final_drive_ratio * 60.0 / (2.0 * 3.14159265358979323846);
     if (engine_rpm <= p.engine.stall_speed_rpm)
-      m.fail("start_speed_km_h", "puts the engine at " + std::to_string(static_cast<int>(engine_rpm)) +
-                                     " rpm, at or below its stall speed; a throttle needs the engine above " +
-                                     std::to_string(static_cast<int>(p.engine.stall_speed_rpm)) +
-                                     " rpm at the start (no clutch is modelled; launch from rest with engine_torque_Nm)");
+      m.fail("start_speed_km_h",
+             "puts the engine at " + std::to_string(static_cast<int>(engine_rpm)) +
+                 " rpm, at or below its stall speed; a throttle needs the engine above " +
+                 std::to_string(static_cast<int>(p.engine.stall_speed_rpm)) +
+                 " rpm at the start (no clutch is modelled; launch from rest with engine_torque_Nm)");
   }
   if (m.has("turn_radius_m")) {
     if (p.turn_ratio != 1.0)
@@ -336,7 +346,11 @@ void read_driveline(TomlTable& root, Draft& s) {
 
 // The scenario's structs that effects write into (the registry's EffectTarget).
 rig_models::EffectTarget effect_target(Draft& s) {
-  return {s.clutch, s.settings.bearing_drag, s.rig.stick_time, s.settings.torque_cell, s.settings.load_cell,
+  return {s.clutch,
+          s.settings.bearing_drag,
+          s.rig.stick_time,
+          s.settings.torque_cell,
+          s.settings.load_cell,
           s.settings.friction_drift};
 }
 
@@ -361,8 +375,8 @@ void read_effects(TomlTable& root, Draft& s) {
     }
     for (const auto& c : effect.choices) {
       const std::string chosen = t->choice_or(c.key, c.options.at(c.get(target)), c.options);
-      c.set(target, static_cast<std::size_t>(std::find(c.options.begin(), c.options.end(), chosen) -
-                                              c.options.begin()));
+      c.set(target,
+            static_cast<std::size_t>(std::find(c.options.begin(), c.options.end(), chosen) - c.options.begin()));
     }
     t->finish();
   }
@@ -373,16 +387,15 @@ void read_effects(TomlTable& root, Draft& s) {
       if (kind == ModelKind::kDriveline)
         effects->fail(effect.name, "has no effect in a driveline scenario (" + std::string(*why) +
                                        "); disable it or remove the table");
-      s.warnings.push_back("effect " + effect.name + " has no effect in a " +
-                           std::string(model_kind_name(kind)) + " scenario (" + std::string(*why) + ")");
+      s.warnings.push_back("effect " + effect.name + " has no effect in a " + std::string(model_kind_name(kind)) +
+                           " scenario (" + std::string(*why) + ")");
     }
   effects->finish();
 }
 
 }  // namespace
 
-std::string set_scenario_key(const std::string& text, const std::string& path,
-                             const std::string& key, double value) {
+std::string set_scenario_key(const std::string& text, const std::string& path, const std::string& key, double value) {
   toml::table doc = TomlTable::parse_text(text, path);
   // Walk/create the tables of a dotted key ("rig.torsion_bar.natural_frequency_Hz").
   toml::table* table = &doc;
@@ -449,9 +462,10 @@ Scenario load_scenario_text(const std::string& text, const std::string& path) {
   sc.name = head.string_or("name", fs::path(path).stem().string());
   s.type = head.choice_or("type", "prescribed_slip", {"prescribed_slip", "rig", "driveline", "network"});
   if (s.type == "network")
-    head.fail("type", "\"network\" scenarios (docs/formats/network_file.md) work with `shudder run`, `sweep`, `modes`, `plot` "
-                      "and `diagnose`; "
-                      "this command needs type = \"prescribed_slip\", \"rig\" or \"driveline\"");
+    head.fail("type",
+              "\"network\" scenarios (docs/formats/network_file.md) work with `shudder run`, `sweep`, `modes`, `plot` "
+              "and `diagnose`; "
+              "this command needs type = \"prescribed_slip\", \"rig\" or \"driveline\"");
   s.kind = kind_of_type(s.type);
   sc.description = head.string_or("description", "");
   s.settings.duration_s = head.number("duration_s", Range::closed(1e-3, 1e5));
@@ -477,13 +491,16 @@ Scenario load_scenario_text(const std::string& text, const std::string& path) {
   }
 
   if (auto solver = root.optional_table("solver")) {
-    s.clutch.thermal.radial_cells = static_cast<int>(solver->integer_or("radial_cells", s.clutch.thermal.radial_cells, 2, 2000));
-    s.settings.thermal_step_s = solver->number_or("thermal_step_ms", s.settings.thermal_step_s * 1e3, Range::closed(1e-3, 1e4)) * 1e-3;
+    s.clutch.thermal.radial_cells =
+        static_cast<int>(solver->integer_or("radial_cells", s.clutch.thermal.radial_cells, 2, 2000));
+    s.settings.thermal_step_s =
+        solver->number_or("thermal_step_ms", s.settings.thermal_step_s * 1e3, Range::closed(1e-3, 1e4)) * 1e-3;
     const std::string scheme = solver->choice_or("thermal_scheme", "backward_euler", {"backward_euler", "bdf2"});
     if (scheme == "bdf2" && s.kind != ModelKind::kPrescribedSlip)
       solver->fail("thermal_scheme",
                    "\"bdf2\" needs the clutch's heat at each thermal step's end, which only type = \"prescribed_slip\" "
-                   "knows; a " + s.type + " scenario steps its thermal field with \"backward_euler\" (remove the key)");
+                   "knows; a " +
+                       s.type + " scenario steps its thermal field with \"backward_euler\" (remove the key)");
     s.settings.thermal_scheme =
         scheme == "bdf2" ? rig_models::ThermalScheme::kBdf2 : rig_models::ThermalScheme::kBackwardEuler;
     auto& integ = s.kind == ModelKind::kDriveline ? s.driveline.integrator : s.rig.integrator;

@@ -20,12 +20,12 @@ namespace shudder::io {
 /// and the typed model of its kind (rig_models/model.hpp). The file's `type` string is mapped
 /// to the kind once, by the loader; everything else dispatches on `model`.
 struct Scenario {
-  std::string path;         // as given
-  std::string text;         // the file's text (stored in outputs)
+  std::string path;  // as given
+  std::string text;  // the file's text (stored in outputs)
   std::string name;
   std::string description;
-  std::string fluid_path;   // resolved relative to the scenario file
-  std::string fluid_text;   // the fluid file's text as read (stored in outputs beside `text`)
+  std::string fluid_path;  // resolved relative to the scenario file
+  std::string fluid_text;  // the fluid file's text as read (stored in outputs beside `text`)
   clutch::Fluid fluid;
   clutch::WetClutchParams clutch;  // every kind; clutch effects applied
   rig_models::Model model;         // the kind and what it needs (rig and driveline params,
@@ -55,7 +55,6 @@ components::WetPackSpec read_wet_pack(TomlTable& component, const std::string& s
 
 /// The scenario text with numeric `key` (dotted, tables created as needed) set to `value`
 /// (comments are not kept). Used by sweeps.
-std::string set_scenario_key(const std::string& text, const std::string& path,
-                             const std::string& key, double value);
+std::string set_scenario_key(const std::string& text, const std::string& path, const std::string& key, double value);
 
 }  // namespace shudder::io

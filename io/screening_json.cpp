@@ -36,8 +36,9 @@ std::string numbers(const std::vector<double>& v) {
 // Rows of a (n_s x n_T) matrix: [[m(0,0), m(0,1), ...], ...], one row per speed.
 std::string matrix(const Eigen::MatrixXd& m) {
   return array(static_cast<std::size_t>(m.rows()), [&](std::size_t i) {
-    return array(static_cast<std::size_t>(m.cols()),
-                 [&](std::size_t j) { return json_number(m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j))); });
+    return array(static_cast<std::size_t>(m.cols()), [&](std::size_t j) {
+      return json_number(m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)));
+    });
   });
 }
 
@@ -110,25 +111,27 @@ std::string screening_json(const rig_models::ScreeningReport& rep, const std::st
        << "\": " << array(nt, [&](std::size_t i) { return json_number(idx[i].values[k].value); }) << ",\n";
   os << "  \"units\": {";
   for (std::size_t k = 0; k < kIndexCount; ++k)
-    os << (k ? ", " : "") << "\"" << analysis::index_info()[k].key << "\": " << json_string(analysis::index_info()[k].unit);
+    os << (k ? ", " : "") << "\"" << analysis::index_info()[k].key
+       << "\": " << json_string(analysis::index_info()[k].unit);
   os << "},\n";
   os << "  \"clamped\": {\n";
   for (std::size_t k = 0; k < kIndexCount; ++k)
-    os << "    \"" << analysis::index_info()[k].key << "\": "
-       << array(nt, [&](std::size_t i) { return std::string(boolean(idx[i].values[k].clamped)); })
+    os << "    \"" << analysis::index_info()[k].key
+       << "\": " << array(nt, [&](std::size_t i) { return std::string(boolean(idx[i].values[k].clamped)); })
        << (k + 1 < kIndexCount ? ",\n" : "\n");
   os << "  },\n";
 
   // Slope map and its negative (risky) region.
   os << "  \"slope_map\": {\"speeds_rpm\": " << numbers(rep.slope.speeds_rpm)
-     << ", \"temps_C\": " << numbers(rep.slope.temps_C)
-     << ", \"dmu_dv_s_per_m\": " << matrix(rep.slope.dmu_dv_s_per_m) << "},\n";
+     << ", \"temps_C\": " << numbers(rep.slope.temps_C) << ", \"dmu_dv_s_per_m\": " << matrix(rep.slope.dmu_dv_s_per_m)
+     << "},\n";
   os << "  \"risky_region\": " << runs(rep.negative_slope) << ",\n";
   os << "  \"risky_region_extent\": " << extent(rep.negative_slope_extent) << ",\n";
 
   // Stability maps, one per rig, on the slope map's grid.
-  os << "  \"stability\": {\"load_N\": " << json_number(rep.load_N) << ", \"speeds_rpm\": " << numbers(rep.slope.speeds_rpm)
-     << ", \"temps_C\": " << numbers(rep.slope.temps_C) << ", \"rigs\": [";
+  os << "  \"stability\": {\"load_N\": " << json_number(rep.load_N)
+     << ", \"speeds_rpm\": " << numbers(rep.slope.speeds_rpm) << ", \"temps_C\": " << numbers(rep.slope.temps_C)
+     << ", \"rigs\": [";
   for (std::size_t r = 0; r < rep.rigs.size(); ++r) {
     const auto& rig = rep.rigs[r];
     os << (r ? ",\n" : "\n") << "    {\"label\": " << json_string(rig.label)

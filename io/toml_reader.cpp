@@ -28,7 +28,6 @@ std::string Range::describe() const {
   return os.str();
 }
 
-
 TomlTable::TomlTable(const toml::table& table, std::string file, std::string path)
     : table_(&table), file_(std::move(file)), path_(std::move(path)) {}
 
@@ -41,8 +40,7 @@ toml::table TomlTable::parse_file(const std::string& file) {
   } catch (const toml::parse_error& e) {
     const auto& src = e.source();
     // toml++ reports an unreadable file as a parse error at line 0.
-    throw InputError(file, static_cast<long>(src.begin.line), "",
-                     std::string(e.description()));
+    throw InputError(file, static_cast<long>(src.begin.line), "", std::string(e.description()));
   }
 }
 
@@ -83,8 +81,7 @@ void reject_non_ascii_outside_strings(const std::string& text, const std::string
           if (in == In::kMultiLiteral) i += 2;
         }
         break;
-      case In::kComment:
-        break;
+      case In::kComment: break;
       case In::kBasic:
       case In::kMultiBasic:
         if (ch == '\\') {
@@ -121,9 +118,7 @@ toml::table TomlTable::parse_text(const std::string& text, const std::string& fi
   }
 }
 
-std::string TomlTable::full_key(const std::string& key) const {
-  return path_.empty() ? key : path_ + "." + key;
-}
+std::string TomlTable::full_key(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
 
 long TomlTable::line_of(const std::string& key) const {
   if (const auto* n = table_->get(key)) return static_cast<long>(n->source().begin.line);
@@ -200,8 +195,7 @@ double TomlTable::number_or(const std::string& key, double fallback, Range range
 
 long TomlTable::integer(const std::string& key, long min, long max) {
   const auto* n = get(key);
-  const std::string allowed =
-      "expected an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]";
+  const std::string allowed = "expected an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]";
   if (!n) missing(key, allowed);
   read_.insert(key);
   const auto* i = n->as_integer();
@@ -251,11 +245,10 @@ std::string TomlTable::choice_or(const std::string& key, const std::string& fall
   fail(key, "\"" + v + "\" is not allowed; expected one of " + list);
 }
 
-std::vector<double> TomlTable::numbers(const std::string& key, Range range,
-                                       std::size_t min_size) {
+std::vector<double> TomlTable::numbers(const std::string& key, Range range, std::size_t min_size) {
   const auto* n = get(key);
-  const std::string allowed = "expected an array of at least " + std::to_string(min_size) +
-                              " numbers in " + range.describe();
+  const std::string allowed =
+      "expected an array of at least " + std::to_string(min_size) + " numbers in " + range.describe();
   if (!n) missing(key, allowed);
   read_.insert(key);
   const auto* arr = n->as_array();

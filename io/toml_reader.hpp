@@ -59,8 +59,7 @@ class TomlTable {
   std::string string(const std::string& key);
   std::string string_or(const std::string& key, const std::string& fallback);
   /// A string that must be one of `choices`.
-  std::string choice_or(const std::string& key, const std::string& fallback,
-                        const std::vector<std::string>& choices);
+  std::string choice_or(const std::string& key, const std::string& fallback, const std::vector<std::string>& choices);
   /// Array of numbers (integers accepted), each within `range`; `min_size` elements at least.
   std::vector<double> numbers(const std::string& key, Range range = {}, std::size_t min_size = 1);
 

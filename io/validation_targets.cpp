@@ -19,8 +19,7 @@ ValidationTarget read_target(const ValidationSpec& spec, TomlTable& t) {
   ValidationTarget g;
   g.case_index = case_named(spec, t, "case");
   g.quantity = t.string("quantity");
-  const std::string kind =
-      t.choice_or("kind", "value", {"value", "mean", "rise", "percent_below", "percent_above"});
+  const std::string kind = t.choice_or("kind", "value", {"value", "mean", "rise", "percent_below", "percent_above"});
   g.kind = kind == "mean"            ? TargetKind::kMean
            : kind == "rise"          ? TargetKind::kRise
            : kind == "percent_below" ? TargetKind::kPercentBelow
@@ -41,8 +40,7 @@ ValidationTarget read_target(const ValidationSpec& spec, TomlTable& t) {
   if (t.has("max")) g.max = t.number("max");
   if (t.has("greater_than")) g.greater_than = t.number("greater_than");
   if (g.min && g.max && *g.min > *g.max) t.fail("max", "must not be below min");
-  if (g.greater_than && (g.min || g.max))
-    t.fail("greater_than", "give either greater_than or min/max, not both");
+  if (g.greater_than && (g.min || g.max)) t.fail("greater_than", "give either greater_than or min/max, not both");
   t.finish();
   return g;
 }

@@ -24,13 +24,13 @@ struct ValidationCase {
 enum class TargetKind { kValue, kMean, kRise, kPercentBelow, kPercentAbove };
 
 struct ValidationTarget {
-  std::size_t case_index = 0;                   // into ValidationSpec::cases
-  std::optional<std::size_t> reference_index;   // percent_* kinds
-  std::string quantity;                         // as printed
+  std::size_t case_index = 0;                  // into ValidationSpec::cases
+  std::optional<std::size_t> reference_index;  // percent_* kinds
+  std::string quantity;                        // as printed
   TargetKind kind = TargetKind::kValue;
-  std::string signal;                           // docs/formats/measured_run.md signal name
+  std::string signal;  // docs/formats/measured_run.md signal name
   double time_s = 0.0, from_s = 0.0, to_s = 0.0;
-  std::string unit;                             // the signal's unit as printed ("Nm", "°C")
+  std::string unit;  // the signal's unit as printed ("Nm", "°C")
   // Pass band on the value (percent for percent_* kinds): min <= v <= max, v > greater_than.
   // None of them: reported without a target.
   std::optional<double> min, max, greater_than;

@@ -9,9 +9,7 @@
 
 namespace shudder::io {
 
-namespace {
-
-}  // namespace
+namespace {}  // namespace
 
 std::string verdict_json(const dynamics::ResultBlock& b) {
   std::string s = "{\n  \"format\": \"shudder-verdict/1\"";

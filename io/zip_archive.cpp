@@ -66,10 +66,10 @@ std::string zip_stored(const std::vector<std::pair<std::string, std::string>>& f
     put32(central, size);
     put32(central, size);
     put16(central, static_cast<std::uint32_t>(name.size()));
-    put16(central, 0);  // extra
-    put16(central, 0);  // comment
-    put16(central, 0);  // disk
-    put16(central, 0);  // internal attributes
+    put16(central, 0);               // extra
+    put16(central, 0);               // comment
+    put16(central, 0);               // disk
+    put16(central, 0);               // internal attributes
     put32(central, 0100644u << 16);  // external: a regular file, rw-r--r--
     put32(central, offset);
     central += name;

@@ -96,16 +96,19 @@ std::vector<std::pair<std::string, double>> overrides_of(const py::object& obj, 
   for (const auto& [k, v] : obj.cast<py::dict>()) {
     const auto key = py::str(k).cast<std::string>();
     if (!py::isinstance<py::float_>(v) && !py::isinstance<py::int_>(v))
-      throw InputErrorPy(io::InputError(path, 0, key, "override " + py::repr(v).cast<std::string>() +
-                                                          " is not a number; only numeric keys can be set "
-                                                          "(as with sweep --set)")
+      throw InputErrorPy(io::InputError(path, 0, key,
+                                        "override " + py::repr(v).cast<std::string>() +
+                                            " is not a number; only numeric keys can be set "
+                                            "(as with sweep --set)")
                              .what());
     out.emplace_back(key, v.cast<double>());
   }
   return out;
 }
 
-py::array_t<double> array(const std::vector<double>& v) { return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data()); }
+py::array_t<double> array(const std::vector<double>& v) {
+  return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
+}
 
 py::array_t<double> array(const Eigen::MatrixXd& m) {
   py::array_t<double> a({m.rows(), m.cols()});
@@ -215,8 +218,8 @@ Result run(const py::object& scenario, const py::object& overrides, const py::ob
       return to_python(name, text, outcome);
     }
   }
-  Scenario s = py::isinstance<Scenario>(scenario) ? scenario.cast<Scenario>()
-                                                   : load(scenario, py::none(), "", py::none());
+  Scenario s =
+      py::isinstance<Scenario>(scenario) ? scenario.cast<Scenario>() : load(scenario, py::none(), "", py::none());
   if (!overrides.is_none()) s = load(py::none(), py::str(s.sc.text), s.sc.path, overrides);
   const std::string out = output.is_none() ? "" : py::str(output).cast<std::string>();
   auto outcome = without_gil(s.sc.path, "simulation", [&] { return python::run(s.sc, out, force); });
@@ -241,7 +244,9 @@ struct ScratchFile {
   std::string path;
   ScratchFile() {
     static std::atomic<unsigned> n{0};
-    path = (fs::temp_directory_path() / ("shudder_py_" + std::to_string(getpid()) + "_" + std::to_string(n++) + ".json")).string();
+    path =
+        (fs::temp_directory_path() / ("shudder_py_" + std::to_string(getpid()) + "_" + std::to_string(n++) + ".json"))
+            .string();
   }
   ~ScratchFile() {
     std::error_code ignored;
@@ -342,7 +347,8 @@ py::object characterise(const std::vector<std::string>& runs, const std::string&
   require_choice("--compensation", compensation, {"none", "linear", "quadratic"});
   require_choice("--temperature-channel", temperature_channel, {"temp_C", "ir_temp_C"});
   require_choice("--radius", radius, {"uniform_wear", "uniform_pressure"});
-  if (interfaces < 1 || interfaces > 100) throw InputErrorPy("--interfaces: " + std::to_string(interfaces) + " is not in [1, 100]");
+  if (interfaces < 1 || interfaces > 100)
+    throw InputErrorPy("--interfaces: " + std::to_string(interfaces) + " is not in [1, 100]");
   if (!(bearing_drag_mu >= 0.0 && bearing_drag_mu <= 0.1))
     throw InputErrorPy("--bearing-drag-mu: " + std::to_string(bearing_drag_mu) + " is not in [0, 0.1]");
   app::CharacteriseOptions o;
@@ -402,10 +408,12 @@ PYBIND11_MODULE(shudder, m) {
       .def_property_readonly("name", [](const Scenario& s) { return s.sc.name; })
       .def_property_readonly("description", [](const Scenario& s) { return s.sc.description; })
       .def_property_readonly("path", [](const Scenario& s) { return s.sc.path; })
-      .def_property_readonly("text", [](const Scenario& s) { return s.sc.text; }, "The TOML text a run stores")
+      .def_property_readonly(
+          "text", [](const Scenario& s) { return s.sc.text; }, "The TOML text a run stores")
       .def_property_readonly("fluid_path", [](const Scenario& s) { return s.sc.fluid_path; })
       .def_property_readonly("warnings", [](const Scenario& s) { return s.sc.warnings; })
-      .def("__repr__", [](const Scenario& s) { return "<shudder.Scenario '" + s.sc.name + "' from " + s.sc.path + ">"; });
+      .def("__repr__",
+           [](const Scenario& s) { return "<shudder.Scenario '" + s.sc.name + "' from " + s.sc.path + ">"; });
 
   py::class_<Result>(m, "Result", "One run's results (shudder.run)")
       .def_readonly("name", &Result::name)
@@ -455,8 +463,8 @@ PYBIND11_MODULE(shudder, m) {
         "('N m', 'none')\n"
         ">>> bool(44 < r.signals[\"torque_Nm\"][-1] < 50), bool(85 < r.signals[\"temp_C\"][-1] < 95)\n"
         "(True, True)\n");
-  m.def("sweep", &sweep, py::arg("scenario"), py::arg("sets"), py::kw_only(), py::arg("output"),
-        py::arg("jobs") = 0u, py::arg("keep_parts") = false, py::arg("report") = "", py::arg("force") = false,
+  m.def("sweep", &sweep, py::arg("scenario"), py::arg("sets"), py::kw_only(), py::arg("output"), py::arg("jobs") = 0u,
+        py::arg("keep_parts") = false, py::arg("report") = "", py::arg("force") = false,
         "`shudder sweep` (threads): sets = {'key': 'START:STOP:STEP' or [values]}; returns the /cases table");
   m.def("screen", &screen, py::arg("fluid"), py::kw_only(), py::arg("rig") = "", py::arg("load_N") = 20000.0,
         py::arg("temps") = py::none(), "`shudder screen`: returns its JSON (docs/screening.md) as a dict");

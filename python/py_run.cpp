@@ -55,7 +55,8 @@ RunOutcome run(const io::Scenario& scenario, const std::string& output, bool for
   const clutch::WetClutch clutch = scenario.make_clutch();
   if (!output.empty()) {
     // The checks of `shudder run` before simulating: not an input, an existing directory, a size.
-    io::require_distinct_paths({{"scenario", scenario.path}, {"fluid file", scenario.fluid_path}}, {{"output", output}});
+    io::require_distinct_paths({{"scenario", scenario.path}, {"fluid file", scenario.fluid_path}},
+                               {{"output", output}});
     io::require_output_directory(output);
     io::require_output_size(output, app::estimated_run_bytes(scenario),
                             std::to_string(app::estimated_samples(scenario)) + " samples x " +
@@ -66,13 +67,15 @@ RunOutcome run(const io::Scenario& scenario, const std::string& output, bool for
   out.recording = std::visit([&](const auto& m) { return rig_models::simulate(m, clutch); }, scenario.model);
   out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto analysis_warnings = std::visit(
-      [&](const auto& m) { return rig_models::add_run_analysis(m, clutch, scenario.clutch.start_temp_C, out.recording); },
+      [&](const auto& m) {
+        return rig_models::add_run_analysis(m, clutch, scenario.clutch.start_temp_C, out.recording);
+      },
       scenario.model);
   out.warnings.insert(out.warnings.end(), analysis_warnings.begin(), analysis_warnings.end());
   if (!output.empty()) io::write_run_hdf5(output, out.recording, scenario.text, scenario.fluid_text);
   if (const std::string bad = rig_models::energy_balance_violation(out.recording); !bad.empty())
-    throw std::runtime_error("numerical failure: " + bad + (output.empty() ? "" : "; the run is written to " + output +
-                                                                                     " for inspection") +
+    throw std::runtime_error("numerical failure: " + bad +
+                             (output.empty() ? "" : "; the run is written to " + output + " for inspection") +
                              ", but its results cannot be trusted");
   return out;
 }

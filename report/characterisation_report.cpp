@@ -44,8 +44,7 @@ std::string characterisation_summary(const analysis::Characterisation& c, const 
     << "  friction radius " << f("%.4g", c.effective_radius_mm) << " mm ("
     << clutch::radius_convention_name(s.conversion.convention())
     << (s.conversion.source.empty() ? "" : ": " + s.conversion.source) << "; recorded in the fluid file), "
-    << s.conversion.interfaces
-    << " interface(s), bearing drag mu " << f("%.4g", s.conversion.bearing_drag_mu) << "\n"
+    << s.conversion.interfaces << " interface(s), bearing drag mu " << f("%.4g", s.conversion.bearing_drag_mu) << "\n"
     << "  compensation: " << analysis::compensation_name(s.compensation);
   if (s.compensation == analysis::Compensation::kLinear)
     o << " (alpha " << f("%.4g", c.alpha_per_C) << " 1/°C, " << (c.alpha_fitted ? "fitted" : "given") << ")";
@@ -73,7 +72,8 @@ std::string breakaway_range(const analysis::BreakawayMeasurement& m) {
   return buf;
 }
 
-std::string breakaway_summary(const analysis::BreakawayMeasurement& m, double written_ratio, const std::string& source) {
+std::string breakaway_summary(const analysis::BreakawayMeasurement& m, double written_ratio,
+                              const std::string& source) {
   std::ostringstream o;
   char buf[256];
   std::snprintf(buf, sizeof buf, "breakaway ratio (mu_s / mu_k(v_min), written): %.4g — ", written_ratio);
@@ -94,20 +94,22 @@ std::string method_comparison_summary(const rig_models::InverseCharacterisation&
   const std::size_t mid = nodes.size() / 2;
   o << "methods: sensor (" << analysis::compensation_name(sensor_settings.compensation)
     << " compensation with the temperature channel) vs inverse (the same compensation with the interface\n"
-    << "  temperature of the clutch and thermal model, replayed with the runs' inputs and calibrated on their temperature)\n"
-    << "  row (kN, °C)   rms resid sensor / inverse   max resid sensor / inverse   mu at " << f("%.3g", r.inverse.node_rpm.front())
-    << "/" << f("%.3g", r.inverse.node_rpm[mid]) << "/" << f("%.3g", r.inverse.node_rpm.back())
-    << " rpm sensor -> inverse\n";
+    << "  temperature of the clutch and thermal model, replayed with the runs' inputs and calibrated on their "
+       "temperature)\n"
+    << "  row (kN, °C)   rms resid sensor / inverse   max resid sensor / inverse   mu at "
+    << f("%.3g", r.inverse.node_rpm.front()) << "/" << f("%.3g", r.inverse.node_rpm[mid]) << "/"
+    << f("%.3g", r.inverse.node_rpm.back()) << " rpm sensor -> inverse\n";
   for (std::size_t i = 0; i < r.inverse.rows.size() && i < r.sensor.rows.size(); ++i) {
     const auto& a = r.sensor.rows[i];
     const auto& b = r.inverse.rows[i];
     const auto mu = [&](const analysis::Characterisation& c, std::size_t k) {
       return f("%.4f", c.law->mu(nodes[k], b.temp_C, b.load_N));
     };
-    o << "  " << f("%6.3g", b.load_N / 1000.0) << f(" %7.3g", b.temp_C) << "      " << f("%.2e", a.rms_residual) << " / "
-      << f("%.2e", b.rms_residual) << "          " << f("%.2e", a.max_residual) << " / " << f("%.2e", b.max_residual)
-      << "        " << mu(r.sensor, 0) << "/" << mu(r.sensor, mid) << "/" << mu(r.sensor, nodes.size() - 1) << " -> "
-      << mu(r.inverse, 0) << "/" << mu(r.inverse, mid) << "/" << mu(r.inverse, nodes.size() - 1) << "\n";
+    o << "  " << f("%6.3g", b.load_N / 1000.0) << f(" %7.3g", b.temp_C) << "      " << f("%.2e", a.rms_residual)
+      << " / " << f("%.2e", b.rms_residual) << "          " << f("%.2e", a.max_residual) << " / "
+      << f("%.2e", b.max_residual) << "        " << mu(r.sensor, 0) << "/" << mu(r.sensor, mid) << "/"
+      << mu(r.sensor, nodes.size() - 1) << " -> " << mu(r.inverse, 0) << "/" << mu(r.inverse, mid) << "/"
+      << mu(r.inverse, nodes.size() - 1) << "\n";
   }
   o << "  replayed torque vs measured (rms): sensor law " << f("%.3g", r.torque_rms_sensor_Nm) << " N m, inverse law "
     << f("%.3g", r.torque_rms_Nm) << " N m\n"
@@ -148,8 +150,10 @@ Report write_characterisation_report(const std::string& dir, const analysis::Cha
         res.push_back(c.law->mu(r.bin_speed_mm_s[b], r.temp_C, r.load_N) - r.bin_mu[b]);
       mu_v.series.push_back(pts);
       mu_v.series.push_back({"", vf, mf, colour});
-      residuals.series.push_back({tag + " " + t, r.bin_speed_mm_s, res, colour, false, SeriesStyle::kLinesPoints, 7, 0.6, 1.0});
-      ud.series.push_back({t + " up raw", c.node_speeds_mm_s, r.up_raw, colour, true, SeriesStyle::kLinesPoints, 6, 0.8, 1.0});
+      residuals.series.push_back(
+          {tag + " " + t, r.bin_speed_mm_s, res, colour, false, SeriesStyle::kLinesPoints, 7, 0.6, 1.0});
+      ud.series.push_back(
+          {t + " up raw", c.node_speeds_mm_s, r.up_raw, colour, true, SeriesStyle::kLinesPoints, 6, 0.8, 1.0});
       ud.series.push_back({"", c.node_speeds_mm_s, r.down_raw, colour, true, SeriesStyle::kLinesPoints, 2, 0.8, 1.0});
       ud.series.push_back({"", c.node_speeds_mm_s, r.up_comp, colour, false, SeriesStyle::kLinesPoints, 6, 0.8, 1.5});
       ud.series.push_back({"", c.node_speeds_mm_s, r.down_comp, colour, false, SeriesStyle::kLinesPoints, 2, 0.8, 1.5});

@@ -25,8 +25,9 @@ std::string comparison_number(const char* fmt, double x) { return number(x, fmt)
 
 std::string comparison_summary(const rig_models::Comparison& c) {
   std::ostringstream o;
-  o << "Fluids compared at " << comparison_number("%.0f", c.load_N) << " N (indices: docs/screening.md; equal viscosity "
-    << comparison_number("%.3g", c.viscosity_cSt) << " cSt as Paper E Table 5)\n";
+  o << "Fluids compared at " << comparison_number("%.0f", c.load_N)
+    << " N (indices: docs/screening.md; equal viscosity " << comparison_number("%.3g", c.viscosity_cSt)
+    << " cSt as Paper E Table 5)\n";
   std::vector<const rig_models::FluidComparison*> sorted;
   for (const auto& fl : c.fluids) sorted.push_back(&fl);
   std::stable_sort(sorted.begin(), sorted.end(), [](auto a, auto b) { return a->rank < b->rank; });
@@ -44,7 +45,8 @@ std::string comparison_summary(const rig_models::Comparison& c) {
   };
   column("breakaway", [](const auto& fl) { return comparison_number("%.3f", fl.breakaway_ratio); });
   column("clutch margin", [](const auto& fl) {
-    return std::isfinite(fl.worst_margin_per_s) ? comparison_number("%.3g/s", fl.worst_margin_per_s) : std::string("n/a");
+    return std::isfinite(fl.worst_margin_per_s) ? comparison_number("%.3g/s", fl.worst_margin_per_s)
+                                                : std::string("n/a");
   });
   for (std::size_t k = 0; k < c.temps_C.size(); ++k)
     column("mu1/mu50@" + comparison_number("%.4g", c.temps_C[k]) + "°C", [&](const auto& fl) {
@@ -75,7 +77,9 @@ std::string comparison_summary(const rig_models::Comparison& c) {
   const auto width = [](const std::string& x) {
     return static_cast<std::size_t>(std::count_if(x.begin(), x.end(), [](char ch) { return (ch & 0xC0) != 0x80; }));
   };
-  const auto right = [&](const std::string& x, std::size_t w) { return std::string(w > width(x) ? w - width(x) : 0, ' ') + x; };
+  const auto right = [&](const std::string& x, std::size_t w) {
+    return std::string(w > width(x) ? w - width(x) : 0, ' ') + x;
+  };
   std::vector<std::size_t> w;
   for (const auto& col : cols) {
     std::size_t m = width(col.header);
@@ -121,11 +125,13 @@ Report write_comparison_report(const std::string& dir, const rig_models::Compari
       continue;
     }
     Plot p;
-    p.title = "mu against slip speed at " + comparison_number("%.4g", t) + " °C, " + comparison_number("%.0f", c.load_N) + " N";
+    p.title = "mu against slip speed at " + comparison_number("%.4g", t) + " °C, " +
+              comparison_number("%.0f", c.load_N) + " N";
     p.xlabel = "slip speed [rpm]";
     p.ylabel = "mu [-]";
     p.caption = "Each fluid's friction coefficient against slip speed (1–120 rpm) at " + comparison_number("%.4g", t) +
-                " °C and " + comparison_number("%.0f", c.load_N) + " N: a falling curve is the negative slope that feeds shudder.";
+                " °C and " + comparison_number("%.0f", c.load_N) +
+                " N: a falling curve is the negative slope that feeds shudder.";
     for (const auto& [file_name, fluid] : fluids) {
       Series s;
       s.label = fluid.name;

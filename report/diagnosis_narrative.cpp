@@ -33,11 +33,10 @@ std::string stop_reason_text(const analysis::StopReason& stop) {
       std::string levels;
       for (const auto& [name, ratio] : stop.rms_over_noise)
         levels += (levels.empty() ? "" : ", ") + name + " " + fmt(ratio, "%.2f");
-      return "every signal is within " + fmt(stop.noise_tolerance, "%.2g") + " x its noise (rms / noise: " +
-             levels + ")";
+      return "every signal is within " + fmt(stop.noise_tolerance, "%.2g") + " x its noise (rms / noise: " + levels +
+             ")";
     }
-    case Kind::kEffectLimit:
-      return "the limit of " + std::to_string(stop.max_effects) + " added effects was reached";
+    case Kind::kEffectLimit: return "the limit of " + std::to_string(stop.max_effects) + " added effects was reached";
     case Kind::kAllAdded: return "every candidate effect has been added";
     case Kind::kNoGain:
       return "no candidate lowers the held-out misfit by more than " + fmt(stop.needed_gain) +
@@ -46,8 +45,9 @@ std::string stop_reason_text(const analysis::StopReason& stop) {
              ")";
     case Kind::kNoFit: return "no candidate could be fitted";
     case Kind::kTie:
-      return stop.best_effect + " and " + stop.tied_with + " explain the data equally (each lowers the held-out misfit by " +
-             fmt(stop.best_gain) + "): the data cannot tell them apart, so neither is named";
+      return stop.best_effect + " and " + stop.tied_with +
+             " explain the data equally (each lowers the held-out misfit by " + fmt(stop.best_gain) +
+             "): the data cannot tell them apart, so neither is named";
   }
   return {};
 }
@@ -69,18 +69,20 @@ std::string step_reason(const analysis::DiagnosisStep& step) {
   };
   os << "before it, the torque error tracked " << tr(step.torque_tracking_before) << " and the temperature error "
      << tr(step.temp_tracking_before) << ". The change "
-     << (step.joint_with.empty() ? "this effect makes" : "they make together") << " matches that residual (signature r = "
+     << (step.joint_with.empty() ? "this effect makes" : "they make together")
+     << " matches that residual (signature r = "
      << fmt(step.candidates.empty() ? 0.0 : step.candidates.front().signature_correlation, "%.2f") << ")";
   if (!step.parameters.empty()) {
     os << " with ";
     for (std::size_t j = 0; j < step.parameters.size(); ++j)
       os << (j ? ", " : "") << step.parameters[j].first << " = " << fmt(step.parameters[j].second, "%.4g");
   }
-  os << ", and " << (step.joint_with.empty() ? "it lowers" : "they lower") << " the held-out misfit from " << fmt(step.holdout_misfit_before) << " to "
-     << fmt(step.holdout_misfit_after) << " (1 = noise level)";
+  os << ", and " << (step.joint_with.empty() ? "it lowers" : "they lower") << " the held-out misfit from "
+     << fmt(step.holdout_misfit_before) << " to " << fmt(step.holdout_misfit_after) << " (1 = noise level)";
   if (step.candidates.size() > 1) {
     const auto& next = step.candidates[1];
-    os << "; the next best, " << effects_label(next.effect, next.joint_with) << ", reached " << fmt(next.holdout_misfit);
+    os << "; the next best, " << effects_label(next.effect, next.joint_with) << ", reached "
+       << fmt(next.holdout_misfit);
   }
   os << ".";
   return os.str();
@@ -140,7 +142,7 @@ std::string verdict_sentence(const analysis::DiagnosisResult& r) {
          << " close the gap equally, so neither is named; ";
     else
       os << (r.verdict == analysis::DiagnosisVerdict::kNotExplained ? ": no candidate closes the gap; "
-                                                                      : "; a gap remains: ");
+                                                                    : "; a gap remains: ");
     os << gaps;
     if (!r.tolerance_given)
       os << " (no --tolerance given: a model-form gap could not be separated from a missing effect)";
@@ -163,21 +165,20 @@ std::string diagnosis_conclusion(const analysis::DiagnosisResult& r) {
     concl << "Nothing is missing that the candidates could explain: " << stop << ".";
   } else {
     concl << "Missing: ";
-    for (std::size_t i = 0; i < r.missing_effects.size(); ++i)
-      concl << (i ? ", then " : "") << r.missing_effects[i];
+    for (std::size_t i = 0; i < r.missing_effects.size(); ++i) concl << (i ? ", then " : "") << r.missing_effects[i];
     concl << ". Torque RMS " << fmt(r.baseline.torque_rms_Nm) << " -> " << fmt(r.final.torque_rms_Nm)
-          << " Nm, temperature RMS " << fmt(r.baseline.temp_rms_C) << " -> " << fmt(r.final.temp_rms_C)
-          << " C (noise " << fmt(r.noise_torque_Nm) << " Nm, " << fmt(r.noise_temp_C)
-          << " C). The search stopped because " << stop << ".";
+          << " Nm, temperature RMS " << fmt(r.baseline.temp_rms_C) << " -> " << fmt(r.final.temp_rms_C) << " C (noise "
+          << fmt(r.noise_torque_Nm) << " Nm, " << fmt(r.noise_temp_C) << " C). The search stopped because " << stop
+          << ".";
   }
   return concl.str();
 }
 
 std::string backward_finding_text(const analysis::BackwardFinding& f) {
   std::ostringstream os;
-  os << effects_label(f.effect, f.joint_with) << ": without "
-     << (f.joint_with.empty() ? "it" : "them") << " the held-out misfit rises by " << fmt(f.holdout_cost) << ", below the "
-     << fmt(f.needed_gain) << " it would need";
+  os << effects_label(f.effect, f.joint_with) << ": without " << (f.joint_with.empty() ? "it" : "them")
+     << " the held-out misfit rises by " << fmt(f.holdout_cost) << ", below the " << fmt(f.needed_gain)
+     << " it would need";
   if (!f.stand_in.empty()) os << "; " << f.stand_in << " takes over (" << f.stand_in_move << ")";
   if (f.withdrawn)
     os << "; withdrawn";

@@ -28,7 +28,6 @@ namespace fs = std::filesystem;
 using analysis::CandidateScore;
 using analysis::RunTraces;
 
-
 std::string fixed(double x, const char* fmt = "%.4g") {
   if (!std::isfinite(x)) return "–";
   char buf[48];
@@ -40,9 +39,12 @@ std::string fixed(double x, const char* fmt = "%.4g") {
 std::string cell(const std::string& s) {
   std::string out;
   for (char c : s) {
-    if (c == '|') out += "\\|";
-    else if (c == '\n' || c == '\r' || c == '\t') out += ' ';
-    else out += c;
+    if (c == '|')
+      out += "\\|";
+    else if (c == '\n' || c == '\r' || c == '\t')
+      out += ' ';
+    else
+      out += c;
   }
   return out;
 }
@@ -65,8 +67,8 @@ void candidate_table(std::ostringstream& md, const std::vector<CandidateScore>& 
   for (const auto& c : cands)
     md << "| " << cell(effects_label(c.effect, c.joint_with)) << " | " << cell(parameters_text(c.parameters)) << " | "
        << fixed(c.fit_misfit) << " | " << fixed(c.holdout_misfit) << " | " << fixed(c.score) << " | "
-       << fixed(c.gain, "%+.4g") << " | " << fixed(c.signature_correlation, "%+.3f") << " | "
-       << c.evaluations << " | " << cell(c.failure.empty() ? "" : "failed: " + c.failure) << " |\n";
+       << fixed(c.gain, "%+.4g") << " | " << fixed(c.signature_correlation, "%+.3f") << " | " << c.evaluations << " | "
+       << cell(c.failure.empty() ? "" : "failed: " + c.failure) << " |\n";
   md << "\n";
 }
 
@@ -77,8 +79,8 @@ std::string printable(const std::string& s) {
   return out;
 }
 
-Series line(const std::vector<double>& t, const std::vector<double>& y, std::string label,
-            const std::string& rgb, bool dashed, double width) {
+Series line(const std::vector<double>& t, const std::vector<double>& y, std::string label, const std::string& rgb,
+            bool dashed, double width) {
   Series s;
   s.label = std::move(label);
   s.x = t;
@@ -103,14 +105,14 @@ Plot signal_plot(const RunTraces& tr, const char* what, const char* ylabel, cons
                  const std::vector<double>& baseline, const std::vector<double>& final) {
   Plot p;
   p.title = printable(tr.run) + ": " + what + ", measured vs model";
-  p.caption = std::string("The run's measured ") + what + " (thin black), the baseline model (orange dashed) and the "
+  p.caption = std::string("The run's measured ") + what +
+              " (thin black), the baseline model (orange dashed) and the "
               "final model with the effects the diagnosis added (blue) against time.";
   p.xlabel = "time [s]";
   p.ylabel = ylabel;
   const std::size_t n = tr.time_s.size();
   if (measured.size() == n) p.series.push_back(line(tr.time_s, measured, "measured", "#000000", false, 1.0));
-  if (baseline.size() == n)
-    p.series.push_back(line(tr.time_s, baseline, "baseline model", "#ff7f0e", true, 2.0));
+  if (baseline.size() == n) p.series.push_back(line(tr.time_s, baseline, "baseline model", "#ff7f0e", true, 2.0));
   if (final.size() == n)
     p.series.push_back(line(tr.time_s, final, "final model (effects added)", "#1f77b4", false, 2.0));
   return p;
@@ -135,8 +137,9 @@ Plot residual_panel(const RunTraces& tr, const std::string& title, const std::st
 MultiPlot residual_plot(const RunTraces& tr) {
   MultiPlot f;
   f.title = printable(tr.run) + ": residual model − measured (dashed: baseline, solid: final)";
-  f.caption = "Model minus measurement against time, before (baseline, dashed) and after (final, solid) the effects "
-              "the diagnosis added: torque above, temp_C below, each panel with its own zero line.";
+  f.caption =
+      "Model minus measurement against time, before (baseline, dashed) and after (final, solid) the effects "
+      "the diagnosis added: torque above, temp_C below, each panel with its own zero line.";
   const std::size_t n = tr.time_s.size();
   if (tr.torque_measured.size() == n)
     f.rows.push_back({residual_panel(tr, "torque residual", "torque residual [N m]", tr.torque_measured,
@@ -154,8 +157,8 @@ std::string diagnosis_run_stem(const std::string& run) {
   std::string name = run.substr(run.find_last_of('/') == std::string::npos ? 0 : run.find_last_of('/') + 1);
   if (const auto dot = name.find_last_of('.'); dot != std::string::npos && dot > 0) name.erase(dot);
   for (char& c : name) {
-    const bool ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
-                    c == '_' || c == '.' || c == '-';
+    const bool ok =
+        (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '.' || c == '-';
     if (!ok) c = '_';
   }
   if (!name.empty() && name.front() == '.') name.front() = '_';
@@ -178,15 +181,14 @@ std::string diagnosis_candidates_markdown(const analysis::DiagnosisResult& r) {
   md << "\n";
   const std::string holdout = holdout_text(r.holdout);
   if (!holdout.empty()) md << "Hold-out: " << cell(holdout) << ".\n\n";
-  md << "Baseline hold-out misfit: " << fixed(r.baseline_holdout_misfit) << "; final: "
-     << fixed(r.final_holdout_misfit) << ".\n\n";
+  md << "Baseline hold-out misfit: " << fixed(r.baseline_holdout_misfit) << "; final: " << fixed(r.final_holdout_misfit)
+     << ".\n\n";
   for (std::size_t k = 0; k < r.steps.size(); ++k) {
     const auto& st = r.steps[k];
     md << "## Step " << k + 1 << ": added " << effects_label(st.effect, st.joint_with) << "\n\n";
     md << "Parameters (refitted on all runs): " << parameters_text(st.parameters) << ". Hold-out misfit "
-       << fixed(st.holdout_misfit_before) << " → " << fixed(st.holdout_misfit_after)
-       << "; torque RMS " << fixed(st.misfit.torque_rms_Nm) << " N m, temp RMS "
-       << fixed(st.misfit.temp_rms_C) << " °C (all runs).\n\n";
+       << fixed(st.holdout_misfit_before) << " → " << fixed(st.holdout_misfit_after) << "; torque RMS "
+       << fixed(st.misfit.torque_rms_Nm) << " N m, temp RMS " << fixed(st.misfit.temp_rms_C) << " °C (all runs).\n\n";
     md << "Why: " << cell(step_reason(st)) << "\n\n";
     candidate_table(md, st.candidates);
   }
@@ -244,15 +246,16 @@ Report write_diagnosis_report(const std::string& dir, const analysis::DiagnosisR
       continue;
     }
     const MultiPlot plots[] = {
-        single_panel(signal_plot(tr, "torque", "torque [N m]", tr.torque_measured, tr.torque_baseline, tr.torque_final)),
+        single_panel(
+            signal_plot(tr, "torque", "torque [N m]", tr.torque_measured, tr.torque_baseline, tr.torque_final)),
         single_panel(signal_plot(tr, "temp_C", "temperature [°C]", tr.temp_measured, tr.temp_baseline, tr.temp_final)),
         residual_plot(tr)};
     const char* suffixes[] = {"_torque.png", "_temp.png", "_residuals.png"};
     for (std::size_t i = 0; i < 3; ++i) {
       const std::string file = stem + suffixes[i];
       if (plots[i].rows.empty() || plots[i].rows.front().front().series.empty()) {
-        report.skipped.push_back(file + ": no column matches the run's " +
-                                 std::to_string(tr.time_s.size()) + " time samples");
+        report.skipped.push_back(file + ": no column matches the run's " + std::to_string(tr.time_s.size()) +
+                                 " time samples");
         continue;
       }
       add_report_plot(report, dir, file, plots[i]);

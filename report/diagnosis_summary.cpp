@@ -26,8 +26,8 @@ void print_candidates(std::ostream& os, const std::vector<analysis::CandidateSco
     if (!c.failure.empty()) {
       std::snprintf(line, sizeof line, "    %-31s failed: %s\n", name.c_str(), c.failure.c_str());
     } else {
-      std::snprintf(line, sizeof line, "    %-31s %-11.4g %-8.3g %-12.2f ", name.c_str(),
-                    c.holdout_misfit, c.gain, c.signature_correlation);
+      std::snprintf(line, sizeof line, "    %-31s %-11.4g %-8.3g %-12.2f ", name.c_str(), c.holdout_misfit, c.gain,
+                    c.signature_correlation);
     }
     os << line << (c.failure.empty() ? parameters(c.parameters) + "\n" : "");
   }
@@ -49,10 +49,10 @@ std::string diagnosis_summary(const DiagnosisSubject& s, const analysis::Diagnos
   os << (s.enabled_effects.empty() ? "none" : "") << "\n";
   for (const auto& k : skipped) os << "  not a candidate: " << k << "\n";
   os << "  hold-out: " << holdout_text(r.holdout) << "\n";
-  os << "Noise estimated from the data: torque " << num(r.noise_torque_Nm) << " Nm, temp "
-     << num(r.noise_temp_C) << " C\n";
-  os << "Baseline: torque RMS " << num(r.baseline.torque_rms_Nm) << " Nm, temp RMS "
-     << num(r.baseline.temp_rms_C) << " C";
+  os << "Noise estimated from the data: torque " << num(r.noise_torque_Nm) << " Nm, temp " << num(r.noise_temp_C)
+     << " C\n";
+  os << "Baseline: torque RMS " << num(r.baseline.torque_rms_Nm) << " Nm, temp RMS " << num(r.baseline.temp_rms_C)
+     << " C";
   for (const auto& c : r.channels)
     if (c.comparison != "pointwise") os << " (torque compared by " << c.comparison << ")";
   os << "\n";
@@ -66,8 +66,8 @@ std::string diagnosis_summary(const DiagnosisSubject& s, const analysis::Diagnos
     const auto& st = r.steps[i];
     os << "Round " << i + 1 << " candidates (fitted on the fit set, scored on the hold-out; J = 1 is noise):\n";
     print_candidates(os, st.candidates);
-    os << "  -> added " << effects_label(st.effect, st.joint_with) << " (" << parameters(st.parameters) << "): torque RMS "
-       << num(st.misfit.torque_rms_Nm) << " Nm, temp RMS " << num(st.misfit.temp_rms_C) << " C\n";
+    os << "  -> added " << effects_label(st.effect, st.joint_with) << " (" << parameters(st.parameters)
+       << "): torque RMS " << num(st.misfit.torque_rms_Nm) << " Nm, temp RMS " << num(st.misfit.temp_rms_C) << " C\n";
     os << "     why: " << step_reason(st) << "\n";
   }
   if (!r.last_round.empty()) {
@@ -100,9 +100,8 @@ std::string diagnosis_summary(const DiagnosisSubject& s, const analysis::Diagnos
        << num(c.reproduction) << ", tolerance " << num(c.tolerance) << ")  " << (c.within ? "within" : "NOT within")
        << "\n";
   os << "" << diagnosis_conclusion(r) << "\n";
-  os << "Time: " << num(r.wall_s) << " s wall; " << r.simulations << " simulations took "
-     << num(r.simulation_thread_s) << " thread-s, the fitting around them " << num(r.fitting_thread_s)
-     << " thread-s\n";
+  os << "Time: " << num(r.wall_s) << " s wall; " << r.simulations << " simulations took " << num(r.simulation_thread_s)
+     << " thread-s, the fitting around them " << num(r.fitting_thread_s) << " thread-s\n";
   return os.str();
 }
 

@@ -40,9 +40,12 @@ constexpr int kPaletteSize = static_cast<int>(std::size(kPalette));
 std::string quoted(const std::string& s) {
   std::string out = "'";
   for (char c : s) {
-    if (c == '\'') out += "''";
-    else if (c == '\n' || c == '\r') out += ' ';
-    else out += c;
+    if (c == '\'')
+      out += "''";
+    else if (c == '\n' || c == '\r')
+      out += ' ';
+    else
+      out += c;
   }
   return out + "'";
 }
@@ -66,8 +69,7 @@ struct TempDir {
   TempDir() {
     std::string pattern = (fs::temp_directory_path() / "shudder-plot-XXXXXX").string();
     if (!::mkdtemp(pattern.data()))
-      throw std::runtime_error(std::string("cannot create a temporary directory for gnuplot: ") +
-                               std::strerror(errno));
+      throw std::runtime_error(std::string("cannot create a temporary directory for gnuplot: ") + std::strerror(errno));
     path = pattern;
   }
   ~TempDir() {
@@ -86,9 +88,8 @@ std::size_t utf8_length(const std::string& s) {
 
 void check_series(const Series& s) {
   if (s.x.size() != s.y.size())
-    throw std::invalid_argument("plot series '" + s.label + "': x has " +
-                                std::to_string(s.x.size()) + " values, y has " +
-                                std::to_string(s.y.size()));
+    throw std::invalid_argument("plot series '" + s.label + "': x has " + std::to_string(s.x.size()) +
+                                " values, y has " + std::to_string(s.y.size()));
   if (s.x.empty()) throw std::invalid_argument("plot series '" + s.label + "' has no points");
 }
 
@@ -122,8 +123,10 @@ void write_map_data(const fs::path& file, const ColorMap& map) {
   for (std::size_t i = 0; i < map.x.size(); ++i) {
     for (std::size_t j = 0; j < ny; ++j) {
       const double v = map.values[i * ny + j];
-      if (std::isfinite(v)) std::snprintf(line, sizeof line, "%.10g %.10g %.10g\n", map.x[i], map.y[j], v);
-      else std::snprintf(line, sizeof line, "%.10g %.10g NaN\n", map.x[i], map.y[j]);
+      if (std::isfinite(v))
+        std::snprintf(line, sizeof line, "%.10g %.10g %.10g\n", map.x[i], map.y[j], v);
+      else
+        std::snprintf(line, sizeof line, "%.10g %.10g NaN\n", map.x[i], map.y[j]);
       out << line;
     }
     out << "\n";
@@ -132,8 +135,7 @@ void write_map_data(const fs::path& file, const ColorMap& map) {
 }
 
 void check_uniform(const std::vector<double>& v, const char* axis) {
-  if (v.size() < 2)
-    throw std::invalid_argument(std::string("colour map: the ") + axis + " grid needs >= 2 values");
+  if (v.size() < 2) throw std::invalid_argument(std::string("colour map: the ") + axis + " grid needs >= 2 values");
   const double step = (v.back() - v.front()) / static_cast<double>(v.size() - 1);
   if (!(step > 0) || !std::isfinite(step))
     throw std::invalid_argument(std::string("colour map: the ") + axis + " grid must increase");
@@ -147,9 +149,8 @@ void check_map(const ColorMap& map) {
   check_uniform(map.x, "x");
   check_uniform(map.y, "y");
   if (map.values.size() != map.x.size() * map.y.size())
-    throw std::invalid_argument("colour map: " + std::to_string(map.values.size()) +
-                                " values for a " + std::to_string(map.x.size()) + " x " +
-                                std::to_string(map.y.size()) + " grid");
+    throw std::invalid_argument("colour map: " + std::to_string(map.values.size()) + " values for a " +
+                                std::to_string(map.x.size()) + " x " + std::to_string(map.y.size()) + " grid");
 }
 
 /// "[a:b]" of a grid's pixel extent: half a step beyond the first and last points.
@@ -198,8 +199,7 @@ void map_settings(std::ostringstream& s, const ColorMap& map) {
   s << "set object 1 rectangle from graph 0,0 to graph 1,1 behind fillcolor rgb '#c8c8c8' "
        "fillstyle solid 1.0 noborder\n";
   if (map.diverging && lo < 0 && hi > 0) {
-    std::snprintf(buf, sizeof buf,
-                  "set palette defined (%.10g '#2166ac', 0 '#f7f7f7', %.10g '#b2182b')\n", lo, hi);
+    std::snprintf(buf, sizeof buf, "set palette defined (%.10g '#2166ac', 0 '#f7f7f7', %.10g '#b2182b')\n", lo, hi);
     s << buf;
   } else if (map.diverging && lo >= 0) {
     s << "set palette defined (0 '#f7f7f7', 1 '#b2182b')\n";
@@ -275,11 +275,9 @@ void panel_text(std::ostringstream& s, const Plot& plot, const fs::path& data, c
     << "set grid xtics ytics lc rgb '#d0d0d0' lt 1\n"
     // Legend below the axes (it can never hide a curve), in at most two columns, with a
     // bottom margin reserved for tic labels, x label and legend rows so they do not collide.
-    << "set key below horizontal center box Left reverse maxcols " << columns
-    << " spacing 1.2 width 2\n"
+    << "set key below horizontal center box Left reverse maxcols " << columns << " spacing 1.2 width 2\n"
     << "set bmargin " << 5 + 1.3 * ((entries + columns - 1) / columns) << "\n"
-    << (entries == 0 ? "unset key\n" : "")
-    << "set border 3\nset xtics nomirror out\nset ytics nomirror out\n"
+    << (entries == 0 ? "unset key\n" : "") << "set border 3\nset xtics nomirror out\nset ytics nomirror out\n"
     << "set autoscale xfixmin\nset autoscale xfixmax\n";
   const bool map = !plot.map.empty();
   if (map) {
@@ -325,15 +323,20 @@ void panel_text(std::ostringstream& s, const Plot& plot, const fs::path& data, c
     if (v.style == SeriesStyle::kPoints)
       s << " with points pt " << v.point_type << " ps " << v.point_size;
     else
-      s << (v.style == SeriesStyle::kLinesPoints ? " with linespoints" : " with lines") << " lw "
-        << v.line_width << " dt " << (v.dash_type > 0 ? v.dash_type : v.dashed ? 2 : 1);
+      s << (v.style == SeriesStyle::kLinesPoints ? " with linespoints" : " with lines") << " lw " << v.line_width
+        << " dt "
+        << (v.dash_type > 0 ? v.dash_type
+            : v.dashed      ? 2
+                            : 1);
     if (v.style == SeriesStyle::kLinesPoints) {
       s << " pt " << v.point_type << " ps " << v.point_size;
       if (v.point_interval > 0) s << " pi " << v.point_interval;
     }
     s << " lc rgb '" << color << "' ";
-    if (v.label.empty()) s << "notitle";
-    else s << "title " << quoted(v.label);
+    if (v.label.empty())
+      s << "notitle";
+    else
+      s << "title " << quoted(v.label);
     sep = ", \\\n     ";
   };
   for (const auto& v : plot.series) entry(v, "x1y1");
@@ -344,8 +347,8 @@ void panel_text(std::ostringstream& s, const Plot& plot, const fs::path& data, c
 /// The whole script: one panel as a plain plot; several as a multiplot, each panel placed by
 /// origin and size (rows top to bottom, the row's panels side by side at equal widths), with
 /// fixed left and right margins so the time axes of stacked panels line up.
-std::string script_text(const MultiPlot& figure, bool svg, const std::string& output,
-                        const std::vector<fs::path>& data, const std::vector<fs::path>& map_data) {
+std::string script_text(const MultiPlot& figure, bool svg, const std::string& output, const std::vector<fs::path>& data,
+                        const std::vector<fs::path>& map_data) {
   std::ostringstream s;
   terminal_text(s, figure.width_px, figure.height_px, svg, output);
   const std::vector<const Plot*> panels = multiplot_panels(figure);
@@ -356,8 +359,10 @@ std::string script_text(const MultiPlot& figure, bool svg, const std::string& ou
     for (const Plot* p : panels) right_axis = right_axis || !p->series_y2.empty() || !p->map.empty();
     // The figure's title takes a band at the top: 3 text lines' worth of the height.
     const double top = figure.title.empty() ? 1.0 : 1.0 - std::min(0.12, 3.0 * 18.0 / figure.height_px);
-    if (!figure.title.empty()) s << "set multiplot title " << quoted(figure.title) << "\n";
-    else s << "set multiplot\n";
+    if (!figure.title.empty())
+      s << "set multiplot title " << quoted(figure.title) << "\n";
+    else
+      s << "set multiplot\n";
     double total = 0.0;
     for (std::size_t r = 0; r < figure.rows.size(); ++r) total += row_height(figure, r);
     double y = top;
@@ -423,8 +428,7 @@ std::string gnuplot_cause(const fs::path& log) {
 }
 
 void check_plot(const Plot& plot) {
-  if (plot.series.empty() && plot.map.empty())
-    throw std::invalid_argument("plot '" + plot.title + "' has no series");
+  if (plot.series.empty() && plot.map.empty()) throw std::invalid_argument("plot '" + plot.title + "' has no series");
   if (!plot.map.empty()) {
     check_map(plot.map);
     if (!plot.series_y2.empty())
@@ -463,8 +467,9 @@ void write_multiplot(const std::string& path, const MultiPlot& figure) {
   // problem (io::InputError), not gnuplot's.
   const std::string tmp = io::temp_path_for(path);
   if (!std::ofstream(tmp))
-    throw io::InputError(path, 0, "", std::string("cannot write plot: ") + std::strerror(errno) +
-                                      "; check the directory exists and is writable");
+    throw io::InputError(
+        path, 0, "",
+        std::string("cannot write plot: ") + std::strerror(errno) + "; check the directory exists and is writable");
   try {
     TempDir dir;
     const fs::path script = dir.path / "plot.gp", log = dir.path / "gnuplot.log";
@@ -486,10 +491,9 @@ void write_multiplot(const std::string& path, const MultiPlot& figure) {
     std::error_code ec;
     if (status != 0 || fs::file_size(tmp, ec) == 0 || ec) {
       const std::string cause = gnuplot_cause(log);
-      throw std::runtime_error("gnuplot could not draw " + path + ": " +
-                               (cause.empty() ? "it exited with status " + std::to_string(status) +
-                                                    " without writing the image"
-                                              : cause));
+      throw std::runtime_error(
+          "gnuplot could not draw " + path + ": " +
+          (cause.empty() ? "it exited with status " + std::to_string(status) + " without writing the image" : cause));
     }
   } catch (...) {
     io::discard_temp_file(tmp);

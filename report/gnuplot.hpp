@@ -25,18 +25,18 @@ namespace shudder::report {
 enum class SeriesStyle { kLines, kPoints, kLinesPoints };
 
 struct Series {
-  std::string label;           // legend entry, e.g. "torque [Nm]"; empty = no legend entry
-  std::vector<double> x, y;    // equal lengths; non-finite values leave a gap in the line
-  int color = -1;              // index into a fixed palette; -1 = next colour in order
+  std::string label;         // legend entry, e.g. "torque [Nm]"; empty = no legend entry
+  std::vector<double> x, y;  // equal lengths; non-finite values leave a gap in the line
+  int color = -1;            // index into a fixed palette; -1 = next colour in order
   bool dashed = false;
   SeriesStyle style = SeriesStyle::kLines;
-  int point_type = 7;          // gnuplot point type: 7 filled circle, 6 open circle, 5 filled
-                               // square, 9 filled triangle, 2 cross, 1 plus
+  int point_type = 7;  // gnuplot point type: 7 filled circle, 6 open circle, 5 filled
+                       // square, 9 filled triangle, 2 cross, 1 plus
   double point_size = 1.2;
   double line_width = 2.0;
-  std::string rgb = "";        // e.g. "#000000": this colour instead of the palette's
-  int dash_type = 0;           // gnuplot dash type (2 dashed, 3 dotted, 4 dash-dot); 0 = by `dashed`
-  int point_interval = 0;      // kLinesPoints: a marker every this many points; 0 = every point
+  std::string rgb = "";    // e.g. "#000000": this colour instead of the palette's
+  int dash_type = 0;       // gnuplot dash type (2 dashed, 3 dotted, 4 dash-dot); 0 = by `dashed`
+  int point_interval = 0;  // kLinesPoints: a marker every this many points; 0 = every point
 };
 
 /// Text at a data position (left axes), drawn above the curves with a small offset.
@@ -48,29 +48,29 @@ struct Label {
 /// A colour map drawn under the curves (gnuplot `with image`): one pixel per grid point, a
 /// colour bar on the right. The grid must be uniform in x and in y (within 1e-6 of a step).
 struct ColorMap {
-  std::vector<double> x;       // (n_x) increasing, uniform, >= 2 values
-  std::vector<double> y;       // (n_y) increasing, uniform, >= 2 values
-  std::vector<double> values;  // (n_x * n_y): value at (x[i], y[j]) is values[i * n_y + j];
-                               // non-finite = no pixel (the grey background shows)
-  std::string label;           // colour-bar label with the unit
-  bool diverging = false;      // blue-white-red with white at 0 (signed quantities such as a
-                               // margin; the automatic range then includes 0); otherwise a
-                               // sequential (viridis-like) palette
-  double min = NAN, max = NAN; // colour range; NaN = the finite data's range
+  std::vector<double> x;        // (n_x) increasing, uniform, >= 2 values
+  std::vector<double> y;        // (n_y) increasing, uniform, >= 2 values
+  std::vector<double> values;   // (n_x * n_y): value at (x[i], y[j]) is values[i * n_y + j];
+                                // non-finite = no pixel (the grey background shows)
+  std::string label;            // colour-bar label with the unit
+  bool diverging = false;       // blue-white-red with white at 0 (signed quantities such as a
+                                // margin; the automatic range then includes 0); otherwise a
+                                // sequential (viridis-like) palette
+  double min = NAN, max = NAN;  // colour range; NaN = the finite data's range
   bool empty() const { return x.empty(); }
 };
 
 struct Plot {
   std::string title;
-  std::string caption;                  // what the plot shows, for a report's index.html (not drawn)
-  std::string xlabel, ylabel, y2label;  // include the unit, e.g. "time [s]"
-  std::vector<Series> series;           // plotted against the left y axis
-  std::vector<Series> series_y2;        // plotted against the right y axis (if any)
-  int width_px = 1000, height_px = 600; // image size (SVG: same numbers, in user units)
-  bool log_y = false;                   // logarithmic left y axis (non-positive values: gaps)
-  double x_min = NAN, x_max = NAN;      // x range; NaN = the data's (or the map's) extent
+  std::string caption;                   // what the plot shows, for a report's index.html (not drawn)
+  std::string xlabel, ylabel, y2label;   // include the unit, e.g. "time [s]"
+  std::vector<Series> series;            // plotted against the left y axis
+  std::vector<Series> series_y2;         // plotted against the right y axis (if any)
+  int width_px = 1000, height_px = 600;  // image size (SVG: same numbers, in user units)
+  bool log_y = false;                    // logarithmic left y axis (non-positive values: gaps)
+  double x_min = NAN, x_max = NAN;       // x range; NaN = the data's (or the map's) extent
   std::vector<Label> labels;
-  ColorMap map;                         // optional; not combined with series_y2
+  ColorMap map;  // optional; not combined with series_y2
 };
 
 /// One image of several panels (gnuplot multiplot): `rows` from top to bottom, a row's panels

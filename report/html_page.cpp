@@ -68,8 +68,8 @@ std::string url_path(std::string_view path) {
   std::string out;
   for (char c : path) {
     const auto u = static_cast<unsigned char>(c);
-    const bool plain = (u >= 'A' && u <= 'Z') || (u >= 'a' && u <= 'z') || (u >= '0' && u <= '9') ||
-                       c == '-' || c == '.' || c == '_' || c == '~' || c == '/';
+    const bool plain = (u >= 'A' && u <= 'Z') || (u >= 'a' && u <= 'z') || (u >= '0' && u <= '9') || c == '-' ||
+                       c == '.' || c == '_' || c == '~' || c == '/';
     if (plain) {
       out += c;
     } else {
@@ -92,16 +92,14 @@ std::string html_page_text(const HtmlPage& page) {
     if (!page.verdict_class.empty()) o << " " << html_escape(page.verdict_class);
     o << "\" id=\"verdict\">" << html_escape(page.verdict) << "</p>\n";
   }
-  if (!page.summary.empty())
-    o << "<h2>Summary</h2>\n<pre id=\"summary\">" << html_escape(page.summary) << "</pre>\n";
+  if (!page.summary.empty()) o << "<h2>Summary</h2>\n<pre id=\"summary\">" << html_escape(page.summary) << "</pre>\n";
   if (!page.figures.empty()) {
     o << "<h2>Figures</h2>\n";
     for (const auto& f : page.figures) {
       const std::string src = html_escape(url_path(f.file));
       o << "<figure>\n<a href=\"" << src << "\"><img src=\"" << src << "\" alt=\""
-        << html_escape(f.caption.empty() ? f.file : f.caption) << "\"></a>\n<figcaption><b>"
-        << html_escape(f.file) << "</b>" << (f.caption.empty() ? "" : ": ") << html_escape(f.caption)
-        << "</figcaption>\n</figure>\n";
+        << html_escape(f.caption.empty() ? f.file : f.caption) << "\"></a>\n<figcaption><b>" << html_escape(f.file)
+        << "</b>" << (f.caption.empty() ? "" : ": ") << html_escape(f.caption) << "</figcaption>\n</figure>\n";
     }
   }
   for (const auto& t : page.tables) table(o, t);

@@ -30,10 +30,10 @@ struct HtmlLink {
 };
 
 struct HtmlPage {
-  std::string title;                  // <title> and <h1>
-  std::string verdict;                // one sentence under the title; empty = none
-  std::string verdict_class;          // "shudder", "none" or "" (neutral): the verdict's colour
-  std::string summary;                // preformatted text (the printed summary); empty = none
+  std::string title;          // <title> and <h1>
+  std::string verdict;        // one sentence under the title; empty = none
+  std::string verdict_class;  // "shudder", "none" or "" (neutral): the verdict's colour
+  std::string summary;        // preformatted text (the printed summary); empty = none
   std::vector<HtmlTable> tables;
   std::vector<HtmlFigure> figures;
   std::vector<std::string> not_drawn;  // "spectrum.png: why" for plots the data did not support

@@ -35,7 +35,8 @@ std::string verdict_line(const rig_models::RunVerdict& v) {
 std::string prediction_line(const rig_models::Prediction& p) {
   if (!p.made) return p.method;  // "not predicted: <why>"
   // A zero margin is a mode that neither grows nor decays (a free rotation the constraints leave).
-  std::string s = p.margin_per_s > 0 ? "predicted: UNSTABLE" : (p.margin_per_s < 0 ? "predicted: stable" : "predicted: neutrally stable");
+  std::string s = p.margin_per_s > 0 ? "predicted: UNSTABLE"
+                                     : (p.margin_per_s < 0 ? "predicted: stable" : "predicted: neutrally stable");
   s += format(" (margin %.3g 1/s", p.margin_per_s);
   if (std::isfinite(p.frequency_Hz))
     s += format("; least damped oscillation %.4g Hz at %.3g 1/s", p.frequency_Hz, p.oscillatory_margin_per_s);
@@ -87,15 +88,19 @@ void print_network_summary(std::ostream& os, const io::NetworkScenario& sc, cons
     const auto& k = spec.clutches[c];
     const auto& v = run.verdicts[c];
     using Law = components::ClutchSpec::Law;
-    os << "  " << k.name << " (" << (k.law == Law::kWet ? "wet" : k.law == Law::kHaldex ? "Haldex coupling" : "plain") << ", "
-       << k.a << " -> " << k.b << "): ";
+    os << "  " << k.name << " ("
+       << (k.law == Law::kWet      ? "wet"
+           : k.law == Law::kHaldex ? "Haldex coupling"
+                                   : "plain")
+       << ", " << k.a << " -> " << k.b << "): ";
     os << (v.judged ? verdict_line(v.verdict) : "not judged: " + v.reason);
     if (!k.judged_on.empty()) os << " [judged on " << k.judged_on << ".torque_Nm]";
     os << "\n";
     if (v.judged) os << "    " << prediction_line(v.verdict.prediction) << "\n";
     if (v.judged && v.verdict.judged.verdict == analysis::Verdict::kStickSlip) os << "    " << kStickSlipNote;
     const double locked = locked_from_s(rec, k.name);
-    os << "    " << (std::isfinite(locked) ? format("locked from %.4g s to the end", locked) : std::string("slipping at the end"))
+    os << "    "
+       << (std::isfinite(locked) ? format("locked from %.4g s to the end", locked) : std::string("slipping at the end"))
        << format("; friction heat %.4g kJ", scalar(rec, k.name + ".friction_work_J") * 1e-3);
     if (k.law != Law::kPlain) {
       os << format("; peak interface temperature %.4g degC", scalar(rec, k.name + ".peak_interface_temp_C"));

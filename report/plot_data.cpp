@@ -11,8 +11,8 @@
 
 namespace shudder::report {
 
-const dynamics::Signal& require_signal(const dynamics::Recording& rec, std::string_view name,
-                                       const std::string& source, const std::string& plot) {
+const dynamics::Signal& require_signal(const dynamics::Recording& rec, std::string_view name, const std::string& source,
+                                       const std::string& plot) {
   const dynamics::Signal* s = rec.find(name);
   if (!s || s->values.empty())
     throw io::InputError(source, 0, "", "no /signals/" + std::string(name) + ": the " + plot + " plot needs it");
@@ -24,8 +24,8 @@ double sample_rate_Hz(const dynamics::Signal& time, std::size_t min_samples, con
   const std::size_t n = time.values.size();
   if (n < min_samples)
     throw io::InputError(source, 0, "",
-                         "the record has " + std::to_string(n) + " samples; the " + plot +
-                             " plot needs at least " + std::to_string(min_samples));
+                         "the record has " + std::to_string(n) + " samples; the " + plot + " plot needs at least " +
+                             std::to_string(min_samples));
   const double span = time.values.back() - time.values.front();
   if (!(span > 0)) throw io::InputError(source, 0, "", "time_s does not increase");
   return static_cast<double>(n - 1) / span;

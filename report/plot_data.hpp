@@ -14,8 +14,8 @@
 namespace shudder::report {
 
 /// The signal `name`; io::InputError naming `source` and `plot` if it is missing or empty.
-const dynamics::Signal& require_signal(const dynamics::Recording& rec, std::string_view name,
-                                       const std::string& source, const std::string& plot);
+const dynamics::Signal& require_signal(const dynamics::Recording& rec, std::string_view name, const std::string& source,
+                                       const std::string& plot);
 
 /// Uniform sample rate of time_s; io::InputError for fewer than `min_samples` samples.
 double sample_rate_Hz(const dynamics::Signal& time, std::size_t min_samples, const std::string& source,

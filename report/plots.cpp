@@ -33,12 +33,11 @@ namespace fs = std::filesystem;
 using dynamics::Recording;
 using dynamics::Signal;
 
-
 }  // namespace
 
 const std::vector<std::string>& plot_kind_names() {
-  static const std::vector<std::string> names = {"torque",      "temperature",   "spectrum",
-                                                 "spectrogram", "stability_map", "sweep", "coupling"};
+  static const std::vector<std::string> names = {"torque",        "temperature", "spectrum", "spectrogram",
+                                                 "stability_map", "sweep",       "coupling"};
   return names;
 }
 
@@ -130,17 +129,19 @@ Plot spectrum_plot(const Recording& rec, const std::string& name, const std::str
   p.log_y = true;
   p.x_min = 0.0;
   p.x_max = f_max;
-  Series w = spectrum_curve(whole, f_max, std::string(torque_name) + " less its mean, whole record " +
-                                              plot_number("%.4g", t.values.front()) + "–" +
-                                              plot_number("%.4g", t.values.back()) + " s");
+  Series w =
+      spectrum_curve(whole, f_max,
+                     std::string(torque_name) + " less its mean, whole record " +
+                         plot_number("%.4g", t.values.front()) + "–" + plot_number("%.4g", t.values.back()) + " s");
   w.line_width = part ? 1.0 : 1.5;
   if (part) w.rgb = "#9a9a9a";
   p.series.push_back(std::move(w));
   std::optional<analysis::Spectrum> osc;
   if (part) {
     osc = part_spectrum(torque.values, from, to, fs);
-    Series o = spectrum_curve(*osc, f_max, "oscillating part " + plot_number("%.4g", t.values[from]) + "–" +
-                                               plot_number("%.4g", t.values[to - 1]) + " s (the detector's window)");
+    Series o = spectrum_curve(*osc, f_max,
+                              "oscillating part " + plot_number("%.4g", t.values[from]) + "–" +
+                                  plot_number("%.4g", t.values[to - 1]) + " s (the detector's window)");
     o.rgb = "#1f77b4";
     o.line_width = 1.5;
     p.series.push_back(std::move(o));
@@ -161,18 +162,20 @@ Plot spectrum_plot(const Recording& rec, const std::string& name, const std::str
   mark.color = 1;
   p.series.push_back(std::move(mark));
   if (!shudder) {
-    p.labels.push_back({peak->frequency_Hz, peak->amplitude,
-                        plot_number("%.1f", peak->frequency_Hz) + " Hz: no shudder detected"});
-    p.caption = "Amplitude spectrum of the judged torque over the whole record; the open circle marks the"
-                " strongest peak the shudder detector examined, which stayed under its threshold.";
+    p.labels.push_back(
+        {peak->frequency_Hz, peak->amplitude, plot_number("%.1f", peak->frequency_Hz) + " Hz: no shudder detected"});
+    p.caption =
+        "Amplitude spectrum of the judged torque over the whole record; the open circle marks the"
+        " strongest peak the shudder detector examined, which stayed under its threshold.";
     return p;
   }
   const std::string detector = plot_number("%.3g", det->amplitude_Nm);
-  p.labels.push_back({peak->frequency_Hz, peak->amplitude,
-                      verdict_text(det->verdict) + " at " + plot_number("%.1f", det->frequency_Hz) +
-                          " Hz\nfundamental " + plot_number("%.3g", peak->amplitude) + " N m" +
-                          (part && whole_peak ? " (whole record: " + plot_number("%.3g", whole_peak->amplitude) + " N m)" : "") +
-                          "\ndetector amplitude " + detector + " N m (half peak-to-peak)"});
+  p.labels.push_back(
+      {peak->frequency_Hz, peak->amplitude,
+       verdict_text(det->verdict) + " at " + plot_number("%.1f", det->frequency_Hz) + " Hz\nfundamental " +
+           plot_number("%.3g", peak->amplitude) + " N m" +
+           (part && whole_peak ? " (whole record: " + plot_number("%.3g", whole_peak->amplitude) + " N m)" : "") +
+           "\ndetector amplitude " + detector + " N m (half peak-to-peak)"});
   // Why the numbers differ, in the page's caption.
   p.caption =
       "The spectrum's peak is the amplitude of the oscillation's fundamental, averaged over the analysed "
@@ -227,8 +230,8 @@ Plot spectrogram_plot(const Recording& rec, const std::string& name, const std::
     if (sg.frequency_Hz[k] >= f_lo && sg.frequency_Hz[k] <= f_hi) bins.push_back(k);
   if (bins.size() < 2 || sg.times_s.size() < 2)
     throw io::InputError(source, 0, "",
-                     "the record (" + std::to_string(n) + " samples) is too short for a spectrogram around " +
-                         plot_number("%.4g", f) + " Hz");
+                         "the record (" + std::to_string(n) + " samples) is too short for a spectrogram around " +
+                             plot_number("%.4g", f) + " Hz");
 
   ColorMap map;
   map.x = sg.times_s;
@@ -246,12 +249,14 @@ Plot spectrogram_plot(const Recording& rec, const std::string& name, const std::
   map.label = "torque PSD [dB re 1 (N m)²/Hz]";
 
   Plot p;
-  p.title = name + ": spectrogram of " + torque.name + " (frames of " +
-            duration_text(static_cast<double>(len) / fs) + " = " + plot_number("%.3g", static_cast<double>(len) * f / fs) +
-            " periods of " + plot_number("%.4g", f) + " Hz, Hann)";
-  p.caption = "Short-time power spectral density of " + torque.name + " in dB over time and frequency, in the band "
+  p.title = name + ": spectrogram of " + torque.name + " (frames of " + duration_text(static_cast<double>(len) / fs) +
+            " = " + plot_number("%.3g", static_cast<double>(len) * f / fs) + " periods of " + plot_number("%.4g", f) +
+            " Hz, Hann)";
+  p.caption = "Short-time power spectral density of " + torque.name +
+              " in dB over time and frequency, in the band "
               "0.5–2.5 times the dominant frequency (white dashed line); the orange line marks the detected onset. "
-              "Each column is one frame of " + duration_text(static_cast<double>(len) / fs) + ".";
+              "Each column is one frame of " +
+              duration_text(static_cast<double>(len) / fs) + ".";
   p.xlabel = "time [s] (frame centre)";
   p.ylabel = "frequency [Hz]";
   p.map = std::move(map);
@@ -283,8 +288,8 @@ Plot spectrogram_plot(const Recording& rec, const std::string& name, const std::
 
 // ---- stability map -----------------------------------------------------------------------
 
-Series contour_series(const std::vector<double>& x, const std::vector<double>& y,
-                      const Eigen::MatrixXd& v, double level, const std::string& label) {
+Series contour_series(const std::vector<double>& x, const std::vector<double>& y, const Eigen::MatrixXd& v,
+                      double level, const std::string& label) {
   if (v.rows() != static_cast<long>(x.size()) || v.cols() != static_cast<long>(y.size()))
     throw std::invalid_argument("contour: values must be (n_x x n_y)");
   Series s;
@@ -296,10 +301,8 @@ Series contour_series(const std::vector<double>& x, const std::vector<double>& y
   for (long i = 0; i + 1 < v.rows(); ++i)
     for (long j = 0; j + 1 < v.cols(); ++j) {
       // Corners counter-clockwise: (i,j), (i+1,j), (i+1,j+1), (i,j+1); edge e joins e and e+1.
-      const double c[4] = {v(i, j) - level, v(i + 1, j) - level, v(i + 1, j + 1) - level,
-                           v(i, j + 1) - level};
-      if (!(std::isfinite(c[0]) && std::isfinite(c[1]) && std::isfinite(c[2]) && std::isfinite(c[3])))
-        continue;
+      const double c[4] = {v(i, j) - level, v(i + 1, j) - level, v(i + 1, j + 1) - level, v(i, j + 1) - level};
+      if (!(std::isfinite(c[0]) && std::isfinite(c[1]) && std::isfinite(c[2]) && std::isfinite(c[3]))) continue;
       const auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
       const double px[4] = {x[ui], x[ui + 1], x[ui + 1], x[ui]};
       const double py[4] = {y[uj], y[uj], y[uj + 1], y[uj + 1]};
@@ -340,12 +343,11 @@ Plot stability_map_plot(const Recording& rec, const std::string& name, const std
   const dynamics::Map2D* m = rec.find_map("stability_map");
   if (!m)
     throw io::InputError(source, 0, "",
-                     "no /analysis/stability_map: it is written for rig scenarios (shudder run on a "
-                     "scenario with type = \"rig\")");
+                         "no /analysis/stability_map: it is written for rig scenarios (shudder run on a "
+                         "scenario with type = \"rig\")");
   const dynamics::Map2D::Layer* margin = m->find("margin_per_s");
   if (!margin) throw io::InputError(source, 0, "", "/analysis/stability_map has no margin_per_s layer");
-  const auto axis = [](const std::string& var, const std::string& units, const char* speeds,
-                       const char* temps) {
+  const auto axis = [](const std::string& var, const std::string& units, const char* speeds, const char* temps) {
     const std::string what = var == "speeds_rpm" ? speeds : var == "temps_C" ? temps : var;
     return what + " [" + display_units(units) + "]";
   };
@@ -362,10 +364,11 @@ Plot stability_map_plot(const Recording& rec, const std::string& name, const std
   for (std::size_t i = 0; i < m->x.size(); ++i)
     for (std::size_t j = 0; j < m->y.size(); ++j)
       p.map.values[i * m->y.size() + j] = margin->values(static_cast<long>(i), static_cast<long>(j));
-  p.caption = "Stability of steady sliding on the linearised rig: the margin (largest real part of its "
-              "eigenvalues) over slip speed and interface temperature, blue stable, red unstable (an "
-              "oscillation grows), the black line the boundary; grey where the motor cannot hold the slip. "
-              "The green line is this run's own path.";
+  p.caption =
+      "Stability of steady sliding on the linearised rig: the margin (largest real part of its "
+      "eigenvalues) over slip speed and interface temperature, blue stable, red unstable (an "
+      "oscillation grows), the black line the boundary; grey where the motor cannot hold the slip. "
+      "The green line is this run's own path.";
   p.map.diverging = true;
   p.map.label = "margin [" + display_units(margin->units) + "] (> 0: grows; grey: no steady sliding)";
 
@@ -418,8 +421,9 @@ Plot sweep_plot(const io::SweepTable& table, const std::string& name, const std:
     const io::SweepColumn* col = table.find(c);
     if (!col) return std::vector<double>(n, kNaN);
     if (col->values.size() != n)
-      throw io::InputError(source, 0, "", "/cases/" + c + " has " + std::to_string(col->values.size()) +
-                                          " rows, " + key.name + " has " + std::to_string(n));
+      throw io::InputError(source, 0, "",
+                           "/cases/" + c + " has " + std::to_string(col->values.size()) + " rows, " + key.name +
+                               " has " + std::to_string(n));
     return col->values;
   };
 
@@ -453,12 +457,12 @@ Plot sweep_plot(const io::SweepTable& table, const std::string& name, const std:
   p.xlabel = key.name + (key.units.empty() ? std::string() : " [" + display_units(key.units) + "]");
   p.ylabel = "frequency [Hz]";
   p.y2label = "predicted margin [1/s] (> 0: unstable)";
-  p.caption = "Against " + key.name + ": the predicted frequency (line) and the simulated one (crosses) on the "
+  p.caption = "Against " + key.name +
+              ": the predicted frequency (line) and the simulated one (crosses) on the "
               "left axis; the predicted margin on the right axis (dashed) with each case's simulated verdict as "
               "its marker, so prediction and simulation can be compared case by case.";
   // Markers on the first and last case stay clear of the borders.
-  const double pad = x.back() > x.front() ? 0.04 * (x.back() - x.front())
-                                          : 0.5 * std::max(1.0, std::abs(x.front()));
+  const double pad = x.back() > x.front() ? 0.04 * (x.back() - x.front()) : 0.5 * std::max(1.0, std::abs(x.front()));
   p.x_min = x.front() - pad;
   p.x_max = x.back() + pad;
   Series predicted = make("predicted frequency (linearised)", column("predicted_frequency_Hz"), 0, 7);
@@ -490,16 +494,21 @@ Plot sweep_plot(const io::SweepTable& table, const std::string& name, const std:
     zero.rgb = "#7f7f7f";
     zero.line_width = 1.0;
     p.series_y2.push_back(std::move(zero));
-    struct Marker { analysis::Verdict verdict; const char* label; int pt; const char* rgb; };
-    static constexpr Marker kMarkers[] = {
-        {analysis::Verdict::kNone, "simulated: no shudder", 6, "#2ca02c"},
-        {analysis::Verdict::kVibration, "simulated: vibration", 7, "#d62728"},
-        {analysis::Verdict::kStickSlip, "simulated: stick-slip", 9, "#9467bd"}};
+    struct Marker {
+      analysis::Verdict verdict;
+      const char* label;
+      int pt;
+      const char* rgb;
+    };
+    static constexpr Marker kMarkers[] = {{analysis::Verdict::kNone, "simulated: no shudder", 6, "#2ca02c"},
+                                          {analysis::Verdict::kVibration, "simulated: vibration", 7, "#d62728"},
+                                          {analysis::Verdict::kStickSlip, "simulated: stick-slip", 9, "#9467bd"}};
     for (const auto& mk : kMarkers) {
       Series s;
       s.label = mk.label;
       for (std::size_t k : order)
-        if (k < table.text_column.size() && table.text_column[k] == analysis::to_string(mk.verdict) && std::isfinite(margin[k])) {
+        if (k < table.text_column.size() && table.text_column[k] == analysis::to_string(mk.verdict) &&
+            std::isfinite(margin[k])) {
           s.x.push_back(key.values[k]);
           s.y.push_back(margin[k]);
         }
@@ -547,7 +556,7 @@ void plot_file(const std::string& h5_path, PlotKind kind, const std::string& out
       }
       if (!run) throw;
       throw io::InputError(h5_path, 0, "",
-                       "no /cases table: a run file; --what sweep needs a file written by `shudder sweep`");
+                           "no /cases table: a run file; --what sweep needs a file written by `shudder sweep`");
     }
     const std::string name = scenario_name(io::read_run_attribute(h5_path, "scenario"), fallback);
     write_plot(out_path, sweep_plot(table, name, h5_path));
@@ -565,8 +574,7 @@ void plot_file(const std::string& h5_path, PlotKind kind, const std::string& out
       sweep = false;
     }
     if (!sweep) throw;
-    throw io::InputError(h5_path, 0, "",
-                     "no /signals: a sweep file; use --what sweep, or plot one case's run file");
+    throw io::InputError(h5_path, 0, "", "no /signals: a sweep file; use --what sweep, or plot one case's run file");
   }
   const std::string name = scenario_name(io::read_run_attribute(h5_path, "scenario"), fallback);
   write_multiplot(out_path, run_plot(kind, rec, name, h5_path));

@@ -45,24 +45,20 @@ std::string scenario_name(const std::string& scenario_text, const std::string& f
 
 /// Builders: `name` titles the plot (the scenario's name), `source` names the data in errors.
 /// The time histories (torque, coupling, temperature) are in report/time_plots.hpp.
-Plot spectrum_plot(const dynamics::Recording& rec, const std::string& name,
-                   const std::string& source);
-Plot spectrogram_plot(const dynamics::Recording& rec, const std::string& name,
-                      const std::string& source);
-Plot stability_map_plot(const dynamics::Recording& rec, const std::string& name,
-                        const std::string& source);
+Plot spectrum_plot(const dynamics::Recording& rec, const std::string& name, const std::string& source);
+Plot spectrogram_plot(const dynamics::Recording& rec, const std::string& name, const std::string& source);
+Plot stability_map_plot(const dynamics::Recording& rec, const std::string& name, const std::string& source);
 Plot sweep_plot(const io::SweepTable& table, const std::string& name, const std::string& source);
 
 /// The figure of `kind` for a run recording (every kind but kSweep).
-MultiPlot run_plot(PlotKind kind, const dynamics::Recording& rec, const std::string& name,
-                   const std::string& source);
+MultiPlot run_plot(PlotKind kind, const dynamics::Recording& rec, const std::string& name, const std::string& source);
 
 /// Contour line(s) of `values` (n_x x n_y on the grid x, y) at `level` by marching squares:
 /// one straight segment per grid cell the level crosses (linear interpolation along the cell
 /// edges; saddles resolved by the cell's mean), segments separated by NaN points so the line
 /// breaks between them. Cells with a non-finite corner are skipped. Empty if nothing crosses.
-Series contour_series(const std::vector<double>& x, const std::vector<double>& y,
-                      const Eigen::MatrixXd& values, double level, const std::string& label);
+Series contour_series(const std::vector<double>& x, const std::vector<double>& y, const Eigen::MatrixXd& values,
+                      double level, const std::string& label);
 
 /// Reads the run or sweep file `h5_path` and writes the plot of `kind` to `out_path` (.png or
 /// .svg). io::InputError when the file is unreadable or lacks what the plot needs.

@@ -17,7 +17,10 @@ namespace fs = std::filesystem;
 
 /// What the text files that report writers put in DIR hold.
 std::string file_description(const std::string& name) {
-  struct Known { const char* file; const char* what; };
+  struct Known {
+    const char* file;
+    const char* what;
+  };
   static constexpr Known kKnown[] = {
       {"summary.txt", "the summary the command printed"},
       {"verdict.json", "the run's shudder verdict block (format shudder-verdict/1, docs/formats/run_output.md)"},
@@ -93,15 +96,14 @@ void write_report_index(const std::string& dir, const ReportIndex& index, Report
       page.files.push_back({name, name, file_description(name)});
     }
   }
-  for (const auto& d : index.data_files)
-    page.files.push_back({relative_to(d, dir), d, file_description(d)});
+  for (const auto& d : index.data_files) page.files.push_back({relative_to(d, dir), d, file_description(d)});
   const std::string path = (fs::path(dir) / "index.html").string();
   io::write_text_file_atomically(path, html_page_text(page));
   report.files.push_back(path);
 }
 
-std::pair<std::string, std::string> verdict_line(const std::string& verdict, double frequency_Hz,
-                                                 double amplitude_Nm, double onset_time_s) {
+std::pair<std::string, std::string> verdict_line(const std::string& verdict, double frequency_Hz, double amplitude_Nm,
+                                                 double onset_time_s) {
   if (verdict == "not_judged") return {"Not judged: the run could not be analysed for shudder.", ""};
   if (verdict == "none") return {"No shudder detected.", "none"};
   std::string s = "Shudder: " + std::string(verdict == "stick-slip" ? "stick-slip" : "friction-induced vibration");

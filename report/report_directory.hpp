@@ -38,10 +38,10 @@ inline constexpr const char* kGnuplotMissing = "gnuplot not found; install gnupl
 
 /// What index.html says beyond the directory's files.
 struct ReportIndex {
-  std::string title;                // e.g. "shudder run: rig_case1_25kN_378Hz"
-  std::string verdict;              // one sentence; empty = none
-  std::string verdict_class;        // "shudder", "none" or "" (see HtmlPage)
-  std::string summary;              // the printed summary
+  std::string title;          // e.g. "shudder run: rig_case1_25kN_378Hz"
+  std::string verdict;        // one sentence; empty = none
+  std::string verdict_class;  // "shudder", "none" or "" (see HtmlPage)
+  std::string summary;        // the printed summary
   std::vector<HtmlTable> tables;
   std::vector<std::string> data_files;  // files the command wrote outside DIR (as given, relative
                                         // to the working directory or absolute); linked relative to DIR
@@ -57,7 +57,7 @@ void write_report_index(const std::string& dir, const ReportIndex& index, Report
 /// The verdict sentence and its class for a run's verdict text ("vibration", "stick-slip",
 /// "none", "not_judged") and detector numbers: e.g. "Shudder: friction-induced vibration at
 /// 378 Hz, amplitude 134 N m (onset 0.21 s)".
-std::pair<std::string, std::string> verdict_line(const std::string& verdict, double frequency_Hz,
-                                                 double amplitude_Nm, double onset_time_s);
+std::pair<std::string, std::string> verdict_line(const std::string& verdict, double frequency_Hz, double amplitude_Nm,
+                                                 double onset_time_s);
 
 }  // namespace shudder::report

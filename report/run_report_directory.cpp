@@ -84,7 +84,11 @@ Report write_run_report(const std::string& dir, const dynamics::Recording& rec, 
     if (const auto* reason = verdict->find_text("reason")) index.verdict += " " + reason->value;
     index.tables.push_back(verdict_table(*verdict));
   }
-  struct Item { PlotKind kind; const char* file; bool wanted; };
+  struct Item {
+    PlotKind kind;
+    const char* file;
+    bool wanted;
+  };
   // A driveline run has no torque cell: its coupling takes the torque plot's place.
   const bool driveline = rec.find("coupling_torque_Nm") != nullptr;
   const Item items[] = {{PlotKind::kTorque, "torque.png", !driveline},

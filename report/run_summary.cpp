@@ -32,7 +32,6 @@ namespace {
 
 namespace sn = dynamics::signal_names;
 
-
 double scalar(const dynamics::Recording& rec, const char* name) {
   const auto* s = rec.find_scalar(name);
   return s ? s->value : kNaN;
@@ -91,8 +90,8 @@ void print_section(std::ostream& os, const rig_models::DrivelineModel& model, co
     const auto st = [&](std::string_view name) { return interval_stats(rec, name, a, b, last); };
     const Stats slip = st(sn::kCouplingSlip), coupling = st(sn::kCouplingTorque);
     std::snprintf(line, sizeof line,
-                  "%7.2f-%-7.2f %10.2f  %12.1f  %11.1f  %8.3f  %8.3f %8.1f %8.1f %8.1f %8.1f  %14.1f  %14.2f  %17.2f\n", a,
-                  b, st(sn::kVehicleSpeed).mean, st(sn::kEngineSpeed).mean, st(sn::kEngineTorque).mean, slip.min,
+                  "%7.2f-%-7.2f %10.2f  %12.1f  %11.1f  %8.3f  %8.3f %8.1f %8.1f %8.1f %8.1f  %14.1f  %14.2f  %17.2f\n",
+                  a, b, st(sn::kVehicleSpeed).mean, st(sn::kEngineSpeed).mean, st(sn::kEngineTorque).mean, slip.min,
                   slip.max, coupling.min, coupling.mean, coupling.max, coupling.rms_dev, st(sn::kRearAxleTorque).mean,
                   st(sn::kPressure).mean, st(sn::kInterfaceMaxTemp).max);
     os << line;
@@ -132,14 +131,15 @@ void print_drive_cycle_section(std::ostream& os, double end, const dynamics::Rec
   char line[512];
   os << kIntervalNote;
   os << "                   speed [rpm]   force [kN]                torque [Nm]              max temperature [C]\n"
-        "   interval [s]     min     max        mean      min     mean      max  rms dev   thermocouple      IR    sump\n";
+        "   interval [s]     min     max        mean      min     mean      max  rms dev   thermocouple      IR    "
+        "sump\n";
   for (int k = 0; k < kIntervals; ++k) {
     const double a = end * k / kIntervals, b = end * (k + 1) / kIntervals;
     const bool last = k + 1 == kIntervals;
     const auto st = [&](std::string_view name) { return interval_stats(rec, name, a, b, last); };
     const Stats speed = st(sn::kSpeed), torque = st(sn::kTorque);
-    std::snprintf(line, sizeof line, "%7.2f-%-7.2f %7.2f %7.2f  %10.2f %8.2f %8.2f %8.2f %8.2f  %13.2f %7.2f %7.2f\n", a,
-                  b, speed.min, speed.max, st(sn::kNormalForce).mean / 1e3, torque.min, torque.mean, torque.max,
+    std::snprintf(line, sizeof line, "%7.2f-%-7.2f %7.2f %7.2f  %10.2f %8.2f %8.2f %8.2f %8.2f  %13.2f %7.2f %7.2f\n",
+                  a, b, speed.min, speed.max, st(sn::kNormalForce).mean / 1e3, torque.min, torque.mean, torque.max,
                   torque.rms_dev, st(sn::kTemp).max, st(sn::kIrTemp).max, st(sn::kSumpTemp).max);
     os << line;
   }
@@ -153,9 +153,8 @@ void print_drive_cycle_section(std::ostream& os, double end, const dynamics::Rec
   std::snprintf(line, sizeof line,
                 "Energy: generated %.1f J = stored in discs %.1f J + to sump %.1f J + to rig %.1f J; "
                 "balance error %.2e (relative)\n",
-                scalar(rec, "heat_generated_J"), scalar(rec, "heat_stored_in_discs_J"),
-                scalar(rec, "heat_to_sump_J"), scalar(rec, "heat_to_rig_J"),
-                scalar(rec, "energy_balance_relative_error"));
+                scalar(rec, "heat_generated_J"), scalar(rec, "heat_stored_in_discs_J"), scalar(rec, "heat_to_sump_J"),
+                scalar(rec, "heat_to_rig_J"), scalar(rec, "energy_balance_relative_error"));
   os << line;
 }
 
@@ -173,8 +172,8 @@ void print_section(std::ostream& os, const rig_models::RigModel& model, const dy
                 "%.0f reversal\n",
                 scalar(rec, "bar_stiffness_Nm_per_rad"), scalar(rec, "clutch_side_frequency_Hz"),
                 scalar(rec, "mechanical_energy_relative_error"), scalar(rec, "integrator_steps"),
-                scalar(rec, "rhs_evaluations"), scalar(rec, "stick_events"),
-                scalar(rec, "breakaway_events"), scalar(rec, "reversal_events"));
+                scalar(rec, "rhs_evaluations"), scalar(rec, "stick_events"), scalar(rec, "breakaway_events"),
+                scalar(rec, "reversal_events"));
   os << line;
 }
 
@@ -217,8 +216,9 @@ void print_verdict(std::ostream& os, const char* label, const dynamics::Recordin
                   "on %s)\n",
                   label, value("amplitude_Nm"), value("peak_frequency_Hz"), text("judged_signals").c_str());
   else if (verdict == "none")
-    std::snprintf(line, sizeof line, "%s: none (largest oscillation %.3g N m, under the threshold %.3g N m; judged on %s)\n",
-                  label, value("amplitude_Nm"), value("threshold_Nm"), text("judged_signals").c_str());
+    std::snprintf(line, sizeof line,
+                  "%s: none (largest oscillation %.3g N m, under the threshold %.3g N m; judged on %s)\n", label,
+                  value("amplitude_Nm"), value("threshold_Nm"), text("judged_signals").c_str());
   else
     std::snprintf(line, sizeof line, "%s: %s at %.2f Hz, amplitude %.3g N m, onset %.3f s (judged on %s)\n", label,
                   verdict.c_str(), value("frequency_Hz"), value("amplitude_Nm"), value("onset_time_s"),
@@ -263,8 +263,8 @@ void print_verdict(std::ostream& os, const char* label, const dynamics::Recordin
 void print_run_summary(std::ostream& os, const io::Scenario& sc, const dynamics::Recording& rec) {
   const double end = rig_models::duration_s(sc.model);
   char line[512];
-  std::snprintf(line, sizeof line, "Scenario  %s (%s), fluid %s, %.3g s simulated\n",
-                sc.name.c_str(), std::string(model_kind_name(sc.kind())).c_str(), sc.fluid.name.c_str(), end);
+  std::snprintf(line, sizeof line, "Scenario  %s (%s), fluid %s, %.3g s simulated\n", sc.name.c_str(),
+                std::string(model_kind_name(sc.kind())).c_str(), sc.fluid.name.c_str(), end);
   os << line;
   os << "Effects on:";
   for (const auto& e : sc.enabled_effects) os << " " << e;
@@ -273,10 +273,11 @@ void print_run_summary(std::ostream& os, const io::Scenario& sc, const dynamics:
   // every verdict below is then an extrapolation of the law.
   if (const auto* b = rec.find_block(rig_models::kFrictionRangeBlock))
     if (const auto* f = b->find_scalar("fraction_outside"); f && f->value > kMostlyOutsideData) {
-      std::snprintf(line, sizeof line,
-                    "WARNING: the friction law is used outside its data for %.0f %% of the run: the verdict below is an "
-                    "extrapolation of the law (see \"Friction data\")\n\n",
-                    100 * f->value);
+      std::snprintf(
+          line, sizeof line,
+          "WARNING: the friction law is used outside its data for %.0f %% of the run: the verdict below is an "
+          "extrapolation of the law (see \"Friction data\")\n\n",
+          100 * f->value);
       os << line;
     }
   // The verdict first: whether it shuddered is what a reader looks for.

@@ -20,7 +20,6 @@ inline constexpr std::string_view kStickSlipNote =
     "Note: linear theory about the slipping point cannot predict stick-slip (a nonlinear phenomenon: the clutch "
     "sticks), so a 'stable' prediction does not contradict this verdict\n";
 
-void print_run_summary(std::ostream& os, const io::Scenario& scenario,
-                       const dynamics::Recording& rec);
+void print_run_summary(std::ostream& os, const io::Scenario& scenario, const dynamics::Recording& rec);
 
 }  // namespace shudder::report

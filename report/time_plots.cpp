@@ -17,11 +17,11 @@ namespace {
 using dynamics::Recording;
 using dynamics::Signal;
 
-constexpr std::size_t kEnvelopeBins = 1500;  // ~1.5 slices per pixel of the 1000 px image
-constexpr double kDetailPeriods = 8.0;       // periods of the shudder frequency in a detail panel
-constexpr double kPeriodsBeforeOnset = 1.5;  // of which before the onset: the last quiet cycles
-constexpr double kLongestDetail = 1.0 / 3.0; // of the record: a longer window is no zoom (the
-                                             // whole-record panel shows those periods already)
+constexpr std::size_t kEnvelopeBins = 1500;   // ~1.5 slices per pixel of the 1000 px image
+constexpr double kDetailPeriods = 8.0;        // periods of the shudder frequency in a detail panel
+constexpr double kPeriodsBeforeOnset = 1.5;   // of which before the onset: the last quiet cycles
+constexpr double kLongestDetail = 1.0 / 3.0;  // of the record: a longer window is no zoom (the
+                                              // whole-record panel shows those periods already)
 
 /// What one time figure shows.
 struct TimeChannels {
@@ -140,9 +140,10 @@ MultiPlot time_figure(const Recording& rec, TimeChannels ch) {
     const auto [a0, a1] = window_from(onset, kPeriodsBeforeOnset, fd, t0, t1);
     const auto [b0, b1] = window_from(end, kDetailPeriods, fd, t0, t1);
     const std::string periods = plot_number("%.0f", kDetailPeriods) + " periods of " + plot_number("%.4g", fd) + " Hz";
-    details.push_back(detail_panel(ch, "onset detail (onset " + plot_number("%.3g", onset) + " s): " + periods, a0, a1));
-    details.push_back(detail_panel(ch, "end detail (" + plot_number("%.4g", b0) + "–" + plot_number("%.4g", b1) +
-                                           " s): " + periods, b0, b1));
+    details.push_back(
+        detail_panel(ch, "onset detail (onset " + plot_number("%.3g", onset) + " s): " + periods, a0, a1));
+    details.push_back(detail_panel(
+        ch, "end detail (" + plot_number("%.4g", b0) + "–" + plot_number("%.4g", b1) + " s): " + periods, b0, b1));
     // The windows marked on the overview (dotted grey), so the reader sees where they come from.
     const auto [lo, hi] = y_range(overview.series);
     if (std::isfinite(lo)) {
@@ -150,8 +151,8 @@ MultiPlot time_figure(const Recording& rec, TimeChannels ch) {
       overview.series.push_back(window_marks(b0, b1, lo, hi));
     }
     f.caption += " The lower panels zoom into " + periods + " at the onset (" + plot_number("%.4g", a0) + "–" +
-                 plot_number("%.4g", a1) + " s) and at the end of the oscillation (" + plot_number("%.4g", b0) +
-                 "–" + plot_number("%.4g", b1) + " s), marked by dotted lines above; the shudder detector found " +
+                 plot_number("%.4g", a1) + " s) and at the end of the oscillation (" + plot_number("%.4g", b0) + "–" +
+                 plot_number("%.4g", b1) + " s), marked by dotted lines above; the shudder detector found " +
                  verdict_text(det->verdict) + " at " + plot_number("%.4g", fd) + " Hz.";
   }
 
@@ -267,19 +268,22 @@ MultiPlot torque_plot(const Recording& rec, const std::string& name, const std::
   TimeChannels ch = torque_pair(rec, t, torque, "torque_Nm: measured torque (torque cell)", "clutch_torque_Nm",
                                 "clutch_torque_Nm: friction torque of the clutch (dashed)", speed);
   ch.title = name + ": torque (" + ch.title + ")";
-  ch.caption = "The torque cell's torque and the clutch's friction torque against time over the whole record"
-               " (a record denser than the image is drawn as its envelope); the sliding speed in the panel below.";
+  ch.caption =
+      "The torque cell's torque and the clutch's friction torque against time over the whole record"
+      " (a record denser than the image is drawn as its envelope); the sliding speed in the panel below.";
   return time_figure(rec, ch);
 }
 
 MultiPlot coupling_plot(const Recording& rec, const std::string& name, const std::string& source) {
   const Signal& t = require_signal(rec, "time_s", source, "coupling");
   const Signal& torque = require_signal(rec, "coupling_torque_Nm", source, "coupling");
-  TimeChannels ch = torque_pair(rec, t, torque, "coupling_torque_Nm: torque through the coupling", "rear_axle_torque_Nm",
-                                "rear_axle_torque_Nm: rear half-shafts (dashed)", rec.find("coupling_slip_rpm"));
+  TimeChannels ch =
+      torque_pair(rec, t, torque, "coupling_torque_Nm: torque through the coupling", "rear_axle_torque_Nm",
+                  "rear_axle_torque_Nm: rear half-shafts (dashed)", rec.find("coupling_slip_rpm"));
   ch.title = name + ": Haldex coupling (" + ch.title + ")";
-  ch.caption = "The torque through the Haldex coupling and the rear half-shafts' torque against time; the"
-               " coupling's slip, which pumps its pressure, in the panel below (docs/driveline.md).";
+  ch.caption =
+      "The torque through the Haldex coupling and the rear half-shafts' torque against time; the"
+      " coupling's slip, which pumps its pressure, in the panel below (docs/driveline.md).";
   return time_figure(rec, ch);
 }
 
@@ -287,7 +291,14 @@ MultiPlot temperature_plot(const Recording& rec, const std::string& name, const 
   const Signal& t = require_signal(rec, "time_s", source, "temperature");
   // Colour, dash and marker each tell the channels apart, also where two lie on each other
   // (the thermocouple and the IR pyrometer often read within a tenth of a degree).
-  struct Channel { const char* signal; const char* label; const char* rgb; int dash; int point; double width; };
+  struct Channel {
+    const char* signal;
+    const char* label;
+    const char* rgb;
+    int dash;
+    int point;
+    double width;
+  };
   static constexpr Channel kChannels[] = {
       {"temp_C", "temp_C: separator thermocouple (solid, circles)", "#1f77b4", 1, 6, 2.5},
       {"ir_temp_C", "ir_temp_C: IR pyrometer (dashed, triangles)", "#ff7f0e", 2, 8, 1.8},
@@ -328,8 +339,9 @@ MultiPlot temperature_plot(const Recording& rec, const std::string& name, const 
                          "no temperature signals (temp_C, ir_temp_C, sump_temp_C, "
                          "interface_max_temp_C): the temperature plot needs at least one");
   ch.title = name + ": temperatures (" + names + ")";
-  ch.caption = "The rig's thermometers against time: each channel has its own colour, dash pattern and marker,"
-               " so the thermocouple and the IR pyrometer stay apart where they read alike.";
+  ch.caption =
+      "The rig's thermometers against time: each channel has its own colour, dash pattern and marker,"
+      " so the thermocouple and the IR pyrometer stay apart where they read alike.";
   return time_figure(rec, ch);
 }
 

@@ -34,8 +34,7 @@ const char* verdict(bool ok) { return ok ? "yes" : "NO"; }
 double mean_over(const dynamics::Recording& rec, const char* name, double t0, double t1) {
   const int n = static_cast<int>(std::lround((t1 - t0) / 0.01));
   double sum = 0.0;
-  for (int k = 0; k <= n; ++k)
-    sum += (k == 0 || k == n ? 0.5 : 1.0) * signal_at(rec, name, t0 + (t1 - t0) * k / n);
+  for (int k = 0; k <= n; ++k) sum += (k == 0 || k == n ? 0.5 : 1.0) * signal_at(rec, name, t0 + (t1 - t0) * k / n);
   return sum / n;
 }
 
@@ -44,7 +43,7 @@ std::string band_text(const io::ValidationTarget& g) {
   if (!g.has_band()) return "– (reported)";
   const bool percent = g.kind == io::TargetKind::kPercentBelow || g.kind == io::TargetKind::kPercentAbove;
   const char* unit = percent ? "%" : g.unit.c_str();
-  std::string text = g.greater_than ? fmt("> %g %s", *g.greater_than, unit)
+  std::string text = g.greater_than   ? fmt("> %g %s", *g.greater_than, unit)
                      : g.min && g.max ? fmt("%g–%g %s", *g.min, *g.max, unit)
                      : g.min          ? fmt("≥ %g %s", *g.min, unit)
                                       : fmt("≤ %g %s", *g.max, unit);
@@ -72,8 +71,7 @@ double run_scalar(const dynamics::Recording& rec, const char* name) {
 }
 
 std::string form_name(clutch::FilmAdvectionForm f) {
-  return f == clutch::FilmAdvectionForm::kPaperGLiteral ? "paper_g_literal"
-                                                        : "film_energy_balance";
+  return f == clutch::FilmAdvectionForm::kPaperGLiteral ? "paper_g_literal" : "film_energy_balance";
 }
 
 /// Oil-flow constants of every run, grouped: one table row per distinct set.
@@ -82,15 +80,16 @@ void write_oil_flow(std::ostream& md, const std::vector<ValidationRun>& runs) {
   for (const auto& r : runs) {
     const auto& th = r.sc.clutch.thermal;
     const auto& f = th.oil_flow;
-    const std::string cells =
-        th.interface_oil_cooling
-            ? fmt("%g | %g | %g | %g | %g | `%s` | %g", f.a, f.b, f.c, f.d, f.e,
-                  form_name(f.form).c_str(), units::m3_s_to_ml_min(th.supply_flow_m3_s))
-            : std::string("– | – | – | – | – | off (`interface_oil_cooling` disabled) | –");
+    const std::string cells = th.interface_oil_cooling
+                                  ? fmt("%g | %g | %g | %g | %g | `%s` | %g", f.a, f.b, f.c, f.d, f.e,
+                                        form_name(f.form).c_str(), units::m3_s_to_ml_min(th.supply_flow_m3_s))
+                                  : std::string("– | – | – | – | – | off (`interface_oil_cooling` disabled) | –");
     auto it = groups.begin();
     while (it != groups.end() && it->first != cells) ++it;
-    if (it == groups.end()) groups.push_back({cells, "`" + r.sc.name + "`"});
-    else it->second += ", `" + r.sc.name + "`";
+    if (it == groups.end())
+      groups.push_back({cells, "`" + r.sc.name + "`"});
+    else
+      it->second += ", `" + r.sc.name + "`";
   }
   md << "## Calibrated interface oil flow\n\n"
      << "Paper G eq. 12, Q_oil = Q_oiltot · (a·(Δω + 1)^b + c·T_mean^d + e), Δω in rad/s, "
@@ -119,9 +118,8 @@ void write_case2(std::ostream& md, const ValidationRun& run) {
      << "|---:|---:|---:|---:|---:|---:|\n";
   for (double t : times) {
     if (t > run.model.settings.duration_s) continue;
-    md << fmt("| %.1f | %.1f | %.2f | %.2f | %.2f | %.2f |\n", t,
-              signal_at(run.rec, "speed_rpm", t), signal_at(run.rec, "torque_Nm", t),
-              signal_at(run.rec, "temp_C", t), signal_at(run.rec, "ir_temp_C", t),
+    md << fmt("| %.1f | %.1f | %.2f | %.2f | %.2f | %.2f |\n", t, signal_at(run.rec, "speed_rpm", t),
+              signal_at(run.rec, "torque_Nm", t), signal_at(run.rec, "temp_C", t), signal_at(run.rec, "ir_temp_C", t),
               signal_at(run.rec, "sump_temp_C", t));
   }
   md << "\n";
@@ -135,9 +133,8 @@ void write_energy(std::ostream& md, const std::vector<ValidationRun>& runs) {
         "relative error |\n|---|---:|---:|---:|---:|---:|\n";
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const auto& r = runs[i].rec;
-    md << fmt("| %s | %.1f | %.1f | %.1f | %.1f | %.1e |\n", runs[i].label.c_str(),
-              run_scalar(r, "heat_generated_J"), run_scalar(r, "heat_stored_in_discs_J"),
-              run_scalar(r, "heat_to_sump_J"), run_scalar(r, "heat_to_rig_J"),
+    md << fmt("| %s | %.1f | %.1f | %.1f | %.1f | %.1e |\n", runs[i].label.c_str(), run_scalar(r, "heat_generated_J"),
+              run_scalar(r, "heat_stored_in_discs_J"), run_scalar(r, "heat_to_sump_J"), run_scalar(r, "heat_to_rig_J"),
               run_scalar(r, "energy_balance_relative_error"));
   }
   md << "\n";
@@ -146,9 +143,8 @@ void write_energy(std::ostream& md, const std::vector<ValidationRun>& runs) {
 // ---- plots -------------------------------------------------------------------------------
 
 /// Signal `name` against `x_name` over samples with t0 <= time <= t1.
-Series series(const dynamics::Recording& rec, const char* name, std::string label,
-                  int color, bool dashed = false, const char* x_name = "time_s",
-                  double t0 = -1e300, double t1 = 1e300) {
+Series series(const dynamics::Recording& rec, const char* name, std::string label, int color, bool dashed = false,
+              const char* x_name = "time_s", double t0 = -1e300, double t1 = 1e300) {
   Series s{std::move(label), {}, {}, color, dashed};
   const auto* t = rec.find("time_s");
   const auto* x = rec.find(x_name);
@@ -266,10 +262,10 @@ std::vector<Figure> write_validation_plots(const std::filesystem::path& docs, co
     p.ylabel = "torque [Nm] (solid)";
     p.y2label = "thermocouple temp_C [°C] (dashed)";
     if (bp.size() >= 5) {
-      p.series = {series(r, "torque_Nm", fmt("torque, up-ramp t = %g–%g s", bp[1], bp[2]), 0,
-                         false, "speed_rpm", bp[1], bp[2]),
-                  series(r, "torque_Nm", fmt("torque, down-ramp t = %g–%g s", bp[3], bp[4]), 1,
-                         false, "speed_rpm", bp[3], bp[4])};
+      p.series = {
+          series(r, "torque_Nm", fmt("torque, up-ramp t = %g–%g s", bp[1], bp[2]), 0, false, "speed_rpm", bp[1], bp[2]),
+          series(r, "torque_Nm", fmt("torque, down-ramp t = %g–%g s", bp[3], bp[4]), 1, false, "speed_rpm", bp[3],
+                 bp[4])};
       p.series_y2 = {series(r, "temp_C", "thermocouple, up-ramp", 0, true, "speed_rpm", bp[1], bp[2]),
                      series(r, "temp_C", "thermocouple, down-ramp", 1, true, "speed_rpm", bp[3], bp[4])};
       write_plot((docs / spec.ramp_plot_file).string(), p);
@@ -301,8 +297,7 @@ void write_validation_doc(const std::filesystem::path& docs, const io::Validatio
           "B Fig. 6; `docs/physics.md` §5). The command exits 0 when every target passes, 1 when "
           "one fails.\n\n## Cases\n\n| case | scenario | description |\n|---|---|---|\n";
     for (std::size_t i = 0; i < runs.size(); ++i)
-      md << "| " << runs[i].label << " | `" << runs[i].sc.name << ".toml` | "
-         << runs[i].sc.description << " |\n";
+      md << "| " << runs[i].label << " | `" << runs[i].sc.name << ".toml` | " << runs[i].sc.description << " |\n";
     md << "\n";
     write_oil_flow(md, runs);
     md << "## Targets and results\n\n"
@@ -310,8 +305,8 @@ void write_validation_doc(const std::filesystem::path& docs, const io::Validatio
           "decided on the unrounded values. Rows marked – are reported without a target.\n\n"
        << "| case | quantity | target | result | pass |\n|---|---|---|---|---|\n";
     for (const auto& r : rows)
-      md << "| " << r.case_label << " | " << r.quantity << " | " << r.target << " | "
-         << r.result << " | " << (r.pass == "NO" ? "**NO**" : r.pass) << " |\n";
+      md << "| " << r.case_label << " | " << r.quantity << " | " << r.target << " | " << r.result << " | "
+         << (r.pass == "NO" ? "**NO**" : r.pass) << " |\n";
     md << fmt("\n%zu of %zu targets pass. ", passed, checked)
        << "The targets are bands around the values the papers report (`docs/physics.md` §5), e.g. "
           "Paper B's 15.5 °C rise, where the thesis's Fig. 7 cycle gives > 20 °C.\n\n";

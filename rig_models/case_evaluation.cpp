@@ -16,8 +16,8 @@ double at(const dynamics::Signal& time, const dynamics::Signal& sig, double t) {
   const auto& ts = time.values;
   if (ts.size() < 2) return sig.values.front();
   const double dt = ts[1] - ts[0];
-  const auto i = static_cast<std::size_t>(std::clamp(std::round((t - ts[0]) / dt), 0.0,
-                                                     static_cast<double>(ts.size() - 1)));
+  const auto i =
+      static_cast<std::size_t>(std::clamp(std::round((t - ts[0]) / dt), 0.0, static_cast<double>(ts.size() - 1)));
   return sig.values[i];
 }
 
@@ -33,9 +33,8 @@ void fill_simulated(const dynamics::Recording& rec, CaseOutcome& o) {
 
 }  // namespace
 
-CaseOutcome evaluate_rig_case(const RigParams& params, const clutch::WetClutch& clutch,
-                              const DriveCycle& cycle, const RigSettings& settings,
-                              dynamics::Recording& rec, double interval_s) {
+CaseOutcome evaluate_rig_case(const RigParams& params, const clutch::WetClutch& clutch, const DriveCycle& cycle,
+                              const RigSettings& settings, dynamics::Recording& rec, double interval_s) {
   rec = run_rig(params, clutch, cycle, settings);
   CaseOutcome o;
   fill_simulated(rec, o);
@@ -82,7 +81,8 @@ CaseOutcome evaluate_driveline_case(const DrivelineParams& params, const clutch:
   rec = run_driveline(params, clutch, inputs, settings);
   CaseOutcome o;
   // The run's own verdict (coupling_verdict_code), with the onset from the same judgement.
-  const auto verdict = static_cast<analysis::Verdict>(static_cast<int>(rec.find_scalar("coupling_verdict_code")->value));
+  const auto verdict =
+      static_cast<analysis::Verdict>(static_cast<int>(rec.find_scalar("coupling_verdict_code")->value));
   o.simulated_verdict = std::string(analysis::to_string(verdict));
   if (verdict == analysis::Verdict::kNone) return o;
   o.simulated_frequency_Hz = rec.find_scalar("coupling_oscillation_frequency_Hz")->value;

@@ -20,8 +20,8 @@ namespace shudder::rig_models {
 struct CaseOutcome {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   bool predicted_stable = true;
-  double predicted_margin_per_s = kNaN;  // largest real part along the run, 1/s
-  double predicted_frequency_Hz = kNaN;  // least damped oscillatory mode at that point
+  double predicted_margin_per_s = kNaN;    // largest real part along the run, 1/s
+  double predicted_frequency_Hz = kNaN;    // least damped oscillatory mode at that point
   std::string simulated_verdict = "none";  // none / vibration / stick_slip
   double simulated_frequency_Hz = kNaN;
   double amplitude_Nm = 0.0;
@@ -29,9 +29,9 @@ struct CaseOutcome {
 };
 
 /// Runs the rig case, records it into `rec`, and evaluates prediction and simulation.
-CaseOutcome evaluate_rig_case(const RigParams& params, const clutch::WetClutch& clutch,
-                              const DriveCycle& cycle, const RigSettings& settings,
-                              dynamics::Recording& rec, double prediction_interval_s = 0.05);
+CaseOutcome evaluate_rig_case(const RigParams& params, const clutch::WetClutch& clutch, const DriveCycle& cycle,
+                              const RigSettings& settings, dynamics::Recording& rec,
+                              double prediction_interval_s = 0.05);
 
 /// Prescribed slip has no torsional dynamics: nothing can vibrate, the prediction is empty.
 CaseOutcome evaluate_prescribed_case(const clutch::WetClutch& clutch, const DriveCycle& cycle,

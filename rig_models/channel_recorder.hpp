@@ -33,15 +33,14 @@ class ChannelRecorder {
  public:
   struct Channel {
     std::string_view name, units;
-    std::function<double(const Fast&)> sampled;     // set for a sampled channel
+    std::function<double(const Fast&)> sampled;       // set for a sampled channel
     std::function<double(const Slow&)> interpolated;  // set for an interpolated or refined one
     bool refined = false;
   };
   static Channel sampled(std::string_view name, std::string_view units, std::function<double(const Fast&)> read) {
     return {name, units, std::move(read), {}};
   }
-  static Channel interpolated(std::string_view name, std::string_view units,
-                              std::function<double(const Slow&)> read) {
+  static Channel interpolated(std::string_view name, std::string_view units, std::function<double(const Slow&)> read) {
     return {name, units, {}, std::move(read)};
   }
   static Channel refined(std::string_view name, std::string_view units, std::function<double(const Slow&)> read) {

@@ -16,8 +16,8 @@ void ClutchContext::set_ring_temperatures(const Eigen::VectorXd& ring_temp_C) {
   cached_slip_ = -1.0;
 }
 
-void ClutchContext::set_ring_temperature_ramp(const Eigen::VectorXd& start_C, const Eigen::VectorXd& end_C,
-                                              double t0_s, double t1_s) {
+void ClutchContext::set_ring_temperature_ramp(const Eigen::VectorXd& start_C, const Eigen::VectorXd& end_C, double t0_s,
+                                              double t1_s) {
   if (!(t1_s > t0_s)) throw std::invalid_argument("clutch context: a temperature ramp needs t1 > t0");
   static_valid_ = false;
   // The new start is the old far end (the multi-rate runs' continuous hold): its friction is

@@ -111,10 +111,8 @@ class ClutchContact {
   // pressure integrated with the motion); the ring temperatures still come from the context.
   double kinetic_torque_at_force_Nm(ClutchContext& c, double abs_slip_rad_s, double t_s, double force_N) const;
   double static_capacity_at_force_Nm(const ClutchContext& c, double t_s, double stick_time_s, double force_N) const;
-  double kinetic_torque_slope_at_force_Nms(ClutchContext& c, double abs_slip_rad_s, double t_s,
-                                           double force_N) const;
-  void channel_heat_at_force_W(ClutchContext& c, double abs_slip_rad_s, double t_s, double force_N,
-                               double* out) const;
+  double kinetic_torque_slope_at_force_Nms(ClutchContext& c, double abs_slip_rad_s, double t_s, double force_N) const;
+  void channel_heat_at_force_W(ClutchContext& c, double abs_slip_rad_s, double t_s, double force_N, double* out) const;
   double drag_torque_at_force_Nm(double force_N) const;
 
  private:

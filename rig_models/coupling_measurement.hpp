@@ -20,7 +20,6 @@
 // tap and an oil temperature sensor; torque flanges and plate thermocouples are what a
 // development vehicle adds). Units as docs/formats/measured_run.md.
 
-
 #include "dynamics/recording.hpp"
 #include "rig_models/prescribed_slip.hpp"
 #include "rig_models/rig_names.hpp"

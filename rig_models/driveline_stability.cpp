@@ -17,8 +17,8 @@ namespace {
 using D = HaldexDriveline;
 
 // The rear group's nodes: they turn with coupling_out.
-constexpr std::array<int, 6> kRearGroup{D::kCouplingOut, D::kRearDiff, D::kRearSideLeft, D::kRearSideRight,
-                                        D::kRearLeftWheel, D::kRearRightWheel};
+constexpr std::array<int, 6> kRearGroup{D::kCouplingOut,   D::kRearDiff,      D::kRearSideLeft,
+                                        D::kRearSideRight, D::kRearLeftWheel, D::kRearRightWheel};
 
 bool in_rear_group(int node) {
   for (int r : kRearGroup)
@@ -64,7 +64,8 @@ double operating_acceleration_m_s2(const HaldexDriveline& dl, const DrivelineOpe
   for (int w = 0; w < 4; ++w)
     sum_N += dl.path_ratios()[static_cast<std::size_t>(w)] * op.tyre_force_N[static_cast<std::size_t>(w)];
   const double r = dl.params().wheel_radius_m;
-  return (sum_N - dl.road_load().force_N(op.vehicle_speed_m_s) + dl.grade_torque_Nm() / r) / dl.params().vehicle_mass_kg;
+  return (sum_N - dl.road_load().force_N(op.vehicle_speed_m_s) + dl.grade_torque_Nm() / r) /
+         dl.params().vehicle_mass_kg;
 }
 
 }  // namespace
@@ -80,7 +81,9 @@ DrivelineOperatingPoint quasi_static_operating_point(const HaldexDriveline& dl, 
   const Eigen::VectorXd s = dl.rolling_speed_ratios();
   const double r = p.wheel_radius_m, wv = op.vehicle_speed_m_s / r;
   const double min_slip = units::rpm_to_rad_s(min_slip_rpm);
-  const auto floor_slip = [&](double slip) { return std::abs(slip) >= min_slip ? slip : std::copysign(min_slip, slip); };
+  const auto floor_slip = [&](double slip) {
+    return std::abs(slip) >= min_slip ? slip : std::copysign(min_slip, slip);
+  };
   auto ctx = std::make_shared<ClutchContext>(dl.start_inputs());
   ctx->set_ring_temperatures(Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), op.interface_temp_C));
   const dynamics::TorsionalNetwork net = dl.network(ctx);
@@ -89,8 +92,10 @@ DrivelineOperatingPoint quasi_static_operating_point(const HaldexDriveline& dl, 
     const double j = net.inertias()[static_cast<std::size_t>(i)].inertia_kg_m2;
     j_eq += j * s[i] * s[i];
     if (i == D::kVehicle) continue;
-    if (in_rear_group(i)) j_rear += j * (s[i] / s[D::kRearDiff]) * (s[i] / s[D::kRearDiff]);
-    else j_front += j * (s[i] / s[D::kFrontDiff]) * (s[i] / s[D::kFrontDiff]);
+    if (in_rear_group(i))
+      j_rear += j * (s[i] / s[D::kRearDiff]) * (s[i] / s[D::kRearDiff]);
+    else
+      j_front += j * (s[i] / s[D::kFrontDiff]) * (s[i] / s[D::kFrontDiff]);
   }
 
   // Fixed point: slip → clamp force and coupling torque → tyre forces → tyre slips → wheel
@@ -118,20 +123,22 @@ DrivelineOperatingPoint quasi_static_operating_point(const HaldexDriveline& dl, 
     // The car accelerating as one body: J_eq ω̇_v = engine and grade power − coupling loss − road load.
     const double road_N = dl.road_load().force_N(op.vehicle_speed_m_s);
     const double dwv = (t_engine * s[D::kEngine] + dl.grade_torque_Nm() -
-                        m_c * (s[D::kCouplingIn] - s[D::kCouplingOut]) - road_N * r) / j_eq;
+                        m_c * (s[D::kCouplingIn] - s[D::kCouplingOut]) - road_N * r) /
+                       j_eq;
     // Each axle group's torque balance about its carrier gives its two (equal) tyre forces.
-    const double front_axle_Nm = t_engine * p.gear_ratio * p.final_drive_ratio - m_c * p.ptu_ratio -
-                                 j_front * s[D::kFrontDiff] * dwv;
+    const double front_axle_Nm =
+        t_engine * p.gear_ratio * p.final_drive_ratio - m_c * p.ptu_ratio - j_front * s[D::kFrontDiff] * dwv;
     const double rear_axle_Nm = m_c * p.rear_diff_ratio - j_rear * s[D::kRearDiff] * dwv;
-    op.tyre_force_N = {front_axle_Nm / (2 * r), front_axle_Nm / (2 * r), rear_axle_Nm / (2 * r), rear_axle_Nm / (2 * r)};
+    op.tyre_force_N = {front_axle_Nm / (2 * r), front_axle_Nm / (2 * r), rear_axle_Nm / (2 * r),
+                       rear_axle_Nm / (2 * r)};
     // Wheel speeds from the steady slips κ = (ω r − V)/max(|V|, |ω r|) (rig_models/tyre.hpp).
     const std::array<int, 4> wheel{D::kFrontLeftWheel, D::kFrontRightWheel, D::kRearLeftWheel, D::kRearRightWheel};
     const std::array<int, 4> side{D::kFrontSideLeft, D::kFrontSideRight, D::kRearSideLeft, D::kRearSideRight};
     for (int i = 0; i < 4; ++i) {
       const auto& tyre = dl.tyre(i);
       const double fz = tyre_load_N(tyre, op.vehicle_speed_m_s, dwv * r);
-      const double kappa = tyre_deflection_m(tyre, op.tyre_force_N[static_cast<std::size_t>(i)], fz) /
-                           tyre.relaxation_length_m(fz);
+      const double kappa =
+          tyre_deflection_m(tyre, op.tyre_force_N[static_cast<std::size_t>(i)], fz) / tyre.relaxation_length_m(fz);
       const double ground = s[wheel[static_cast<std::size_t>(i)]] * wv;
       w[wheel[static_cast<std::size_t>(i)]] = w[side[static_cast<std::size_t>(i)]] =
           kappa >= 0 ? ground / (1.0 - kappa) : ground * (1.0 + kappa);
@@ -167,7 +174,8 @@ DrivelineOperatingPoint sample_operating_point(const HaldexDriveline& dl, const 
   op.coupling_slip_rad_s = s.contact_slip_rad_s[D::kCoupling];
   op.clamp_force_N = clamp_force_N;
   op.interface_temp_C = interface_temp_C;
-  for (int w = 0; w < 4; ++w) op.tyre_force_N[static_cast<std::size_t>(w)] = s.element_torque_Nm[w] / dl.params().wheel_radius_m;
+  for (int w = 0; w < 4; ++w)
+    op.tyre_force_N[static_cast<std::size_t>(w)] = s.element_torque_Nm[w] / dl.params().wheel_radius_m;
   return op;
 }
 
@@ -177,7 +185,8 @@ DrivelineOperatingPoint recorded_operating_point(const dynamics::Recording& rec,
   if (!time) throw std::invalid_argument("driveline operating point: the recording has no time channel");
   const auto mean = [&](std::string_view name) {
     const dynamics::Signal* sig = rec.find(name);
-    if (!sig) throw std::invalid_argument("driveline operating point: the recording has no '" + std::string(name) + "'");
+    if (!sig)
+      throw std::invalid_argument("driveline operating point: the recording has no '" + std::string(name) + "'");
     double sum = 0.0;
     int count = 0;
     for (std::size_t i = 0; i < time->values.size(); ++i)
@@ -235,7 +244,8 @@ dynamics::LinearSystem linearise_driveline(const HaldexDriveline& dl, const clut
     z[0] = tyre_deflection_m(tyre, op.tyre_force_N[static_cast<std::size_t>(w)], tyre.vertical_load_N(z.data()));
     tyre_states.insert(tyre_states.end(), z.begin(), z.begin() + tyre.states());
   }
-  lop.element_states = Eigen::Map<const Eigen::VectorXd>(tyre_states.data(), static_cast<Eigen::Index>(tyre_states.size()));
+  lop.element_states =
+      Eigen::Map<const Eigen::VectorXd>(tyre_states.data(), static_cast<Eigen::Index>(tyre_states.size()));
   lop.stuck = {coupling_locked};
   lop.extra_damping = extra_damping;
   {
@@ -251,8 +261,8 @@ dynamics::LinearSystem linearise_driveline(const HaldexDriveline& dl, const clut
     if (!coupling_locked && std::abs(p_bar - cap_bar) <= 1e-9 * cap_bar) {
       const clutch::WaltherViscosity viscosity(clutch.fluid().nu40_cSt, clutch.fluid().nu100_cSt);
       const double leak_scale = viscosity.kinematic_cSt(40.0) / viscosity.kinematic_cSt(op.interface_temp_C);
-      p_bar = std::max(p_bar, dl.hydraulics().steady_pressure_bar(std::abs(op.coupling_slip_rad_s), opening,
-                                                                  leak_scale, dl.valve_setting_bar(op.t_s)));
+      p_bar = std::max(p_bar, dl.hydraulics().steady_pressure_bar(std::abs(op.coupling_slip_rad_s), opening, leak_scale,
+                                                                  dl.valve_setting_bar(op.t_s)));
     }
   }
   if (node_names)
@@ -335,8 +345,8 @@ double onset_clamp_force_N(const HaldexDriveline& dl, const clutch::WetClutch& c
                            double lo_N, double hi_N, bool thermal) {
   const auto growth = [&](double force_N) {
     const auto op = quasi_static_operating_point(dl, clutch, inputs, 1.0, force_N);
-    return (thermal ? least_damped_mode_with_thermal(dl, clutch, op)
-                    : least_damped_slipping_mode(dl, clutch, op)).growth_per_s;
+    return (thermal ? least_damped_mode_with_thermal(dl, clutch, op) : least_damped_slipping_mode(dl, clutch, op))
+        .growth_per_s;
   };
   double g_lo = growth(lo_N);
   const double g_hi = growth(hi_N);
@@ -365,8 +375,9 @@ std::vector<dynamics::Map2D> coupling_stability_maps(const HaldexDriveline& dl, 
   for (std::size_t k = 0; k < forces_N.size(); ++k) {
     dynamics::Map2D m;
     m.name = "coupling_stability_map_" + std::to_string(k + 1);
-    m.description = "driveline: least-damped oscillatory mode of the slipping coupling over slip x interface "
-                    "temperature at one clamp force (isothermal slope; rig_models/driveline_stability.hpp)";
+    m.description =
+        "driveline: least-damped oscillatory mode of the slipping coupling over slip x interface "
+        "temperature at one clamp force (isothermal slope; rig_models/driveline_stability.hpp)";
     m.x_name = "slip_rpm";
     m.x_units = "rpm";
     m.x = slips_rpm;

@@ -35,13 +35,13 @@
 namespace shudder::rig_models {
 
 struct DrivelineOperatingPoint {
-  double t_s = 0.0;                    // time the engine's map or schedule is read at
-  double vehicle_speed_m_s = 0.0;      // V of the rear axle centre
-  double coupling_slip_rad_s = 0.0;    // Δω = ω_in − ω_out
+  double t_s = 0.0;                  // time the engine's map or schedule is read at
+  double vehicle_speed_m_s = 0.0;    // V of the rear axle centre
+  double coupling_slip_rad_s = 0.0;  // Δω = ω_in − ω_out
   double clamp_force_N = 0.0;
-  double interface_temp_C = 40.0;      // every ring of the pack
+  double interface_temp_C = 40.0;        // every ring of the pack
   std::array<double, 4> tyre_force_N{};  // FL, FR, RL, RR, driving > 0
-  Eigen::VectorXd node_speeds_rad_s;   // (kNodes) if given, used instead of V and Δω
+  Eigen::VectorXd node_speeds_rad_s;     // (kNodes) if given, used instead of V and Δω
 };
 
 /// The quasi-static operating point a manoeuvre starts towards: V = the start speed, Δω = the

@@ -58,8 +58,8 @@ struct EffectTarget {
 template <class Value>
 struct EffectMember {
   template <class Locate>
-    requires std::is_empty_v<Locate>  // stateless: rebuilt inside the two function pointers
-  EffectMember(Locate)                // implicit: registry entries read as data
+  requires std::is_empty_v<Locate>  // stateless: rebuilt inside the two function pointers
+  EffectMember(Locate)              // implicit: registry entries read as data
       : get([](EffectTarget& t) -> Value& { return Locate{}(t); }),
         get_const([](const ConstEffectTarget& t) -> const Value& { return Locate{}(t); }) {}
 

@@ -24,8 +24,9 @@ double mechanical_energy_relative_error(const dynamics::EnergyAccount& me, Mecha
     case MechanicalEnergyScale::kSourceWork:
       return me.source_work_J != 0 ? std::abs(me.imbalance_J()) / std::abs(me.source_work_J) : 0.0;
     case MechanicalEnergyScale::kLargestEnergyInPlay:
-      return std::abs(me.imbalance_J()) / std::max({std::abs(me.source_work_J), me.initial_kinetic_J + me.initial_elastic_J,
-                                                     me.friction_heat_J + me.damper_loss_J, 1e-300});
+      return std::abs(me.imbalance_J()) /
+             std::max({std::abs(me.source_work_J), me.initial_kinetic_J + me.initial_elastic_J,
+                       me.friction_heat_J + me.damper_loss_J, 1e-300});
   }
   return 0.0;
 }

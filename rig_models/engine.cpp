@@ -9,8 +9,7 @@
 namespace shudder::rig_models {
 
 Engine::Engine(const EngineParams& p) : p_(p) {
-  if (p.full_load_torque_Nm.min_value() < 0)
-    throw std::invalid_argument("engine: the full-load torque must be >= 0");
+  if (p.full_load_torque_Nm.min_value() < 0) throw std::invalid_argument("engine: the full-load torque must be >= 0");
   if (!(p.stall_speed_rpm > 0) || !(p.idle_speed_rpm > p.stall_speed_rpm) || !(p.max_speed_rpm > p.idle_speed_rpm))
     throw std::invalid_argument("engine: speeds must satisfy 0 < stall < idle < max");
   if (!(p.idle_governor_gain_Nms_per_rad >= 0) || !(p.loss_torque_idle_Nm >= 0) || !(p.loss_torque_max_Nm >= 0))
@@ -23,8 +22,9 @@ double Engine::torque_Nm(double omega, double throttle) const {
   const double idle = units::rpm_to_rad_s(p_.idle_speed_rpm);
   const double u = std::clamp(throttle, 0.0, 1.0);
   const double comb = std::clamp(u * full + p_.idle_governor_gain_Nms_per_rad * std::max(idle - omega, 0.0), 0.0, full);
-  const double loss = (p_.loss_torque_idle_Nm + (p_.loss_torque_max_Nm - p_.loss_torque_idle_Nm) * n / p_.max_speed_rpm) *
-                      std::tanh(omega / 10.0);
+  const double loss =
+      (p_.loss_torque_idle_Nm + (p_.loss_torque_max_Nm - p_.loss_torque_idle_Nm) * n / p_.max_speed_rpm) *
+      std::tanh(omega / 10.0);
   return comb - loss;
 }
 

@@ -32,7 +32,7 @@ struct EngineParams {
   double stall_speed_rpm = 400.0;
   double idle_governor_gain_Nms_per_rad = 3.0;  // estimate: ~50 rpm droop at idle losses
   double loss_torque_idle_Nm = 15.0;
-  double loss_torque_max_Nm = 35.0;   // at max_speed_rpm
+  double loss_torque_max_Nm = 35.0;  // at max_speed_rpm
   double max_speed_rpm = 6200.0;
 };
 

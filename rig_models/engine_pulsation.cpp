@@ -10,8 +10,7 @@ EnginePulsationLaw::EnginePulsationLaw(const EnginePulsation& p, double stall_ra
     : p_(p), stall_rad_s_(stall_rad_s), idle_rad_s_(idle_rad_s) {
   if (!std::isfinite(p_.amplitude_Nm) || p_.amplitude_Nm < 0)
     throw std::invalid_argument("engine firing pulsation amplitude must be a finite value >= 0 N m");
-  if (p_.cylinders < 1 || p_.cylinders > 16)
-    throw std::invalid_argument("engine cylinders must be 1 to 16");
+  if (p_.cylinders < 1 || p_.cylinders > 16) throw std::invalid_argument("engine cylinders must be 1 to 16");
   if (!(stall_rad_s_ > 0) || !(idle_rad_s_ > stall_rad_s_) || !std::isfinite(idle_rad_s_))
     throw std::invalid_argument("engine firing pulsation needs 0 < stall speed < idle speed");
 }

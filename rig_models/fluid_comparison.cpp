@@ -12,7 +12,7 @@ namespace shudder::rig_models {
 namespace {
 
 constexpr double kMarginResolution_per_s = 0.5;
-constexpr double kRatioResolution = 0.005;      // relative, on mu1/mu50
+constexpr double kRatioResolution = 0.005;  // relative, on mu1/mu50
 constexpr double kBreakawayResolution = 0.01;
 
 std::string g(double x) {
@@ -52,7 +52,8 @@ std::string separation(const FluidComparison& a, const FluidComparison& b) {
 // rig's own damping (−ζω of the bar: −6.28 1/s on the 100 Hz bar for every fluid), and the drive
 // loop's slow real mode, which leads the map's overall margin where the clutch damps well, does
 // not depend on the fluid either. NaN when no rig has a judged point there.
-double largest_margin_inside_data(const ScreeningReport& screen, const clutch::FrictionLaw& law, double mean_radius_mm) {
+double largest_margin_inside_data(const ScreeningReport& screen, const clutch::FrictionLaw& law,
+                                  double mean_radius_mm) {
   const double v_lo = law.min_speed_mm_s(), v_hi = law.max_speed_mm_s();
   const auto [t_lo, t_hi] = law.temp_range_C();
   double worst = std::numeric_limits<double>::quiet_NaN();

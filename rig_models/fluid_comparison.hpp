@@ -27,8 +27,8 @@
 namespace shudder::rig_models {
 
 struct ComparisonOptions {
-  ScreeningOptions screening;      // temps_C (empty: 30, 60, 90 °C), load, rigs
-  double viscosity_cSt = 10.0;     // Paper E Table 5's equal viscosity
+  ScreeningOptions screening;   // temps_C (empty: 30, 60, 90 °C), load, rigs
+  double viscosity_cSt = 10.0;  // Paper E Table 5's equal viscosity
 };
 
 struct FluidComparison {
@@ -37,18 +37,18 @@ struct FluidComparison {
   double equal_viscosity_temp_C = 0.0;  // NaN if the viscosity is not reached in −40…250 °C
   analysis::AntiShudderIndices at_equal_viscosity;
   double breakaway_ratio = 1.0;
-  std::vector<double> mu50;             // mu at 50 rpm at each screening temperature
-  double worst_mu1_over_mu50 = 0.0;     // largest over the screening temperatures
-  double worst_margin_per_s = 0.0;      // clutch-side mode, largest over the rigs' maps inside the
-                                        // law's data (NaN: no judged point there)
-  int rank = 0;                         // 1 = best; equal ranks = not separated by the data
+  std::vector<double> mu50;          // mu at 50 rpm at each screening temperature
+  double worst_mu1_over_mu50 = 0.0;  // largest over the screening temperatures
+  double worst_margin_per_s = 0.0;   // clutch-side mode, largest over the rigs' maps inside the
+                                     // law's data (NaN: no judged point there)
+  int rank = 0;                      // 1 = best; equal ranks = not separated by the data
 };
 
 struct Comparison {
   std::vector<double> temps_C;
   double load_N = 0.0, viscosity_cSt = 0.0;
-  std::vector<FluidComparison> fluids;  // in the order given
-  std::vector<std::string> separations; // one line per neighbouring pair in the ranking: what separates them, or "tie"
+  std::vector<FluidComparison> fluids;   // in the order given
+  std::vector<std::string> separations;  // one line per neighbouring pair in the ranking: what separates them, or "tie"
 };
 
 /// Throws std::invalid_argument like screen_fluid.

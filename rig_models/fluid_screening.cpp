@@ -46,7 +46,8 @@ RigScreen screen_rig(const ScreeningRig& spec, const clutch::Fluid& fluid, doubl
       out.max_margin_temp_C = temps_C[static_cast<std::size_t>(j)];
       out.max_margin_frequency_Hz = out.map.frequency_Hz(i, j);
     }
-  if (!found) out.max_margin_per_s = out.max_margin_rpm = out.max_margin_temp_C = out.max_margin_frequency_Hz =
+  if (!found)
+    out.max_margin_per_s = out.max_margin_rpm = out.max_margin_temp_C = out.max_margin_frequency_Hz =
         std::numeric_limits<double>::quiet_NaN();
   return out;
 }
@@ -104,7 +105,8 @@ ScreeningReport screen_fluid(const clutch::Fluid& fluid, const ScreeningOptions&
   std::vector<double> speeds = opt.map_speeds_rpm;
   if (speeds.empty())
     for (int n = 1; n <= 120; ++n) speeds.push_back(n);
-  const std::vector<double> map_temps = opt.map_temps_C.empty() ? default_map_temperatures(law, temps) : opt.map_temps_C;
+  const std::vector<double> map_temps =
+      opt.map_temps_C.empty() ? default_map_temperatures(law, temps) : opt.map_temps_C;
   rep.slope = analysis::isothermal_slope_map(law, speeds, map_temps, indices);
   const auto negative = analysis::negative_slope_mask(rep.slope);
   const Eigen::Array<bool, Eigen::Dynamic, Eigen::Dynamic> all =

@@ -34,11 +34,11 @@ struct ScreeningRig {
 std::vector<ScreeningRig> default_screening_rigs();
 
 struct ScreeningOptions {
-  analysis::IndexSettings indices;    // load (default 20 kN) and mean radius (46 mm)
-  std::vector<double> temps_C;        // empty: 40/80/120 °C inside the law's temperature range
-  std::vector<double> map_speeds_rpm; // empty: 1, 2, ..., 120 rpm
-  std::vector<double> map_temps_C;    // empty: default_map_temperatures()
-  std::vector<ScreeningRig> rigs;     // empty: default_screening_rigs()
+  analysis::IndexSettings indices;     // load (default 20 kN) and mean radius (46 mm)
+  std::vector<double> temps_C;         // empty: 40/80/120 °C inside the law's temperature range
+  std::vector<double> map_speeds_rpm;  // empty: 1, 2, ..., 120 rpm
+  std::vector<double> map_temps_C;     // empty: default_map_temperatures()
+  std::vector<ScreeningRig> rigs;      // empty: default_screening_rigs()
 };
 
 /// The map's temperatures: the law's temperature range if finite, else 40–120 °C, widened to
@@ -60,11 +60,11 @@ struct ScreeningReport {
   std::string fluid_name;
   double load_N = 0.0;
   double mean_radius_mm = 0.0;
-  std::pair<double, double> law_temp_range_C;    // the law's data temperatures
-  std::pair<double, double> law_speed_range_mm_s;  // the law's data speeds
+  std::pair<double, double> law_temp_range_C;         // the law's data temperatures
+  std::pair<double, double> law_speed_range_mm_s;     // the law's data speeds
   std::vector<analysis::AntiShudderIndices> indices;  // one per screening temperature
   analysis::SlopeMap slope;
-  std::vector<analysis::RegionRun> negative_slope;    // the risky region: dmu/dv < 0
+  std::vector<analysis::RegionRun> negative_slope;  // the risky region: dmu/dv < 0
   analysis::RegionExtent negative_slope_extent;
   std::vector<RigScreen> rigs;
   analysis::ScreeningVerdict verdict;

@@ -31,12 +31,18 @@ dynamics::ResultBlock friction_range_block(const clutch::FrictionDataRange& r) {
   const auto part = [&](double time, const std::string& what) {
     if (time > 0) parts += (parts.empty() ? "" : "; ") + what + " for " + percent(time, T) + " of the run";
   };
-  part(r.speed_below_s, "sliding speed down to " + four_digits(r.min_speed_mm_s) + " mm/s, below the data's " + four_digits(r.speed_lo_mm_s) + " mm/s");
-  part(r.speed_above_s, "sliding speed up to " + four_digits(r.max_speed_mm_s) + " mm/s, above the data's " + four_digits(r.speed_hi_mm_s) + " mm/s");
-  part(r.temp_below_s, "interface temperature down to " + four_digits(r.min_temp_C) + " °C, below the data's " + four_digits(r.temp_lo_C) + " °C");
-  part(r.temp_above_s, "interface temperature up to " + four_digits(r.max_temp_C) + " °C, above the data's " + four_digits(r.temp_hi_C) + " °C");
-  part(r.load_below_s, "clamp force down to " + four_digits(r.min_load_N) + " N, below the data's " + four_digits(r.load_lo_N) + " N");
-  part(r.load_above_s, "clamp force up to " + four_digits(r.max_load_N) + " N, above the data's " + four_digits(r.load_hi_N) + " N");
+  part(r.speed_below_s, "sliding speed down to " + four_digits(r.min_speed_mm_s) + " mm/s, below the data's " +
+                            four_digits(r.speed_lo_mm_s) + " mm/s");
+  part(r.speed_above_s, "sliding speed up to " + four_digits(r.max_speed_mm_s) + " mm/s, above the data's " +
+                            four_digits(r.speed_hi_mm_s) + " mm/s");
+  part(r.temp_below_s, "interface temperature down to " + four_digits(r.min_temp_C) + " °C, below the data's " +
+                           four_digits(r.temp_lo_C) + " °C");
+  part(r.temp_above_s, "interface temperature up to " + four_digits(r.max_temp_C) + " °C, above the data's " +
+                           four_digits(r.temp_hi_C) + " °C");
+  part(r.load_below_s,
+       "clamp force down to " + four_digits(r.min_load_N) + " N, below the data's " + four_digits(r.load_lo_N) + " N");
+  part(r.load_above_s,
+       "clamp force up to " + four_digits(r.max_load_N) + " N, above the data's " + four_digits(r.load_hi_N) + " N");
   b.texts.push_back({"summary", parts.empty() ? "within the friction law's data (speed, temperature and load)"
                                               : "friction law used outside its data (held/clamped values): " + parts});
   const auto frac = [&](double t) { return T > 0 ? t / T : 0.0; };

@@ -24,7 +24,8 @@ HaldexController::HaldexController(const HaldexControllerParams& p) : p_(p) {
               p.top_speed_km_h > p.fast_speed_km_h,
           "top_speed_km_h must exceed fast_speed_km_h (both >= 0)");
   require(std::isfinite(p.fast_demand) && p.fast_demand >= 0 && p.fast_demand <= 1, "fast_demand must be in [0, 1]");
-  require(std::isfinite(p.control_period_ms) && p.control_period_ms > 0, "control_period_ms must be a finite value > 0");
+  require(std::isfinite(p.control_period_ms) && p.control_period_ms > 0,
+          "control_period_ms must be a finite value > 0");
   require(std::isfinite(p.speed_filter_time_constant_ms) && p.speed_filter_time_constant_ms >= 0,
           "speed_filter_time_constant_ms must be a finite value >= 0");
 }
@@ -41,8 +42,8 @@ double HaldexController::valve_opening(const ControllerReading& r) const {
   const double slip_demand = excess_slip_rpm(r) / p_.lock_slip_rpm;
   const double pedal_demand = parking(r) ? 0.0 : p_.pedal_gain * std::clamp(r.pedal, 0.0, 1.0);
   double demand = std::clamp(std::max(slip_demand, pedal_demand), 0.0, 1.0);
-  const double fast = std::clamp((std::abs(r.vehicle_speed_km_h) - p_.fast_speed_km_h) /
-                                     (p_.top_speed_km_h - p_.fast_speed_km_h), 0.0, 1.0);
+  const double fast = std::clamp(
+      (std::abs(r.vehicle_speed_km_h) - p_.fast_speed_km_h) / (p_.top_speed_km_h - p_.fast_speed_km_h), 0.0, 1.0);
   demand = std::min(demand, 1.0 - (1.0 - p_.fast_demand) * fast);
   return 1.0 - demand;
 }

@@ -30,14 +30,14 @@
 namespace shudder::rig_models {
 
 struct HaldexControllerParams {
-  double lock_slip_rpm = 20.0;        // s_lock: excess axle slip that closes the valve (estimate: ~5 % at 30 km/h)
-  double pedal_gain = 0.5;            // g_pedal: how far the pedal alone closes the valve (estimate)
-  double parking_speed_km_h = 15.0;   // v_park (estimate: manoeuvring speeds)
-  double parking_turn_ratio = 0.02;   // δ_park: front axle ≥ 2 % further than the rear (R ≲ 14 m for a Golf)
-  double fast_speed_km_h = 80.0;      // v_fast0: demand starts to be limited (estimate)
-  double top_speed_km_h = 160.0;      // v_fast1: limit reached (estimate)
-  double fast_demand = 0.3;           // d_fast: the largest demand at and above v_fast1 (estimate)
-  double control_period_ms = 10.0;    // T_c (estimate: wheel-speed messages on the CAN bus every 10–20 ms)
+  double lock_slip_rpm = 20.0;       // s_lock: excess axle slip that closes the valve (estimate: ~5 % at 30 km/h)
+  double pedal_gain = 0.5;           // g_pedal: how far the pedal alone closes the valve (estimate)
+  double parking_speed_km_h = 15.0;  // v_park (estimate: manoeuvring speeds)
+  double parking_turn_ratio = 0.02;  // δ_park: front axle ≥ 2 % further than the rear (R ≲ 14 m for a Golf)
+  double fast_speed_km_h = 80.0;     // v_fast0: demand starts to be limited (estimate)
+  double top_speed_km_h = 160.0;     // v_fast1: limit reached (estimate)
+  double fast_demand = 0.3;          // d_fast: the largest demand at and above v_fast1 (estimate)
+  double control_period_ms = 10.0;   // T_c (estimate: wheel-speed messages on the CAN bus every 10–20 ms)
   double speed_filter_time_constant_ms = 20.0;  // τ_f (estimate: a few wheel-speed messages)
 };
 
@@ -66,10 +66,10 @@ class SampledSpeedSignal {
 
 struct ControllerReading {
   double vehicle_speed_km_h = 0;
-  double front_axle_rpm = 0;          // mean of the front wheels
-  double rear_axle_rpm = 0;           // mean of the rear wheels
-  double turn_axle_ratio = 1;         // ρ̄_f/ρ̄_r of the steering (1 straight)
-  double pedal = 0;                   // 0–1
+  double front_axle_rpm = 0;   // mean of the front wheels
+  double rear_axle_rpm = 0;    // mean of the rear wheels
+  double turn_axle_ratio = 1;  // ρ̄_f/ρ̄_r of the steering (1 straight)
+  double pedal = 0;            // 0–1
 };
 
 class HaldexController {

@@ -32,9 +32,9 @@ namespace shudder::rig_models {
 
 /// The coupling's inputs a run holds between integrator restarts.
 struct HaldexCommand {
-  double opening = 1.0;       // u_cmd, 0 shut – 1 open
-  double leak_scale = 1.0;    // ν(40 °C)/ν(T) of the coupling's oil
-  double setting_bar = 1e9;   // the cap when no schedule is given (the relief valve still caps)
+  double opening = 1.0;      // u_cmd, 0 shut – 1 open
+  double leak_scale = 1.0;   // ν(40 °C)/ν(T) of the coupling's oil
+  double setting_bar = 1e9;  // the cap when no schedule is given (the relief valve still caps)
   std::optional<PiecewiseLinear> setting_schedule_bar;  // a raw pressure setting over time
   double setting_at_bar(double t_s) const { return setting_schedule_bar ? (*setting_schedule_bar)(t_s) : setting_bar; }
 };

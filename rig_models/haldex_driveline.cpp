@@ -34,13 +34,11 @@ double pack_torque_per_newton(const DrivelineParams& p, const clutch::WetClutch&
 std::array<double, 4> wheel_path_ratios(const DrivelineParams& p, const DrivelineInputs& in) {
   const double rho = p.turn_ratio;
   if (in.turn_radius_m == 0.0) return {rho, rho, 1.0, 1.0};
-  if (rho != 1.0)
-    throw std::invalid_argument("driveline: turn_ratio and turn_radius_m are alternatives; give one");
+  if (rho != 1.0) throw std::invalid_argument("driveline: turn_ratio and turn_radius_m are alternatives; give one");
   const double r = in.turn_radius_m, half = 0.5 * p.track_width_m, l = p.wheelbase_m;
   if (!std::isfinite(r) || !(r > half))
-    throw std::invalid_argument("driveline: turn radius " + std::to_string(r) +
-                                " m must exceed half the track (" + std::to_string(half) +
-                                " m): the inner rear wheel would stand or run backwards");
+    throw std::invalid_argument("driveline: turn radius " + std::to_string(r) + " m must exceed half the track (" +
+                                std::to_string(half) + " m): the inner rear wheel would stand or run backwards");
   return {std::hypot(l, r - half) / r, std::hypot(l, r + half) / r, (r - half) / r, (r + half) / r};
 }
 
@@ -66,18 +64,27 @@ HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::We
       throttle_(inputs.throttle),
       engine_(params.engine) {
   for (const auto& [v, what] : std::initializer_list<std::pair<double, const char*>>{
-           {p_.engine_inertia_kg_m2, "engine_inertia_kg_m2"}, {p_.gear_ratio, "gear_ratio"},
-           {p_.final_drive_ratio, "final_drive_ratio"}, {p_.front_diff_inertia_kg_m2, "front_diff_inertia_kg_m2"},
+           {p_.engine_inertia_kg_m2, "engine_inertia_kg_m2"},
+           {p_.gear_ratio, "gear_ratio"},
+           {p_.final_drive_ratio, "final_drive_ratio"},
+           {p_.front_diff_inertia_kg_m2, "front_diff_inertia_kg_m2"},
            {p_.halfshaft_stiffness_Nm_per_rad, "halfshaft_stiffness_Nm_per_rad"},
            {p_.side_gear_inertia_kg_m2, "side_gear_inertia_kg_m2"},
-           {p_.wheel_inertia_kg_m2, "wheel_inertia_kg_m2"}, {p_.tyre_stiffness_Nm_per_rad, "tyre_stiffness_Nm_per_rad"},
+           {p_.wheel_inertia_kg_m2, "wheel_inertia_kg_m2"},
+           {p_.tyre_stiffness_Nm_per_rad, "tyre_stiffness_Nm_per_rad"},
            {p_.wheelbase_m, "wheelbase_m"},
            {p_.track_width_m, "track_width_m"},
-           {p_.vehicle_mass_kg, "vehicle_mass_kg"}, {p_.wheel_radius_m, "wheel_radius_m"}, {p_.ptu_ratio, "ptu_ratio"},
-           {p_.ptu_inertia_kg_m2, "ptu_inertia_kg_m2"}, {p_.propshaft_stiffness_Nm_per_rad, "propshaft_stiffness_Nm_per_rad"},
-           {p_.coupling_half_inertia_kg_m2, "coupling_half_inertia_kg_m2"}, {p_.rear_diff_ratio, "rear_diff_ratio"},
-           {p_.rear_diff_inertia_kg_m2, "rear_diff_inertia_kg_m2"}, {p_.turn_ratio, "turn_ratio"},
-           {p_.nominal_friction, "nominal_friction"}, {p_.front_axle_load_share, "front_axle_load_share"}})
+           {p_.vehicle_mass_kg, "vehicle_mass_kg"},
+           {p_.wheel_radius_m, "wheel_radius_m"},
+           {p_.ptu_ratio, "ptu_ratio"},
+           {p_.ptu_inertia_kg_m2, "ptu_inertia_kg_m2"},
+           {p_.propshaft_stiffness_Nm_per_rad, "propshaft_stiffness_Nm_per_rad"},
+           {p_.coupling_half_inertia_kg_m2, "coupling_half_inertia_kg_m2"},
+           {p_.rear_diff_ratio, "rear_diff_ratio"},
+           {p_.rear_diff_inertia_kg_m2, "rear_diff_inertia_kg_m2"},
+           {p_.turn_ratio, "turn_ratio"},
+           {p_.nominal_friction, "nominal_friction"},
+           {p_.front_axle_load_share, "front_axle_load_share"}})
     require_positive_parameter(v, what);
   if (!(p_.front_axle_load_share < 1))
     throw std::invalid_argument("driveline: front_axle_load_share must be in (0, 1)");
@@ -85,7 +92,8 @@ HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::We
            {p_.halfshaft_damping_Nms_per_rad, "halfshaft_damping_Nms_per_rad"},
            {p_.propshaft_damping_Nms_per_rad, "propshaft_damping_Nms_per_rad"},
            {p_.rolling_resistance_coefficient, "rolling_resistance_coefficient"},
-           {p_.drag_coefficient_area_m2, "drag_coefficient_area_m2"}, {p_.air_density_kg_m3, "air_density_kg_m3"},
+           {p_.drag_coefficient_area_m2, "drag_coefficient_area_m2"},
+           {p_.air_density_kg_m3, "air_density_kg_m3"},
            {p_.cg_height_m, "cg_height_m"}})
     if (!std::isfinite(v) || v < 0) throw std::invalid_argument(std::string("driveline: ") + what + " must be >= 0");
   for (double mu : inputs.road_friction)
@@ -109,15 +117,16 @@ HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::We
            {p_.tyre_slip_stiffness_per_load, "tyre_slip_stiffness_per_load"}})
     if (v) require_positive_parameter(*v, what);
   if (p_.tyre_slip_stiffness_N && p_.tyre_slip_stiffness_per_load)
-    throw std::invalid_argument("driveline: tyre_slip_stiffness_N and tyre_slip_stiffness_per_load are alternatives; "
-                                "give one (an absolute C_kappa, or C_kappa / F_z)");
+    throw std::invalid_argument(
+        "driveline: tyre_slip_stiffness_N and tyre_slip_stiffness_per_load are alternatives; "
+        "give one (an absolute C_kappa, or C_kappa / F_z)");
   const double theta = std::atan(inputs.grade_percent / 100.0);
   const double weight_N = p_.vehicle_mass_kg * kGravity_m_s2;
   const double r = p_.wheel_radius_m;
   const std::array<double, 2> axle_N = static_axle_loads_N(p_, inputs.grade_percent);
   if (!(axle_N[0] > 0) || !(axle_N[1] > 0))
-    throw std::invalid_argument("driveline: on a grade of " + std::to_string(inputs.grade_percent) +
-                                " % the " + (axle_N[0] > 0 ? "rear" : "front") +
+    throw std::invalid_argument("driveline: on a grade of " + std::to_string(inputs.grade_percent) + " % the " +
+                                (axle_N[0] > 0 ? "rear" : "front") +
                                 " axle would lift (cg_height_m / wheelbase_m too large for the grade)");
   const double transfer_kg = p_.vehicle_mass_kg * p_.cg_height_m / (2.0 * p_.wheelbase_m);
   for (int w = 0; w < 4; ++w) {
@@ -166,7 +175,8 @@ ClutchHeldInputs HaldexDriveline::start_inputs() const {
 
 dynamics::TorsionalNetwork HaldexDriveline::network(std::shared_ptr<ClutchContext> coupling_context,
                                                     std::shared_ptr<HaldexCommand> command) const {
-  return build(std::make_shared<HaldexCouplingLaw>(contact_, std::move(coupling_context), hydraulics_, std::move(command)));
+  return build(
+      std::make_shared<HaldexCouplingLaw>(contact_, std::move(coupling_context), hydraulics_, std::move(command)));
 }
 
 dynamics::TorsionalNetwork HaldexDriveline::network(std::shared_ptr<ClutchContext> coupling_context) const {
@@ -202,7 +212,8 @@ dynamics::TorsionalNetwork HaldexDriveline::build(std::shared_ptr<const dynamics
   const double k_h = p_.halfshaft_stiffness_Nm_per_rad, c_h = p_.halfshaft_damping_Nms_per_rad;
   n.add_shaft(Shaft{"front_left_halfshaft", kFrontSideLeft, kFrontLeftWheel, k_h, c_h});
   n.add_shaft(Shaft{"front_right_halfshaft", kFrontSideRight, kFrontRightWheel, k_h, c_h});
-  n.add_shaft(Shaft{"propshaft", kPtu, kCouplingIn, p_.propshaft_stiffness_Nm_per_rad, p_.propshaft_damping_Nms_per_rad});
+  n.add_shaft(
+      Shaft{"propshaft", kPtu, kCouplingIn, p_.propshaft_stiffness_Nm_per_rad, p_.propshaft_damping_Nms_per_rad});
   n.add_shaft(Shaft{"rear_left_halfshaft", kRearSideLeft, kRearLeftWheel, k_h, c_h});
   n.add_shaft(Shaft{"rear_right_halfshaft", kRearSideRight, kRearRightWheel, k_h, c_h});
 
@@ -342,61 +353,76 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
   // slow step.
   namespace sn = dynamics::signal_names;
   using Recorder = ChannelRecorder<dynamics::Sample, clutch::ThermalState>;
-  using dynamics::Sample;
   using clutch::ThermalState;
+  using dynamics::Sample;
   dynamics::Recording rec;
-  Recorder recorder(rec, {
-      Recorder::sampled(sn::kTime, "s", [](const Sample& s) { return s.t_s; }),
-      Recorder::sampled(sn::kEngineSpeed, "rpm",
-                        [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kEngine]); }),
-      Recorder::sampled(sn::kVehicleSpeed, "km/h",
-                        [&](const Sample& s) { return s.omega_rad_s[D::kVehicle] * params.wheel_radius_m * 3.6; }),
-      // An axle's wheel speed: the mean of its two wheels, the carrier's speed.
-      Recorder::sampled(sn::kFrontWheelSpeed, "rpm",
-                        [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kFrontDiff]); }),
-      Recorder::sampled(sn::kRearWheelSpeed, "rpm",
-                        [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kRearDiff]); }),
-      Recorder::sampled(sn::kCouplingSlip, "rpm",
-                        [](const Sample& s) { return units::rad_s_to_rpm(s.contact_slip_rad_s[D::kCoupling]); }),
-      Recorder::sampled(sn::kCouplingTorque, "N m", [](const Sample& s) { return s.contact_torque_Nm[D::kCoupling]; }),
-      Recorder::sampled(sn::kFrontAxleTorque, "N m",
-                        [](const Sample& s) {
-                          return s.shaft_torque_Nm[D::kFrontLeftHalfshaft] + s.shaft_torque_Nm[D::kFrontRightHalfshaft];
-                        }),
-      Recorder::sampled(sn::kRearAxleTorque, "N m",
-                        [](const Sample& s) {
-                          return s.shaft_torque_Nm[D::kRearLeftHalfshaft] + s.shaft_torque_Nm[D::kRearRightHalfshaft];
-                        }),
-      Recorder::sampled(sn::kEngineTorque, "N m",
-                        [&](const Sample& s) { return dl.engine_torque_Nm(s.t_s, s.omega_rad_s[D::kEngine]); }),
-      Recorder::sampled(sn::kStuck, "1",
-                        [](const Sample& s) {
-                          return static_cast<double>(s.modes[D::kCoupling] == dynamics::ContactMode::kStuck);
-                        }),
-      Recorder::sampled(sn::kPressure, "bar", pressure_bar),
-      Recorder::sampled(sn::kValveOpening, "1",
-                        [z_coupling](const Sample& s) {
-                          return s.contact_states[z_coupling + HaldexCouplingLaw::kOpening];
-                        }),
-      Recorder::sampled(sn::kClampForce, "N", clamp_force_N),
-      Recorder::sampled(sn::kWheelSpeedFL, "rpm", [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kFrontLeftWheel]); }),
-      Recorder::sampled(sn::kWheelSpeedFR, "rpm", [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kFrontRightWheel]); }),
-      Recorder::sampled(sn::kWheelSpeedRL, "rpm", [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kRearLeftWheel]); }),
-      Recorder::sampled(sn::kWheelSpeedRR, "rpm", [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kRearRightWheel]); }),
-      Recorder::sampled(sn::kTyreForceFL, "N", [&](const Sample& s) { return s.element_torque_Nm[D::kFL] / params.wheel_radius_m; }),
-      Recorder::sampled(sn::kTyreForceFR, "N", [&](const Sample& s) { return s.element_torque_Nm[D::kFR] / params.wheel_radius_m; }),
-      Recorder::sampled(sn::kTyreForceRL, "N", [&](const Sample& s) { return s.element_torque_Nm[D::kRL] / params.wheel_radius_m; }),
-      Recorder::sampled(sn::kTyreForceRR, "N", [&](const Sample& s) { return s.element_torque_Nm[D::kRR] / params.wheel_radius_m; }),
-      Recorder::sampled(sn::kRoadLoad, "N",
-                        [&](const Sample& s) { return s.element_torque_Nm[D::kRoadLoadElement] / params.wheel_radius_m; }),
-      Recorder::interpolated(sn::kInterfaceMeanTemp, "degC",
-                             [&](const ThermalState& state) { return th.mean_interface_temp_C(state); }),
-      Recorder::interpolated(sn::kInterfaceMaxTemp, "degC",
-                             [&](const ThermalState& state) { return th.interface_temps_C(state).maxCoeff(); }),
-      // What an instrumented coupling's sensors read (a measured vehicle run, coupling_measurement.hpp).
-      Recorder::interpolated(sn::kCouplingTemp, "degC", [](const ThermalState& state) { return state.sensor_temp_C; }),
-      Recorder::interpolated(sn::kCouplingOilTemp, "degC", [](const ThermalState& state) { return state.sump_temp_C; }),
-  });
+  Recorder recorder(
+      rec,
+      {
+          Recorder::sampled(sn::kTime, "s", [](const Sample& s) { return s.t_s; }),
+          Recorder::sampled(sn::kEngineSpeed, "rpm",
+                            [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kEngine]); }),
+          Recorder::sampled(sn::kVehicleSpeed, "km/h",
+                            [&](const Sample& s) { return s.omega_rad_s[D::kVehicle] * params.wheel_radius_m * 3.6; }),
+          // An axle's wheel speed: the mean of its two wheels, the carrier's speed.
+          Recorder::sampled(sn::kFrontWheelSpeed, "rpm",
+                            [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kFrontDiff]); }),
+          Recorder::sampled(sn::kRearWheelSpeed, "rpm",
+                            [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kRearDiff]); }),
+          Recorder::sampled(sn::kCouplingSlip, "rpm",
+                            [](const Sample& s) { return units::rad_s_to_rpm(s.contact_slip_rad_s[D::kCoupling]); }),
+          Recorder::sampled(sn::kCouplingTorque, "N m",
+                            [](const Sample& s) { return s.contact_torque_Nm[D::kCoupling]; }),
+          Recorder::sampled(sn::kFrontAxleTorque, "N m",
+                            [](const Sample& s) {
+                              return s.shaft_torque_Nm[D::kFrontLeftHalfshaft] +
+                                     s.shaft_torque_Nm[D::kFrontRightHalfshaft];
+                            }),
+          Recorder::sampled(sn::kRearAxleTorque, "N m",
+                            [](const Sample& s) {
+                              return s.shaft_torque_Nm[D::kRearLeftHalfshaft] +
+                                     s.shaft_torque_Nm[D::kRearRightHalfshaft];
+                            }),
+          Recorder::sampled(sn::kEngineTorque, "N m",
+                            [&](const Sample& s) { return dl.engine_torque_Nm(s.t_s, s.omega_rad_s[D::kEngine]); }),
+          Recorder::sampled(sn::kStuck, "1",
+                            [](const Sample& s) {
+                              return static_cast<double>(s.modes[D::kCoupling] == dynamics::ContactMode::kStuck);
+                            }),
+          Recorder::sampled(sn::kPressure, "bar", pressure_bar),
+          Recorder::sampled(
+              sn::kValveOpening, "1",
+              [z_coupling](const Sample& s) { return s.contact_states[z_coupling + HaldexCouplingLaw::kOpening]; }),
+          Recorder::sampled(sn::kClampForce, "N", clamp_force_N),
+          Recorder::sampled(sn::kWheelSpeedFL, "rpm",
+                            [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kFrontLeftWheel]); }),
+          Recorder::sampled(sn::kWheelSpeedFR, "rpm",
+                            [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kFrontRightWheel]); }),
+          Recorder::sampled(sn::kWheelSpeedRL, "rpm",
+                            [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kRearLeftWheel]); }),
+          Recorder::sampled(sn::kWheelSpeedRR, "rpm",
+                            [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kRearRightWheel]); }),
+          Recorder::sampled(sn::kTyreForceFL, "N",
+                            [&](const Sample& s) { return s.element_torque_Nm[D::kFL] / params.wheel_radius_m; }),
+          Recorder::sampled(sn::kTyreForceFR, "N",
+                            [&](const Sample& s) { return s.element_torque_Nm[D::kFR] / params.wheel_radius_m; }),
+          Recorder::sampled(sn::kTyreForceRL, "N",
+                            [&](const Sample& s) { return s.element_torque_Nm[D::kRL] / params.wheel_radius_m; }),
+          Recorder::sampled(sn::kTyreForceRR, "N",
+                            [&](const Sample& s) { return s.element_torque_Nm[D::kRR] / params.wheel_radius_m; }),
+          Recorder::sampled(
+              sn::kRoadLoad, "N",
+              [&](const Sample& s) { return s.element_torque_Nm[D::kRoadLoadElement] / params.wheel_radius_m; }),
+          Recorder::interpolated(sn::kInterfaceMeanTemp, "degC",
+                                 [&](const ThermalState& state) { return th.mean_interface_temp_C(state); }),
+          Recorder::interpolated(sn::kInterfaceMaxTemp, "degC",
+                                 [&](const ThermalState& state) { return th.interface_temps_C(state).maxCoeff(); }),
+          // What an instrumented coupling's sensors read (a measured vehicle run, coupling_measurement.hpp).
+          Recorder::interpolated(sn::kCouplingTemp, "degC",
+                                 [](const ThermalState& state) { return state.sensor_temp_C; }),
+          Recorder::interpolated(sn::kCouplingOilTemp, "degC",
+                                 [](const ThermalState& state) { return state.sump_temp_C; }),
+      });
 
   // Stall: the mapped engine's speed below its stall speed (the first sample that shows it).
   double stall_time_s = std::numeric_limits<double>::quiet_NaN();

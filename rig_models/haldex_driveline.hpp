@@ -6,7 +6,8 @@
 //                          ║ (i_ptu)                                                                    │
 //                         ptu ─propeller shaft─ coupling_in ┤Haldex├ coupling_out                         │
 //                                                                ║ (i_r)                                  │
-//                                               rear_diff ⟨open diff⟩ rear_side_l/r ─half-shaft─ wheel_rl/rr ~tyre(ρ_rl/rr)~┘
+//                                               rear_diff ⟨open diff⟩ rear_side_l/r ─half-shaft─ wheel_rl/rr
+//                                               ~tyre(ρ_rl/rr)~┘
 //   vehicle ~road load~ ground;  grade: a constant torque −m g sin θ r on the vehicle.
 //
 //   ═(r)═ a gear: ω_a = r ω_b;  ─ a shaft (spring k and damper c);  ┤├ the clutch;
@@ -59,14 +60,14 @@
 namespace shudder::rig_models {
 
 struct DrivelineParams {
-  double engine_inertia_kg_m2 = 0.25;       // estimate: 2-litre engine, flywheel and clutch
-  double gear_ratio = 3.5;                  // estimate: 1st gear
-  double final_drive_ratio = 4.0;           // estimate
-  double front_diff_inertia_kg_m2 = 0.05;   // estimate: gearbox output, differential
+  double engine_inertia_kg_m2 = 0.25;              // estimate: 2-litre engine, flywheel and clutch
+  double gear_ratio = 3.5;                         // estimate: 1st gear
+  double final_drive_ratio = 4.0;                  // estimate
+  double front_diff_inertia_kg_m2 = 0.05;          // estimate: gearbox output, differential
   double halfshaft_stiffness_Nm_per_rad = 6000.0;  // estimate, per shaft (×2 per axle)
   double halfshaft_damping_Nms_per_rad = 5.0;      // estimate, per shaft
-  double side_gear_inertia_kg_m2 = 0.005;   // estimate, per differential side gear
-  double wheel_inertia_kg_m2 = 1.0;         // estimate, per wheel with tyre and brake disc
+  double side_gear_inertia_kg_m2 = 0.005;          // estimate, per differential side gear
+  double wheel_inertia_kg_m2 = 1.0;                // estimate, per wheel with tyre and brake disc
   // Carcass: c_x r², c_x ≈ 5e5 N/m (estimate; Pacejka §7.2 gives 3–10e5 N/m for car tyres); the
   // relaxation length is σ = C_κ r² / (c_x r²) = 0.31 m with the slip stiffness below (Pacejka:
   // σ ≈ 0.1–0.5 m, about a tyre radius).
@@ -78,33 +79,33 @@ struct DrivelineParams {
   // load; at most one of the two.
   std::optional<double> tyre_slip_stiffness_per_load;
   std::optional<double> tyre_slip_stiffness_N;
-  double cg_height_m = 0.55;                // h (estimate: a compact hatchback's laden CG, 0.5–0.6 m)
-  double vehicle_mass_kg = 1700.0;          // estimate
-  double wheelbase_m = 2.51;                // VW Golf IV (public data)
-  double track_width_m = 1.51;              // VW Golf IV, mean of front and rear (public data)
-  double front_axle_load_share = 0.6;       // estimate: front-engined car
+  double cg_height_m = 0.55;                      // h (estimate: a compact hatchback's laden CG, 0.5–0.6 m)
+  double vehicle_mass_kg = 1700.0;                // estimate
+  double wheelbase_m = 2.51;                      // VW Golf IV (public data)
+  double track_width_m = 1.51;                    // VW Golf IV, mean of front and rear (public data)
+  double front_axle_load_share = 0.6;             // estimate: front-engined car
   double rolling_resistance_coefficient = 0.012;  // f_r (Gillespie ch. 4: 0.01–0.015)
-  double drag_coefficient_area_m2 = 0.67;   // c_d A: Golf IV c_d 0.32 × A 2.1 m² (public, rounded)
+  double drag_coefficient_area_m2 = 0.67;         // c_d A: Golf IV c_d 0.32 × A 2.1 m² (public, rounded)
   double air_density_kg_m3 = 1.2;
-  double wheel_radius_m = 0.32;             // estimate: 205/55 R16 rolling radius
-  double ptu_ratio = 2.6;                   // estimate: power take-off, front diff → propshaft
-  double ptu_inertia_kg_m2 = 0.01;          // estimate
+  double wheel_radius_m = 0.32;                     // estimate: 205/55 R16 rolling radius
+  double ptu_ratio = 2.6;                           // estimate: power take-off, front diff → propshaft
+  double ptu_inertia_kg_m2 = 0.01;                  // estimate
   double propshaft_stiffness_Nm_per_rad = 25000.0;  // estimate
   double propshaft_damping_Nms_per_rad = 5.0;       // estimate
-  double coupling_half_inertia_kg_m2 = 0.02;  // estimate, each side of the disc pack
-  double rear_diff_ratio = 2.6;             // estimate; = ptu_ratio: front and rear axles match
-  double rear_diff_inertia_kg_m2 = 0.03;    // estimate
-  double turn_ratio = 1.0;                  // legacy ρ of the front axle, see header
-  double nominal_friction = 0.12;           // μ_nom for the preload's force (estimate: wet clutch)
+  double coupling_half_inertia_kg_m2 = 0.02;        // estimate, each side of the disc pack
+  double rear_diff_ratio = 2.6;                     // estimate; = ptu_ratio: front and rear axles match
+  double rear_diff_inertia_kg_m2 = 0.03;            // estimate
+  double turn_ratio = 1.0;                          // legacy ρ of the front axle, see header
+  double nominal_friction = 0.12;                   // μ_nom for the preload's force (estimate: wet clutch)
   // The coupling's own oil (estimates: a Gen I unit holds ~0.6 l; the pack is splash- and
   // pump-washed, no forced cooling circuit): shared by the pack's interfaces, see apply_pack_oil().
   double pack_oil_volume_ml = 600.0;
   double pack_cooling_flow_ml_min = 300.0;
   HaldexHydraulicsParams hydraulics;
-  HaldexControllerParams controller;        // used unless the manoeuvre gives a raw valve schedule
-  EngineParams engine;                      // used when the manoeuvre gives a throttle
-  StickTimeFriction stick_time;             // the `stick_time_static_friction` effect
-  EnginePulsation engine_pulsation;         // firing-order torque pulsation (engine_pulsation.hpp); 0 N m: none
+  HaldexControllerParams controller;  // used unless the manoeuvre gives a raw valve schedule
+  EngineParams engine;                // used when the manoeuvre gives a throttle
+  StickTimeFriction stick_time;       // the `stick_time_static_friction` effect
+  EnginePulsation engine_pulsation;   // firing-order torque pulsation (engine_pulsation.hpp); 0 N m: none
   // Tolerances as for the rig: speeds of ~1–100 rad/s, twists of ~1e-2 rad.
   dynamics::IntegratorSettings integrator{1e-6, 1e-6, 1e-3, 1e-6, 1e-10};
 };
@@ -116,15 +117,15 @@ struct DrivelineInputs {
   // (an ideal cap, the valve shut below it); neither: the controller model decides.
   std::optional<PiecewiseLinear> valve_opening;
   std::optional<PiecewiseLinear> valve_pressure_bar;
-  double start_speed_km_h = 0.0;  // vehicle speed at t = 0, every part rolling with it
-  double turn_radius_m = 0.0;     // R of the rear axle centre, left turn; 0 = straight
+  double start_speed_km_h = 0.0;                            // vehicle speed at t = 0, every part rolling with it
+  double turn_radius_m = 0.0;                               // R of the rear axle centre, left turn; 0 = straight
   std::array<double, 4> road_friction{1.0, 1.0, 1.0, 1.0};  // μ per wheel: FL, FR, RL, RR (dry asphalt ≈ 1)
-  double grade_percent = 0.0;     // road gradient, uphill > 0 (100 tan θ)
+  double grade_percent = 0.0;                               // road gradient, uphill > 0 (100 tan θ)
 };
 
 struct DrivelineSettings {
   double duration_s = 5.0;
-  double slow_step_s = 0.01;      // thermal step (the hydraulics are integrated with the motion)
+  double slow_step_s = 0.01;  // thermal step (the hydraulics are integrated with the motion)
   double sample_rate_Hz = 1000.0;
 };
 
@@ -181,9 +182,24 @@ class HaldexDriveline {
   /// The grade's torque on the vehicle node, −m g sin θ r_w (N m).
   double grade_torque_Nm() const { return grade_torque_Nm_; }
 
-  enum Node { kEngine, kFrontDiff, kFrontSideLeft, kFrontSideRight, kFrontLeftWheel, kFrontRightWheel, kVehicle,
-              kPtu, kCouplingIn, kCouplingOut, kRearDiff, kRearSideLeft, kRearSideRight, kRearLeftWheel,
-              kRearRightWheel, kNodes };
+  enum Node {
+    kEngine,
+    kFrontDiff,
+    kFrontSideLeft,
+    kFrontSideRight,
+    kFrontLeftWheel,
+    kFrontRightWheel,
+    kVehicle,
+    kPtu,
+    kCouplingIn,
+    kCouplingOut,
+    kRearDiff,
+    kRearSideLeft,
+    kRearSideRight,
+    kRearLeftWheel,
+    kRearRightWheel,
+    kNodes
+  };
   enum ShaftIndex { kFrontLeftHalfshaft, kFrontRightHalfshaft, kPropshaft, kRearLeftHalfshaft, kRearRightHalfshaft };
   enum Wheel { kFL, kFR, kRL, kRR };
   static constexpr int kCoupling = 0;

@@ -72,8 +72,10 @@ double HaldexHydraulics::steady_pressure_bar(double slip_rad_s, double opening, 
   const auto rate = [&](double p) { return pressure_rate_bar_s(p, slip_rad_s, opening, setting_bar, leak_scale); };
   if (rate(0.0) <= 0.0) return 0.0;
   const double cap_bar = std::clamp(setting_bar, 0.0, p_.relief_pressure_bar);
-  double lo = 0.0, hi = cap_bar + displacement_m3_per_rad_ * std::abs(slip_rad_s) * kReliefTime_s /
-                                      compliance_m3_per_Pa_ / kPaPerBar + 1e-9;
+  double lo = 0.0,
+         hi = cap_bar +
+              displacement_m3_per_rad_ * std::abs(slip_rad_s) * kReliefTime_s / compliance_m3_per_Pa_ / kPaPerBar +
+              1e-9;
   while (rate(hi) > 0.0) hi *= 2.0;
   for (int i = 0; i < 200 && hi - lo > 1e-15 * hi; ++i) (rate(0.5 * (lo + hi)) > 0.0 ? lo : hi) = 0.5 * (lo + hi);
   return 0.5 * (lo + hi);

@@ -58,18 +58,18 @@
 namespace shudder::rig_models {
 
 struct HaldexHydraulicsParams {
-  double relief_pressure_bar = 30.0;            // [S1]-type pressure-limiting valve; "order 10–30 bar" (public)
-  double piston_area_cm2 = 60.0;                // estimate: annulus under the discs' 38–56 mm friction ring
-  double pump_displacement_cm3_per_rev = 2.5;   // estimate: 2 annular pistons × 5 cm² × 1.25 mm × 2 cam lobes
-  double chamber_volume_cm3 = 40.0;             // estimate: piston chamber (60 cm² × ~5 mm) and passages
-  double bulk_modulus_bar = 10000.0;            // estimate: mineral oil 1.5 GPa, ~1 GPa with air and housing
-  double pack_stiffness_N_per_mm = 72000.0;     // estimate: set so the quarter wheel turn [W1] holds (header)
-  double valve_area_mm2 = 0.3;                  // estimate: fully open throttle, a ~0.6 mm orifice
-  double discharge_coefficient = 0.7;           // sharp-edged orifice, 0.6–0.7 (textbook)
-  double leak_cm3_s_per_bar = 0.005;            // estimate at 40 °C: holds the pressure ~10 s with the valve shut
-  double oil_density_kg_m3 = 870.0;             // mineral ATF/Haldex oil
-  double preload_torque_Nm = 0.0;               // Gen I has no preload spring [W1]; later generations ~80 N m
-  double valve_time_constant_ms = 50.0;         // estimate: a servomotor-driven regulating valve [S1], ~0.1–0.2 s end to end
+  double relief_pressure_bar = 30.0;           // [S1]-type pressure-limiting valve; "order 10–30 bar" (public)
+  double piston_area_cm2 = 60.0;               // estimate: annulus under the discs' 38–56 mm friction ring
+  double pump_displacement_cm3_per_rev = 2.5;  // estimate: 2 annular pistons × 5 cm² × 1.25 mm × 2 cam lobes
+  double chamber_volume_cm3 = 40.0;            // estimate: piston chamber (60 cm² × ~5 mm) and passages
+  double bulk_modulus_bar = 10000.0;           // estimate: mineral oil 1.5 GPa, ~1 GPa with air and housing
+  double pack_stiffness_N_per_mm = 72000.0;    // estimate: set so the quarter wheel turn [W1] holds (header)
+  double valve_area_mm2 = 0.3;                 // estimate: fully open throttle, a ~0.6 mm orifice
+  double discharge_coefficient = 0.7;          // sharp-edged orifice, 0.6–0.7 (textbook)
+  double leak_cm3_s_per_bar = 0.005;           // estimate at 40 °C: holds the pressure ~10 s with the valve shut
+  double oil_density_kg_m3 = 870.0;            // mineral ATF/Haldex oil
+  double preload_torque_Nm = 0.0;              // Gen I has no preload spring [W1]; later generations ~80 N m
+  double valve_time_constant_ms = 50.0;  // estimate: a servomotor-driven regulating valve [S1], ~0.1–0.2 s end to end
 };
 
 class HaldexHydraulics {

@@ -157,7 +157,8 @@ InverseCharacterisation characterise_inverse(const std::vector<analysis::RampRun
     if (!converged)
       throw std::runtime_error("the inverse characterisation did not converge: after " +
                                std::to_string(inv.max_iterations) + " replays the law still changes by " +
-                               three_digits(out.last_change_mu) + " in mu (tolerance " + three_digits(inv.tolerance_mu) +
+                               three_digits(out.last_change_mu) + " in mu (tolerance " +
+                               three_digits(inv.tolerance_mu) +
                                "); the replayed temperature field does not settle with the law — use --method sensor");
   }
   const Replayed final_rep = replay_with(law, oil);

@@ -42,25 +42,25 @@
 namespace shudder::rig_models {
 
 struct InverseSettings {
-  ReplayModel model;             // clutch, thermal defaults and solver settings; its fluid's law is replaced
-  int max_iterations = 8;        // replays of every run per pass (step 2)
-  double tolerance_mu = 1e-4;    // 0.1 % of a typical mu of 0.1: below the 1 % target by 10×
+  ReplayModel model;           // clutch, thermal defaults and solver settings; its fluid's law is replaced
+  int max_iterations = 8;      // replays of every run per pass (step 2)
+  double tolerance_mu = 1e-4;  // 0.1 % of a typical mu of 0.1: below the 1 % target by 10×
   bool calibrate_oil_flow = true;
   int thermal_evaluations = 12;  // LM evaluations (each replays every run) in the first calibration
   unsigned jobs = 1;             // threads replaying runs
 };
 
 struct InverseCharacterisation {
-  analysis::Characterisation sensor;   // the sensor method (L_0)
-  analysis::Characterisation inverse;  // the converged model-based fit
+  analysis::Characterisation sensor;            // the sensor method (L_0)
+  analysis::Characterisation inverse;           // the converged model-based fit
   clutch::OilFlowLaw oil_flow_start, oil_flow;  // before / after calibration
-  double temp_rms_start_C = 0.0;   // replay with L_0 and the start oil flow vs the measured channel
-  double temp_rms_C = 0.0;         // the final law and oil flow
-  double torque_rms_sensor_Nm = 0.0;  // replay with L_0 (calibrated oil flow) vs measured torque
-  double torque_rms_Nm = 0.0;         // replay with the final law
+  double temp_rms_start_C = 0.0;                // replay with L_0 and the start oil flow vs the measured channel
+  double temp_rms_C = 0.0;                      // the final law and oil flow
+  double torque_rms_sensor_Nm = 0.0;            // replay with L_0 (calibrated oil flow) vs measured torque
+  double torque_rms_Nm = 0.0;                   // replay with the final law
   analysis::CharacterisationSettings settings;  // the inverse fit's (rows fixed to the sensor's)
-  int iterations = 0;                 // law updates over both passes
-  int replays = 0;                    // replays of the whole set of runs
+  int iterations = 0;                           // law updates over both passes
+  int replays = 0;                              // replays of the whole set of runs
   double last_change_mu = 0.0;
 };
 

@@ -30,7 +30,8 @@ std::vector<std::string> law_above_its_data(const ReplayModel& model, const std:
                   "run '%s': the model's interface is above the friction law's data (its top row, %.4g °C) on "
                   "%.0f %% of the samples, up to %.4g °C; there the law holds that row's mu, so a torque gap there "
                   "is the law's, not a missing effect (characterise with ramps that start nearer, or keep its hot row)",
-                  k < names.size() ? names[k].c_str() : "?", top_C, 100.0 * share, *std::max_element(t.begin(), t.end()));
+                  k < names.size() ? names[k].c_str() : "?", top_C, 100.0 * share,
+                  *std::max_element(t.begin(), t.end()));
     out.emplace_back(buf);
   }
   return out;

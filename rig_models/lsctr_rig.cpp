@@ -122,14 +122,15 @@ double LsctrRig::clutch_side_frequency_Hz() const {
   return m.frequencies_Hz[clutch_side_mode(m)];
 }
 
-dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& clutch,
-                            const DriveCycle& cycle, const RigSettings& cfg) {
+dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& clutch, const DriveCycle& cycle,
+                            const RigSettings& cfg) {
   if (!(cfg.duration_s > 0) || !(cfg.thermal_step_s > 0) || !(cfg.sample_rate_Hz > 0))
     throw std::invalid_argument("duration, thermal step and sample rate must be > 0");
   const LsctrRig rig(params, clutch, cycle);
   const auto& th = clutch.thermal();
   clutch::ThermalState ts = clutch.initial_state();
-  const auto clutch_context = std::make_shared<ClutchContext>(ClutchHeldInputs{th.interface_temps_C(ts), cycle.normal_force_N});
+  const auto clutch_context =
+      std::make_shared<ClutchContext>(ClutchHeldInputs{th.interface_temps_C(ts), cycle.normal_force_N});
   const auto& law = rig.clutch_contact();
   const dynamics::TorsionalNetwork network = rig.network(clutch_context);
 
@@ -151,42 +152,47 @@ dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& cl
   // interpolated across each thermal step (channel_recorder.hpp).
   namespace sn = dynamics::signal_names;
   using Recorder = ChannelRecorder<dynamics::Sample, clutch::ThermalState>;
-  using dynamics::Sample;
   using clutch::ThermalState;
+  using dynamics::Sample;
   const double n_if = clutch.params().sliding_interfaces;
   const double r_eff = clutch.mean_radius_m();
   dynamics::Recording rec;
-  Recorder recorder(rec, {
-      Recorder::sampled(sn::kTime, "s", [](const Sample& s) { return s.t_s; }),
-      Recorder::sampled(sn::kSpeed, "rpm",
-                        [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[LsctrRig::kDrive]); }),
-      Recorder::sampled(sn::kNormalForce, "N",
-                        [&](const Sample& s) { return params.load_cell.reading_N(cycle.normal_force_N(s.t_s)); }),
-      Recorder::sampled(sn::kTorque, "N m", [](const Sample& s) { return s.shaft_torque_Nm[LsctrRig::kBar]; }),
-      Recorder::interpolated(sn::kTemp, "degC", [](const ThermalState& state) { return state.sensor_temp_C; }),
-      Recorder::interpolated(sn::kIrTemp, "degC", [&](const ThermalState& state) { return th.ir_C(state); }),
-      Recorder::interpolated(sn::kSumpTemp, "degC", [](const ThermalState& state) { return state.sump_temp_C; }),
-      Recorder::sampled(sn::kSlip, "rpm",
-                        [](const Sample& s) { return units::rad_s_to_rpm(s.contact_slip_rad_s[LsctrRig::kClutch]); }),
-      Recorder::sampled(sn::kClutchTorque, "N m", [](const Sample& s) { return s.contact_torque_Nm[LsctrRig::kClutch]; }),
-      Recorder::sampled(sn::kMotorTorque, "N m", [](const Sample& s) { return s.motor_torque_Nm[0]; }),
-      Recorder::sampled(sn::kHousingSpeed, "rpm",
-                        [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[LsctrRig::kHousing]); }),
-      Recorder::sampled(sn::kStuck, "1",
-                        [](const Sample& s) {
-                          return static_cast<double>(s.modes[LsctrRig::kClutch] == dynamics::ContactMode::kStuck);
-                        }),
-      Recorder::interpolated(sn::kInterfaceMeanTemp, "degC",
-                             [&](const ThermalState& state) { return th.mean_interface_temp_C(state); }),
-      Recorder::interpolated(sn::kInterfaceMaxTemp, "degC",
-                             [&](const ThermalState& state) { return th.interface_temps_C(state).maxCoeff(); }),
-      Recorder::sampled(sn::kFrictionCoefficient, "1",
-                        [&](const Sample& s) {
-                          const double force = cycle.normal_force_N(s.t_s);
-                          return force > 0 ? std::abs(s.contact_torque_Nm[LsctrRig::kClutch]) / (n_if * force * r_eff)
-                                           : 0.0;
-                        }),
-  });
+  Recorder recorder(
+      rec,
+      {
+          Recorder::sampled(sn::kTime, "s", [](const Sample& s) { return s.t_s; }),
+          Recorder::sampled(sn::kSpeed, "rpm",
+                            [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[LsctrRig::kDrive]); }),
+          Recorder::sampled(sn::kNormalForce, "N",
+                            [&](const Sample& s) { return params.load_cell.reading_N(cycle.normal_force_N(s.t_s)); }),
+          Recorder::sampled(sn::kTorque, "N m", [](const Sample& s) { return s.shaft_torque_Nm[LsctrRig::kBar]; }),
+          Recorder::interpolated(sn::kTemp, "degC", [](const ThermalState& state) { return state.sensor_temp_C; }),
+          Recorder::interpolated(sn::kIrTemp, "degC", [&](const ThermalState& state) { return th.ir_C(state); }),
+          Recorder::interpolated(sn::kSumpTemp, "degC", [](const ThermalState& state) { return state.sump_temp_C; }),
+          Recorder::sampled(
+              sn::kSlip, "rpm",
+              [](const Sample& s) { return units::rad_s_to_rpm(s.contact_slip_rad_s[LsctrRig::kClutch]); }),
+          Recorder::sampled(sn::kClutchTorque, "N m",
+                            [](const Sample& s) { return s.contact_torque_Nm[LsctrRig::kClutch]; }),
+          Recorder::sampled(sn::kMotorTorque, "N m", [](const Sample& s) { return s.motor_torque_Nm[0]; }),
+          Recorder::sampled(sn::kHousingSpeed, "rpm",
+                            [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[LsctrRig::kHousing]); }),
+          Recorder::sampled(sn::kStuck, "1",
+                            [](const Sample& s) {
+                              return static_cast<double>(s.modes[LsctrRig::kClutch] == dynamics::ContactMode::kStuck);
+                            }),
+          Recorder::interpolated(sn::kInterfaceMeanTemp, "degC",
+                                 [&](const ThermalState& state) { return th.mean_interface_temp_C(state); }),
+          Recorder::interpolated(sn::kInterfaceMaxTemp, "degC",
+                                 [&](const ThermalState& state) { return th.interface_temps_C(state).maxCoeff(); }),
+          Recorder::sampled(sn::kFrictionCoefficient, "1",
+                            [&](const Sample& s) {
+                              const double force = cycle.normal_force_N(s.t_s);
+                              return force > 0
+                                         ? std::abs(s.contact_torque_Nm[LsctrRig::kClutch]) / (n_if * force * r_eff)
+                                         : 0.0;
+                            }),
+      });
 
   double peak_interface_C = th.interface_temps_C(ts).maxCoeff();
   recorder.sample(sim.sample());
@@ -196,17 +202,19 @@ dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& cl
   std::sort(snaps.begin(), snaps.end());
   std::size_t next_snap = 0;
   clutch::FrictionDataRange data_range(*clutch.fluid().friction);
-  run_multirate(sim, *clutch_context, clutch, ts, LsctrRig::kClutch, cfg.duration_s, cfg.thermal_step_s, cfg.sample_rate_Hz,
-                [&](const dynamics::Sample& s) { recorder.sample(s); }, [&](const SlowStep& step) {
-                  peak_interface_C = std::max(peak_interface_C, th.interface_temps_C(ts).maxCoeff());
-                  recorder.step(ts, step.ta_s, step.tb_s);
-                  const double dt = step.tb_s - step.ta_s;
-                  while (next_snap < snaps.size() && snaps[next_snap] <= step.tb_s + 0.5 * dt) {
-                    rec.snapshots.push_back({step.tb_s, th.field_C(ts)});
-                    ++next_snap;
-                  }
-                },
-                &data_range);
+  run_multirate(
+      sim, *clutch_context, clutch, ts, LsctrRig::kClutch, cfg.duration_s, cfg.thermal_step_s, cfg.sample_rate_Hz,
+      [&](const dynamics::Sample& s) { recorder.sample(s); },
+      [&](const SlowStep& step) {
+        peak_interface_C = std::max(peak_interface_C, th.interface_temps_C(ts).maxCoeff());
+        recorder.step(ts, step.ta_s, step.tb_s);
+        const double dt = step.tb_s - step.ta_s;
+        while (next_snap < snaps.size() && snaps[next_snap] <= step.tb_s + 0.5 * dt) {
+          rec.snapshots.push_back({step.tb_s, th.field_C(ts)});
+          ++next_snap;
+        }
+      },
+      &data_range);
   rec.blocks.push_back(friction_range_block(data_range));
 
   const int nr = th.radial_cells();

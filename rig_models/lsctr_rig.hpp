@@ -34,18 +34,18 @@
 namespace shudder::rig_models {
 
 struct RigParams {
-  double drive_inertia_kg_m2 = 0.6;    // estimate, see header
-  double housing_inertia_kg_m2 = 0.02; // estimate, see header
-  double bar_natural_frequency_Hz = 378.0;  // Paper D / thesis: bars of 175 and 378 Hz
-  double bar_stiffness_Nm_per_rad = 0.0;    // > 0: given directly instead of the frequency
-  double bar_damping_ratio = 0.01;          // estimate
-  double speed_loop_bandwidth_Hz = 20.0;    // estimate
-  double motor_torque_limit_Nm = 500.0;     // thesis: geared servo motor, max 500 Nm
+  double drive_inertia_kg_m2 = 0.6;                   // estimate, see header
+  double housing_inertia_kg_m2 = 0.02;                // estimate, see header
+  double bar_natural_frequency_Hz = 378.0;            // Paper D / thesis: bars of 175 and 378 Hz
+  double bar_stiffness_Nm_per_rad = 0.0;              // > 0: given directly instead of the frequency
+  double bar_damping_ratio = 0.01;                    // estimate
+  double speed_loop_bandwidth_Hz = 20.0;              // estimate
+  double motor_torque_limit_Nm = 500.0;               // thesis: geared servo motor, max 500 Nm
   double min_speed_rpm = 0.5, max_speed_rpm = 125.0;  // thesis: 0.5–125 rpm
-  bool start_at_rest = false;  // true: everything at rest, bar unloaded, clutch stuck (a test
-                               // started from standstill); false: steady sliding at the
-                               // cycle's first speed with the bar carrying the friction torque
-  MotorRipple motor_ripple;  // the drive's torque ripple (motor_ripple.hpp); amplitude 0: none
+  bool start_at_rest = false;                         // true: everything at rest, bar unloaded, clutch stuck (a test
+                                                      // started from standstill); false: steady sliding at the
+                                                      // cycle's first speed with the bar carrying the friction torque
+  MotorRipple motor_ripple;                           // the drive's torque ripple (motor_ripple.hpp); amplitude 0: none
   BearingDrag bearing_drag;
   LoadCell load_cell;  // records g_F * F as normal_force_N (prescribed_slip.hpp)
   StickTimeFriction stick_time;
@@ -83,8 +83,7 @@ class LsctrRig {
   /// The network with its clutch law bound to `clutch_context`.
   dynamics::TorsionalNetwork network(std::shared_ptr<ClutchContext> clutch_context) const;
   /// The same with the bar's damping ratio replaced (its stiffness held).
-  dynamics::TorsionalNetwork network(std::shared_ptr<ClutchContext> clutch_context,
-                                     double bar_damping_ratio) const;
+  dynamics::TorsionalNetwork network(std::shared_ptr<ClutchContext> clutch_context, double bar_damping_ratio) const;
   /// The network bound to a fresh context at start_inputs() (modal analysis does not evaluate
   /// the law; nothing is shared with other callers).
   dynamics::TorsionalNetwork network() const;
@@ -99,8 +98,7 @@ class LsctrRig {
   static constexpr int kDrive = 0, kHousing = 1, kClutch = 0, kBar = 0;
 
  private:
-  dynamics::TorsionalNetwork build(double k_bar, double c_bar,
-                                   std::shared_ptr<const dynamics::ContactLaw> law) const;
+  dynamics::TorsionalNetwork build(double k_bar, double c_bar, std::shared_ptr<const dynamics::ContactLaw> law) const;
   RigParams p_;
   ClutchContact contact_;
   PiecewiseLinear speed_rpm_, force_N_;
@@ -113,7 +111,7 @@ class LsctrRig {
 
 /// Simulates the rig on the cycle with the clutch's thermal model (multi-rate coupling) and
 /// records the sensors (docs/formats/measured_run.md names) plus internal signals.
-dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& clutch,
-                            const DriveCycle& cycle, const RigSettings& settings);
+dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& clutch, const DriveCycle& cycle,
+                            const RigSettings& settings);
 
 }  // namespace shudder::rig_models

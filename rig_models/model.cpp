@@ -70,8 +70,9 @@ void add_verdict(dynamics::Recording& rec, Predict predict) {
 }
 
 [[noreturn]] void refuse_validation(ModelKind k) {
-  throw KindNotSupported(std::string("is ").append(model_kind_name(k)).append(
-      "; validation compares prescribed_slip runs with the papers"));
+  throw KindNotSupported(std::string("is ")
+                             .append(model_kind_name(k))
+                             .append("; validation compares prescribed_slip runs with the papers"));
 }
 
 }  // namespace
@@ -98,12 +99,13 @@ std::vector<std::string> add_run_analysis(const PrescribedSlipModel&, const clut
   return {};
 }
 
-MeasuredExport measured_run_export(const PrescribedSlipModel&, const dynamics::Recording&) { return {std::string(kLsctrRig), {}}; }
+MeasuredExport measured_run_export(const PrescribedSlipModel&, const dynamics::Recording&) {
+  return {std::string(kLsctrRig), {}};
+}
 
 void require_sweep(const PrescribedSlipModel&) {}
 
-CaseOutcome evaluate_case(const PrescribedSlipModel& model, const clutch::WetClutch& clutch,
-                          dynamics::Recording& rec) {
+CaseOutcome evaluate_case(const PrescribedSlipModel& model, const clutch::WetClutch& clutch, dynamics::Recording& rec) {
   return evaluate_prescribed_case(clutch, model.cycle, model.settings, rec);
 }
 
@@ -127,8 +129,8 @@ dynamics::Recording simulate(const RigModel& model, const clutch::WetClutch& clu
   return run_rig(model.params, clutch, model.cycle, model.settings);
 }
 
-std::vector<std::string> add_run_analysis(const RigModel& model, const clutch::WetClutch& clutch,
-                                          double start_temp_C, dynamics::Recording& rec) {
+std::vector<std::string> add_run_analysis(const RigModel& model, const clutch::WetClutch& clutch, double start_temp_C,
+                                          dynamics::Recording& rec) {
   add_verdict(rec, [&](const OperatingWindow& window) { return predict_rig(model.params, clutch, window); });
   try {
     rec.maps.push_back(run_stability_map(model.params, clutch, model.cycle, start_temp_C));
@@ -174,7 +176,8 @@ dynamics::Recording simulate(const DrivelineModel& model, const clutch::WetClutc
 
 std::vector<std::string> add_run_analysis(const DrivelineModel& model, const clutch::WetClutch& clutch,
                                           double start_temp_C, dynamics::Recording& rec) {
-  add_verdict(rec, [&](const OperatingWindow& w) { return predict_driveline(model.params, clutch, model.manoeuvre, rec, w); });
+  add_verdict(
+      rec, [&](const OperatingWindow& w) { return predict_driveline(model.params, clutch, model.manoeuvre, rec, w); });
   // The clamp force's swing over an oscillation (docs/formats/run_output.md, `clamp_force_swing`).
   double window_force_N = std::numeric_limits<double>::quiet_NaN();
   for (auto& b : rec.blocks) {

@@ -87,8 +87,8 @@ dynamics::Recording simulate(const DrivelineModel& model, const clutch::WetClutc
 /// a cycle that never loads the clutch) costs the run nothing but is said.
 std::vector<std::string> add_run_analysis(const PrescribedSlipModel& model, const clutch::WetClutch& clutch,
                                           double start_temp_C, dynamics::Recording& rec);
-std::vector<std::string> add_run_analysis(const RigModel& model, const clutch::WetClutch& clutch,
-                                          double start_temp_C, dynamics::Recording& rec);
+std::vector<std::string> add_run_analysis(const RigModel& model, const clutch::WetClutch& clutch, double start_temp_C,
+                                          dynamics::Recording& rec);
 std::vector<std::string> add_run_analysis(const DrivelineModel& model, const clutch::WetClutch& clutch,
                                           double start_temp_C, dynamics::Recording& rec);
 
@@ -119,8 +119,7 @@ void require_sweep(const DrivelineModel& model);
 
 /// One sweep case: runs the model into `rec`, predicts and judges it (case_evaluation.hpp).
 /// Throws KindNotSupported where require_sweep does.
-CaseOutcome evaluate_case(const PrescribedSlipModel& model, const clutch::WetClutch& clutch,
-                          dynamics::Recording& rec);
+CaseOutcome evaluate_case(const PrescribedSlipModel& model, const clutch::WetClutch& clutch, dynamics::Recording& rec);
 CaseOutcome evaluate_case(const RigModel& model, const clutch::WetClutch& clutch, dynamics::Recording& rec);
 CaseOutcome evaluate_case(const DrivelineModel& model, const clutch::WetClutch& clutch, dynamics::Recording& rec);
 

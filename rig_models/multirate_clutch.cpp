@@ -13,10 +13,9 @@ constexpr double kDivergedTemp_C = 1e4;
 }  // namespace
 
 void run_multirate(dynamics::Simulation& sim, ClutchContext& context, const clutch::WetClutch& clutch,
-                   clutch::ThermalState& ts, int contact, double duration_s, double slow_step_s,
-                   double sample_rate_Hz, const std::function<void(const dynamics::Sample&)>& on_sample,
-                   const std::function<void(const SlowStep&)>& after_step,
-                   clutch::FrictionDataRange* data_range) {
+                   clutch::ThermalState& ts, int contact, double duration_s, double slow_step_s, double sample_rate_Hz,
+                   const std::function<void(const dynamics::Sample&)>& on_sample,
+                   const std::function<void(const SlowStep&)>& after_step, clutch::FrictionDataRange* data_range) {
   run_multirate(sim, {MultirateClutch{&context, &clutch, &ts, contact, data_range}}, duration_s, slow_step_s,
                 sample_rate_Hz, on_sample, after_step);
 }
@@ -54,9 +53,16 @@ MultirateCoupling::MultirateCoupling(dynamics::Simulation& sim, const std::vecto
   for (const auto& in : clutches) {
     const auto& th = in.clutch->thermal();
     const int nr = th.radial_cells();
-    Slot s{in, th, clutch::ThermalWorkspace(th), sim.network().contacts()[static_cast<std::size_t>(in.contact)],
-           Eigen::VectorXd(nr), Eigen::VectorXd(nr), in.context->held().ring_temp_C, in.context->held().ring_temp_C,
-           th.interface_temps_C(*in.state), Eigen::VectorXd(nr)};
+    Slot s{in,
+           th,
+           clutch::ThermalWorkspace(th),
+           sim.network().contacts()[static_cast<std::size_t>(in.contact)],
+           Eigen::VectorXd(nr),
+           Eigen::VectorXd(nr),
+           in.context->held().ring_temp_C,
+           in.context->held().ring_temp_C,
+           th.interface_temps_C(*in.state),
+           Eigen::VectorXd(nr)};
     for (int i = 0; i < nr; ++i) s.heat_before[i] = sim.channel_heat_J(in.contact, i);
     slots_.push_back(std::move(s));
   }
@@ -135,9 +141,9 @@ void MultirateCoupling::finish_slow_step(double ta, double tb, const dynamics::S
     // steps instead of failing (seen: a diagnosis candidate with a 1 J/K rig part behind a
     // 1000 W/K conductance diverges to 1e94 °C within 0.5 s). 1e4 °C: far above any disc or oil.
     if (!s.now_C.allFinite() || s.now_C.cwiseAbs().maxCoeff() > kDivergedTemp_C)
-      throw std::runtime_error("thermal step diverged at t = " + std::to_string(tb) + " s: interface temperature " +
-                               (s.now_C.allFinite() ? std::to_string(s.now_C.cwiseAbs().maxCoeff()) + " degC"
-                                                    : std::string("not finite")));
+      throw std::runtime_error(
+          "thermal step diverged at t = " + std::to_string(tb) + " s: interface temperature " +
+          (s.now_C.allFinite() ? std::to_string(s.now_C.cwiseAbs().maxCoeff()) + " degC" : std::string("not finite")));
     if (next_dt > 0) {
       s.seen_C = s.seen_end_C;
       s.seen_end_C = s.now_C + (s.now_C - s.last_C) * (next_dt / dt);
@@ -150,8 +156,8 @@ void MultirateCoupling::finish_slow_step(double ta, double tb, const dynamics::S
 void run_multirate(dynamics::Simulation& sim, const std::vector<MultirateClutch>& clutches, double duration_s,
                    double slow_step_s, double sample_rate_Hz,
                    const std::function<void(const dynamics::Sample&)>& on_sample,
-                   const std::function<void(const SlowStep&)>& after_step,
-                   const std::vector<double>& breaks_s, const std::function<void(double t_s)>& at_break) {
+                   const std::function<void(const SlowStep&)>& after_step, const std::vector<double>& breaks_s,
+                   const std::function<void(double t_s)>& at_break) {
   MultirateCoupling coupling(sim, clutches, duration_s, slow_step_s, sample_rate_Hz, breaks_s, at_break);
   coupling.advance_to(duration_s, on_sample, after_step);
 }

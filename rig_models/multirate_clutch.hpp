@@ -75,8 +75,7 @@ struct MultirateClutch {
 void run_multirate(dynamics::Simulation& sim, const std::vector<MultirateClutch>& clutches, double duration_s,
                    double slow_step_s, double sample_rate_Hz,
                    const std::function<void(const dynamics::Sample&)>& on_sample,
-                   const std::function<void(const SlowStep&)>& after_step,
-                   const std::vector<double>& breaks_s = {},
+                   const std::function<void(const SlowStep&)>& after_step, const std::vector<double>& breaks_s = {},
                    const std::function<void(double t_s)>& at_break = nullptr);
 
 /// The coupling of run_multirate (above) taken in pieces: advance_to(t) completes every slow
@@ -111,9 +110,9 @@ class MultirateCoupling {
   std::vector<double> sample_times_, breaks_s_;
   std::function<void(double)> at_break_;
   std::vector<Slot> slots_;
-  long k_ = 1;                 // the slow step under way
-  double ta_s_ = 0.0;          // its start
-  dynamics::Sample sa_;        // the simulation there
+  long k_ = 1;           // the slow step under way
+  double ta_s_ = 0.0;    // its start
+  dynamics::Sample sa_;  // the simulation there
 };
 
 /// Runs `sim` from its current time to `duration_s`; `on_sample` gets every sample at
@@ -122,8 +121,8 @@ class MultirateCoupling {
 /// clutch law is bound to). `data_range` (if given) tallies each step's slip, held ring
 /// temperatures and clamp force against the friction law's data (clutch/friction_data_range.hpp).
 void run_multirate(dynamics::Simulation& sim, ClutchContext& context, const clutch::WetClutch& clutch,
-                   clutch::ThermalState& ts, int contact, double duration_s, double slow_step_s,
-                   double sample_rate_Hz, const std::function<void(const dynamics::Sample&)>& on_sample,
+                   clutch::ThermalState& ts, int contact, double duration_s, double slow_step_s, double sample_rate_Hz,
+                   const std::function<void(const dynamics::Sample&)>& on_sample,
                    const std::function<void(const SlowStep&)>& after_step,
                    clutch::FrictionDataRange* data_range = nullptr);
 

@@ -18,8 +18,8 @@ namespace {
 
 // Everything recorded at one instant; samples between thermal steps interpolate two of these.
 struct Probe {
-  double slip_rpm, force_N, torque_Nm, clutch_torque_Nm, tc_C, ir_C, sump_C,
-      interface_mean_C, interface_max_C, field_max_C, mean_mu, heat_W, flow_ml_min, rig_C;
+  double slip_rpm, force_N, torque_Nm, clutch_torque_Nm, tc_C, ir_C, sump_C, interface_mean_C, interface_max_C,
+      field_max_C, mean_mu, heat_W, flow_ml_min, rig_C;
 };
 
 // The friction side of a Probe at time t with the ring temperatures ring_T (and the film's mean
@@ -95,22 +95,22 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
   };
   dynamics::Recording rec;
   Recorder recorder(rec, {
-      Recorder::sampled(sn::kTime, "s", [](double t_s) { return t_s; }),
-      refined(sn::kSpeed, "rpm", &Probe::slip_rpm),
-      refined(sn::kNormalForce, "N", &Probe::force_N),
-      refined(sn::kTorque, "N m", &Probe::torque_Nm),
-      probed(sn::kTemp, "degC", &Probe::tc_C),
-      probed(sn::kIrTemp, "degC", &Probe::ir_C),
-      probed(sn::kSumpTemp, "degC", &Probe::sump_C),
-      refined(sn::kClutchTorque, "N m", &Probe::clutch_torque_Nm),
-      probed(sn::kInterfaceMeanTemp, "degC", &Probe::interface_mean_C),
-      probed(sn::kInterfaceMaxTemp, "degC", &Probe::interface_max_C),
-      probed(sn::kMaxTemp, "degC", &Probe::field_max_C),
-      refined(sn::kFrictionCoefficient, "1", &Probe::mean_mu),
-      refined(sn::kHeatPower, "W", &Probe::heat_W),
-      refined(sn::kInterfaceOilFlow, "ml/min", &Probe::flow_ml_min),
-      probed(sn::kRigTemp, "degC", &Probe::rig_C),
-  });
+                             Recorder::sampled(sn::kTime, "s", [](double t_s) { return t_s; }),
+                             refined(sn::kSpeed, "rpm", &Probe::slip_rpm),
+                             refined(sn::kNormalForce, "N", &Probe::force_N),
+                             refined(sn::kTorque, "N m", &Probe::torque_Nm),
+                             probed(sn::kTemp, "degC", &Probe::tc_C),
+                             probed(sn::kIrTemp, "degC", &Probe::ir_C),
+                             probed(sn::kSumpTemp, "degC", &Probe::sump_C),
+                             refined(sn::kClutchTorque, "N m", &Probe::clutch_torque_Nm),
+                             probed(sn::kInterfaceMeanTemp, "degC", &Probe::interface_mean_C),
+                             probed(sn::kInterfaceMaxTemp, "degC", &Probe::interface_max_C),
+                             probed(sn::kMaxTemp, "degC", &Probe::field_max_C),
+                             refined(sn::kFrictionCoefficient, "1", &Probe::mean_mu),
+                             refined(sn::kHeatPower, "W", &Probe::heat_W),
+                             refined(sn::kInterfaceOilFlow, "ml/min", &Probe::flow_ml_min),
+                             probed(sn::kRigTemp, "degC", &Probe::rig_C),
+                         });
 
   clutch::ThermalState state = clutch.initial_state();
   clutch::ThermalWorkspace workspace(th);
@@ -131,7 +131,7 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
   // new ones for the probe): the friction law's speed-only work is kept between the two.
   clutch::WetClutch::RingScratch scratch;
   const Probe recorder_start = measure(clutch, state, cycle, cfg.bearing_drag, cfg.torque_cell, cfg.load_cell,
-                                      cfg.friction_drift.factor(sliding_m), 0.0, h0, scratch);
+                                       cfg.friction_drift.factor(sliding_m), 0.0, h0, scratch);
   recorder.start(recorder_start);
   next_sample = 1;
 
@@ -180,7 +180,7 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
       // temperatures half way to the predicted ones), before the step moves the field.
       film_between_C = 0.5 * (film_start_C + predicted_T);
       data_range.add(dt, units::rpm_to_rad_s(cycle.slip_speed_rpm(tm)), th.ring_radius_m(), film_between_C,
-                      cycle.normal_force_N(tm));
+                     cycle.normal_force_N(tm));
       th.step_bdf2(state, workspace, dt, h1, slip1);
     } else {
       // Ring heat over the step with temperatures held at t0 (Simpson's rule).

@@ -41,15 +41,15 @@ double RealtimeClutch::kinetic_torque_Nm(double abs_slip, double force_N) {
   } else {  // at rest the viscous shear is zero: friction only
     clutch_.ring_mu(0.0, force_N, th.ring_temp_C, mu_);
     const auto& model = clutch_.thermal();
-    ring_torque_ = mu_.cwiseProduct(model.ring_radius_m()).cwiseProduct(model.ring_area_m2()) *
-                   clutch_.pressure_Pa(force_N);
+    ring_torque_ =
+        mu_.cwiseProduct(model.ring_radius_m()).cwiseProduct(model.ring_area_m2()) * clutch_.pressure_Pa(force_N);
   }
   const double drag_Nm = drag_.enabled ? drag_.equivalent_mu * force_N * drag_.radius_m : 0.0;
   return clutch_.params().sliding_interfaces * ring_torque_.sum() + drag_Nm;
 }
 
-void RealtimeClutch::end_step(const Eigen::VectorXd& ring_heat_J, double slip_angle_rad, double t_end_s,
-                              double force_N, double fraction) {
+void RealtimeClutch::end_step(const Eigen::VectorXd& ring_heat_J, double slip_angle_rad, double t_end_s, double force_N,
+                              double fraction) {
   window_heat_J_ += ring_heat_J;
   window_angle_rad_ += slip_angle_rad;
   steps_in_window_ += fraction;

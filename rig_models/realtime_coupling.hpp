@@ -44,7 +44,7 @@ class RealtimeCoupling {
   RealtimeClutch clutch_;
   BearingDrag drag_;
   Eigen::VectorXd heat_J_;  // (n_r) scratch
-  double steps_ = 0.0;  // fixed steps taken (an exact integer while all steps are whole)
+  double steps_ = 0.0;      // fixed steps taken (an exact integer while all steps are whole)
   double t_s_ = 0.0, torque_Nm_ = 0.0, clutch_torque_Nm_ = 0.0, heat_W_ = 0.0;
 };
 

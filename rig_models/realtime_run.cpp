@@ -23,7 +23,8 @@ long whole_steps(double span_s, double step_s, const char* what) {
   const double n = std::round(ratio);
   if (!(n >= 1.0) || std::abs(ratio - n) > 1e-9 * n) {
     char line[256];
-    std::snprintf(line, sizeof line, "--fixed-step %g s: %s (%g s) must be a whole number of fixed steps; choose a step that divides it",
+    std::snprintf(line, sizeof line,
+                  "--fixed-step %g s: %s (%g s) must be a whole number of fixed steps; choose a step that divides it",
                   step_s, what, span_s);
     throw std::invalid_argument(line);
   }

@@ -89,7 +89,8 @@ analysis::ShudderResult judge_recording(const RecordingDetection& d) {
   analysis::ShudderResult r = analysis::detect_shudder(d.input, d.settings);
   if (d.sustained_only && r.verdict != analysis::Verdict::kNone && std::isfinite(r.frequency_Hz) &&
       r.frequency_Hz > 0) {
-    const double end_amplitude = final_oscillation_amplitude_Nm(d.input.time_s, d.input.torque_Nm, 1.0 / r.frequency_Hz);
+    const double end_amplitude =
+        final_oscillation_amplitude_Nm(d.input.time_s, d.input.torque_Nm, 1.0 / r.frequency_Hz);
     if (end_amplitude < 0.5 * r.amplitude_Nm) {
       // No verdict, so none of its timing either (ShudderResult's convention for none):
       // peak_frequency_Hz and amplitude_Nm still say what rang.

@@ -18,8 +18,7 @@ namespace {
 constexpr int kCouplingStepsPerStep = 10;
 
 // Mean of `x` over consecutive windows of `window_s`, at the windows' mean times.
-PiecewiseLinear window_means(const std::vector<double>& t, const std::vector<double>& x, double t0,
-                             double window_s) {
+PiecewiseLinear window_means(const std::vector<double>& t, const std::vector<double>& x, double t0, double window_s) {
   std::vector<double> times, values;
   for (std::size_t b = 0; b < t.size();) {
     std::size_t e = b;
@@ -67,8 +66,10 @@ std::vector<double> interpolate(const std::vector<double>& t, const std::vector<
   std::size_t j = 0;
   for (std::size_t i = 0; i < tq.size(); ++i) {
     while (j + 1 < t.size() && t[j + 1] < tq[i]) ++j;
-    if (tq[i] <= t.front()) out[i] = y.front();
-    else if (j + 1 >= t.size()) out[i] = y.back();
+    if (tq[i] <= t.front())
+      out[i] = y.front();
+    else if (j + 1 >= t.size())
+      out[i] = y.back();
     else {
       const double w = (tq[i] - t[j]) / (t[j + 1] - t[j]);
       out[i] = y[j] + w * (y[j + 1] - y[j]);
@@ -104,8 +105,8 @@ ReplayOutput replay(const ReplayModel& model, const ReplayInputs& in) {
   // hide it: under that hypothesis the discs start at the sump's reading (oil and discs at rest
   // together), or without a sump channel at the reading less dT.
   if (cp.thermal.thermocouple_offset)
-    cp.start_temp_C = in.sump_temp_C.size() == t.size() ? cp.sump_start_temp_C
-                                                         : cp.start_temp_C - cp.thermal.thermocouple_offset_K;
+    cp.start_temp_C =
+        in.sump_temp_C.size() == t.size() ? cp.sump_start_temp_C : cp.start_temp_C - cp.thermal.thermocouple_offset_K;
   if (cp.thermal.thermocouple_offset && in.sump_temp_C.size() != t.size()) cp.sump_start_temp_C = cp.start_temp_C;
   if (in.oil_flow_ml_min) cp.thermal.supply_flow_m3_s = units::ml_min_to_m3_s(*in.oil_flow_ml_min);
   if (in.thermocouple_r_mm) cp.thermal.thermocouple_r_m = *in.thermocouple_r_mm * 1e-3;
@@ -168,8 +169,7 @@ namespace {
 
 const EffectDefinition& known_effect(std::string_view name) {
   if (const auto* e = find_effect(name)) return *e;
-  throw std::invalid_argument("unknown effect '" + std::string(name) + "'; valid effects are: " +
-                              effect_names_list());
+  throw std::invalid_argument("unknown effect '" + std::string(name) + "'; valid effects are: " + effect_names_list());
 }
 
 // Why the effect cannot be a candidate: inert in the model's kind, or, for a driveline's
@@ -182,12 +182,20 @@ std::optional<std::string_view> candidate_inert_reason(const EffectDefinition& e
 }  // namespace
 
 EffectTarget effect_target(ReplayModel& m) {
-  return {m.clutch, m.settings.bearing_drag, m.rig_params.stick_time, m.settings.torque_cell, m.settings.load_cell,
+  return {m.clutch,
+          m.settings.bearing_drag,
+          m.rig_params.stick_time,
+          m.settings.torque_cell,
+          m.settings.load_cell,
           m.settings.friction_drift};
 }
 
 ConstEffectTarget effect_target(const ReplayModel& m) {
-  return {m.clutch, m.settings.bearing_drag, m.rig_params.stick_time, m.settings.torque_cell, m.settings.load_cell,
+  return {m.clutch,
+          m.settings.bearing_drag,
+          m.rig_params.stick_time,
+          m.settings.torque_cell,
+          m.settings.load_cell,
           m.settings.friction_drift};
 }
 
@@ -207,8 +215,8 @@ void enable_effect(ReplayModel& m, std::string_view name, const std::vector<doub
 }
 
 analysis::Simulator replay_simulator(ReplayModel model, std::vector<ReplayInputs> inputs) {
-  return [model = std::move(model), inputs = std::move(inputs)](
-             const std::vector<analysis::EffectSetting>& added, std::size_t run) {
+  return [model = std::move(model), inputs = std::move(inputs)](const std::vector<analysis::EffectSetting>& added,
+                                                                std::size_t run) {
     ReplayModel m = model;
     for (const auto& e : added) enable_effect(m, e.effect, e.values);
     ReplayOutput o = replay(m, inputs.at(run));
@@ -218,8 +226,7 @@ analysis::Simulator replay_simulator(ReplayModel model, std::vector<ReplayInputs
 }
 
 analysis::Reproducer replay_reproducer(ReplayModel model, std::vector<ReplayInputs> inputs) {
-  return [model = std::move(model), inputs = std::move(inputs)](const analysis::DiagnosisRun& pseudo,
-                                                                std::size_t run) {
+  return [model = std::move(model), inputs = std::move(inputs)](const analysis::DiagnosisRun& pseudo, std::size_t run) {
     ReplayInputs in = inputs.at(run);
     in.speed_rpm = pseudo.speed_rpm;
     in.temp_C = pseudo.temp_C;
@@ -232,8 +239,7 @@ analysis::Reproducer replay_reproducer(ReplayModel model, std::vector<ReplayInpu
   };
 }
 
-std::vector<analysis::EffectCandidate> replay_candidates(const ReplayModel& model,
-                                                         std::vector<std::string>* skipped) {
+std::vector<analysis::EffectCandidate> replay_candidates(const ReplayModel& model, std::vector<std::string>* skipped) {
   const auto target = effect_target(model);
   std::vector<analysis::EffectCandidate> out;
   for (const auto& effect : effect_registry()) {

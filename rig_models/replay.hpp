@@ -71,7 +71,7 @@ struct ReplayInputs {
 
 struct ReplayOutput {
   std::vector<double> torque_Nm, temp_C, sump_temp_C, ir_temp_C;  // at ReplayInputs::time_s
-  std::vector<double> speed_rpm;  // the model's drive speed (prescribed slip: the imposed one)
+  std::vector<double> speed_rpm;              // the model's drive speed (prescribed slip: the imposed one)
   std::vector<double> interface_mean_temp_C;  // area-mean interface temperature (no sensor can read it)
 };
 
@@ -101,7 +101,6 @@ analysis::Reproducer replay_reproducer(ReplayModel model, std::vector<ReplayInpu
 /// Every registry effect the model has off, as a diagnosis candidate. Effects inert in this
 /// model's kind (stick-time friction with imposed slip; for a driveline's coupling, also those
 /// inert in a driveline) are left out, with a note in `skipped`.
-std::vector<analysis::EffectCandidate> replay_candidates(const ReplayModel& model,
-                                                         std::vector<std::string>* skipped);
+std::vector<analysis::EffectCandidate> replay_candidates(const ReplayModel& model, std::vector<std::string>* skipped);
 
 }  // namespace shudder::rig_models

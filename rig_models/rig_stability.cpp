@@ -12,14 +12,12 @@ namespace shudder::rig_models {
 
 namespace {
 
-
 void check_operating_point(double force_N, double slip_rpm, double temp_C) {
   if (!(std::isfinite(force_N) && force_N > 0))
-    throw std::invalid_argument("stability: normal force must be finite and > 0 N (got " +
-                                std::to_string(force_N) + ")");
+    throw std::invalid_argument("stability: normal force must be finite and > 0 N (got " + std::to_string(force_N) +
+                                ")");
   if (!std::isfinite(slip_rpm)) throw std::invalid_argument("stability: slip speed must be finite (rpm)");
-  if (!std::isfinite(temp_C))
-    throw std::invalid_argument("stability: interface temperature must be finite (degC)");
+  if (!std::isfinite(temp_C)) throw std::invalid_argument("stability: interface temperature must be finite (degC)");
 }
 
 // Constant force, constant speed: the cycle the linearisation is about.
@@ -52,25 +50,23 @@ StabilityPoint stability_at(const LsctrRig& rig, ClutchContext& clutch, const dy
                             double slip_rpm, double t_s = 0.0) {
   const double slip = units::rpm_to_rad_s(slip_rpm);
   if (motor_saturates(rig, clutch, slip, t_s))
-    throw std::invalid_argument(
-        "stability: the clutch torque " +
-        std::to_string(rig.clutch_contact().kinetic_torque_Nm(clutch, std::abs(slip), t_s)) + " N m at " +
-        std::to_string(slip_rpm) + " rpm exceeds the motor's limit of " +
-        std::to_string(rig.params().motor_torque_limit_Nm) +
-        " N m, so there is no steady sliding to linearise about; lower the normal force");
+    throw std::invalid_argument("stability: the clutch torque " +
+                                std::to_string(rig.clutch_contact().kinetic_torque_Nm(clutch, std::abs(slip), t_s)) +
+                                " N m at " + std::to_string(slip_rpm) + " rpm exceeds the motor's limit of " +
+                                std::to_string(rig.params().motor_torque_limit_Nm) +
+                                " N m, so there is no steady sliding to linearise about; lower the normal force");
   return linearise_rig(network, slip, t_s);
 }
 
 }  // namespace
 
-StabilityPoint rig_stability(const LsctrRig& rig, const ClutchHeldInputs& clutch_inputs, double slip_rpm,
-                             double t_s) {
+StabilityPoint rig_stability(const LsctrRig& rig, const ClutchHeldInputs& clutch_inputs, double slip_rpm, double t_s) {
   const auto context = std::make_shared<ClutchContext>(clutch_inputs);
   return stability_at(rig, *context, rig.network(context), slip_rpm, t_s);
 }
 
-StabilityPoint rig_stability(const RigParams& params, const clutch::WetClutch& clutch, double force_N,
-                             double slip_rpm, double interface_temp_C) {
+StabilityPoint rig_stability(const RigParams& params, const clutch::WetClutch& clutch, double force_N, double slip_rpm,
+                             double interface_temp_C) {
   check_operating_point(force_N, slip_rpm, interface_temp_C);
   const LsctrRig rig(params, clutch, steady_cycle(force_N, slip_rpm));
   return rig_stability(rig, uniform_inputs(rig, clutch, interface_temp_C), slip_rpm);
@@ -80,8 +76,7 @@ StabilityMap stability_map(const RigParams& params, const clutch::WetClutch& clu
                            const std::vector<double>& speeds_rpm, const std::vector<double>& temps_C) {
   for (double v : speeds_rpm)
     for (double T : temps_C) check_operating_point(force_N, v, T);
-  if (speeds_rpm.empty() || temps_C.empty())
-    check_operating_point(force_N, 0.0, 0.0);  // still validate the force
+  if (speeds_rpm.empty() || temps_C.empty()) check_operating_point(force_N, 0.0, 0.0);  // still validate the force
   StabilityMap map;
   map.force_N = force_N;
   map.speeds_rpm = speeds_rpm;
@@ -118,9 +113,8 @@ StabilityMap stability_map(const RigParams& params, const clutch::WetClutch& clu
   return map;
 }
 
-double critical_bar_damping_ratio(const RigParams& params, const clutch::WetClutch& clutch,
-                                  double force_N, double slip_rpm, double interface_temp_C,
-                                  double max_ratio) {
+double critical_bar_damping_ratio(const RigParams& params, const clutch::WetClutch& clutch, double force_N,
+                                  double slip_rpm, double interface_temp_C, double max_ratio) {
   check_operating_point(force_N, slip_rpm, interface_temp_C);
   if (!(std::isfinite(max_ratio) && max_ratio > 0))
     throw std::invalid_argument("critical bar damping: the bracket's upper ratio must be finite and > 0");
@@ -143,8 +137,8 @@ double critical_bar_damping_ratio(const RigParams& params, const clutch::WetClut
   return 0.5 * (lo + hi);
 }
 
-CriticalBar critical_bar(const RigParams& params, const clutch::WetClutch& clutch, double force_N,
-                         double slip_rpm, double interface_temp_C, double lo_Hz, double hi_Hz) {
+CriticalBar critical_bar(const RigParams& params, const clutch::WetClutch& clutch, double force_N, double slip_rpm,
+                         double interface_temp_C, double lo_Hz, double hi_Hz) {
   check_operating_point(force_N, slip_rpm, interface_temp_C);
   if (!(std::isfinite(lo_Hz) && std::isfinite(hi_Hz) && lo_Hz > 0 && hi_Hz > lo_Hz))
     throw std::invalid_argument("critical bar: the frequency bracket needs 0 < lo_Hz < hi_Hz (finite)");

@@ -38,8 +38,8 @@ StabilityPoint rig_stability(const LsctrRig& rig, const ClutchHeldInputs& clutch
 /// Builds the rig with a constant-force, constant-speed cycle and linearises at `slip_rpm` with
 /// every ring of the clutch at `interface_temp_C`. Throws std::invalid_argument for a force
 /// <= 0, non-finite inputs, invalid rig parameters or a saturated motor.
-StabilityPoint rig_stability(const RigParams& params, const clutch::WetClutch& clutch, double force_N,
-                             double slip_rpm, double interface_temp_C);
+StabilityPoint rig_stability(const RigParams& params, const clutch::WetClutch& clutch, double force_N, double slip_rpm,
+                             double interface_temp_C);
 
 struct StabilityMap {
   double force_N = 0.0;
@@ -61,12 +61,11 @@ StabilityMap stability_map(const RigParams& params, const clutch::WetClutch& clu
 
 /// Smallest bar damping ratio ζ that makes the operating point stable (margin <= 0), by
 /// bisection on the margin over ζ in [0, max_ratio] to 1e-12 absolute: the bar stiffness is
-/// held (that of `params`), c_bar = 2 ζ √(k_bar J_h); one rig, only its bar damper changes. Returns 0 if the point is stable without
-/// bar damping and +infinity if it is still unstable at max_ratio (e.g. the drive loop itself
-/// is unstable). Decoupled estimate: ζ_crit ≈ −s / (2 √(k_bar J_h)).
-double critical_bar_damping_ratio(const RigParams& params, const clutch::WetClutch& clutch,
-                                  double force_N, double slip_rpm, double interface_temp_C,
-                                  double max_ratio = 1.0);
+/// held (that of `params`), c_bar = 2 ζ √(k_bar J_h); one rig, only its bar damper changes. Returns 0 if the point is
+/// stable without bar damping and +infinity if it is still unstable at max_ratio (e.g. the drive loop itself is
+/// unstable). Decoupled estimate: ζ_crit ≈ −s / (2 √(k_bar J_h)).
+double critical_bar_damping_ratio(const RigParams& params, const clutch::WetClutch& clutch, double force_N,
+                                  double slip_rpm, double interface_temp_C, double max_ratio = 1.0);
 
 struct CriticalBar {
   double frequency_Hz = 0.0;          // clutch-side natural frequency of the bar at the onset
@@ -81,8 +80,7 @@ struct CriticalBar {
 /// both fields if the margin has the same sign at both ends of the bracket. Each step builds
 /// the rig anew (its bar stiffness comes from the modal tuning); the clutch's operating point
 /// is shared by all of them.
-CriticalBar critical_bar(const RigParams& params, const clutch::WetClutch& clutch, double force_N,
-                         double slip_rpm, double interface_temp_C, double lo_Hz = 20.0,
-                         double hi_Hz = 5000.0);
+CriticalBar critical_bar(const RigParams& params, const clutch::WetClutch& clutch, double force_N, double slip_rpm,
+                         double interface_temp_C, double lo_Hz = 20.0, double hi_Hz = 5000.0);
 
 }  // namespace shudder::rig_models

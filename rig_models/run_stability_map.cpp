@@ -20,9 +20,8 @@ std::vector<double> linspace(double lo, double hi, int n) {
 
 }  // namespace
 
-dynamics::Map2D run_stability_map(const RigParams& params, const clutch::WetClutch& clutch,
-                                  const DriveCycle& cycle, double start_temp_C,
-                                  const RunStabilityMapSettings& s) {
+dynamics::Map2D run_stability_map(const RigParams& params, const clutch::WetClutch& clutch, const DriveCycle& cycle,
+                                  double start_temp_C, const RunStabilityMapSettings& s) {
   if (s.n_speeds < 2 || s.n_temps < 2)
     throw std::invalid_argument("stability map: need at least 2 speeds and 2 temperatures");
   const double v_hi = std::max(s.max_speed_rpm, cycle.slip_speed_rpm.max_value());
@@ -34,9 +33,9 @@ dynamics::Map2D run_stability_map(const RigParams& params, const clutch::WetClut
   double force_N = cycle.normal_force_N(0.0);
   if (!(force_N > 0)) force_N = cycle.normal_force_N.max_value();
 
-  const StabilityMap sm = stability_map(
-      params, clutch, force_N, linspace(s.min_speed_rpm, v_hi, s.n_speeds),
-      linspace(start_temp_C - s.temp_below_start_C, start_temp_C + s.temp_above_start_C, s.n_temps));
+  const StabilityMap sm =
+      stability_map(params, clutch, force_N, linspace(s.min_speed_rpm, v_hi, s.n_speeds),
+                    linspace(start_temp_C - s.temp_below_start_C, start_temp_C + s.temp_above_start_C, s.n_temps));
 
   dynamics::Map2D m;
   m.name = "stability_map";

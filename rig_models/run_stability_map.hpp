@@ -29,7 +29,7 @@ struct RunStabilityMapSettings {
   int n_speeds = 60;
   int n_temps = 50;
   double min_speed_rpm = 1.0;
-  double max_speed_rpm = 125.0;   // raised to the cycle's largest speed if that is higher
+  double max_speed_rpm = 125.0;  // raised to the cycle's largest speed if that is higher
   double temp_below_start_C = 20.0;
   double temp_above_start_C = 80.0;
 };
@@ -37,8 +37,7 @@ struct RunStabilityMapSettings {
 /// The map for a rig run with `params`, `clutch` and `cycle` starting at `start_temp_C`.
 /// Throws std::invalid_argument for a cycle that never loads the clutch, fewer than 2 points on
 /// an axis or an empty span.
-dynamics::Map2D run_stability_map(const RigParams& params, const clutch::WetClutch& clutch,
-                                  const DriveCycle& cycle, double start_temp_C,
-                                  const RunStabilityMapSettings& settings = {});
+dynamics::Map2D run_stability_map(const RigParams& params, const clutch::WetClutch& clutch, const DriveCycle& cycle,
+                                  double start_temp_C, const RunStabilityMapSettings& settings = {});
 
 }  // namespace shudder::rig_models

@@ -13,7 +13,6 @@ namespace shudder::rig_models {
 
 namespace {
 
-
 // Mean of x over the samples whose time lies in [from, to]; NaN for an absent signal.
 double window_mean(std::span<const double> t, std::span<const double> x, double from_s, double to_s) {
   if (x.empty() || x.size() != t.size()) return kNaN;
@@ -53,7 +52,9 @@ RunVerdict judge_detection(const RecordingDetection& detection) {
   v.window.what = oscillating ? "oscillating part" : "whole run";
   v.window.from_s = oscillating ? v.judged.oscillating_from_s : in.time_s.front();
   v.window.to_s = oscillating ? v.judged.oscillating_to_s : in.time_s.back();
-  const auto mean = [&](std::span<const double> x) { return window_mean(in.time_s, x, v.window.from_s, v.window.to_s); };
+  const auto mean = [&](std::span<const double> x) {
+    return window_mean(in.time_s, x, v.window.from_s, v.window.to_s);
+  };
   v.window.slip_rpm = mean(in.slip_rpm);
   v.window.interface_temp_C = mean(in.interface_temp_C);
   v.window.normal_force_N = mean(in.normal_force_N);

@@ -43,10 +43,10 @@ inline constexpr const char* kVerdictBlock = "verdict";
 struct Prediction {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   bool made = false;
-  std::string method;                       // how it was predicted, or "not predicted: <why>"
-  double margin_per_s = kNaN;               // largest real part, 1/s; > 0 unstable
-  double oscillatory_margin_per_s = kNaN;   // largest real part of an oscillatory mode, 1/s
-  double frequency_Hz = kNaN;               // that oscillatory mode's frequency, Hz
+  std::string method;                      // how it was predicted, or "not predicted: <why>"
+  double margin_per_s = kNaN;              // largest real part, 1/s; > 0 unstable
+  double oscillatory_margin_per_s = kNaN;  // largest real part of an oscillatory mode, 1/s
+  double frequency_Hz = kNaN;              // that oscillatory mode's frequency, Hz
 
   /// "not predicted: <why>".
   static Prediction none(const std::string& why);

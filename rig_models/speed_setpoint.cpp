@@ -7,15 +7,13 @@
 
 namespace shudder::rig_models {
 
-std::vector<double> estimate_speed_setpoint(const std::vector<double>& t,
-                                            const std::vector<double>& w_rpm,
+std::vector<double> estimate_speed_setpoint(const std::vector<double>& t, const std::vector<double>& w_rpm,
                                             const std::vector<double>& torque_Nm, const RigParams& rig) {
   const std::size_t n = t.size();
   if (w_rpm.size() != n || torque_Nm.size() != n)
     throw std::invalid_argument("estimate_speed_setpoint: time, speed and torque differ in length");
   for (std::size_t k = 1; k < n; ++k)
-    if (!(t[k] > t[k - 1]))
-      throw std::invalid_argument("estimate_speed_setpoint: time must increase strictly");
+    if (!(t[k] > t[k - 1])) throw std::invalid_argument("estimate_speed_setpoint: time must increase strictly");
   if (n < 2) return w_rpm;
 
   const SpeedLoopGains g = speed_loop_gains(rig);

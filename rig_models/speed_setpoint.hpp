@@ -41,7 +41,6 @@ namespace shudder::rig_models {
 /// otherwise). Returns the set point at the samples, rpm.
 std::vector<double> estimate_speed_setpoint(const std::vector<double>& time_s,
                                             const std::vector<double>& drive_speed_rpm,
-                                            const std::vector<double>& cell_torque_Nm,
-                                            const RigParams& rig);
+                                            const std::vector<double>& cell_torque_Nm, const RigParams& rig);
 
 }  // namespace shudder::rig_models

@@ -39,14 +39,14 @@ namespace shudder::rig_models {
 
 /// What the fast side reads from one thermal update (latched until the next collect()).
 struct ThermalOutputs {
-  double time_s = 0.0;               // time of the thermal state these come from
-  Eigen::VectorXd ring_temp_C;       // (n_r) interface temperature per ring
-  clutch::FrozenFriction frozen;     // friction frozen at ring_temp_C and frozen.load_N
-  double thermocouple_C = 0.0;       // separator thermocouple (after its lag, if on)
-  double ir_C = 0.0;                 // pyrometer spot on the interface
+  double time_s = 0.0;            // time of the thermal state these come from
+  Eigen::VectorXd ring_temp_C;    // (n_r) interface temperature per ring
+  clutch::FrozenFriction frozen;  // friction frozen at ring_temp_C and frozen.load_N
+  double thermocouple_C = 0.0;    // separator thermocouple (after its lag, if on)
+  double ir_C = 0.0;              // pyrometer spot on the interface
   double sump_C = 0.0;
   double rig_C = 0.0;
-  double interface_mean_C = 0.0;     // area-weighted
+  double interface_mean_C = 0.0;  // area-weighted
   double interface_max_C = 0.0;
   double field_max_C = 0.0;
 };
@@ -64,8 +64,7 @@ class ThermalTask {
   /// Hands the worker one slow step ending at `t_end_s`: the heat per ring of one interface
   /// over it (J), its length, the mean slip (sets the oil flow) and the clamp force to freeze
   /// the friction at. The previous job must have been collected.
-  void post(const Eigen::VectorXd& ring_heat_J, double dt_s, double t_end_s, double mean_slip_rad_s,
-            double force_N);
+  void post(const Eigen::VectorXd& ring_heat_J, double dt_s, double t_end_s, double mean_slip_rad_s, double force_N);
   /// Waits for the posted job and makes its result the latched one. Rethrows the worker's
   /// exception (a failed thermal solve) on the caller's thread.
   void collect();

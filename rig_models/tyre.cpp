@@ -25,8 +25,9 @@ double shape(double a) {
 
 double TyreParams::static_slip_stiffness_N() const {
   if (slip_stiffness_N && slip_stiffness_per_load)
-    throw std::invalid_argument("tyre: slip_stiffness_N and slip_stiffness_per_load are alternatives; give one "
-                                "(an absolute C_kappa, or C_kappa / F_z)");
+    throw std::invalid_argument(
+        "tyre: slip_stiffness_N and slip_stiffness_per_load are alternatives; give one "
+        "(an absolute C_kappa, or C_kappa / F_z)");
   if (slip_stiffness_N) return *slip_stiffness_N;
   return slip_stiffness_per_load.value_or(kDefaultSlipStiffnessPerLoad) * vertical_load_N;
 }
@@ -37,8 +38,9 @@ BrushTyre::BrushTyre(const TyreParams& p) : p_(p) {
     throw std::invalid_argument("tyre: slip_stiffness_N and slip_stiffness_per_load must be finite values > 0");
   if (!positive(p.relaxation_length_m) || !positive(p.vertical_load_N) || !positive(p.road_friction) ||
       !positive(p.radius_m))
-    throw std::invalid_argument("tyre: relaxation length, vertical load, road friction and radius must be finite "
-                                "values > 0");
+    throw std::invalid_argument(
+        "tyre: relaxation length, vertical load, road friction and radius must be finite "
+        "values > 0");
   const auto& lt = p.load_transfer;
   if (!std::isfinite(lt.load_per_acceleration_kg) || !positive(lt.first_lag_s) || !positive(lt.second_lag_s) ||
       !positive(lt.path_ratio))
@@ -48,7 +50,8 @@ BrushTyre::BrushTyre(const TyreParams& p) : p_(p) {
 }
 
 double BrushTyre::slip_stiffness_N(double fz) const {
-  return p_.slip_stiffness_follows_load() ? static_slip_stiffness_N_ * fz / p_.vertical_load_N : static_slip_stiffness_N_;
+  return p_.slip_stiffness_follows_load() ? static_slip_stiffness_N_ * fz / p_.vertical_load_N
+                                          : static_slip_stiffness_N_;
 }
 
 double BrushTyre::relaxation_length_m(double fz) const { return slip_stiffness_N(fz) / carcass_N_per_m_; }
@@ -65,9 +68,7 @@ double BrushTyre::force_at_N(double u, double fz) const {
   return std::copysign(limit * shape(std::abs(u) * carcass_N_per_m_ / (3.0 * limit)), u);
 }
 
-double BrushTyre::force_N(double slip) const {
-  return force_at_N(slip * p_.relaxation_length_m, p_.vertical_load_N);
-}
+double BrushTyre::force_N(double slip) const { return force_at_N(slip * p_.relaxation_length_m, p_.vertical_load_N); }
 
 double BrushTyre::stored_energy_J(double u, double fz) const {
   const double limit = p_.road_friction * fz;

@@ -80,12 +80,12 @@ struct TyreLoadTransfer {
 };
 
 struct TyreParams {
-  std::optional<double> slip_stiffness_N;           // C_κ absolute (N), independent of the load
-  std::optional<double> slip_stiffness_per_load;    // c_κ (1); neither given: kDefaultSlipStiffnessPerLoad
-  double relaxation_length_m = 0.3;  // σ0 at the static load
-  double vertical_load_N = 4000.0;   // F_z0, the static load
-  double road_friction = 1.0;        // μ
-  double radius_m = 0.32;            // r
+  std::optional<double> slip_stiffness_N;         // C_κ absolute (N), independent of the load
+  std::optional<double> slip_stiffness_per_load;  // c_κ (1); neither given: kDefaultSlipStiffnessPerLoad
+  double relaxation_length_m = 0.3;               // σ0 at the static load
+  double vertical_load_N = 4000.0;                // F_z0, the static load
+  double road_friction = 1.0;                     // μ
+  double radius_m = 0.32;                         // r
   TyreLoadTransfer load_transfer;
 
   /// C_κ at the static load: the absolute value, or c_κ F_z0. Throws std::invalid_argument if both
@@ -136,7 +136,7 @@ class BrushTyre final : public dynamics::ForceLaw {
 /// force is continuous through standstill; the car creeps at v_rr-scale speeds on a grade it would
 /// hold); c_d A the drag area (Gillespie ch. 4: c_d 0.3–0.4 for cars of the era, A ≈ 2 m²).
 struct RoadLoadParams {
-  double rolling_resistance_N = 200.0;  // F_rr
+  double rolling_resistance_N = 200.0;    // F_rr
   double drag_coefficient_area_m2 = 0.7;  // c_d A
   double air_density_kg_m3 = 1.2;
   double radius_m = 0.32;

@@ -92,8 +92,14 @@ int main(int argc, char** argv) {
   // Value references of fmu/variables.hpp.
   const fmi2ValueReference inputs[] = {0, 1, 2};  // speed a, speed b, clamp force
   const fmi2ValueReference outputs[] = {10, 11, 12, 13, 14, 15, 16, 17, 18};
-  const char* names[] = {"torque_Nm", "clutch_torque_Nm", "slip_speed_rad_s", "heat_power_W",
-                         "interface_mean_temp_C", "interface_max_temp_C", "thermocouple_temp_C", "ir_temp_C",
+  const char* names[] = {"torque_Nm",
+                         "clutch_torque_Nm",
+                         "slip_speed_rad_s",
+                         "heat_power_W",
+                         "interface_mean_temp_C",
+                         "interface_max_temp_C",
+                         "thermocouple_temp_C",
+                         "ir_temp_C",
                          "sump_temp_C"};
   double out[9] = {};
   const double t0 = 1800.0, stop = 1800.5, h = 1e-4;

@@ -26,9 +26,7 @@ using shudder::clutch::FrictionLaw;
 using shudder::clutch::LinearTemperatureFriction;
 using ::testing::HasSubstr;
 
-std::string fluid_path(const std::string& file) {
-  return std::string(SHUDDER_SOURCE_DIR "/scenarios/fluids/") + file;
-}
+std::string fluid_path(const std::string& file) { return std::string(SHUDDER_SOURCE_DIR "/scenarios/fluids/") + file; }
 
 const double kRpm = shudder::units::kRadPerSPerRpm * 46.0;  // mm/s per rpm
 
@@ -213,11 +211,11 @@ TEST(Indices, ClampingFlagsFollowTheLawsDataRange) {
   // Mäki: 6–590 mm/s, -40–200 °C.
   const auto c = shudder::io::load_fluid(fluid_path("lsc_fluid_c.toml"));
   const auto at40 = anti_shudder_indices(*c.friction, 40.0);
-  EXPECT_TRUE(at40[Index::kMu1OverMu50].clamped);        // 1 rpm = 4.82 < 6 mm/s
-  EXPECT_TRUE(at40[Index::kMu100OverMu300].clamped);     // 300 rpm = 1445 > 590 mm/s
+  EXPECT_TRUE(at40[Index::kMu1OverMu50].clamped);     // 1 rpm = 4.82 < 6 mm/s
+  EXPECT_TRUE(at40[Index::kMu100OverMu300].clamped);  // 300 rpm = 1445 > 590 mm/s
   EXPECT_FALSE(at40[Index::kYoshizawaMu1OverMu20].clamped);
   EXPECT_FALSE(at40[Index::kMiyazakiMu6OverMu180].clamped);  // 6 mm/s is the edge itself
-  EXPECT_TRUE(at40[Index::kMurakamiDmuDV150].clamped);   // 150 rpm = 723 > 590 mm/s
+  EXPECT_TRUE(at40[Index::kMurakamiDmuDV150].clamped);       // 150 rpm = 723 > 590 mm/s
   EXPECT_FALSE(at40[Index::kMerconV2Over20].clamped);
   EXPECT_FALSE(at40[Index::kMerconV40Over120].clamped);  // 120 rpm = 578 < 590 mm/s
   EXPECT_FALSE(at40.temp_outside_data);
@@ -226,8 +224,8 @@ TEST(Indices, ClampingFlagsFollowTheLawsDataRange) {
 
   // A clamped value is still the law's held value: mu100/mu300 = mu(481.7)/mu(590).
   const auto& law = *c.friction;
-  EXPECT_NEAR(at40[Index::kMu100OverMu300].value,
-              law.mu(100 * kRpm, 40.0, 20000.0) / law.mu(590.0, 40.0, 20000.0), 1e-14);
+  EXPECT_NEAR(at40[Index::kMu100OverMu300].value, law.mu(100 * kRpm, 40.0, 20000.0) / law.mu(590.0, 40.0, 20000.0),
+              1e-14);
 
   // Wider radius: 1 rpm = 5.906 mm/s, still below 6; a 60 mm radius gives 6.28 mm/s: inside.
   IndexSettings wide;
@@ -277,8 +275,8 @@ TEST(Indices, SlopeMapOfSchematicNegativeSlopeFluid) {
   for (int n = 1; n <= 120; ++n) speeds.push_back(n);
   const SlopeMap map = isothermal_slope_map(*f.friction, speeds, {40.0, 60.0, 120.0});
   EXPECT_NEAR(map.dmu_dv_s_per_m(29, 1), -0.0450783, 1e-7);  // 30 rpm, 60 °C
-  EXPECT_GT(map.dmu_dv_s_per_m(4, 1), 0.0);                   // 5 rpm: rising branch
-  EXPECT_EQ(map.dmu_dv_s_per_m(109, 1), 0.0);                 // 110 rpm: held beyond the data
+  EXPECT_GT(map.dmu_dv_s_per_m(4, 1), 0.0);                  // 5 rpm: rising branch
+  EXPECT_EQ(map.dmu_dv_s_per_m(109, 1), 0.0);                // 110 rpm: held beyond the data
 
   const auto mask = negative_slope_mask(map);
   const auto runs = region_runs(speeds, map.temps_C, mask);

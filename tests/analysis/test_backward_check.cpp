@@ -45,8 +45,13 @@ Prediction predict(const DiagnosisRun& run, const std::vector<EffectSetting>& ad
 
 std::vector<EffectCandidate> candidates(double store_b_upper) {
   return {{"sink", "heat leaves at a fixed rate", {"a"}, {{0.1}, {1.0}}, {1e-3}, {10.0}, {}},
-          {"store", "heat stored and given back", {"b", "c"}, {{0.01, 0.005}, {0.1, 0.05}}, {-1.0, 1e-4},
-           {store_b_upper, 10.0}, {true, false}}};
+          {"store",
+           "heat stored and given back",
+           {"b", "c"},
+           {{0.01, 0.005}, {0.1, 0.05}},
+           {-1.0, 1e-4},
+           {store_b_upper, 10.0},
+           {true, false}}};
 }
 
 DiagnosisResult diagnose_pair(const DiagnosisOptions& o, double store_b_upper = 10.0) {
@@ -122,6 +127,5 @@ TEST(BackwardCheck, NeverWithdrawsInFavourOfAnEffectPushedToABound) {
   EXPECT_EQ(r.indistinguishable[0].effect, "sink");
   EXPECT_EQ(r.indistinguishable[0].kept_because, "without it store's b goes to its bound");
 }
-
 
 }  // namespace

@@ -51,7 +51,8 @@ Recording run(const shudder::io::Scenario& sc, bool ripple = true) {
   const auto clutch = sc.make_clutch();
   auto params = shudder::test::rig_model(sc).params;
   if (!ripple) params.motor_ripple.amplitude_Nm = 0.0;
-  return shudder::rig_models::run_rig(params, clutch, shudder::test::rig_model(sc).cycle, shudder::test::rig_model(sc).settings);
+  return shudder::rig_models::run_rig(params, clutch, shudder::test::rig_model(sc).cycle,
+                                      shudder::test::rig_model(sc).settings);
 }
 
 using shudder::test::scalar;
@@ -84,7 +85,8 @@ TEST(DetectionOnRig, NegativeSlopeFluidIsVibrationAtTheClutchSideFrequency) {
   ASSERT_GT(up.size(), 100u);
   const double f_zc = static_cast<double>(up.size() - 1) / (up.back() - up.front());
 
-  record("negative_slope", "%s: f %.3f Hz (mode %.3f Hz, zero crossings %.3f Hz), amplitude %.3f N m "
+  record("negative_slope",
+         "%s: f %.3f Hz (mode %.3f Hz, zero crossings %.3f Hz), amplitude %.3f N m "
          "(threshold %.3f), onset %.4f s at slip %.2f rpm, %.2f degC, %.0f N; oscillating %.3f-%.3f s, "
          "cycles at zero %.3f",
          std::string(to_string(r.verdict)).c_str(), r.frequency_Hz, f_mode, f_zc, r.amplitude_Nm, r.threshold_Nm,
@@ -111,9 +113,12 @@ TEST(DetectionOnRig, NegativeSlopeFluidIsVibrationAtTheClutchSideFrequency) {
   const auto clutch = sc.make_clutch();
   const auto rig_model = shudder::test::rig_model(sc);
   const shudder::rig_models::LsctrRig rig(rig_model.params, clutch, rig_model.cycle);
-  shudder::rig_models::ClutchContext start({clutch.thermal().interface_temps_C(clutch.initial_state()), rig_model.cycle.normal_force_N});
-  const double slope_Nms = rig.clutch_contact().kinetic_torque_slope_Nms(start, shudder::units::rpm_to_rad_s(30.0), 0.0);
-  const double sigma_pred = -(rig.bar_damping_Nms_per_rad() + slope_Nms) / (2.0 * rig_model.params.housing_inertia_kg_m2);
+  shudder::rig_models::ClutchContext start(
+      {clutch.thermal().interface_temps_C(clutch.initial_state()), rig_model.cycle.normal_force_N});
+  const double slope_Nms =
+      rig.clutch_contact().kinetic_torque_slope_Nms(start, shudder::units::rpm_to_rad_s(30.0), 0.0);
+  const double sigma_pred =
+      -(rig.bar_damping_Nms_per_rad() + slope_Nms) / (2.0 * rig_model.params.housing_inertia_kg_m2);
   record("negative_slope_growth", "growth rate %.3f 1/s, linearised %.3f 1/s (c_bar %.3f, dT/dw %.3f N m s/rad)",
          r.growth_rate_per_s, sigma_pred, rig.bar_damping_Nms_per_rad(), slope_Nms);
   EXPECT_TRUE(r.growth_observed);
@@ -121,7 +126,8 @@ TEST(DetectionOnRig, NegativeSlopeFluidIsVibrationAtTheClutchSideFrequency) {
 
   // Through the run file: write and read back (io/hdf5_run, the layout `shudder run` writes);
   // the same detection, bit for bit.
-  const auto path = std::filesystem::temp_directory_path() / ("shudder_test_detection_on_rig_" + std::to_string(::getpid()) + ".h5");
+  const auto path =
+      std::filesystem::temp_directory_path() / ("shudder_test_detection_on_rig_" + std::to_string(::getpid()) + ".h5");
   shudder::io::write_run_hdf5(path.string(), rec, sc.text);
   const Recording back = shudder::io::read_run_hdf5(path.string());
   std::filesystem::remove(path);
@@ -173,7 +179,8 @@ TEST(DetectionOnRig, LowSpeedStickSlipIsStickSlipAtTheBreakawayRate) {
   ASSERT_LT(k5 + 50, breakaways.size());
   const double f_ba = static_cast<double>(breakaways.size() - 1 - k5) / (breakaways.back() - breakaways[k5]);
 
-  record("stick_slip", "%s: f %.3f Hz (breakaways after 0.5 s %.3f Hz), amplitude %.3f N m, onset %.4f s (first breakaway "
+  record("stick_slip",
+         "%s: f %.3f Hz (breakaways after 0.5 s %.3f Hz), amplitude %.3f N m, onset %.4f s (first breakaway "
          "%.4f s) at slip %.3f rpm, cycles at zero %.3f",
          std::string(to_string(r.verdict)).c_str(), r.frequency_Hz, f_ba, r.amplitude_Nm, r.onset_time_s,
          breakaways.front(), r.at_onset.slip_rpm, r.stick_cycle_fraction);

@@ -255,7 +255,7 @@ TEST(MisfitThermocoupleAgainstIr, OnlyATemperatureToleranceAddsTheChannel) {
   const shudder::analysis::MisfitModel m(t.runs, with);
   const auto* d = find_channel(m, "temp_minus_ir_C");
   ASSERT_NE(d, nullptr);
-  EXPECT_EQ(d->tolerance, 0.0);                          // not temp_C's
+  EXPECT_EQ(d->tolerance, 0.0);                             // not temp_C's
   EXPECT_EQ(find_channel(m, "ir_temp_C")->tolerance, 2.0);  // the IR spot keeps it
   // Its noise is the difference's: √(0.335² + 0.75²) = 0.821 °C; 4 % as NoiseEstimate's bound.
   EXPECT_NEAR(d->sigma / std::hypot(0.335, 0.75), 1.0, kNoiseRelTol);

@@ -79,8 +79,9 @@ TEST(RampSearch, RejectsAStepALoadChangeAndASmallSweep) {
   // Paper E's return from 100 to 1 rpm is a step (rejected: too short); a ramp during which
   // the load doubles is no row of a matrix; a 1 -> 15 rpm sweep spans too little.
   // The 26 -> 29 s return to 1 rpm is a proper (3 s) down-ramp and is used.
-  rig_models::DriveCycle c{rig_models::PiecewiseLinear({0, 3, 13, 13.01, 16, 26, 29, 31}, {1, 1, 100, 1, 1, 100, 1, 15}),
-                           rig_models::PiecewiseLinear({0, 15, 16, 26}, {20000, 20000, 10000, 20000})};
+  rig_models::DriveCycle c{
+      rig_models::PiecewiseLinear({0, 3, 13, 13.01, 16, 26, 29, 31}, {1, 1, 100, 1, 1, 100, 1, 15}),
+      rig_models::PiecewiseLinear({0, 15, 16, 26}, {20000, 20000, 10000, 20000})};
   const auto found = analysis::find_ramps(profile_run(c, 33.0), 0);
   ASSERT_EQ(found.ramps.size(), 2u);
   EXPECT_NEAR(found.ramps[0].t_start_s, 3.0, 0.11);
@@ -159,10 +160,11 @@ TEST(CharacteriseRoundTrip, FluidCMatrixPiecewiseTableWithinOnePercentWhereTheRa
         const Characterisation c = analysis::characterise(data.runs, round_trip_settings(comp, law));
         const Errors e = errors_of(c, *rt.truth.friction);
         passed[ch][ic][il] = test::max_error_where_passed(c, *rt.truth.friction, rt.runs, rt.interface_C);
-        std::printf("[ figures  ] fluid C matrix, %s temperature, %s + %s: max |mu/mu_true - 1| where the ramps "
-                    "passed %.4f, at the rows %.4f; up-down gap %.5f -> %.5f\n",
-                    ch == 0 ? "thermocouple" : "interface (model)", analysis::compensation_name(comp),
-                    analysis::law_name(law), passed[ch][ic][il], e.mu, e.gap_raw, e.gap_comp);
+        std::printf(
+            "[ figures  ] fluid C matrix, %s temperature, %s + %s: max |mu/mu_true - 1| where the ramps "
+            "passed %.4f, at the rows %.4f; up-down gap %.5f -> %.5f\n",
+            ch == 0 ? "thermocouple" : "interface (model)", analysis::compensation_name(comp), analysis::law_name(law),
+            passed[ch][ic][il], e.mu, e.gap_raw, e.gap_comp);
         if (ch == 0 && ic == 1 && il == 1) {
           // The torque cell's noise (sigma 1.3 % of mu per sample at 10 kN) averaged over a row's
           // bins around a node leaves ~0.3 %; the thermocouple's offset from the interface and the
@@ -175,10 +177,11 @@ TEST(CharacteriseRoundTrip, FluidCMatrixPiecewiseTableWithinOnePercentWhereTheRa
           for (double t : {40.0, 60.0}) {
             const auto a = analysis::anti_shudder_indices(*c.law, t, is);
             const auto b = analysis::anti_shudder_indices(*rt.truth.friction, t, is);
-            worst = std::max(worst, std::abs(a[analysis::Index::kMu1OverMu50].value /
-                                                 b[analysis::Index::kMu1OverMu50].value - 1.0));
+            worst = std::max(
+                worst, std::abs(a[analysis::Index::kMu1OverMu50].value / b[analysis::Index::kMu1OverMu50].value - 1.0));
           }
-          std::printf("[ figures  ] piecewise + table: mu1/mu50 at 15 kN, 40 and 60 °C within %.4f of the truth\n", worst);
+          std::printf("[ figures  ] piecewise + table: mu1/mu50 at 15 kN, 40 and 60 °C within %.4f of the truth\n",
+                      worst);
           EXPECT_LT(worst, 0.02);  // the 2 % on the indices (a ratio of two values within 1 %)
         }
       }
@@ -197,26 +200,34 @@ TEST(CharacteriseRoundTrip, FluidCMatrixOtherThermalModelWithinTwoPercent) {
     rt.runs.push_back(test::simulated_ramp_run(rt.truth, test::paper_d_cycle(20000.0), t0, seed++, 50.0, "temp_C",
                                                test::other_thermal_model, &rt.interface_C.back()));
   }
-  const Characterisation c = analysis::characterise(rt.runs, round_trip_settings(Compensation::kPiecewise, LawKind::kTable));
+  const Characterisation c =
+      analysis::characterise(rt.runs, round_trip_settings(Compensation::kPiecewise, LawKind::kTable));
   const double passed = test::max_error_where_passed(c, *rt.truth.friction, rt.runs, rt.interface_C);
-  std::printf("[ figures  ] fluid C matrix through another thermal model, 20 kN, piecewise + table: where the ramps "
-              "passed %.4f, at the rows %.4f\n", passed, errors_of(c, *rt.truth.friction).mu);
+  std::printf(
+      "[ figures  ] fluid C matrix through another thermal model, 20 kN, piecewise + table: where the ramps "
+      "passed %.4f, at the rows %.4f\n",
+      passed, errors_of(c, *rt.truth.friction).mu);
   EXPECT_LT(passed, 0.02);
 }
 
 TEST(CharacteriseRoundTrip, FluidCMatrixQuadraticCompensationBeatsNone) {
   const RoundTrip& rt = fluid_c_round_trip();
-  const Characterisation none = analysis::characterise(rt.runs, round_trip_settings(Compensation::kNone, LawKind::kMaki));
-  const Characterisation quad = analysis::characterise(rt.runs, round_trip_settings(Compensation::kQuadratic, LawKind::kMaki));
-  const Characterisation lin = analysis::characterise(rt.runs, round_trip_settings(Compensation::kLinear, LawKind::kMaki));
-  const Characterisation table = analysis::characterise(rt.runs, round_trip_settings(Compensation::kQuadratic, LawKind::kTable));
+  const Characterisation none =
+      analysis::characterise(rt.runs, round_trip_settings(Compensation::kNone, LawKind::kMaki));
+  const Characterisation quad =
+      analysis::characterise(rt.runs, round_trip_settings(Compensation::kQuadratic, LawKind::kMaki));
+  const Characterisation lin =
+      analysis::characterise(rt.runs, round_trip_settings(Compensation::kLinear, LawKind::kMaki));
+  const Characterisation table =
+      analysis::characterise(rt.runs, round_trip_settings(Compensation::kQuadratic, LawKind::kTable));
   ASSERT_EQ(quad.rows.size(), 15u);
   ASSERT_EQ(quad.used.size(), 30u);
   const Errors en = errors_of(none, *rt.truth.friction), eq = errors_of(quad, *rt.truth.friction),
                el = errors_of(lin, *rt.truth.friction), et = errors_of(table, *rt.truth.friction);
-  std::printf("[ figures  ] fluid C round trip, max |mu/mu_true - 1| over rows and 1-100 rpm nodes: none %.4f, "
-              "linear %.4f (alpha %.3g), quadratic %.4f, table+quadratic %.4f; mean up-down gap raw %.5f -> quadratic %.5f\n",
-              en.mu, el.mu, lin.alpha_per_C, eq.mu, et.mu, eq.gap_raw, eq.gap_comp);
+  std::printf(
+      "[ figures  ] fluid C round trip, max |mu/mu_true - 1| over rows and 1-100 rpm nodes: none %.4f, "
+      "linear %.4f (alpha %.3g), quadratic %.4f, table+quadratic %.4f; mean up-down gap raw %.5f -> quadratic %.5f\n",
+      en.mu, el.mu, lin.alpha_per_C, eq.mu, et.mu, eq.gap_raw, eq.gap_comp);
   // Without compensation the data at 100 rpm are 10-30 °C hotter than the row: the bias is
   // several percent. The sensor reads the back of the separator (r = 48 mm, z = 0.5 mm), not
   // the interface, so compensation with it cannot be exact (~3 %); it must
@@ -243,24 +254,30 @@ TEST(CharacteriseRoundTrip, PaperELinearLawWithinOnePercentAtTheInterfaceTempera
       for (double t0 : {30.0, 45.0, 60.0, 75.0, 90.0})
         runs.push_back(test::simulated_ramp_run(truth, test::paper_d_cycle(load), t0, seed++, 50.0,
                                                 channel == 0 ? "interface_mean_temp_C" : "temp_C"));
-    const Characterisation none = analysis::characterise(runs, round_trip_settings(Compensation::kNone, LawKind::kLinear));
-    const Characterisation quad = analysis::characterise(runs, round_trip_settings(Compensation::kQuadratic, LawKind::kLinear));
-    const Characterisation table = analysis::characterise(runs, round_trip_settings(Compensation::kQuadratic, LawKind::kTable));
+    const Characterisation none =
+        analysis::characterise(runs, round_trip_settings(Compensation::kNone, LawKind::kLinear));
+    const Characterisation quad =
+        analysis::characterise(runs, round_trip_settings(Compensation::kQuadratic, LawKind::kLinear));
+    const Characterisation table =
+        analysis::characterise(runs, round_trip_settings(Compensation::kQuadratic, LawKind::kTable));
     err[channel][0] = errors_of(none, *truth.friction).mu;
     err[channel][1] = errors_of(quad, *truth.friction).mu;
     err[channel][2] = errors_of(table, *truth.friction).mu;
     // Piecewise compensation on a law smooth in T (rows 15 °C apart, knots there): no worse.
-    const Characterisation pw = analysis::characterise(runs, round_trip_settings(Compensation::kPiecewise, LawKind::kLinear));
-    const Characterisation pwt = analysis::characterise(runs, round_trip_settings(Compensation::kPiecewise, LawKind::kTable));
+    const Characterisation pw =
+        analysis::characterise(runs, round_trip_settings(Compensation::kPiecewise, LawKind::kLinear));
+    const Characterisation pwt =
+        analysis::characterise(runs, round_trip_settings(Compensation::kPiecewise, LawKind::kTable));
     std::printf("[ figures  ] Paper E fluid C, %s: piecewise + linear law %.4f, piecewise + table %.4f\n",
                 channel == 0 ? "interface" : "thermocouple", errors_of(pw, *truth.friction).mu,
                 errors_of(pwt, *truth.friction).mu);
     EXPECT_LT(errors_of(pw, *truth.friction).mu, 0.01);
   }
-  std::printf("[ figures  ] Paper E fluid C (linear law) round trip, max |mu/mu_true - 1|: interface temperature: "
-              "none %.4f, quadratic+linear law %.4f, quadratic+table %.4f; thermocouple: none %.4f, quadratic+linear "
-              "%.4f, quadratic+table %.4f\n",
-              err[0][0], err[0][1], err[0][2], err[1][0], err[1][1], err[1][2]);
+  std::printf(
+      "[ figures  ] Paper E fluid C (linear law) round trip, max |mu/mu_true - 1|: interface temperature: "
+      "none %.4f, quadratic+linear law %.4f, quadratic+table %.4f; thermocouple: none %.4f, quadratic+linear "
+      "%.4f, quadratic+table %.4f\n",
+      err[0][0], err[0][1], err[0][2], err[1][0], err[1][1], err[1][2]);
   EXPECT_LT(err[0][1], 0.01);
   EXPECT_LT(err[1][1], 0.01);
   EXPECT_LT(err[0][1], 0.5 * err[0][0]);
@@ -276,7 +293,8 @@ TEST(CharacteriseWarnings, AMakiRateOnItsBoundInManyRowsIsOneWarningNamingThem) 
   for (double load : {12000.0, 18000.0})
     for (double t0 : {50.0, 70.0, 90.0})
       runs.push_back(test::simulated_ramp_run(truth, test::paper_d_cycle(load), t0, seed++, 50.0));
-  const Characterisation c = analysis::characterise(runs, round_trip_settings(Compensation::kQuadratic, LawKind::kMaki));
+  const Characterisation c =
+      analysis::characterise(runs, round_trip_settings(Compensation::kQuadratic, LawKind::kMaki));
   std::vector<std::string> on_bound;
   for (const auto& w : c.warnings)
     if (w.find("search bound") != std::string::npos) on_bound.push_back(w);
@@ -300,21 +318,30 @@ TEST(CharacteriseRoundTrip, OtherThermalModelWithinTwoPercent) {
   for (double t0 : {30.0, 45.0, 60.0, 75.0, 90.0})
     runs.push_back(test::simulated_ramp_run(truth, test::paper_d_cycle(20000.0), t0, seed++, 50.0, "temp_C",
                                             test::other_thermal_model));
-  const double none = errors_of(analysis::characterise(runs, round_trip_settings(Compensation::kNone, LawKind::kLinear)),
-                                *truth.friction).mu;
-  const double quad = errors_of(analysis::characterise(runs, round_trip_settings(Compensation::kQuadratic, LawKind::kLinear)),
-                                *truth.friction).mu;
-  const double pw = errors_of(analysis::characterise(runs, round_trip_settings(Compensation::kPiecewise, LawKind::kLinear)),
-                              *truth.friction).mu;
-  std::printf("[ figures  ] Paper E fluid C through another thermal model (finer grid, slip-dependent oil flow, "
-              "0.5 s sensor lag): none %.4f, quadratic+linear law %.4f, piecewise+linear law %.4f\n", none, quad, pw);
+  const double none =
+      errors_of(analysis::characterise(runs, round_trip_settings(Compensation::kNone, LawKind::kLinear)),
+                *truth.friction)
+          .mu;
+  const double quad =
+      errors_of(analysis::characterise(runs, round_trip_settings(Compensation::kQuadratic, LawKind::kLinear)),
+                *truth.friction)
+          .mu;
+  const double pw =
+      errors_of(analysis::characterise(runs, round_trip_settings(Compensation::kPiecewise, LawKind::kLinear)),
+                *truth.friction)
+          .mu;
+  std::printf(
+      "[ figures  ] Paper E fluid C through another thermal model (finer grid, slip-dependent oil flow, "
+      "0.5 s sensor lag): none %.4f, quadratic+linear law %.4f, piecewise+linear law %.4f\n",
+      none, quad, pw);
   EXPECT_LT(quad, 0.02);  // the bound for data from another thermal model
   EXPECT_LT(pw, 0.02);
 }
 
 TEST(CharacteriseRoundTrip, IndicesFollowTheTruth) {
   const RoundTrip& rt = fluid_c_round_trip();
-  const Characterisation quad = analysis::characterise(rt.runs, round_trip_settings(Compensation::kQuadratic, LawKind::kMaki));
+  const Characterisation quad =
+      analysis::characterise(rt.runs, round_trip_settings(Compensation::kQuadratic, LawKind::kMaki));
   analysis::IndexSettings is;
   is.load_N = 15000.0;
   double worst = 0.0;
@@ -350,8 +377,8 @@ TEST(CharacteriseRoundTrip, IndicesFollowTheTruth) {
 }
 
 // Paper E: fluids A–E, five Paper E ramps (1 rpm for 3 s, 1 -> 100 rpm in 10 s) from each of
-// 30, 50, 70, 90 and 100 °C at 20 kN (Paper E: from 90–100 °C down to 30 °C), characterised as linear laws. Table 4 (30 °C) and Table 5 (at
-// each fluid's 10 cSt temperature, from its viscosities by Walther) give mu1/mu50.
+// 30, 50, 70, 90 and 100 °C at 20 kN (Paper E: from 90–100 °C down to 30 °C), characterised as linear laws. Table 4 (30
+// °C) and Table 5 (at each fluid's 10 cSt temperature, from its viscosities by Walther) give mu1/mu50.
 TEST(CharacterisePaperE, FluidsAToEReproduceTables4And5) {
   const char* names[] = {"a", "b", "c", "d", "e"};
   const double table4[] = {0.7985, 0.8051, 0.8269, 0.8309, 0.8455};
@@ -363,8 +390,10 @@ TEST(CharacterisePaperE, FluidsAToEReproduceTables4And5) {
         io::load_fluid(std::string(SHUDDER_SOURCE_DIR "/scenarios/fluids/paper_e_fluid_") + names[f] + ".toml");
     std::vector<analysis::RampRun> runs;
     unsigned seed = 200;
-    for (double t0 : {30.0, 50.0, 70.0, 90.0, 100.0}) runs.push_back(test::simulated_ramp_run(truth, test::paper_e_cycle(20000.0), t0, seed++, 50.0));
-    const Characterisation c = analysis::characterise(runs, round_trip_settings(Compensation::kQuadratic, LawKind::kLinear));
+    for (double t0 : {30.0, 50.0, 70.0, 90.0, 100.0})
+      runs.push_back(test::simulated_ramp_run(truth, test::paper_e_cycle(20000.0), t0, seed++, 50.0));
+    const Characterisation c =
+        analysis::characterise(runs, round_trip_settings(Compensation::kQuadratic, LawKind::kLinear));
     const double v1 = c.node_speeds_mm_s.front(), v50 = analysis::rpm_to_mm_s(50.0, c.effective_radius_mm);
     const auto ratio = [&](double t) { return c.law->mu(v1, t, 20000.0) / c.law->mu(v50, t, 20000.0); };
     // The temperature at which the fluid has 10 cSt (Walther, the fluid's nu40/nu100), by bisection.
@@ -373,10 +402,11 @@ TEST(CharacterisePaperE, FluidsAToEReproduceTables4And5) {
     for (int k = 0; k < 60; ++k) (nu.kinematic_cSt(0.5 * (lo + hi)) > 10.0 ? lo : hi) = 0.5 * (lo + hi);
     const double t10 = 0.5 * (lo + hi);
     got4.push_back(ratio(30.0));
-    std::printf("[ figures  ] Paper E fluid %s: mu1/mu50 at 30 °C %.4f (Table 4 %.4f, %+.2f %%); 10 cSt at %.1f °C "
-                "(Table 5 %.0f °C); mu1/mu50 there %.4f (Table 5 %.4f, %+.2f %%)\n",
-                names[f], ratio(30.0), table4[f], 100 * (ratio(30.0) / table4[f] - 1), t10, table5_temp_C[f], ratio(t10),
-                table5[f], 100 * (ratio(t10) / table5[f] - 1));
+    std::printf(
+        "[ figures  ] Paper E fluid %s: mu1/mu50 at 30 °C %.4f (Table 4 %.4f, %+.2f %%); 10 cSt at %.1f °C "
+        "(Table 5 %.0f °C); mu1/mu50 there %.4f (Table 5 %.4f, %+.2f %%)\n",
+        names[f], ratio(30.0), table4[f], 100 * (ratio(30.0) / table4[f] - 1), t10, table5_temp_C[f], ratio(t10),
+        table5[f], 100 * (ratio(t10) / table5[f] - 1));
     const auto truth_ratio = [&](double t) {
       return truth.friction->mu(v1, t, 20000.0) / truth.friction->mu(v50, t, 20000.0);
     };
@@ -388,7 +418,8 @@ TEST(CharacterisePaperE, FluidsAToEReproduceTables4And5) {
     EXPECT_NEAR(ratio(t10) / truth_ratio(t10), 1.0, 0.01) << names[f];
     EXPECT_NEAR(t10, table5_temp_C[f], 1.5) << names[f];  // Table 5 prints whole degrees
   }
-  for (int f = 1; f < 5; ++f) EXPECT_GT(got4[std::size_t(f)], got4[std::size_t(f) - 1]) << "Table 4's ranking A < B < C < D < E";
+  for (int f = 1; f < 5; ++f)
+    EXPECT_GT(got4[std::size_t(f)], got4[std::size_t(f) - 1]) << "Table 4's ranking A < B < C < D < E";
 }
 
 }  // namespace

@@ -8,9 +8,7 @@
 namespace shudder {
 namespace {
 
-TEST(Median, OddCountIsTheMiddleValueOfTheSortedSamples) {
-  EXPECT_EQ(core::median({5.0, -1.0, 3.0, 9.0, 0.5}), 3.0);
-}
+TEST(Median, OddCountIsTheMiddleValueOfTheSortedSamples) { EXPECT_EQ(core::median({5.0, -1.0, 3.0, 9.0, 0.5}), 3.0); }
 
 TEST(Median, EvenCountIsTheMeanOfTheTwoMiddleValues) {
   // Sorted: 1 2 | 7 40 — the mean of 2 and 7, whatever order the samples come in.

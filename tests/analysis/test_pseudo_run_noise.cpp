@@ -36,8 +36,10 @@ Recorded reproduce_runs() {
   Recorded out;
   std::mt19937 rng(5);
   std::normal_distribution<double> unit(0.0, 1.0);
-  const struct { const char* name; double force_N, sigma_N; } spec[] = {
-      {"A", 10000.0, 40.0}, {"B", 20.0, 40.0}, {"C", 10000.0, 0.0}};
+  const struct {
+    const char* name;
+    double force_N, sigma_N;
+  } spec[] = {{"A", 10000.0, 40.0}, {"B", 20.0, 40.0}, {"C", 10000.0, 0.0}};
   for (const auto& s : spec) {
     DiagnosisRun run;
     run.name = s.name;
@@ -78,7 +80,7 @@ TEST(PseudoRunNoise, TheForceGetsFreshNoiseOfTheSigmaItShows) {
   const double n = static_cast<double>(pseudo.size());
   const double mean = sum / n, sd = std::sqrt(sum2 / n - mean * mean);
   const double sigma = estimate_noise_sigma(measured);  // what the draws are scaled to
-  EXPECT_NEAR(sigma, 40.0, 4.0);  // the MAD estimate of 1001 samples scatters ~4 % (1 sigma)
+  EXPECT_NEAR(sigma, 40.0, 4.0);                        // the MAD estimate of 1001 samples scatters ~4 % (1 sigma)
   // 1001 draws: the sample sd scatters 2.2 % and the mean sigma / 31.6 (1 sigma); 5 of each.
   EXPECT_NEAR(sd / sigma, 1.0, 0.11);
   EXPECT_NEAR(mean, 0.0, 5.0 * sigma / std::sqrt(n));
@@ -87,8 +89,7 @@ TEST(PseudoRunNoise, TheForceGetsFreshNoiseOfTheSigmaItShows) {
 TEST(PseudoRunNoise, EveryRunGetsItsOwnDrawsAndReadingsStayNonNegative) {
   const Recorded r = reproduce_runs();
   // Run B's noise is not run A's (seeded per run): the first differences disagree.
-  EXPECT_NE(r.pseudo_force_N[0][0] - r.runs[0].normal_force_N[0],
-            r.pseudo_force_N[1][0] - r.runs[1].normal_force_N[0]);
+  EXPECT_NE(r.pseudo_force_N[0][0] - r.runs[0].normal_force_N[0], r.pseudo_force_N[1][0] - r.runs[1].normal_force_N[0]);
   const auto& b = r.pseudo_force_N[1];
   EXPECT_GE(*std::min_element(b.begin(), b.end()), 0.0);
   EXPECT_GT(std::count(b.begin(), b.end(), 0.0), 0);  // 20 N ± 57 N: clipped readings occur

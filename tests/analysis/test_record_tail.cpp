@@ -95,19 +95,18 @@ TEST_P(DetectionRecordTail, LateJudderAfterAStartTransientIsJudgedAtItsFrequency
   record("record_tail_" + std::to_string(static_cast<int>(c.f_Hz)),
          "%s %.4f Hz (true %.4f, bin >= %.3f Hz), onset %.4f s (closed form %.4f, hop %.4f s), A %.3f N m, "
          "oscillating %.3f-%.3f s",
-         std::string(to_string(r.verdict)).c_str(), r.frequency_Hz, c.f_Hz, bin_Hz, r.onset_time_s, rec.onset_s,
-         hop_s, r.amplitude_Nm, r.oscillating_from_s, r.oscillating_to_s);
+         std::string(to_string(r.verdict)).c_str(), r.frequency_Hz, c.f_Hz, bin_Hz, r.onset_time_s, rec.onset_s, hop_s,
+         r.amplitude_Nm, r.oscillating_from_s, r.oscillating_to_s);
   EXPECT_EQ(r.verdict, Verdict::kVibration);
   EXPECT_NEAR(r.frequency_Hz, c.f_Hz, 0.15 * bin_Hz);
   EXPECT_NEAR(r.onset_time_s, rec.onset_s, hop_s);
   EXPECT_NEAR(r.amplitude_Nm, c.A_Nm, 0.05 * c.A_Nm);  // the saturated sine: e(t) > 0.995 at the end
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Shapes, DetectionRecordTail,
-    ::testing::Values(LateJudder{1000.0, 12.0, 10.0, 1.5, 2.5, 8.0, 31.0, 8.6, 0.01, 5.0},
-                      LateJudder{500.0, 20.0, 6.0, 2.0, 3.0, 6.0, 17.0, 16.5, 0.02, 4.0},
-                      LateJudder{2000.0, 11.5, 8.0, 1.0, 2.2, 10.0, 55.0, 8.3, 0.01, 6.0}));
+INSTANTIATE_TEST_SUITE_P(Shapes, DetectionRecordTail,
+                         ::testing::Values(LateJudder{1000.0, 12.0, 10.0, 1.5, 2.5, 8.0, 31.0, 8.6, 0.01, 5.0},
+                                           LateJudder{500.0, 20.0, 6.0, 2.0, 3.0, 6.0, 17.0, 16.5, 0.02, 4.0},
+                                           LateJudder{2000.0, 11.5, 8.0, 1.0, 2.2, 10.0, 55.0, 8.3, 0.01, 6.0}));
 
 // White noise of variance σ² on a record whose regular 1024-sample segments (50 % overlap)
 // stop 188 samples short of its end: 2048 regular segments and one more ending at the last

@@ -112,10 +112,11 @@ TEST(DetectionSynthetic, GrowingSaturatingSineOnSteadySlipIsVibrationWithItsFreq
   double P_b = 0.0;
   for (int j = 0; j < 8; ++j) P_b += r.band_power[j] / 8.0;
   const double expected = t_g + std::log(std::sqrt(2.0 * P_b) / (eps * A)) / sigma;
-  record("vibration", "f %.4f Hz (%+.2e), amplitude %.4f N m (%+.2e), onset %.4f s (expected %.4f s, growth "
+  record("vibration",
+         "f %.4f Hz (%+.2e), amplitude %.4f N m (%+.2e), onset %.4f s (expected %.4f s, growth "
          "from %.2f s), growth rate %.3f 1/s (%+.2e)",
-         r.frequency_Hz, r.frequency_Hz / f - 1.0, r.amplitude_Nm, r.amplitude_Nm / A - 1.0, r.onset_time_s,
-         expected, t_g, r.growth_rate_per_s, r.growth_rate_per_s / sigma - 1.0);
+         r.frequency_Hz, r.frequency_Hz / f - 1.0, r.amplitude_Nm, r.amplitude_Nm / A - 1.0, r.onset_time_s, expected,
+         t_g, r.growth_rate_per_s, r.growth_rate_per_s / sigma - 1.0);
   EXPECT_TRUE(r.growth_observed);
   EXPECT_NEAR(r.onset_time_s, expected, 0.015);
   EXPECT_NEAR(r.growth_rate_per_s / sigma, 1.0, 0.03);
@@ -168,7 +169,8 @@ TEST(DetectionSynthetic, ThresholdCrossingOnsetSkipsTheStartTransientAndIgnoresT
   const double gc = 0.06 / std::sqrt(1.0 - 0.06 * 0.06);
   const double expected = t_g + std::log(gc / eps) / sigma;
   record("threshold_onset",
-         "threshold-crossing onset %.4f s (expected %.4f s), noise x10 %.4f s, no transient %.4f s; growth-line onset %.4f s, no transient %.4f s",
+         "threshold-crossing onset %.4f s (expected %.4f s), noise x10 %.4f s, no transient %.4f s; growth-line onset "
+         "%.4f s, no transient %.4f s",
          r.onset_time_s, expected, r_noisy.onset_time_s, r_clean.onset_time_s, line.onset_time_s,
          line_clean.onset_time_s);
   ASSERT_EQ(r.verdict, Verdict::kVibration);
@@ -211,7 +213,9 @@ TEST(DetectionSynthetic, RampIntoInstabilityOnsetIsWhereTheGrowthRateCrossesZero
   ramp.onset_definition = OnsetDefinition::kGrowthRateZero;
   const ShudderResult r = detect_shudder(s.input(), ramp);
   const ShudderResult line = detect_shudder(s.input());
-  record("ramp_onset", "growth-rate-zero onset %.4f s (t_c %.3f s), slip %.3f rpm, dsigma/dt %.3f 1/s2 (%+.2e); growth-line onset %.4f s",
+  record("ramp_onset",
+         "growth-rate-zero onset %.4f s (t_c %.3f s), slip %.3f rpm, dsigma/dt %.3f 1/s2 (%+.2e); growth-line onset "
+         "%.4f s",
          r.onset_time_s, t_c, r.at_onset.slip_rpm, r.growth_acceleration_per_s2,
          r.growth_acceleration_per_s2 / accel - 1.0, line.onset_time_s);
   ASSERT_EQ(r.verdict, Verdict::kVibration);
@@ -328,8 +332,7 @@ TEST(DetectionInputs, MissingShortOrNonUniformSignalsAreRejectedByName) {
   Recording rec;
   rec.add_signal("time_s", "s").values = {0, 1, 2};
   rec.add_signal("torque_Nm", "N m").values = {0, 1, 2};
-  EXPECT_THAT([&] { detect_shudder(rec); },
-              ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("'slip_rpm'")));
+  EXPECT_THAT([&] { detect_shudder(rec); }, ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("'slip_rpm'")));
   rec.add_signal("slip_rpm", "rpm").values = {0, 1, 2};
   EXPECT_THAT([&] { detect_shudder(rec); },
               ::testing::ThrowsMessage<std::invalid_argument>(HasSubstr("at least 64 samples")));

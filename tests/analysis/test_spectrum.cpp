@@ -56,7 +56,8 @@ TEST(SpectrumFft, MatchesDirectDftForOddAndEvenLengths) {
     ASSERT_EQ(X.size(), n / 2 + 1);
     for (std::size_t k = 0; k < X.size(); ++k) {
       std::complex<double> d = 0.0;
-      for (std::size_t i = 0; i < n; ++i) d += x[i] * std::polar(1.0, -kTwoPi * static_cast<double>(k * i) / static_cast<double>(n));
+      for (std::size_t i = 0; i < n; ++i)
+        d += x[i] * std::polar(1.0, -kTwoPi * static_cast<double>(k * i) / static_cast<double>(n));
       EXPECT_NEAR(std::abs(X[k] - d), 0.0, 1e-12);  // round-off of a length-15 sum of O(1) terms
     }
   }
@@ -111,8 +112,8 @@ TEST(SpectrumFft, RectangularWindowSingleToneWithinATenthBinAndOnePercent) {
   const FftPlan plan(n);
   const Spectrum s = amplitude_spectrum(plan, tones({t}, n, fs), fs, Window::kRectangular);
   const Peak p = find_peak(s, 500.0, 550.0);
-  record("rectangular_single_tone", "frequency error %.2e bin, amplitude error %.2e",
-         std::abs(p.frequency_Hz - t.f_Hz), p.amplitude / t.amplitude - 1.0);
+  record("rectangular_single_tone", "frequency error %.2e bin, amplitude error %.2e", std::abs(p.frequency_Hz - t.f_Hz),
+         p.amplitude / t.amplitude - 1.0);
   EXPECT_LT(std::abs(p.frequency_Hz - t.f_Hz) / s.bin_width_Hz, 0.1);
   EXPECT_NEAR(p.amplitude / t.amplitude, 1.0, 0.01);
 }
@@ -131,8 +132,8 @@ TEST(SpectrumWindow, CoherentGainAndHannScallopingLoss) {
 // window-weighted mean square per segment differs from it only through the Hann² transform at
 // twice a tone's frequency or at the tones' difference frequencies (> 38 bins, falling as
 // 1/Δk⁵: < 1e-7) and by removing each segment's window-weighted mean (Hann leakage from
-// > 19 bins: ~1e-8 of the energy): relative 1e-6 (measured 1.5e-9). (b) Seeded white noise (2^20 samples, 1024-sample segments, 50 % overlap):
-// Σ P df equals the segments' window-weighted mean square to round-off (1e-12), and the
+// > 19 bins: ~1e-8 of the energy): relative 1e-6 (measured 1.5e-9). (b) Seeded white noise (2^20 samples, 1024-sample
+// segments, 50 % overlap): Σ P df equals the segments' window-weighted mean square to round-off (1e-12), and the
 // record's plain mean square within statistics: per segment the relative std is
 // √(2 Σw⁴/(Σw²)²) = √(3.89/L) = 6.2 %, over 2047 segments (adjacent overlap correlation 3/35)
 // 0.15 %, plus the record's own √(2/n) = 0.14 %: 1e-2 is > 4 standard deviations. The level
@@ -177,8 +178,9 @@ TEST(SpectrumWelch, ParsevalForSinesAndWhiteNoise) {
     double level = 0.0;
     for (std::size_t k = 1; k + 1 < p.density.size(); ++k) level += p.density[k];
     level /= static_cast<double>(p.density.size() - 2);
-    record("welch_parseval_noise", "sum(P) df / mean square - 1 = %.3e, vs weighted %.3e, level / (2 sigma^2/fs) - 1 = %.3e",
-           power / ms - 1.0, power / weighted - 1.0, level / (2 * sigma * sigma / fs) - 1.0);
+    record("welch_parseval_noise",
+           "sum(P) df / mean square - 1 = %.3e, vs weighted %.3e, level / (2 sigma^2/fs) - 1 = %.3e", power / ms - 1.0,
+           power / weighted - 1.0, level / (2 * sigma * sigma / fs) - 1.0);
     EXPECT_EQ(p.segments, 2047u);
     EXPECT_NEAR(power / weighted, 1.0, 1e-12);
     EXPECT_NEAR(power / ms, 1.0, 1e-2);

@@ -162,10 +162,9 @@ TEST(Stability, TwoDofChainMatchesCharacteristicPolynomialRoots) {
     net.validate();
     const StabilityPoint p = linearise(net, {{3.0}, {}, 0.0});
 
-    const Eigen::VectorXcd roots =
-        quartic_roots(J1 * J2, J1 * (c1 + c2) + J2 * (s + c2),
-                      J1 * (k1 + k2) + J2 * k2 + (s + c2) * (c1 + c2) - c2 * c2,
-                      (s + c2) * (k1 + k2) + k2 * (c1 + c2) - 2.0 * c2 * k2, k1 * k2);
+    const Eigen::VectorXcd roots = quartic_roots(J1 * J2, J1 * (c1 + c2) + J2 * (s + c2),
+                                                 J1 * (k1 + k2) + J2 * k2 + (s + c2) * (c1 + c2) - c2 * c2,
+                                                 (s + c2) * (k1 + k2) + k2 * (c1 + c2) - 2.0 * c2 * k2, k1 * k2);
     EXPECT_LT(relative_mismatch(p.eigenvalues, roots), 1e-9);
     EXPECT_NEAR(p.margin_per_s, max_real(roots), 1e-9 * roots.cwiseAbs().maxCoeff());
     EXPECT_EQ(p.stable, max_real(roots) < 0.0);
@@ -201,8 +200,8 @@ TEST(Stability, TwoDofWithMotorLoopMatchesCharacteristicPolynomialRoots) {
     SCOPED_TRACE(::testing::Message() << "slope " << s);
     const StabilityPoint p = linearise(motor_pair(J1, J2, kp, ki, k2, c2, s), {{4.0}, {}, 0.0});
     const Eigen::VectorXcd roots =
-        quartic_roots(J1 * J2, J1 * (c2 + s) + J2 * (kp + s),
-                      J1 * k2 + J2 * ki + (kp + s) * (c2 + s) - s * s, (kp + s) * k2 + ki * (c2 + s), ki * k2);
+        quartic_roots(J1 * J2, J1 * (c2 + s) + J2 * (kp + s), J1 * k2 + J2 * ki + (kp + s) * (c2 + s) - s * s,
+                      (kp + s) * k2 + ki * (c2 + s), ki * k2);
     EXPECT_LT(relative_mismatch(p.eigenvalues, roots), 1e-9);
     EXPECT_NEAR(p.margin_per_s, max_real(roots), 1e-9 * roots.cwiseAbs().maxCoeff());
     EXPECT_EQ(p.stable, max_real(roots) < 0.0);
@@ -249,12 +248,22 @@ TEST(Stability, RigidBodyDriftIsLeftOutOfTheMargin) {
 
 TEST(Stability, BadInputNamesTheQuantity) {
   const auto net = motor_pair(0.6, 0.05, 3.0, 20.0, 500.0, 0.1, 0.1);
-  EXPECT_THAT([&] { linearise(net, {{}, {}, 0.0}); },
-              ::testing::ThrowsMessage<std::invalid_argument>(::testing::HasSubstr("one slip (rad/s, 0 = stuck) per contact")));
-  EXPECT_THAT([&] { linearise(net, {{1.0}, {true, false}, 0.0}); },
-              ::testing::ThrowsMessage<std::invalid_argument>(::testing::HasSubstr("stuck flags")));
-  EXPECT_THAT([&] { linearise(net, {{NAN}, {}, 0.0}); },
-              ::testing::ThrowsMessage<std::invalid_argument>(::testing::HasSubstr("slip of contact 'contact' must be finite")));
+  EXPECT_THAT(
+      [&] {
+        linearise(net, {{}, {}, 0.0});
+      },
+      ::testing::ThrowsMessage<std::invalid_argument>(::testing::HasSubstr("one slip (rad/s, 0 = stuck) per contact")));
+  EXPECT_THAT(
+      [&] {
+        linearise(net, {{1.0}, {true, false}, 0.0});
+      },
+      ::testing::ThrowsMessage<std::invalid_argument>(::testing::HasSubstr("stuck flags")));
+  EXPECT_THAT(
+      [&] {
+        linearise(net, {{NAN}, {}, 0.0});
+      },
+      ::testing::ThrowsMessage<std::invalid_argument>(
+          ::testing::HasSubstr("slip of contact 'contact' must be finite")));
 }
 
 }  // namespace

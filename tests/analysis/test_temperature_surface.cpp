@@ -12,13 +12,13 @@
 namespace {
 
 using shudder::analysis::SurfaceSample;
-using shudder::analysis::TemperatureSurface;
 using shudder::analysis::temperature_knots;
+using shudder::analysis::TemperatureSurface;
 
 TEST(TemperatureKnots, RowsAndTheirSpacingOverTheSamples) {
   EXPECT_EQ(temperature_knots({30, 40, 50}, 28.0, 71.0), (std::vector<double>{20, 30, 40, 50, 60, 70, 80}));
   EXPECT_EQ(temperature_knots({40, 60, 90}, 40.0, 90.0), (std::vector<double>{40, 60, 90}));  // smallest gap 20
-  EXPECT_EQ(temperature_knots({50}, 45.0, 62.0), (std::vector<double>{40, 50, 60, 70}));     // one row: 10 °C
+  EXPECT_EQ(temperature_knots({50}, 45.0, 62.0), (std::vector<double>{40, 50, 60, 70}));      // one row: 10 °C
 }
 
 std::vector<double> speeds() { return {5.0, 25.0, 50.0, 100.0, 250.0, 500.0}; }
@@ -58,7 +58,8 @@ TEST(TemperatureSurface, KeepsAKinkAtARowThatAQuadraticWouldSmooth) {
 
 TEST(TemperatureSurface, RefusesTooFewKnotsOrSamples) {
   EXPECT_THROW(TemperatureSurface({5.0}, {30, 40}, samples([](double, double) { return 0.1; })), std::invalid_argument);
-  EXPECT_THROW(TemperatureSurface(speeds(), {40, 30}, samples([](double, double) { return 0.1; })), std::invalid_argument);
+  EXPECT_THROW(TemperatureSurface(speeds(), {40, 30}, samples([](double, double) { return 0.1; })),
+               std::invalid_argument);
   EXPECT_THROW(TemperatureSurface(speeds(), {30, 40}, {{5.0, 30.0, 0.1}}), std::invalid_argument);
 }
 

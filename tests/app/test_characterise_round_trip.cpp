@@ -121,8 +121,8 @@ TEST(RoundTripRadius, ALawReadAtTheWrongRadiusMissesByTheRadiusRatio) {
   ASSERT_NE(at, std::string::npos);
   text.erase(at, text.find("\n\n", at) - at);
   test::write_file(data().dir / "fit_unrecorded.toml", text);
-  const auto [rms, sigma] = replay_rms(test::replace(model, "fit_uniform_wear.toml", "fit_unrecorded.toml"),
-                                       data().run.at("20_40"));
+  const auto [rms, sigma] =
+      replay_rms(test::replace(model, "fit_uniform_wear.toml", "fit_unrecorded.toml"), data().run.at("20_40"));
   EXPECT_GT(rms, 4.0 * sigma) << rms;
 }
 

@@ -16,7 +16,9 @@ std::string base_scenario() {
          "type = \"prescribed_slip\"\n"
          "duration_s = 0.5\n"
          "[clutch]\n"
-         "fluid = \"" + source_path("scenarios/fluids/lsc_fluid_c.toml") + "\"\n"
+         "fluid = \"" +
+         source_path("scenarios/fluids/lsc_fluid_c.toml") +
+         "\"\n"
          "start_temp_C = 77.0\n"
          "[drive]\n"
          "time_s = [0.0, 0.5]\n"

@@ -51,7 +51,8 @@ const std::string kFluidArgs = " --nu40-cSt 35 --nu100-cSt 6.7 --radius uniform_
 TEST(CliCharacterise, WritesAFluidThatScreenAndRunAcceptPlusJsonAndReport) {
   const auto dir = test::scratch_dir("characterise_ok");
   const std::string runs = write_runs(dir);
-  const auto r = test::run_cli("characterise" + runs + " -o fitted.toml --json fit.json --report rep" + kFluidArgs, dir);
+  const auto r =
+      test::run_cli("characterise" + runs + " -o fitted.toml --json fit.json --report rep" + kFluidArgs, dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, ::testing::HasSubstr("12 ramps used (6 up, 6 down)"));
   const auto json = test::parse(test::slurp(dir / "fit.json"));
@@ -69,8 +70,8 @@ TEST(CliCharacterise, WritesAFluidThatScreenAndRunAcceptPlusJsonAndReport) {
                                           "starts an up-ramp from rest"));
   EXPECT_THAT(test::slurp(dir / "fitted.toml"), ::testing::HasSubstr("source = \"not measured: no run starts"));
   // Piecewise compensation: one surface per load, its knots at the rows (40, 60, 80 °C) and on.
-  const auto pw = test::run_cli("characterise" + runs + " -o pw.toml --law table --compensation piecewise --json pw.json" +
-                                    kFluidArgs, dir);
+  const auto pw = test::run_cli(
+      "characterise" + runs + " -o pw.toml --law table --compensation piecewise --json pw.json" + kFluidArgs, dir);
   ASSERT_EQ(pw.exit_code, 0) << pw.err;
   const auto pj = test::parse(test::slurp(dir / "pw.json"));
   EXPECT_EQ(pj["compensation"].str(), "piecewise");
@@ -86,9 +87,10 @@ TEST(CliCharacterise, WritesAFluidThatScreenAndRunAcceptPlusJsonAndReport) {
   // The same runs as a table law; a Paper G Case 2 run with it.
   const auto t = test::run_cli("characterise" + runs + " -o table.toml --law table" + kFluidArgs, dir);
   ASSERT_EQ(t.exit_code, 0) << t.err;
-  test::write_file(dir / "case2.toml", test::replace(test::shipped_scenario_text("paper_g_case2_15kN.toml"),
-                                                     "fluid = \"" + test::source_path("scenarios/fluids/lsc_fluid_c.toml"),
-                                                     "fluid = \"table.toml"));
+  test::write_file(
+      dir / "case2.toml",
+      test::replace(test::shipped_scenario_text("paper_g_case2_15kN.toml"),
+                    "fluid = \"" + test::source_path("scenarios/fluids/lsc_fluid_c.toml"), "fluid = \"table.toml"));
   const auto run = test::run_cli("run case2.toml -o case2.h5", dir);
   EXPECT_EQ(run.exit_code, 0) << run.err;
 }
@@ -132,7 +134,8 @@ TEST(CliCharacterise, RowWithTooFewRampsIsBadInput) {
 TEST(CliCharacterise, RequestedTemperatureOutsideEveryRampIsBadInput) {
   const auto dir = test::scratch_dir("characterise_temps");
   const std::string runs = write_runs(dir);
-  const auto r = test::run_cli("characterise" + runs + " -o out.toml --json fit.json --law table --row-temps 40,150" + kFluidArgs, dir);
+  const auto r = test::run_cli(
+      "characterise" + runs + " -o out.toml --json fit.json --law table --row-temps 40,150" + kFluidArgs, dir);
   test::expect_rejected(r, {"requested row temperature 150 °C: no ramp starts within ±3 °C"});
   expect_nothing_written(dir);
 }
@@ -144,7 +147,8 @@ TEST(CliCharacterise, QuadraticCompensationWithOneTemperatureIsBadInput) {
   test::expect_rejected(r, {"a.csv", "quadratic compensation at 10 kN", "--compensation linear or none"});
   expect_nothing_written(dir);
   // Piecewise: one ramp's speed and temperature rise together; no second row to separate them.
-  const auto p = test::run_cli("characterise a.csv -o out.toml --json fit.json --compensation piecewise" + kFluidArgs, dir);
+  const auto p =
+      test::run_cli("characterise a.csv -o out.toml --json fit.json --compensation piecewise" + kFluidArgs, dir);
   test::expect_rejected(p, {"a.csv", "piecewise compensation at 10 kN: ramps start at 1 row temperature",
                             "--compensation linear or none"});
   expect_nothing_written(dir);
@@ -184,7 +188,8 @@ TEST(CliCharacterise, FitWithoutAPlausibleLawIsANumericalFailure) {
 TEST(CliCharacterise, InverseMethodReportsBothMethods) {
   const auto dir = test::scratch_dir("characterise_inverse");
   const std::string runs = write_runs(dir);
-  const auto r = test::run_cli("characterise" + runs + " -o inv.toml --json fit.json --method inverse" + kFluidArgs, dir);
+  const auto r =
+      test::run_cli("characterise" + runs + " -o inv.toml --json fit.json --method inverse" + kFluidArgs, dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, ::testing::HasSubstr("methods: sensor (quadratic compensation"));
   EXPECT_THAT(r.out, ::testing::HasSubstr("replayed torque vs measured (rms): sensor law"));

@@ -36,8 +36,8 @@ std::vector<char> read_bytes(const std::string& path) {
 // refers to the file's global heap collection. Returns false if the file has no such reference.
 bool write_damaged_run(const std::string& path) {
   MeasuredRun run;
-  run.metadata = {{"format", "shudder-measurement/1"}, {"rig", "lsctr"}, {"fluid", "lsc-fluid-c"},
-                  {"oil_flow_ml_min", "200"}};
+  run.metadata = {
+      {"format", "shudder-measurement/1"}, {"rig", "lsctr"}, {"fluid", "lsc-fluid-c"}, {"oil_flow_ml_min", "200"}};
   for (const char* name : {"time_s", "speed_rpm", "normal_force_N", "torque_Nm", "temp_C"})
     run.columns.push_back({name, shudder::io::measured_run_units(name), {}});
   for (int k = 0; k < 21; ++k) {
@@ -61,18 +61,17 @@ bool write_damaged_run(const std::string& path) {
   }
   if (last == std::string::npos) return false;
   bytes[last + 10] = 25;
-  std::ofstream(path, std::ios::binary | std::ios::trunc).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  std::ofstream(path, std::ios::binary | std::ios::trunc)
+      .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   return true;
 }
 
 TEST(CliDamagedHdf5, ALibraryCrashOnADamagedRunIsOneLineAndExitTwo) {
   const auto dir = scratch_dir("damaged_hdf5");
   ASSERT_TRUE(write_damaged_run((dir / "bad.h5").string())) << "no heap reference to damage";
-  shudder::test::write_file(dir / "model.toml",
-                            shudder::test::shipped_scenario_text("rig_case2_15kN_378Hz.toml"));
-  for (const std::string& args :
-       {std::string("characterise bad.h5 -o f.toml --nu40-cSt 35 --nu100-cSt 6.7"),
-        std::string("diagnose model.toml bad.h5")}) {
+  shudder::test::write_file(dir / "model.toml", shudder::test::shipped_scenario_text("rig_case2_15kN_378Hz.toml"));
+  for (const std::string& args : {std::string("characterise bad.h5 -o f.toml --nu40-cSt 35 --nu100-cSt 6.7"),
+                                  std::string("diagnose model.toml bad.h5")}) {
     const auto r = run_cli(args, dir);
     // Whatever libhdf5 does with the file (crash here, a clean error in a fixed release), the
     // user gets exit 2 and one line naming the file.

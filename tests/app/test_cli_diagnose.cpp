@@ -10,7 +10,6 @@
 namespace shudder {
 namespace {
 
-using ::testing::HasSubstr;
 using test::expect_rejected;
 using test::replace;
 using test::run_cli;
@@ -18,6 +17,7 @@ using test::scratch_dir;
 using test::slurp;
 using test::source_path;
 using test::write_file;
+using ::testing::HasSubstr;
 
 std::string probe(const std::string& extra = "") {
   return test::shipped_scenario_text("diagnosis_probe.toml") + "\n" + extra;

@@ -13,7 +13,6 @@
 namespace shudder {
 namespace {
 
-using ::testing::HasSubstr;
 using test::expect_rejected;
 using test::replace;
 using test::run_cli;
@@ -21,6 +20,7 @@ using test::scratch_dir;
 using test::slurp;
 using test::source_path;
 using test::write_file;
+using ::testing::HasSubstr;
 
 std::string tight_turn(const std::string& extra = "") {
   return test::shipped_scenario_text("driveline_tight_turn.toml") + extra;
@@ -52,15 +52,16 @@ TEST(CliDriveline, RunsTheTightTurnAndWritesItsSignals) {
 }
 
 TEST(CliDriveline, RejectsATurnRatioBelowOne) {
-  expect_rejected(test::run_scenario_in("cli_driveline_turn",
-                                        replace(tight_turn("\n[driveline]\nturn_ratio = 0.9\n"), "turn_radius_m = 9.0", "")),
+  expect_rejected(test::run_scenario_in("cli_driveline_turn", replace(tight_turn("\n[driveline]\nturn_ratio = 0.9\n"),
+                                                                      "turn_radius_m = 9.0", "")),
                   {"s.toml", "turn_ratio", "[1, 1.2]"});
 }
 
 // Bad input the issue names: impossible geometry, road μ <= 0, a valve setting beyond the relief
 // valve, a rig-only effect on a car: exit 2, one line naming file and key.
 TEST(CliDriveline, RejectsATurnInsideHalfTheTrack) {
-  expect_rejected(test::run_scenario_in("cli_driveline_radius", replace(tight_turn(), "turn_radius_m = 9.0", "turn_radius_m = 0.7")),
+  expect_rejected(test::run_scenario_in("cli_driveline_radius",
+                                        replace(tight_turn(), "turn_radius_m = 9.0", "turn_radius_m = 0.7")),
                   {"s.toml", "turn_radius_m", "(0.755, 10000]"});
 }
 
@@ -71,10 +72,10 @@ TEST(CliDriveline, RejectsBothTurnKeys) {
 
 // The tyres' slip stiffness: c_κ F_z or an absolute C_κ, not both (rig_models/tyre.hpp).
 TEST(CliDriveline, RejectsBothTyreSlipStiffnesses) {
-  expect_rejected(test::run_scenario_in("cli_driveline_kappa",
-                                        tight_turn("\n[driveline]\ntyre_slip_stiffness_N = 1.5e5\n"
-                                                   "tyre_slip_stiffness_per_load = 19.0\n")),
-                  {"s.toml", "tyre_slip_stiffness_per_load", "an alternative to tyre_slip_stiffness_N"});
+  expect_rejected(
+      test::run_scenario_in("cli_driveline_kappa", tight_turn("\n[driveline]\ntyre_slip_stiffness_N = 1.5e5\n"
+                                                              "tyre_slip_stiffness_per_load = 19.0\n")),
+      {"s.toml", "tyre_slip_stiffness_per_load", "an alternative to tyre_slip_stiffness_N"});
 }
 
 TEST(CliDriveline, RejectsANonPositiveRoadFriction) {
@@ -85,22 +86,25 @@ TEST(CliDriveline, RejectsANonPositiveRoadFriction) {
 }
 
 TEST(CliDriveline, RejectsAValveSettingBeyondTheRelief) {
-  expect_rejected(test::run_scenario_in("cli_driveline_valve", replace(tight_turn(), "valve_pressure_bar = 30.0", "valve_pressure_bar = 31.0")),
+  expect_rejected(test::run_scenario_in("cli_driveline_valve", replace(tight_turn(), "valve_pressure_bar = 30.0",
+                                                                       "valve_pressure_bar = 31.0")),
                   {"s.toml", "valve_pressure_bar", "[0, 30]"});
 }
 
 TEST(CliDriveline, RejectsARigOnlyEffect) {
-  expect_rejected(test::run_scenario_in("cli_driveline_effect", tight_turn("\n[effects.bearing_drag]\nenabled = true\n")),
-                  {"s.toml", "bearing_drag", "torque-cell bearing"});
+  expect_rejected(
+      test::run_scenario_in("cli_driveline_effect", tight_turn("\n[effects.bearing_drag]\nenabled = true\n")),
+      {"s.toml", "bearing_drag", "torque-cell bearing"});
 }
 
 TEST(CliDriveline, RejectsAThrottleWithATorqueScheduleOrAStalledStart) {
   expect_rejected(test::run_scenario_in("cli_driveline_throttle", replace(tight_turn(), "valve_pressure_bar = 30.0",
-                                                                         "valve_pressure_bar = 30.0\nthrottle = 0.2")),
+                                                                          "valve_pressure_bar = 30.0\nthrottle = 0.2")),
                   {"s.toml", "throttle", "either"});
   const std::string mapped = replace(replace(tight_turn(), "engine_torque_Nm = [0.0, 30.0, 30.0]", "throttle = 0.1"),
                                      "start_speed_km_h = 5.0", "start_speed_km_h = 2.0");
-  expect_rejected(test::run_scenario_in("cli_driveline_stalled", mapped), {"s.toml", "start_speed_km_h", "stall speed"});
+  expect_rejected(test::run_scenario_in("cli_driveline_stalled", mapped),
+                  {"s.toml", "start_speed_km_h", "stall speed"});
 }
 
 TEST(CliDriveline, RejectsARoadTableOnARig) {
@@ -110,8 +114,10 @@ TEST(CliDriveline, RejectsARoadTableOnARig) {
 }
 
 TEST(CliDriveline, RejectsARigDriveCycle) {
-  expect_rejected(test::run_scenario_in("cli_driveline_drive", tight_turn("\n[drive]\ntime_s = [0.0]\nspeed_rpm = 1.0\nnormal_force_N = 1000.0\n")),
-                  {"s.toml", "drive", "[manoeuvre]"});
+  expect_rejected(
+      test::run_scenario_in("cli_driveline_drive",
+                            tight_turn("\n[drive]\ntime_s = [0.0]\nspeed_rpm = 1.0\nnormal_force_N = 1000.0\n")),
+      {"s.toml", "drive", "[manoeuvre]"});
 }
 
 // A driveline writes its coupling's measured run (was refused: "a measured run

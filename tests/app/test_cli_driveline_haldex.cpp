@@ -31,9 +31,10 @@ std::string short_launch() {
 TEST(CliDrivelineHaldex, SweepOverADrivelineKeyEqualsTheSingleRuns) {
   const auto dir = test::scratch_dir("cli_driveline_sweep");
   test::write_file(dir / "s.toml", short_launch());
-  const auto r = run_cli("sweep s.toml --set driveline.hydraulics.pump_displacement_cm3_per_rev=1.5,2.5,3.5 "
-                         "--jobs 2 --keep-parts -o sw.h5",
-                         dir);
+  const auto r = run_cli(
+      "sweep s.toml --set driveline.hydraulics.pump_displacement_cm3_per_rev=1.5,2.5,3.5 "
+      "--jobs 2 --keep-parts -o sw.h5",
+      dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const io::SweepTable t = io::read_sweep_table((dir / "sw.h5").string());
   ASSERT_EQ(t.text_column.size(), 3u);
@@ -69,24 +70,28 @@ TEST(CliDrivelineHaldex, RejectsBadValveAndHydraulicsInput) {
                                         replace(launch, "engine_torque_Nm", "valve_opening = 1.5\nengine_torque_Nm")),
                   {"s.toml", "valve_opening", "[0, 1]"});
   // A raw schedule and the controller both.
-  expect_rejected(test::run_scenario_in("cli_haldex_both", replace(launch, "engine_torque_Nm",
-                                                                   "valve_opening = 0.5\nengine_torque_Nm") +
-                                                               "\n[driveline.controller]\nlock_slip_rpm = 30.0\n"),
+  expect_rejected(test::run_scenario_in("cli_haldex_both",
+                                        replace(launch, "engine_torque_Nm", "valve_opening = 0.5\nengine_torque_Nm") +
+                                            "\n[driveline.controller]\nlock_slip_rpm = 30.0\n"),
                   {"s.toml", "valve_opening", "either the schedule or the controller"});
   // A pressure setting beyond a lowered relief valve.
-  expect_rejected(test::run_scenario_in("cli_haldex_relief",
-                                        replace(launch, "engine_torque_Nm", "valve_pressure_bar = 25.0\nengine_torque_Nm") +
-                                            "\n[driveline.hydraulics]\nrelief_pressure_bar = 20.0\n"),
-                  {"s.toml", "valve_pressure_bar", "[0, 20]"});
+  expect_rejected(
+      test::run_scenario_in("cli_haldex_relief",
+                            replace(launch, "engine_torque_Nm", "valve_pressure_bar = 25.0\nengine_torque_Nm") +
+                                "\n[driveline.hydraulics]\nrelief_pressure_bar = 20.0\n"),
+      {"s.toml", "valve_pressure_bar", "[0, 20]"});
   // The generation-mixing model's keys point to what replaced them.
-  expect_rejected(test::run_scenario_in("cli_haldex_old", launch + "\n[driveline.hydraulics]\ntorque_per_bar_Nm = 59.0\n"),
-                  {"s.toml", "torque_per_bar_Nm", "piston_area_cm2"});
-  expect_rejected(test::run_scenario_in("cli_haldex_leak", launch + "\n[driveline.hydraulics]\nleak_time_constant_s = 0.5\n"),
-                  {"s.toml", "leak_time_constant_s", "valve_area_mm2"});
+  expect_rejected(
+      test::run_scenario_in("cli_haldex_old", launch + "\n[driveline.hydraulics]\ntorque_per_bar_Nm = 59.0\n"),
+      {"s.toml", "torque_per_bar_Nm", "piston_area_cm2"});
+  expect_rejected(
+      test::run_scenario_in("cli_haldex_leak", launch + "\n[driveline.hydraulics]\nleak_time_constant_s = 0.5\n"),
+      {"s.toml", "leak_time_constant_s", "valve_area_mm2"});
   // Controller thresholds that contradict each other, and a non-positive pack oil volume.
-  expect_rejected(test::run_scenario_in("cli_haldex_speeds", launch + "\n[driveline.controller]\nfast_speed_km_h = 100.0\n"
-                                                                      "top_speed_km_h = 90.0\n"),
-                  {"s.toml", "top_speed_km_h"});
+  expect_rejected(
+      test::run_scenario_in("cli_haldex_speeds", launch + "\n[driveline.controller]\nfast_speed_km_h = 100.0\n"
+                                                          "top_speed_km_h = 90.0\n"),
+      {"s.toml", "top_speed_km_h"});
   expect_rejected(test::run_scenario_in("cli_haldex_oil", launch + "\n[driveline]\npack_oil_volume_ml = 0.0\n"),
                   {"s.toml", "pack_oil_volume_ml"});
 }

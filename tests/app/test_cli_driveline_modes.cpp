@@ -81,10 +81,11 @@ TEST(CliDrivelineModes, RunSummaryAndModesAtTheRunAgree) {
       break;
     }
   }
-  EXPECT_NEAR(found_Hz, f_Hz, 0.006) << modes.out;   // the summary prints 2 decimals
+  EXPECT_NEAR(found_Hz, f_Hz, 0.006) << modes.out;     // the summary prints 2 decimals
   EXPECT_NEAR(found_zeta, zeta, 0.0006) << modes.out;  // and 3
   // --run on another kind says why in one line.
-  const auto refused = run_cli("modes '" + source_path("scenarios/rig_case1_25kN_378Hz.toml") + "' --run tight.h5", dir);
+  const auto refused =
+      run_cli("modes '" + source_path("scenarios/rig_case1_25kN_378Hz.toml") + "' --run tight.h5", dir);
   EXPECT_EQ(refused.exit_code, 2) << refused.out;
   EXPECT_THAT(refused.err, HasSubstr("--run"));
 }

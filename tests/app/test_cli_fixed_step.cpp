@@ -57,18 +57,23 @@ TEST(CliFixedStep, RunsANetworkOnTheSameEquationsAsTheAdaptiveRun) {
 
 TEST(CliFixedStep, RefusesAStepThatDoesNotDivideTheSampleIntervalOrTheThermalStep) {
   const auto dir = scratch_dir("fixed_step_refusals");
-  const auto rig = run_cli("run '" + source_path("scenarios/rig_case2_15kN_378Hz.toml") + "' -o x.h5 --fixed-step 3e-4", dir);
+  const auto rig =
+      run_cli("run '" + source_path("scenarios/rig_case2_15kN_378Hz.toml") + "' -o x.h5 --fixed-step 3e-4", dir);
   EXPECT_EQ(rig.exit_code, 2);
   EXPECT_THAT(rig.err, HasSubstr("--fixed-step 0.0003 s: the thermal step solver.thermal_step_ms (0.01 s) must be a "
                                  "whole number of fixed steps; choose a step that divides it"));
-  const auto car = run_cli("run '" + source_path("scenarios/driveline_tight_turn.toml") + "' -o x.h5 --fixed-step 2e-3", dir);
+  const auto car =
+      run_cli("run '" + source_path("scenarios/driveline_tight_turn.toml") + "' -o x.h5 --fixed-step 2e-3", dir);
   EXPECT_EQ(car.exit_code, 2);
-  EXPECT_THAT(car.err, HasSubstr("--fixed-step 0.002 s: the sample interval 1 / output.sample_rate_Hz (0.001 s) must be "
-                                 "a whole number of fixed steps"));
-  const auto net = run_cli("run '" + source_path("scenarios/networks/wet_clutch_bench.toml") + "' -o x.h5 --fixed-step 2e-4", dir);
+  EXPECT_THAT(car.err,
+              HasSubstr("--fixed-step 0.002 s: the sample interval 1 / output.sample_rate_Hz (0.001 s) must be "
+                        "a whole number of fixed steps"));
+  const auto net =
+      run_cli("run '" + source_path("scenarios/networks/wet_clutch_bench.toml") + "' -o x.h5 --fixed-step 2e-4", dir);
   EXPECT_EQ(net.exit_code, 2);
-  EXPECT_THAT(net.err, HasSubstr("key 'output.sample_rate_Hz': --fixed-step 0.0002 s: the sample interval (5e-05 s) must be "
-                                 "a whole number of fixed steps"));
+  EXPECT_THAT(net.err,
+              HasSubstr("key 'output.sample_rate_Hz': --fixed-step 0.0002 s: the sample interval (5e-05 s) must be "
+                        "a whole number of fixed steps"));
   EXPECT_FALSE(std::filesystem::exists(dir / "x.h5"));
 }
 

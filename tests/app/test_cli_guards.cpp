@@ -36,11 +36,11 @@ TEST(CliGuards, FluidWithBetaNegatedIsRejectedWhenLoaded) {
   const auto dir = scratch_dir("guard_beta");
   write_file(dir / "neg.toml", replace(slurp(source_path("scenarios/fluids/paper_e_fluid_a.toml")),
                                        "beta = [0.1018, 0.1164]", "beta = [-0.1018, -0.1164]"));
-  expect_rejected(run_cli("screen neg.toml", dir), {"neg.toml", "key 'linear.beta'", "mu = -0.08012 <= 0",
-                                                    "speed 1 rpm", "temperature -40 °C"});
-  write_file(dir / "s.toml", replace(shipped_scenario_text("paper_g_case1_10kN.toml"),
-                                     "fluid = \"" + source_path("scenarios/fluids/lsc_fluid_c.toml") + "\"",
-                                     "fluid = \"neg.toml\""));
+  expect_rejected(run_cli("screen neg.toml", dir),
+                  {"neg.toml", "key 'linear.beta'", "mu = -0.08012 <= 0", "speed 1 rpm", "temperature -40 °C"});
+  write_file(dir / "s.toml",
+             replace(shipped_scenario_text("paper_g_case1_10kN.toml"),
+                     "fluid = \"" + source_path("scenarios/fluids/lsc_fluid_c.toml") + "\"", "fluid = \"neg.toml\""));
   const auto r = run_cli("run s.toml -o out.h5", dir);
   expect_rejected(r, {"neg.toml", "key 'linear.beta'"});
   EXPECT_FALSE(fs::exists(dir / "out.h5"));
@@ -49,14 +49,14 @@ TEST(CliGuards, FluidWithBetaNegatedIsRejectedWhenLoaded) {
 TEST(CliGuards, FilmThicknessOf1e300MicronsIsRejectedWithItsBounds) {
   // Old code: accepted (> 0), the run reached 5e279 °C and exited 0.
   expect_rejected(run_scenario_in("guard_film", shipped_scenario_text("paper_g_case1_10kN.toml") +
-                                                     "\n[clutch.oil]\nfilm_thickness_um = 1e-300\n"),
+                                                    "\n[clutch.oil]\nfilm_thickness_um = 1e-300\n"),
                   {"s.toml", "key 'clutch.oil.film_thickness_um'", "[0.01, 1000]"});
 }
 
 TEST(CliGuards, ViscousGapOf1e300MicronsIsRejectedWithItsBounds) {
   // Old code: accepted (> 0), the run reached 3.4e298 N m and exited 0.
   expect_rejected(run_scenario_in("guard_gap", shipped_scenario_text("paper_g_case1_10kN.toml") +
-                                                    "\n[effects.viscous_shear]\nenabled = true\ngap_um = 1e-300\n"),
+                                                   "\n[effects.viscous_shear]\nenabled = true\ngap_um = 1e-300\n"),
                   {"s.toml", "effects.viscous_shear.gap_um", "[0.01, 10000]"});
 }
 
@@ -86,8 +86,7 @@ TEST(CliFileSafety, RunOutputOverTheScenarioIsRefusedAndTheScenarioKept) {
   const std::string before = slurp(dir / "s.toml");
   expect_rejected(run_cli("run s.toml -o ./s.toml", dir), {"output -o is the scenario 's.toml'"});
   EXPECT_EQ(slurp(dir / "s.toml"), before);
-  expect_rejected(run_cli("run s.toml -o fluids/../fluids/lsc_fluid_c.toml", dir),
-                  {"output -o is the fluid file"});
+  expect_rejected(run_cli("run s.toml -o fluids/../fluids/lsc_fluid_c.toml", dir), {"output -o is the fluid file"});
 }
 
 TEST(CliFileSafety, MeasurementAndRunFileWithTheSameNameAreRefused) {
@@ -114,8 +113,8 @@ TEST(CliFileSafety, HugeOutputIsRefusedBeforeSimulatingUnlessForced) {
   // Old code: simulated 30 s at 1 MHz for many minutes and wrote 3.6 GB without a word.
   // 30 s x 1e6 S/s + 1 = 30,000,001 samples x 15 channels x 8 bytes = 3.60 GB.
   const auto dir = scratch_dir("safe_size");
-  write_file(dir / "s.toml", replace(shipped_scenario_text("rig_case2_15kN_175Hz.toml"),
-                                     "sample_rate_Hz = 1000.0", "sample_rate_Hz = 1e6"));
+  write_file(dir / "s.toml", replace(shipped_scenario_text("rig_case2_15kN_175Hz.toml"), "sample_rate_Hz = 1000.0",
+                                     "sample_rate_Hz = 1e6"));
   const auto t0 = std::chrono::steady_clock::now();
   const auto r = run_cli("run s.toml -o out.h5", dir);
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -128,8 +127,8 @@ TEST(CliFileSafety, HugeOutputIsRefusedBeforeSimulatingUnlessForced) {
 TEST(CliFileSafety, HugeSweepIsRefusedBeforeRunning) {
   // 3 cases x (20 s x 1e6 S/s + 1) samples x 5 kept signals x 8 bytes = 2.40 GB.
   const auto dir = scratch_dir("safe_sweep_size");
-  write_file(dir / "s.toml", replace(shipped_scenario_text("sweep_torsion_bar.toml"),
-                                     "sample_rate_Hz = 5000.0", "sample_rate_Hz = 1e6"));
+  write_file(dir / "s.toml", replace(shipped_scenario_text("sweep_torsion_bar.toml"), "sample_rate_Hz = 5000.0",
+                                     "sample_rate_Hz = 1e6"));
   const auto r = run_cli("sweep s.toml --set rig.torsion_bar.natural_frequency_Hz=100,200,300 -o sw.h5", dir);
   expect_rejected(r, {"sw.h5", "estimated output size 2.40 GB (3 cases", "--force"});
   EXPECT_FALSE(fs::exists(dir / "sw.h5.parts"));

@@ -136,8 +136,11 @@ TEST(CliImport, LoggerRampsThroughImportAndCharacterise) {
   // The ms/kN logger files straight into characterise with --map: the law of their imports.
   const std::string lin = args + " --compensation linear";
   const auto c = test::run_cli("characterise run1_imported.csv run3_imported.csv -o c.toml" + lin, dir);
-  const auto d = test::run_cli("characterise run1.log run3.log -o d.toml --map time_ms=time_s:ms "
-                               "--map force_kN=normal_force_N:kN" + lin, dir);
+  const auto d = test::run_cli(
+      "characterise run1.log run3.log -o d.toml --map time_ms=time_s:ms "
+      "--map force_kN=normal_force_N:kN" +
+          lin,
+      dir);
   ASSERT_EQ(c.exit_code, 0) << c.err;
   ASSERT_EQ(d.exit_code, 0) << d.err;
   EXPECT_THAT(d.err, HasSubstr("shudder: warning: run1.log: metadata not given"));
@@ -151,15 +154,16 @@ TEST(CliImport, LoggerRunThroughImportAndDiagnose) {
   const auto dir = test::scratch_dir("cli_import_diagnose");
   test::write_file(dir / "hidden.toml", test::shipped_scenario_text("diagnosis_probe.toml") +
                                             "\n[effects.bearing_drag]\nenabled = true\nequivalent_mu = 0.005\n");
-  const auto run = test::run_cli("run hidden.toml -o hidden.h5 --measurement a.csv --sample-rate 100 --noise --seed 3", dir);
+  const auto run =
+      test::run_cli("run hidden.toml -o hidden.h5 --measurement a.csv --sample-rate 100 --noise --seed 3", dir);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const io::MeasuredRun measured = io::read_measured_run((dir / "a.csv").string());
   write_logger(dir / "a.log", measured, kMsKnSemicolon, ';', true);
   // The rig's metadata given on the command line, as a user who knows them would.
-  const auto imp = test::run_cli("import a.log -o a_imported.csv --meta 'temp_sensor=" + *measured.meta("temp_sensor") +
-                                     "' --meta oil_flow_ml_min=" + *measured.meta("oil_flow_ml_min") +
-                                     " --meta rig=lsctr",
-                                 dir);
+  const auto imp =
+      test::run_cli("import a.log -o a_imported.csv --meta 'temp_sensor=" + *measured.meta("temp_sensor") +
+                        "' --meta oil_flow_ml_min=" + *measured.meta("oil_flow_ml_min") + " --meta rig=lsctr",
+                    dir);
   ASSERT_EQ(imp.exit_code, 0) << imp.err;
   EXPECT_EQ(imp.err, "");  // nothing defaulted, nothing to warn about
   test::write_file(dir / "model.toml", test::shipped_scenario_text("diagnosis_probe.toml") +
@@ -170,9 +174,10 @@ TEST(CliImport, LoggerRunThroughImportAndDiagnose) {
   ASSERT_EQ(via_import.exit_code, 0) << via_import.err;
   EXPECT_THAT(via_import.out, HasSubstr("Missing effects: bearing_drag"));
   // The logger file itself, with its mapping on the diagnose command line.
-  const auto direct_log = test::run_cli("diagnose model.toml a.log --jobs 2 --map time_ms=time_s:ms "
-                                        "--map force_kN=normal_force_N:kN --map temp_C=temp_C",
-                                        dir);
+  const auto direct_log = test::run_cli(
+      "diagnose model.toml a.log --jobs 2 --map time_ms=time_s:ms "
+      "--map force_kN=normal_force_N:kN --map temp_C=temp_C",
+      dir);
   ASSERT_EQ(direct_log.exit_code, 0) << direct_log.err;
   EXPECT_THAT(direct_log.err, HasSubstr("a.log: metadata not given, written with the defaults"));
 }
@@ -214,9 +219,9 @@ TEST(CliImport, CharacteriseAndDiagnoseTakeTrustUnitsAsImportDoes) {
   const auto diagnosed = test::run_cli(
       "diagnose " + test::source_path("scenarios/paper_g_case2_15kN.toml") + " log.csv --trust-units" + map, dir);
   EXPECT_THAT(diagnosed.err, Not(HasSubstr("look like")));
-  test::expect_rejected(test::run_cli("diagnose " + test::source_path("scenarios/paper_g_case2_15kN.toml") +
-                                          " log.csv" + map, dir),
-                        {"log.csv", "look like kN"});
+  test::expect_rejected(
+      test::run_cli("diagnose " + test::source_path("scenarios/paper_g_case2_15kN.toml") + " log.csv" + map, dir),
+      {"log.csv", "look like kN"});
 }
 
 }  // namespace

@@ -68,7 +68,8 @@ TEST(CliMessages, UnknownOptionalKeySuggestsTheNearestAllowedKey) {
   std::string s = shipped_scenario_text("rig_shudder_negative_slope.toml");
   s = replace(s, "start_temp_C = 60.0", "start_temp_C = 60.0\nsump_strat_temp_C = 60.0");
   const auto o = run_scenario_in("msg_unknown", s);
-  expect_rejected(o, {"key 'clutch.sump_strat_temp_C': unknown key; did you mean 'sump_start_temp_C'? allowed keys here:"});
+  expect_rejected(
+      o, {"key 'clutch.sump_strat_temp_C': unknown key; did you mean 'sump_start_temp_C'? allowed keys here:"});
 }
 
 // Old: sweep_cases grew the 1e15-row grid row by row until memory ran out, then reported

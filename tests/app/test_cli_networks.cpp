@@ -125,7 +125,8 @@ TEST(CliNetworks, BenchJudgedOnItsBarMatchesTheRigKind) {
   const auto bench = run_example("wet_clutch_bench");
   ASSERT_EQ(bench.r.exit_code, 0) << bench.r.err;
   const auto dir = test::scratch_dir("network_bench_rig");
-  const auto rig = test::run_cli("run '" + test::source_path("scenarios/rig_shudder_negative_slope.toml") + "' -o rig.h5", dir);
+  const auto rig =
+      test::run_cli("run '" + test::source_path("scenarios/rig_shudder_negative_slope.toml") + "' -o rig.h5", dir);
   ASSERT_EQ(rig.exit_code, 0) << rig.err;
   const auto rig_rec = io::read_run_hdf5((dir / "rig.h5").string());
   const auto* a = bench.rec.find_block("verdict");

@@ -88,8 +88,8 @@ TEST(PaperD, Case2SumpConstantWhileInterfaceVaries) {
 TEST(PaperB, RisePerKilojouleMatchesCase1) {
   const auto pb = run_scenario("paper_b_ramp_20kN");
   const auto c25 = run_scenario("paper_g_case1_25kN");
-  const double pb_rise_per_kJ = (at(pb, "ir_temp_C", 20.0) - at(pb, "ir_temp_C", 10.0)) /
-                                (pb.find_scalar("heat_generated_J")->value / 1e3);
+  const double pb_rise_per_kJ =
+      (at(pb, "ir_temp_C", 20.0) - at(pb, "ir_temp_C", 10.0)) / (pb.find_scalar("heat_generated_J")->value / 1e3);
   const double c25_rise_per_kJ =
       (at(c25, "ir_temp_C", 10.0) - at(c25, "ir_temp_C", 0.0)) / (c25.find_scalar("heat_generated_J")->value / 1e3);
   EXPECT_NEAR(pb_rise_per_kJ / c25_rise_per_kJ, 1.0, 0.15);

@@ -108,7 +108,8 @@ TEST(CliPlot, EveryRunPlotOfARigRunDrawsPngAndSvgTitledWithTheScenario) {
   EXPECT_THAT(slurp(dir / "spectrum.svg"), HasSubstr("friction-induced vibration at 37"));
   EXPECT_THAT(slurp(dir / "spectrogram.svg"), HasSubstr("dB re 1 (N m)²/Hz"));
   // The spectrogram names its channel and a frame length one can read.
-  EXPECT_THAT(slurp(dir / "spectrogram.svg"), testing::ContainsRegex("spectrogram of torque_Nm \\(frames of [0-9.]+ ms = "));
+  EXPECT_THAT(slurp(dir / "spectrogram.svg"),
+              testing::ContainsRegex("spectrogram of torque_Nm \\(frames of [0-9.]+ ms = "));
   // The oscillating run's torque: slip in its own panel, onset and end details.
   const std::string torque = slurp(dir / "torque.svg");
   for (const char* text : {"slip_rpm [rpm]", "onset detail (onset ", "end detail (", "8 periods of 37"})
@@ -118,7 +119,8 @@ TEST(CliPlot, EveryRunPlotOfARigRunDrawsPngAndSvgTitledWithTheScenario) {
   // quiet start, and not above it (the half peak-to-peak also holds the harmonics).
   const std::string spectrum = slurp(dir / "spectrum.svg");
   std::smatch m, d;
-  ASSERT_TRUE(std::regex_search(spectrum, m, std::regex("fundamental ([0-9.]+) N m \\(whole record: ([0-9.]+) N m\\)")));
+  ASSERT_TRUE(
+      std::regex_search(spectrum, m, std::regex("fundamental ([0-9.]+) N m \\(whole record: ([0-9.]+) N m\\)")));
   ASSERT_TRUE(std::regex_search(spectrum, d, std::regex("detector amplitude ([0-9.]+) N m \\(half peak-to-peak\\)")));
   const double part = std::stod(m[1].str()), whole = std::stod(m[2].str()), detector = std::stod(d[1].str());
   EXPECT_LT(whole, part);
@@ -153,8 +155,7 @@ TEST(CliPlot, SweepPlotDrawsPngAndSvgAndFileKindsAreNotMixedUp) {
   if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
   const auto dir = scratch_dir("plot_sweep");
   write_file(dir / "s.toml", short_rig_scenario());
-  auto r = run_cli("sweep s.toml --set rig.torsion_bar.natural_frequency_Hz=200,300 --jobs 2 --quiet -o sw.h5",
-                   dir);
+  auto r = run_cli("sweep s.toml --set rig.torsion_bar.natural_frequency_Hz=200,300 --jobs 2 --quiet -o sw.h5", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   r = run_cli("plot sw.h5 --what sweep -o sweep.png", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -182,13 +183,15 @@ TEST(CliPlot, SweepPlotDrawsPngAndSvgAndFileKindsAreNotMixedUp) {
 
 TEST(CliPlot, BadRequestsExitTwoNamingTheProblem) {
   const auto dir = run_in("plot_bad", short_rig_scenario(), "rig.h5");
-  struct Case { std::string args, fragment; };
-  for (const auto& c : std::vector<Case>{
-           {"plot rig.h5 --what torqeu -o x.png", "--what"},
-           {"plot absent.h5 --what torque -o x.png", "absent.h5: cannot read run file: no such file"},
-           {"plot rig.h5 --what torque -o x.jpg", "unsupported plot format '.jpg'"},
-           {"plot rig.h5 --what torque -o no_dir/x.png", "cannot write plot"},
-           {"plot rig.h5 --what torque", "--output"}}) {
+  struct Case {
+    std::string args, fragment;
+  };
+  for (const auto& c :
+       std::vector<Case>{{"plot rig.h5 --what torqeu -o x.png", "--what"},
+                         {"plot absent.h5 --what torque -o x.png", "absent.h5: cannot read run file: no such file"},
+                         {"plot rig.h5 --what torque -o x.jpg", "unsupported plot format '.jpg'"},
+                         {"plot rig.h5 --what torque -o no_dir/x.png", "cannot write plot"},
+                         {"plot rig.h5 --what torque", "--output"}}) {
     const auto r = run_cli(c.args, dir);
     EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.err;
     EXPECT_THAT(r.err, HasSubstr(c.fragment)) << c.args;
@@ -210,8 +213,7 @@ TEST(CliPlot, RunReportHoldsTheSummaryAndTheKeyPlots) {
   EXPECT_THAT(summary, HasSubstr("Scenario  rig_shudder_negative_slope (rig)"));
   EXPECT_THAT(summary, HasSubstr("Output: rig.h5"));
   EXPECT_EQ(r.out.substr(0, summary.size()), summary) << "summary.txt is the printed summary";
-  for (const char* f :
-       {"torque.png", "temperature.png", "spectrum.png", "spectrogram.png", "stability_map.png"})
+  for (const char* f : {"torque.png", "temperature.png", "spectrum.png", "spectrogram.png", "stability_map.png"})
     expect_png(dir / "rep" / f);
 
   // Prescribed-slip run: no spectrogram, no stability map.
@@ -256,9 +258,8 @@ TEST(CliPlot, SweepReportHoldsTheSummaryAndTheSweepPlot) {
   if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
   const auto dir = scratch_dir("plot_report_sweep");
   write_file(dir / "s.toml", short_rig_scenario());
-  const auto r = run_cli(
-      "sweep s.toml --set rig.torsion_bar.natural_frequency_Hz=200,300 --jobs 2 -o sw.h5 --report rep",
-      dir);
+  const auto r =
+      run_cli("sweep s.toml --set rig.torsion_bar.natural_frequency_Hz=200,300 --jobs 2 -o sw.h5 --report rep", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string summary = slurp(dir / "rep" / "summary.txt");
   EXPECT_THAT(summary, HasSubstr("Sweep of rig_shudder_negative_slope: 2 cases"));

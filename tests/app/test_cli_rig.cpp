@@ -25,7 +25,9 @@ std::string base_rig_scenario() {
          "type = \"rig\"\n"
          "duration_s = 0.05\n"
          "[clutch]\n"
-         "fluid = \"" + source_path("scenarios/fluids/lsc_fluid_c.toml") + "\"\n"
+         "fluid = \"" +
+         source_path("scenarios/fluids/lsc_fluid_c.toml") +
+         "\"\n"
          "start_temp_C = 77.0\n"
          "[drive]\n"
          "time_s = [0.0, 0.05]\n"
@@ -92,9 +94,8 @@ TEST(CliRig, ModesOnPrescribedSlipScenarioIsRejectedNamingScenarioType) {
 // fluid-C friction torque (~116 N m at 5 s, Paper G Figure 12 shape), temperatures rise.
 TEST(CliRig, RunWritesTheFormatsMeasurementCsv) {
   const auto dir = scratch_dir("rig_measurement");
-  const auto r = run_cli("run '" + source_path("scenarios/rig_case1_25kN_378Hz.toml") +
-                             "' -o out.h5 --measurement out.csv",
-                         dir);
+  const auto r =
+      run_cli("run '" + source_path("scenarios/rig_case1_25kN_378Hz.toml") + "' -o out.h5 --measurement out.csv", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   ASSERT_TRUE(std::filesystem::exists(dir / "out.csv"));
   EXPECT_TRUE(std::filesystem::exists(dir / "out.h5"));
@@ -142,21 +143,21 @@ TEST(CliRig, ZeroHousingInertiaIsRejected) {
 }
 
 TEST(CliRig, NegativeDriveInertiaIsRejected) {
-  expect_rejected(run_scenario("drive_neg", replace(base_rig_scenario(), "drive_inertia_kg_m2 = 0.6",
-                                                    "drive_inertia_kg_m2 = -1.0")),
+  expect_rejected(run_scenario("drive_neg",
+                               replace(base_rig_scenario(), "drive_inertia_kg_m2 = 0.6", "drive_inertia_kg_m2 = -1.0")),
                   {"s.toml:", "rig.drive_inertia_kg_m2", "out of range", "> 0"});
 }
 
 TEST(CliRig, ZeroBarStiffnessIsRejected) {
-  expect_rejected(run_scenario("k0", replace(base_rig_scenario(), "natural_frequency_Hz = 378.0",
-                                             "stiffness_Nm_per_rad = 0.0")),
-                  {"s.toml:", "rig.torsion_bar.stiffness_Nm_per_rad", "out of range", "> 0"});
+  expect_rejected(
+      run_scenario("k0", replace(base_rig_scenario(), "natural_frequency_Hz = 378.0", "stiffness_Nm_per_rad = 0.0")),
+      {"s.toml:", "rig.torsion_bar.stiffness_Nm_per_rad", "out of range", "> 0"});
 }
 
 TEST(CliRig, BarFrequencyBelowOneHertzIsRejected) {
-  expect_rejected(run_scenario("f_low", replace(base_rig_scenario(), "natural_frequency_Hz = 378.0",
-                                                "natural_frequency_Hz = 0.5")),
-                  {"s.toml:", "rig.torsion_bar.natural_frequency_Hz", "out of range", "[1, 10000]"});
+  expect_rejected(
+      run_scenario("f_low", replace(base_rig_scenario(), "natural_frequency_Hz = 378.0", "natural_frequency_Hz = 0.5")),
+      {"s.toml:", "rig.torsion_bar.natural_frequency_Hz", "out of range", "[1, 10000]"});
 }
 
 TEST(CliRig, BarFrequencyAboveTenKilohertzIsRejected) {
@@ -168,33 +169,32 @@ TEST(CliRig, BarFrequencyAboveTenKilohertzIsRejected) {
 TEST(CliRig, BarFrequencyAndStiffnessTogetherAreRejected) {
   expect_rejected(run_scenario("f_and_k", replace(base_rig_scenario(), "natural_frequency_Hz = 378.0",
                                                   "natural_frequency_Hz = 378.0\nstiffness_Nm_per_rad = 1.0e5")),
-                  {"s.toml:", "rig.torsion_bar.", "exactly one of", "natural_frequency_Hz",
-                   "stiffness_Nm_per_rad"});
+                  {"s.toml:", "rig.torsion_bar.", "exactly one of", "natural_frequency_Hz", "stiffness_Nm_per_rad"});
 }
 
 TEST(CliRig, DriveSpeedAboveMotorRangeIsRejected) {
-  expect_rejected(run_scenario("w_high", replace(base_rig_scenario(), "speed_rpm = [10.0, 10.0]",
-                                                 "speed_rpm = [10.0, 200.0]")),
-                  {"s.toml:", "drive.speed_rpm", "200", "[0.5, 125] rpm"});
+  expect_rejected(
+      run_scenario("w_high", replace(base_rig_scenario(), "speed_rpm = [10.0, 10.0]", "speed_rpm = [10.0, 200.0]")),
+      {"s.toml:", "drive.speed_rpm", "200", "[0.5, 125] rpm"});
 }
 
 TEST(CliRig, DriveSpeedBelowMotorRangeIsRejected) {
-  expect_rejected(run_scenario("w_low", replace(base_rig_scenario(), "speed_rpm = [10.0, 10.0]",
-                                                "speed_rpm = [0.1, 10.0]")),
-                  {"s.toml:", "drive.speed_rpm", "0.1", "[0.5, 125] rpm"});
+  expect_rejected(
+      run_scenario("w_low", replace(base_rig_scenario(), "speed_rpm = [10.0, 10.0]", "speed_rpm = [0.1, 10.0]")),
+      {"s.toml:", "drive.speed_rpm", "0.1", "[0.5, 125] rpm"});
 }
 
 TEST(CliRig, ForceAboveRigMaximumIsRejected) {
-  expect_rejected(run_scenario("force", replace(base_rig_scenario(), "normal_force_N = 15000.0",
-                                                "normal_force_N = 31000.0")),
-                  {"s.toml:", "drive.normal_force_N", "out of range", "[0, 30000]"});
+  expect_rejected(
+      run_scenario("force", replace(base_rig_scenario(), "normal_force_N = 15000.0", "normal_force_N = 31000.0")),
+      {"s.toml:", "drive.normal_force_N", "out of range", "[0, 30000]"});
 }
 
 // A 50 Hz bar is not one of the rig's (100–500 Hz) but a valid model: one warning line naming
 // the key and the range, exit 0, and the run completes (the output is written).
 TEST(CliRig, BarFrequencyOutsideRigBarsIsOnlyAWarning) {
-  const Outcome o = run_scenario("f_50", replace(base_rig_scenario(), "natural_frequency_Hz = 378.0",
-                                                 "natural_frequency_Hz = 50.0"));
+  const Outcome o =
+      run_scenario("f_50", replace(base_rig_scenario(), "natural_frequency_Hz = 378.0", "natural_frequency_Hz = 50.0"));
   EXPECT_EQ(o.r.exit_code, 0) << o.r.err;
   EXPECT_TRUE(o.output_exists);
   EXPECT_EQ(std::count(o.r.err.begin(), o.r.err.end(), '\n'), 1) << o.r.err;

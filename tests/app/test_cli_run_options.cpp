@@ -30,7 +30,8 @@ std::string case1() {
 // the scenario as run.
 TEST(CliRunOptions, SetChangesTheRunAndIsRecorded) {
   const auto dir = scratch_dir("run_set");
-  const auto r = run_cli("run " + case1() + " -o out.h5 --set drive.normal_force_N=12000 --set clutch.start_temp_C=50", dir);
+  const auto r =
+      run_cli("run " + case1() + " -o out.h5 --set drive.normal_force_N=12000 --set clutch.start_temp_C=50", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto rec = io::read_run_hdf5((dir / "out.h5").string());
   const auto* force = rec.find("normal_force_N");
@@ -74,8 +75,9 @@ TEST(CliRunOptions, SetTakesOneNumberPerKey) {
                   {"a run takes one value per key"});
   expect_rejected(run_cli("run " + case1() + " -o out.h5 --set drive.normal_force_N=heavy", dir),
                   {"'heavy' is not a finite number", "expected KEY=VALUE"});
-  expect_rejected(run_cli("run " + case1() + " -o out.h5 --set drive.normal_force_N=1 --set drive.normal_force_N=2", dir),
-                  {"drive.normal_force_N", "given twice"});
+  expect_rejected(
+      run_cli("run " + case1() + " -o out.h5 --set drive.normal_force_N=1 --set drive.normal_force_N=2", dir),
+      {"drive.normal_force_N", "given twice"});
   expect_rejected(run_cli("run " + case1() + " -o out.h5 --set scenario.name=1", dir),
                   {"scenario.name", "only numeric keys"});
   EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));

@@ -149,10 +149,10 @@ class JsonReader {
   std::size_t p_ = 0;
 };
 
-const char* const kIndexKeys[] = {
-    "mu1_over_mu50",     "mu100_over_mu300",   "yoshizawa_mu1_over_mu20", "miyazaki_mu6_over_mu180",
-    "murakami_dmu_dV50", "murakami_dmu_dV150", "mercon_v_2_over_20",      "mercon_v_40_over_120",
-    "jaso_dmu_dv_0_3",   "jaso_dmu_dv_0_9"};
+const char* const kIndexKeys[] = {"mu1_over_mu50",           "mu100_over_mu300",     "yoshizawa_mu1_over_mu20",
+                                  "miyazaki_mu6_over_mu180", "murakami_dmu_dV50",    "murakami_dmu_dV150",
+                                  "mercon_v_2_over_20",      "mercon_v_40_over_120", "jaso_dmu_dv_0_3",
+                                  "jaso_dmu_dv_0_9"};
 
 std::string quoted(const std::string& s) { return "'" + s + "'"; }
 
@@ -188,7 +188,8 @@ Json check_screen_json(const std::filesystem::path& file, std::size_t n_temps) {
 
 TEST(CliScreen, FluidCDefaultRigs) {
   const auto dir = scratch_dir("screen_fluid_c");
-  const auto r = run_cli("screen " + quoted(source_path("scenarios/fluids/lsc_fluid_c.toml")) + " --json out.json", dir);
+  const auto r =
+      run_cli("screen " + quoted(source_path("scenarios/fluids/lsc_fluid_c.toml")) + " --json out.json", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("Fluid lsc-fluid-c"));
   EXPECT_THAT(r.out, HasSubstr("1 rpm = 4.817 mm/s"));
@@ -222,8 +223,9 @@ TEST(CliScreen, SchematicNegativeSlopeFluidIsARisk) {
                          dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // The falling branch 10–100 rpm is found (the grid's 10 rpm point sits on the peak).
-  EXPECT_THAT(r.out, ::testing::ContainsRegex("negative slope \\(risky region\\) at [0-9]+ of [0-9]+ points, 1[01]\u2013"
-                                              "99 rpm, 40\u2013120 \u00b0C"));
+  EXPECT_THAT(r.out,
+              ::testing::ContainsRegex("negative slope \\(risky region\\) at [0-9]+ of [0-9]+ points, 1[01]\u2013"
+                                       "99 rpm, 40\u2013120 \u00b0C"));
   EXPECT_THAT(r.out, HasSubstr("Verdict: RISK: negative isothermal slope at 1"));
   EXPECT_THAT(r.out, HasSubstr("predicted unstable at"));
 
@@ -272,7 +274,8 @@ TEST(CliScreen, PaperEFluidAIsLowRisk) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("0.7984"));  // mu1/mu50 at 29 °C (Paper E Table 4: 0.7985)
   // Friction rises from 1 to 50 rpm and is held beyond: no negative slope, every rig stable.
-  EXPECT_THAT(r.out, HasSubstr("Verdict: LOW RISK: no negative isothermal slope over 1\u2013120 rpm, 29\u2013120 \u00b0C"));
+  EXPECT_THAT(r.out,
+              HasSubstr("Verdict: LOW RISK: no negative isothermal slope over 1\u2013120 rpm, 29\u2013120 \u00b0C"));
   EXPECT_THAT(r.out, HasSubstr("every rig predicted stable"));
 }
 
@@ -280,11 +283,12 @@ TEST(CliScreen, PaperEFluidAIsLowRisk) {
 // 20-30 °C): no index is computed, so there is no verdict: "NOT JUDGED", exit 3, never "LOW RISK".
 TEST(CliScreen, NoIndexComputedIsNotJudged) {
   const auto dir = scratch_dir("screen_not_judged");
-  write_file(dir / "cold.toml", "[fluid]\nname = \"cold\"\nnu40_cSt = 35.0\nnu100_cSt = 6.7\n"
-                                      "[static_friction]\nbreakaway_ratio = 1.0\n"
-                                      "[table]\nspeeds_mm_s = [5.0, 50.0, 500.0]\nloads_N = [20000.0]\n"
-                                      "[[table.row]]\ntemp_C = 20.0\nmu = [[0.10, 0.11, 0.12]]\n"
-                                      "[[table.row]]\ntemp_C = 30.0\nmu = [[0.09, 0.10, 0.11]]\n");
+  write_file(dir / "cold.toml",
+             "[fluid]\nname = \"cold\"\nnu40_cSt = 35.0\nnu100_cSt = 6.7\n"
+             "[static_friction]\nbreakaway_ratio = 1.0\n"
+             "[table]\nspeeds_mm_s = [5.0, 50.0, 500.0]\nloads_N = [20000.0]\n"
+             "[[table.row]]\ntemp_C = 20.0\nmu = [[0.10, 0.11, 0.12]]\n"
+             "[[table.row]]\ntemp_C = 30.0\nmu = [[0.09, 0.10, 0.11]]\n");
   const auto r = run_cli("screen cold.toml --json out.json", dir);
   EXPECT_EQ(r.exit_code, 3) << r.out << r.err;
   EXPECT_THAT(r.out, HasSubstr("no screening temperature inside the law's data; give --temps"));
@@ -348,9 +352,9 @@ TEST(CliScreen, BadTemperaturesExit2) {
 TEST(CliScreen, BadLoadAndRigExit2) {
   const std::string fluid = quoted(source_path("scenarios/fluids/lsc_fluid_c.toml"));
   expect_rejected(run_bad("load", "screen " + fluid + " --load-N -5"), {"--load-N", "> 0 N"});
-  expect_rejected(run_bad("rig_type", "screen " + fluid + " --rig " +
-                                          quoted(source_path("scenarios/paper_g_case1_10kN.toml"))),
-                  {"paper_g_case1_10kN.toml", "scenario.type", "--rig needs a scenario with type = \"rig\""});
+  expect_rejected(
+      run_bad("rig_type", "screen " + fluid + " --rig " + quoted(source_path("scenarios/paper_g_case1_10kN.toml"))),
+      {"paper_g_case1_10kN.toml", "scenario.type", "--rig needs a scenario with type = \"rig\""});
   // A broken fluid file: the loader's message (file, line, key) comes through.
   const auto dir = scratch_dir("screen_bad_fluid_text");
   write_file(dir / "f.toml", "[fluid]\nname = \"x\"\nnu40_cSt = 35.0\nnu100_cSt = 6.7\n");

@@ -89,13 +89,14 @@ TEST(CliSweep, InterruptedSweepResumesWithFinishedCasesKept) {
 TEST(CliSweep, BadSetArgumentsExitTwoNamingTheProblem) {
   const auto dir = scratch_dir("sweep_bad");
   write_file(dir / "s.toml", short_shudder_scenario());
-  struct Case { std::string set, fragment; };
-  for (const auto& c : std::vector<Case>{
-           {std::string(kKey) + "=400:200:100", "STOP >= START"},
-           {std::string(kKey) + "=100:200:0", "STEP must be > 0"},
-           {std::string(kKey) + "=abc", "not a finite number"},
-           {"rig.torsion_bar.natural_frequency_Hzz=100,200", "unknown key"},
-           {std::string(kKey) + "=0.5,200", "[1, 10000]"}}) {
+  struct Case {
+    std::string set, fragment;
+  };
+  for (const auto& c : std::vector<Case>{{std::string(kKey) + "=400:200:100", "STOP >= START"},
+                                         {std::string(kKey) + "=100:200:0", "STEP must be > 0"},
+                                         {std::string(kKey) + "=abc", "not a finite number"},
+                                         {"rig.torsion_bar.natural_frequency_Hzz=100,200", "unknown key"},
+                                         {std::string(kKey) + "=0.5,200", "[1, 10000]"}}) {
     const auto r = run_cli("sweep s.toml --set '" + c.set + "' -o sw.h5", dir);
     EXPECT_EQ(r.exit_code, 2) << c.set << "\n" << r.err;
     EXPECT_THAT(r.err, HasSubstr(c.fragment)) << c.set;
@@ -137,8 +138,8 @@ TEST(CliSweep, AFailingCaseIsRecordedAndTheSweepFinishes) {
 TEST(CliSweep, ResumeWithAFailedCaseIsBitIdentical) {
   const auto dir = scratch_dir("sweep_failing_resume");
   write_file(dir / "s.toml", short_shudder_scenario());
-  const std::string args = "sweep s.toml --set output.sample_rate_Hz=10000,50 --set " + std::string(kKey) +
-                           "=200,300 --jobs 2 --quiet -o ";
+  const std::string args =
+      "sweep s.toml --set output.sample_rate_Hz=10000,50 --set " + std::string(kKey) + "=200,300 --jobs 2 --quiet -o ";
   auto r = run_cli(args + "whole.h5", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   r = run_cli(args + "part.h5 --keep-parts", dir);

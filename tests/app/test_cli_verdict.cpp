@@ -25,10 +25,10 @@
 namespace shudder {
 namespace {
 
-using ::testing::HasSubstr;
 using test::run_cli;
 using test::scratch_dir;
 using test::write_file;
+using ::testing::HasSubstr;
 
 // A block's scalar / text; a missing one is a test failure.
 double block_scalar(const dynamics::ResultBlock& b, const std::string& name) {
@@ -196,11 +196,10 @@ TEST(CliVerdict, DrivelineRunHasTheSameBlockWithTheDrivelinePrediction) {
   EXPECT_NEAR(block_scalar(*b, "normal_force_N"), mean_clamp, 1e-9 * mean_clamp);
   // The ringing the sustained-oscillation rule discards keeps its size and peak (2.92 Hz,
   // 2.79 N m with the Gen I hydraulics integrated with the motion, the engine's firing pulsation
-  // and the tyres' load-proportional slip stiffness: docs/driveline.md) but, being no verdict, no frequency or onset (judge_recording
-  // used to leave the detector's 3.1 Hz and onset 0 s on a `none`). The ring drifts with the
-  // operating point; its Hann-FFT over 0–5 s has 0.2 Hz bins, and the first look's Welch
-  // spectrum sets the ±20 % band searched (2.98 Hz, 3.10 N m while that spectrum saw only
-  // 0–4.1 s of the record): 0.1 Hz, half a bin.
+  // and the tyres' load-proportional slip stiffness: docs/driveline.md) but, being no verdict, no frequency or onset
+  // (judge_recording used to leave the detector's 3.1 Hz and onset 0 s on a `none`). The ring drifts with the operating
+  // point; its Hann-FFT over 0–5 s has 0.2 Hz bins, and the first look's Welch spectrum sets the ±20 % band searched
+  // (2.98 Hz, 3.10 N m while that spectrum saw only 0–4.1 s of the record): 0.1 Hz, half a bin.
   EXPECT_TRUE(std::isnan(block_scalar(*b, "frequency_Hz")));
   EXPECT_TRUE(std::isnan(block_scalar(*b, "onset_time_s")));
   EXPECT_NEAR(block_scalar(*b, "peak_frequency_Hz"), 2.95, 0.1);

@@ -33,11 +33,13 @@ using test::write_file;
 
 std::string coupling_scenario(const std::string& effects = "") {
   return "[scenario]\nname = \"coupling_curve\"\ntype = \"driveline\"\nduration_s = 3.0\n"
-         "[clutch]\nfluid = \"" + source_path("scenarios/fluids/lsc_fluid_c.toml") +
+         "[clutch]\nfluid = \"" +
+         source_path("scenarios/fluids/lsc_fluid_c.toml") +
          "\"\nsliding_interfaces = 16\nstart_temp_C = 40.0\n"
          "[driveline]\nturn_ratio = 1.1\n"
          "[manoeuvre]\ntime_s = [0.0, 3.0]\nengine_torque_Nm = [40.0, 40.0]\nvalve_pressure_bar = [0.0, 6.0]\n"
-         "start_speed_km_h = 20.0\n" + effects;
+         "start_speed_km_h = 20.0\n" +
+         effects;
 }
 
 // `shudder run --measurement` of the scenario with `effects`; the measured run as read back.
@@ -63,11 +65,11 @@ const analysis::ChannelFit& torque_channel(const analysis::DiagnosisResult& r) {
 }
 
 TEST(DiagnoseDriveline, MeasuredRunIsTheCouplingsSensorsWithTheirFaults) {
-  const auto sc = io::load_scenario_text(
-      coupling_scenario("[effects.torque_sensor_gain]\nenabled = true\ngain = 1.1\n"
-                        "[effects.torque_sensor_offset]\nenabled = true\noffset_Nm = 2.0\n"
-                        "[effects.load_sensor_gain]\nenabled = true\ngain = 0.9\n"),
-      "car.toml");
+  const auto sc =
+      io::load_scenario_text(coupling_scenario("[effects.torque_sensor_gain]\nenabled = true\ngain = 1.1\n"
+                                               "[effects.torque_sensor_offset]\nenabled = true\noffset_Nm = 2.0\n"
+                                               "[effects.load_sensor_gain]\nenabled = true\ngain = 0.9\n"),
+                             "car.toml");
   EXPECT_TRUE(sc.warnings.empty());  // the sensor faults act in a driveline now: no "has no effect"
   const auto& model = std::get<rig_models::DrivelineModel>(sc.model);
   const dynamics::Recording rec = rig_models::simulate(model, sc.make_clutch());
@@ -80,7 +82,7 @@ TEST(DiagnoseDriveline, MeasuredRunIsTheCouplingsSensorsWithTheirFaults) {
   ASSERT_EQ(col(m, "speed_rpm").size(), slip.size());
   for (std::size_t i = 0; i < slip.size(); i += 97) {
     EXPECT_EQ(col(m, "speed_rpm")[i], slip[i]);
-    EXPECT_DOUBLE_EQ(col(m, "normal_force_N")[i], 0.9 * clamp[i]);   // g_F F
+    EXPECT_DOUBLE_EQ(col(m, "normal_force_N")[i], 0.9 * clamp[i]);    // g_F F
     EXPECT_DOUBLE_EQ(col(m, "torque_Nm")[i], 1.1 * torque[i] + 2.0);  // g T + T0
     EXPECT_EQ(col(m, "temp_C")[i], col(rec, "coupling_temp_C")[i]);
     EXPECT_EQ(col(m, "sump_temp_C")[i], col(rec, "coupling_oil_temp_C")[i]);
@@ -95,8 +97,8 @@ TEST(DiagnoseDriveline, CliWritesAMeasuredVehicleRun) {
   EXPECT_EQ(run.meta("rig").value_or(""), "haldex_coupling");
   std::vector<std::string> names;
   for (const auto& c : run.columns) names.push_back(c.name);
-  EXPECT_THAT(names, ::testing::ElementsAre("time_s", "speed_rpm", "normal_force_N", "torque_Nm", "temp_C",
-                                            "sump_temp_C"));
+  EXPECT_THAT(names,
+              ::testing::ElementsAre("time_s", "speed_rpm", "normal_force_N", "torque_Nm", "temp_C", "sump_temp_C"));
   EXPECT_EQ(run.rows(), 601u);  // 3 s at 200 Hz
 }
 
@@ -107,8 +109,8 @@ TEST(DiagnoseDriveline, CandidatesAreTheEffectsThatActOnTheCoupling) {
   std::vector<std::string> skipped, names;
   for (const auto& c : rig_models::replay_candidates(model, &skipped)) names.push_back(c.name);
   EXPECT_THAT(names, ::testing::UnorderedElementsAre("rig_heat_capacity", "temperature_sensor_lag", "viscous_shear",
-                                                     "torque_sensor_gain", "torque_sensor_offset",
-                                                     "load_sensor_gain", "thermocouple_offset"));
+                                                     "torque_sensor_gain", "torque_sensor_offset", "load_sensor_gain",
+                                                     "thermocouple_offset"));
   EXPECT_THAT(skipped, ::testing::UnorderedElementsAre(
                            "bearing_drag: it is the rig's torque-cell bearing",
                            "stick_time_static_friction: the slip is imposed, nothing sticks",
@@ -171,7 +173,8 @@ TEST(DiagnoseDriveline, ReplayFinishesOnASampleJustPastAStepEnd) {
 // is counted in the replay error only as far as the estimate of it goes; 1.3 × leaves room.
 TEST(DiagnoseDriveline, TrueModelNamesNothingOnThreeSeeds) {
   for (unsigned seed : {1u, 2u, 3u}) {
-    const auto r = diagnose({measured_run("true_" + std::to_string(seed), "", "--noise --seed " + std::to_string(seed))});
+    const auto r =
+        diagnose({measured_run("true_" + std::to_string(seed), "", "--noise --seed " + std::to_string(seed))});
     EXPECT_TRUE(r.missing_effects.empty()) << "seed " << seed << ": " << ::testing::PrintToString(r.missing_effects);
     const auto& t = torque_channel(r);
     EXPECT_LT(t.final_rms / t.error_scale, 1.3) << "seed " << seed;

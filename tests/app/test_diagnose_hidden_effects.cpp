@@ -29,11 +29,11 @@ using test::scratch_dir;
 
 struct Case {
   std::string name;
-  std::string hidden;   // [effects.*] tables of the generating "rig"
-  std::string model;    // [effects.*] tables of the diagnosis model
-  std::vector<std::string> expected;           // missing effects, in order
-  std::map<std::string, double> parameters;    // identifiable: name -> hidden value
-  std::vector<std::string> withdrawn = {};     // added, then withdrawn by the backward check
+  std::string hidden;                        // [effects.*] tables of the generating "rig"
+  std::string model;                         // [effects.*] tables of the diagnosis model
+  std::vector<std::string> expected;         // missing effects, in order
+  std::map<std::string, double> parameters;  // identifiable: name -> hidden value
+  std::vector<std::string> withdrawn = {};   // added, then withdrawn by the backward check
 };
 
 void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
@@ -41,7 +41,10 @@ void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
 analysis::DiagnosisResult diagnose_case(const Case& c) {
   const auto dir = scratch_dir("diag_" + c.name);
   std::vector<std::filesystem::path> csvs;
-  const struct { double force, temp; unsigned seed; } runs_spec[] = {{12000, 75, 11}, {24000, 85, 12}};
+  const struct {
+    double force, temp;
+    unsigned seed;
+  } runs_spec[] = {{12000, 75, 11}, {24000, 85, 12}};
   for (const auto& r : runs_spec)
     csvs.push_back(test::make_measured_run(dir, "run_" + std::to_string(static_cast<int>(r.force / 1000)) + "kN",
                                            test::probe_scenario_text(c.hidden, r.force, r.temp), r.seed));
@@ -53,10 +56,8 @@ analysis::DiagnosisResult diagnose_case(const Case& c) {
 
 void expect_gap_shrinks(const analysis::DiagnosisResult& r) {
   // 5× shrink, or within 1.5× the estimated noise (a model as good as the data allows).
-  EXPECT_TRUE(r.final.torque_rms_Nm <= r.baseline.torque_rms_Nm / 5 ||
-              r.final.torque_rms_Nm <= 1.5 * r.noise_torque_Nm)
-      << "torque " << r.baseline.torque_rms_Nm << " -> " << r.final.torque_rms_Nm << " noise "
-      << r.noise_torque_Nm;
+  EXPECT_TRUE(r.final.torque_rms_Nm <= r.baseline.torque_rms_Nm / 5 || r.final.torque_rms_Nm <= 1.5 * r.noise_torque_Nm)
+      << "torque " << r.baseline.torque_rms_Nm << " -> " << r.final.torque_rms_Nm << " noise " << r.noise_torque_Nm;
   EXPECT_TRUE(r.final.temp_rms_C <= r.baseline.temp_rms_C / 5 || r.final.temp_rms_C <= 1.5 * r.noise_temp_C)
       << "temp " << r.baseline.temp_rms_C << " -> " << r.final.temp_rms_C << " noise " << r.noise_temp_C;
 }
@@ -97,38 +98,58 @@ TEST_P(HiddenEffect, IsNamedFittedAndClosesTheGap) {
   expect_parameters(r, c);
 }
 
-const std::string off(const std::string& effect) {
-  return "[effects." + effect + "]\nenabled = false\n";
-}
+const std::string off(const std::string& effect) { return "[effects." + effect + "]\nenabled = false\n"; }
 
 INSTANTIATE_TEST_SUITE_P(
     Diagnose, HiddenEffect,
     ::testing::Values(
-        Case{"temperature_dependent_friction", "", off("temperature_dependent_friction"),
-             {"temperature_dependent_friction"}, {}},
+        Case{"temperature_dependent_friction",
+             "",
+             off("temperature_dependent_friction"),
+             {"temperature_dependent_friction"},
+             {}},
         Case{"interface_oil_cooling", "", off("interface_oil_cooling"), {"interface_oil_cooling"}, {{"e", 0.016}}},
         Case{"sump_heating", "", off("sump_heating"), {"sump_heating"}, {}},
         Case{"rig_heat_capacity",
              "[effects.rig_heat_capacity]\nenabled = true\nheat_capacity_J_per_K = 300.0\nconductance_W_per_K = 20.0\n",
-             "", {"rig_heat_capacity"}, {{"heat_capacity_J_per_K", 300.0}, {"conductance_W_per_K", 20.0}}},
-        Case{"temperature_sensor_lag", "[effects.temperature_sensor_lag]\nenabled = true\ntime_constant_s = 1.0\n",
-             "", {"temperature_sensor_lag"}, {{"time_constant_s", 1.0}}},
-        Case{"bearing_drag", "[effects.bearing_drag]\nenabled = true\nequivalent_mu = 0.005\n", "",
-             {"bearing_drag"}, {{"equivalent_mu", 0.005}}},
-        Case{"viscous_shear", "[effects.viscous_shear]\nenabled = true\ngap_um = 0.5\n", "", {"viscous_shear"},
+             "",
+             {"rig_heat_capacity"},
+             {{"heat_capacity_J_per_K", 300.0}, {"conductance_W_per_K", 20.0}}},
+        Case{"temperature_sensor_lag",
+             "[effects.temperature_sensor_lag]\nenabled = true\ntime_constant_s = 1.0\n",
+             "",
+             {"temperature_sensor_lag"},
+             {{"time_constant_s", 1.0}}},
+        Case{"bearing_drag",
+             "[effects.bearing_drag]\nenabled = true\nequivalent_mu = 0.005\n",
+             "",
+             {"bearing_drag"},
+             {{"equivalent_mu", 0.005}}},
+        Case{"viscous_shear",
+             "[effects.viscous_shear]\nenabled = true\ngap_um = 0.5\n",
+             "",
+             {"viscous_shear"},
              {{"gap_um", 0.5}}},
         Case{"load_dependent_friction", "", off("load_dependent_friction"), {"load_dependent_friction"}, {}},
         // Half and double the thesis' bearing drag.
-        Case{"bearing_drag_half", "[effects.bearing_drag]\nenabled = true\nequivalent_mu = 0.0025\n", "",
-             {"bearing_drag"}, {{"equivalent_mu", 0.0025}}},
-        Case{"bearing_drag_double", "[effects.bearing_drag]\nenabled = true\nequivalent_mu = 0.01\n", "",
-             {"bearing_drag"}, {{"equivalent_mu", 0.01}}},
+        Case{"bearing_drag_half",
+             "[effects.bearing_drag]\nenabled = true\nequivalent_mu = 0.0025\n",
+             "",
+             {"bearing_drag"},
+             {{"equivalent_mu", 0.0025}}},
+        Case{"bearing_drag_double",
+             "[effects.bearing_drag]\nenabled = true\nequivalent_mu = 0.01\n",
+             "",
+             {"bearing_drag"},
+             {{"equivalent_mu", 0.01}}},
         // Two at once: the bearing drag (9-18 sigma of torque) outweighs the rig mass (3-6
         // sigma of temperature), so it must come first.
         Case{"two_effects",
              "[effects.bearing_drag]\nenabled = true\nequivalent_mu = 0.01\n"
              "[effects.rig_heat_capacity]\nenabled = true\nheat_capacity_J_per_K = 150.0\nconductance_W_per_K = 10.0\n",
-             "", {"bearing_drag", "rig_heat_capacity"}, {{"equivalent_mu", 0.01}}},
+             "",
+             {"bearing_drag", "rig_heat_capacity"},
+             {{"equivalent_mu", 0.01}}},
         // Nothing hidden: the baseline is the truth, nothing may be named.
         Case{"none", "", "", {}, {}}),
     [](const ::testing::TestParamInfo<Case>& i) { return i.param.name; });
@@ -155,34 +176,57 @@ const char* const kLoadGain = "[effects.load_sensor_gain]\nenabled = true\ngain 
 
 INSTANTIATE_TEST_SUITE_P(
     DiagnoseRigFaults, HiddenEffect,
-    ::testing::Values(
-        Case{"torque_sensor_gain", kGain, "", {"torque_sensor_gain"}, {{"gain", 1.03}}},
-        Case{"torque_sensor_gain_and_lag", std::string(kGain) + kLag, "",
-             {"temperature_sensor_lag", "torque_sensor_gain"}, {{"gain", 1.03}, {"time_constant_s", 1.0}}},
-        Case{"torque_sensor_offset", kTorqueOffset, "", {"torque_sensor_offset"}, {{"offset_Nm", 3.0}}},
-        Case{"torque_sensor_offset_and_lag", std::string(kTorqueOffset) + kLag, "",
-             {"temperature_sensor_lag", "torque_sensor_offset"}, {{"offset_Nm", 3.0}, {"time_constant_s", 1.0}}},
-        Case{"thermocouple_offset", kThermocouple, "", {"thermocouple_offset"}, {{"offset_K", 2.0}}},
-        Case{"thermocouple_offset_and_drag", std::string(kThermocouple) + kDrag, "",
-             {"bearing_drag", "thermocouple_offset"}, {{"offset_K", 2.0}, {"equivalent_mu", 0.005}}},
-        Case{"load_sensor_gain", kLoadGain, "", {"load_sensor_gain"}, {{"gain", 0.95}}},
-        Case{"load_sensor_gain_high", "[effects.load_sensor_gain]\nenabled = true\ngain = 1.08\n", "",
-             {"load_sensor_gain"}, {{"gain", 1.08}}},
-        Case{"load_sensor_gain_and_lag", std::string(kLoadGain) + kLag, "",
-             {"temperature_sensor_lag", "load_sensor_gain"}, {{"gain", 0.95}, {"time_constant_s", 1.0}},
-             {"torque_sensor_gain"}},
-        Case{"load_sensor_gain_and_torque_offset", std::string(kLoadGain) + kTorqueOffset, "",
-             {"torque_sensor_offset", "load_sensor_gain"}, {{"gain", 0.95}, {"offset_Nm", 3.0}},
-             {"torque_sensor_gain"}},
-        // Both gains: only the heat tells them apart (the load gain moves it, the torque gain not).
-        // Both are named; their values are not identifiable to 20 % from these two runs (seen:
-        // g_F 0.924 for 0.95; the temperature carries g_F only through ~1.5 K of heat), so only
-        // the names are checked (docs/diagnosis.md).
-        Case{"load_and_torque_sensor_gains", std::string(kLoadGain) + kGain, "",
-             {"load_sensor_gain", "torque_sensor_gain"}, {}},
-        Case{"friction_drift", kDrift, "", {"friction_drift"}, {{"change", -0.05}, {"distance_m", 2.0}}},
-        Case{"friction_drift_and_lag", std::string(kDrift) + kLag, "",
-             {"temperature_sensor_lag", "friction_drift"}, {{"change", -0.05}, {"time_constant_s", 1.0}}}),
+    ::testing::Values(Case{"torque_sensor_gain", kGain, "", {"torque_sensor_gain"}, {{"gain", 1.03}}},
+                      Case{"torque_sensor_gain_and_lag",
+                           std::string(kGain) + kLag,
+                           "",
+                           {"temperature_sensor_lag", "torque_sensor_gain"},
+                           {{"gain", 1.03}, {"time_constant_s", 1.0}}},
+                      Case{"torque_sensor_offset", kTorqueOffset, "", {"torque_sensor_offset"}, {{"offset_Nm", 3.0}}},
+                      Case{"torque_sensor_offset_and_lag",
+                           std::string(kTorqueOffset) + kLag,
+                           "",
+                           {"temperature_sensor_lag", "torque_sensor_offset"},
+                           {{"offset_Nm", 3.0}, {"time_constant_s", 1.0}}},
+                      Case{"thermocouple_offset", kThermocouple, "", {"thermocouple_offset"}, {{"offset_K", 2.0}}},
+                      Case{"thermocouple_offset_and_drag",
+                           std::string(kThermocouple) + kDrag,
+                           "",
+                           {"bearing_drag", "thermocouple_offset"},
+                           {{"offset_K", 2.0}, {"equivalent_mu", 0.005}}},
+                      Case{"load_sensor_gain", kLoadGain, "", {"load_sensor_gain"}, {{"gain", 0.95}}},
+                      Case{"load_sensor_gain_high",
+                           "[effects.load_sensor_gain]\nenabled = true\ngain = 1.08\n",
+                           "",
+                           {"load_sensor_gain"},
+                           {{"gain", 1.08}}},
+                      Case{"load_sensor_gain_and_lag",
+                           std::string(kLoadGain) + kLag,
+                           "",
+                           {"temperature_sensor_lag", "load_sensor_gain"},
+                           {{"gain", 0.95}, {"time_constant_s", 1.0}},
+                           {"torque_sensor_gain"}},
+                      Case{"load_sensor_gain_and_torque_offset",
+                           std::string(kLoadGain) + kTorqueOffset,
+                           "",
+                           {"torque_sensor_offset", "load_sensor_gain"},
+                           {{"gain", 0.95}, {"offset_Nm", 3.0}},
+                           {"torque_sensor_gain"}},
+                      // Both gains: only the heat tells them apart (the load gain moves it, the torque gain not).
+                      // Both are named; their values are not identifiable to 20 % from these two runs (seen:
+                      // g_F 0.924 for 0.95; the temperature carries g_F only through ~1.5 K of heat), so only
+                      // the names are checked (docs/diagnosis.md).
+                      Case{"load_and_torque_sensor_gains",
+                           std::string(kLoadGain) + kGain,
+                           "",
+                           {"load_sensor_gain", "torque_sensor_gain"},
+                           {}},
+                      Case{"friction_drift", kDrift, "", {"friction_drift"}, {{"change", -0.05}, {"distance_m", 2.0}}},
+                      Case{"friction_drift_and_lag",
+                           std::string(kDrift) + kLag,
+                           "",
+                           {"temperature_sensor_lag", "friction_drift"},
+                           {{"change", -0.05}, {"time_constant_s", 1.0}}}),
     [](const ::testing::TestParamInfo<Case>& i) { return i.param.name; });
 
 // Stick-time static friction acts only where the surfaces stick, so it is hidden in rig runs of
@@ -193,7 +237,8 @@ INSTANTIATE_TEST_SUITE_P(
 // static friction growing within tens of ms of contact; estimate). Both are identifiable here.
 std::string stick_probe_text(const std::string& extra, double speed_rpm) {
   std::string s = test::shipped_scenario_text("rig_stick_time_probe.toml");
-  s = replace(s, "speed_rpm = [0.5, 0.5]", "speed_rpm = [" + std::to_string(speed_rpm) + ", " + std::to_string(speed_rpm) + "]");
+  s = replace(s, "speed_rpm = [0.5, 0.5]",
+              "speed_rpm = [" + std::to_string(speed_rpm) + ", " + std::to_string(speed_rpm) + "]");
   // The motor's torque ripple is on, as by default: at 0.5-1.5 rpm it runs at 5-15 Hz,
   // in the stick-slip band; the replay models it (its set-point recovery subtracts it).
   return s + "\n" + extra;

@@ -29,10 +29,13 @@ const std::string kSwitchesOff = off("temperature_dependent_friction") + off("lo
 analysis::DiagnosisResult diagnose_three_loads(const std::string& name, const std::string& hidden) {
   const auto dir = scratch_dir("diag_joint_" + name);
   std::vector<std::filesystem::path> csvs;
-  const struct { double force; unsigned seed; } spec[] = {{10400, 31}, {25300, 32}, {14800, 33}};  // last held out
+  const struct {
+    double force;
+    unsigned seed;
+  } spec[] = {{10400, 31}, {25300, 32}, {14800, 33}};  // last held out
   for (const auto& r : spec)
-    csvs.push_back(test::make_measured_run(dir, "run_" + std::to_string(static_cast<int>(r.force)), probe(hidden, r.force),
-                                           r.seed));
+    csvs.push_back(test::make_measured_run(dir, "run_" + std::to_string(static_cast<int>(r.force)),
+                                           probe(hidden, r.force), r.seed));
   analysis::DiagnosisOptions o;
   o.jobs = 1;  // ctest runs the cases in parallel
   return test::diagnose_measured(csvs, probe(kSwitchesOff, 14800), "scenarios/diagnosis_probe.toml", o);
@@ -62,8 +65,8 @@ TEST(DiagnoseJointStep, OneSwitchHiddenIsNamedWithoutAPartner) {
 TEST(DiagnoseJointStep, WhereThePairDoesNotHelpNeitherSwitchIsNamed) {
   // Both switches off in the data as in the model, a 5 % low load cell hidden: the pair's
   // friction changes are not in the data, the gain is.
-  const auto r = diagnose_three_loads(
-      "load_gain", kSwitchesOff + "[effects.load_sensor_gain]\nenabled = true\ngain = 0.95\n");
+  const auto r =
+      diagnose_three_loads("load_gain", kSwitchesOff + "[effects.load_sensor_gain]\nenabled = true\ngain = 0.95\n");
   EXPECT_EQ(r.missing_effects, Names{"load_sensor_gain"}) << test::describe_diagnosis(r);
 }
 

@@ -39,7 +39,7 @@ analysis::DiagnosisResult diagnose_other_simulator(const std::string& name, cons
       test::make_measured_run(dir, "a", test::probe_scenario_text(data, 14000, 70), 91),
       test::make_measured_run(dir, "b", test::probe_scenario_text(data, 26000, 90), 92)};
   analysis::DiagnosisOptions o;
-  o.jobs = 1;  // ctest runs the cases in parallel
+  o.jobs = 1;                                                                  // ctest runs the cases in parallel
   o.tolerance = {{"torque_Nm", 0.51}, {"temp_C", 2.97}, {"ir_temp_C", 2.98}};  // seeds 41/42, above
   return test::diagnose_measured(csvs, test::probe_scenario_text("", 14000, 70), "scenarios/diagnosis_probe.toml", o);
 }
@@ -57,7 +57,8 @@ TEST(DiagnoseLargerModelFormGap, TheMismatchAloneNamesNothingWithinTheTolerance)
 TEST(DiagnoseLargerModelFormGap, ABearingDragOnTopIsStillNamed) {
   // The thesis' μ = 0.005 adds μ·F·r ≈ 2.3-4.3 N m at 14 and 26 kN, several times the 0.51 N m
   // torque tolerance.
-  const auto r = diagnose_other_simulator("diag_form_gap_drag", "[effects.bearing_drag]\nenabled = true\nequivalent_mu = 0.005\n");
+  const auto r =
+      diagnose_other_simulator("diag_form_gap_drag", "[effects.bearing_drag]\nenabled = true\nequivalent_mu = 0.005\n");
   EXPECT_EQ(r.missing_effects, std::vector<std::string>{"bearing_drag"}) << test::describe_diagnosis(r);
   ASSERT_FALSE(r.final_effects.empty());
   EXPECT_NEAR(r.final_effects[0].parameters[0].second / 0.005, 1.0, 0.2);  // the 20 %

@@ -38,8 +38,8 @@ std::string network_text(const std::string& pack_effects = "") {
          "ki_Nm_per_rad = 2370\ntorque_limit_Nm = 1000\n"
          "[network.pack]\ntype = \"clutch\"\nlaw = \"wet\"\nfrom = \"drive\"\nto = \"housing\"\nmax_force_N = 10000\n"
          "normal_force = { kind = \"ramp\", from = 0.0, to = 1.0, duration_s = 1.0 }\n"
-         "[network.pack.clutch]\nfluid = \"" + fluid + "\"\nsliding_interfaces = 16\nstart_temp_C = 40.0\n" +
-         pack_effects +
+         "[network.pack.clutch]\nfluid = \"" +
+         fluid + "\"\nsliding_interfaces = 16\nstart_temp_C = 40.0\n" + pack_effects +
          "[network.housing]\ntype = \"inertia\"\ninertia_kg_m2 = 0.02\n"
          "[network.bar]\ntype = \"shaft\"\nfrom = \"housing\"\nto = \"ground\"\nstiffness_Nm_per_rad = 1.128e5\n"
          "damping_Nms_per_rad = 0.95\n"
@@ -47,7 +47,8 @@ std::string network_text(const std::string& pack_effects = "") {
          "[network.aux_motor]\ntype = \"motor\"\nnode = \"aux\"\nspeed_rpm = 20\nkp_Nms_per_rad = 40\n"
          "ki_Nm_per_rad = 1000\ntorque_limit_Nm = 1000\n"
          "[network.brake]\ntype = \"brake\"\nlaw = \"wet\"\nnode = \"aux\"\nmax_force_N = 3000\n"
-         "[network.brake.clutch]\nfluid = \"" + fluid + "\"\nstart_temp_C = 40.0\n";
+         "[network.brake.clutch]\nfluid = \"" +
+         fluid + "\"\nstart_temp_C = 40.0\n";
 }
 
 // `shudder run --measurement` of the network with the pack's `effects` hidden in it (truth.toml);
@@ -112,8 +113,9 @@ TEST(DiagnoseNetwork, CliNamesNothingForTheTrueModelAndWritesAModelThatRuns) {
 }
 
 TEST(DiagnoseNetwork, HiddenSensorLagIsNamedAndWrittenIntoTheClutch) {
-  const auto dir = measured("hidden", "[network.pack.effects.temperature_sensor_lag]\nenabled = true\ntime_constant_s = 2.0\n",
-                            "--noise --seed 2");
+  const auto dir =
+      measured("hidden", "[network.pack.effects.temperature_sensor_lag]\nenabled = true\ntime_constant_s = 2.0\n",
+               "--noise --seed 2");
   const auto r = run_cli("diagnose net.toml run.pack.csv --jobs 1 --write-model fixed.toml", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::cout << r.out;

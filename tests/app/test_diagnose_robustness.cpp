@@ -29,8 +29,9 @@ using test::write_file;
 using ::testing::HasSubstr;
 
 // Rewrites one column of a measured CSV: f(time, column) -> new column.
-void transform_column(const std::filesystem::path& csv, const std::string& column,
-                      const std::function<std::vector<double>(const std::vector<double>&, const std::vector<double>&)>& f) {
+void transform_column(
+    const std::filesystem::path& csv, const std::string& column,
+    const std::function<std::vector<double>(const std::vector<double>&, const std::vector<double>&)>& f) {
   std::istringstream in(slurp(csv));
   std::string line, head, header;
   std::vector<std::vector<double>> rows;
@@ -152,7 +153,8 @@ TEST(DiagnoseModelForm, FinerDiscretisationAloneNamesNothingAndIsExplainedWithin
 }
 
 TEST(DiagnoseModelForm, AHiddenEffectOnTopIsStillNamed) {
-  const auto runs = mismatch_runs("diag_form_hidden", "[effects.bearing_drag]\nenabled = true\nequivalent_mu = 0.004\n");
+  const auto runs =
+      mismatch_runs("diag_form_hidden", "[effects.bearing_drag]\nenabled = true\nequivalent_mu = 0.004\n");
   const auto r = diagnose_files(runs, test::probe_scenario_text("", 14000, 70), "scenarios/diagnosis_probe.toml", false,
                                 {{"torque_Nm", 0.1}, {"temp_C", 0.3}});
   EXPECT_EQ(r.missing_effects, std::vector<std::string>{"bearing_drag"}) << test::describe_diagnosis(r);
@@ -177,7 +179,8 @@ TEST_P(OutOfCatalogue, LeavesAGapAndNamesNothingAtABound) {
   const auto b = make_measured_run(dir, "b", test::probe_scenario_text("", 25000, 88), 102);
   transform_column(a, f.column, f.apply);
   transform_column(b, f.column, f.apply);
-  const auto r = diagnose_files({a, b}, test::probe_scenario_text("", 13000, 72), "scenarios/diagnosis_probe.toml", false);
+  const auto r =
+      diagnose_files({a, b}, test::probe_scenario_text("", 13000, 72), "scenarios/diagnosis_probe.toml", false);
   EXPECT_NE(r.verdict, analysis::DiagnosisVerdict::kExplained) << test::describe_diagnosis(r);
   // The added candidate (first of its step) passed the interior test: no parameter at a bound.
   for (const auto& st : r.steps) {
@@ -196,32 +199,34 @@ std::vector<double> delayed(const std::vector<double>& t, const std::vector<doub
   return y;
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Faults, OutOfCatalogue,
-    ::testing::Values(
-        // A 0.1 s late torque channel (10 samples at 100 Hz; one sample, 10 ms, stays within the
-        // noise here): the ramps' torque slope shows it.
-        Fault{"torque_time_shift", "torque_Nm",
-              [](const std::vector<double>& t, const std::vector<double>& x) { return delayed(t, x, 0.1); }},
-        // A torque cell low-passed at 0.5 Hz (first order): the ramps' torque lags.
-        Fault{"torque_low_pass", "torque_Nm",
-              [](const std::vector<double>& t, const std::vector<double>& x) {
-                std::vector<double> y(x);
-                for (std::size_t i = 1; i < x.size(); ++i) {
-                  const double a = 1.0 - std::exp(-(t[i] - t[i - 1]) * 2.0 * M_PI * 0.5);
-                  y[i] = y[i - 1] + a * (x[i] - y[i - 1]);
-                }
-                return y;
-              }},
-        // A 30 % speed ripple at 0.4 Hz on the measured speed (the replay drives the model
-        // with it; the data were made without it).
-        Fault{"speed_ripple", "speed_rpm",
-              [](const std::vector<double>& t, const std::vector<double>& x) {
-                std::vector<double> y(x);
-                for (std::size_t i = 0; i < x.size(); ++i) y[i] = x[i] * (1.0 + 0.3 * std::sin(2 * M_PI * 0.4 * t[i]));
-                return y;
-              }}),
-    [](const ::testing::TestParamInfo<Fault>& i) { return i.param.name; });
+INSTANTIATE_TEST_SUITE_P(Faults, OutOfCatalogue,
+                         ::testing::Values(
+                             // A 0.1 s late torque channel (10 samples at 100 Hz; one sample, 10 ms, stays within the
+                             // noise here): the ramps' torque slope shows it.
+                             Fault{"torque_time_shift", "torque_Nm",
+                                   [](const std::vector<double>& t, const std::vector<double>& x) {
+                                     return delayed(t, x, 0.1);
+                                   }},
+                             // A torque cell low-passed at 0.5 Hz (first order): the ramps' torque lags.
+                             Fault{"torque_low_pass", "torque_Nm",
+                                   [](const std::vector<double>& t, const std::vector<double>& x) {
+                                     std::vector<double> y(x);
+                                     for (std::size_t i = 1; i < x.size(); ++i) {
+                                       const double a = 1.0 - std::exp(-(t[i] - t[i - 1]) * 2.0 * M_PI * 0.5);
+                                       y[i] = y[i - 1] + a * (x[i] - y[i - 1]);
+                                     }
+                                     return y;
+                                   }},
+                             // A 30 % speed ripple at 0.4 Hz on the measured speed (the replay drives the model
+                             // with it; the data were made without it).
+                             Fault{"speed_ripple", "speed_rpm",
+                                   [](const std::vector<double>& t, const std::vector<double>& x) {
+                                     std::vector<double> y(x);
+                                     for (std::size_t i = 0; i < x.size(); ++i)
+                                       y[i] = x[i] * (1.0 + 0.3 * std::sin(2 * M_PI * 0.4 * t[i]));
+                                     return y;
+                                   }}),
+                         [](const ::testing::TestParamInfo<Fault>& i) { return i.param.name; });
 
 // ---- plausibility ---------------------------------------------------------------------------
 
@@ -249,13 +254,12 @@ TEST_P(Plausibility, WrongUnitsExitTwoWithOneLine) {
   EXPECT_EQ(std::count(out.err.begin(), out.err.end(), '\n'), 1) << out.err;
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Units, Plausibility,
-    ::testing::Values(Implausible{"kelvin", "temp_C", 1.0, 273.15, "looks like kelvin"},
-                      Implausible{"sump_kelvin", "sump_temp_C", 1.0, 273.15, "looks like kelvin"},
-                      Implausible{"kilonewton", "normal_force_N", 1e-3, 0.0, "looks like kN"},
-                      Implausible{"rad_per_s", "speed_rpm", 2 * M_PI / 60, 0.0, "rad/s"}),
-    [](const ::testing::TestParamInfo<Implausible>& i) { return i.param.name; });
+INSTANTIATE_TEST_SUITE_P(Units, Plausibility,
+                         ::testing::Values(Implausible{"kelvin", "temp_C", 1.0, 273.15, "looks like kelvin"},
+                                           Implausible{"sump_kelvin", "sump_temp_C", 1.0, 273.15, "looks like kelvin"},
+                                           Implausible{"kilonewton", "normal_force_N", 1e-3, 0.0, "looks like kN"},
+                                           Implausible{"rad_per_s", "speed_rpm", 2 * M_PI / 60, 0.0, "rad/s"}),
+                         [](const ::testing::TestParamInfo<Implausible>& i) { return i.param.name; });
 
 TEST(Plausibility, TheSameRunTwiceExitsTwo) {
   const auto dir = scratch_dir("diag_plaus_twice");
@@ -280,14 +284,14 @@ TEST(Plausibility, ARunShorterThanTwentyThermalStepsExitsTwo) {
 
 TEST(Plausibility, ToleranceValuesAreChecked) {
   const auto dir = scratch_dir("diag_tolerance_bad");
-  const auto out = run_cli("diagnose " + source_path("scenarios/diagnosis_probe.toml") +
-                               " a.csv --tolerance torque_Nm=-1",
-                           dir);
+  const auto out =
+      run_cli("diagnose " + source_path("scenarios/diagnosis_probe.toml") + " a.csv --tolerance torque_Nm=-1", dir);
   EXPECT_EQ(out.exit_code, 2);
-  EXPECT_EQ(out.err,
-            "shudder: error: --tolerance: key 'torque_Nm': '-1' is not a tolerance; give CHANNEL=VALUE[,CHANNEL=VALUE…] "
-            "with CHANNEL one of torque_Nm, temp_C, sump_temp_C, ir_temp_C, temp_minus_ir_C and VALUE >= 0 in the "
-            "channel's unit\n");
+  EXPECT_EQ(
+      out.err,
+      "shudder: error: --tolerance: key 'torque_Nm': '-1' is not a tolerance; give CHANNEL=VALUE[,CHANNEL=VALUE…] "
+      "with CHANNEL one of torque_Nm, temp_C, sump_temp_C, ir_temp_C, temp_minus_ir_C and VALUE >= 0 in the "
+      "channel's unit\n");
 }
 
 // ---- the fixed model ------------------------------------------------------------------------

@@ -89,8 +89,8 @@ TEST_P(DocsCommands, RunAsWritten) {
     const fs::path script = dir / ("block_" + std::to_string(b.line) + ".sh");
     std::ofstream(script) << "PATH=\"$PWD/build/app:$PATH\"\n" << b.text;
     const fs::path err = dir / "stderr.txt";
-    const std::string cmd = "cd '" + dir.string() + "' && /bin/sh -e '" + script.string() + "' > stdout.txt 2> '" +
-                            err.string() + "'";
+    const std::string cmd =
+        "cd '" + dir.string() + "' && /bin/sh -e '" + script.string() + "' > stdout.txt 2> '" + err.string() + "'";
     const int status = std::system(cmd.c_str());
     EXPECT_EQ(status, 0) << page << ":" << b.line << ": the block\n" << b.text << "failed:\n" << test::slurp(err);
   }

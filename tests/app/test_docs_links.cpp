@@ -73,10 +73,11 @@ TEST(DocsLinks, ABrokenLinkIsReported) {
   fs::create_directories(dir / "docs" / "formats");
   std::ofstream(dir / "docs" / "good.md") << "# good\n";
   std::ofstream(dir / "docs" / "formats" / "f.md") << "# f\n";
-  std::ofstream(dir / "docs" / "page.md") << "See [good](good.md), [part](good.md#a-part), [f](formats/f.md),\n"
-                                             "[up](../docs/good.md), docs/good.md and [web](https://example.org/x.md).\n"
-                                             "Broken: [one](missing.md), [two](missing.md#part), [three](formats/nope.md),\n"
-                                             "[img](gone.png) and docs/not_there.md.\n";
+  std::ofstream(dir / "docs" / "page.md")
+      << "See [good](good.md), [part](good.md#a-part), [f](formats/f.md),\n"
+         "[up](../docs/good.md), docs/good.md and [web](https://example.org/x.md).\n"
+         "Broken: [one](missing.md), [two](missing.md#part), [three](formats/nope.md),\n"
+         "[img](gone.png) and docs/not_there.md.\n";
   const auto r = check_links({dir / "docs" / "page.md"}, dir);
   const std::set<std::string> broken(r.broken.begin(), r.broken.end());
   const std::string page = (dir / "docs" / "page.md").string();

@@ -104,14 +104,15 @@ TEST(FluidCThesisRange, SimulatedCornersHaveNoVibration) {
     const char* bar;
     double rpm, force_N;
   };
-  for (const auto& c : {Corner{"rig_case2_15kN_175Hz.toml", 1.0, 10000.0}, Corner{"rig_case2_15kN_175Hz.toml", 80.0, 20000.0},
-                        Corner{"rig_case2_15kN_378Hz.toml", 100.0, 25000.0}, Corner{"rig_case2_15kN_378Hz.toml", 1.0, 10000.0}}) {
+  for (const auto& c :
+       {Corner{"rig_case2_15kN_175Hz.toml", 1.0, 10000.0}, Corner{"rig_case2_15kN_175Hz.toml", 80.0, 20000.0},
+        Corner{"rig_case2_15kN_378Hz.toml", 100.0, 25000.0}, Corner{"rig_case2_15kN_378Hz.toml", 1.0, 10000.0}}) {
     const auto dir = scratch_dir("fluid_c_corner");
     write_file(dir / "s.toml", corner(c.bar, c.rpm, c.force_N));
     const auto r = run_cli("run s.toml -o out.h5", dir);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("Shudder: none"), std::string::npos) << c.bar << " " << c.rpm << " rpm " << c.force_N << " N\n"
-                                                             << r.out;
+                                                              << r.out;
   }
 }
 

@@ -48,8 +48,8 @@ TEST(NetworkTutorial, EveryCommandRuns) {
       std::string cmd;
       while (std::getline(cmds, cmd)) {
         if (cmd.empty()) continue;
-        const std::string shell = std::regex_replace(cmd, std::regex("(^|[|;&] *)shudder "),
-                                                     "$1'" + std::string(SHUDDER_CLI) + "' ");
+        const std::string shell =
+            std::regex_replace(cmd, std::regex("(^|[|;&] *)shudder "), "$1'" + std::string(SHUDDER_CLI) + "' ");
         const int status = std::system(("cd '" + dir.string() + "' && " + shell + " > /dev/null 2>&1").c_str());
         EXPECT_EQ(status, 0) << cmd;
         ++commands;

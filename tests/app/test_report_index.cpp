@@ -70,7 +70,7 @@ TEST(ReportIndex, RunPageStatesTheVerdictAndShowsEveryPlotInABrowser) {
   EXPECT_THAT(html, HasSubstr("<title>shudder run: rig_shudder_negative_slope</title>"));
   EXPECT_THAT(html, HasSubstr("<p class=\"verdict shudder\" id=\"verdict\">Shudder: friction-induced vibration at "));
   EXPECT_THAT(html, HasSubstr("Scenario  rig_shudder_negative_slope (rig)"));  // the summary
-  EXPECT_THAT(html, HasSubstr("<td>frequency_Hz</td>"));                        // the verdict table
+  EXPECT_THAT(html, HasSubstr("<td>frequency_Hz</td>"));                       // the verdict table
   for (const char* f : {"torque.png", "temperature.png", "spectrum.png", "spectrogram.png", "stability_map.png"})
     EXPECT_THAT(html, HasSubstr(std::string("<img src=\"") + f + "\"")) << f;
   EXPECT_THAT(html, HasSubstr("<a href=\"../rig.h5\">rig.h5</a>"));
@@ -114,8 +114,8 @@ TEST(ReportIndex, SweepPageHoldsTheCasesTableAndItsPlot) {
   if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
   const auto dir = scratch_dir("report_index_sweep");
   write_file(dir / "s.toml", short_rig_scenario());
-  const auto r = run_cli(
-      "sweep s.toml --set rig.torsion_bar.natural_frequency_Hz=200,300 --jobs 2 -o sw.h5 --report rep", dir);
+  const auto r =
+      run_cli("sweep s.toml --set rig.torsion_bar.natural_frequency_Hz=200,300 --jobs 2 -o sw.h5 --report rep", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("Report: rep (3 files)"));  // summary.txt, sweep.png, index.html
   const fs::path page = dir / "rep" / "index.html";
@@ -134,10 +134,10 @@ TEST(ReportIndex, SweepPageHoldsTheCasesTableAndItsPlot) {
 TEST(ReportIndex, ComparePageShowsOneFigurePerTemperature) {
   if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
   const auto dir = scratch_dir("report_index_compare");
-  const auto r = run_cli("compare " + source_path("scenarios/fluids/paper_e_fluid_a.toml") + " " +
-                             source_path("scenarios/fluids/paper_e_fluid_e.toml") +
-                             " --temps 30,60 --json cmp.json --report rep",
-                         dir);
+  const auto r =
+      run_cli("compare " + source_path("scenarios/fluids/paper_e_fluid_a.toml") + " " +
+                  source_path("scenarios/fluids/paper_e_fluid_e.toml") + " --temps 30,60 --json cmp.json --report rep",
+              dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const fs::path page = dir / "rep" / "index.html";
   const std::string html = slurp(page);

@@ -71,8 +71,8 @@ shudder::report::Plot sample_plot() {
 
 TEST(Validate, WritesReproducibleDocWhereAllTargetsPass) {
   TempDir dir;
-  const std::string args = std::string("validate --scenarios '") + SHUDDER_SOURCE_DIR +
-                           "/scenarios' --docs '" + dir.path.string() + "' --no-plots";
+  const std::string args = std::string("validate --scenarios '") + SHUDDER_SOURCE_DIR + "/scenarios' --docs '" +
+                           dir.path.string() + "' --no-plots";
   ASSERT_EQ(run_cli(args), 0);
   const std::string first = slurp(dir.path / "validation.md");
   EXPECT_THAT(first, HasSubstr("| case | quantity | target | result | pass |"));
@@ -86,8 +86,8 @@ TEST(Validate, WritesReproducibleDocWhereAllTargetsPass) {
 
 TEST(Validate, MissingScenarioFolderIsBadInput) {
   TempDir dir;
-  EXPECT_EQ(run_cli("validate --scenarios '" + (dir.path / "none").string() + "' --docs '" +
-                    dir.path.string() + "' --no-plots"),
+  EXPECT_EQ(run_cli("validate --scenarios '" + (dir.path / "none").string() + "' --docs '" + dir.path.string() +
+                    "' --no-plots"),
             2);
 }
 
@@ -109,8 +109,7 @@ TEST(WritePlot, RendersPngAndSvgReproducibly) {
 TEST(WritePlot, RejectsBadRequests) {
   TempDir dir;
   auto p = sample_plot();
-  EXPECT_THROW(shudder::report::write_plot((dir.path / "a.jpg").string(), p),
-               shudder::io::InputError);
+  EXPECT_THROW(shudder::report::write_plot((dir.path / "a.jpg").string(), p), shudder::io::InputError);
   p.series[0].y.pop_back();
   EXPECT_THROW(shudder::report::write_plot((dir.path / "a.png").string(), p), std::invalid_argument);
   EXPECT_THROW(shudder::report::write_plot((dir.path / "no_dir" / "a.png").string(), sample_plot()),

@@ -89,8 +89,19 @@ TEST(BandedLu, PaddedSolveEqualsThePlainBandSubstitutionBitForBit) {
   std::mt19937 rng(3);
   // Sizes: b = 0 and 1, b = 2 (no term before the last two), b past n, odd and even n; the
   // widest unrolled sweep (24) and the generic one past it (banded_lu.cpp).
-  for (const auto& [n, b] : std::vector<std::pair<int, int>>{
-           {1, 0}, {6, 1}, {2, 2}, {3, 2}, {7, 2}, {4, 6}, {17, 4}, {240, 12}, {241, 12}, {50, 13}, {24, 24}, {80, 25}, {30, 40}}) {
+  for (const auto& [n, b] : std::vector<std::pair<int, int>>{{1, 0},
+                                                             {6, 1},
+                                                             {2, 2},
+                                                             {3, 2},
+                                                             {7, 2},
+                                                             {4, 6},
+                                                             {17, 4},
+                                                             {240, 12},
+                                                             {241, 12},
+                                                             {50, 13},
+                                                             {24, 24},
+                                                             {80, 25},
+                                                             {30, 40}}) {
     const Eigen::SparseMatrix<double> a = random_band(n, b, rng);
     // Plain band LU without pivoting, the same operation order as BandedLu::factorize.
     Eigen::MatrixXd f = Eigen::MatrixXd(a);

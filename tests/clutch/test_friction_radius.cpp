@@ -88,8 +88,10 @@ TEST(FrictionRadius, AConvertedMakiLawKeepsItsFastSpeedCurveForm) {
   // weights and speed range scaled in friction_at_radius are mu(v) = k law(k v) term by term.
   const auto law = std::make_shared<clutch::MakiFrictionMatrix>(
       std::vector<double>{10000.0, 20000.0}, std::vector<double>{40.0, 80.0},
-      std::vector<clutch::MakiSet>{{-0.04, 0.002, 0.08, -0.02}, {-0.03, 0.003, 0.09, -0.03},
-                                   {-0.035, 0.0015, 0.075, -0.025}, {-0.03, 0.002, 0.085, -0.03}},
+      std::vector<clutch::MakiSet>{{-0.04, 0.002, 0.08, -0.02},
+                                   {-0.03, 0.003, 0.09, -0.03},
+                                   {-0.035, 0.0015, 0.075, -0.025},
+                                   {-0.03, 0.002, 0.085, -0.03}},
       6.0, 590.0);
   clutch::Fluid f;
   f.name = "maki";
@@ -113,12 +115,15 @@ TEST(FrictionRadius, TheFluidFileRecordsItAndTheLoaderReadsItBack) {
   const std::string base =
       "[fluid]\nname = \"x\"\nnu40_cSt = 35.0\nnu100_cSt = 6.7\n[static_friction]\nbreakaway_ratio = 1.0\n"
       "[linear]\nmean_radius_mm = 46.0\nspeeds_rpm = [1.0, 100.0]\nalpha_per_C = [0.0, 0.0]\nbeta = [0.1, 0.12]\n";
-  const auto f = io::load_fluid_text(base + "[friction_radius]\nconvention = \"uniform_wear\"\nradius_mm = 46.0\n", "f.toml");
+  const auto f =
+      io::load_fluid_text(base + "[friction_radius]\nconvention = \"uniform_wear\"\nradius_mm = 46.0\n", "f.toml");
   EXPECT_EQ(f.friction_radius_convention, "uniform_wear");
   EXPECT_EQ(f.friction_radius_mm, 46.0);
   EXPECT_EQ(io::load_fluid_text(base, "g.toml").friction_radius_mm, 0.0);
-  EXPECT_THAT([&] { io::load_fluid_text(base + "[friction_radius]\nconvention = \"worn\"\nradius_mm = 46.0\n", "h.toml"); },
-              ::testing::ThrowsMessage<io::InputError>(::testing::HasSubstr("expected \"uniform_pressure\" or \"uniform_wear\"")));
+  EXPECT_THAT(
+      [&] { io::load_fluid_text(base + "[friction_radius]\nconvention = \"worn\"\nradius_mm = 46.0\n", "h.toml"); },
+      ::testing::ThrowsMessage<io::InputError>(
+          ::testing::HasSubstr("expected \"uniform_pressure\" or \"uniform_wear\"")));
 }
 
 TEST(FrictionRadius, ScreenReadsRpmAtTheRecordedRadius) {

@@ -17,7 +17,9 @@
 namespace shudder::clutch {
 namespace {
 
-double effusivity(const Layer& l) { return std::sqrt(l.conductivity_W_per_mK * l.density_kg_m3 * l.specific_heat_J_per_kgK); }
+double effusivity(const Layer& l) {
+  return std::sqrt(l.conductivity_W_per_mK * l.density_kg_m3 * l.specific_heat_J_per_kgK);
+}
 
 // Fast (penetration depth √(α/ω) ≪ every layer): two semi-infinite solids in parallel,
 // Z = 1/((e_sep + e_lin) √(iω)) — the lining's wave never reaches the core.
@@ -26,7 +28,8 @@ TEST(InterfaceThermalImpedance, FastOscillationSeesTwoSemiInfiniteSolids) {
   const double omega = 2 * std::numbers::pi * 5000.0;  // δ ≈ 0.03 mm in steel, 0.01 mm in the lining
   const std::complex<double> expected =
       1.0 / ((effusivity(p.separator) + effusivity(p.lining)) * std::sqrt(std::complex<double>(0.0, omega)));
-  EXPECT_LT(std::abs(interface_thermal_impedance(p, omega) - expected), 1e-9 * std::abs(expected));  // tanh → 1 to e^-40
+  EXPECT_LT(std::abs(interface_thermal_impedance(p, omega) - expected),
+            1e-9 * std::abs(expected));  // tanh → 1 to e^-40
 }
 
 // Slow (√(α/ω) ≫ every layer): the layers warm as one lump, Z = 1/(iω Σ ρ c L).
@@ -34,7 +37,8 @@ TEST(InterfaceThermalImpedance, SlowOscillationSeesTheLayersHeatCapacity) {
   const ThermalParams p;
   const double omega = 2 * std::numbers::pi * 0.01;  // δ ≈ 20 mm against 0.75 mm layers
   double capacity = 0;
-  for (const Layer* l : {&p.separator, &p.lining, &p.core}) capacity += l->density_kg_m3 * l->specific_heat_J_per_kgK * l->thickness_m;
+  for (const Layer* l : {&p.separator, &p.lining, &p.core})
+    capacity += l->density_kg_m3 * l->specific_heat_J_per_kgK * l->thickness_m;
   const std::complex<double> expected = 1.0 / std::complex<double>(0.0, omega * capacity);
   // Next term of the expansion: (ωL²/α)-order, ~1e-3 here.
   EXPECT_LT(std::abs(interface_thermal_impedance(p, omega) - expected), 5e-3 * std::abs(expected));
@@ -65,10 +69,11 @@ TEST(InterfaceThermalImpedance, ThermalFeedbackOnTheCouplingSlope) {
   const auto at4 = rig_models::coupling_thermal_feedback(dl, clutch, op, 4.0);
   const auto at378 = rig_models::coupling_thermal_feedback(dl, clutch, op, 378.0);
   EXPECT_NEAR(at4.coupling_torque_Nm, 2000.0, 1.0);  // the rescaling's fixed point
-  std::printf("thermal feedback per interface at 125 N m, %.0f N: 4 Hz %.4f, 378 Hz %.4f N m s/rad (isothermal "
-              "%.4f); dM/dT %.3f N m/K for the pack\n", op.clamp_force_N,
-              at4.added_damping_Nms / 16, at378.added_damping_Nms / 16, at4.isothermal_slope_Nms / 16,
-              at4.torque_temperature_slope_Nm_per_K);
+  std::printf(
+      "thermal feedback per interface at 125 N m, %.0f N: 4 Hz %.4f, 378 Hz %.4f N m s/rad (isothermal "
+      "%.4f); dM/dT %.3f N m/K for the pack\n",
+      op.clamp_force_N, at4.added_damping_Nms / 16, at378.added_damping_Nms / 16, at4.isothermal_slope_Nms / 16,
+      at4.torque_temperature_slope_Nm_per_K);
   EXPECT_LT(at4.added_damping_Nms, 0.0);
   EXPECT_LT(at378.added_damping_Nms, 0.0);
   // Semi-infinite scaling (√(378/4) ≈ 9.7) softened at 4 Hz, where the wave reaches the

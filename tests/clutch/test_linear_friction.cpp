@@ -82,12 +82,21 @@ TEST(LinearTemperatureFriction, ConstructorRejectsBadSpeedsAndValues) {
   using P = LinearTemperaturePoint;
   EXPECT_THAT([] { LinearTemperatureFriction(std::vector<P>{}); },
               ThrowsMessage<std::invalid_argument>(HasSubstr("at least one speed")));
-  EXPECT_THAT([] { LinearTemperatureFriction({{241.0, 0, 0.1}, {4.82, 0, 0.1}}); },
-              ThrowsMessage<std::invalid_argument>(HasSubstr("strictly increasing")));
-  EXPECT_THAT([] { LinearTemperatureFriction({{0.0, 0, 0.1}}); },
-              ThrowsMessage<std::invalid_argument>(HasSubstr("speeds must be > 0")));
-  EXPECT_THAT([nan] { LinearTemperatureFriction({{4.82, nan, 0.1}}); },
-              ThrowsMessage<std::invalid_argument>(HasSubstr("non-finite")));
+  EXPECT_THAT(
+      [] {
+        LinearTemperatureFriction({{241.0, 0, 0.1}, {4.82, 0, 0.1}});
+      },
+      ThrowsMessage<std::invalid_argument>(HasSubstr("strictly increasing")));
+  EXPECT_THAT(
+      [] {
+        LinearTemperatureFriction({{0.0, 0, 0.1}});
+      },
+      ThrowsMessage<std::invalid_argument>(HasSubstr("speeds must be > 0")));
+  EXPECT_THAT(
+      [nan] {
+        LinearTemperatureFriction({{4.82, nan, 0.1}});
+      },
+      ThrowsMessage<std::invalid_argument>(HasSubstr("non-finite")));
 }
 
 }  // namespace

@@ -52,8 +52,8 @@ TEST(MakiSet, SeventyDegreeTwentyKiloNewtonSetMatchesHandValues) {
 TEST(MakiSet, AnalyticSlopeMatchesCentralDifference) {
   // Central difference error ~ h²/6 * |mu'''|; with h = 1e-4*v it is < 1e-10 of the slope at
   // these speeds, and round-off ~ eps*mu/h < 1e-11: tolerance 1e-7 relative.
-  for (const MakiSet& s : {kSet70C20kN, MakiSet{-0.338, 0.0001, 0.077, -0.025},
-                           MakiSet{-0.0025, 0.013, 0.012, 0.098}}) {
+  for (const MakiSet& s :
+       {kSet70C20kN, MakiSet{-0.338, 0.0001, 0.077, -0.025}, MakiSet{-0.0025, 0.013, 0.012, 0.098}}) {
     for (double v : {6.0, 20.0, 100.0, 241.0, 590.0}) {
       const double h = 1e-4 * v;
       const double fd = (s.mu(v + h) - s.mu(v - h)) / (2.0 * h);
@@ -89,8 +89,7 @@ TEST(MakiFrictionMatrix, SpeedIsClampedToSixAndFiveHundredNinetyMillimetresPerSe
 // 100 °C   C3 = 0.03, C4 = 0.06  C3 = 0.04, C4 = 0.09
 MakiFrictionMatrix two_by_two() {
   return MakiFrictionMatrix({10000.0, 20000.0}, {0.0, 100.0},
-                            {{0, 0, 0.01, 0.10}, {0, 0, 0.02, 0.12},
-                             {0, 0, 0.03, 0.06}, {0, 0, 0.04, 0.09}});
+                            {{0, 0, 0.01, 0.10}, {0, 0, 0.02, 0.12}, {0, 0, 0.03, 0.06}, {0, 0, 0.04, 0.09}});
 }
 
 TEST(MakiFrictionMatrix, BilinearBetweenTwoLoadsAndTwoTemperatures) {
@@ -121,8 +120,7 @@ TEST(MakiFrictionMatrix, LoadIsClampedToTheMatrixEnds) {
 TEST(MakiFrictionMatrix, TemperatureIsHeldAtTheEndRowsOutsideMinusFortyToTwoHundred) {
   // Paper G's matrix ends: -40 °C and 200 °C, with different levels at each end.
   const MakiFrictionMatrix m({10000.0, 25000.0}, {-40.0, 200.0},
-                             {{0, 0, 0.0, 0.12}, {0, 0, 0.0, 0.13},
-                              {0, 0, 0.0, 0.05}, {0, 0, 0.0, 0.06}});
+                             {{0, 0, 0.0, 0.12}, {0, 0, 0.0, 0.13}, {0, 0, 0.0, 0.05}, {0, 0, 0.0, 0.06}});
   for (double f : {10000.0, 17500.0, 25000.0}) {
     EXPECT_EQ(m.mu(100.0, -50.0, f), m.mu(100.0, -40.0, f)) << f;
     EXPECT_EQ(m.mu(100.0, -273.0, f), m.mu(100.0, -40.0, f)) << f;
@@ -140,8 +138,7 @@ TEST(MakiFrictionMatrix, InterpolatesMuValuesNotCoefficients) {
   // Coefficient interpolation would give 0.1*tanh(0.0505*100) = 0.1*tanh(5.05) = 0.099991795,
   // almost twice as large, so the two are told apart by far more than the tolerance (1e-9,
   // the rounding of the hand value).
-  const MakiFrictionMatrix m({20000.0}, {0.0, 100.0},
-                             {{0.1, 0.001, 0.0, 0.0}, {0.1, 0.1, 0.0, 0.0}});
+  const MakiFrictionMatrix m({20000.0}, {0.0, 100.0}, {{0.1, 0.001, 0.0, 0.0}, {0.1, 0.1, 0.0, 0.0}});
   EXPECT_NEAR(m.mu(100.0, 50.0, 20000.0), 0.054983399, 1e-9);
   const MakiSet coefficient_blend{0.1, 0.0505, 0.0, 0.0};
   EXPECT_GT(std::abs(m.mu(100.0, 50.0, 20000.0) - coefficient_blend.mu(100.0)), 0.04);
@@ -167,17 +164,28 @@ TEST(MakiFrictionMatrix, ConstructorRejectsBadAxesAndSizes) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THAT([&] { MakiFrictionMatrix({}, {70.0}, {}); },
               ThrowsMessage<std::invalid_argument>(HasSubstr("loads must not be empty")));
-  EXPECT_THAT([&] { MakiFrictionMatrix({20000.0, 10000.0}, {70.0}, {s, s}); },
-              ThrowsMessage<std::invalid_argument>(HasSubstr("loads must be strictly increasing")));
-  EXPECT_THAT([&] { MakiFrictionMatrix({10000.0}, {70.0, 70.0}, {s, s}); },
-              ThrowsMessage<std::invalid_argument>(
-                  HasSubstr("temperatures must be strictly increasing")));
+  EXPECT_THAT(
+      [&] {
+        MakiFrictionMatrix({20000.0, 10000.0}, {70.0}, {s, s});
+      },
+      ThrowsMessage<std::invalid_argument>(HasSubstr("loads must be strictly increasing")));
+  EXPECT_THAT(
+      [&] {
+        MakiFrictionMatrix({10000.0}, {70.0, 70.0}, {s, s});
+      },
+      ThrowsMessage<std::invalid_argument>(HasSubstr("temperatures must be strictly increasing")));
   EXPECT_THAT([&] { MakiFrictionMatrix({10000.0}, {nan}, {s}); },
               ThrowsMessage<std::invalid_argument>(HasSubstr("non-finite value")));
-  EXPECT_THAT([&] { MakiFrictionMatrix({10000.0, 20000.0}, {70.0}, {s}); },
-              ThrowsMessage<std::invalid_argument>(HasSubstr("has 1 parameter sets")));
-  EXPECT_THAT([&] { MakiFrictionMatrix({10000.0}, {70.0}, {MakiSet{nan, 0, 0, 0}}); },
-              ThrowsMessage<std::invalid_argument>(HasSubstr("non-finite coefficient")));
+  EXPECT_THAT(
+      [&] {
+        MakiFrictionMatrix({10000.0, 20000.0}, {70.0}, {s});
+      },
+      ThrowsMessage<std::invalid_argument>(HasSubstr("has 1 parameter sets")));
+  EXPECT_THAT(
+      [&] {
+        MakiFrictionMatrix({10000.0}, {70.0}, {MakiSet{nan, 0, 0, 0}});
+      },
+      ThrowsMessage<std::invalid_argument>(HasSubstr("non-finite coefficient")));
   EXPECT_THAT([&] { MakiFrictionMatrix({10000.0}, {70.0}, {s}, 0.0, 590.0); },
               ThrowsMessage<std::invalid_argument>(HasSubstr("0 < min < max")));
   EXPECT_THAT([&] { MakiFrictionMatrix({10000.0}, {70.0}, {s}, 600.0, 590.0); },
@@ -214,12 +222,18 @@ double blend_of_set_values(const MakiFrictionMatrix& m, double v_mm_s, double te
 // inside the matrix, on its axes, clamped beyond them, and with equal and unequal C2.
 TEST(MakiFrictionMatrix, FastBlendEqualsTheBlendOfSetValuesBitForBit) {
   const MakiFrictionMatrix m({10000.0, 15000.0, 25000.0}, {-40.0, 20.0, 70.0, 200.0},
-                             {{-0.031, 0.0014, 0.057, 0.035}, {-0.026, 0.0037, 0.035, 0.07},
-                              {-0.0024, 0.0098, 0.012, 0.101}, {-0.024, 0.0024, 0.047, 0.05},
-                              {-0.024, 0.0024, 0.020, 0.084}, {-0.038, 0.002, 0.037, 0.068},
-                              {-0.039, 0.001, 0.077, -0.024}, {-0.039, 0.001, 0.05, 0.01},
-                              {-0.038, 0.002, 0.03, 0.02}, {-0.031, 0.0014, 0.057, 0.035},
-                              {-0.026, 0.0037, 0.035, 0.07}, {-0.0024, 0.0098, 0.012, 0.101}});
+                             {{-0.031, 0.0014, 0.057, 0.035},
+                              {-0.026, 0.0037, 0.035, 0.07},
+                              {-0.0024, 0.0098, 0.012, 0.101},
+                              {-0.024, 0.0024, 0.047, 0.05},
+                              {-0.024, 0.0024, 0.020, 0.084},
+                              {-0.038, 0.002, 0.037, 0.068},
+                              {-0.039, 0.001, 0.077, -0.024},
+                              {-0.039, 0.001, 0.05, 0.01},
+                              {-0.038, 0.002, 0.03, 0.02},
+                              {-0.031, 0.0014, 0.057, 0.035},
+                              {-0.026, 0.0037, 0.035, 0.07},
+                              {-0.0024, 0.0098, 0.012, 0.101}});
   int checked = 0;
   for (double v : {0.0, 3.0, 6.0, 17.3, 241.0, 590.0, 900.0, -55.0})
     for (double t : {-60.0, -40.0, 0.0, 20.0, 45.5, 70.0, 133.3, 200.0, 250.0})
@@ -236,20 +250,30 @@ TEST(MakiFrictionMatrix, FastBlendEqualsTheBlendOfSetValuesBitForBit) {
 // and points whose four sets have other C2 than the previous call's (tanh taken on first use).
 TEST(MakiFrictionMatrix, BatchAtOneLoadEqualsPointwiseMuBitForBitWhileSpeedsRepeat) {
   const MakiFrictionMatrix m({10000.0, 15000.0, 25000.0}, {-40.0, 20.0, 70.0, 200.0},
-                             {{-0.031, 0.0014, 0.057, 0.035}, {-0.026, 0.0037, 0.035, 0.07},
-                              {-0.0024, 0.0098, 0.012, 0.101}, {-0.024, 0.0024, 0.047, 0.05},
-                              {-0.024, 0.0024, 0.020, 0.084}, {-0.038, 0.002, 0.037, 0.068},
-                              {-0.039, 0.001, 0.077, -0.024}, {-0.039, 0.001, 0.05, 0.01},
-                              {-0.038, 0.002, 0.03, 0.02}, {-0.031, 0.0014, 0.057, 0.035},
-                              {-0.026, 0.0037, 0.035, 0.07}, {-0.0024, 0.0098, 0.012, 0.101}});
+                             {{-0.031, 0.0014, 0.057, 0.035},
+                              {-0.026, 0.0037, 0.035, 0.07},
+                              {-0.0024, 0.0098, 0.012, 0.101},
+                              {-0.024, 0.0024, 0.047, 0.05},
+                              {-0.024, 0.0024, 0.020, 0.084},
+                              {-0.038, 0.002, 0.037, 0.068},
+                              {-0.039, 0.001, 0.077, -0.024},
+                              {-0.039, 0.001, 0.05, 0.01},
+                              {-0.038, 0.002, 0.03, 0.02},
+                              {-0.031, 0.0014, 0.057, 0.035},
+                              {-0.026, 0.0037, 0.035, 0.07},
+                              {-0.0024, 0.0098, 0.012, 0.101}});
   const shudder::clutch::FrictionLaw& law = m;
   shudder::clutch::SpeedTerms terms;
-  const std::vector<std::vector<double>> speed_sets{
-      {3.0, 17.3, 241.0, 590.0, 900.0}, {3.0, 17.3, 241.0, 590.0, 900.0}, {-55.0, 6.0, 100.0},
-      {-55.0, 6.0, 100.0}, {0.0, 6.0, 100.0, 300.0, 1e4, 42.0}};
-  const std::vector<std::vector<double>> temp_sets{
-      {-60.0, 20.0, 45.5, 133.3, 250.0}, {200.0, 70.0, 0.0, -40.0, 21.0}, {45.5, 133.3, -10.0},
-      {-40.0, 199.0, 70.0}, {20.0, 20.0, 75.0, 150.0, -45.0, 69.0}};
+  const std::vector<std::vector<double>> speed_sets{{3.0, 17.3, 241.0, 590.0, 900.0},
+                                                    {3.0, 17.3, 241.0, 590.0, 900.0},
+                                                    {-55.0, 6.0, 100.0},
+                                                    {-55.0, 6.0, 100.0},
+                                                    {0.0, 6.0, 100.0, 300.0, 1e4, 42.0}};
+  const std::vector<std::vector<double>> temp_sets{{-60.0, 20.0, 45.5, 133.3, 250.0},
+                                                   {200.0, 70.0, 0.0, -40.0, 21.0},
+                                                   {45.5, 133.3, -10.0},
+                                                   {-40.0, 199.0, 70.0},
+                                                   {20.0, 20.0, 75.0, 150.0, -45.0, 69.0}};
   int checked = 0;
   for (double load : {12345.0, 25300.0, 10000.0})
     for (std::size_t c = 0; c < speed_sets.size(); ++c) {

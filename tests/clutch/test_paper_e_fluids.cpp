@@ -27,10 +27,8 @@ struct TableFour {
 };
 
 constexpr TableFour kFluids[] = {
-    {"paper_e_fluid_a.toml", 0.0861, 0.1078, 0.7985},
-    {"paper_e_fluid_b.toml", 0.0885, 0.1099, 0.8051},
-    {"paper_e_fluid_c.toml", 0.0875, 0.1058, 0.8269},
-    {"paper_e_fluid_d.toml", 0.0878, 0.1057, 0.8309},
+    {"paper_e_fluid_a.toml", 0.0861, 0.1078, 0.7985}, {"paper_e_fluid_b.toml", 0.0885, 0.1099, 0.8051},
+    {"paper_e_fluid_c.toml", 0.0875, 0.1058, 0.8269}, {"paper_e_fluid_d.toml", 0.0878, 0.1057, 0.8309},
     {"paper_e_fluid_e.toml", 0.0865, 0.1023, 0.8455},
 };
 
@@ -40,8 +38,7 @@ const double kV50 = 50.0 * kV1;
 
 TEST(PaperEFluids, MatchTableFourOneDegreeBelowItsLabel) {
   for (const auto& f : kFluids) {
-    const auto fluid =
-        shudder::io::load_fluid(std::string(SHUDDER_SOURCE_DIR "/scenarios/fluids/") + f.file);
+    const auto fluid = shudder::io::load_fluid(std::string(SHUDDER_SOURCE_DIR "/scenarios/fluids/") + f.file);
     const auto& law = *fluid.friction;
     const double mu1 = law.mu(kV1, 29.0, 20000.0), mu50 = law.mu(kV50, 29.0, 20000.0);
     EXPECT_NEAR(mu1, f.mu1, 6e-5) << f.file;
@@ -57,8 +54,7 @@ TEST(PaperEFluids, MatchTableFourOneDegreeBelowItsLabel) {
 TEST(PaperEFluids, ViscositiesFromTableOne) {
   const double nu[5][2] = {{7.05, 2.18}, {9.74, 2.71}, {35.0, 6.70}, {58.9, 8.26}, {63.1, 9.71}};
   for (int i = 0; i < 5; ++i) {
-    const auto fluid = shudder::io::load_fluid(
-        std::string(SHUDDER_SOURCE_DIR "/scenarios/fluids/") + kFluids[i].file);
+    const auto fluid = shudder::io::load_fluid(std::string(SHUDDER_SOURCE_DIR "/scenarios/fluids/") + kFluids[i].file);
     EXPECT_EQ(fluid.nu40_cSt, nu[i][0]) << kFluids[i].file;
     EXPECT_EQ(fluid.nu100_cSt, nu[i][1]) << kFluids[i].file;
   }

@@ -14,7 +14,9 @@ using shudder::clutch::TableFriction;
 
 // mu = 0.10 + 0.01 ln(v/5) − 2e-4 (T − 20) − 1e-6 (F − 10000): every interpolation rule is
 // exact on it (linear in ln v, T and F), so any value between grid points has a closed form.
-double exact(double v, double t, double f) { return 0.10 + 0.01 * std::log(v / 5.0) - 2e-4 * (t - 20.0) - 1e-6 * (f - 10000.0); }
+double exact(double v, double t, double f) {
+  return 0.10 + 0.01 * std::log(v / 5.0) - 2e-4 * (t - 20.0) - 1e-6 * (f - 10000.0);
+}
 
 TableFriction make() {
   const std::vector<double> v{5.0, 50.0, 500.0}, t{20.0, 80.0}, f{10000.0, 20000.0};

@@ -34,7 +34,6 @@ using shudder::clutch::ThermalWorkspace;
 using ::testing::HasSubstr;
 using ::testing::ThrowsMessage;
 
-
 // Paper G geometry and materials, every effect off; each test switches on what it needs.
 ThermalParams bare_params() {
   ThermalParams p;
@@ -172,8 +171,7 @@ TEST(ThermalModel, SteadyRadialConductionFollowsTheLogProfile) {
   const ThermalParams p = bare_params();
   const RadialResult res = steady_radial_error(p.radial_cells, T_in, T_out);
   const double ratio = res.dr_m / p.inner_radius_m;
-  const double bound =
-      std::abs(T_out - T_in) * ratio * ratio / std::log(p.outer_radius_m / p.inner_radius_m);
+  const double bound = std::abs(T_out - T_in) * ratio * ratio / std::log(p.outer_radius_m / p.inner_radius_m);
   EXPECT_LT(res.max_error_C, bound);  // bound ≈ 0.074 K for 20 rings (see the derivation)
   EXPECT_GT(res.max_error_C, 0.0);    // sanity: the scheme is not exact for a log profile
 }
@@ -226,12 +224,21 @@ struct QuasiSteady {
   double a, b, c, ks, kl, kc, rcs, rcl, rcc, Cs, Cl, Cc, Cf, beta, mean;
 
   QuasiSteady(const ThermalParams& p, double q)
-      : a(p.separator.thickness_m), b(p.lining.thickness_m), c(p.core.thickness_m),
-        ks(p.separator.conductivity_W_per_mK), kl(p.lining.conductivity_W_per_mK),
-        kc(p.core.conductivity_W_per_mK), rcs(rho_c(p.separator)), rcl(rho_c(p.lining)),
-        rcc(rho_c(p.core)), Cs(rcs * a), Cl(rcl * b), Cc(rcc * c),
+      : a(p.separator.thickness_m),
+        b(p.lining.thickness_m),
+        c(p.core.thickness_m),
+        ks(p.separator.conductivity_W_per_mK),
+        kl(p.lining.conductivity_W_per_mK),
+        kc(p.core.conductivity_W_per_mK),
+        rcs(rho_c(p.separator)),
+        rcl(rho_c(p.lining)),
+        rcc(rho_c(p.core)),
+        Cs(rcs * a),
+        Cl(rcl * b),
+        Cc(rcc * c),
         Cf(p.oil_density_kg_m3 * p.oil_specific_heat_J_per_kgK * p.film_thickness_m),
-        beta(q / (Cs + Cf + Cl + Cc)), mean(0.0) {
+        beta(q / (Cs + Cf + Cl + Cc)),
+        mean(0.0) {
     // Capacity-weighted mean by Simpson's rule per layer (exact for quadratics).
     const auto simpson = [this](double z0, double z1) {
       return (z1 - z0) / 6.0 * (phi(z0) + 4.0 * phi(0.5 * (z0 + z1)) + phi(z1));
@@ -256,7 +263,7 @@ struct QuasiSteady {
 
 constexpr double kCompositeFlux = 1e5;  // W/m² (beta ≈ 17 K/s)
 constexpr double kCompositeT0 = 40.0;
-constexpr double kCompositeEnd = 1.5;   // s: 30 tau_1, BE residual (1 + dt/tau_1)^-150 < 1e-10
+constexpr double kCompositeEnd = 1.5;  // s: 30 tau_1, BE residual (1 + dt/tau_1)^-150 < 1e-10
 constexpr double kCompositeDt = 0.01;
 
 ThermalState run_composite(const ThermalModel& model) {
@@ -334,8 +341,7 @@ TEST(ThermalModel, AxialDiscretisationConvergesAtSecondOrder) {
     const ThermalModel model(p);
     const ThermalState s = run_composite(model);
     const QuasiSteady ex(p, kCompositeFlux);
-    err.push_back(std::abs(model.interface_temps_C(s)[kCompositeMid] -
-                           ex.temp(kCompositeT0, kCompositeEnd, ex.a)));
+    err.push_back(std::abs(model.interface_temps_C(s)[kCompositeMid] - ex.temp(kCompositeT0, kCompositeEnd, ex.a)));
   }
   for (std::size_t k = 0; k + 1 < err.size(); ++k) {
     const double p = order(err[k], err[k + 1]);
@@ -366,8 +372,7 @@ Eigen::VectorXd transient_field(double dt) {
 TEST(ThermalModel, BackwardEulerConvergesAtFirstOrderInTime) {
   const Eigen::VectorXd ref = transient_field(1e-4);
   std::vector<double> err;
-  for (const double dt : {0.04, 0.02, 0.01, 0.005})
-    err.push_back((transient_field(dt) - ref).cwiseAbs().maxCoeff());
+  for (const double dt : {0.04, 0.02, 0.01, 0.005}) err.push_back((transient_field(dt) - ref).cwiseAbs().maxCoeff());
   for (std::size_t k = 0; k + 1 < err.size(); ++k) {
     const double p = order(err[k], err[k + 1]);
     EXPECT_GE(p, 0.8) << "halving " << k;
@@ -443,8 +448,7 @@ TEST(ThermalModel, SumpAndRigTemperaturesRiseByTheirLedgerEnergyOverCapacity) {
     const double sump_rise = run.end.sump_temp_C - run.start.sump_temp_C;
     EXPECT_NEAR(sump_rise, e.to_sump_J / run.sump_capacity_J_per_K, 1e-12 * std::abs(sump_rise));
     EXPECT_DOUBLE_EQ(run.sump_capacity_J_per_K,
-                     defaults.oil_density_kg_m3 * defaults.oil_specific_heat_J_per_kgK *
-                         defaults.sump_volume_m3);
+                     defaults.oil_density_kg_m3 * defaults.oil_specific_heat_J_per_kgK * defaults.sump_volume_m3);
     const double rig_rise = run.end.rig_temp_C - run.start.rig_temp_C;
     EXPECT_NEAR(rig_rise, e.to_rig_J / defaults.rig_heat_capacity_J_per_K, 1e-12 * std::abs(rig_rise));
     EXPECT_GT(sump_rise, 0.0);
@@ -549,8 +553,7 @@ TEST(ThermalModel, LiteralFilmFormRemovesRSquaredOverHTimesMoreHeatPerTemperatur
     // Steady: the second step's heat all leaves with the oil.
     EXPECT_NEAR((s.energy.to_sump_J - to_sump_before) / (heat.sum() * 1e4), 1.0, 1e-6);
 
-    const double flow_W_per_K =
-        p.oil_density_kg_m3 * p.oil_specific_heat_J_per_kgK * 0.5 * p.supply_flow_m3_s;
+    const double flow_W_per_K = p.oil_density_kg_m3 * p.oil_specific_heat_J_per_kgK * 0.5 * p.supply_flow_m3_s;
     ASSERT_DOUBLE_EQ(model.interface_flow_m3_s(0.0, T_in), 0.5 * p.supply_flow_m3_s);
     const Eigen::VectorXd film = model.interface_temps_C(s);
     Eigen::VectorXd dT(film.size());
@@ -578,8 +581,7 @@ TEST(ThermalModel, RejectsBadParametersNamingTheQuantity) {
               ThrowsMessage<std::invalid_argument>(HasSubstr("radial cells must be in [2, 2000]")));
   p = ThermalParams{};
   p.lining.conductivity_W_per_mK = 0.0;
-  EXPECT_THAT([&] { ThermalModel m(p); },
-              ThrowsMessage<std::invalid_argument>(HasSubstr("lining conductivity")));
+  EXPECT_THAT([&] { ThermalModel m(p); }, ThrowsMessage<std::invalid_argument>(HasSubstr("lining conductivity")));
   p = ThermalParams{};
   p.outer_radius_m = p.inner_radius_m;
   EXPECT_THAT([&] { ThermalModel m(p); },

@@ -41,14 +41,11 @@ using shudder::clutch::WetClutchParams;
 using ::testing::HasSubstr;
 using ::testing::ThrowsMessage;
 
-
 // mu = mu0 + dmu_dT * T + dmu_dF * F: constant, linear in temperature or linear in load.
 class AffineFriction final : public FrictionLaw {
  public:
   AffineFriction(double mu0, double dmu_dT, double dmu_dF) : mu0_(mu0), dT_(dmu_dT), dF_(dmu_dF) {}
-  double mu(double, double temp_C, double load_N) const override {
-    return mu0_ + dT_ * temp_C + dF_ * load_N;
-  }
+  double mu(double, double temp_C, double load_N) const override { return mu0_ + dT_ * temp_C + dF_ * load_N; }
   double dmu_dv_per_mm_s(double, double, double) const override { return 0.0; }
   double min_speed_mm_s() const override { return 1.0; }
 
@@ -75,8 +72,7 @@ WetClutchParams clutch_params() {
 struct Annulus {
   double ri, ro, dr;
   explicit Annulus(const WetClutchParams& p)
-      : ri(p.thermal.inner_radius_m), ro(p.thermal.outer_radius_m),
-        dr((ro - ri) / p.thermal.radial_cells) {}
+      : ri(p.thermal.inner_radius_m), ro(p.thermal.outer_radius_m), dr((ro - ri) / p.thermal.radial_cells) {}
   double area() const { return std::numbers::pi * (ro * ro - ri * ri); }
   double r2_integral() const { return 2.0 / 3.0 * std::numbers::pi * (ro * ro * ro - ri * ri * ri); }
   double r2_midpoint_error() const { return std::numbers::pi / 6.0 * dr * dr * (ro - ri); }
@@ -105,11 +101,9 @@ TEST(WetClutch, ConstantMuTorqueMatchesTheUniformPressureAnnulus) {
   EXPECT_LT(std::abs(rel), ratio * ratio / 12.0);  // midpoint-rule bound (header): 5e-5
   EXPECT_LT(rel, 0.0);                             // the midpoint rule under-integrates r²
   // ... and the error is exactly the midpoint term, so nothing else is hidden in the sum.
-  EXPECT_NEAR(torque / (n * mu * (force / an.area()) * (an.r2_integral() - an.r2_midpoint_error())),
-              1.0, kRoundOff);
+  EXPECT_NEAR(torque / (n * mu * (force / an.area()) * (an.r2_integral() - an.r2_midpoint_error())), 1.0, kRoundOff);
   // Mean radius sum(r_i A_i)/A: the same midpoint sum over the area.
-  EXPECT_NEAR(clutch.mean_radius_m() / ((an.r2_integral() - an.r2_midpoint_error()) / an.area()),
-              1.0, kRoundOff);
+  EXPECT_NEAR(clutch.mean_radius_m() / ((an.r2_integral() - an.r2_midpoint_error()) / an.area()), 1.0, kRoundOff);
 }
 
 TEST(WetClutch, TorqueSignFollowsSlipAndHeatPerInterfaceIsSlipTimesTorqueOverN) {
@@ -127,8 +121,7 @@ TEST(WetClutch, TorqueSignFollowsSlipAndHeatPerInterfaceIsSlipTimesTorqueOverN) 
       ASSERT_EQ(heat.size(), p.thermal.radial_cells);
       EXPECT_GE(heat.minCoeff(), 0.0);
       // q per interface = |slip| |M| / n: the friction power of one interface.
-      EXPECT_NEAR(heat.sum(), std::abs(s) * std::abs(fwd) / p.sliding_interfaces,
-                  kRoundOff * heat.sum());
+      EXPECT_NEAR(heat.sum(), std::abs(s) * std::abs(fwd) / p.sliding_interfaces, kRoundOff * heat.sum());
     }
   }
 }
@@ -156,8 +149,7 @@ TEST(WetClutch, TemperatureDependentFrictionOffUsesTheStartTemperature) {
   const double expected_off = n * pressure * (mu0 + dmu_dT * p.start_temp_C) * r.dot(a);
   EXPECT_NEAR(off.torque_Nm(slip, force, temps) / expected_off, 1.0, kRoundOff);
   // Independent of the ring temperatures altogether.
-  EXPECT_EQ(off.torque_Nm(slip, force, temps),
-            off.torque_Nm(slip, force, Eigen::VectorXd::Constant(r.size(), 150.0)));
+  EXPECT_EQ(off.torque_Nm(slip, force, temps), off.torque_Nm(slip, force, Eigen::VectorXd::Constant(r.size(), 150.0)));
   // The gradient is mostly hotter than 60 °C, so switching the effect off raises the torque.
   EXPECT_GT(expected_off, expected_on);
 }
@@ -177,8 +169,7 @@ TEST(WetClutch, LoadDependentFrictionOffUsesTheReferenceLoad) {
   const auto& a = on.thermal().ring_area_m2();
   const double base = p.sliding_interfaces * on.pressure_Pa(force) * r.dot(a);
   EXPECT_NEAR(on.torque_Nm(2.0, force, temps) / (base * (mu0 + dmu_dF * force)), 1.0, kRoundOff);
-  EXPECT_NEAR(off.torque_Nm(2.0, force, temps) / (base * (mu0 + dmu_dF * p.reference_load_N)), 1.0,
-              kRoundOff);
+  EXPECT_NEAR(off.torque_Nm(2.0, force, temps) / (base * (mu0 + dmu_dF * p.reference_load_N)), 1.0, kRoundOff);
 }
 
 // Viscous shear of the film at a uniform 80 °C, eta = rho * nu(T) from the Walther line through
@@ -209,8 +200,8 @@ TEST(WetClutch, ViscousShearAddsTheCouetteTorqueOfTheAnnulus) {
   const double rel = torque / closed - 1.0;
   const double bound = an.dr * an.dr / (2.0 * (an.ro * an.ro + an.ri * an.ri));  // ≈ 1.8e-4
   EXPECT_LT(std::abs(rel), bound * (1.0 + 1e-9));
-  EXPECT_NEAR(torque / (n * eta * slip / p.viscous_gap_m * (an.r3_integral() - an.r3_midpoint_error())),
-              1.0, 1e-11);  // hand Walther vs the class: a few ulp through pow(10, pow(10, .))
+  EXPECT_NEAR(torque / (n * eta * slip / p.viscous_gap_m * (an.r3_integral() - an.r3_midpoint_error())), 1.0,
+              1e-11);  // hand Walther vs the class: a few ulp through pow(10, pow(10, .))
   EXPECT_EQ(shear_only.torque_Nm(-slip, force, temps), -torque);
 
   // Added to friction, and its heat counted: q per interface = |slip| (M_f + M_v) / n.
@@ -263,7 +254,8 @@ TEST(WetClutch, FrozenFrictionEqualsDirectEvaluation) {
       direct = heat / slip;
       clutch.ring_torque_Nm(frozen, slip, force, fast);
       for (int i = 0; i < n; ++i)
-        EXPECT_NEAR(fast[i], direct[i], 1e-12 * std::abs(direct[i])) << "force " << force << " slip " << slip << " ring " << i;
+        EXPECT_NEAR(fast[i], direct[i], 1e-12 * std::abs(direct[i]))
+            << "force " << force << " slip " << slip << " ring " << i;
     }
   }
 }
@@ -336,8 +328,8 @@ TEST(WetClutch, FrozenFrictionOnManyRingsStaysWithinRoundOffOfTheDirectEvaluatio
   f.name = "four rates";
   f.friction = std::make_shared<shudder::clutch::MakiFrictionMatrix>(
       std::vector<double>{10000.0, 20000.0}, std::vector<double>{40.0, 80.0},
-      std::vector<shudder::clutch::MakiSet>{{-0.03, 0.002, 0.08, 0.02}, {0.02, 0.5, 0.07, 0.01},
-                                            {0.025, -0.3, 0.075, 0.05}, {-0.02, 2.0, 0.085, 0.03}},
+      std::vector<shudder::clutch::MakiSet>{
+          {-0.03, 0.002, 0.08, 0.02}, {0.02, 0.5, 0.07, 0.01}, {0.025, -0.3, 0.075, 0.05}, {-0.02, 2.0, 0.085, 0.03}},
       6.0, 590.0);
   WetClutchParams p;
   p.thermal.radial_cells = 200;

@@ -12,7 +12,9 @@
 
 namespace shudder::components::test {
 
-inline InertiaSpec inertia(const std::string& name, double j, double speed_rad_s = 0.0) { return {name, j, speed_rad_s}; }
+inline InertiaSpec inertia(const std::string& name, double j, double speed_rad_s = 0.0) {
+  return {name, j, speed_rad_s};
+}
 
 /// A constant-mu clutch whose torque capacity is `kinetic_Nm` (R = 1 m, F = kinetic_Nm / mu).
 inline ClutchSpec plain_clutch(const std::string& name, const std::string& a, const std::string& b, double kinetic_Nm,

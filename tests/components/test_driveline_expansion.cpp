@@ -32,10 +32,13 @@ TEST_P(DrivelineExpansion, NetworkPathGivesTheDrivelineRun) {
   const NetworkRun run = run_network(spec);
   const auto drv = rig_models::simulate(m, sc.make_clutch());
   double worst = 0;
-  for (const auto& [net, kind] : std::vector<std::pair<std::string, std::string>>{
-           {"haldex.torque_Nm", "coupling_torque_Nm"}, {"haldex.slip_rpm", "coupling_slip_rpm"},
-           {"haldex.pressure_bar", "pressure_bar"}, {"vehicle.speed_km_h", "vehicle_speed_km_h"},
-           {"tyre_rl.force_N", "tyre_rl_force_N"}, {"haldex.interface_max_temp_C", "interface_max_temp_C"}}) {
+  for (const auto& [net, kind] :
+       std::vector<std::pair<std::string, std::string>>{{"haldex.torque_Nm", "coupling_torque_Nm"},
+                                                        {"haldex.slip_rpm", "coupling_slip_rpm"},
+                                                        {"haldex.pressure_bar", "pressure_bar"},
+                                                        {"vehicle.speed_km_h", "vehicle_speed_km_h"},
+                                                        {"tyre_rl.force_N", "tyre_rl_force_N"},
+                                                        {"haldex.interface_max_temp_C", "interface_max_temp_C"}}) {
     const double d = test::relative_difference(test::channel(run.recording, net), test::channel(drv, kind));
     worst = std::max(worst, d);
   }
@@ -54,11 +57,15 @@ TEST_P(DrivelineExpansion, NetworkPathGivesTheDrivelineRun) {
   // the judges, not of the expansion this test holds to the driveline run.
   namespace sn = dynamics::signal_names;
   dynamics::Recording as_driveline;
-  for (const auto& [net, kind] : std::vector<std::pair<std::string, std::string_view>>{
-           {"time_s", sn::kTime}, {"haldex.torque_Nm", sn::kCouplingTorque}, {"haldex.slip_rpm", sn::kCouplingSlip},
-           {"haldex.normal_force_N", sn::kClampForce}, {"haldex.interface_mean_temp_C", sn::kInterfaceMeanTemp},
-           {"haldex.stuck", sn::kStuck}})
-    if (const auto* c = run.recording.find(net)) as_driveline.add_signal(std::string(kind), c->units).values = c->values;
+  for (const auto& [net, kind] :
+       std::vector<std::pair<std::string, std::string_view>>{{"time_s", sn::kTime},
+                                                             {"haldex.torque_Nm", sn::kCouplingTorque},
+                                                             {"haldex.slip_rpm", sn::kCouplingSlip},
+                                                             {"haldex.normal_force_N", sn::kClampForce},
+                                                             {"haldex.interface_mean_temp_C", sn::kInterfaceMeanTemp},
+                                                             {"haldex.stuck", sn::kStuck}})
+    if (const auto* c = run.recording.find(net))
+      as_driveline.add_signal(std::string(kind), c->units).values = c->values;
   const auto detection = rig_models::recording_detection(as_driveline);
   ASSERT_TRUE(detection.has_value());
   const analysis::ShudderResult judged = rig_models::judge_recording(*detection);

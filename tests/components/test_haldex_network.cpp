@@ -54,12 +54,17 @@ double relative_difference(const dynamics::Recording& a, const std::string& a_na
 // ~20 % of its range).
 TEST(HaldexNetwork, ControlUnitLaunchEqualsTheDrivelineKind) {
   const Pair p = run_both("networks/haldex_car_low_mu_uphill.toml", "driveline_low_mu_uphill.toml");
-  for (const auto& [net, drv] : std::vector<std::pair<std::string, std::string>>{
-           {"haldex.torque_Nm", "coupling_torque_Nm"}, {"haldex.slip_rpm", "coupling_slip_rpm"},
-           {"haldex.pressure_bar", "pressure_bar"}, {"haldex.valve_opening", "valve_opening"},
-           {"haldex.normal_force_N", "clamp_force_N"}, {"haldex.interface_max_temp_C", "interface_max_temp_C"},
-           {"car.speed_km_h", "vehicle_speed_km_h"}, {"engine.speed_rpm", "engine_speed_rpm"},
-           {"wheel_fl.speed_rpm", "wheel_fl_speed_rpm"}, {"tyre_rr.force_N", "tyre_rr_force_N"}})
+  for (const auto& [net, drv] :
+       std::vector<std::pair<std::string, std::string>>{{"haldex.torque_Nm", "coupling_torque_Nm"},
+                                                        {"haldex.slip_rpm", "coupling_slip_rpm"},
+                                                        {"haldex.pressure_bar", "pressure_bar"},
+                                                        {"haldex.valve_opening", "valve_opening"},
+                                                        {"haldex.normal_force_N", "clamp_force_N"},
+                                                        {"haldex.interface_max_temp_C", "interface_max_temp_C"},
+                                                        {"car.speed_km_h", "vehicle_speed_km_h"},
+                                                        {"engine.speed_rpm", "engine_speed_rpm"},
+                                                        {"wheel_fl.speed_rpm", "wheel_fl_speed_rpm"},
+                                                        {"tyre_rr.force_N", "tyre_rr_force_N"}})
     EXPECT_LT(relative_difference(p.network, net, p.driveline, drv), 1e-9) << net << " vs " << drv;
   const auto& v = p.run.verdicts.at(0).verdict.judged;
   EXPECT_EQ(static_cast<double>(v.verdict), test::scalar(p.driveline, "coupling_verdict_code"));
@@ -84,11 +89,15 @@ TEST(HaldexNetwork, ControlUnitLaunchEqualsTheDrivelineKind) {
 // driveline kind the whole record).
 TEST(HaldexNetwork, TakeUpJudderEqualsTheDrivelineKind) {
   const Pair p = run_both("networks/haldex_car_takeup_judder.toml", "driveline_takeup_judder.toml");
-  for (const auto& [net, drv] : std::vector<std::pair<std::string, std::string>>{
-           {"haldex.torque_Nm", "coupling_torque_Nm"}, {"haldex.slip_rpm", "coupling_slip_rpm"},
-           {"haldex.pressure_bar", "pressure_bar"}, {"haldex.normal_force_N", "clamp_force_N"},
-           {"haldex.interface_max_temp_C", "interface_max_temp_C"}, {"car.speed_km_h", "vehicle_speed_km_h"},
-           {"engine.speed_rpm", "engine_speed_rpm"}, {"tyre_fl.force_N", "tyre_fl_force_N"}})
+  for (const auto& [net, drv] :
+       std::vector<std::pair<std::string, std::string>>{{"haldex.torque_Nm", "coupling_torque_Nm"},
+                                                        {"haldex.slip_rpm", "coupling_slip_rpm"},
+                                                        {"haldex.pressure_bar", "pressure_bar"},
+                                                        {"haldex.normal_force_N", "clamp_force_N"},
+                                                        {"haldex.interface_max_temp_C", "interface_max_temp_C"},
+                                                        {"car.speed_km_h", "vehicle_speed_km_h"},
+                                                        {"engine.speed_rpm", "engine_speed_rpm"},
+                                                        {"tyre_fl.force_N", "tyre_fl_force_N"}})
     EXPECT_LT(relative_difference(p.network, net, p.driveline, drv), 2e-3) << net << " vs " << drv;
   const auto& v = p.run.verdicts.at(0).verdict.judged;
   EXPECT_EQ(static_cast<double>(v.verdict), test::scalar(p.driveline, "coupling_verdict_code"));
@@ -97,7 +106,6 @@ TEST(HaldexNetwork, TakeUpJudderEqualsTheDrivelineKind) {
   const double a = test::scalar(p.driveline, "coupling_oscillation_amplitude_Nm");
   EXPECT_NEAR(v.amplitude_Nm, a, 0.02 * a);
 }
-
 
 // A coupling described wrongly gets one line naming the component or key and what to change.
 std::string coupling_error(const std::string& from, const std::string& to) {
@@ -120,7 +128,8 @@ TEST(HaldexNetwork, ABadCouplingIsOneHelpfulLine) {
   EXPECT_NE(e.find("did you mean 'rear_diff'"), std::string::npos) << e;
   e = coupling_error("valve_pressure_bar = 3.0", "valve_pressure_bar = 3.0\nvalve_opening = 0.5");
   EXPECT_NE(e.find("give one raw valve schedule"), std::string::npos) << e;
-  e = coupling_error("valve_pressure_bar = 3.0", "valve_pressure_bar = 3.0\n[network.haldex.controller]\nlock_slip_rpm = 10");
+  e = coupling_error("valve_pressure_bar = 3.0",
+                     "valve_pressure_bar = 3.0\n[network.haldex.controller]\nlock_slip_rpm = 10");
   EXPECT_NE(e.find("controller"), std::string::npos) << e;
   e = coupling_error("valve_pressure_bar = 3.0", "valve_pressure_bar = 300.0");
   EXPECT_NE(e.find("relief_pressure_bar"), std::string::npos) << e;

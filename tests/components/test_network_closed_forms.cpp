@@ -123,9 +123,12 @@ TEST(NetworkClosedForm, BacklashFreeFlightAcrossTheGap) {
   const auto& tq = channel(run.recording, "shaft.torque_Nm");
   double first = NAN, release = NAN, second = NAN;
   for (std::size_t i = 1; i < t.size(); ++i) {
-    if (std::isnan(first) && tq[i] != 0.0) first = t[i];
-    else if (!std::isnan(first) && std::isnan(release) && tq[i] == 0.0) release = t[i];
-    else if (!std::isnan(release) && std::isnan(second) && tq[i] != 0.0) second = t[i];
+    if (std::isnan(first) && tq[i] != 0.0)
+      first = t[i];
+    else if (!std::isnan(first) && std::isnan(release) && tq[i] == 0.0)
+      release = t[i];
+    else if (!std::isnan(release) && std::isnan(second) && tq[i] != 0.0)
+      second = t[i];
   }
   EXPECT_NEAR(first, 0.5 * lash / dw0, 1e-5);
   // Contact lasts half a period of the pair, pi / sqrt(k / J_eff); then the gap b at dw0.
@@ -170,7 +173,9 @@ TEST(NetworkClosedForm, TwoContactsStickAtTheHandDerivedTimes) {
   const auto& w3 = channel(run.recording, "three.speed_rpm");
   const double t1 = 20.0 / 7.0, t2 = 20.0 / 3.0;
   const auto expect = [&](double time) {
-    struct W { double a, b, c; };
+    struct W {
+      double a, b, c;
+    };
     if (time <= t1) return W{100 - 20 * time, 15 * time, 5 * time};
     if (time <= t2) {
       const double s = time - t1, w = 300.0 / 7.0 - 2.5 * s;

@@ -29,10 +29,12 @@ TEST_P(RigExpansion, NetworkPathGivesTheRigRun) {
   const NetworkRun run = run_network(spec);
   const auto rig = rig_models::simulate(m, sc.make_clutch());
   double worst = 0;
-  for (const auto& [net, kind] : std::vector<std::pair<std::string, std::string>>{
-           {"torsion_bar.torque_Nm", "torque_Nm"}, {"clutch.slip_rpm", "slip_rpm"},
-           {"clutch.torque_Nm", "clutch_torque_Nm"}, {"clutch.interface_max_temp_C", "interface_max_temp_C"},
-           {"clutch.temp_C", "temp_C"}})
+  for (const auto& [net, kind] :
+       std::vector<std::pair<std::string, std::string>>{{"torsion_bar.torque_Nm", "torque_Nm"},
+                                                        {"clutch.slip_rpm", "slip_rpm"},
+                                                        {"clutch.torque_Nm", "clutch_torque_Nm"},
+                                                        {"clutch.interface_max_temp_C", "interface_max_temp_C"},
+                                                        {"clutch.temp_C", "temp_C"}})
     worst = std::max(worst, test::relative_difference(test::channel(run.recording, net), test::channel(rig, kind)));
   const auto judged = rig_models::judge_run(rig).judged;
   const auto& v = run.verdicts.at(0).verdict.judged;

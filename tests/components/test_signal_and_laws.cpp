@@ -28,11 +28,13 @@ TEST(Signal, EachKindFollowsItsDefinition) {
   EXPECT_DOUBLE_EQ(step(0.4999), 1.0);
   EXPECT_DOUBLE_EQ(step(0.5), 3.0);
   const auto sine = Signal::sine(1.0, 2.0, 5.0, std::numbers::pi / 2, 0.1);
-  EXPECT_DOUBLE_EQ(sine(0.05), 1.0);                      // the offset before start_s
-  EXPECT_NEAR(sine(0.1), 3.0, 1e-12);                     // phase 90 deg at start_s
-  EXPECT_NEAR(sine(0.2), -1.0, 1e-12);                    // half a period (0.1 s) later
-  EXPECT_NEAR(sine(0.3), 3.0, 1e-12);                     // a whole period (0.2 s) later
-  EXPECT_NEAR(sine.derivative(0.15), 2.0 * 2 * std::numbers::pi * 5.0 * std::cos(2 * std::numbers::pi * 5.0 * 0.05 + std::numbers::pi / 2), 1e-9);
+  EXPECT_DOUBLE_EQ(sine(0.05), 1.0);    // the offset before start_s
+  EXPECT_NEAR(sine(0.1), 3.0, 1e-12);   // phase 90 deg at start_s
+  EXPECT_NEAR(sine(0.2), -1.0, 1e-12);  // half a period (0.1 s) later
+  EXPECT_NEAR(sine(0.3), 3.0, 1e-12);   // a whole period (0.2 s) later
+  EXPECT_NEAR(sine.derivative(0.15),
+              2.0 * 2 * std::numbers::pi * 5.0 * std::cos(2 * std::numbers::pi * 5.0 * 0.05 + std::numbers::pi / 2),
+              1e-9);
   const auto pulse = Signal::pulse(0.0, 1.0, 0.5, 0.2, 1.0);
   EXPECT_DOUBLE_EQ(pulse(0.9), 0.0);
   EXPECT_DOUBLE_EQ(pulse(1.1), 1.0);
@@ -86,9 +88,9 @@ TEST(PlainFriction, TorqueCapacityAndSlopeFromTheTable) {
 
 TEST(OneWayClutch, HoldsOneDirectionOnly) {
   const OneWayClutchLaw law(0.5);
-  EXPECT_GE(law.holding_capacity_Nm(0.0, 0.0, 1e6, nullptr), 1e12);  // driving: any torque
+  EXPECT_GE(law.holding_capacity_Nm(0.0, 0.0, 1e6, nullptr), 1e12);    // driving: any torque
   EXPECT_LT(law.holding_capacity_Nm(0.0, 0.0, -1e-6, nullptr), 1e-6);  // reversed: releases
-  EXPECT_DOUBLE_EQ(law.kinetic_torque_Nm(10.0, 0.0, nullptr), 0.5);   // overrunning drag
+  EXPECT_DOUBLE_EQ(law.kinetic_torque_Nm(10.0, 0.0, nullptr), 0.5);    // overrunning drag
 }
 
 // Lash: no torque inside the gap; beyond it k d + c w, never pulling; P_diss >= 0 and

@@ -50,7 +50,8 @@ struct Rig {
     net.add_shaft({"input shaft", rotor, hub, 2000.0, 0.5});
     net.add_shaft({"housing mount", housing, kGround, 300.0, 0.2});
     net.add_torque_source({"shaker", housing, [](double t) { return 0.5 * std::sin(20.0 * t); }});
-    net.add_contact({"c0", hub, housing, std::make_shared<LinearSlopeLaw>(2.0, 0.05, 5.0, std::vector<double>{0.6, 0.4})});
+    net.add_contact(
+        {"c0", hub, housing, std::make_shared<LinearSlopeLaw>(2.0, 0.05, 5.0, std::vector<double>{0.6, 0.4})});
     net.add_speed_source({"belt drive", belt, [](double t) { return 1.0 + 0.5 * t; }, [](double) { return 0.5; }});
     net.add_shaft({"mass spring", mass, kGround, 500.0, 0.05});
     net.add_contact({"c1", belt, mass, std::make_shared<CoulombLaw>(10.0, 15.0)});

@@ -109,7 +109,8 @@ struct Belt {
 
 TEST(FixedStep, BeltOscillatorPeriodWithinTheStepBound) {
   const double wn = std::sqrt(kK / kJm);
-  const double period = 2 * (kTs - kTk) / (kK * kV) + (std::numbers::pi + 2 * std::atan(kV * kK / (wn * (kTs - kTk)))) / wn;
+  const double period =
+      2 * (kTs - kTk) / (kK * kV) + (std::numbers::pi + 2 * std::atan(kV * kK / (wn * (kTs - kTk)))) / wn;
   for (const double h : {1e-4, 2e-5}) {
     const Belt belt;
     Simulation sim(belt.net, fixed(h));

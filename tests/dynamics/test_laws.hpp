@@ -13,8 +13,7 @@ namespace shudder::dynamics::testing {
 class CoulombLaw : public ContactLaw {
  public:
   CoulombLaw(double kinetic_Nm, double static_Nm) : kinetic_(kinetic_Nm), static_(static_Nm) {}
-  static CoulombLaw from_clamp(double faces, double radius_m, double force_N, double mu_static,
-                               double mu_kinetic) {
+  static CoulombLaw from_clamp(double faces, double radius_m, double force_N, double mu_static, double mu_kinetic) {
     return {faces * radius_m * force_N * mu_kinetic, faces * radius_m * force_N * mu_static};
   }
   double kinetic_torque_Nm(double, double, const double*) const override { return kinetic_; }
@@ -44,10 +43,8 @@ class AgeingCoulombLaw : public ContactLaw {
 /// Optionally splits the whole dissipated power T |Δω| into channels by fixed fractions.
 class LinearSlopeLaw : public ContactLaw {
  public:
-  LinearSlopeLaw(double offset_Nm, double slope_Nms, double static_Nm,
-                 std::vector<double> channel_fractions = {})
-      : offset_(offset_Nm), slope_(slope_Nms), static_(static_Nm),
-        fractions_(std::move(channel_fractions)) {}
+  LinearSlopeLaw(double offset_Nm, double slope_Nms, double static_Nm, std::vector<double> channel_fractions = {})
+      : offset_(offset_Nm), slope_(slope_Nms), static_(static_Nm), fractions_(std::move(channel_fractions)) {}
   double kinetic_torque_Nm(double w, double, const double*) const override { return offset_ + slope_ * w; }
   double static_capacity_Nm(double, double, const double*) const override { return static_; }
   double kinetic_torque_slope_Nms(double, double, const double*) const override { return slope_; }

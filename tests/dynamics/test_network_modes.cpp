@@ -78,8 +78,7 @@ TEST(DynamicsNetworkModes, FreeResponseIsACosine) {
   sim.advance(0.2, times, [&](const Sample& s) {
     ++n;
     EXPECT_NEAR(s.theta_rad[0], theta0 * std::cos(wn * s.t_s), 1e-6 * theta0) << "t = " << s.t_s;
-    EXPECT_NEAR(s.omega_rad_s[0], -theta0 * wn * std::sin(wn * s.t_s), 1e-6 * theta0 * wn)
-        << "t = " << s.t_s;
+    EXPECT_NEAR(s.omega_rad_s[0], -theta0 * wn * std::sin(wn * s.t_s), 1e-6 * theta0 * wn) << "t = " << s.t_s;
     // The spring torque is k θ as carried by the shaft.
     EXPECT_NEAR(s.shaft_torque_Nm[0], kK * s.theta_rad[0], 1e-12 * kK * theta0);
   });

@@ -67,8 +67,8 @@ struct Belt {
     m = net.add_inertia({"mass", kJm});
     net.add_speed_source({"drive", d, [](double) { return kV; }, [](double) { return 0.0; }});
     net.add_shaft({"spring", m, kGround, kK, 0.0});
-    net.add_contact({"contact", d, m,
-                     std::make_shared<CoulombLaw>(CoulombLaw::from_clamp(kFaces, kRadius, kForce, kMuS, kMuK))});
+    net.add_contact(
+        {"contact", d, m, std::make_shared<CoulombLaw>(CoulombLaw::from_clamp(kFaces, kRadius, kForce, kMuS, kMuK))});
   }
 };
 
@@ -333,7 +333,9 @@ struct Chain {
     const double T = torque(t);
     const auto slip = ContactMode::kSlipPositive, stuck = ContactMode::kStuck;
     if (t < t_star) return {12.25 - 20 * t, 10 + 2.5 * t, 9.75 + 5 * t, tk1, tk2, slip, slip};
-    const auto w_rigid = [](double s) { return 10.25 + rho * std::pow(std::max(s - t0, 0.0), 2) / (2 * (j1 + j2 + j3)); };
+    const auto w_rigid = [](double s) {
+      return 10.25 + rho * std::pow(std::max(s - t0, 0.0), 2) / (2 * (j1 + j2 + j3));
+    };
     if (t < t_b2) {
       const double w = w_rigid(t);
       return {w, w, w, T * (1 - j1 / (j1 + j2 + j3)), T * j3 / (j1 + j2 + j3), stuck, stuck};

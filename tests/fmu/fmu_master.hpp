@@ -25,7 +25,8 @@ namespace shudder::fmu_test {
 namespace fs = std::filesystem;
 
 inline std::vector<std::string> g_log;
-inline void logger(fmi2ComponentEnvironment, fmi2String, fmi2Status status, fmi2String category, fmi2String message, ...) {
+inline void logger(fmi2ComponentEnvironment, fmi2String, fmi2Status status, fmi2String category, fmi2String message,
+                   ...) {
   char text[1024];
   va_list args;
   va_start(args, message);
@@ -86,8 +87,9 @@ inline std::string command_output(const std::string& cmd) {
   return out;
 }
 
-inline // "2.17" < "2.34": version numbers compared field by field.
-bool version_above(const std::string& a, const std::string& b) {
+inline  // "2.17" < "2.34": version numbers compared field by field.
+    bool
+    version_above(const std::string& a, const std::string& b) {
   std::vector<int> x, y;
   for (const std::string* s : {&a, &b}) {
     auto& v = s == &a ? x : y;

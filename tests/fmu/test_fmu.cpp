@@ -111,10 +111,14 @@ std::string toml_list(const std::vector<double>& v) {
 std::string scenario_text(double duration_s, const Drive& drive) {
   char d[32];
   std::snprintf(d, sizeof d, "%.17g", duration_s);
-  return "[scenario]\nname = \"fmu_check\"\ntype = \"prescribed_slip\"\nduration_s = " + std::string(d) + "\n"
-         "[clutch]\nfluid = \"" + kFluid + "\"\nstart_temp_C = 60.0\nsliding_interfaces = 2\n"
+  return "[scenario]\nname = \"fmu_check\"\ntype = \"prescribed_slip\"\nduration_s = " + std::string(d) +
+         "\n"
+         "[clutch]\nfluid = \"" +
+         kFluid +
+         "\"\nstart_temp_C = 60.0\nsliding_interfaces = 2\n"
          "[effects.viscous_shear]\nenabled = true\n"
-         "[drive]\ntime_s = " + toml_list(drive.time_s) + "\nspeed_rpm = " + toml_list(drive.slip_rpm) +
+         "[drive]\ntime_s = " +
+         toml_list(drive.time_s) + "\nspeed_rpm = " + toml_list(drive.slip_rpm) +
          "\nnormal_force_N = " + toml_list(drive.force_N) + "\n[output]\nsample_rate_Hz = 100.0\n";
 }
 
@@ -165,10 +169,14 @@ fmi2Component start(Fmu& f, double start_time_s, double stop_time_s) {
   return c;
 }
 
-const std::map<unsigned, std::string> kCompared = {
-    {vr::kTorque, "torque_Nm"}, {vr::kClutchTorque, "clutch_torque_Nm"}, {vr::kHeat, "heat_power_W"},
-    {vr::kThermocouple, "temp_C"}, {vr::kIr, "ir_temp_C"}, {vr::kSump, "sump_temp_C"},
-    {vr::kInterfaceMean, "interface_mean_temp_C"}, {vr::kInterfaceMax, "interface_max_temp_C"}};
+const std::map<unsigned, std::string> kCompared = {{vr::kTorque, "torque_Nm"},
+                                                   {vr::kClutchTorque, "clutch_torque_Nm"},
+                                                   {vr::kHeat, "heat_power_W"},
+                                                   {vr::kThermocouple, "temp_C"},
+                                                   {vr::kIr, "ir_temp_C"},
+                                                   {vr::kSump, "sump_temp_C"},
+                                                   {vr::kInterfaceMean, "interface_mean_temp_C"},
+                                                   {vr::kInterfaceMax, "interface_max_temp_C"}};
 
 // The FMU's outputs against the run's sample j. Both are the same stepper on the same inputs
 // at the same internal grid, so they agree to the bit when the FMU took whole internal steps;
@@ -177,8 +185,8 @@ const std::map<unsigned, std::string> kCompared = {
   for (const auto& [ref, name] : kCompared) {
     const double a = get(f, c, ref), b = run.find(name)->values[j];
     if (!(std::abs(a - b) <= 1e-12 * std::max(1.0, std::abs(b))))
-      return ::testing::AssertionFailure() << name << " at t = " << run.find("time_s")->values[j] << ": FMU " << a
-                                           << ", run " << b;
+      return ::testing::AssertionFailure()
+             << name << " at t = " << run.find("time_s")->values[j] << ": FMU " << a << ", run " << b;
   }
   return ::testing::AssertionSuccess();
 }
@@ -197,8 +205,8 @@ struct MasterRun {
 
 // Runs [t0, t0 + duration] at kStep as the master's clock says, inputs of step k from the
 // scenario, and compares the outputs with the run's samples after every 100th step.
-MasterRun master_run(Fmu& f, fmi2Component c, double t0, double duration, Clock clock,
-                     const dynamics::Recording& run, const Drive& drive = kDrive) {
+MasterRun master_run(Fmu& f, fmi2Component c, double t0, double duration, Clock clock, const dynamics::Recording& run,
+                     const Drive& drive = kDrive) {
   MasterRun r;
   const auto slip = drive.slip(), force = drive.force();
   const double t_stop = t0 + duration;
@@ -250,7 +258,7 @@ TEST(Fmu, OutputsEqualShudderRunFixedStepOnTheSameInputs) {
   EXPECT_EQ(r.steps, 15001);
   EXPECT_LT(r.last_step, 1e-12);
   EXPECT_EQ(r.compared, 150u);
-  EXPECT_TRUE(outputs_match(f, c, run, 150));  // the round-off step changed nothing
+  EXPECT_TRUE(outputs_match(f, c, run, 150));     // the round-off step changed nothing
   EXPECT_GT(get(f, c, vr::kInterfaceMax), 61.0);  // it heated: the comparison covers the thermal path
   double last = 0.0;
   EXPECT_EQ(f.fmi2GetRealStatus(c, fmi2LastSuccessfulTime, &last), fmi2OK);
@@ -361,8 +369,8 @@ TEST(Fmu, VariableAndNonMultipleStepsAreHonouredExactly) {
   const auto fixed = run_with({kStep});
   EXPECT_GT(fixed.at(vr::kInterfaceMax), 61.0);
   // 4.5 internal steps per call; a mix with a step cut at an input change; one 0.9 s step.
-  for (const auto& steps : {std::vector<double>{0.00045}, std::vector<double>{3e-4, 0.00045, 1.23e-4, 2e-3},
-                            std::vector<double>{span}}) {
+  for (const auto& steps :
+       {std::vector<double>{0.00045}, std::vector<double>{3e-4, 0.00045, 1.23e-4, 2e-3}, std::vector<double>{span}}) {
     const auto other = run_with(steps);
     for (const auto& [ref, name] : kCompared)
       EXPECT_NEAR(other.at(ref), fixed.at(ref), 1e-10 * std::abs(fixed.at(ref)))
@@ -466,10 +474,10 @@ TEST(Fmu, ResourceLocationsOfEveryFileUriFormAreRead) {
   fs::copy(kStage / "resources", dir / "resources", fs::copy_options::recursive);
   std::string encoded;
   for (char ch : (dir / "resources").string()) encoded += ch == ' ' ? std::string("%20") : std::string(1, ch);
-  for (const std::string& uri : {"file://" + encoded, "file://localhost" + encoded, "file://LocalHost" + encoded + "/",
-                                 "file:" + encoded}) {
-    fmi2Component c = f.fmi2Instantiate("clutch", fmi2CoSimulation, guid().c_str(), uri.c_str(), &kCallbacks,
-                                        fmi2False, fmi2False);
+  for (const std::string& uri :
+       {"file://" + encoded, "file://localhost" + encoded, "file://LocalHost" + encoded + "/", "file:" + encoded}) {
+    fmi2Component c =
+        f.fmi2Instantiate("clutch", fmi2CoSimulation, guid().c_str(), uri.c_str(), &kCallbacks, fmi2False, fmi2False);
     ASSERT_NE(c, nullptr) << uri;
     ASSERT_EQ(f.fmi2EnterInitializationMode(c), fmi2OK);
     EXPECT_EQ(f.fmi2ExitInitializationMode(c), fmi2OK) << uri;  // the default, relative fluid_file is found
@@ -479,8 +487,8 @@ TEST(Fmu, ResourceLocationsOfEveryFileUriFormAreRead) {
   // absolute one works.
   g_log.clear();
   const std::string remote = "file://fileserver/share/resources";
-  fmi2Component c = f.fmi2Instantiate("clutch", fmi2CoSimulation, guid().c_str(), remote.c_str(), &kCallbacks,
-                                      fmi2False, fmi2False);
+  fmi2Component c =
+      f.fmi2Instantiate("clutch", fmi2CoSimulation, guid().c_str(), remote.c_str(), &kCallbacks, fmi2False, fmi2False);
   ASSERT_NE(c, nullptr);
   ASSERT_EQ(f.fmi2EnterInitializationMode(c), fmi2OK);
   EXPECT_EQ(f.fmi2ExitInitializationMode(c), fmi2Error);
@@ -545,10 +553,11 @@ TEST(FmuLong, TenMinutesFromStartTime1800MatchTheRun) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     ASSERT_FALSE(r.failed);
     EXPECT_EQ(r.steps, 6000000);
-    std::printf("FMU (%s): %ld steps in %.1f s (%.2f us per step, inputs set and outputs compared by the "
-                "master included); last step %.6g s\n",
-                clock == Clock::kSum ? "t += h" : "absolute times", r.steps, seconds,
-                1e6 * seconds / static_cast<double>(r.steps), r.last_step);
+    std::printf(
+        "FMU (%s): %ld steps in %.1f s (%.2f us per step, inputs set and outputs compared by the "
+        "master included); last step %.6g s\n",
+        clock == Clock::kSum ? "t += h" : "absolute times", r.steps, seconds,
+        1e6 * seconds / static_cast<double>(r.steps), r.last_step);
     if (clock == Clock::kSum) {
       EXPECT_LT(r.last_step, kStep * 0.999);  // trimmed
       EXPECT_EQ(r.compared, 59999u);
@@ -594,7 +603,8 @@ TEST(Fmu, ErrorPathsReturnFmi2ErrorWithALoggedReason) {
   ASSERT_EQ(f.fmi2SetupExperiment(c, fmi2False, 0.0, 0.0, fmi2False, 0.0), fmi2OK);
   ASSERT_EQ(f.fmi2EnterInitializationMode(c), fmi2OK);
   EXPECT_EQ(f.fmi2ExitInitializationMode(c), fmi2Error);
-  EXPECT_TRUE(logged("fluid_file: '" + (kStage / "resources/no/such/fluid.toml").string() + "' is not a readable file"));
+  EXPECT_TRUE(
+      logged("fluid_file: '" + (kStage / "resources/no/such/fluid.toml").string() + "' is not a readable file"));
   // Reset recovers; the default (bundled) fluid works.
   ASSERT_EQ(f.fmi2Reset(c), fmi2OK);
   ASSERT_EQ(f.fmi2EnterInitializationMode(c), fmi2OK);
@@ -642,7 +652,8 @@ void on_start(void* data, const XML_Char* name, const XML_Char** attrs) {
   if (el == "fmiModelDescription") m.root = a;
   if (el == "CoSimulation") m.cosim = a;
   if (el == "ScalarVariable")
-    m.variables.push_back({a["name"], a["causality"], a["variability"], "", static_cast<unsigned>(std::stoul(a["valueReference"])), false});
+    m.variables.push_back({a["name"], a["causality"], a["variability"], "",
+                           static_cast<unsigned>(std::stoul(a["valueReference"])), false});
   if ((el == "Real" || el == "Integer" || el == "Boolean" || el == "String") && !m.variables.empty() &&
       m.variables.back().type.empty()) {
     m.variables.back().type = el;
@@ -677,7 +688,9 @@ TEST(Fmu, ModelDescriptionIsWellFormedAndMatchesTheVariableTable) {
   // replaced by the placeholder): any change to the description changes it.
   const std::string g = m.root["guid"];
   ASSERT_EQ(g.size(), 38u) << g;
-  EXPECT_TRUE(std::regex_match(g, std::regex("\\{[0-9a-f]{8}-[0-9a-f]{4}-5[0-9a-f]{3}-[89ab][0-9a-f]{3}-[0-9a-f]{12}\\}"))) << g;
+  EXPECT_TRUE(
+      std::regex_match(g, std::regex("\\{[0-9a-f]{8}-[0-9a-f]{4}-5[0-9a-f]{3}-[89ab][0-9a-f]{3}-[0-9a-f]{12}\\}")))
+      << g;
   std::string with_placeholder = text;
   with_placeholder.replace(with_placeholder.find(g), g.size(), fmu::kGuidPlaceholder);
   EXPECT_EQ(fmu::content_guid(with_placeholder), g);
@@ -689,16 +702,18 @@ TEST(Fmu, ModelDescriptionIsWellFormedAndMatchesTheVariableTable) {
   EXPECT_EQ(std::stod(m.experiment["stepSize"]), fmu::kDefaultStepSize_s);
   EXPECT_GT(std::stod(m.experiment["stopTime"]), 0.0);
   EXPECT_EQ(m.categories, (std::vector<std::string>{"logEvents", "logStatusWarning", "logStatusDiscard",
-                                                      "logStatusError", "logAll"}));
+                                                    "logStatusError", "logAll"}));
   EXPECT_EQ(m.cosim["modelIdentifier"], fmu::kModelIdentifier);
   EXPECT_TRUE(fs::exists(kStage / "binaries/linux64" / (std::string(fmu::kModelIdentifier) + ".so")));
 
   // Every XML variable is in the table with the same name, type and causality, and vice versa.
-  const std::map<fmu::Type, std::string> type_name = {
-      {fmu::Type::kReal, "Real"}, {fmu::Type::kInteger, "Integer"}, {fmu::Type::kBoolean, "Boolean"},
-      {fmu::Type::kString, "String"}};
-  const std::map<fmu::Causality, std::string> causality_name = {
-      {fmu::Causality::kParameter, "parameter"}, {fmu::Causality::kInput, "input"}, {fmu::Causality::kOutput, "output"}};
+  const std::map<fmu::Type, std::string> type_name = {{fmu::Type::kReal, "Real"},
+                                                      {fmu::Type::kInteger, "Integer"},
+                                                      {fmu::Type::kBoolean, "Boolean"},
+                                                      {fmu::Type::kString, "String"}};
+  const std::map<fmu::Causality, std::string> causality_name = {{fmu::Causality::kParameter, "parameter"},
+                                                                {fmu::Causality::kInput, "input"},
+                                                                {fmu::Causality::kOutput, "output"}};
   std::set<unsigned> xml_refs, table_refs;
   std::vector<int> output_indices;
   for (std::size_t i = 0; i < m.variables.size(); ++i) {
@@ -751,8 +766,7 @@ TEST(Fmu, ContentGuidIsAnRfc4122NameBasedUuid) {
 }
 
 TEST(Fmu, ArchiveHoldsTheDescriptionAndTheLibraryWhichExportsOnlyFmi2AndNeedsNoProjectLibraries) {
-  const std::string listing =
-      command_output(std::string(SHUDDER_CMAKE) + " -E tar tf " + SHUDDER_FMU_FILE + " 2>&1");
+  const std::string listing = command_output(std::string(SHUDDER_CMAKE) + " -E tar tf " + SHUDDER_FMU_FILE + " 2>&1");
   EXPECT_NE(listing.find("modelDescription.xml"), std::string::npos) << listing;
   EXPECT_NE(listing.find("binaries/linux64/shudder_clutch.so"), std::string::npos) << listing;
   EXPECT_NE(listing.find("resources/fluids/lsc_fluid_c.toml"), std::string::npos) << listing;
@@ -807,16 +821,15 @@ TEST(Fmu, Win64DllLoadsUnderWineAndGivesTheLinuxOutputs) {
   }
   const std::string wine = SHUDDER_WINE;
   if (wine.empty()) GTEST_SKIP() << "Wine is not installed (wine64): the DLL was checked, not run (docs/fmu.md)";
-  const std::string linux_out =
-      command_output(std::string(SHUDDER_FMU_LOAD_CHECK) + " " + kLibrary.string() + " " + kResources + " '" + guid() +
-                     "'; echo status=$?");
+  const std::string linux_out = command_output(std::string(SHUDDER_FMU_LOAD_CHECK) + " " + kLibrary.string() + " " +
+                                               kResources + " '" + guid() + "'; echo status=$?");
   ASSERT_NE(linux_out.find("status=0"), std::string::npos) << linux_out;
   // Wine sees / as drive Z:. Its prefix lives in the build tree (created on the first run).
   const std::string prefix = std::string(SHUDDER_FMU_WIN64_BUILD) + "/wineprefix";
-  const std::string windows_out = command_output(
-      "WINEPREFIX=" + prefix + " WINEDEBUG=-all WINEDLLOVERRIDES='mscoree,mshtml=' " + wine + " " +
-      SHUDDER_FMU_WIN64_BUILD + "/fmu_load_check.exe 'Z:" + dll.string() + "' 'file:///Z:" +
-      (kStage / "resources").string() + "' '" + guid() + "' 2>&1; echo status=$?");
+  const std::string windows_out =
+      command_output("WINEPREFIX=" + prefix + " WINEDEBUG=-all WINEDLLOVERRIDES='mscoree,mshtml=' " + wine + " " +
+                     SHUDDER_FMU_WIN64_BUILD + "/fmu_load_check.exe 'Z:" + dll.string() +
+                     "' 'file:///Z:" + (kStage / "resources").string() + "' '" + guid() + "' 2>&1; echo status=$?");
   ASSERT_NE(windows_out.find("status=0"), std::string::npos) << windows_out;
   std::map<std::string, double> a, b;
   for (auto [text, values] : {std::pair{&linux_out, &a}, std::pair{&windows_out, &b}}) {

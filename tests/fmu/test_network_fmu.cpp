@@ -65,8 +65,8 @@ fs::path write_scenario() {
   text = std::regex_replace(text, std::regex(R"(duration_s = 3\.0)"), "duration_s = 1.0");
   fs::create_directories(kWork / "networks");
   fs::create_directories(kWork / "fluids");
-  fs::copy_file(src / "fluids/schematic_launch_negative_slope.toml", kWork / "fluids/schematic_launch_negative_slope.toml",
-                fs::copy_options::overwrite_existing);
+  fs::copy_file(src / "fluids/schematic_launch_negative_slope.toml",
+                kWork / "fluids/schematic_launch_negative_slope.toml", fs::copy_options::overwrite_existing);
   const fs::path path = kWork / "networks/launch_held.toml";
   std::ofstream(path) << text;
   return path;
@@ -102,7 +102,8 @@ const Exported& exported() {
     x.xml = read_text(x.dir / "modelDescription.xml");
     std::smatch m;
     if (std::regex_search(x.xml, m, std::regex(R"(guid="([^"]+)\")"))) x.guid = m[1];
-    const std::regex var(R"re(<ScalarVariable name="([^"]+)" valueReference="(\d+)" causality="(\w+)"[^>]*>\s*<Real[^>]*?(?:start="([^"]+)")?/>)re");
+    const std::regex var(
+        R"re(<ScalarVariable name="([^"]+)" valueReference="(\d+)" causality="(\w+)"[^>]*>\s*<Real[^>]*?(?:start="([^"]+)")?/>)re");
     for (auto it = std::sregex_iterator(x.xml.begin(), x.xml.end(), var); it != std::sregex_iterator(); ++it)
       x.variables.push_back({(*it)[1], (*it)[3], static_cast<unsigned>(std::stoul((*it)[2])),
                              (*it)[4].matched ? std::stod((*it)[4]) : 0.0});
@@ -148,7 +149,8 @@ struct Worst {
   std::string where;
 };
 
-void compare_at(Fmu& f, fmi2Component c, std::size_t j, bool thermal_too, std::map<std::string, double>& scale, Worst& w) {
+void compare_at(Fmu& f, fmi2Component c, std::size_t j, bool thermal_too, std::map<std::string, double>& scale,
+                Worst& w) {
   for (const auto& v : exported().variables) {
     if (v.causality != "output" || (thermal(v.name) && !thermal_too)) continue;
     double value = NAN;

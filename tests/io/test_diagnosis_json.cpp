@@ -91,8 +91,7 @@ DiagnosisResult sample_result() {
   st.holdout = {1.3, 6.2};
   st.holdout_misfit_before = 512.0;
   st.holdout_misfit_after = 80.5;
-  st.candidates = {candidate("temperature_dependent_friction", 80.5, 431.0),
-                   candidate("bearing_drag", 400.0, 112.0)};
+  st.candidates = {candidate("temperature_dependent_friction", 80.5, 431.0), candidate("bearing_drag", 400.0, 112.0)};
   st.candidates[1].failure = "";
   st.description = "friction follows the interface temperature";
   st.torque_tracking_before = {{"temperature_rise", 0.97}, {"time", 0.9}};
@@ -156,14 +155,32 @@ TEST(DiagnosisJson, ARealDiagnosisIsWrittenAsStrictJsonWithEveryKey) {
   const auto simulate = [&](const std::vector<shudder::analysis::EffectSetting>& added, std::size_t k) {
     return shudder::test::linear_prediction(runs[k], added);
   };
-  const DiagnosisResult r =
-      shudder::analysis::diagnose(runs, shudder::test::linear_candidates(), simulate, {});
+  const DiagnosisResult r = shudder::analysis::diagnose(runs, shudder::test::linear_candidates(), simulate, {});
   const Json j = parse(diagnosis_json(r));
-  const std::vector<std::string> keys{"format", "shudder_version", "verdict", "verdict_text", "runs", "noise",
-                                      "holdout", "baseline", "disagreements", "tracking", "steps",
-                                      "missing_effects", "not_explained", "tolerance_given", "withdrawn_effects",
-                                      "indistinguishable_effects", "last_round", "final", "final_effects", "channels",
-                                      "final_disagreements", "remaining", "conclusion", "timing"};
+  const std::vector<std::string> keys{"format",
+                                      "shudder_version",
+                                      "verdict",
+                                      "verdict_text",
+                                      "runs",
+                                      "noise",
+                                      "holdout",
+                                      "baseline",
+                                      "disagreements",
+                                      "tracking",
+                                      "steps",
+                                      "missing_effects",
+                                      "not_explained",
+                                      "tolerance_given",
+                                      "withdrawn_effects",
+                                      "indistinguishable_effects",
+                                      "last_round",
+                                      "final",
+                                      "final_effects",
+                                      "channels",
+                                      "final_disagreements",
+                                      "remaining",
+                                      "conclusion",
+                                      "timing"};
   ASSERT_EQ(j.members.size(), keys.size());
   for (std::size_t i = 0; i < keys.size(); ++i) EXPECT_EQ(j.members[i].first, keys[i]);
   ASSERT_EQ(j["steps"].items.size(), 1u);
@@ -293,9 +310,15 @@ TEST(DiagnosisJson, BackwardCheckFindingsAreWrittenWithTheirCosts) {
   // tie rule under `indistinguishable_effects` with it; the summary and report say the same.
   DiagnosisResult r;
   shudder::analysis::BackwardFinding w{"torque_sensor_gain", {{"gain", 1.004}}, 0.0031, 0.0452, true, "", "", "", {}};
-  shudder::analysis::BackwardFinding k{"interface_oil_cooling", {{"e", 0.0164}}, 0.0113, 0.0464, false,
-                                       "rig_heat_capacity", "heat_capacity_J_per_K 290 -> 2510",
-                                       "rig_heat_capacity could stand in but has more parameters", {}};
+  shudder::analysis::BackwardFinding k{"interface_oil_cooling",
+                                       {{"e", 0.0164}},
+                                       0.0113,
+                                       0.0464,
+                                       false,
+                                       "rig_heat_capacity",
+                                       "heat_capacity_J_per_K 290 -> 2510",
+                                       "rig_heat_capacity could stand in but has more parameters",
+                                       {}};
   r.withdrawn.push_back(w);
   r.indistinguishable.push_back(k);
   const Json j = parse(diagnosis_json(r));
@@ -325,8 +348,7 @@ TEST(DiagnosisJson, BackwardCheckFindingsAreWrittenWithTheirCosts) {
 TEST(DiagnosisJson, EmptyResultIsValidWithEmptyArrays) {
   const Json j = parse(diagnosis_json(DiagnosisResult{}));
   for (const char* k : {"runs", "disagreements", "steps", "missing_effects", "not_explained", "withdrawn_effects",
-                        "indistinguishable_effects", "last_round",
-                        "final_disagreements", "tracking", "channels"}) {
+                        "indistinguishable_effects", "last_round", "final_disagreements", "tracking", "channels"}) {
     EXPECT_EQ(j[k].type, Json::Type::kArray) << k;
     EXPECT_TRUE(j[k].items.empty()) << k;
   }
@@ -393,8 +415,11 @@ TEST_F(DiagnosisFiles, WriteIsAtomicAndMatchesTheText) {
 
 TEST_F(DiagnosisFiles, UnwritablePathIsAnInputErrorNamingIt) {
   const std::string out = path("no_such_dir/diag.json");
-  EXPECT_THAT([&] { shudder::io::write_diagnosis_json(out, sample_result(), shudder::report::diagnosis_sentences(sample_result())); },
-              testing::ThrowsMessage<InputError>(HasSubstr(out)));
+  EXPECT_THAT(
+      [&] {
+        shudder::io::write_diagnosis_json(out, sample_result(), shudder::report::diagnosis_sentences(sample_result()));
+      },
+      testing::ThrowsMessage<InputError>(HasSubstr(out)));
   EXPECT_FALSE(fs::exists(path("no_such_dir")));
 }
 
@@ -430,8 +455,7 @@ TEST_F(DiagnosisFiles, ReportWritesTextFilesAndPlots) {
   const shudder::report::Report rep = shudder::report::write_diagnosis_report(dir, r, "summary text\n");
   EXPECT_EQ(slurp(dir + "/summary.txt"), "summary text\n");
   EXPECT_EQ(slurp(dir + "/candidates.md"), shudder::report::diagnosis_candidates_markdown(r));
-  for (const auto& f : fs::directory_iterator(dir))
-    EXPECT_NE(f.path().extension(), ".tmp") << f.path();
+  for (const auto& f : fs::directory_iterator(dir)) EXPECT_NE(f.path().extension(), ".tmp") << f.path();
   if (!gnuplot_installed()) {
     EXPECT_EQ(rep.files.size(), 3u);  // summary.txt, candidates.md, index.html
     EXPECT_EQ(rep.skipped.size(), 3u);
@@ -440,8 +464,7 @@ TEST_F(DiagnosisFiles, ReportWritesTextFilesAndPlots) {
   EXPECT_TRUE(rep.skipped.empty()) << rep.skipped.front();
   std::vector<std::string> expected = {dir + "/summary.txt", dir + "/candidates.md"};
   for (const char* stem : {"a", "b", "b_2"})
-    for (const char* kind : {"_torque.png", "_temp.png", "_residuals.png"})
-      expected.push_back(dir + "/" + stem + kind);
+    for (const char* kind : {"_torque.png", "_temp.png", "_residuals.png"}) expected.push_back(dir + "/" + stem + kind);
   expected.push_back(dir + "/index.html");
   EXPECT_EQ(rep.files, expected);
   // The page shows every plot and links the text files.

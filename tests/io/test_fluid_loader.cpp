@@ -91,8 +91,7 @@ const fs::path& scratch_dir() {
 std::string write(const std::string& text) {
   const fs::path& dir = scratch_dir();
   fs::create_directories(dir);
-  const std::string name =
-      ::testing::UnitTest::GetInstance()->current_test_info()->name() + std::string(".toml");
+  const std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name() + std::string(".toml");
   const fs::path path = dir / name;
   std::ofstream(path) << text;
   return path.string();
@@ -100,8 +99,7 @@ std::string write(const std::string& text) {
 
 // Matches an InputError naming the file, the key and the reason.
 auto fails_with(const std::string& path, const std::string& key, const std::string& reason) {
-  return ThrowsMessage<InputError>(
-      AllOf(HasSubstr(path), HasSubstr("key '" + key + "'"), HasSubstr(reason)));
+  return ThrowsMessage<InputError>(AllOf(HasSubstr(path), HasSubstr("key '" + key + "'"), HasSubstr(reason)));
 }
 
 TEST(LoadFluid, ReadsAMakiFluid) {
@@ -127,8 +125,7 @@ TEST(LoadFluid, ReadsAMakiFluid) {
 TEST(LoadFluid, ReadsALinearFluidAndConvertsRpmAtTheMeanRadius) {
   const auto fluid = load_fluid(write(kLinear));
   EXPECT_EQ(fluid.density_kg_m3, 850.0);
-  const auto* law =
-      dynamic_cast<const shudder::clutch::LinearTemperatureFriction*>(fluid.friction.get());
+  const auto* law = dynamic_cast<const shudder::clutch::LinearTemperatureFriction*>(fluid.friction.get());
   ASSERT_NE(law, nullptr);
   // 1 rpm at 46 mm: 2*pi/60 * 46 = 4.8171087 mm/s; 50 rpm: 240.85544 mm/s.
   ASSERT_EQ(law->points().size(), 2u);
@@ -145,24 +142,24 @@ TEST(LoadFluid, MissingKey) {
 
 TEST(LoadFluid, MissingSetsOfARow) {
   const auto path = write(with(kMaki, "sets = [[0, 0, 0, 0.12]", "setz = [[0, 0, 0, 0.12]"));
-  EXPECT_THAT([&] { load_fluid(path); },
-              fails_with(path, "maki.row[0].sets", "missing; expected an array of 4 sets"));
+  EXPECT_THAT([&] { load_fluid(path); }, fails_with(path, "maki.row[0].sets", "missing; expected an array of 4 sets"));
 }
 
 // Found by fuzz_fluid under UBSan: a bare key running into "°" ("mean_°C") made
 // toml++ 3.3.0 reach __builtin_unreachable while reading a file (io/toml_reader.cpp). A file is
 // checked as text is: rejected with the line, before toml++ parses it.
 TEST(LoadFluid, NonAsciiCharacterInABareKeyIsRejectedWithItsLine) {
-  const auto path = write(with(kMaki, "nu40_cSt = 35.0\n", "nu40_cSt = 35.0\nmean_\xC2\xB0" "C = 1\n"));
+  const auto path = write(with(kMaki, "nu40_cSt = 35.0\n",
+                               "nu40_cSt = 35.0\nmean_\xC2\xB0"
+                               "C = 1\n"));
   EXPECT_THAT([&] { load_fluid(path); },
-              ThrowsMessage<InputError>(AllOf(HasSubstr(path + ":"),
-                                              HasSubstr("non-ASCII character outside a string or comment"))));
+              ThrowsMessage<InputError>(
+                  AllOf(HasSubstr(path + ":"), HasSubstr("non-ASCII character outside a string or comment"))));
 }
 
 TEST(LoadFluid, UnknownKey) {
   const auto path = write(with(kMaki, "nu40_cSt = 35.0\n", "nu40_cSt = 35.0\ncolour = \"red\"\n"));
-  EXPECT_THAT([&] { load_fluid(path); },
-              fails_with(path, "fluid.colour", "unknown key; allowed keys here"));
+  EXPECT_THAT([&] { load_fluid(path); }, fails_with(path, "fluid.colour", "unknown key; allowed keys here"));
 }
 
 TEST(LoadFluid, UnknownKeyInARow) {
@@ -177,8 +174,7 @@ TEST(LoadFluid, UnknownTopLevelTable) {
 
 TEST(LoadFluid, WrongType) {
   const auto path = write(with(kMaki, "nu40_cSt = 35.0", "nu40_cSt = \"35\""));
-  EXPECT_THAT([&] { load_fluid(path); },
-              fails_with(path, "fluid.nu40_cSt", "is a string; expected a number in > 0"));
+  EXPECT_THAT([&] { load_fluid(path); }, fails_with(path, "fluid.nu40_cSt", "is a string; expected a number in > 0"));
 }
 
 TEST(LoadFluid, NanNumber) {
@@ -187,70 +183,61 @@ TEST(LoadFluid, NanNumber) {
 }
 
 TEST(LoadFluid, NanCoefficient) {
-  const auto path = write(with(kMaki, "[-0.039, 0.001, 0.077, -0.024], [-0.039, 0.001",
-                               "[-0.039, 0.001, 0.077, -0.024], [-0.039, nan"));
-  EXPECT_THAT([&] { load_fluid(path); },
-              fails_with(path, "maki.row[1].sets", "set 1 (load 15000 N) C2 is not finite"));
+  const auto path = write(
+      with(kMaki, "[-0.039, 0.001, 0.077, -0.024], [-0.039, 0.001", "[-0.039, 0.001, 0.077, -0.024], [-0.039, nan"));
+  EXPECT_THAT([&] { load_fluid(path); }, fails_with(path, "maki.row[1].sets", "set 1 (load 15000 N) C2 is not finite"));
 }
 
 TEST(LoadFluid, WrongTypeCoefficient) {
   const auto path = write(with(kMaki, "[0, 0, 0, 0.12]]", "[0, 0, 0, \"0.12\"]]"));
   EXPECT_THAT([&] { load_fluid(path); },
-              fails_with(path, "maki.row[0].sets",
-                         "set 3 (load 25000 N) C4 is a string; expected a finite number"));
+              fails_with(path, "maki.row[0].sets", "set 3 (load 25000 N) C4 is a string; expected a finite number"));
 }
 
 TEST(LoadFluid, HoleInTheMatrixNamesRowLineAndCounts) {
   // The 20 °C row's `sets` is on line 17 of the fixture; drop its last set.
   const auto path = write(with(kMaki, ", [0, 0, 0, 0.12]]", "]"));
-  EXPECT_THAT([&] { load_fluid(path); },
-              ThrowsMessage<InputError>(HasSubstr(
-                  path + ":17: key 'maki.row[0].sets': has 3 sets; expected one per load (4) "
-                         "in the row at temp_C = 20")));
+  EXPECT_THAT(
+      [&] { load_fluid(path); },
+      ThrowsMessage<InputError>(HasSubstr(path + ":17: key 'maki.row[0].sets': has 3 sets; expected one per load (4) "
+                                                 "in the row at temp_C = 20")));
 }
 
 TEST(LoadFluid, SetWithOtherThanFourNumbers) {
   const auto path = write(with(kMaki, "[0, 0, 0, 0.12]]", "[0, 0, 0.12]]"));
   EXPECT_THAT([&] { load_fluid(path); },
-              fails_with(path, "maki.row[0].sets",
-                         "set 3 (load 25000 N) has 3 numbers; expected 4 [C1, C2, C3, C4]"));
+              fails_with(path, "maki.row[0].sets", "set 3 (load 25000 N) has 3 numbers; expected 4 [C1, C2, C3, C4]"));
 }
 
 TEST(LoadFluid, RowsNotIncreasingInTemperature) {
   const auto path = write(with(kMaki, "temp_C = 70.0", "temp_C = 20.0"));
-  EXPECT_THAT([&] { load_fluid(path); },
-              fails_with(path, "maki.row[1].temp_C", "rows must be strictly increasing"));
+  EXPECT_THAT([&] { load_fluid(path); }, fails_with(path, "maki.row[1].temp_C", "rows must be strictly increasing"));
 }
 
 TEST(LoadFluid, LoadsNotIncreasing) {
   const auto path = write(with(kMaki, "[10000, 15000,", "[15000, 10000,"));
-  EXPECT_THAT([&] { load_fluid(path); },
-              fails_with(path, "maki.loads_N", "must be strictly increasing"));
+  EXPECT_THAT([&] { load_fluid(path); }, fails_with(path, "maki.loads_N", "must be strictly increasing"));
 }
 
 TEST(LoadFluid, SpeedRangeEmpty) {
   const auto path = write(with(kMaki, "[maki]\n", "[maki]\nmin_speed_mm_s = 600.0\n"));
-  EXPECT_THAT([&] { load_fluid(path); },
-              fails_with(path, "maki.max_speed_mm_s", "must exceed min_speed_mm_s"));
+  EXPECT_THAT([&] { load_fluid(path); }, fails_with(path, "maki.max_speed_mm_s", "must exceed min_speed_mm_s"));
 }
 
 TEST(LoadFluid, ViscositiesInverted) {
   const auto path = write(with(kMaki, "nu100_cSt = 6.7", "nu100_cSt = 40.0"));
-  EXPECT_THAT([&] { load_fluid(path); },
-              fails_with(path, "fluid.nu100_cSt", "out of range; allowed (0, 35)"));
+  EXPECT_THAT([&] { load_fluid(path); }, fails_with(path, "fluid.nu100_cSt", "out of range; allowed (0, 35)"));
 }
 
 TEST(LoadFluid, BreakawayRatioOutOfRange) {
   const auto path = write(with(kMaki, "breakaway_ratio = 1.2", "breakaway_ratio = 5"));
-  EXPECT_THAT([&] { load_fluid(path); },
-              fails_with(path, "static_friction.breakaway_ratio", "allowed [0.5, 3]"));
+  EXPECT_THAT([&] { load_fluid(path); }, fails_with(path, "static_friction.breakaway_ratio", "allowed [0.5, 3]"));
 }
 
 TEST(LoadFluid, LinearArraysOfDifferentLengths) {
   const auto path = write(with(kLinear, "beta = [0.1018, 0.1164]", "beta = [0.1018]"));
   EXPECT_THAT([&] { load_fluid(path); },
-              fails_with(path, "linear.beta",
-                         "has 1 elements; expected one per speed in speeds_rpm (2)"));
+              fails_with(path, "linear.beta", "has 1 elements; expected one per speed in speeds_rpm (2)"));
 }
 
 TEST(LoadFluid, LinearMissingMeanRadius) {
@@ -267,8 +254,7 @@ TEST(LoadFluid, BothMakiAndLinear) {
 
 TEST(LoadFluid, NeitherMakiNorLinear) {
   const auto path = write(kLinear.substr(0, kLinear.find("[linear]")));
-  EXPECT_THAT([&] { load_fluid(path); },
-              fails_with(path, "maki", "missing; a fluid needs exactly one friction law"));
+  EXPECT_THAT([&] { load_fluid(path); }, fails_with(path, "maki", "missing; a fluid needs exactly one friction law"));
 }
 
 TEST(LoadFluid, NonexistentFile) {
@@ -281,8 +267,7 @@ TEST(LoadFluid, UnreadableFileIsADirectory) {
   const fs::path dir = fs::path(write(kMaki)).parent_path() / "a_directory.toml";
   fs::create_directories(dir);
   EXPECT_THAT([&] { load_fluid(dir.string()); },
-              ThrowsMessage<InputError>(
-                  AllOf(HasSubstr(dir.string()), HasSubstr("is not a regular file"))));
+              ThrowsMessage<InputError>(AllOf(HasSubstr(dir.string()), HasSubstr("is not a regular file"))));
 }
 
 TEST(LoadFluid, TomlSyntaxErrorNamesTheLine) {
@@ -312,17 +297,17 @@ TEST(LoadFluidPlausibility, ShippedFluidWithBetaNegatedIsRejectedNamingKeyAndPoi
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   text = with(text, "beta = [0.1018, 0.1164]", "beta = [-0.1018, -0.1164]");
   const std::string path = write(text);
+  EXPECT_THAT([&] { load_fluid(path); }, fails_with(path, "linear.beta", "gives mu = -0.08012 <= 0"));
   EXPECT_THAT([&] { load_fluid(path); },
-              fails_with(path, "linear.beta", "gives mu = -0.08012 <= 0"));
-  EXPECT_THAT([&] { load_fluid(path); },
-              ThrowsMessage<InputError>(AllOf(HasSubstr("speed 1 rpm"), HasSubstr("temperature -40 °C"),
-                                              HasSubstr("from -40 to 150 °C"))));
+              ThrowsMessage<InputError>(
+                  AllOf(HasSubstr("speed 1 rpm"), HasSubstr("temperature -40 °C"), HasSubstr("from -40 to 150 °C"))));
 }
 
 TEST(LoadFluidPlausibility, LinearLineCrossingZeroBelow150CIsRejectedAtTheHotEnd) {
   // mu = -1e-3 T + 0.1 is 0.14 at -40 °C but -0.05 at 150 °C: the hot end fails.
-  const std::string path = write(with(with(kLinear, "alpha_per_C = [-5.42e-4, -2.96e-4]", "alpha_per_C = [-1e-3, -2.96e-4]"),
-                                      "beta = [0.1018, 0.1164]", "beta = [0.1, 0.1164]"));
+  const std::string path =
+      write(with(with(kLinear, "alpha_per_C = [-5.42e-4, -2.96e-4]", "alpha_per_C = [-1e-3, -2.96e-4]"),
+                 "beta = [0.1018, 0.1164]", "beta = [0.1, 0.1164]"));
   EXPECT_THAT([&] { load_fluid(path); }, fails_with(path, "linear.beta", "gives mu = -0.05 <= 0"));
   EXPECT_THAT([&] { load_fluid(path); }, ThrowsMessage<InputError>(HasSubstr("temperature 150 °C")));
 }
@@ -337,16 +322,18 @@ TEST(LoadFluidPlausibility, MakiSetNegativeAtLowSpeedNamesRowSetAndPoint) {
   // The 20 °C row's 15 kN set: mu = 0.05 tanh(0.001 v) - 0.01; tanh(0.001 v) ~ 0.001 v, so mu
   // <= 0 below v = 200 mm/s: the first sample, 6 mm/s, fails (0.05 tanh(0.006) - 0.01 =
   // -0.0097).
-  const std::string path = write(with(kMaki, "[[0, 0, 0, 0.12], [0, 0, 0, 0.12]", "[[0, 0, 0, 0.12], [0.05, 0.001, 0, -0.01]"));
+  const std::string path =
+      write(with(kMaki, "[[0, 0, 0, 0.12], [0, 0, 0, 0.12]", "[[0, 0, 0, 0.12], [0.05, 0.001, 0, -0.01]"));
   EXPECT_THAT([&] { load_fluid(path); }, fails_with(path, "maki.row[0].sets", "set 1 gives mu = -0.0097"));
   EXPECT_THAT([&] { load_fluid(path); },
-              ThrowsMessage<InputError>(AllOf(HasSubstr("speed 6 mm/s"), HasSubstr("temperature 20 °C"),
-                                              HasSubstr("load 15000 N"))));
+              ThrowsMessage<InputError>(
+                  AllOf(HasSubstr("speed 6 mm/s"), HasSubstr("temperature 20 °C"), HasSubstr("load 15000 N"))));
 }
 
 TEST(LoadFluidPlausibility, MakiSetNegativeOnlyAtHighSpeedIsFoundByTheSpeedGrid) {
   // mu = -0.2 tanh(0.01 v) + 0.12: positive at low speed, 0.12 - 0.2 tanh(5.9) < 0 at 590 mm/s;
   // mu = 0 at v = atanh(0.6)/0.01 = 69.3 mm/s, so the first failing sample lies just above it.
-  const std::string path = write(with(kMaki, "[[0, 0, 0, 0.12], [0, 0, 0, 0.12]", "[[0, 0, 0, 0.12], [-0.2, 0.01, 0, 0.12]"));
+  const std::string path =
+      write(with(kMaki, "[[0, 0, 0, 0.12], [0, 0, 0, 0.12]", "[[0, 0, 0, 0.12], [-0.2, 0.01, 0, 0.12]"));
   EXPECT_THAT([&] { load_fluid(path); }, fails_with(path, "maki.row[0].sets", "set 1 gives mu = -"));
 }

@@ -58,8 +58,13 @@ TEST(LoadFluidTable, RejectsAWrongShapeAnImplausibleMuAndTwoLaws) {
                                               HasSubstr("has 2 values; expected one per speed"))));
   EXPECT_THAT([&] { load_fluid_text(with(kTable, "[0.08, 0.10, 0.11]", "[0.08, -0.10, 0.11]"), "t.toml"); },
               ThrowsMessage<InputError>(AllOf(HasSubstr("table.row[0].mu"), HasSubstr("<= 0"))));
-  EXPECT_THAT([&] { load_fluid_text(kTable + "\n[linear]\nmean_radius_mm = 46.0\nspeeds_rpm = [1.0]\nalpha_per_C = [0.0]\nbeta = [0.1]\n", "t.toml"); },
-              ThrowsMessage<InputError>(AllOf(HasSubstr("key 'table'"), HasSubstr("given together with [linear]"))));
+  EXPECT_THAT(
+      [&] {
+        load_fluid_text(
+            kTable + "\n[linear]\nmean_radius_mm = 46.0\nspeeds_rpm = [1.0]\nalpha_per_C = [0.0]\nbeta = [0.1]\n",
+            "t.toml");
+      },
+      ThrowsMessage<InputError>(AllOf(HasSubstr("key 'table'"), HasSubstr("given together with [linear]"))));
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // Run output through HDF5: a small synthetic Recording (signals, thermal snapshots, scalars and
-// a 2-D map) written and read back must come back bit-for-bit (doubles are stored as IEEE float64, no conversion); failed writes must leave
-// neither the target nor the temporary file; reading rejects what is not a run file; no HDF5
+// a 2-D map) written and read back must come back bit-for-bit (doubles are stored as IEEE float64, no conversion);
+// failed writes must leave neither the target nor the temporary file; reading rejects what is not a run file; no HDF5
 // identifier leaks.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -124,8 +124,10 @@ TEST_F(Hdf5Run, RoundTripIsExact) {
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 2; ++j) {
         const double a = m.layers[k].values(i, j), b = om.layers[k].values(i, j);
-        if (std::isnan(b)) EXPECT_TRUE(std::isnan(a)) << k << " " << i << " " << j;
-        else EXPECT_EQ(a, b) << k << " " << i << " " << j;
+        if (std::isnan(b))
+          EXPECT_TRUE(std::isnan(a)) << k << " " << i << " " << j;
+        else
+          EXPECT_EQ(a, b) << k << " " << i << " " << j;
       }
   }
   ASSERT_NE(m.find_scalar("normal_force_N"), nullptr);
@@ -231,8 +233,7 @@ TEST_F(Hdf5Run, FailedWriteKeepsPreviousFile) {
 
 TEST_F(Hdf5Run, ReaderRejectsMissingAndNonHdf5Files) {
   EXPECT_THAT([&] { shudder::io::read_run_hdf5(path("absent.h5")); },
-              testing::ThrowsMessage<InputError>(
-                  HasSubstr("absent.h5: cannot read run file: no such file")));
+              testing::ThrowsMessage<InputError>(HasSubstr("absent.h5: cannot read run file: no such file")));
   std::ofstream(path("text.h5")) << "time_s,torque_Nm\n0,1\n";
   EXPECT_THAT([&] { shudder::io::read_run_hdf5(path("text.h5")); },
               testing::ThrowsMessage<InputError>(HasSubstr("not an HDF5 file")));
@@ -248,8 +249,7 @@ TEST_F(Hdf5Run, NoHdf5IdentifiersLeak) {
   shudder::io::write_run_hdf5(path("run.h5"), sample_recording(), "x");
   (void)shudder::io::read_run_hdf5(path("run.h5"));
   (void)shudder::io::read_run_attribute(path("run.h5"), "scenario");
-  EXPECT_THROW(shudder::io::write_run_hdf5(path("missing/run.h5"), sample_recording(), ""),
-               InputError);
+  EXPECT_THROW(shudder::io::write_run_hdf5(path("missing/run.h5"), sample_recording(), ""), InputError);
   fs::create_directory(path("dir.h5"));
   EXPECT_THROW(shudder::io::write_run_hdf5(path("dir.h5"), sample_recording(), ""), InputError);
   std::ofstream(path("text.h5")) << "not hdf5\n";

@@ -29,9 +29,8 @@ using testing::Not;
 namespace {
 
 fs::path scratch() {
-  const auto dir = fs::temp_directory_path() /
-                   ("shudder_isolated_" + std::to_string(::getpid()) + "_" +
-                    testing::UnitTest::GetInstance()->current_test_info()->name());
+  const auto dir = fs::temp_directory_path() / ("shudder_isolated_" + std::to_string(::getpid()) + "_" +
+                                                testing::UnitTest::GetInstance()->current_test_info()->name());
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
@@ -46,8 +45,12 @@ MeasuredRun awkward_run() {
     run.columns.push_back({name, shudder::io::measured_run_units(name), {}});
   for (std::size_t k = 0; k < 2000; ++k) {
     const double t = 1e-3 * static_cast<double>(k) + 1e-13;
-    const double row[] = {t, std::sqrt(2.0) + t, 25300.0 / 3.0, std::nextafter(98.4, 1e9) * std::sin(t),
-                          77.02 + std::exp(-t), std::numeric_limits<double>::denorm_min()};
+    const double row[] = {t,
+                          std::sqrt(2.0) + t,
+                          25300.0 / 3.0,
+                          std::nextafter(98.4, 1e9) * std::sin(t),
+                          77.02 + std::exp(-t),
+                          std::numeric_limits<double>::denorm_min()};
     for (std::size_t c = 0; c < 6; ++c) run.columns[c].values.push_back(row[c]);
   }
   return run;
@@ -109,9 +112,9 @@ TEST(IsolatedRead, AChildKilledByASignalIsAnInputErrorNamingTheFileAndTheSignal)
     (void)shudder::io::detail::run_isolated("damaged.h5", 30.0, crash);
     FAIL() << "no error";
   } catch (const InputError& e) {
-    EXPECT_THAT(e.what(), AllOf(HasSubstr("damaged.h5: "), HasSubstr("libhdf5 crashed"),
-                                HasSubstr("signal " + std::to_string(SIGSEGV)), HasSubstr("as CSV"),
-                                Not(HasSubstr("\n"))));
+    EXPECT_THAT(e.what(),
+                AllOf(HasSubstr("damaged.h5: "), HasSubstr("libhdf5 crashed"),
+                      HasSubstr("signal " + std::to_string(SIGSEGV)), HasSubstr("as CSV"), Not(HasSubstr("\n"))));
   }
 }
 
@@ -120,8 +123,8 @@ TEST(IsolatedRead, AChildThatHangsIsStoppedAtTheTimeLimit) {
     (void)shudder::io::detail::run_isolated("stuck.h5", 0.3, never_returns);
     FAIL() << "no error";
   } catch (const InputError& e) {
-    EXPECT_THAT(e.what(), AllOf(HasSubstr("stuck.h5: "), HasSubstr("did not finish within 0.3 s"),
-                                HasSubstr("as CSV")));
+    EXPECT_THAT(e.what(),
+                AllOf(HasSubstr("stuck.h5: "), HasSubstr("did not finish within 0.3 s"), HasSubstr("as CSV")));
   }
 }
 

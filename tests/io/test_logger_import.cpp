@@ -21,9 +21,9 @@
 
 namespace {
 
+using shudder::io::import_logger;
 using shudder::io::ImportSpec;
 using shudder::io::InputError;
-using shudder::io::import_logger;
 using testing::HasSubstr;
 using testing::ThrowsMessage;
 
@@ -105,8 +105,11 @@ TEST_F(LoggerImport, SemicolonDecimalCommaMillisecondsAndKilonewtonsByName) {
 
 TEST_F(LoggerImport, CommaSecondsNewtonsAndMetadataDefaultsWithAWarning) {
   const auto file = logger("log.csv",
-                           {{"time_s", time_s}, {"speed_rpm", speed_rpm}, {"torque_Nm", torque_Nm},
-                            {"temp_C", temp_C}, {"force_N", force_N}},
+                           {{"time_s", time_s},
+                            {"speed_rpm", speed_rpm},
+                            {"torque_Nm", torque_Nm},
+                            {"temp_C", temp_C},
+                            {"force_N", force_N}},
                            ',');
   const auto r = import_logger(file, {});
   EXPECT_EQ(r.delimiter, ',');
@@ -155,25 +158,34 @@ TEST_F(LoggerImport, TabRadiansKelvinExtraColumnsAndExplicitMaps) {
 // with one whose name gives the unit; two that give units are ambiguous.
 TEST_F(LoggerImport, ANameWithAUnitWinsOverOneWithout) {
   const auto file = logger("log.csv",
-                           {{"time_s", time_s}, {"n", [](int i) { return double(i); }}, {"speed_rpm", speed_rpm},
-                            {"torque_Nm", torque_Nm}, {"temp_C", temp_C}, {"force_N", force_N}},
+                           {{"time_s", time_s},
+                            {"n", [](int i) { return double(i); }},
+                            {"speed_rpm", speed_rpm},
+                            {"torque_Nm", torque_Nm},
+                            {"temp_C", temp_C},
+                            {"force_N", force_N}},
                            ',');
   const auto r = import_logger(file, {});
   expect_thesis_ramp(r.run);
   EXPECT_EQ(r.ignored, (std::vector<std::string>{"n"}));
   const auto two = logger("two.csv",
-                          {{"time_s", time_s}, {"speed_rad_s", speed_rpm}, {"speed_rpm", speed_rpm},
-                           {"torque_Nm", torque_Nm}, {"temp_C", temp_C}, {"force_N", force_N}},
+                          {{"time_s", time_s},
+                           {"speed_rad_s", speed_rpm},
+                           {"speed_rpm", speed_rpm},
+                           {"torque_Nm", torque_Nm},
+                           {"temp_C", temp_C},
+                           {"force_N", force_N}},
                           ',');
   EXPECT_THAT([&] { import_logger(two, {}); },
-              ThrowsMessage<InputError>(AllOf(HasSubstr("both look like speed_rpm"), HasSubstr("--map COLUMN=speed_rpm:UNIT"))));
+              ThrowsMessage<InputError>(
+                  AllOf(HasSubstr("both look like speed_rpm"), HasSubstr("--map COLUMN=speed_rpm:UNIT"))));
 }
 
 TEST_F(LoggerImport, MappingFileGivesColumnsMetadataAndDialect) {
-  const auto file = logger("log.csv",
-                           {{"A", [](int i) { return 1e3 * time_s(i); }}, {"B", speed_rpm}, {"C", force_N},
-                            {"D", torque_Nm}, {"E", temp_C}},
-                           ';', true);
+  const auto file = logger(
+      "log.csv",
+      {{"A", [](int i) { return 1e3 * time_s(i); }}, {"B", speed_rpm}, {"C", force_N}, {"D", torque_Nm}, {"E", temp_C}},
+      ';', true);
   std::ofstream(path("rig3.toml")) << "# bench 3's logger\ndelimiter = \";\"\ndecimal = \",\"\n"
                                       "[columns]\nA = \"time_s:ms\"\nB = \"speed_rpm:rpm\"\nC = \"normal_force_N:N\"\n"
                                       "D = \"torque_Nm\"\nE = \"temp_C:degC\"\n"
@@ -196,32 +208,45 @@ TEST_F(LoggerImport, MappingFileGivesColumnsMetadataAndDialect) {
 TEST_F(LoggerImport, UnitsThatDoNotFitTheValuesNameTheColumnAndTheFix) {
   // kN logged under a name that says N.
   const auto kn = logger("kn.csv",
-                         {{"time_s", time_s}, {"speed_rpm", speed_rpm}, {"torque_Nm", torque_Nm},
-                          {"temp_C", temp_C}, {"force_N", [](int i) { return force_N(i) / 1e3; }}},
+                         {{"time_s", time_s},
+                          {"speed_rpm", speed_rpm},
+                          {"torque_Nm", torque_Nm},
+                          {"temp_C", temp_C},
+                          {"force_N", [](int i) { return force_N(i) / 1e3; }}},
                          ',');
-  EXPECT_THAT([&] { import_logger(kn, {}); },
-              ThrowsMessage<InputError>(AllOf(HasSubstr("kn.csv"), HasSubstr("column 'force_N'"),
-                                              HasSubstr("look like kN"), HasSubstr("--map force_N=normal_force_N:kN"))));
+  EXPECT_THAT(
+      [&] { import_logger(kn, {}); },
+      ThrowsMessage<InputError>(AllOf(HasSubstr("kn.csv"), HasSubstr("column 'force_N'"), HasSubstr("look like kN"),
+                                      HasSubstr("--map force_N=normal_force_N:kN"))));
   // A 10 s ramp at 100 Hz logged in ms under a name that says s.
   const auto ms = logger("ms.csv",
-                         {{"time_s", [](int i) { return 1e3 * time_s(i) * 10; }}, {"speed_rpm", speed_rpm},
-                          {"torque_Nm", torque_Nm}, {"temp_C", temp_C}, {"force_N", force_N}},
+                         {{"time_s", [](int i) { return 1e3 * time_s(i) * 10; }},
+                          {"speed_rpm", speed_rpm},
+                          {"torque_Nm", torque_Nm},
+                          {"temp_C", temp_C},
+                          {"force_N", force_N}},
                          ',');
   EXPECT_THAT([&] { import_logger(ms, {}); },
-              ThrowsMessage<InputError>(AllOf(HasSubstr("column 'time_s'"), HasSubstr("look like ms"),
-                                              HasSubstr("--map time_s=time_s:ms"))));
+              ThrowsMessage<InputError>(
+                  AllOf(HasSubstr("column 'time_s'"), HasSubstr("look like ms"), HasSubstr("--map time_s=time_s:ms"))));
   // Kelvin under a name that says degC.
   const auto k = logger("k.csv",
-                        {{"time_s", time_s}, {"speed_rpm", speed_rpm}, {"torque_Nm", torque_Nm},
-                         {"temp_C", [](int i) { return temp_C(i) + 273.15; }}, {"force_N", force_N}},
+                        {{"time_s", time_s},
+                         {"speed_rpm", speed_rpm},
+                         {"torque_Nm", torque_Nm},
+                         {"temp_C", [](int i) { return temp_C(i) + 273.15; }},
+                         {"force_N", force_N}},
                         ',');
   EXPECT_THAT([&] { import_logger(k, {}); },
-              ThrowsMessage<InputError>(AllOf(HasSubstr("column 'temp_C'"), HasSubstr("look like K"),
-                                              HasSubstr("--map temp_C=temp_C:K"))));
+              ThrowsMessage<InputError>(
+                  AllOf(HasSubstr("column 'temp_C'"), HasSubstr("look like K"), HasSubstr("--map temp_C=temp_C:K"))));
   // Seconds under a name that says ms: a rate of 100 kHz and more.
   const auto s = logger("s.csv",
-                        {{"time_ms", [](int i) { return time_s(i) / 100; }}, {"speed_rpm", speed_rpm},
-                         {"torque_Nm", torque_Nm}, {"temp_C", temp_C}, {"force_N", force_N}},
+                        {{"time_ms", [](int i) { return time_s(i) / 100; }},
+                         {"speed_rpm", speed_rpm},
+                         {"torque_Nm", torque_Nm},
+                         {"temp_C", temp_C},
+                         {"force_N", force_N}},
                         ',');
   EXPECT_THAT([&] { import_logger(s, {}); }, ThrowsMessage<InputError>(HasSubstr("look like s, not ms")));
   // --trust-units: the user says the unit is right.
@@ -231,8 +256,11 @@ TEST_F(LoggerImport, UnitsThatDoNotFitTheValuesNameTheColumnAndTheFix) {
   // A column name with spaces and brackets: the suggested option is quoted for the shell, so it
   // can be pasted as printed.
   const auto spaced = logger("spaced.csv",
-                             {{"time_s", time_s}, {"speed_rpm", speed_rpm}, {"torque_Nm", torque_Nm},
-                              {"temp_C", temp_C}, {"Kraft [kN]", [](int i) { return force_N(i) / 1e3; }}},
+                             {{"time_s", time_s},
+                              {"speed_rpm", speed_rpm},
+                              {"torque_Nm", torque_Nm},
+                              {"temp_C", temp_C},
+                              {"Kraft [kN]", [](int i) { return force_N(i) / 1e3; }}},
                              ',');
   ImportSpec named;
   named.maps.push_back(shudder::io::parse_map_option("Kraft [kN]=normal_force_N"));
@@ -247,10 +275,10 @@ TEST(MapOptionText, QuotesOnlyWhatTheShellWouldSplitOrExpand) {
 }
 
 TEST_F(LoggerImport, BadMapsMissingColumnsAndBadFieldsAreOneLineErrors) {
-  const auto file = logger("log.csv",
-                           {{"time_s", time_s}, {"speed_rpm", speed_rpm}, {"Moment", torque_Nm},
-                            {"temp_C", temp_C}, {"force_N", force_N}},
-                           ',');
+  const auto file = logger(
+      "log.csv",
+      {{"time_s", time_s}, {"speed_rpm", speed_rpm}, {"Moment", torque_Nm}, {"temp_C", temp_C}, {"force_N", force_N}},
+      ',');
   const auto one_line = [](const std::string& s) { return s.find('\n') == std::string::npos; };
   try {
     import_logger(file, {});
@@ -263,23 +291,25 @@ TEST_F(LoggerImport, BadMapsMissingColumnsAndBadFieldsAreOneLineErrors) {
   EXPECT_THAT([] { shudder::io::parse_map_option("Moment=torque_Nm:lbf ft"); },
               ThrowsMessage<InputError>(AllOf(HasSubstr("unit 'lbf ft'"), HasSubstr("allowed: N m, kN m"))));
   EXPECT_THAT([] { shudder::io::parse_map_option("Moment=torque_N:N m"); },
-              ThrowsMessage<InputError>(AllOf(HasSubstr("'torque_N' is not a measured-run column"),
-                                              HasSubstr("did you mean 'torque_Nm'"))));
-  EXPECT_THAT([] { shudder::io::parse_map_option("Moment"); }, ThrowsMessage<InputError>(HasSubstr("SOURCE=TARGET:UNIT")));
+              ThrowsMessage<InputError>(
+                  AllOf(HasSubstr("'torque_N' is not a measured-run column"), HasSubstr("did you mean 'torque_Nm'"))));
+  EXPECT_THAT([] { shudder::io::parse_map_option("Moment"); },
+              ThrowsMessage<InputError>(HasSubstr("SOURCE=TARGET:UNIT")));
   ImportSpec typo;
   typo.maps.push_back(shudder::io::parse_map_option("Momnet=torque_Nm"));
   EXPECT_THAT([&] { import_logger(file, typo); }, ThrowsMessage<InputError>(HasSubstr("did you mean 'Moment'")));
   // A text field: line and column.
   std::ofstream(path("text.csv")) << "time_s;speed_rpm;torque_Nm;temp_C;force_N\n0;1;2;3;4\n0,1;1;2;n/a;4\n";
-  EXPECT_THAT([&] { import_logger(path("text.csv"), {}); },
-              ThrowsMessage<InputError>(AllOf(HasSubstr("text.csv:3"), HasSubstr("column 'temp_C': 'n/a' is not a number"))));
+  EXPECT_THAT(
+      [&] { import_logger(path("text.csv"), {}); },
+      ThrowsMessage<InputError>(AllOf(HasSubstr("text.csv:3"), HasSubstr("column 'temp_C': 'n/a' is not a number"))));
   // A column named as a quantity without a unit.
   std::ofstream(path("nounit.csv")) << "time,speed_rpm,torque_Nm,temp_C,force_N\n";
   EXPECT_THAT([&] { import_logger(path("nounit.csv"), {}); }, ThrowsMessage<InputError>(HasSubstr("only 0 data row")));
-  const auto no_unit = logger("nounit2.csv",
-                              {{"time", time_s}, {"speed_rpm", speed_rpm}, {"torque_Nm", torque_Nm},
-                               {"temp_C", temp_C}, {"force_N", force_N}},
-                              ',');
+  const auto no_unit = logger(
+      "nounit2.csv",
+      {{"time", time_s}, {"speed_rpm", speed_rpm}, {"torque_Nm", torque_Nm}, {"temp_C", temp_C}, {"force_N", force_N}},
+      ',');
   EXPECT_THAT([&] { import_logger(no_unit, {}); },
               ThrowsMessage<InputError>(AllOf(HasSubstr("column 'time' looks like time_s"),
                                               HasSubstr("--map time=time_s:UNIT (allowed units: s, ms)"))));
@@ -310,9 +340,11 @@ TEST_F(LoggerImport, TimeGoingBackAndLargeNegativeForceNameTheLine) {
 // A logger's file given where a measured run is read: the reader's refusal points at `import`;
 // a measured run with a column in the wrong unit is refused with the import that converts it.
 TEST_F(LoggerImport, MeasuredRunReadersPointAtImport) {
-  std::ofstream(path("semi.csv")) << "# format: shudder-measurement/1\ntime_s;speed_rpm;normal_force_N;torque_Nm;temp_C\n";
-  EXPECT_THAT([&] { shudder::io::read_measured_run(path("semi.csv")); },
-              ThrowsMessage<InputError>(AllOf(HasSubstr("separated by ';' or tabs"), HasSubstr("shudder import LOG.csv"))));
+  std::ofstream(path("semi.csv"))
+      << "# format: shudder-measurement/1\ntime_s;speed_rpm;normal_force_N;torque_Nm;temp_C\n";
+  EXPECT_THAT(
+      [&] { shudder::io::read_measured_run(path("semi.csv")); },
+      ThrowsMessage<InputError>(AllOf(HasSubstr("separated by ';' or tabs"), HasSubstr("shudder import LOG.csv"))));
   std::ofstream(path("noformat.csv")) << "time_s,speed_rpm,normal_force_N,torque_Nm,temp_C\n";
   EXPECT_THAT([&] { shudder::io::read_measured_run(path("noformat.csv")); },
               ThrowsMessage<InputError>(HasSubstr("shudder import LOG.csv -o RUN.csv")));

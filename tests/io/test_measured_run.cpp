@@ -52,19 +52,16 @@ class MeasuredRunTest : public shudder::test::TestDirectory {
   void expect_csv_rejected(const std::string& text, long line, const std::string& reason) const {
     const std::string p = file("bad.csv", text);
     EXPECT_THAT([&] { read_measured_run_csv(p); },
-                ThrowsMessage<InputError>(AllOf(HasSubstr(p + ":" + std::to_string(line) + ": "),
-                                                HasSubstr(reason))));
+                ThrowsMessage<InputError>(AllOf(HasSubstr(p + ":" + std::to_string(line) + ": "), HasSubstr(reason))));
   }
 
   // Reading the HDF5 `run` (written without checks) fails naming `key` and `reason`.
-  void expect_hdf5_rejected(const MeasuredRun& run, const std::string& key,
-                            const std::string& reason,
+  void expect_hdf5_rejected(const MeasuredRun& run, const std::string& key, const std::string& reason,
                             const std::vector<std::pair<std::string, double>>& numbers = {}) {
     const std::string p = path("bad.h5");
     shudder::io::detail::write_measured_run_hdf5_unchecked(p, run, numbers);
     EXPECT_THAT([&] { read_measured_run(p); },
-                ThrowsMessage<InputError>(
-                    AllOf(HasSubstr(p + ": key '" + key + "'"), HasSubstr(reason))));
+                ThrowsMessage<InputError>(AllOf(HasSubstr(p + ": key '" + key + "'"), HasSubstr(reason))));
   }
 };
 
@@ -89,13 +86,14 @@ std::string example(std::size_t n = 12) {
 // 1 s at 1 kHz of a simulated LSCTR run: ramps plus a non-sensor signal the writer leaves out.
 Recording ramp_recording() {
   Recording rec;
-  for (const char* name : {"time_s", "speed_rpm", "normal_force_N", "torque_Nm", "temp_C",
-                           "sump_temp_C", "ir_temp_C", "clutch_torque_Nm"})
+  for (const char* name :
+       {"time_s", "speed_rpm", "normal_force_N", "torque_Nm", "temp_C", "sump_temp_C", "ir_temp_C", "clutch_torque_Nm"})
     rec.add_signal(name, "");
   for (std::size_t k = 0; k <= 1000; ++k) {
     const double t = static_cast<double>(k) / 1000.0;
-    const double row[] = {t,    100.0 * t,        25300.0 + 3.0 * std::sin(40.0 * t),
-                          10.0 + 50.0 * t,  77.0 + 2.0 * t, 77.0, 78.0 + std::cos(t), -1.0};
+    const double row[] = {
+        t,   100.0 * t, 25300.0 + 3.0 * std::sin(40.0 * t), 10.0 + 50.0 * t, 77.0 + 2.0 * t, 77.0, 78.0 + std::cos(t),
+        -1.0};
     for (std::size_t c = 0; c < rec.signals.size(); ++c) rec.signals[c].values.push_back(row[c]);
   }
   return rec;
@@ -147,8 +145,8 @@ TEST_F(MeasuredRunTest, ReadsTheFormatsExample) {
   const MeasuredRun run = read_measured_run(p);
   EXPECT_EQ(run.path, p);
   EXPECT_EQ(run.rows(), 12u);
-  EXPECT_EQ(names(run), (std::vector<std::string>{"time_s", "speed_rpm", "normal_force_N",
-                                                  "torque_Nm", "temp_C", "sump_temp_C"}));
+  EXPECT_EQ(names(run),
+            (std::vector<std::string>{"time_s", "speed_rpm", "normal_force_N", "torque_Nm", "temp_C", "sump_temp_C"}));
   EXPECT_EQ(run.meta("format"), "shudder-measurement/1");
   EXPECT_EQ(run.meta("fluid"), "lsc-fluid-c");
   EXPECT_EQ(run.meta("absent"), std::nullopt);
@@ -163,8 +161,7 @@ TEST_F(MeasuredRunTest, ReadsTheFormatsExample) {
 
 TEST_F(MeasuredRunTest, WindowsLineEndingsAndTrailingBlankLinesAccepted) {
   std::string text = example() + "\n  \n\n";
-  for (std::size_t pos = 0; (pos = text.find('\n', pos)) != std::string::npos; pos += 2)
-    text.replace(pos, 1, "\r\n");
+  for (std::size_t pos = 0; (pos = text.find('\n', pos)) != std::string::npos; pos += 2) text.replace(pos, 1, "\r\n");
   const MeasuredRun run = read_measured_run(file("run.csv", text));
   EXPECT_EQ(run.rows(), 12u);
   EXPECT_EQ(run.meta("rig"), "lsctr");  // no '\r' left in values
@@ -173,14 +170,13 @@ TEST_F(MeasuredRunTest, WindowsLineEndingsAndTrailingBlankLinesAccepted) {
 }
 
 TEST_F(MeasuredRunTest, OptionalAndUnknownColumnsKeptInFileOrder) {
-  std::string text = format_line + "time_s,strain_ue,speed_rpm,normal_force_N,torque_Nm,temp_C,"
-                                   "sump_temp_C,ir_temp_C\n";
-  for (int k = 0; k < 10; ++k)
-    text += std::to_string(k) + ",-" + std::to_string(k) + ".5,1,0,98,77,76,79.5\n";
+  std::string text = format_line +
+                     "time_s,strain_ue,speed_rpm,normal_force_N,torque_Nm,temp_C,"
+                     "sump_temp_C,ir_temp_C\n";
+  for (int k = 0; k < 10; ++k) text += std::to_string(k) + ",-" + std::to_string(k) + ".5,1,0,98,77,76,79.5\n";
   const MeasuredRun run = read_measured_run(file("run.csv", text));
-  EXPECT_EQ(names(run),
-            (std::vector<std::string>{"time_s", "strain_ue", "speed_rpm", "normal_force_N",
-                                      "torque_Nm", "temp_C", "sump_temp_C", "ir_temp_C"}));
+  EXPECT_EQ(names(run), (std::vector<std::string>{"time_s", "strain_ue", "speed_rpm", "normal_force_N", "torque_Nm",
+                                                  "temp_C", "sump_temp_C", "ir_temp_C"}));
   ASSERT_NE(run.column("strain_ue"), nullptr);
   EXPECT_EQ(run.column("strain_ue")->at(3), -3.5);
   EXPECT_EQ(run.columns[1].units, "");
@@ -191,8 +187,7 @@ TEST_F(MeasuredRunTest, OptionalAndUnknownColumnsKeptInFileOrder) {
 
 TEST_F(MeasuredRunTest, UnknownMetadataKeptInFileOrder) {
   const std::string text = "# operator: A. N. Other\n" + format_line +
-                           "# oil_flow_ml_min: 200\n# note: run 3: after: re-shim\n# empty:\n" +
-                           header_line + rows(10);
+                           "# oil_flow_ml_min: 200\n# note: run 3: after: re-shim\n# empty:\n" + header_line + rows(10);
   const MeasuredRun run = read_measured_run(file("run.csv", text));
   const std::vector<std::pair<std::string, std::string>> expected = {
       {"operator", "A. N. Other"},
@@ -261,8 +256,7 @@ TEST_F(MeasuredRunTest, DispatchesOnTheHdf5Signature) {
   expect_same(read_measured_run(csv_named_h5), csv_run);
   // A text file that only starts like the signature is read as CSV (and rejected as such).
   const std::string p = file("almost.h5", "\x89HDF\r\n" + example());
-  EXPECT_THAT([&] { read_measured_run(p); },
-              ThrowsMessage<InputError>(HasSubstr(p + ":1: ")));
+  EXPECT_THAT([&] { read_measured_run(p); }, ThrowsMessage<InputError>(HasSubstr(p + ":1: ")));
 }
 
 TEST_F(MeasuredRunTest, Hdf5ReadLeaksNoIdentifiers) {
@@ -280,8 +274,7 @@ TEST_F(MeasuredRunTest, Hdf5ReadLeaksNoIdentifiers) {
 
 TEST_F(MeasuredRunTest, RejectsMissingFile) {
   const std::string p = path("absent.csv");
-  EXPECT_THAT([&] { read_measured_run(p); },
-              ThrowsMessage<InputError>(AllOf(HasSubstr(p), HasSubstr("no such file"))));
+  EXPECT_THAT([&] { read_measured_run(p); }, ThrowsMessage<InputError>(AllOf(HasSubstr(p), HasSubstr("no such file"))));
 }
 
 TEST_F(MeasuredRunTest, RejectsMissingFormat) {
@@ -290,15 +283,13 @@ TEST_F(MeasuredRunTest, RejectsMissingFormat) {
 }
 
 TEST_F(MeasuredRunTest, RejectsOtherFormat) {
-  expect_csv_rejected("# rig: lsctr\n# format: shudder-measurement/2\n" + header_line + rows(12),
-                      2,
+  expect_csv_rejected("# rig: lsctr\n# format: shudder-measurement/2\n" + header_line + rows(12), 2,
                       "format is 'shudder-measurement/2'; the only format read is "
                       "'shudder-measurement/1'");
 }
 
 TEST_F(MeasuredRunTest, RejectsMetadataLineWithoutColon) {
-  expect_csv_rejected(format_line + "# rig lsctr\n" + header_line + rows(12), 2,
-                      "malformed metadata line (no ':')");
+  expect_csv_rejected(format_line + "# rig lsctr\n" + header_line + rows(12), 2, "malformed metadata line (no ':')");
 }
 
 TEST_F(MeasuredRunTest, RejectsDuplicateMetadataKey) {
@@ -316,20 +307,17 @@ TEST_F(MeasuredRunTest, RejectsMetadataWithoutHeader) {
 }
 
 TEST_F(MeasuredRunTest, RejectsDuplicateColumn) {
-  expect_csv_rejected(format_line + "time_s,speed_rpm,normal_force_N,torque_Nm,temp_C,speed_rpm\n" +
-                          rows(12),
-                      2, "duplicate column name (header fields 2 and 6)");
+  expect_csv_rejected(format_line + "time_s,speed_rpm,normal_force_N,torque_Nm,temp_C,speed_rpm\n" + rows(12), 2,
+                      "duplicate column name (header fields 2 and 6)");
 }
 
 TEST_F(MeasuredRunTest, RejectsMissingRequiredColumns) {
-  const std::string p =
-      file("bad.csv", format_line + "time_s,speed_rpm,normal_force_N,sump_temp_C\n0,1,2,3\n");
+  const std::string p = file("bad.csv", format_line + "time_s,speed_rpm,normal_force_N,sump_temp_C\n0,1,2,3\n");
   EXPECT_THAT([&] { read_measured_run(p); },
-              ThrowsMessage<InputError>(
-                  AllOf(HasSubstr(p + ":2: "),
-                        HasSubstr("missing required column(s) 'torque_Nm', 'temp_C'"),
-                        HasSubstr("found 'time_s', 'speed_rpm', 'normal_force_N', "
-                                  "'sump_temp_C'"))));
+              ThrowsMessage<InputError>(AllOf(HasSubstr(p + ":2: "),
+                                              HasSubstr("missing required column(s) 'torque_Nm', 'temp_C'"),
+                                              HasSubstr("found 'time_s', 'speed_rpm', 'normal_force_N', "
+                                                        "'sump_temp_C'"))));
 }
 
 TEST_F(MeasuredRunTest, RejectsRowWithWrongFieldCount) {
@@ -346,8 +334,7 @@ TEST_F(MeasuredRunTest, RejectsNonNumber) {
 }
 
 TEST_F(MeasuredRunTest, RejectsEmptyField) {
-  expect_csv_rejected(example(5) + "0.005,1.000,25300,,77.0,77.00\n" + rows(8, 6), 10,
-                      "key 'torque_Nm': empty field");
+  expect_csv_rejected(example(5) + "0.005,1.000,25300,,77.0,77.00\n" + rows(8, 6), 10, "key 'torque_Nm': empty field");
 }
 
 TEST_F(MeasuredRunTest, RejectsNanAndInf) {
@@ -355,8 +342,7 @@ TEST_F(MeasuredRunTest, RejectsNanAndInf) {
                       "key 'speed_rpm': value is NaN");
   expect_csv_rejected(example(5) + "0.005,1,25300,-inf,77.0,77.00\n" + rows(8, 6), 10,
                       "key 'torque_Nm': value is infinite");
-  expect_csv_rejected(example(5) + "0.005,1,25300,1e999,77.0,77.00\n" + rows(8, 6), 10,
-                      "out of the range of a double");
+  expect_csv_rejected(example(5) + "0.005,1,25300,1e999,77.0,77.00\n" + rows(8, 6), 10, "out of the range of a double");
 }
 
 TEST_F(MeasuredRunTest, RejectsTimeNotStrictlyIncreasing) {
@@ -368,8 +354,7 @@ TEST_F(MeasuredRunTest, RejectsTimeNotStrictlyIncreasing) {
 }
 
 TEST_F(MeasuredRunTest, RejectsFewerThanTenRows) {
-  expect_csv_rejected(example(9) + "\n", 13,
-                      "only 9 data row(s); a measured run needs at least 10");
+  expect_csv_rejected(example(9) + "\n", 13, "only 9 data row(s); a measured run needs at least 10");
   expect_csv_rejected(format_line + header_line, 2, "only 0 data row(s)");
 }
 
@@ -385,19 +370,16 @@ TEST_F(MeasuredRunTest, RejectsHashLineAfterHeader) {
 }
 
 TEST_F(MeasuredRunTest, RejectsBlankLineInsideData) {
-  expect_csv_rejected(example(5) + "\r\n" + rows(8, 5), 10,
-                      "blank line inside the data (the next row is on line 11)");
+  expect_csv_rejected(example(5) + "\r\n" + rows(8, 5), 10, "blank line inside the data (the next row is on line 11)");
 }
 
 TEST_F(MeasuredRunTest, RejectsBlankLineBeforeHeader) {
-  expect_csv_rejected(format_line + "\n" + header_line + rows(12), 2,
-                      "blank line before the header");
+  expect_csv_rejected(format_line + "\n" + header_line + rows(12), 2, "blank line before the header");
 }
 
 TEST_F(MeasuredRunTest, RejectsEmptyOrSpacedColumnName) {
   expect_csv_rejected(format_line + "time_s,,speed_rpm\n" + rows(12), 2, "header field 2 is empty");
-  expect_csv_rejected(format_line + "time_s, speed_rpm\n" + rows(12), 2,
-                      "leading or trailing spaces");
+  expect_csv_rejected(format_line + "time_s, speed_rpm\n" + rows(12), 2, "leading or trailing spaces");
 }
 
 // ---- HDF5 rejections -------------------------------------------------------------------------
@@ -407,10 +389,8 @@ TEST_F(MeasuredRunTest, Hdf5RejectsMissingMeasurementGroup) {
   Recording rec = ramp_recording();
   const std::string p = path("sim.h5");
   shudder::io::write_run_hdf5(p, rec, "");
-  EXPECT_THAT([&] { read_measured_run(p); },
-              ThrowsMessage<InputError>(
-                  AllOf(HasSubstr(p + ": key '/measurement'"),
-                        HasSubstr("no /measurement group"))));
+  EXPECT_THAT([&] { read_measured_run(p); }, ThrowsMessage<InputError>(AllOf(HasSubstr(p + ": key '/measurement'"),
+                                                                             HasSubstr("no /measurement group"))));
 }
 
 TEST_F(MeasuredRunTest, Hdf5RejectsMissingOrOtherFormat) {
@@ -418,13 +398,12 @@ TEST_F(MeasuredRunTest, Hdf5RejectsMissingOrOtherFormat) {
   run.metadata.erase(run.metadata.begin());
   expect_hdf5_rejected(run, "/measurement@format", "no 'format' attribute on /measurement");
   run.metadata.emplace_back("format", "csv");
-  expect_hdf5_rejected(run, "/measurement@format",
-                       "format is 'csv'; the only format read is 'shudder-measurement/1'");
+  expect_hdf5_rejected(run, "/measurement@format", "format is 'csv'; the only format read is 'shudder-measurement/1'");
 }
 
 TEST_F(MeasuredRunTest, Hdf5RejectsNonStringMetadata) {
-  expect_hdf5_rejected(valid_run(), "/measurement@oil_flow_ml_min",
-                       "metadata attribute is not a string", {{"oil_flow_ml_min", 200.0}});
+  expect_hdf5_rejected(valid_run(), "/measurement@oil_flow_ml_min", "metadata attribute is not a string",
+                       {{"oil_flow_ml_min", 200.0}});
 }
 
 TEST_F(MeasuredRunTest, Hdf5RejectsDatasetsOfDifferentLengths) {
@@ -447,12 +426,10 @@ TEST_F(MeasuredRunTest, Hdf5RejectsBadValuesByRowIndex) {
   expect_hdf5_rejected(nan, "/measurement/speed_rpm", "row index 7: value is NaN");
   MeasuredRun back = valid_run();
   back.columns[0].values[4] = back.columns[0].values[3];
-  expect_hdf5_rejected(back, "/measurement/time_s",
-                       "row index 4: time_s 0.003 s is not after 0.003 s at row index 3");
+  expect_hdf5_rejected(back, "/measurement/time_s", "row index 4: time_s 0.003 s is not after 0.003 s at row index 3");
   MeasuredRun negative = valid_run();
   negative.columns[2].values[11] = -1.0;
-  expect_hdf5_rejected(negative, "/measurement/normal_force_N",
-                       "row index 11: negative normal force -1 N");
+  expect_hdf5_rejected(negative, "/measurement/normal_force_N", "row index 11: negative normal force -1 N");
   MeasuredRun short_run = valid_run();
   for (auto& c : short_run.columns) c.values.resize(9);
   expect_hdf5_rejected(short_run, "/measurement/time_s", "only 9 data row(s)");
@@ -463,12 +440,11 @@ TEST_F(MeasuredRunTest, Hdf5WriterRefusesWhatTheReaderRejects) {
   run.columns[2].values[0] = -1.0;
   const std::string p = path("out.h5");
   EXPECT_THAT([&] { write_measured_run_hdf5(p, run); },
-              ThrowsMessage<InputError>(AllOf(HasSubstr(p + ": key '/measurement/normal_force_N'"),
-                                              HasSubstr("not written: row index 0"))));
+              ThrowsMessage<InputError>(
+                  AllOf(HasSubstr(p + ": key '/measurement/normal_force_N'"), HasSubstr("not written: row index 0"))));
   MeasuredRun slash = valid_run();
   slash.columns.push_back({"a/b", "", std::vector<double>(12, 0.0)});
-  EXPECT_THAT([&] { write_measured_run_hdf5(p, slash); },
-              ThrowsMessage<InputError>(HasSubstr("contain no '/'")));
+  EXPECT_THAT([&] { write_measured_run_hdf5(p, slash); }, ThrowsMessage<InputError>(HasSubstr("contain no '/'")));
   MeasuredRun twice = valid_run();
   twice.metadata.emplace_back("rig", "other");
   EXPECT_THAT([&] { write_measured_run_hdf5(p, twice); },
@@ -485,8 +461,8 @@ namespace {
 // a valid 7777-row run whose dataspaces (dimension and maximum, little-endian uint64) are
 // patched to 2^53.
 TEST(MeasuredRunFuzzRegression, Hdf5DatasetClaimingMoreRowsThanTheFileCanHoldIsRejected) {
-  const auto path = (std::filesystem::temp_directory_path() /
-                     ("shudder_fuzz_rows_" + std::to_string(::getpid()) + ".h5")).string();
+  const auto path =
+      (std::filesystem::temp_directory_path() / ("shudder_fuzz_rows_" + std::to_string(::getpid()) + ".h5")).string();
   MeasuredRun run;
   run.metadata = {{"format", "shudder-measurement/1"}};
   for (const char* name : {"time_s", "speed_rpm", "normal_force_N", "torque_Nm", "temp_C"})
@@ -520,7 +496,6 @@ TEST(MeasuredRunFuzzRegression, Hdf5DatasetClaimingMoreRowsThanTheFileCanHoldIsR
   std::filesystem::remove(path);
 }
 
-
 // Fuzzing finding (fuzz/fuzz_measured_hdf5): a damaged datatype message claiming
 // numbers of 2^30 bytes made libhdf5 allocate a conversion buffer of that size inside H5Dread
 // (an out-of-memory abort under the fuzzer; old behaviour in a plain build: the 1 GiB buffer
@@ -530,8 +505,8 @@ TEST(MeasuredRunFuzzRegression, Hdf5DatasetClaimingMoreRowsThanTheFileCanHoldIsR
 // offset 0, precision 64, exponent at 52 of 11 bits, mantissa at 0 of 52 bits, bias 1023) are
 // patched to claim 2^30-byte numbers.
 TEST(MeasuredRunFuzzRegression, Hdf5DatasetTypeClaimingHugeNumbersIsRejected) {
-  const auto path = (std::filesystem::temp_directory_path() /
-                     ("shudder_fuzz_type_" + std::to_string(::getpid()) + ".h5")).string();
+  const auto path =
+      (std::filesystem::temp_directory_path() / ("shudder_fuzz_type_" + std::to_string(::getpid()) + ".h5")).string();
   MeasuredRun run;
   run.metadata = {{"format", "shudder-measurement/1"}};
   for (const char* name : {"time_s", "speed_rpm", "normal_force_N", "torque_Nm", "temp_C"})

@@ -37,8 +37,7 @@ struct Csv {
   std::vector<std::string> meta, header;
   std::vector<std::vector<double>> rows;
   std::vector<double> column(const std::string& name) const {
-    const auto c =
-        static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+    const auto c = static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
     std::vector<double> out;
     for (const auto& r : rows) out.push_back(r.at(c));
     return out;
@@ -82,8 +81,8 @@ Csv parse(const std::string& file) {
 // them exactly): speed = 100 t rpm, torque = 10 + 50 t Nm, temp = 77 + 2 t degC.
 Recording ramp_recording(std::size_t n = 1001, double rate_Hz = 1000.0) {
   Recording rec;
-  for (const char* name : {"time_s", "speed_rpm", "normal_force_N", "torque_Nm", "temp_C",
-                           "sump_temp_C", "clutch_torque_Nm" /* not a sensor: not written */})
+  for (const char* name : {"time_s", "speed_rpm", "normal_force_N", "torque_Nm", "temp_C", "sump_temp_C",
+                           "clutch_torque_Nm" /* not a sensor: not written */})
     rec.add_signal(name, "");
   for (std::size_t k = 0; k < n; ++k) {
     const double t = static_cast<double>(k) / rate_Hz;
@@ -105,16 +104,13 @@ TEST_F(MeasurementCsv, MetadataAndHeaderAsInFormats) {
   write_measurement_csv(path("run.csv"), ramp_recording(), lsc_fluid_c());
   const Csv csv = parse(path("run.csv"));
   // The first five lines are docs/formats/measured_run.md's example verbatim; then this writer's additions.
-  EXPECT_THAT(csv.meta,
-              testing::ElementsAre(
-                  "# format: shudder-measurement/1", "# rig: lsctr", "# fluid: lsc-fluid-c",
-                  "# temp_sensor: separator_thermocouple r_mm=48 z_mm=0.5",
-                  "# oil_flow_ml_min: 200", "# sample_rate_Hz: 1000", "# noise: off"));
-  EXPECT_THAT(csv.header, testing::ElementsAre("time_s", "speed_rpm", "normal_force_N", "torque_Nm",
-                                               "temp_C", "sump_temp_C"));
+  EXPECT_THAT(csv.meta, testing::ElementsAre("# format: shudder-measurement/1", "# rig: lsctr", "# fluid: lsc-fluid-c",
+                                             "# temp_sensor: separator_thermocouple r_mm=48 z_mm=0.5",
+                                             "# oil_flow_ml_min: 200", "# sample_rate_Hz: 1000", "# noise: off"));
+  EXPECT_THAT(csv.header,
+              testing::ElementsAre("time_s", "speed_rpm", "normal_force_N", "torque_Nm", "temp_C", "sump_temp_C"));
   // First data row as text: time with 3 decimals at 1 kHz, values "%.6g".
-  EXPECT_THAT(slurp(path("run.csv")),
-              HasSubstr("\n0.000,0,25300,10,77,77\n0.001,0.1,25300,10.05,77.002,77\n"));
+  EXPECT_THAT(slurp(path("run.csv")), HasSubstr("\n0.000,0,25300,10,77,77\n0.001,0.1,25300,10.05,77.002,77\n"));
   EXPECT_FALSE(fs::exists(path("run.csv.tmp")));
 }
 
@@ -138,8 +134,7 @@ TEST_F(MeasurementCsv, OwnRateWithoutNoiseWritesRecordedValues) {
     // Recorded values are short decimals, so the 6 significant digits written hold them exactly
     // (up to the last bit of the decimal -> binary conversion).
     for (std::size_t k = 0; k < written.size(); ++k)
-      ASSERT_NEAR(written[k], recorded[k], 1e-12 * std::max(1.0, std::abs(recorded[k])))
-          << name << " row " << k;
+      ASSERT_NEAR(written[k], recorded[k], 1e-12 * std::max(1.0, std::abs(recorded[k]))) << name << " row " << k;
   }
 }
 
@@ -230,8 +225,7 @@ TEST_F(MeasurementCsv, NoiseHasHalfTheStatedAccuracyAsSigma) {
     double sum = 0.0, sum_sq = 0.0;
     for (std::size_t k = 0; k < noisy.size(); ++k) sum += noisy[k] - clean[k];
     const double n = static_cast<double>(noisy.size()), mean = sum / n;
-    for (std::size_t k = 0; k < noisy.size(); ++k)
-      sum_sq += std::pow(noisy[k] - clean[k] - mean, 2);
+    for (std::size_t k = 0; k < noisy.size(); ++k) sum_sq += std::pow(noisy[k] - clean[k] - mean, 2);
     const double std_dev = std::sqrt(sum_sq / (n - 1));
     EXPECT_NEAR(std_dev, sigma, 0.03 * sigma) << name;
     EXPECT_NEAR(mean, 0.0, 5.0 * sigma / std::sqrt(n)) << name;

@@ -30,7 +30,8 @@ TEST(NetworkComponents, DocsTablesEqualTheDeclarations) {
     return;
   }
   EXPECT_EQ(section, network_reference_markdown())
-      << "docs/formats/network_file.md's reference section should read:\n\n" << network_reference_markdown();
+      << "docs/formats/network_file.md's reference section should read:\n\n"
+      << network_reference_markdown();
 }
 
 // Two inertias joined by a plain clutch; `extra` is appended (more components or keys).
@@ -83,7 +84,8 @@ TEST(NetworkScenario, AMisspeltNodeNamesTheNearest) {
 }
 
 TEST(NetworkScenario, AMisspeltTypeNamesTheNearest) {
-  const std::string e = error_of(two_inertias("[network.spring]\ntype = \"shfat\"\nfrom = \"engine_side\"\nto = \"ground\"\n"));
+  const std::string e =
+      error_of(two_inertias("[network.spring]\ntype = \"shfat\"\nfrom = \"engine_side\"\nto = \"ground\"\n"));
   EXPECT_NE(e.find("did you mean 'shaft'"), std::string::npos) << e;
 }
 
@@ -95,23 +97,24 @@ TEST(NetworkScenario, AComponentJoinedToItselfIsRefused) {
 }
 
 TEST(NetworkScenario, AMasslessNodeNothingFixesIsRefused) {
-  const std::string e = error_of(two_inertias(
-      "[network.hub]\ntype = \"inertia\"\ninertia_kg_m2 = 0\n[network.spring]\ntype = \"shaft\"\nfrom = \"wheel_side\"\n"
-      "to = \"hub\"\nstiffness_Nm_per_rad = 100\n"));
+  const std::string e =
+      error_of(two_inertias("[network.hub]\ntype = \"inertia\"\ninertia_kg_m2 = 0\n[network.spring]\ntype = "
+                            "\"shaft\"\nfrom = \"wheel_side\"\n"
+                            "to = \"hub\"\nstiffness_Nm_per_rad = 100\n"));
   EXPECT_NE(e.find("network.hub"), std::string::npos) << e;
   EXPECT_NE(e.find("no inertia"), std::string::npos) << e;
 }
 
 TEST(NetworkScenario, GearsThatCloseALoopAreRefused) {
-  const std::string e = error_of(two_inertias(
-      "[network.g1]\ntype = \"gear\"\ninput = \"engine_side\"\noutput = \"wheel_side\"\nratio = 3\n"
-      "[network.g2]\ntype = \"gear\"\ninput = \"engine_side\"\noutput = \"wheel_side\"\nratio = 2\n"));
+  const std::string e = error_of(
+      two_inertias("[network.g1]\ntype = \"gear\"\ninput = \"engine_side\"\noutput = \"wheel_side\"\nratio = 3\n"
+                   "[network.g2]\ntype = \"gear\"\ninput = \"engine_side\"\noutput = \"wheel_side\"\nratio = 2\n"));
   EXPECT_NE(e.find("network.g2"), std::string::npos) << e;
   EXPECT_NE(e.find("ratios disagree"), std::string::npos) << e;
   // The same loop with agreeing ratios fixes nothing new: over-constrained.
-  const std::string same = error_of(two_inertias(
-      "[network.g1]\ntype = \"gear\"\ninput = \"engine_side\"\noutput = \"wheel_side\"\nratio = 3\n"
-      "[network.g2]\ntype = \"gear\"\ninput = \"engine_side\"\noutput = \"wheel_side\"\nratio = 3\n"));
+  const std::string same = error_of(
+      two_inertias("[network.g1]\ntype = \"gear\"\ninput = \"engine_side\"\noutput = \"wheel_side\"\nratio = 3\n"
+                   "[network.g2]\ntype = \"gear\"\ninput = \"engine_side\"\noutput = \"wheel_side\"\nratio = 3\n"));
   EXPECT_NE(same.find("network.g2"), std::string::npos) << same;
   EXPECT_NE(same.find("over-constrains"), std::string::npos) << same;
 }
@@ -129,9 +132,9 @@ TEST(NetworkScenario, AClutchThatCanNeverLoadIsRefused) {
 }
 
 TEST(NetworkScenario, AClutchJudgedOnNoShaftIsRefused) {
-  const std::string e = error_of(two_inertias(
-      "judged_on = \"sprng\"\n[network.spring]\ntype = \"shaft\"\nfrom = \"wheel_side\"\nto = \"ground\"\n"
-      "stiffness_Nm_per_rad = 100\n"));
+  const std::string e = error_of(
+      two_inertias("judged_on = \"sprng\"\n[network.spring]\ntype = \"shaft\"\nfrom = \"wheel_side\"\nto = \"ground\"\n"
+                   "stiffness_Nm_per_rad = 100\n"));
   EXPECT_NE(e.find("network.clutch"), std::string::npos) << e;
   EXPECT_NE(e.find("did you mean 'spring'"), std::string::npos) << e;
 }
@@ -143,14 +146,16 @@ TEST(NetworkScenario, OutOfRangeAndMalformedInputsAreInputErrors) {
     EXPECT_NE(e.find(what), std::string::npos) << "expected '" << what << "' in: " << e;
   };
   const std::string head = "[scenario]\ntype = \"network\"\nduration_s = 1.0\n";
-  refused(head, "network");                                        // no [network] table at all
-  refused(head + "[network]\n", "no inertia");                     // an empty network
+  refused(head, "network");                     // no [network] table at all
+  refused(head + "[network]\n", "no inertia");  // an empty network
   refused(head + "[network.a]\ntype = \"inertia\"\ninertia_kg_m2 = -1\n", "inertia_kg_m2");
   refused(head + "[network.a]\ntype = \"inertia\"\ninertia_kg_m2 = nan\n", "inertia_kg_m2");
-  refused(head + "[network.a]\ntype = \"inertia\"\ninertia_kg_m2 = 1\nspeed_rpm = 10\n"
-                 "[network.g]\ntype = \"gear\"\ninput = \"a\"\noutput = \"a\"\nratio = 2\n",
+  refused(head +
+              "[network.a]\ntype = \"inertia\"\ninertia_kg_m2 = 1\nspeed_rpm = 10\n"
+              "[network.g]\ntype = \"gear\"\ninput = \"a\"\noutput = \"a\"\nratio = 2\n",
           "joined to itself");
-  refused(two_inertias("").replace(two_inertias("").find("mu = 0.1"), 8, "mu_table = { slip_rpm = [10, 0], mu = [0.1, 0.1] }"),
+  refused(two_inertias("").replace(two_inertias("").find("mu = 0.1"), 8,
+                                   "mu_table = { slip_rpm = [10, 0], mu = [0.1, 0.1] }"),
           "strictly increasing");
   refused(two_inertias("normal_force = { kind = \"sine\", amplitude = 1, frequency_Hz = 0 }\n"), "frequency_Hz");
   refused(two_inertias("normal_force = { kind = \"pulse\", high = 1, period_s = 0.1, width_s = 0.2 }\n"), "width_s");
@@ -160,12 +165,14 @@ TEST(NetworkScenario, OutOfRangeAndMalformedInputsAreInputErrors) {
                        "vertical_load_N = 4000\n"),
           "not a component of type \"vehicle\"");
   // A tyre's load and slip stiffness: one source each (rig_models/tyre.hpp).
-  const std::string car = "[network.car]\ntype = \"vehicle\"\nmass_kg = 1500\nwheel_radius_m = 0.3\n"
-                          "wheelbase_m = 2.5\nfront_axle_load_share = 0.6\ncg_height_m = 0.5\n";
+  const std::string car =
+      "[network.car]\ntype = \"vehicle\"\nmass_kg = 1500\nwheel_radius_m = 0.3\n"
+      "wheelbase_m = 2.5\nfront_axle_load_share = 0.6\ncg_height_m = 0.5\n";
   const std::string tyre = "[network.tyre]\ntype = \"tyre\"\nwheel = \"wheel_side\"\nvehicle = \"car\"\n";
   refused(two_inertias(car + tyre + "vertical_load_N = 4000\nslip_stiffness_N = 8e4\nslip_stiffness_per_load = 18\n"),
           "slip_stiffness_per_load': is an alternative to slip_stiffness_N");
-  refused(two_inertias(car + tyre + "axle = \"rear\"\nvertical_load_N = 4000\n"), "vertical_load_N': is not for a tyre on an axle");
+  refused(two_inertias(car + tyre + "axle = \"rear\"\nvertical_load_N = 4000\n"),
+          "vertical_load_N': is not for a tyre on an axle");
   refused(two_inertias(car + tyre), "vertical_load_N': is required for a tyre without an axle");
 }
 
@@ -197,7 +204,8 @@ to = "wheel"
 mu = 0.1
 geometry_factor_m = 0.5
 max_force_N = 2e5
-)", "extreme.toml");
+)",
+                                             "extreme.toml");
   const auto run = components::run_network(sc.spec);
   EXPECT_LT(std::abs(run.recording.find_scalar("mechanical_energy_relative_error")->value), 1e-6);
   // Momentum about the wheel: J_pinion r^2 w_hub0 = (J_pinion r^2 + J_wheel) w_end (massless hub).
@@ -219,7 +227,8 @@ TEST(NetworkScenario, WetOnlyKeysOnAPlainClutchAreRefused) {
 TEST(NetworkScenario, OtherCommandsSayWhyTheyCannot) {
   const auto dir = test::scratch_dir("network_refusal");
   test::write_file(dir / "net.toml", two_inertias(""));
-  const auto r = test::run_cli("screen '" + test::source_path("scenarios/fluids/lsc_fluid_c.toml") + "' --rig net.toml", dir);
+  const auto r =
+      test::run_cli("screen '" + test::source_path("scenarios/fluids/lsc_fluid_c.toml") + "' --rig net.toml", dir);
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("\"network\" scenarios"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;

@@ -31,8 +31,10 @@ class OutputFsync : public testing::Test {
     fs::create_directories(dir_);
   }
   void TearDown() override {
-    if (saved_) ::setenv("SHUDDER_FSYNC", saved_->c_str(), 1);
-    else ::unsetenv("SHUDDER_FSYNC");
+    if (saved_)
+      ::setenv("SHUDDER_FSYNC", saved_->c_str(), 1);
+    else
+      ::unsetenv("SHUDDER_FSYNC");
     fs::remove_all(dir_);
   }
   static std::string read(const fs::path& p) {
@@ -71,10 +73,10 @@ TEST_F(OutputFsync, BothChoicesWriteTheCompleteFileAndNoTemporary) {
 TEST_F(OutputFsync, AnotherValueIsBadInputAndLeavesNoFile) {
   ::setenv("SHUDDER_FSYNC", "yes", 1);
   const fs::path out = dir_ / "out.txt";
-  EXPECT_THAT([&] { shudder::io::write_text_file_atomically(out.string(), "x"); },
-              ::testing::ThrowsMessage<InputError>(
-                  AllOf(HasSubstr("environment: key 'SHUDDER_FSYNC': 'yes' is not 0 or 1"),
-                        HasSubstr("0 or unset does not"))));
+  EXPECT_THAT(
+      [&] { shudder::io::write_text_file_atomically(out.string(), "x"); },
+      ::testing::ThrowsMessage<InputError>(
+          AllOf(HasSubstr("environment: key 'SHUDDER_FSYNC': 'yes' is not 0 or 1"), HasSubstr("0 or unset does not"))));
   EXPECT_TRUE(fs::is_empty(dir_));  // neither the output nor its temporary
 }
 

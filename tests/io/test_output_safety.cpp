@@ -56,16 +56,24 @@ TEST_F(OutputSafety, OutputEqualToAnInputIsRefusedNamingBoth) {
   touch("s.toml");
   const std::string other_spelling = (dir_ / "sub" / ".." / "s.toml").string();
   fs::create_directories(dir_ / "sub");
-  EXPECT_THAT([&] { shudder::io::require_distinct_paths({{"scenario", path("s.toml")}}, {{"-o", other_spelling}}); },
-              ThrowsMessage<InputError>(AllOf(HasSubstr(other_spelling), HasSubstr("output -o is the scenario '" + path("s.toml") + "'"))));
+  EXPECT_THAT(
+      [&] {
+        shudder::io::require_distinct_paths({{"scenario", path("s.toml")}}, {{"-o", other_spelling}});
+      },
+      ThrowsMessage<InputError>(
+          AllOf(HasSubstr(other_spelling), HasSubstr("output -o is the scenario '" + path("s.toml") + "'"))));
 }
 
 TEST_F(OutputSafety, TwoOutputsWithTheSameNameAreRefusedEvenIfTheFileDoesNotExistYet) {
   // Old code: `--measurement same.h5 -o same.h5` left only /measurement.
-  EXPECT_THAT([&] {
-    shudder::io::require_distinct_paths({}, {{"-o", path("same.h5")}, {"--measurement", (dir_ / "." / "same.h5").string()}});
-  }, ThrowsMessage<InputError>(HasSubstr("output --measurement is also the output -o '" + path("same.h5") + "'")));
-  EXPECT_NO_THROW(shudder::io::require_distinct_paths({{"scenario", path("s.toml")}}, {{"-o", path("a.h5")}, {"--measurement", path("b.csv")}}));
+  EXPECT_THAT(
+      [&] {
+        shudder::io::require_distinct_paths(
+            {}, {{"-o", path("same.h5")}, {"--measurement", (dir_ / "." / "same.h5").string()}});
+      },
+      ThrowsMessage<InputError>(HasSubstr("output --measurement is also the output -o '" + path("same.h5") + "'")));
+  EXPECT_NO_THROW(shudder::io::require_distinct_paths({{"scenario", path("s.toml")}},
+                                                      {{"-o", path("a.h5")}, {"--measurement", path("b.csv")}}));
 }
 
 TEST_F(OutputSafety, MissingOutputDirectoryIsRefused) {
@@ -81,8 +89,8 @@ TEST_F(OutputSafety, MissingOutputDirectoryIsRefused) {
 TEST_F(OutputSafety, SizeAboveTheLimitIsRefusedUnlessForced) {
   // 3.6e9 bytes: a rig run at sample_rate_Hz = 1e6.
   EXPECT_THAT([&] { shudder::io::require_output_size(path("o.h5"), 3'600'000'000ULL, "why", false); },
-              ThrowsMessage<InputError>(AllOf(HasSubstr("estimated output size 3.60 GB (why) exceeds the limit of 2 GB"),
-                                              HasSubstr("--force"))));
+              ThrowsMessage<InputError>(AllOf(
+                  HasSubstr("estimated output size 3.60 GB (why) exceeds the limit of 2 GB"), HasSubstr("--force"))));
   EXPECT_NO_THROW(shudder::io::require_output_size(path("o.h5"), 3'600'000'000ULL, "why", true));
   EXPECT_NO_THROW(shudder::io::require_output_size(path("o.h5"), 2'000'000'000ULL, "why", false));
 }
@@ -92,11 +100,11 @@ TEST_F(OutputSafety, StaleTemporariesOfTheSameOutputAreRemovedOnTheNextWrite) {
   // `out.h5.tmp` for every writer, two concurrent writers of one output shared it).
   const std::string dead = std::to_string(dead_pid());
   const std::string live = std::to_string(::getpid());
-  touch("run.h5.tmp");                         // the old fixed name: ours, stale
-  touch("run.h5.tmp." + dead + ".0");          // a killed writer's
-  touch("run.h5.tmp." + live + ".999999");     // a live writer's (this process): kept
-  touch("other.h5.tmp." + dead + ".0");        // another output's: kept
-  touch("run.h5.tmp.notes");                   // not our pattern: kept
+  touch("run.h5.tmp");                      // the old fixed name: ours, stale
+  touch("run.h5.tmp." + dead + ".0");       // a killed writer's
+  touch("run.h5.tmp." + live + ".999999");  // a live writer's (this process): kept
+  touch("other.h5.tmp." + dead + ".0");     // another output's: kept
+  touch("run.h5.tmp.notes");                // not our pattern: kept
   shudder::io::write_run_hdf5(path("run.h5"), smooth_recording(), "scenario");
   EXPECT_TRUE(fs::exists(dir_ / "run.h5"));
   EXPECT_FALSE(fs::exists(dir_ / "run.h5.tmp"));

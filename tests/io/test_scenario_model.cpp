@@ -46,17 +46,15 @@ TEST(ScenarioModel, EveryKindLoadsIntoItsOwnAlternative) {
 TEST(ScenarioModel, KindSpecificInputsReachTheModel) {
   for (const ModelKind kind : kModelKinds) {
     const io::Scenario sc = io::load_scenario_text(minimal_text(kind), kPath);
-    std::visit(overloaded{[](const rig_models::PrescribedSlipModel& m) {
-                            EXPECT_DOUBLE_EQ(m.cycle.slip_speed_rpm(0.5), 40.0);
-                          },
-                          [](const rig_models::RigModel& m) {
-                            EXPECT_DOUBLE_EQ(m.cycle.slip_speed_rpm(0.5), 40.0);
-                            EXPECT_DOUBLE_EQ(m.settings.sample_rate_Hz, 1000.0);  // the rig's default
-                          },
-                          [](const rig_models::DrivelineModel& m) {
-                            EXPECT_DOUBLE_EQ(m.manoeuvre.engine_torque_Nm(0.5), 30.0);
-                          }},
-               sc.model);
+    std::visit(
+        overloaded{
+            [](const rig_models::PrescribedSlipModel& m) { EXPECT_DOUBLE_EQ(m.cycle.slip_speed_rpm(0.5), 40.0); },
+            [](const rig_models::RigModel& m) {
+              EXPECT_DOUBLE_EQ(m.cycle.slip_speed_rpm(0.5), 40.0);
+              EXPECT_DOUBLE_EQ(m.settings.sample_rate_Hz, 1000.0);  // the rig's default
+            },
+            [](const rig_models::DrivelineModel& m) { EXPECT_DOUBLE_EQ(m.manoeuvre.engine_torque_Nm(0.5), 30.0); }},
+        sc.model);
   }
 }
 
@@ -103,8 +101,8 @@ TEST(ScenarioModel, Bdf2OutsidePrescribedSlipIsAnInputErrorNamingTheKey) {
   const auto with_scheme = [](const std::string& text, const std::string& scheme) {
     return text + "\n[solver]\nthermal_scheme = \"" + scheme + "\"\n";
   };
-  const std::vector<std::pair<std::string, std::string>> cases = {
-      {rig_text, rig_path}, {minimal_text(ModelKind::kDriveline), kPath}};
+  const std::vector<std::pair<std::string, std::string>> cases = {{rig_text, rig_path},
+                                                                  {minimal_text(ModelKind::kDriveline), kPath}};
   for (const auto& [text, path] : cases) {
     EXPECT_NO_THROW((void)io::load_scenario_text(with_scheme(text, "backward_euler"), path)) << path;
     try {
@@ -120,8 +118,7 @@ TEST(ScenarioModel, Bdf2OutsidePrescribedSlipIsAnInputErrorNamingTheKey) {
 // A value outside the two is refused with the allowed values listed.
 TEST(ScenarioModel, AMisspeltThermalSchemeListsTheAllowedValues) {
   const std::string path = test::source_path("scenarios/paper_g_case1_25kN.toml");
-  const std::string text =
-      test::replace(test::slurp(path), "thermal_scheme = \"bdf2\"", "thermal_scheme = \"bdf3\"");
+  const std::string text = test::replace(test::slurp(path), "thermal_scheme = \"bdf2\"", "thermal_scheme = \"bdf3\"");
   try {
     (void)io::load_scenario_text(text, path);
     FAIL() << "thermal_scheme = \"bdf3\" loaded";
@@ -155,7 +152,6 @@ TEST(ScenarioFuzzRegression, FluidPathTheOsRefusesIsBadInput) {
   }
 }
 
-
 // Found by fuzz_scenario under UBSan (once toml++ was compiled with our flags): a
 // code point from U+00A1 to U+0499 where whitespace may stand ("ı", U+0131, as a whole file) made
 // toml++ 3.3.0 reach __builtin_unreachable (io/toml_reader.cpp). Such a character is rejected
@@ -174,7 +170,8 @@ TEST(ScenarioFuzzRegression, NonAsciiOutsideStringsAndCommentsIsRejectedWithItsL
     }
   }
   const auto t = io::TomlTable::parse_text(
-      "\xEF\xBB\xBF# \xCE\xBC at 20 \xC2\xB0" "C\nname = \"\xCE\xBC\\\" \xC4\xB1\"\nm = \"\"\"\n\xC4\xB1\"\"\"\n"
+      "\xEF\xBB\xBF# \xCE\xBC at 20 \xC2\xB0"
+      "C\nname = \"\xCE\xBC\\\" \xC4\xB1\"\nm = \"\"\"\n\xC4\xB1\"\"\"\n"
       "l = '\xC4\xB1'\nml = \'\'\'\n\xC4\xB1\'\'\'  # \xC4\xB1\n",
       "ok.toml");
   EXPECT_EQ(t["name"].value_or(std::string()), "\xCE\xBC\" \xC4\xB1");

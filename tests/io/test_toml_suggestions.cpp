@@ -15,7 +15,7 @@ TEST(TomlSuggestions, EditDistanceCountsInsertionsDeletionsSubstitutionsAndSwaps
   EXPECT_EQ(edit_distance("duartion_s", "duration_s"), 1u);   // one adjacent swap (Levenshtein: 2)
   EXPECT_EQ(edit_distance("nu100_cSt", "nu40_cSt"), 2u);      // substitution + insertion
   EXPECT_EQ(edit_distance("", "abc"), 3u);
-  EXPECT_EQ(edit_distance("kitten", "sitting"), 3u);          // the textbook example
+  EXPECT_EQ(edit_distance("kitten", "sitting"), 3u);  // the textbook example
 }
 
 TEST(TomlSuggestions, NearestKeyOnlyForPlausibleMisspellings) {
@@ -25,5 +25,5 @@ TEST(TomlSuggestions, NearestKeyOnlyForPlausibleMisspellings) {
   EXPECT_EQ(nearest_key("fluids", keys), "fluid");  // 6 chars: one edit allowed
   EXPECT_EQ(nearest_key("flood", keys), "");        // two edits on 5 chars: more than a third
   EXPECT_EQ(nearest_key("temperature", keys), "");
-  EXPECT_EQ(nearest_key("ab", {"ac"}), "");          // 2 chars: no edit is "a third"
+  EXPECT_EQ(nearest_key("ab", {"ac"}), "");  // 2 chars: no edit is "a third"
 }

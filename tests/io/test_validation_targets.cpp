@@ -15,9 +15,9 @@
 
 namespace {
 
-using ::testing::HasSubstr;
 using shudder::io::load_validation_spec;
 using shudder::io::TargetKind;
+using ::testing::HasSubstr;
 
 std::string write_temp(const std::string& text) {
   char name[] = "/tmp/shudder-validation-XXXXXX";

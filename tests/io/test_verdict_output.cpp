@@ -77,8 +77,10 @@ TEST(VerdictOutput, ResultBlockRoundTripsThroughHdf5BitForBit) {
     const auto* r = b.find_scalar(s.name);
     ASSERT_NE(r, nullptr) << s.name;
     EXPECT_EQ(r->units, s.units);
-    if (std::isnan(s.value)) EXPECT_TRUE(std::isnan(r->value)) << s.name;
-    else EXPECT_EQ(r->value, s.value) << s.name;  // float64 both ways: exact
+    if (std::isnan(s.value))
+      EXPECT_TRUE(std::isnan(r->value)) << s.name;
+    else
+      EXPECT_EQ(r->value, s.value) << s.name;  // float64 both ways: exact
   }
   fs::remove_all(dir);
 }
@@ -114,7 +116,7 @@ TEST(VerdictOutput, JsonIsStrictWithEveryKeyAndNullForUndefined) {
   EXPECT_EQ(j["prediction"].str(), "not predicted: \"quoted\" \\ and\ttab");
   EXPECT_EQ(j["verdict_code"].num(), 2.0);
   EXPECT_NEAR(j["frequency_Hz"].num(), 210.70123456789, 1e-7);  // 10 significant digits
-  EXPECT_TRUE(j["onset_time_s"].is_null());                       // NaN: undefined
+  EXPECT_TRUE(j["onset_time_s"].is_null());                     // NaN: undefined
   EXPECT_EQ(j["predicted_margin_per_s"].num(), -44.1);
   EXPECT_EQ(j.members.size(), 7u);  // format + 2 texts + 4 scalars
 }

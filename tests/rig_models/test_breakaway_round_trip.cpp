@@ -34,8 +34,12 @@ analysis::RampRun rig_run_from_rest(double breakaway_ratio, unsigned seed) {
   mo.noise = true;  // the torque cell's noise, sigma 0.625 N m (io/measurement_csv.hpp)
   mo.seed = seed;
   const io::MeasuredRun r = io::make_measurement("rig_from_rest", rec, mo);
-  return {r.path, r.required("time_s"), r.required("speed_rpm"), r.required("normal_force_N"),
-          r.required("torque_Nm"), r.required("temp_C")};
+  return {r.path,
+          r.required("time_s"),
+          r.required("speed_rpm"),
+          r.required("normal_force_N"),
+          r.required("torque_Nm"),
+          r.required("temp_C")};
 }
 
 analysis::FrictionConversion rig_conversion() {
@@ -74,8 +78,16 @@ TEST(BreakawayRoundTrip, ARunThatNeverRestsIsNotMeasuredAndSaysWhy) {
   const auto m = analysis::measure_breakaway({run}, rig_conversion(), *sc.fluid.friction);
   EXPECT_FALSE(m.ratio.has_value());
   EXPECT_TRUE(m.events.empty());
-  EXPECT_EQ(m.not_measured,
-            "no run starts an up-ramp from rest (drive within ±0.05 rpm for 0.1 s or more, then past 4.81 rpm)");  // 5 v_min: the law's 1 rpm at 46 mm, in rpm at 47.84 mm
+  EXPECT_EQ(
+      m.not_measured,
+      "no run starts an up-ramp from rest (drive within ±0.05 rpm for 0.1 s or more, then past 4.81 rpm)");  // 5 v_min:
+                                                                                                             // the
+                                                                                                             // law's 1
+                                                                                                             // rpm at
+                                                                                                             // 46 mm,
+                                                                                                             // in rpm
+                                                                                                             // at 47.84
+                                                                                                             // mm
 }
 
 }  // namespace

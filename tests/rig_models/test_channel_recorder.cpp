@@ -170,9 +170,9 @@ TEST(ChannelRecorder, InsideIsCalledOncePerSampleInsideAStepAndNeverAtItsEnds) {
 // value the marker `inside` returns.
 TEST(ChannelRecorder, ASampleWithinRoundOffOfAStepsEndIsAtTheEnd) {
   dynamics::Recording rec;
-  CurveRecorder recorder(
-      rec, {CurveRecorder::sampled(dynamics::signal_names::kTime, "s", [](double t) { return t; }),
-            CurveRecorder::refined("square_refined", "s2", [](const Curve& c) { return c.square; })});
+  CurveRecorder recorder(rec,
+                         {CurveRecorder::sampled(dynamics::signal_names::kTime, "s", [](double t) { return t; }),
+                          CurveRecorder::refined("square_refined", "s2", [](const Curve& c) { return c.square; })});
   recorder.sample(0.0);
   recorder.start(curve(0.0));
   recorder.sample(0.15);

@@ -58,7 +58,8 @@ TEST(ClutchContact, KineticTorqueAtAUniformTemperatureIsThatOfTheAnnulus) {
   ClutchContext ctx({Eigen::VectorXd::Constant(c.thermal().radial_cells(), 60.0), kForce});
   const double ri = c.thermal().params().inner_radius_m, ro = c.thermal().params().outer_radius_m;
   const double area = std::numbers::pi * (ro * ro - ri * ri);
-  const double expected = kInterfaces * (kF / area) * mu_k(60.0) * (2.0 * std::numbers::pi / 3.0) * (ro * ro * ro - ri * ri * ri);
+  const double expected =
+      kInterfaces * (kF / area) * mu_k(60.0) * (2.0 * std::numbers::pi / 3.0) * (ro * ro * ro - ri * ri * ri);
   EXPECT_NEAR(law.kinetic_torque_Nm(ctx, 2.0, kT) / expected, 1.0, 1e-4);
   EXPECT_NEAR(law.static_capacity_Nm(ctx, kT, 0.0) / (kRatio * expected), 1.0, 1e-4);
 }

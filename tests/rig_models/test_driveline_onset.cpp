@@ -36,8 +36,8 @@ struct CoastDown {
 // The shipped scenario with its slow (thermal and hydraulic) step scaled, optionally without the
 // engine's firing pulsation.
 CoastDown coast_down(double step_factor, bool pulsation = true) {
-  CoastDown r{io::load_scenario(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/driveline_coastdown_judder.toml"), {},
-              {}};
+  CoastDown r{
+      io::load_scenario(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/driveline_coastdown_judder.toml"), {}, {}};
   auto& m = std::get<DrivelineModel>(r.sc.model);
   m.settings.slow_step_s *= step_factor;
   if (!pulsation) m.params.engine_pulsation.amplitude_Nm = 0.0;
@@ -54,11 +54,12 @@ CoastDown coast_down(double step_factor, bool pulsation = true) {
 // after the take-up.
 TEST(DrivelineOnset, CoastDownOnsetChangesLessThanFivePercentWhenTheThermalStepIsHalved) {
   const CoastDown a = coast_down(1.0), b = coast_down(0.5), c = coast_down(0.25);
-  std::printf("coast-down judder, thermal step 10 / 5 / 2.5 ms: onset %.4f / %.4f / %.4f s, %.2f / %.2f / %.2f Hz, "
-              "%.2f / %.2f / %.2f N m\n",
-              a.verdict.onset_time_s, b.verdict.onset_time_s, c.verdict.onset_time_s, a.verdict.frequency_Hz,
-              b.verdict.frequency_Hz, c.verdict.frequency_Hz, a.verdict.amplitude_Nm, b.verdict.amplitude_Nm,
-              c.verdict.amplitude_Nm);
+  std::printf(
+      "coast-down judder, thermal step 10 / 5 / 2.5 ms: onset %.4f / %.4f / %.4f s, %.2f / %.2f / %.2f Hz, "
+      "%.2f / %.2f / %.2f N m\n",
+      a.verdict.onset_time_s, b.verdict.onset_time_s, c.verdict.onset_time_s, a.verdict.frequency_Hz,
+      b.verdict.frequency_Hz, c.verdict.frequency_Hz, a.verdict.amplitude_Nm, b.verdict.amplitude_Nm,
+      c.verdict.amplitude_Nm);
   for (const CoastDown* r : {&a, &b, &c}) {
     auto old_onset = *recording_detection(r->rec);  // the figure quoted above, printed only
     old_onset.settings.onset_definition = analysis::OnsetDefinition::kGrowthLine;
@@ -69,11 +70,10 @@ TEST(DrivelineOnset, CoastDownOnsetChangesLessThanFivePercentWhenTheThermalStepI
     // the limit cycle runs 0.6 % above it (its slip swings off the point): 5 %.
     const auto& model = std::get<DrivelineModel>(r->sc.model);
     const auto clutch = r->sc.make_clutch();
-    const double mode_Hz =
-        least_damped_slipping_mode(HaldexDriveline(model.params, clutch, model.manoeuvre), clutch,
-                                   recorded_operating_point(r->rec, r->verdict.oscillating_from_s,
-                                                            r->verdict.oscillating_to_s))
-            .frequency_Hz;
+    const double mode_Hz = least_damped_slipping_mode(HaldexDriveline(model.params, clutch, model.manoeuvre), clutch,
+                                                      recorded_operating_point(r->rec, r->verdict.oscillating_from_s,
+                                                                               r->verdict.oscillating_to_s))
+                               .frequency_Hz;
     EXPECT_NEAR(r->verdict.frequency_Hz, mode_Hz, 0.05 * mode_Hz);
     // Grown out of steady sliding, not left over from the start: after the 2 s take-up.
     EXPECT_GT(r->verdict.onset_time_s, 3.0);

@@ -26,8 +26,7 @@ struct TakeUp {
 };
 
 TakeUp take_up() {
-  const io::Scenario sc =
-      io::load_scenario(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/driveline_tight_turn.toml");
+  const io::Scenario sc = io::load_scenario(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/driveline_tight_turn.toml");
   DrivelineParams params = std::get<DrivelineModel>(sc.model).params;
   params.turn_ratio = 1.1;
   DrivelineInputs in;
@@ -49,7 +48,6 @@ dynamics::Recording simulate_at(const TakeUp& c, double force_N, double duration
   settings.duration_s = duration_s;
   return run_driveline(params, c.clutch, in, settings);
 }
-
 
 // Half peak-to-peak of the coupling torque's oscillation over [t0, t1] (the 1 s moving mean
 // removed by differencing against a 0.1 s mean).
@@ -97,7 +95,8 @@ TEST(DrivelinePrediction, TakeUpJudderOnsetAndFrequencyMatchTheSimulation) {
     const Eigen::VectorXd s = dl.rolling_speed_ratios();
     using D = HaldexDriveline;
     const double hold = (m_c * (s[D::kCouplingIn] - s[D::kCouplingOut]) +
-                         dl.road_load().force_N(op.vehicle_speed_m_s) * c.params.wheel_radius_m) / s[D::kEngine];
+                         dl.road_load().force_N(op.vehicle_speed_m_s) * c.params.wheel_radius_m) /
+                        s[D::kEngine];
     c.inputs.engine_torque_Nm = PiecewiseLinear({0.0}, {hold});
   }
   const HaldexDriveline dl(c.params, c.clutch, c.inputs);
@@ -129,8 +128,10 @@ TEST(DrivelinePrediction, TakeUpJudderOnsetAndFrequencyMatchTheSimulation) {
   const double judder_N = 1.1 * onset;
   const auto rec = simulate_at(c, judder_N, 6.0);
   const double fft_Hz = fft_frequency_Hz(rec, 2.0, 10.0, 60.0);
-  const double predicted_Hz = least_damped_mode(driveline_stability(
-      dl, c.clutch, quasi_static_operating_point(dl, c.clutch, c.inputs, 1.0, judder_N), false)).frequency_Hz;
+  const double predicted_Hz =
+      least_damped_mode(
+          driveline_stability(dl, c.clutch, quasi_static_operating_point(dl, c.clutch, c.inputs, 1.0, judder_N), false))
+          .frequency_Hz;
   const double at_run_Hz =
       least_damped_mode(driveline_stability(dl, c.clutch, recorded_operating_point(rec, 2.0, 6.0), false)).frequency_Hz;
   std::printf("frequency: FFT %.3f Hz, predicted %.3f Hz (quasi-static), %.3f Hz (run's mean point)\n", fft_Hz,

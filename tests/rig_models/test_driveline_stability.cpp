@@ -17,7 +17,9 @@ namespace {
 
 using D = HaldexDriveline;
 
-io::Scenario tight_turn() { return io::load_scenario(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/driveline_tight_turn.toml"); }
+io::Scenario tight_turn() {
+  return io::load_scenario(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/driveline_tight_turn.toml");
+}
 
 // The take-up case of docs/driveline.md: ρ = 1.1 from 10 km/h, no engine torque, valve 3 bar.
 DrivelineInputs take_up_inputs() {
@@ -47,8 +49,8 @@ Eigen::VectorXd nonlinear_rhs(const dynamics::TorsionalNetwork& net, const dynam
     if (b != dynamics::kGround) tau[b] += tb;
   };
   for (const auto& s : net.shafts()) {
-    const double tq = s.stiffness_Nm_per_rad * (at(theta, s.a) - at(theta, s.b)) +
-                      s.damping_Nms_per_rad * (at(w, s.a) - at(w, s.b));
+    const double tq =
+        s.stiffness_Nm_per_rad * (at(theta, s.a) - at(theta, s.b)) + s.damping_Nms_per_rad * (at(w, s.a) - at(w, s.b));
     apply(s.a, s.b, -tq, tq);
   }
   const std::vector<int> contact_z_at = net.contact_state_indices();
@@ -92,8 +94,8 @@ TEST(DrivelineStability, MatrixEqualsFiniteDifferenceJacobianOfTheNonlinearRhs) 
   model.params.turn_ratio = 1.1;
   DrivelineInputs in = take_up_inputs();
   in.throttle = PiecewiseLinear({0.0}, {0.1});
-  const clutch::WetClutch clutch(sc.clutch, io::load_fluid(std::string(SHUDDER_SOURCE_DIR) +
-                                                                    "/scenarios/fluids/schematic_negative_slope.toml"));
+  const clutch::WetClutch clutch(
+      sc.clutch, io::load_fluid(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/fluids/schematic_negative_slope.toml"));
   const HaldexDriveline dl(model.params, clutch, in);
   DrivelineOperatingPoint op = quasi_static_operating_point(dl, clutch, in);
   op.vehicle_speed_m_s = 10 / 3.6;
@@ -113,17 +115,19 @@ TEST(DrivelineStability, MatrixEqualsFiniteDifferenceJacobianOfTheNonlinearRhs) 
     const Eigen::VectorXd s = dl.rolling_speed_ratios() * (op.vehicle_speed_m_s / model.params.wheel_radius_m);
     w0 = s;
     const double scale = (s[D::kCouplingIn] - op.coupling_slip_rad_s) / s[D::kCouplingOut];
-    for (int node : {D::kCouplingOut, D::kRearDiff, D::kRearSideLeft, D::kRearSideRight, D::kRearLeftWheel,
-                     D::kRearRightWheel})
+    for (int node :
+         {D::kCouplingOut, D::kRearDiff, D::kRearSideLeft, D::kRearSideRight, D::kRearLeftWheel, D::kRearRightWheel})
       w0[node] *= scale;
   }
   // Each tyre's states [u, v₁, v₂]: the load transfer's lags behind the point's steady
   // acceleration (the vehicle node's balance, m a = Σ ρ_i F_i − F_road + grade force), u carrying
   // the point's force at that load.
   double sum_N = 0.0;
-  for (int i = 0; i < 4; ++i) sum_N += dl.path_ratios()[static_cast<std::size_t>(i)] * op.tyre_force_N[static_cast<std::size_t>(i)];
-  const double accel = (sum_N - dl.road_load().force_N(op.vehicle_speed_m_s) +
-                        dl.grade_torque_Nm() / model.params.wheel_radius_m) / model.params.vehicle_mass_kg;
+  for (int i = 0; i < 4; ++i)
+    sum_N += dl.path_ratios()[static_cast<std::size_t>(i)] * op.tyre_force_N[static_cast<std::size_t>(i)];
+  const double accel =
+      (sum_N - dl.road_load().force_N(op.vehicle_speed_m_s) + dl.grade_torque_Nm() / model.params.wheel_radius_m) /
+      model.params.vehicle_mass_kg;
   Eigen::VectorXd z0(12);
   for (int i = 0; i < 4; ++i) {
     const auto& tyre = dl.tyre(i);
@@ -199,7 +203,7 @@ TEST(DrivelineStability, AtRestLockedEqualsTheNetworkModesWithTyreSprings) {
       break;
     }
   EXPECT_NEAR(shuffle, shuffle_ref, 1e-6 * shuffle_ref);  // the same linear system, two solvers
-  EXPECT_NEAR(shuffle, 3.71, 0.005);                     // docs/driveline.md
+  EXPECT_NEAR(shuffle, 3.71, 0.005);                      // docs/driveline.md
   EXPECT_LE(least.growth_per_s, 0.0);
 }
 
@@ -232,8 +236,8 @@ namespace {
 TEST(DrivelineStability, ShapeFreeLeastDampedModeEqualsTheFullAnalysisBitForBit) {
   const io::Scenario sc = tight_turn();
   const auto& model = std::get<DrivelineModel>(sc.model);
-  const clutch::WetClutch clutch(sc.clutch, io::load_fluid(std::string(SHUDDER_SOURCE_DIR) +
-                                                           "/scenarios/fluids/schematic_negative_slope.toml"));
+  const clutch::WetClutch clutch(
+      sc.clutch, io::load_fluid(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/fluids/schematic_negative_slope.toml"));
   DrivelineInputs in = model.manoeuvre;
   in.start_speed_km_h = 10.0;
   const HaldexDriveline dl(model.params, clutch, in);
@@ -271,8 +275,8 @@ TEST(DrivelineStability, ShapeFreeLeastDampedModeEqualsTheFullAnalysisBitForBit)
 TEST(DrivelineStability, CouplingMapsAreTheLinearisationAtEachCell) {
   const io::Scenario sc = tight_turn();
   const auto& model = std::get<DrivelineModel>(sc.model);
-  const clutch::WetClutch clutch(sc.clutch, io::load_fluid(std::string(SHUDDER_SOURCE_DIR) +
-                                                           "/scenarios/fluids/schematic_negative_slope.toml"));
+  const clutch::WetClutch clutch(
+      sc.clutch, io::load_fluid(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/fluids/schematic_negative_slope.toml"));
   DrivelineInputs in = model.manoeuvre;
   in.start_speed_km_h = 10.0;
   const HaldexDriveline dl(model.params, clutch, in);
@@ -337,7 +341,8 @@ TEST(DrivelineStability, LockedShuffleMatchesATwoInertiaReduction) {
   const double k_t = dl.tyre(0).modal_stiffness_Nm_per_rad();
   const auto series = [](double a, double b) { return a * b / (a + b); };
   const double k_front = series(2 * p.halfshaft_stiffness_Nm_per_rad, 2 * k_t);
-  const double k_rear = series(series(p.propshaft_stiffness_Nm_per_rad * ir * ir, 2 * p.halfshaft_stiffness_Nm_per_rad), 2 * k_t);
+  const double k_rear =
+      series(series(p.propshaft_stiffness_Nm_per_rad * ir * ir, 2 * p.halfshaft_stiffness_Nm_per_rad), 2 * k_t);
   const double f2 = std::sqrt((k_front + k_rear) * (j1 + j2) / (j1 * j2)) / (2 * std::numbers::pi);
   EXPECT_NEAR(shuffle, f2, 0.02 * f2) << "two-inertia " << f2 << " Hz";
 }

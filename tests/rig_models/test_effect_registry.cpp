@@ -84,14 +84,14 @@ std::vector<std::string> expected_docs_tables() {
   for (const auto& e : effect_registry()) {
     for (const auto& p : e.parameters)
       p_table += "| `" + e.name + "` | `" + p.key + "` | " + p.unit + " | " + toml_range(p.range).describe() + " | " +
-           fmt(p.member(t) * p.scale.to_key) + " | " +
-           (p.fit ? "[" + fmt(p.fit->lower) + ", " + fmt(p.fit->upper) + "]" : std::string("—")) + " | " +
-           (p.fit ? list(p.fit->starts) : std::string("—")) + " |\n";
+                 fmt(p.member(t) * p.scale.to_key) + " | " +
+                 (p.fit ? "[" + fmt(p.fit->lower) + ", " + fmt(p.fit->upper) + "]" : std::string("—")) + " | " +
+                 (p.fit ? list(p.fit->starts) : std::string("—")) + " |\n";
     for (const auto& c : e.choices) {
       std::string options;
       for (const auto& o : c.options) options += (options.empty() ? "" : " or ") + ("`\"" + o + "\"`");
       p_table += "| `" + e.name + "` | `" + c.key + "` | choice | " + options + " | `\"" + c.options.at(c.get(t)) +
-           "\"` | — | — |\n";
+                 "\"` | — | — |\n";
     }
   }
   return {s, p_table};
@@ -143,7 +143,8 @@ std::vector<std::string> formats_effect_names(const std::string& formats) {
     const auto first_cell = l.substr(1, l.find('|', 1) - 1);
     for (auto& n : backticked(first_cell)) names.push_back(n);
   }
-  EXPECT_TRUE(in_table) << "docs/formats/diagnosis_json.md: no effect table with header \"| name | what the effect is |\"";
+  EXPECT_TRUE(in_table)
+      << "docs/formats/diagnosis_json.md: no effect table with header \"| name | what the effect is |\"";
   return names;
 }
 
@@ -274,7 +275,8 @@ TEST(EffectRegistry, EnableEffectChecksNameAndValueCount) {
 }
 
 TEST(EffectRegistry, ScenarioRejectsAnUnknownEffectListingTheValidOnes) {
-  const std::string text = test::shipped_scenario_text("diagnosis_probe.toml") + "\n[effects.magic_cooling]\nenabled = true\n";
+  const std::string text =
+      test::shipped_scenario_text("diagnosis_probe.toml") + "\n[effects.magic_cooling]\nenabled = true\n";
   try {
     io::load_scenario_text(text, test::source_path("scenarios/x.toml"));
     ADD_FAILURE() << "an unknown effect was accepted";
@@ -319,8 +321,8 @@ TEST(EffectRegistry, StickTimeIsACandidateOnTheRigOnly) {
 }
 
 TEST(EffectRegistry, InertEffectsWarnInTheirScenarioKinds) {
-  const std::string slip = test::shipped_scenario_text("diagnosis_probe.toml") +
-                           "\n[effects.stick_time_static_friction]\nenabled = true\n";
+  const std::string slip =
+      test::shipped_scenario_text("diagnosis_probe.toml") + "\n[effects.stick_time_static_friction]\nenabled = true\n";
   const auto s = io::load_scenario_text(slip, test::source_path("scenarios/x.toml"));
   EXPECT_EQ(s.warnings, std::vector<std::string>{"effect stick_time_static_friction has no effect in a "
                                                  "prescribed_slip scenario (the slip is imposed, nothing sticks)"});

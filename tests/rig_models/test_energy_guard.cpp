@@ -53,9 +53,7 @@ TEST(EnergyGuard, NonFiniteFiguresFail) {
               HasSubstr("mechanical energy balance error inf"));
 }
 
-TEST(EnergyGuard, AccountsARecordingDoesNotKeepAreNotJudged) {
-  EXPECT_EQ(energy_balance_violation(Recording{}), "");
-}
+TEST(EnergyGuard, AccountsARecordingDoesNotKeepAreNotJudged) { EXPECT_EQ(energy_balance_violation(Recording{}), ""); }
 
 TEST(EnergyGuard, BoundsCanBeTightened) {
   EXPECT_THAT(energy_balance_violation(with_errors(1e-9, 0.0), {1e-10, 1e-3}), HasSubstr("exceeds the bound 1e-10"));

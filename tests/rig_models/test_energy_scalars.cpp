@@ -32,11 +32,9 @@ TEST(MechanicalEnergyError, SourceWorkScaleDividesByTheWorkAndIsZeroWithoutIt) {
 
 TEST(MechanicalEnergyError, LargestEnergyScaleFallsBackToWhatWasInPlay) {
   // With work: max(10, 1 + 0.5, 4 + 1) = 10.
-  EXPECT_NEAR(mechanical_energy_relative_error(account(10.0), MechanicalEnergyScale::kLargestEnergyInPlay), 0.15,
-              kTol);
+  EXPECT_NEAR(mechanical_energy_relative_error(account(10.0), MechanicalEnergyScale::kLargestEnergyInPlay), 0.15, kTol);
   // Coasting (no work): imbalance −8.5 J against max(0, 1.5, 5) = 5 J.
-  EXPECT_NEAR(mechanical_energy_relative_error(account(0.0), MechanicalEnergyScale::kLargestEnergyInPlay), 1.7,
-              kTol);
+  EXPECT_NEAR(mechanical_energy_relative_error(account(0.0), MechanicalEnergyScale::kLargestEnergyInPlay), 1.7, kTol);
 }
 
 }  // namespace

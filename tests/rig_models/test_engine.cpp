@@ -20,7 +20,8 @@ namespace shudder::rig_models {
 namespace {
 
 double loss_Nm(const EngineParams& p, double w) {
-  return (p.loss_torque_idle_Nm + (p.loss_torque_max_Nm - p.loss_torque_idle_Nm) * units::rad_s_to_rpm(w) / p.max_speed_rpm) *
+  return (p.loss_torque_idle_Nm +
+          (p.loss_torque_max_Nm - p.loss_torque_idle_Nm) * units::rad_s_to_rpm(w) / p.max_speed_rpm) *
          std::tanh(w / 10.0);
 }
 
@@ -29,7 +30,8 @@ TEST(Engine, ShutThrottleSettlesWhereTheGovernorCarriesTheLosses) {
   const Engine e(p);
   // Fixed point of ω = ω_idle − T_loss(ω)/K.
   double w = units::rpm_to_rad_s(p.idle_speed_rpm);
-  for (int i = 0; i < 50; ++i) w = units::rpm_to_rad_s(p.idle_speed_rpm) - loss_Nm(p, w) / p.idle_governor_gain_Nms_per_rad;
+  for (int i = 0; i < 50; ++i)
+    w = units::rpm_to_rad_s(p.idle_speed_rpm) - loss_Nm(p, w) / p.idle_governor_gain_Nms_per_rad;
   EXPECT_NEAR(e.torque_Nm(w, 0.0), 0.0, 1e-9);
   EXPECT_GT(e.torque_Nm(w - 1.0, 0.0), 0.0);  // below: the governor pushes up
   EXPECT_LT(e.torque_Nm(w + 1.0, 0.0), 0.0);  // above: the losses pull down

@@ -111,8 +111,8 @@ TEST(EnginePulsation, DrivelineEngineOscillatesAtTheFiringFrequency) {
   const double mean_rpm = 0.5 * (a[a.size() / 2] + a.back());
   const double firing_Hz = 2.0 * mean_rpm / 60.0;
   const double measured_Hz = 0.5 * crossings / (tt.back() - tt.front());
-  std::printf("engine %.0f rpm: firing %.2f Hz, difference oscillates at %.2f Hz, peak %.3g rpm\n", mean_rpm,
-              firing_Hz, measured_Hz, peak);
+  std::printf("engine %.0f rpm: firing %.2f Hz, difference oscillates at %.2f Hz, peak %.3g rpm\n", mean_rpm, firing_Hz,
+              measured_Hz, peak);
   EXPECT_GT(peak, 1e-3);  // it acts (without it the runs are identical)
   EXPECT_NEAR(measured_Hz / firing_Hz, 1.0, 0.05);
 }
@@ -123,7 +123,8 @@ TEST(EnginePulsation, ScenarioKeysSetItWithinTheirBounds) {
     return "[scenario]\nname = \"x\"\ntype = \"driveline\"\nduration_s = 1.0\n"
            "[clutch]\nfluid = \"fluids/lsc_fluid_c.toml\"\nsliding_interfaces = 16\nstart_temp_C = 40.0\n"
            "[manoeuvre]\ntime_s = [0.0]\nengine_torque_Nm = 30.0\nvalve_pressure_bar = 30.0\n"
-           "start_speed_km_h = 20.0\n[driveline.engine]\n" + keys + "\n";
+           "start_speed_km_h = 20.0\n[driveline.engine]\n" +
+           keys + "\n";
   };
   auto sc = io::load_scenario_text(text("firing_pulsation_Nm = 2.5\ncylinders = 6"), path);
   const auto& p = std::get<DrivelineModel>(sc.model).params.engine_pulsation;

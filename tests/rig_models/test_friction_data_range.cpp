@@ -21,8 +21,8 @@ TEST(FrictionDataRange, CountsEachRangeAndEachStepOnce) {
   Eigen::VectorXd radius(2), temp(2);
   radius << 0.04, 0.05;
   temp << 50.0, 60.0;
-  r.add(1.0, 1.0, radius, temp, 15000.0);   // 40–50 mm/s, 50–60 °C, 15 kN: inside
-  r.add(2.0, 0.1, radius, temp, 5000.0);    // 4 mm/s < 6 and 5 kN < 10 kN: one step, two ranges
+  r.add(1.0, 1.0, radius, temp, 15000.0);  // 40–50 mm/s, 50–60 °C, 15 kN: inside
+  r.add(2.0, 0.1, radius, temp, 5000.0);   // 4 mm/s < 6 and 5 kN < 10 kN: one step, two ranges
   temp << 80.0, 95.0;
   r.add(3.0, 20.0, radius, temp, 30000.0);  // 1000 mm/s > 590, 95 °C > 90, 30 kN > 25
   r.add(4.0, 0.0, radius, temp, 15000.0);   // stuck: no speed count; 95 °C still above
@@ -37,7 +37,8 @@ TEST(FrictionDataRange, CountsEachRangeAndEachStepOnce) {
   EXPECT_DOUBLE_EQ(r.max_speed_mm_s, 1000.0);
   const auto b = rig_models::friction_range_block(r);
   EXPECT_DOUBLE_EQ(b.find_scalar("fraction_outside")->value, 0.9);
-  EXPECT_THAT(b.find_text("summary")->value, ::testing::HasSubstr("clamp force up to 3e+04 N, above the data's 2.5e+04 N for 30 % of the run"));
+  EXPECT_THAT(b.find_text("summary")->value,
+              ::testing::HasSubstr("clamp force up to 3e+04 N, above the data's 2.5e+04 N for 30 % of the run"));
 }
 
 TEST(FrictionDataRange, APrescribedSlipRunBelowTheMatrixLoadsSaysSoInItsBlock) {
@@ -46,14 +47,16 @@ TEST(FrictionDataRange, APrescribedSlipRunBelowTheMatrixLoadsSaysSoInItsBlock) {
   p.start_temp_C = p.sump_start_temp_C = 60.0;
   rig_models::PrescribedSlipSettings s;
   s.duration_s = 2.0;
-  const rig_models::DriveCycle cycle{rig_models::PiecewiseLinear({0.0}, {30.0}), rig_models::PiecewiseLinear({0.0}, {5000.0})};
+  const rig_models::DriveCycle cycle{rig_models::PiecewiseLinear({0.0}, {30.0}),
+                                     rig_models::PiecewiseLinear({0.0}, {5000.0})};
   const auto rec = rig_models::run_prescribed_slip(clutch::WetClutch(p, fluid), cycle, s);
   const auto* b = rec.find_block(rig_models::kFrictionRangeBlock);
   ASSERT_NE(b, nullptr);
   EXPECT_DOUBLE_EQ(b->find_scalar("fraction_load_below")->value, 1.0);
   EXPECT_DOUBLE_EQ(b->find_scalar("fraction_speed_below")->value, 0.0);  // 30 rpm: 120–180 mm/s
   EXPECT_DOUBLE_EQ(b->find_scalar("law_min_load_N")->value, 10000.0);
-  EXPECT_THAT(b->find_text("summary")->value, ::testing::HasSubstr("clamp force down to 5000 N, below the data's 1e+04 N for 100 % of the run"));
+  EXPECT_THAT(b->find_text("summary")->value,
+              ::testing::HasSubstr("clamp force down to 5000 N, below the data's 1e+04 N for 100 % of the run"));
 }
 
 }  // namespace

@@ -18,11 +18,11 @@ ControllerReading reading(double v_km_h, double front_rpm, double rear_rpm, doub
 
 TEST(HaldexController, ShutsTheValveForSlipAndThePedalOpensItOtherwise) {
   const HaldexController c({});
-  EXPECT_DOUBLE_EQ(c.valve_opening(reading(30, 250, 250, 1.0, 0.0)), 1.0);   // cruising: open
-  EXPECT_DOUBLE_EQ(c.valve_opening(reading(30, 250, 250, 1.0, 1.0)), 0.5);   // full pedal: half
-  EXPECT_DOUBLE_EQ(c.valve_opening(reading(30, 260, 250, 1.0, 0.0)), 0.5);   // 10 rpm slip: half
-  EXPECT_DOUBLE_EQ(c.valve_opening(reading(30, 280, 250, 1.0, 0.0)), 0.0);   // 30 rpm: shut
-  EXPECT_DOUBLE_EQ(c.valve_opening(reading(30, 220, 250, 1.0, 0.0)), 0.0);   // either sign (overrun)
+  EXPECT_DOUBLE_EQ(c.valve_opening(reading(30, 250, 250, 1.0, 0.0)), 1.0);  // cruising: open
+  EXPECT_DOUBLE_EQ(c.valve_opening(reading(30, 250, 250, 1.0, 1.0)), 0.5);  // full pedal: half
+  EXPECT_DOUBLE_EQ(c.valve_opening(reading(30, 260, 250, 1.0, 0.0)), 0.5);  // 10 rpm slip: half
+  EXPECT_DOUBLE_EQ(c.valve_opening(reading(30, 280, 250, 1.0, 0.0)), 0.0);  // 30 rpm: shut
+  EXPECT_DOUBLE_EQ(c.valve_opening(reading(30, 220, 250, 1.0, 0.0)), 0.0);  // either sign (overrun)
 }
 
 TEST(HaldexController, OpensInAParkingTurnUnlessAWheelSpins) {
@@ -31,8 +31,8 @@ TEST(HaldexController, OpensInAParkingTurnUnlessAWheelSpins) {
   const ControllerReading park = reading(5, 44, 40, 1.1, 1.0);
   EXPECT_TRUE(c.parking(park));
   EXPECT_DOUBLE_EQ(c.excess_slip_rpm(park), 0.0);
-  EXPECT_DOUBLE_EQ(c.valve_opening(park), 1.0);                              // lets the coupling slip
-  EXPECT_DOUBLE_EQ(c.valve_opening(reading(5, 54, 40, 1.1, 1.0)), 0.5);     // 10 rpm more: traction
+  EXPECT_DOUBLE_EQ(c.valve_opening(park), 1.0);                          // lets the coupling slip
+  EXPECT_DOUBLE_EQ(c.valve_opening(reading(5, 54, 40, 1.1, 1.0)), 0.5);  // 10 rpm more: traction
   // The same turn at 30 km/h is no parking manoeuvre: the pedal counts.
   EXPECT_FALSE(c.parking(reading(30, 264, 240, 1.1, 1.0)));
   EXPECT_DOUBLE_EQ(c.valve_opening(reading(30, 264, 240, 1.1, 1.0)), 0.5);
@@ -42,7 +42,7 @@ TEST(HaldexController, OpensInAParkingTurnUnlessAWheelSpins) {
 
 TEST(HaldexController, LimitsTheDemandAtSpeed) {
   const HaldexController c({});
-  EXPECT_DOUBLE_EQ(c.valve_opening(reading(160, 1500, 1400, 1.0, 1.0)), 0.7);  // capped at 0.3
+  EXPECT_DOUBLE_EQ(c.valve_opening(reading(160, 1500, 1400, 1.0, 1.0)), 0.7);     // capped at 0.3
   EXPECT_NEAR(c.valve_opening(reading(120, 1100, 1000, 1.0, 1.0)), 0.35, 1e-12);  // halfway: 1 − 0.65
   EXPECT_DOUBLE_EQ(c.valve_opening(reading(80, 800, 700, 1.0, 1.0)), 0.0);
 }

@@ -111,8 +111,8 @@ WindUp locked_turn_closed_form(const HaldexDriveline& dl) {
   const double ff = dl.tyre(HaldexDriveline::kFL).force_N(kf), fr = dl.tyre(HaldexDriveline::kRL).force_N(kr);
   const auto& p = dl.params();
   const double r = p.wheel_radius_m;
-  return {2 * r * fr, r * (2 * ff * kf * rf + 2 * fr * kr * rr / (1 - kr)) /
-                          (p.gear_ratio * p.final_drive_ratio * (1 + kf) * rf)};
+  return {2 * r * fr,
+          r * (2 * ff * kf * rf + 2 * fr * kr * rr / (1 - kr)) / (p.gear_ratio * p.final_drive_ratio * (1 + kf) * rf)};
 }
 
 TEST(HaldexDriveline, LockedTightTurnWindsUpTheClosedFormTorqueAtAnySpeed) {
@@ -155,7 +155,7 @@ TEST(HaldexDriveline, LockedTightTurnWindsUpTheClosedFormTorqueAtAnySpeed) {
 TEST(HaldexDriveline, CoastsDownOnTheRoadLoadsClosedForm) {
   const Pack pack;
   DrivelineParams p;
-  p.gear_ratio = 1.0;  // a high gear: the engine at a sane speed from 60 km/h
+  p.gear_ratio = 1.0;                       // a high gear: the engine at a sane speed from 60 km/h
   p.hydraulics.preload_torque_Nm = 5000.0;  // locked: the car coasts as one body
   DrivelineInputs in;
   in.start_speed_km_h = 60.0;
@@ -223,7 +223,8 @@ TEST(HaldexDriveline, SplitMuLaunchSpinsTheIceWheelAndDrivesTheRear) {
     return f;
   };
   double impulse_Ns = 0.0;
-  for (std::size_t i = i0 + 1; i < t.size(); ++i) impulse_Ns += 0.5 * (net_force_N(i - 1) + net_force_N(i)) * (t[i] - t[i - 1]);
+  for (std::size_t i = i0 + 1; i < t.size(); ++i)
+    impulse_Ns += 0.5 * (net_force_N(i - 1) + net_force_N(i)) * (t[i] - t[i - 1]);
   const double momentum_Ns = p.vehicle_mass_kg * (v.back() - v[i0]) / 3.6;
   EXPECT_NEAR(momentum_Ns, impulse_Ns, 0.01 * momentum_Ns);
   EXPECT_LT(test::scalar(rec, "mechanical_energy_relative_error"), 1e-6);

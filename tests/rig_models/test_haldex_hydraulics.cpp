@@ -69,7 +69,8 @@ TEST(HaldexHydraulics, ShutValveBuildsPumpVolumeOverComplianceAndFullPressureAft
   EXPECT_NEAR(p_quarter_bar / p.relief_pressure_bar, 1.0, 0.01);
   // The relief valve passes the rest: two quarter turns in 0.1 s end at the relief pressure
   // plus its override Q τ_r / C (no leakage here), 0.4 % of it.
-  const double q_rate_bar_s = displacement_m3_per_rad(p) * (2 * quarter_wheel_turn_rad / 0.1) / compliance_m3_per_Pa(p) / 1e5;
+  const double q_rate_bar_s =
+      displacement_m3_per_rad(p) * (2 * quarter_wheel_turn_rad / 0.1) / compliance_m3_per_Pa(p) / 1e5;
   EXPECT_NEAR(integrate_bar(h, 0.0, 2 * quarter_wheel_turn_rad / 0.1, 0.0, 1e9, 1.0, 0.1),
               p.relief_pressure_bar + q_rate_bar_s * HaldexHydraulics::kReliefTime_s, 1e-6);
 }
@@ -97,7 +98,8 @@ TEST(HaldexHydraulics, ConstantSlipSettlesAtTheOrificeEquationsPressure) {
   const HaldexHydraulicsParams leaky;
   const HaldexHydraulics hl(leaky, kPackNmPerN);
   const double q = displacement_m3_per_rad(leaky) * 5.0;
-  const double k = leaky.discharge_coefficient * 0.2 * leaky.valve_area_mm2 * 1e-6 * std::sqrt(2 / leaky.oil_density_kg_m3);
+  const double k =
+      leaky.discharge_coefficient * 0.2 * leaky.valve_area_mm2 * 1e-6 * std::sqrt(2 / leaky.oil_density_kg_m3);
   const double g = leaky.leak_cm3_s_per_bar * 1e-6 / 1e5;
   const double root = (-k + std::sqrt(k * k + 4 * g * q)) / (2 * g);
   EXPECT_NEAR(hl.steady_pressure_bar(5.0, 0.2), root * root / 1e5, 1e-9 * root * root / 1e5);
@@ -112,8 +114,8 @@ TEST(HaldexHydraulics, OrificeTurnsLaminarBelowTheTransitionPressureAndStaysCont
   const double lam_Pa = 0.01 * 1e5;
   // Below p_lam: Q = k u p/√p_lam, linear in p (so the decay is exponential, not finite-time).
   for (double pressure_bar : {0.002, 0.005})
-    EXPECT_NEAR(h.pressure_rate_bar_s(pressure_bar, 0.0, 0.5, 1e9), -k * 0.5 * pressure_bar * 1e5 / std::sqrt(lam_Pa) / c / 1e5,
-                1e-12 * k * 0.5 * 1e5 / c);
+    EXPECT_NEAR(h.pressure_rate_bar_s(pressure_bar, 0.0, 0.5, 1e9),
+                -k * 0.5 * pressure_bar * 1e5 / std::sqrt(lam_Pa) / c / 1e5, 1e-12 * k * 0.5 * 1e5 / c);
   // Both regimes give the same flow at p_lam.
   const double below = h.pressure_rate_bar_s(0.01 * (1 - 1e-12), 0.0, 1.0, 1e9);
   const double above = h.pressure_rate_bar_s(0.01, 0.0, 1.0, 1e9);
@@ -133,8 +135,7 @@ TEST(HaldexHydraulics, ShutValveDecaysWithTheComplianceTimeConstant) {
     p.leak_cm3_s_per_bar = leak;
     const HaldexHydraulics h(p, kPackNmPerN);
     const double tau_s = compliance_m3_per_Pa(p) / (leak * 1e-6 / 1e5);
-    EXPECT_NEAR(integrate_bar(h, 20.0, 0.0, 0.0, 1e9, 1.0, 1.0), 20.0 * std::exp(-1.0 / tau_s),
-                1e-9 * 20.0) << tau_s;
+    EXPECT_NEAR(integrate_bar(h, 20.0, 0.0, 0.0, 1e9, 1.0, 1.0), 20.0 * std::exp(-1.0 / tau_s), 1e-9 * 20.0) << tau_s;
     // The oil at twice the viscosity leaks half as fast: leak_scale = ν(40)/ν(T) = 0.5.
     EXPECT_NEAR(integrate_bar(h, 20.0, 0.0, 0.0, 1e9, 0.5, 1.0), 20.0 * std::exp(-0.5 / tau_s), 1e-9 * 20.0);
   }
@@ -154,10 +155,9 @@ TEST(HaldexHydraulics, ReliefValveAndSettingCapThePressureAndTheForceIsAreaTimes
     EXPECT_NEAR(integrate_bar(h, 0.0, 100.0, 0.0, setting_bar, 1.0, 0.5), expected_bar, 1e-9 * expected_bar);
   }
   // Above a lowered cap the relief valve brings it down with its own time constant.
-  EXPECT_NEAR(h.pressure_rate_bar_s(5.0, 0.0, 0.0, 0.0),
-              -5.0 / HaldexHydraulics::kReliefTime_s - g * 5.0 / c, 1e-9);
+  EXPECT_NEAR(h.pressure_rate_bar_s(5.0, 0.0, 0.0, 0.0), -5.0 / HaldexHydraulics::kReliefTime_s - g * 5.0 / c, 1e-9);
   EXPECT_NEAR(integrate_bar(h, 5.0, 0.0, 0.0, 0.0, 1.0, 0.05, 1e-5), 0.0, 1e-9);
-  EXPECT_DOUBLE_EQ(h.pressure_rate_bar_s(0.0, 0.0, 1.0, 30.0), 0.0);      // no slip, no pressure
+  EXPECT_DOUBLE_EQ(h.pressure_rate_bar_s(0.0, 0.0, 1.0, 30.0), 0.0);  // no slip, no pressure
   // Gen I: no preload spring; F = A p. The default pack then carries n μ r A = 54 N m per bar.
   EXPECT_DOUBLE_EQ(h.clamp_force_N(0.0), 0.0);
   EXPECT_NEAR(h.clamp_force_N(10.0), p.piston_area_cm2 * 1e-4 * 1e6, 1e-9);

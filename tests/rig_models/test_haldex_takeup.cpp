@@ -30,7 +30,8 @@ TEST(HaldexTakeUp, NegativeSlopeJudderSitsAtASlippingCouplingMode) {
   const auto modes = dl.network().modes({false});
   double nearest_Hz = 0;
   for (Eigen::Index j = 0; j < modes.frequencies_Hz.size(); ++j)
-    if (std::abs(modes.frequencies_Hz[j] - judder_Hz) < std::abs(nearest_Hz - judder_Hz)) nearest_Hz = modes.frequencies_Hz[j];
+    if (std::abs(modes.frequencies_Hz[j] - judder_Hz) < std::abs(nearest_Hz - judder_Hz))
+      nearest_Hz = modes.frequencies_Hz[j];
   // Undamped modes with the tyres as their standstill springs: measured 28.63 Hz against the
   // 32.41 Hz mode (−11.7 %; the friction slope and the tyres' relaxation at 10 km/h, which this
   // eigen-analysis leaves out, shift it): 15 %. The next modes are 35.5 and 37.9 Hz, the one below
@@ -47,7 +48,9 @@ TEST(HaldexTakeUp, NegativeSlopeJudderSitsAtASlippingCouplingMode) {
         return t;
       }(),
       sc.path);
-  EXPECT_EQ(test::scalar(simulate(std::get<DrivelineModel>(smooth.model), smooth.make_clutch()), "coupling_verdict_code"), 0.0);
+  EXPECT_EQ(
+      test::scalar(simulate(std::get<DrivelineModel>(smooth.model), smooth.make_clutch()), "coupling_verdict_code"),
+      0.0);
 }
 
 }  // namespace

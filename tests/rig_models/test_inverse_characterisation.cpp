@@ -47,7 +47,7 @@ CharacterisationSettings settings(LawKind law, Compensation comp = Compensation:
 
 rig_models::InverseSettings inverse_settings(const clutch::Fluid& any_fluid) {
   rig_models::InverseSettings inv;
-  inv.model.fluid = any_fluid;         // viscosities only; the law is replaced by every iterate
+  inv.model.fluid = any_fluid;  // viscosities only; the law is replaced by every iterate
   inv.model.settings.thermal_step_s = 0.02;
   inv.jobs = 2;
   return inv;
@@ -83,21 +83,25 @@ TEST(InverseCharacterisation, FluidCMatrixRecoversTheOilFlowAndTheLaw) {
   is.model.clutch.thermal.oil_flow.e = 0.03;  // the data were made with 0.016 (Paper G defaults)
   const auto r = rig_models::characterise_inverse(set.runs, replay_inputs(set.runs),
                                                   settings(LawKind::kTable, Compensation::kPiecewise), "temp_C", is);
-  const double es = test::max_error_at_rows(r.sensor, *set.truth.friction), ei = test::max_error_at_rows(r.inverse, *set.truth.friction);
+  const double es = test::max_error_at_rows(r.sensor, *set.truth.friction),
+               ei = test::max_error_at_rows(r.inverse, *set.truth.friction);
   const double ps = test::max_error_where_passed(r.sensor, *set.truth.friction, set.runs, set.interface_C),
                pi = test::max_error_where_passed(r.inverse, *set.truth.friction, set.runs, set.interface_C);
-  std::printf("[ figures  ] fluid C matrix, piecewise + table: max |mu/mu_true - 1| where the ramps passed: sensor %.4f, "
-              "inverse %.4f\n", ps, pi);
-  std::printf("[ figures  ] fluid C matrix, piecewise + table: max |mu/mu_true - 1| at the rows: sensor %.4f, inverse %.4f; "
-              "%d law updates, %d replays, last change %.2g; oil flow e 0.03 -> %.4g (truth 0.016), a %.3g; "
-              "temp rms %.3f -> %.3f C; replayed torque rms sensor law %.4f, inverse law %.4f N m\n",
-              es, ei, r.iterations, r.replays, r.last_change_mu, r.oil_flow.e, r.oil_flow.a, r.temp_rms_start_C,
-              r.temp_rms_C, r.torque_rms_sensor_Nm, r.torque_rms_Nm);
+  std::printf(
+      "[ figures  ] fluid C matrix, piecewise + table: max |mu/mu_true - 1| where the ramps passed: sensor %.4f, "
+      "inverse %.4f\n",
+      ps, pi);
+  std::printf(
+      "[ figures  ] fluid C matrix, piecewise + table: max |mu/mu_true - 1| at the rows: sensor %.4f, inverse %.4f; "
+      "%d law updates, %d replays, last change %.2g; oil flow e 0.03 -> %.4g (truth 0.016), a %.3g; "
+      "temp rms %.3f -> %.3f C; replayed torque rms sensor law %.4f, inverse law %.4f N m\n",
+      es, ei, r.iterations, r.replays, r.last_change_mu, r.oil_flow.e, r.oil_flow.a, r.temp_rms_start_C, r.temp_rms_C,
+      r.torque_rms_sensor_Nm, r.torque_rms_Nm);
   // The calibration sees the thermocouple's noise (0.2-0.4 °C) over ~30,000 samples and the
   // sensor law's 3 % friction-heat error: e within 10 %.
   EXPECT_NEAR(r.oil_flow.e, 0.016, 0.0016);
   EXPECT_LT(r.temp_rms_C, 0.2 * r.temp_rms_start_C);  // 5 °C with e = 0.03; the noise floor is 0.4 °C
-  EXPECT_LE(r.iterations, 6);  // the law enters the temperature field only through the heat
+  EXPECT_LE(r.iterations, 6);                         // the law enters the temperature field only through the heat
   EXPECT_LT(r.torque_rms_Nm, r.torque_rms_sensor_Nm);
   // Piecewise compensation + table law follow the matrix's kinks with either temperature; what
   // remains is the torque cell's noise in the rows' bins (measured on these seeds: sensor 0.71 %,
@@ -114,7 +118,8 @@ TEST(InverseCharacterisation, FluidCMatrixRecoversTheOilFlowAndTheLaw) {
   for (double t : {40.0, 60.0}) {
     const auto a = analysis::anti_shudder_indices(*r.inverse.law, t, idx);
     const auto b = analysis::anti_shudder_indices(*set.truth.friction, t, idx);
-    worst = std::max(worst, std::abs(a[analysis::Index::kMu1OverMu50].value / b[analysis::Index::kMu1OverMu50].value - 1.0));
+    worst = std::max(worst,
+                     std::abs(a[analysis::Index::kMu1OverMu50].value / b[analysis::Index::kMu1OverMu50].value - 1.0));
   }
   clutch::Fluid fitted = set.truth;
   fitted.friction = r.inverse.law;
@@ -140,9 +145,11 @@ TEST(InverseCharacterisation, PaperELinearLawWithinOnePercent) {
   const Set set = round_trip("paper_e_fluid_c.toml", {30.0, 45.0, 60.0, 75.0, 90.0});
   const auto r = rig_models::characterise_inverse(set.runs, replay_inputs(set.runs), settings(LawKind::kLinear),
                                                   "temp_C", inverse_settings(set.truth));
-  const double es = test::max_error_at_rows(r.sensor, *set.truth.friction), ei = test::max_error_at_rows(r.inverse, *set.truth.friction);
-  std::printf("[ figures  ] Paper E fluid C linear law: sensor %.4f, inverse %.4f; %d updates, %d replays; e %.4g a %.3g\n",
-              es, ei, r.iterations, r.replays, r.oil_flow.e, r.oil_flow.a);
+  const double es = test::max_error_at_rows(r.sensor, *set.truth.friction),
+               ei = test::max_error_at_rows(r.inverse, *set.truth.friction);
+  std::printf(
+      "[ figures  ] Paper E fluid C linear law: sensor %.4f, inverse %.4f; %d updates, %d replays; e %.4g a %.3g\n", es,
+      ei, r.iterations, r.replays, r.oil_flow.e, r.oil_flow.a);
   EXPECT_LT(ei, 0.01);
 }
 
@@ -158,9 +165,12 @@ TEST(InverseCharacterisation, OtherThermalModelWithinTwoPercent) {
                                             test::other_thermal_model));
   const auto r = rig_models::characterise_inverse(runs, replay_inputs(runs), settings(LawKind::kLinear), "temp_C",
                                                   inverse_settings(truth));
-  const double es = test::max_error_at_rows(r.sensor, *truth.friction), ei = test::max_error_at_rows(r.inverse, *truth.friction);
-  std::printf("[ figures  ] other thermal model: sensor %.4f, inverse %.4f; oil flow e %.4g a %.3g (data: 0.010, 0.002); "
-              "temp rms %.3f -> %.3f C\n", es, ei, r.oil_flow.e, r.oil_flow.a, r.temp_rms_start_C, r.temp_rms_C);
+  const double es = test::max_error_at_rows(r.sensor, *truth.friction),
+               ei = test::max_error_at_rows(r.inverse, *truth.friction);
+  std::printf(
+      "[ figures  ] other thermal model: sensor %.4f, inverse %.4f; oil flow e %.4g a %.3g (data: 0.010, 0.002); "
+      "temp rms %.3f -> %.3f C\n",
+      es, ei, r.oil_flow.e, r.oil_flow.a, r.temp_rms_start_C, r.temp_rms_C);
   EXPECT_LT(ei, 0.02);
   EXPECT_LT(r.temp_rms_C, r.temp_rms_start_C);
 }

@@ -38,8 +38,8 @@ namespace {
 using shudder::clutch::WetClutch;
 using shudder::dynamics::Modes;
 using shudder::dynamics::Recording;
-using shudder::io::Scenario;
 using shudder::io::load_scenario;
+using shudder::io::Scenario;
 using shudder::rig_models::LsctrRig;
 using shudder::rig_models::run_prescribed_slip;
 using shudder::rig_models::run_rig;
@@ -65,7 +65,8 @@ shudder::rig_models::RigParams without_ripple(shudder::rig_models::RigParams p) 
 
 Recording run(const Scenario& sc) {
   const WetClutch clutch = sc.make_clutch();
-  return run_rig(without_ripple(shudder::test::rig_model(sc).params), clutch, shudder::test::rig_model(sc).cycle, shudder::test::rig_model(sc).settings);
+  return run_rig(without_ripple(shudder::test::rig_model(sc).params), clutch, shudder::test::rig_model(sc).cycle,
+                 shudder::test::rig_model(sc).settings);
 }
 
 // Rig Case 1 at the scenario's 10 ms thermal step, shared by two tests (0.15 s per run).
@@ -98,13 +99,12 @@ std::complex<double> housing_eigenvalue(const Modes& m) {
 
 // Frequency of a signal from its upward zero crossings in [t_from, t_to], Hz: (N − 1) periods
 // between the first and last crossing, each crossing located by linear interpolation.
-double zero_crossing_frequency_Hz(const std::vector<double>& t, const std::vector<double>& x,
-                                  double t_from, double t_to, int* crossings = nullptr) {
+double zero_crossing_frequency_Hz(const std::vector<double>& t, const std::vector<double>& x, double t_from,
+                                  double t_to, int* crossings = nullptr) {
   std::vector<double> up;
   for (std::size_t k = 1; k < t.size(); ++k) {
     if (t[k - 1] < t_from || t[k] > t_to) continue;
-    if (x[k - 1] < 0.0 && x[k] >= 0.0)
-      up.push_back(t[k - 1] + (t[k] - t[k - 1]) * (-x[k - 1]) / (x[k] - x[k - 1]));
+    if (x[k - 1] < 0.0 && x[k] >= 0.0) up.push_back(t[k - 1] + (t[k] - t[k - 1]) * (-x[k - 1]) / (x[k] - x[k - 1]));
   }
   if (crossings) *crossings = static_cast<int>(up.size());
   if (up.size() < 2) return 0.0;
@@ -227,7 +227,8 @@ TEST(RigQuasiStatic, Case1TorqueCellEqualsPrescribedSlipTorque) {
   const Recording& rig = rig_case1();
   const Scenario ps_sc = scenario("paper_g_case1_25kN.toml");
   const WetClutch ps_clutch = ps_sc.make_clutch();
-  const Recording ps = run_prescribed_slip(ps_clutch, shudder::test::prescribed_model(ps_sc).cycle, shudder::test::prescribed_model(ps_sc).settings);
+  const Recording ps = run_prescribed_slip(ps_clutch, shudder::test::prescribed_model(ps_sc).cycle,
+                                           shudder::test::prescribed_model(ps_sc).settings);
 
   const auto& t_r = signal(rig, "time_s");
   const auto& T_r = signal(rig, "torque_Nm");
@@ -279,9 +280,7 @@ TEST(RigQuasiStatic, Case1TorqueCellEqualsPrescribedSlipTorque) {
   const WetClutch rig_clutch = rig_sc.make_clutch();
   const LsctrRig loop(shudder::test::rig_model(rig_sc).params, rig_clutch, shudder::test::rig_model(rig_sc).cycle);
   const auto lag = [&](std::size_t i) { return shudder::units::rpm_to_rad_s(1.0 + 9.9 * t_r[i] - w_r[i]); };
-  const auto rate = [&](const auto& f, std::size_t i) {
-    return (f(i + 5) - f(i - 5)) / (t_r[i + 5] - t_r[i - 5]);
-  };
+  const auto rate = [&](const auto& f, std::size_t i) { return (f(i + 5) - f(i - 5)) / (t_r[i + 5] - t_r[i - 5]); };
   const auto torque = [&](std::size_t i) { return T_r[i]; };
   double worst_lag = 0.0;
   for (std::size_t i = 500; i <= 2000; i += 100) {
@@ -342,17 +341,19 @@ TEST(RigNoShudder, FluidCOn175And378HzBarsHasNoShudderAndTheSameMeanFriction) {
       if (k > half) window += T[k + half] - T[k - half - 1];
       if (t[k] < 0.2) continue;
       const double dev = std::abs(T[k] - window / (2 * half + 1));
-      if (dev > worst) { worst = dev; worst_t = t[k]; }
+      if (dev > worst) {
+        worst = dev;
+        worst_t = t[k];
+      }
     }
-    record(files[b], "mean torque %.3f N m, worst oscillation %.4f N m (%.3e) at t = %.3f s",
-           mean_T, worst, worst / mean_T, worst_t);
+    record(files[b], "mean torque %.3f N m, worst oscillation %.4f N m (%.3e) at t = %.3f s", mean_T, worst,
+           worst / mean_T, worst_t);
     EXPECT_LT(worst, 0.01 * mean_T) << "at t = " << worst_t;
 
     for (double x : mu) mean_mu[b] += x;
     mean_mu[b] /= static_cast<double>(mu.size());
   }
-  record("mean_mu", "175 Hz %.6f, 378 Hz %.6f (rel diff %.3e)", mean_mu[0], mean_mu[1],
-         mean_mu[1] / mean_mu[0] - 1.0);
+  record("mean_mu", "175 Hz %.6f, 378 Hz %.6f (rel diff %.3e)", mean_mu[0], mean_mu[1], mean_mu[1] / mean_mu[0] - 1.0);
   EXPECT_NEAR(mean_mu[0] / mean_mu[1], 1.0, 5e-3);
   EXPECT_GT(mean_mu[0], 0.05);  // a real friction level, not a degenerate run
 }
@@ -383,7 +384,8 @@ TEST(RigShudder, NegativeSlopeFluidOscillatesAtTheClutchSideDampedFrequencyAndFo
     const WetClutch clutch = sc.make_clutch();
     const LsctrRig rig(shudder::test::rig_model(sc).params, clutch, shudder::test::rig_model(sc).cycle);
     const double f_damped = housing_eigenvalue(rig.network().modes()).imag() / kTwoPi;
-    const Recording rec = run_rig(without_ripple(shudder::test::rig_model(sc).params), clutch, shudder::test::rig_model(sc).cycle, shudder::test::rig_model(sc).settings);
+    const Recording rec = run_rig(without_ripple(shudder::test::rig_model(sc).params), clutch,
+                                  shudder::test::rig_model(sc).cycle, shudder::test::rig_model(sc).settings);
     const auto& t = signal(rec, "time_s");
     const auto& wh = signal(rec, "housing_speed_rpm");
     const auto& slip = signal(rec, "slip_rpm");
@@ -398,8 +400,8 @@ TEST(RigShudder, NegativeSlopeFluidOscillatesAtTheClutchSideDampedFrequencyAndFo
     record("bar_" + std::to_string(static_cast<int>(bars_Hz[b])) + "Hz",
            "bar %.0f Hz: damped %.4f Hz, measured %.4f Hz (%+.3e, %d crossings), "
            "amplitude %.3e -> %.3e rpm, min slip %.3f rpm, stick events %g",
-           bars_Hz[b], f_damped, measured_Hz[b], measured_Hz[b] / f_damped - 1.0, crossings,
-           a_start, a_end, min_slip, scalar(rec, "stick_events"));
+           bars_Hz[b], f_damped, measured_Hz[b], measured_Hz[b] / f_damped - 1.0, crossings, a_start, a_end, min_slip,
+           scalar(rec, "stick_events"));
     EXPECT_GT(a_end, 100.0 * a_start);
     EXPECT_GT(a_end, 1.0);  // rpm: a visible shudder, not round-off
     EXPECT_GT(min_slip, 0.0);
@@ -443,7 +445,8 @@ TEST(RigStickSlip, SlipReturnsToZeroEveryCycleStuckIsExactAndTheJumpIsTwiceTheFr
   const WetClutch clutch = sc.make_clutch();
   auto settings = shudder::test::rig_model(sc).settings;
   settings.sample_rate_Hz = 200e3;
-  const Recording rec = run_rig(without_ripple(shudder::test::rig_model(sc).params), clutch, shudder::test::rig_model(sc).cycle, settings);
+  const Recording rec = run_rig(without_ripple(shudder::test::rig_model(sc).params), clutch,
+                                shudder::test::rig_model(sc).cycle, settings);
   const auto& t = signal(rec, "time_s");
   const auto& T = signal(rec, "torque_Nm");
   const auto& slip = signal(rec, "slip_rpm");
@@ -458,7 +461,7 @@ TEST(RigStickSlip, SlipReturnsToZeroEveryCycleStuckIsExactAndTheJumpIsTwiceTheFr
       ++n_stuck;
       ASSERT_EQ(slip[k], 0.0) << "t = " << t[k];
     }
-  EXPECT_GT(n_stuck, 100000);  // stuck most of the time (~2/3 of each cycle)
+  EXPECT_GT(n_stuck, 100000);     // stuck most of the time (~2/3 of each cycle)
   ASSERT_EQ(stuck.front(), 1.0);  // started at rest, stuck
 
   // First breakaway.
@@ -505,7 +508,8 @@ TEST(RigStickSlip, SlipReturnsToZeroEveryCycleStuckIsExactAndTheJumpIsTwiceTheFr
   const double T_s = law.static_capacity_Nm(start, t_mid, 0.0);
   const double T_k = law.kinetic_torque_Nm(start, 0.0, t_mid);
   const double expected = 2.0 * (T_s - T_k);
-  const double e_v = 2.0 * (law.kinetic_torque_Nm(start, shudder::units::rpm_to_rad_s(v_peak_rpm), t_mid) - T_k) / expected;
+  const double e_v =
+      2.0 * (law.kinetic_torque_Nm(start, shudder::units::rpm_to_rad_s(v_peak_rpm), t_mid) - T_k) / expected;
   const double e_z = 0.5 * (1.0 - std::exp(-std::numbers::pi * shudder::test::rig_model(sc).params.bar_damping_ratio));
   const double e_i = 0.03;
   EXPECT_NEAR(T_s / T_k, 1.3, 1e-9);  // the fluid's breakaway ratio, one load, one temperature
@@ -530,9 +534,9 @@ TEST(RigStickSlip, SlipReturnsToZeroEveryCycleStuckIsExactAndTheJumpIsTwiceTheFr
          "T_s %.4f, T_k %.4f, 2(T_s-T_k) %.4f N m; %zu jumps in [%.4f, %.4f] (%+.3e .. %+.3e), "
          "after 0.5 s [%.4f, %.4f]; v_peak %.3f rpm, e_v %.4f, e_z %.4f; stick events %g, "
          "breakaways %g; temp rise %.4f K",
-         T_s, T_k, expected, jumps.size(), lo, hi, lo / expected - 1.0, hi / expected - 1.0,
-         lo_late, hi_late, v_peak_rpm, e_v, e_z, scalar(rec, "stick_events"),
-         scalar(rec, "breakaway_events"), temp.back() - temp.front());
+         T_s, T_k, expected, jumps.size(), lo, hi, lo / expected - 1.0, hi / expected - 1.0, lo_late, hi_late,
+         v_peak_rpm, e_v, e_z, scalar(rec, "stick_events"), scalar(rec, "breakaway_events"),
+         temp.back() - temp.front());
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -71,8 +71,7 @@ concept SaysValidation = requires(const M& m) {
 };
 template <class M>
 concept HasEveryCapability = HasKind<M> && Simulates<M> && HasRunAnalysis<M> && SaysMeasuredRunExport<M> &&
-                             SaysSweep<M> && SaysReplay<M> && SaysModes<M> && SaysScreeningRig<M> &&
-                             SaysValidation<M>;
+    SaysSweep<M> && SaysReplay<M> && SaysModes<M> && SaysScreeningRig<M> && SaysValidation<M>;
 
 template <std::size_t... I>
 constexpr bool every_alternative_has_every_capability(std::index_sequence<I...>) {
@@ -120,8 +119,8 @@ TEST(ModelCapabilities, DrivelineExportsItsCouplingAndReplaysItAlone) {
   EXPECT_EQ(m.settings.thermal_step_s, dl.settings.slow_step_s);
   EXPECT_EQ(m.clutch.thermal.sump_volume_m3, sc.clutch.thermal.sump_volume_m3);  // the pack's own oil
   dynamics::Recording rec;
-  for (const char* name : {"time_s", "coupling_slip_rpm", "clamp_force_N", "coupling_torque_Nm", "coupling_temp_C",
-                           "coupling_oil_temp_C"})
+  for (const char* name :
+       {"time_s", "coupling_slip_rpm", "clamp_force_N", "coupling_torque_Nm", "coupling_temp_C", "coupling_oil_temp_C"})
     rec.add_signal(name, "").values = {0.0, 1.0};
   const rig_models::MeasuredExport e = rig_models::measured_run_export(dl, rec);
   EXPECT_EQ(e.rig, "haldex_coupling");
@@ -137,16 +136,19 @@ TEST(ModelCapabilities, KindsWithoutATorsionalNetworkRefuseModesAndScreeningNami
   const auto modes = [](const auto& m) { return rig_models::modal_subject(m); };
   const auto screening = [](const auto& m) -> const rig_models::RigParams& { return rig_models::screening_rig(m); };
   EXPECT_EQ(refusal(kPrescribed, "scenario.type", modes),
-            kPrescribed + ": key 'scenario.type': \"prescribed_slip\" has no torsional network; modes needs type = "
-                          "\"rig\" or \"driveline\"");
+            kPrescribed +
+                ": key 'scenario.type': \"prescribed_slip\" has no torsional network; modes needs type = "
+                "\"rig\" or \"driveline\"");
   // A driveline's modes are its linearisation about the manoeuvre (accepted).
   EXPECT_EQ(refusal(kDriveline, "scenario.type", modes), "(accepted)");
   EXPECT_EQ(refusal(kPrescribed, "scenario.type", screening),
-            kPrescribed + ": key 'scenario.type': \"prescribed_slip\" is not a rig; --rig needs a scenario with "
-                          "type = \"rig\"");
+            kPrescribed +
+                ": key 'scenario.type': \"prescribed_slip\" is not a rig; --rig needs a scenario with "
+                "type = \"rig\"");
   EXPECT_EQ(refusal(kDriveline, "scenario.type", screening),
-            kDriveline + ": key 'scenario.type': \"driveline\" is not a rig; --rig needs a scenario with type = "
-                         "\"rig\"");
+            kDriveline +
+                ": key 'scenario.type': \"driveline\" is not a rig; --rig needs a scenario with type = "
+                "\"rig\"");
 }
 
 TEST(ModelCapabilities, OnlyPrescribedSlipIsValidated) {
@@ -155,8 +157,9 @@ TEST(ModelCapabilities, OnlyPrescribedSlipIsValidated) {
   };
   EXPECT_EQ(refusal(kRig, "scenario.type", validation),
             kRig + ": key 'scenario.type': is rig; validation compares prescribed_slip runs with the papers");
-  EXPECT_EQ(refusal(kDriveline, "scenario.type", validation),
-            kDriveline + ": key 'scenario.type': is driveline; validation compares prescribed_slip runs with the papers");
+  EXPECT_EQ(
+      refusal(kDriveline, "scenario.type", validation),
+      kDriveline + ": key 'scenario.type': is driveline; validation compares prescribed_slip runs with the papers");
   EXPECT_EQ(refusal(kPrescribed, "scenario.type", validation), "(accepted)");
 }
 

@@ -135,10 +135,12 @@ TEST(MotorRipple, StableRigCaseStaysWithoutShudder) {
 namespace {
 
 std::string negative_slope_with(const std::string& motor_keys) {
-  const std::string text = "[scenario]\nname = \"x\"\ntype = \"rig\"\nduration_s = 1.0\n"
-                           "[clutch]\nfluid = \"fluids/schematic_negative_slope.toml\"\nstart_temp_C = 60.0\n"
-                           "[drive]\ntime_s = [0.0, 1.0]\nspeed_rpm = [30.0, 30.0]\nnormal_force_N = 15000.0\n"
-                           "[rig.motor]\n" + motor_keys + "\n";
+  const std::string text =
+      "[scenario]\nname = \"x\"\ntype = \"rig\"\nduration_s = 1.0\n"
+      "[clutch]\nfluid = \"fluids/schematic_negative_slope.toml\"\nstart_temp_C = 60.0\n"
+      "[drive]\ntime_s = [0.0, 1.0]\nspeed_rpm = [30.0, 30.0]\nnormal_force_N = 15000.0\n"
+      "[rig.motor]\n" +
+      motor_keys + "\n";
   return text;
 }
 const std::string kPath = std::string(SHUDDER_SOURCE_DIR) + "/scenarios/ripple.toml";

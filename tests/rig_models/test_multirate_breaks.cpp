@@ -24,7 +24,8 @@ TEST(MultirateBreaks, EachBreakIsTakenOnceAtItsTime) {
   sim.initialize(0.0, Eigen::VectorXd::Zero(1), Eigen::VectorXd::Constant(1, 1.0), Eigen::VectorXd());
   const double period_s = 0.01, duration_s = 3.0;
   std::vector<double> breaks;
-  for (long k = 1; static_cast<double>(k) * period_s < duration_s - 1e-12; ++k) breaks.push_back(static_cast<double>(k) * period_s);
+  for (long k = 1; static_cast<double>(k) * period_s < duration_s - 1e-12; ++k)
+    breaks.push_back(static_cast<double>(k) * period_s);
   std::vector<double> taken;
   run_multirate(
       sim, {}, duration_s, period_s, 1000.0, [](const dynamics::Sample&) {}, [](const SlowStep&) {}, breaks,

@@ -117,7 +117,8 @@ class RampPrediction {
   // The oscillatory mode at speed v of the ramp; the temperature is the run's, or `temp_C`.
   shudder::rig_models::StabilityPoint point(double v, double temp_C = std::nan("")) const {
     const double T = std::isnan(temp_C) ? temp_at_speed(v) : temp_C;
-    return shudder::rig_models::rig_stability(shudder::test::rig_model(sc_).params, clutch_, shudder::test::rig_model(sc_).cycle.normal_force_N(time_at(v)), v, T);
+    return shudder::rig_models::rig_stability(shudder::test::rig_model(sc_).params, clutch_,
+                                              shudder::test::rig_model(sc_).cycle.normal_force_N(time_at(v)), v, T);
   }
   double margin(double v, double temp_C = std::nan("")) const { return point(v, temp_C).oscillatory_margin_per_s; }
 
@@ -175,7 +176,9 @@ CaseResult compare(const std::string& scenario_name, double bar_Hz) {
   // on the ramp and adds a resonant floor to the band the onset is fitted in: switched off.
   shudder::test::rig_model(sc).params.motor_ripple.amplitude_Nm = 0.0;
   const auto clutch = sc.make_clutch();
-  const Recording rec = shudder::rig_models::run_rig(shudder::test::rig_model(sc).params, clutch, shudder::test::rig_model(sc).cycle, shudder::test::rig_model(sc).settings);
+  const Recording rec =
+      shudder::rig_models::run_rig(shudder::test::rig_model(sc).params, clutch, shudder::test::rig_model(sc).cycle,
+                                   shudder::test::rig_model(sc).settings);
 
   DetectionSettings settings;
   settings.onset_definition = OnsetDefinition::kGrowthRateZero;
@@ -233,14 +236,10 @@ void compare_fluid(const std::string& scenario_name, std::vector<CaseResult>* ou
 }  // namespace
 
 // Friction maximum at 10 rpm with a gentle fall above it: onsets at ~13, ~16 and ~19 rpm.
-TEST(PredictionVsSimulation, RampPeak10OnsetSpeedAndFrequencyOnThreeBars) {
-  compare_fluid("rig_ramp_peak10.toml");
-}
+TEST(PredictionVsSimulation, RampPeak10OnsetSpeedAndFrequencyOnThreeBars) { compare_fluid("rig_ramp_peak10.toml"); }
 
 // Maximum at 20 rpm with a steeper fall: onsets close above it (~21-25 rpm).
-TEST(PredictionVsSimulation, RampPeak20OnsetSpeedAndFrequencyOnThreeBars) {
-  compare_fluid("rig_ramp_peak20.toml");
-}
+TEST(PredictionVsSimulation, RampPeak20OnsetSpeedAndFrequencyOnThreeBars) { compare_fluid("rig_ramp_peak20.toml"); }
 
 // Maximum at 16 rpm at 40 degC, moving 0.83 rpm lower per K: the warming along the ramp
 // (+2-4 K by the onset) brings the onset earlier, so the prediction must use the run's
@@ -267,8 +266,10 @@ TEST(PredictionVsSimulation, SweepTorsionBarHasBothVerdictsSplitWhereCriticalBar
   using namespace shudder::test;
   const Scenario sc = scenario("sweep_torsion_bar.toml");
   const auto clutch = sc.make_clutch();
-  const double force = shudder::test::rig_model(sc).cycle.normal_force_N(0.0), speed = shudder::test::rig_model(sc).cycle.slip_speed_rpm(0.0);
-  const auto crit = shudder::rig_models::critical_bar(shudder::test::rig_model(sc).params, clutch, force, speed, sc.clutch.start_temp_C);
+  const double force = shudder::test::rig_model(sc).cycle.normal_force_N(0.0),
+               speed = shudder::test::rig_model(sc).cycle.slip_speed_rpm(0.0);
+  const auto crit = shudder::rig_models::critical_bar(shudder::test::rig_model(sc).params, clutch, force, speed,
+                                                      sc.clutch.start_temp_C);
   EXPECT_NEAR(crit.frequency_Hz, 355.2, 0.1);  // as documented in the scenario's header
   // Soft side unstable, stiff side stable.
   auto soft = shudder::test::rig_model(sc).params, stiff = shudder::test::rig_model(sc).params;

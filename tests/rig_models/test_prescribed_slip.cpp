@@ -94,8 +94,7 @@ TEST(PrescribedSlip, GeneratedHeatIsTheIntegralOfTorqueTimesSlipAndTheLedgerClos
   EXPECT_NEAR(trapezoid_work_J(frozen) / e_frozen, 1.0, 1e-6);
 
   const double e_live = scalar(live, "heat_generated_J");
-  const double dM_T = std::abs(signal(live, "clutch_torque_Nm").back() -
-                               signal(frozen, "clutch_torque_Nm").back());
+  const double dM_T = std::abs(signal(live, "clutch_torque_Nm").back() - signal(frozen, "clutch_torque_Nm").back());
   const double w_max = 100.0 * kRadPerSPerRpm;
   const double bound = 0.5 * dt * w_max * dM_T + 1e-6 * e_live;  // 6e-5 relative
   EXPECT_NEAR(trapezoid_work_J(live), e_live, bound);
@@ -104,8 +103,7 @@ TEST(PrescribedSlip, GeneratedHeatIsTheIntegralOfTorqueTimesSlipAndTheLedgerClos
   for (const Recording* rec : {&frozen, &live}) {
     EXPECT_LT(scalar(*rec, "energy_balance_relative_error"), 1e-9);
     // The ledger's parts add up in the recorded scalars too (tolerance: round-off of J sums).
-    EXPECT_NEAR(scalar(*rec, "heat_stored_in_discs_J") + scalar(*rec, "heat_to_sump_J") +
-                    scalar(*rec, "heat_to_rig_J"),
+    EXPECT_NEAR(scalar(*rec, "heat_stored_in_discs_J") + scalar(*rec, "heat_to_sump_J") + scalar(*rec, "heat_to_rig_J"),
                 scalar(*rec, "heat_generated_J"), 1e-9 * scalar(*rec, "heat_generated_J"));
   }
 }
@@ -133,10 +131,12 @@ TEST(PrescribedSlip, RecordsTheFormatsSignalsWithConsistentUnitsAndLengths) {
   const Recording rec = run_prescribed_slip(case1_clutch(), case1_cycle(), settings(0.01, rate));
   ASSERT_FALSE(rec.signals.empty());
   EXPECT_EQ(rec.signals.front().name, "time_s");
-  const struct { const char* name; const char* units; } kRequired[] = {
-      {"time_s", "s"},       {"speed_rpm", "rpm"},     {"normal_force_N", "N"},
-      {"torque_Nm", "N m"},  {"temp_C", "degC"},       {"sump_temp_C", "degC"},
-      {"ir_temp_C", "degC"},
+  const struct {
+    const char* name;
+    const char* units;
+  } kRequired[] = {
+      {"time_s", "s"},    {"speed_rpm", "rpm"},    {"normal_force_N", "N"}, {"torque_Nm", "N m"},
+      {"temp_C", "degC"}, {"sump_temp_C", "degC"}, {"ir_temp_C", "degC"},
   };
   const std::size_t n_samples = static_cast<std::size_t>(10.0 * rate) + 1;
   for (const auto& req : kRequired) {

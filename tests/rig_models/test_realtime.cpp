@@ -94,7 +94,8 @@ TEST(Realtime, PrescribedSlipMatchesTheAdaptiveRunWithinTheThermalLagBound) {
   for (std::size_t k = 0; k < t_ad.size(); ++k) {
     const double w = speed[k] * 0.10471975511965977;
     const Eigen::VectorXd T = Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), t_if[k]);
-    dM_dT = std::max(dM_dT, std::abs(clutch.torque_Nm(w, force[k], T.array() + 1.0) - clutch.torque_Nm(w, force[k], T)));
+    dM_dT =
+        std::max(dM_dT, std::abs(clutch.torque_Nm(w, force[k], T.array() + 1.0) - clutch.torque_Nm(w, force[k], T)));
   }
   const Deviation temp = compare(rt, ad, "interface_max_temp_C", m.settings.thermal_step_s, 1e-4);
   const Deviation torque = compare(rt, ad, "torque_Nm", 0.0, 1e-4);

@@ -18,13 +18,12 @@ using shudder::rig_models::recording_detection;
 
 // 10 s at 200 Hz; torque = 100 + 20 e^(−t/τ) sin(2π f t) N m on `torque_name` (τ = ∞: steady),
 // a steady 30 rpm slip.
-Recording oscillating(const char* torque_name, const char* slip_name, double f_Hz,
-                      double decay_time_s = INFINITY) {
+Recording oscillating(const char* torque_name, const char* slip_name, double f_Hz, double decay_time_s = INFINITY) {
   std::vector<double> t, torque, slip;
   for (int i = 0; i <= 2000; ++i) {
     t.push_back(i / 200.0);
-    torque.push_back(100.0 + 20.0 * std::exp(-t.back() / decay_time_s) *
-                                     std::sin(2.0 * std::numbers::pi * f_Hz * t.back()));
+    torque.push_back(100.0 +
+                     20.0 * std::exp(-t.back() / decay_time_s) * std::sin(2.0 * std::numbers::pi * f_Hz * t.back()));
     slip.push_back(30.0);
   }
   Recording rec;

@@ -42,8 +42,8 @@
 namespace {
 
 using shudder::clutch::WetClutch;
-using shudder::io::Scenario;
 using shudder::io::load_scenario;
+using shudder::io::Scenario;
 using shudder::rig_models::critical_bar;
 using shudder::rig_models::critical_bar_damping_ratio;
 using shudder::rig_models::DriveCycle;
@@ -66,13 +66,13 @@ using shudder::test::record;
 struct Point {
   LsctrRig rig;
   shudder::rig_models::ClutchHeldInputs clutch_inputs;  // the operating point's held inputs
-  double slope_Nms;  // dM/d|Δω| of the clutch at the point
+  double slope_Nms;                                     // dM/d|Δω| of the clutch at the point
 };
 Point point(const Scenario& sc, const WetClutch& clutch, double force_N, double slip_rpm, double temp_C) {
   const DriveCycle cycle{PiecewiseLinear({0.0}, {slip_rpm}), PiecewiseLinear({0.0}, {force_N})};
   LsctrRig rig(shudder::test::rig_model(sc).params, clutch, cycle);
-  const shudder::rig_models::ClutchHeldInputs held{
-      Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), temp_C), cycle.normal_force_N};
+  const shudder::rig_models::ClutchHeldInputs held{Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), temp_C),
+                                                   cycle.normal_force_N};
   shudder::rig_models::ClutchContext context(held);
   const double s = rig.clutch_contact().kinetic_torque_slope_Nms(context, slip_rpm * kRadPerSPerRpm, 0.0);
   return {std::move(rig), held, s};
@@ -139,8 +139,8 @@ TEST(RigStability, NegativeSlopeFluidAt30RpmIsUnstableAtTheBarFrequency) {
   const std::complex<double> shift = s * s / (2.0 * Jh * zd);
   const double decoupled = -(c + s) / (2.0 * Jh);
   record("negative_slope_30rpm",
-         "margin %.6f 1/s, decoupled %.6f, corrected %.6f, frequency %.4f Hz, c_bar %.4f, s %.4f",
-         p.margin_per_s, decoupled, decoupled + shift.real(), p.frequency_Hz, c, s);
+         "margin %.6f 1/s, decoupled %.6f, corrected %.6f, frequency %.4f Hz, c_bar %.4f, s %.4f", p.margin_per_s,
+         decoupled, decoupled + shift.real(), p.frequency_Hz, c, s);
   EXPECT_FALSE(p.stable);
   EXPECT_GT(p.margin_per_s, 0.0);
   EXPECT_NEAR(p.frequency_Hz / 378.0, 1.0, 0.01);
@@ -161,7 +161,8 @@ TEST(RigStability, CriticalBarDampingRatioMatchesClosedForm) {
   const Scenario sc = scenario("rig_shudder_negative_slope.toml");
   const WetClutch clutch = sc.make_clutch();
   Point pt = point(sc, clutch, 15000.0, 30.0, 60.0);
-  const double s = pt.slope_Nms, Jh = shudder::test::rig_model(sc).params.housing_inertia_kg_m2, k = pt.rig.bar_stiffness_Nm_per_rad();
+  const double s = pt.slope_Nms, Jh = shudder::test::rig_model(sc).params.housing_inertia_kg_m2,
+               k = pt.rig.bar_stiffness_Nm_per_rad();
   const double wh = std::sqrt(k / Jh);
   const std::complex<double> zd = drive_impedance(pt.rig, s, wh);
   const double closed = -s / (2.0 * std::sqrt(k * Jh));
@@ -180,8 +181,10 @@ TEST(RigStability, CriticalBarDampingRatioMatchesClosedForm) {
   // Stable without damping at fluid C's point; no damping ratio up to 1 saves a point whose
   // damping the bracket cannot reach (2 ζ √(k J_h) <= 2·0.01·47.5 < −s).
   const Scenario c_sc = scenario("rig_case1_25kN_378Hz.toml");
-  EXPECT_EQ(critical_bar_damping_ratio(shudder::test::rig_model(c_sc).params, c_sc.make_clutch(), 15000.0, 50.0, 77.0), 0.0);
-  EXPECT_TRUE(std::isinf(critical_bar_damping_ratio(shudder::test::rig_model(sc).params, clutch, 15000.0, 30.0, 60.0, 0.01)));
+  EXPECT_EQ(critical_bar_damping_ratio(shudder::test::rig_model(c_sc).params, c_sc.make_clutch(), 15000.0, 50.0, 77.0),
+            0.0);
+  EXPECT_TRUE(
+      std::isinf(critical_bar_damping_ratio(shudder::test::rig_model(sc).params, clutch, 15000.0, 30.0, 60.0, 0.01)));
 }
 
 // Critical bar frequency at ζ = 1 %: σ_h ≈ −ζ ω − s/(2 J_h) = 0 at ω = −s/(2 ζ J_h); stiffer bars
@@ -192,7 +195,8 @@ TEST(RigStability, CriticalBarFrequencyMatchesClosedForm) {
   const Scenario sc = scenario("rig_shudder_negative_slope.toml");
   const WetClutch clutch = sc.make_clutch();
   Point pt = point(sc, clutch, 15000.0, 30.0, 60.0);
-  const double s = pt.slope_Nms, Jh = shudder::test::rig_model(sc).params.housing_inertia_kg_m2, zeta = shudder::test::rig_model(sc).params.bar_damping_ratio;
+  const double s = pt.slope_Nms, Jh = shudder::test::rig_model(sc).params.housing_inertia_kg_m2,
+               zeta = shudder::test::rig_model(sc).params.bar_damping_ratio;
   const double w_closed = -s / (2.0 * zeta * Jh);
   const std::complex<double> zd = drive_impedance(pt.rig, s, w_closed);
   const double w_corrected = -(s - s * s * zd.real() / std::norm(zd)) / (2.0 * zeta * Jh);
@@ -208,7 +212,8 @@ TEST(RigStability, CriticalBarFrequencyMatchesClosedForm) {
   params.bar_natural_frequency_Hz = 1.1 * bar.frequency_Hz;
   EXPECT_TRUE(rig_stability(params, clutch, 15000.0, 30.0, 60.0).stable);
   // No sign change in the bracket: NaN.
-  EXPECT_TRUE(std::isnan(critical_bar(shudder::test::rig_model(sc).params, clutch, 15000.0, 30.0, 60.0, 1000.0, 2000.0).frequency_Hz));
+  EXPECT_TRUE(std::isnan(
+      critical_bar(shudder::test::rig_model(sc).params, clutch, 15000.0, 30.0, 60.0, 1000.0, 2000.0).frequency_Hz));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -247,7 +252,8 @@ TEST(RigStability, MapMatchesPointsAndOnsetSpeedMatchesClosedForm) {
       // Z_h' = J_h − k/λ₀² (file comment). |Δλ| is up to 7 1/s here (3 rpm); what first order
       // leaves, ~|Δλ|²/|λ₀|, is below 1e-2 |Δλ|.
       Point pt_ij = point(sc, clutch, force, speeds[i], temps[j]);
-      const double Jh = shudder::test::rig_model(sc).params.housing_inertia_kg_m2, k = pt_ij.rig.bar_stiffness_Nm_per_rad();
+      const double Jh = shudder::test::rig_model(sc).params.housing_inertia_kg_m2,
+                   k = pt_ij.rig.bar_stiffness_Nm_per_rad();
       const double sv = pt_ij.slope_Nms;
       const double sigma = -(pt_ij.rig.bar_damping_Nms_per_rad() + sv) / (2.0 * Jh);
       const std::complex<double> l0(sigma, std::sqrt(k / Jh - sigma * sigma));
@@ -279,10 +285,12 @@ TEST(RigStability, SaturatedMotorIsAnErrorForAPointAndNaNInAMap) {
 TEST(RigStability, BadInputNamesTheQuantity) {
   const Scenario sc = scenario("rig_shudder_negative_slope.toml");
   const WetClutch clutch = sc.make_clutch();
-  EXPECT_THAT([&] { rig_stability(shudder::test::rig_model(sc).params, clutch, 0.0, 30.0, 60.0); },
-              ::testing::ThrowsMessage<std::invalid_argument>(::testing::HasSubstr("normal force must be finite and > 0 N")));
-  EXPECT_THAT([&] { stability_map(shudder::test::rig_model(sc).params, clutch, 15000.0, {30.0}, {NAN}); },
-              ::testing::ThrowsMessage<std::invalid_argument>(::testing::HasSubstr("interface temperature must be finite")));
+  EXPECT_THAT(
+      [&] { rig_stability(shudder::test::rig_model(sc).params, clutch, 0.0, 30.0, 60.0); },
+      ::testing::ThrowsMessage<std::invalid_argument>(::testing::HasSubstr("normal force must be finite and > 0 N")));
+  EXPECT_THAT(
+      [&] { stability_map(shudder::test::rig_model(sc).params, clutch, 15000.0, {30.0}, {NAN}); },
+      ::testing::ThrowsMessage<std::invalid_argument>(::testing::HasSubstr("interface temperature must be finite")));
   EXPECT_THAT([&] { critical_bar(shudder::test::rig_model(sc).params, clutch, 15000.0, 30.0, 60.0, 500.0, 100.0); },
               ::testing::ThrowsMessage<std::invalid_argument>(::testing::HasSubstr("0 < lo_Hz < hi_Hz")));
 }

@@ -23,7 +23,6 @@
 namespace shudder::rig_models {
 namespace {
 
-
 // The closed forms below are for a loop without the motor's torque ripple (their inputs carry
 // none), so the estimator is told there is none.
 RigParams without_ripple() {
@@ -91,11 +90,13 @@ TEST(SpeedSetpoint, RecoversTheSetPointOfAStickSlipRun) {
   shudder::test::rig_model(sc).params.stick_time.enabled = true;
   shudder::test::rig_model(sc).params.stick_time.max_increase = 0.15;
   shudder::test::rig_model(sc).params.stick_time.time_constant_s = 0.05;
-  const auto rec = run_rig(shudder::test::rig_model(sc).params, sc.make_clutch(), shudder::test::rig_model(sc).cycle, shudder::test::rig_model(sc).settings);
+  const auto rec = run_rig(shudder::test::rig_model(sc).params, sc.make_clutch(), shudder::test::rig_model(sc).cycle,
+                           shudder::test::rig_model(sc).settings);
   const auto& t = test::signal(rec, "time_s");
   const auto& drive = test::signal(rec, "speed_rpm");
   const auto speed = window_means(t, drive);
-  const auto sp = window_means(t, estimate_speed_setpoint(t, drive, test::signal(rec, "torque_Nm"), shudder::test::rig_model(sc).params));
+  const auto sp = window_means(
+      t, estimate_speed_setpoint(t, drive, test::signal(rec, "torque_Nm"), shudder::test::rig_model(sc).params));
   double worst_drive = 0, worst_estimate = 0, mean = 0;
   int n = 0;
   for (std::size_t k = 0; k < sp.values().size(); ++k) {

@@ -89,7 +89,8 @@ TEST(Tyre, PowerBalanceHoldsWhileTheLoadChanges) {
       std::array<double, 3> zp = z, zm = z;
       zp[static_cast<std::size_t>(i)] += h;
       zm[static_cast<std::size_t>(i)] -= h;
-      de_dt += (t.stored_energy_J(zp.data()) - t.stored_energy_J(zm.data())) / (2 * h) * dz[static_cast<std::size_t>(i)];
+      de_dt +=
+          (t.stored_energy_J(zp.data()) - t.stored_energy_J(zm.data())) / (2 * h) * dz[static_cast<std::size_t>(i)];
     }
     const double power_in = out.torque_Nm * (w_wheel - w_ground);
     EXPECT_NEAR(power_in, de_dt + out.dissipated_W, 1e-6 * std::abs(power_in)) << "u = " << u;

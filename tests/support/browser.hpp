@@ -91,9 +91,9 @@ inline BrowserCheck check_in_browser(const std::filesystem::path& page, const st
   const fs::path profile = fs::temp_directory_path() / ("shudder_chromium_profile_" + std::to_string(::getpid()));
   const fs::path dom = page.parent_path() / "browser_check_dom.txt", log = page.parent_path() / "browser_check_log.txt";
   const std::string cmd = "timeout 120 " + exe +
-                          " --headless --disable-gpu --no-sandbox --no-first-run --user-data-dir='" +
-                          profile.string() + "' --virtual-time-budget=10000 --dump-dom 'file://" +
-                          fs::absolute(copy).string() + "' >'" + dom.string() + "' 2>'" + log.string() + "'";
+                          " --headless --disable-gpu --no-sandbox --no-first-run --user-data-dir='" + profile.string() +
+                          "' --virtual-time-budget=10000 --dump-dom 'file://" + fs::absolute(copy).string() + "' >'" +
+                          dom.string() + "' 2>'" + log.string() + "'";
   (void)std::system(cmd.c_str());
   c.dom = slurp(dom);
   c.log = slurp(log);

@@ -32,8 +32,7 @@ inline std::string slurp(const std::filesystem::path& p) {
 /// A fresh, empty directory under the system temp dir, unique per name.
 inline std::filesystem::path scratch_dir(const std::string& name) {
   // The process id keeps concurrent test runs (two checkouts, CI beside a developer) apart.
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("shudder_test_" + name + "_" + std::to_string(::getpid()));
+  const auto dir = std::filesystem::temp_directory_path() / ("shudder_test_" + name + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
@@ -47,8 +46,8 @@ inline CliResult run_cli(const std::string& args, const std::filesystem::path& c
   const std::string tag = std::to_string(::getpid()) + "_" + std::to_string(++calls);
   const auto capture = std::filesystem::temp_directory_path();
   const auto out = capture / ("shudder_cli_" + tag + ".out"), err = capture / ("shudder_cli_" + tag + ".err");
-  const std::string cmd = "cd '" + cwd.string() + "' && '" + std::string(SHUDDER_CLI) + "' " +
-                          args + " >'" + out.string() + "' 2>'" + err.string() + "'";
+  const std::string cmd = "cd '" + cwd.string() + "' && '" + std::string(SHUDDER_CLI) + "' " + args + " >'" +
+                          out.string() + "' 2>'" + err.string() + "'";
   const int status = std::system(cmd.c_str());
   CliResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -59,13 +58,9 @@ inline CliResult run_cli(const std::string& args, const std::filesystem::path& c
   return r;
 }
 
-inline void write_file(const std::filesystem::path& p, const std::string& text) {
-  std::ofstream(p) << text;
-}
+inline void write_file(const std::filesystem::path& p, const std::string& text) { std::ofstream(p) << text; }
 
-inline std::string source_path(const std::string& rel) {
-  return std::string(SHUDDER_SOURCE_DIR) + "/" + rel;
-}
+inline std::string source_path(const std::string& rel) { return std::string(SHUDDER_SOURCE_DIR) + "/" + rel; }
 
 /// `s` with the first `from` replaced by `to`; a missing `from` is a test-setup failure.
 inline std::string replace(std::string s, const std::string& from, const std::string& to) {

@@ -15,8 +15,8 @@ struct Json {
   enum class Type { kNull, kBool, kNumber, kString, kArray, kObject } type = Type::kNull;
   bool boolean = false;
   double number = 0.0;
-  std::string text;                                   // kString
-  std::vector<Json> items;                            // kArray
+  std::string text;         // kString
+  std::vector<Json> items;  // kArray
   // A named struct rather than std::pair: libstdc++'s pair needs a complete Json here, which
   // clang (the sanitizer build) enforces; vector<incomplete> is allowed since C++17.
   struct Member;
@@ -104,7 +104,10 @@ class Parser {
         expect(':');
         v.members.push_back(Json::Member{std::move(k), value()});
         ws();
-        if (peek() == ',') { ++i_; continue; }
+        if (peek() == ',') {
+          ++i_;
+          continue;
+        }
         expect('}');
         return v;
       }
@@ -117,7 +120,10 @@ class Parser {
       for (;;) {
         v.items.push_back(value());
         ws();
-        if (peek() == ',') { ++i_; continue; }
+        if (peek() == ',') {
+          ++i_;
+          continue;
+        }
         expect(']');
         return v;
       }
@@ -128,8 +134,15 @@ class Parser {
       return v;
     }
     if (literal("null")) return v;
-    if (literal("true")) { v.type = Json::Type::kBool; v.boolean = true; return v; }
-    if (literal("false")) { v.type = Json::Type::kBool; return v; }
+    if (literal("true")) {
+      v.type = Json::Type::kBool;
+      v.boolean = true;
+      return v;
+    }
+    if (literal("false")) {
+      v.type = Json::Type::kBool;
+      return v;
+    }
     v.type = Json::Type::kNumber;
     v.number = number();
     return v;
@@ -138,9 +151,12 @@ class Parser {
   double number() {
     const std::size_t start = i_;
     if (peek() == '-') ++i_;
-    if (peek() == '0') ++i_;
-    else if (digit(peek())) while (digit(peek())) ++i_;
-    else fail("expected a value");
+    if (peek() == '0')
+      ++i_;
+    else if (digit(peek()))
+      while (digit(peek())) ++i_;
+    else
+      fail("expected a value");
     if (peek() == '.') {
       ++i_;
       if (!digit(peek())) fail("digit expected after '.'");
@@ -162,7 +178,10 @@ class Parser {
       const char c = s_[i_++];
       if (c == '"') return out;
       if (static_cast<unsigned char>(c) < 0x20) fail("unescaped control character in a string");
-      if (c != '\\') { out += c; continue; }
+      if (c != '\\') {
+        out += c;
+        continue;
+      }
       const char e = peek();
       ++i_;
       switch (e) {

@@ -20,7 +20,13 @@ namespace shudder::test {
 inline constexpr double kLinearNoiseTorqueNm = 0.05, kLinearNoiseTempC = 0.02;
 
 inline std::vector<analysis::EffectCandidate> linear_candidates() {
-  return {{"torque_slope", "torque rises with the sliding speed", {"slope_Nm_per_rpm"}, {{0.05}, {1.0}}, {1e-3}, {10.0}, {}},
+  return {{"torque_slope",
+           "torque rises with the sliding speed",
+           {"slope_Nm_per_rpm"},
+           {{0.05}, {1.0}},
+           {1e-3},
+           {10.0},
+           {}},
           {"extra_heating", "the discs heat faster", {"rate_K_per_s"}, {{0.05}, {1.0}}, {1e-3}, {10.0}, {}}};
 }
 

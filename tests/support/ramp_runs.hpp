@@ -50,8 +50,8 @@ inline void other_thermal_model(clutch::WetClutchParams& p) {
 /// One simulated run of `cycle` from `start_temp_C` (discs and sump), sampled at `rate_Hz` with
 /// sensor noise (seed), as the characterisation reads it. `temp_channel` may also name a model
 /// signal the measured run does not carry; `interface_mean_C` (if given) gets the model's
-/// area-mean interface temperature at the same samples (where the ramps passed); `vary` changes the clutch and thermal parameters
-/// (another thermal model than the one the characterisation is judged by). `temp_channel` may name a model
+/// area-mean interface temperature at the same samples (where the ramps passed); `vary` changes the clutch and thermal
+/// parameters (another thermal model than the one the characterisation is judged by). `temp_channel` may name a model
 /// signal the measured run does not carry (e.g. interface_mean_temp_C: the temperature a
 /// sensor would need to read for exact compensation), taken noise-free from the recording.
 inline analysis::RampRun simulated_ramp_run(const clutch::Fluid& fluid, const rig_models::DriveCycle& cycle,
@@ -76,8 +76,8 @@ inline analysis::RampRun simulated_ramp_run(const clutch::Fluid& fluid, const ri
   const std::vector<double>* temp = m.column(temp_channel);
   if (!temp) temp = &rec.find(temp_channel)->values;  // same samples: no resampling asked for
   if (interface_mean_C) *interface_mean_C = rec.find("interface_mean_temp_C")->values;
-  return {m.path, m.required("time_s"), m.required("speed_rpm"), m.required("normal_force_N"),
-          m.required("torque_Nm"), *temp};
+  return {m.path, m.required("time_s"), m.required("speed_rpm"), m.required("normal_force_N"), m.required("torque_Nm"),
+          *temp};
 }
 
 }  // namespace shudder::test

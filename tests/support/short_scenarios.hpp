@@ -14,7 +14,8 @@ inline std::string short_rig_scenario() {
   std::string s = slurp(source_path("scenarios/rig_shudder_negative_slope.toml"));
   s = replace(s, "duration_s = 2.0", "duration_s = 0.8");
   s = replace(s, "time_s = [0.0, 2.0]", "time_s = [0.0, 0.8]");
-  return replace(s, "fluids/schematic_negative_slope.toml", source_path("scenarios/fluids/schematic_negative_slope.toml"));
+  return replace(s, "fluids/schematic_negative_slope.toml",
+                 source_path("scenarios/fluids/schematic_negative_slope.toml"));
 }
 
 // Paper G Case 1 (prescribed slip) shortened to 3 s.

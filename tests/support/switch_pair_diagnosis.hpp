@@ -53,7 +53,10 @@ inline std::vector<analysis::DiagnosisRun> switch_pair_runs(const std::vector<an
   std::vector<analysis::DiagnosisRun> runs;
   std::mt19937 rng(seed);
   std::normal_distribution<double> torque_noise(0.0, 0.1), temp_noise(0.0, 0.05);
-  const struct { double load; const char* name; } spec[] = {{10.0, "L10"}, {25.0, "L25"}, {15.0, "L15"}};
+  const struct {
+    double load;
+    const char* name;
+  } spec[] = {{10.0, "L10"}, {25.0, "L25"}, {15.0, "L15"}};
   for (const auto& [load, name] : spec) {
     analysis::DiagnosisRun run;
     run.name = name + name_suffix;
