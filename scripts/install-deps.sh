@@ -18,6 +18,7 @@ rest_packages=(
   libbenchmark-dev       # benchmarks
   gnuplot-nox            # plots (PNG/SVG), driven by the program
   chromium               # the report tests load index.html headless and fail on a missing image or script error
+  clang-format           # the C/C++ layout check of the test command (scripts/check-format.sh, .clang-format)
   clang                  # libFuzzer harnesses (fuzz/, scripts/sanitize.sh): -fsanitize=fuzzer is clang-only
   libclang-rt-14-dev     # clang 14's runtimes: libFuzzer, ASan and UBSan (libfuzzer-14-dev is not needed)
   pybind11-dev python3-dev  # the Python module (python/; docs/python.md), for Debian's /usr/bin/python3

@@ -9,6 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 start=$SECONDS
 bash scripts/build.sh
+bash scripts/check-format.sh  # the layout of .clang-format on every tracked C/C++ file
 ctest --test-dir build --output-on-failure -j"$(nproc)"
 plain=$((SECONDS - start))
 echo "test: build and ctest took $plain s"
