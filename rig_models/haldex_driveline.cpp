@@ -313,6 +313,110 @@ Eigen::VectorXd HaldexDriveline::rolling_speed_ratios() const {
   return s;
 }
 
+namespace {
+
+using DrivelineRecorder = ChannelRecorder<dynamics::Sample, clutch::ThermalState>;
+
+// The run's channels: mechanical ones and the coupling's pressure and valve (its contact law's
+// states, from index z_coupling) at every sample, the interface temperatures from the thermal
+// state, interpolated across each slow step.
+std::vector<DrivelineRecorder::Channel> driveline_channels(
+    const HaldexDriveline& dl, const DrivelineParams& params, const clutch::ThermalModel& th, int z_coupling,
+    const std::function<double(const dynamics::Sample&)>& clamp_force_N) {
+  namespace sn = dynamics::signal_names;
+  using Recorder = DrivelineRecorder;
+  using clutch::ThermalState;
+  using dynamics::Sample;
+  using D = HaldexDriveline;
+  const auto pressure_bar = [z_coupling](const Sample& s) {
+    return s.contact_states[z_coupling + HaldexCouplingLaw::kPressure];
+  };
+  return {
+      Recorder::sampled(sn::kTime, "s", [](const Sample& s) { return s.t_s; }),
+      Recorder::sampled(sn::kEngineSpeed, "rpm",
+                        [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kEngine]); }),
+      Recorder::sampled(sn::kVehicleSpeed, "km/h",
+                        [r = params.wheel_radius_m](const Sample& s) { return s.omega_rad_s[D::kVehicle] * r * 3.6; }),
+      // An axle's wheel speed: the mean of its two wheels, the carrier's speed.
+      Recorder::sampled(sn::kFrontWheelSpeed, "rpm",
+                        [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kFrontDiff]); }),
+      Recorder::sampled(sn::kRearWheelSpeed, "rpm",
+                        [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kRearDiff]); }),
+      Recorder::sampled(sn::kCouplingSlip, "rpm",
+                        [](const Sample& s) { return units::rad_s_to_rpm(s.contact_slip_rad_s[D::kCoupling]); }),
+      Recorder::sampled(sn::kCouplingTorque, "N m", [](const Sample& s) { return s.contact_torque_Nm[D::kCoupling]; }),
+      Recorder::sampled(sn::kFrontAxleTorque, "N m",
+                        [](const Sample& s) {
+                          return s.shaft_torque_Nm[D::kFrontLeftHalfshaft] + s.shaft_torque_Nm[D::kFrontRightHalfshaft];
+                        }),
+      Recorder::sampled(sn::kRearAxleTorque, "N m",
+                        [](const Sample& s) {
+                          return s.shaft_torque_Nm[D::kRearLeftHalfshaft] + s.shaft_torque_Nm[D::kRearRightHalfshaft];
+                        }),
+      Recorder::sampled(sn::kEngineTorque, "N m",
+                        [&dl](const Sample& s) { return dl.engine_torque_Nm(s.t_s, s.omega_rad_s[D::kEngine]); }),
+      Recorder::sampled(
+          sn::kStuck, "1",
+          [](const Sample& s) { return static_cast<double>(s.modes[D::kCoupling] == dynamics::ContactMode::kStuck); }),
+      Recorder::sampled(sn::kPressure, "bar", pressure_bar),
+      Recorder::sampled(
+          sn::kValveOpening, "1",
+          [z_coupling](const Sample& s) { return s.contact_states[z_coupling + HaldexCouplingLaw::kOpening]; }),
+      Recorder::sampled(sn::kClampForce, "N", clamp_force_N),
+      Recorder::sampled(sn::kWheelSpeedFL, "rpm",
+                        [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kFrontLeftWheel]); }),
+      Recorder::sampled(sn::kWheelSpeedFR, "rpm",
+                        [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kFrontRightWheel]); }),
+      Recorder::sampled(sn::kWheelSpeedRL, "rpm",
+                        [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kRearLeftWheel]); }),
+      Recorder::sampled(sn::kWheelSpeedRR, "rpm",
+                        [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kRearRightWheel]); }),
+      Recorder::sampled(sn::kTyreForceFL, "N",
+                        [r = params.wheel_radius_m](const Sample& s) { return s.element_torque_Nm[D::kFL] / r; }),
+      Recorder::sampled(sn::kTyreForceFR, "N",
+                        [r = params.wheel_radius_m](const Sample& s) { return s.element_torque_Nm[D::kFR] / r; }),
+      Recorder::sampled(sn::kTyreForceRL, "N",
+                        [r = params.wheel_radius_m](const Sample& s) { return s.element_torque_Nm[D::kRL] / r; }),
+      Recorder::sampled(sn::kTyreForceRR, "N",
+                        [r = params.wheel_radius_m](const Sample& s) { return s.element_torque_Nm[D::kRR] / r; }),
+      Recorder::sampled(
+          sn::kRoadLoad, "N",
+          [r = params.wheel_radius_m](const Sample& s) { return s.element_torque_Nm[D::kRoadLoadElement] / r; }),
+      Recorder::interpolated(sn::kInterfaceMeanTemp, "degC",
+                             [&th](const ThermalState& state) { return th.mean_interface_temp_C(state); }),
+      Recorder::interpolated(sn::kInterfaceMaxTemp, "degC",
+                             [&th](const ThermalState& state) { return th.interface_temps_C(state).maxCoeff(); }),
+      // What an instrumented coupling's sensors read (a measured vehicle run, coupling_measurement.hpp).
+      Recorder::interpolated(sn::kCouplingTemp, "degC", [](const ThermalState& state) { return state.sensor_temp_C; }),
+      Recorder::interpolated(sn::kCouplingOilTemp, "degC", [](const ThermalState& state) { return state.sump_temp_C; }),
+  };
+}
+
+// The control unit's instants: every control period after t = 0 and before the run's end,
+// independent of the thermal step.
+std::vector<double> control_instants_s(double control_period_s, double duration_s) {
+  std::vector<double> times;
+  for (long k = 1; static_cast<double>(k) * control_period_s < duration_s - 1e-12; ++k)
+    times.push_back(static_cast<double>(k) * control_period_s);
+  return times;
+}
+
+// Judder or stick-slip of the coupling, judged on its torque and slip as on the rig, with the
+// channels and band every reader of this recording uses (rig_models/recording_detection.hpp).
+analysis::ShudderResult judge_coupling(const dynamics::Recording& rec) {
+  const RecordingDetection detection = *recording_detection(rec);
+  analysis::ShudderResult judder;
+  try {
+    judder = judge_recording(detection);
+  } catch (const std::invalid_argument&) {
+    judder.verdict = analysis::Verdict::kNone;  // too short a record to judge (< 64 samples)
+    judder.frequency_Hz = judder.amplitude_Nm = std::numeric_limits<double>::quiet_NaN();
+  }
+  return judder;
+}
+
+}  // namespace
+
 dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::WetClutch& clutch,
                                   const DrivelineInputs& inputs, const DrivelineSettings& cfg) {
   if (!(cfg.duration_s > 0) || !(cfg.slow_step_s > 0) || !(cfg.sample_rate_Hz > 0))
@@ -348,81 +452,8 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
   };
   const auto clamp_force_N = [&](const dynamics::Sample& s) { return dl.hydraulics().clamp_force_N(pressure_bar(s)); };
 
-  // Channels: mechanical ones and the coupling's pressure and valve (its contact law's states) at
-  // every sample, the interface temperatures from the thermal state, interpolated across each
-  // slow step.
-  namespace sn = dynamics::signal_names;
-  using Recorder = ChannelRecorder<dynamics::Sample, clutch::ThermalState>;
-  using clutch::ThermalState;
-  using dynamics::Sample;
   dynamics::Recording rec;
-  Recorder recorder(
-      rec,
-      {
-          Recorder::sampled(sn::kTime, "s", [](const Sample& s) { return s.t_s; }),
-          Recorder::sampled(sn::kEngineSpeed, "rpm",
-                            [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kEngine]); }),
-          Recorder::sampled(sn::kVehicleSpeed, "km/h",
-                            [&](const Sample& s) { return s.omega_rad_s[D::kVehicle] * params.wheel_radius_m * 3.6; }),
-          // An axle's wheel speed: the mean of its two wheels, the carrier's speed.
-          Recorder::sampled(sn::kFrontWheelSpeed, "rpm",
-                            [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kFrontDiff]); }),
-          Recorder::sampled(sn::kRearWheelSpeed, "rpm",
-                            [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kRearDiff]); }),
-          Recorder::sampled(sn::kCouplingSlip, "rpm",
-                            [](const Sample& s) { return units::rad_s_to_rpm(s.contact_slip_rad_s[D::kCoupling]); }),
-          Recorder::sampled(sn::kCouplingTorque, "N m",
-                            [](const Sample& s) { return s.contact_torque_Nm[D::kCoupling]; }),
-          Recorder::sampled(sn::kFrontAxleTorque, "N m",
-                            [](const Sample& s) {
-                              return s.shaft_torque_Nm[D::kFrontLeftHalfshaft] +
-                                     s.shaft_torque_Nm[D::kFrontRightHalfshaft];
-                            }),
-          Recorder::sampled(sn::kRearAxleTorque, "N m",
-                            [](const Sample& s) {
-                              return s.shaft_torque_Nm[D::kRearLeftHalfshaft] +
-                                     s.shaft_torque_Nm[D::kRearRightHalfshaft];
-                            }),
-          Recorder::sampled(sn::kEngineTorque, "N m",
-                            [&](const Sample& s) { return dl.engine_torque_Nm(s.t_s, s.omega_rad_s[D::kEngine]); }),
-          Recorder::sampled(sn::kStuck, "1",
-                            [](const Sample& s) {
-                              return static_cast<double>(s.modes[D::kCoupling] == dynamics::ContactMode::kStuck);
-                            }),
-          Recorder::sampled(sn::kPressure, "bar", pressure_bar),
-          Recorder::sampled(
-              sn::kValveOpening, "1",
-              [z_coupling](const Sample& s) { return s.contact_states[z_coupling + HaldexCouplingLaw::kOpening]; }),
-          Recorder::sampled(sn::kClampForce, "N", clamp_force_N),
-          Recorder::sampled(sn::kWheelSpeedFL, "rpm",
-                            [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kFrontLeftWheel]); }),
-          Recorder::sampled(sn::kWheelSpeedFR, "rpm",
-                            [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kFrontRightWheel]); }),
-          Recorder::sampled(sn::kWheelSpeedRL, "rpm",
-                            [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kRearLeftWheel]); }),
-          Recorder::sampled(sn::kWheelSpeedRR, "rpm",
-                            [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kRearRightWheel]); }),
-          Recorder::sampled(sn::kTyreForceFL, "N",
-                            [&](const Sample& s) { return s.element_torque_Nm[D::kFL] / params.wheel_radius_m; }),
-          Recorder::sampled(sn::kTyreForceFR, "N",
-                            [&](const Sample& s) { return s.element_torque_Nm[D::kFR] / params.wheel_radius_m; }),
-          Recorder::sampled(sn::kTyreForceRL, "N",
-                            [&](const Sample& s) { return s.element_torque_Nm[D::kRL] / params.wheel_radius_m; }),
-          Recorder::sampled(sn::kTyreForceRR, "N",
-                            [&](const Sample& s) { return s.element_torque_Nm[D::kRR] / params.wheel_radius_m; }),
-          Recorder::sampled(
-              sn::kRoadLoad, "N",
-              [&](const Sample& s) { return s.element_torque_Nm[D::kRoadLoadElement] / params.wheel_radius_m; }),
-          Recorder::interpolated(sn::kInterfaceMeanTemp, "degC",
-                                 [&](const ThermalState& state) { return th.mean_interface_temp_C(state); }),
-          Recorder::interpolated(sn::kInterfaceMaxTemp, "degC",
-                                 [&](const ThermalState& state) { return th.interface_temps_C(state).maxCoeff(); }),
-          // What an instrumented coupling's sensors read (a measured vehicle run, coupling_measurement.hpp).
-          Recorder::interpolated(sn::kCouplingTemp, "degC",
-                                 [](const ThermalState& state) { return state.sensor_temp_C; }),
-          Recorder::interpolated(sn::kCouplingOilTemp, "degC",
-                                 [](const ThermalState& state) { return state.sump_temp_C; }),
-      });
+  DrivelineRecorder recorder(rec, driveline_channels(dl, params, th, z_coupling, clamp_force_N));
 
   // Stall: the mapped engine's speed below its stall speed (the first sample that shows it).
   double stall_time_s = std::numeric_limits<double>::quiet_NaN();
@@ -437,9 +468,7 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
   clutch::FrictionDataRange data_range(*clutch.fluid().friction);
   // The control unit's instants: every control period, independent of the thermal step.
   const double control_period_s = 1e-3 * params.controller.control_period_ms;
-  std::vector<double> control_times_s;
-  for (long k = 1; static_cast<double>(k) * control_period_s < cfg.duration_s - 1e-12; ++k)
-    control_times_s.push_back(static_cast<double>(k) * control_period_s);
+  const std::vector<double> control_times_s = control_instants_s(control_period_s, cfg.duration_s);
   const double filter_s = 1e-3 * params.controller.speed_filter_time_constant_ms;
   run_multirate(
       sim, {MultirateClutch{coupling_context.get(), &clutch, &ts, D::kCoupling, &data_range, clamp_force_N}},
@@ -475,16 +504,7 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
   const double engine_slope = dl.engine_slope_Nms_per_rad(end.t_s, end.omega_rad_s[D::kEngine]);
   const LockedShuffle shuffle = run_shuffle_mode(dl, clutch, rec, cfg.duration_s);
   const double shuffle_Hz = shuffle.frequency_Hz, shuffle_zeta = shuffle.damping_ratio;
-  // Judder or stick-slip of the coupling, judged on its torque and slip as on the rig, with the
-  // channels and band every reader of this recording uses (rig_models/recording_detection.hpp).
-  const RecordingDetection detection = *recording_detection(rec);
-  analysis::ShudderResult judder;
-  try {
-    judder = judge_recording(detection);
-  } catch (const std::invalid_argument&) {
-    judder.verdict = analysis::Verdict::kNone;  // too short a record to judge (< 64 samples)
-    judder.frequency_Hz = judder.amplitude_Nm = std::numeric_limits<double>::quiet_NaN();
-  }
+  const analysis::ShudderResult judder = judge_coupling(rec);
   rec.scalars = {
       {"coupling_verdict_code", "1", static_cast<double>(judder.verdict)},
       {"coupling_oscillation_frequency_Hz", "Hz", judder.frequency_Hz},
