@@ -1,4 +1,4 @@
-// Benchmark of the discrepancy diagnosis (issue: "`diagnose` of three Case 2 runs against the
+// Benchmark of the discrepancy diagnosis (the target: "`diagnose` of three Case 2 runs against the
 // nine candidates — target <= 60 s with --jobs 2; report how the time splits between simulation
 // and fitting"). Built from the library as `shudder diagnose` uses it, not through the CLI.
 //

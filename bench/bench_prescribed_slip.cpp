@@ -1,7 +1,7 @@
 // Benchmark: Paper G Case 1 at 25.3 kN, 10 s simulated, prescribed slip with the thermal model,
 // at the default grid (target: <= 50 ms on one core). Also reports the result at the
 // default grid and at a grid twice as fine in r, z and t as counters, so the run shows the grid
-// is converged (issue: within 0.5 %).
+// is converged (target: within 0.5 %).
 //   ./build/bench/shudder_bench --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 

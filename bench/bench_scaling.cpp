@@ -91,7 +91,7 @@ double run_timed(const std::string& cmd, long& peak_kB) {
   return wall;
 }
 
-// The target: Paper G Case 1, the whole process (start-up, TOML, simulation, HDF5 write,
+// The target: Paper G Case 1, the whole process (start-up, TOML, simulation, HDF5 write,
 // summary) <= 6 ms. Manual time = the wall time of `shudder run` (plus the shell's fork/exec,
 // ~1 ms: compare with Scaling_CliHelp, the start-up alone). peak_RSS_kB: target <= 20 MB.
 // range(0) other files share the output's directory: the writer scans that directory for stale

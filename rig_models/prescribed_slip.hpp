@@ -56,7 +56,7 @@ struct TorqueCell {
 // interface torque (the viscous film's too, when on): the drift is not split between them.
 struct FrictionDrift {
   bool enabled = false;
-  double change = -0.05;     // Δ, relative change approached (estimate: the 5 % down)
+  double change = -0.05;     // Δ, relative change approached (estimate: a 5 % drift down)
   double distance_m = 10.0;  // s0, sliding distance of the approach (estimate)
   double factor(double sliding_m) const { return enabled ? 1.0 + change * -std::expm1(-sliding_m / distance_m) : 1.0; }
 };

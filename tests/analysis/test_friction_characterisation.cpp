@@ -142,7 +142,7 @@ Errors errors_of(const Characterisation& c, const clutch::FrictionLaw& truth) {
   return e;
 }
 
-// The 1 % on the matrix: compensation piecewise linear in T between the rows
+// The 1 % target on the matrix: compensation piecewise linear in T between the rows
 // (analysis/temperature_surface.hpp) with the table law (linear in T between the rows, as the
 // matrix itself) from the separator thermocouple. Judged where the ramps passed; the figures at
 // the rows (including the coldest row at speeds every ramp passes warmer) are printed beside.
@@ -169,7 +169,7 @@ TEST(CharacteriseRoundTrip, FluidCMatrixPiecewiseTableWithinOnePercentWhereTheRa
           // The torque cell's noise (sigma 1.3 % of mu per sample at 10 kN) averaged over a row's
           // bins around a node leaves ~0.3 %; the thermocouple's offset from the interface and the
           // matrix's clamp below 6 mm/s (1.2 rpm) at the first node the rest (measured 0.91 %).
-          EXPECT_LT(passed[ch][ic][il], 0.01);  // the 1 %
+          EXPECT_LT(passed[ch][ic][il], 0.01);  // the 1 % target
           EXPECT_LT(e.gap_comp, 0.6 * e.gap_raw);
           analysis::IndexSettings is;
           is.load_N = 15000.0;
@@ -182,7 +182,7 @@ TEST(CharacteriseRoundTrip, FluidCMatrixPiecewiseTableWithinOnePercentWhereTheRa
           }
           std::printf("[ figures  ] piecewise + table: mu1/mu50 at 15 kN, 40 and 60 °C within %.4f of the truth\n",
                       worst);
-          EXPECT_LT(worst, 0.02);  // the 2 % on the indices (a ratio of two values within 1 %)
+          EXPECT_LT(worst, 0.02);  // the 2 % target on the indices (a ratio of two values within 1 %)
         }
       }
   // Without the piecewise form the quadratic cannot follow the matrix's kinks: it misses more.
@@ -190,7 +190,7 @@ TEST(CharacteriseRoundTrip, FluidCMatrixPiecewiseTableWithinOnePercentWhereTheRa
 }
 
 // The matrix through another thermal model (40 radial cells, oil flow growing with slip, a
-// thermocouple lagging 0.5 s), 20 kN: the 2 % for data from a model not the method's own.
+// thermocouple lagging 0.5 s), 20 kN: the 2 % target for data from a model not the method's own.
 TEST(CharacteriseRoundTrip, FluidCMatrixOtherThermalModelWithinTwoPercent) {
   RoundTrip rt;
   rt.truth = io::load_fluid(SHUDDER_SOURCE_DIR "/scenarios/fluids/lsc_fluid_c.toml");
@@ -334,7 +334,7 @@ TEST(CharacteriseRoundTrip, OtherThermalModelWithinTwoPercent) {
       "[ figures  ] Paper E fluid C through another thermal model (finer grid, slip-dependent oil flow, "
       "0.5 s sensor lag): none %.4f, quadratic+linear law %.4f, piecewise+linear law %.4f\n",
       none, quad, pw);
-  EXPECT_LT(quad, 0.02);  // the bound for data from another thermal model
+  EXPECT_LT(quad, 0.02);  // the bound for data from another thermal model
   EXPECT_LT(pw, 0.02);
 }
 
@@ -412,7 +412,7 @@ TEST(CharacterisePaperE, FluidsAToEReproduceTables4And5) {
     };
     std::printf("[ figures  ]   the fluid's own lines give %.4f at %.1f °C: characterised %+.2f %%\n", truth_ratio(t10),
                 t10, 100 * (ratio(t10) / truth_ratio(t10) - 1));
-    EXPECT_NEAR(ratio(30.0) / table4[f], 1.0, 0.01) << names[f];  // the 1 %
+    EXPECT_NEAR(ratio(30.0) / table4[f], 1.0, 0.01) << names[f];  // the 1 % target
     // Table 5's ratios are measured; the Paper E lines the fluid files hold miss them by up to
     // 1.4 % (fluid E at 98 °C), so the characterisation is held to 1 % of the lines it was fed.
     EXPECT_NEAR(ratio(t10) / truth_ratio(t10), 1.0, 0.01) << names[f];

@@ -1,5 +1,5 @@
 // `shudder diagnose` end to end: JSON and report of a real diagnosis, and every bad input the
-// issue lists (exit 2, one clear line naming the file and what is wrong).
+// usage lists (exit 2, one clear line naming the file and what is wrong).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 

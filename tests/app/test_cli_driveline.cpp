@@ -57,7 +57,7 @@ TEST(CliDriveline, RejectsATurnRatioBelowOne) {
                   {"s.toml", "turn_ratio", "[1, 1.2]"});
 }
 
-// Bad input the issue names: impossible geometry, road μ <= 0, a valve setting beyond the relief
+// Bad input a user can give: impossible geometry, road μ <= 0, a valve setting beyond the relief
 // valve, a rig-only effect on a car: exit 2, one line naming file and key.
 TEST(CliDriveline, RejectsATurnInsideHalfTheTrack) {
   expect_rejected(test::run_scenario_in("cli_driveline_radius",

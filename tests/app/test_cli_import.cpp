@@ -109,7 +109,7 @@ TEST(CliImport, LoggerRampsThroughImportAndCharacterise) {
     mo.seed = seed;
     const std::string name = "run" + std::to_string(seed);
     io::write_measurement((dir / (name + ".csv")).string(), rec, mo);
-    // Alternate the two loggers of the issue: ms, kN, ';' and decimal comma; s, N and ','.
+    // Alternate two logger dialects: ms, kN, ';' and decimal comma; s, N and ','.
     const bool ms_kn = seed % 2 == 1;
     write_logger(dir / (name + ".log"), io::read_measured_run((dir / (name + ".csv")).string()),
                  ms_kn ? kMsKnSemicolon : kSecondsNewtonsComma, ms_kn ? ';' : ',', ms_kn);

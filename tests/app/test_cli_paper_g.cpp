@@ -1,6 +1,6 @@
 // The calibration targets (scenarios/validation.toml) as end-to-end tests of `shudder run`: each scenario is run
 // by the real executable, its HDF5 read back, and the reported Paper G / Paper B results checked
-// against the target ranges the issue sets (themselves read off Paper G Figs. 8, 12, 14 and its
+// against the target ranges (themselves read off Paper G Figs. 8, 12, 14 and its
 // Discussion, and Paper B Fig. 6). The ranges are the tolerances: they carry the scatter of the
 // published figures, so no extra tolerance is added.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The diagnosis on data in which one effect is hidden (issue: "tests on data in which the effect
+// The diagnosis on data in which one effect is hidden (the requirement: "tests on data in which the effect
 // is hidden"). Measured runs are generated at test time by `shudder run --measurement --noise
 // --seed` from the probe scenario with the effect on (or, for effects on by default, in their
 // default state); the diagnosis model has the effect off. Two runs per case: A 12 kN from 75 °C
@@ -9,7 +9,7 @@
 // Magnitudes (docs/diagnosis.md): bearing mu 0.005 (the thesis' value), a 300 J/K, 20 W/K rig
 // mass, a 1 s sensor lag, a 0.5 µm viscous gap (1.2–2 Nm at 100 rpm), the calibrated oil flow.
 //
-// Pass criteria (from the issue): the named effect is the hidden one; torque and temperature
+// Pass criteria: the named effect is the hidden one; torque and temperature
 // RMS gaps shrink at least 5× or end within 1.5× the noise; identifiable parameters within 20 %.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -70,7 +70,7 @@ void expect_parameters(const analysis::DiagnosisResult& r, const Case& c) {
       for (const auto& [k, v] : st.parameters)
         if ((k == name || st.effect + "/" + k == name) && !found) {
           found = true;
-          // The issue's identifiability target: within 20 % of the hidden value; for a sensor
+          // The identifiability target: within 20 % of the hidden value; for a sensor
           // gain (near 1, where 20 % would pass a fit that found nothing) 20 % of its error g - 1.
           if (name.ends_with("gain"))
             EXPECT_NEAR((v - 1.0) / (hidden - 1.0), 1.0, 0.2) << name << " fitted " << v << ", hidden " << hidden;
@@ -169,7 +169,7 @@ const char* const kDrag = "[effects.bearing_drag]\nenabled = true\nequivalent_mu
 // replay's force is 5 % low, so are its torque and heat (the temperature rise is ~1.5 K low at
 // the hold, 4-5 sigma), which no torque-cell gain reproduces.
 // Friction 5 % down over 2 m of sliding (the probe slides ~3.8 m at the mean radius, most of it in
-// the 100 rpm hold): the issue's "friction drifting 5 % down"; at the final 1 rpm rest the
+// the 100 rpm hold): a "friction drifting 5 % down"; at the final 1 rpm rest the
 // torque is ~4 % (2-3 N m, 3-4 sigma) below the fresh model's.
 const char* const kDrift = "[effects.friction_drift]\nenabled = true\nchange = -0.05\ndistance_m = 2.0\n";
 const char* const kLoadGain = "[effects.load_sensor_gain]\nenabled = true\ngain = 0.95\n";

@@ -49,7 +49,7 @@ TEST(DiagnoseLargerModelFormGap, TheMismatchAloneNamesNothingWithinTheTolerance)
   EXPECT_TRUE(r.missing_effects.empty()) << test::describe_diagnosis(r);
   EXPECT_EQ(r.verdict, analysis::DiagnosisVerdict::kExplained) << test::describe_diagnosis(r);
   // The gap is of the size the tolerance was read from on seeds 41/42 (2.99 °C): 2-4 °C, as the
-  // issue's simulator left.
+  // independent simulator left.
   EXPECT_GT(r.final.temp_rms_C, 2.0);
   EXPECT_LT(r.final.temp_rms_C, 4.0);
 }
@@ -61,7 +61,7 @@ TEST(DiagnoseLargerModelFormGap, ABearingDragOnTopIsStillNamed) {
       diagnose_other_simulator("diag_form_gap_drag", "[effects.bearing_drag]\nenabled = true\nequivalent_mu = 0.005\n");
   EXPECT_EQ(r.missing_effects, std::vector<std::string>{"bearing_drag"}) << test::describe_diagnosis(r);
   ASSERT_FALSE(r.final_effects.empty());
-  EXPECT_NEAR(r.final_effects[0].parameters[0].second / 0.005, 1.0, 0.2);  // the 20 %
+  EXPECT_NEAR(r.final_effects[0].parameters[0].second / 0.005, 1.0, 0.2);  // the 20 % target
 }
 
 TEST(DiagnoseLargerModelFormGap, ASensorLagOnTopIsNamedThroughTheThermocoupleAgainstTheIrSpot) {
@@ -74,7 +74,7 @@ TEST(DiagnoseLargerModelFormGap, ASensorLagOnTopIsNamedThroughTheThermocoupleAga
                                           "[effects.temperature_sensor_lag]\nenabled = true\ntime_constant_s = 1.0\n");
   EXPECT_EQ(r.missing_effects, std::vector<std::string>{"temperature_sensor_lag"}) << test::describe_diagnosis(r);
   ASSERT_FALSE(r.final_effects.empty());
-  EXPECT_NEAR(r.final_effects[0].parameters[0].second, 1.0, 0.2);  // the 20 %
+  EXPECT_NEAR(r.final_effects[0].parameters[0].second, 1.0, 0.2);  // the 20 % target
   bool difference_compared = false;
   for (const auto& c : r.channels) difference_compared = difference_compared || c.signal == "temp_minus_ir_C";
   EXPECT_TRUE(difference_compared);

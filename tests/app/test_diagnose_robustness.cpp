@@ -114,7 +114,7 @@ TEST_P(TrueRigModel, NamesNothingAndIsExplained) {
 
 INSTANTIATE_TEST_SUITE_P(Seeds, TrueRigModel, ::testing::Values(61u, 71u, 81u));
 
-// The five seeds for "nothing named": two more. Seed 101's first breakaway from rest
+// The first five seeds for "nothing named": two more. Seed 101's first breakaway from rest
 // leaves 3.1 x the torque scale (a.csv 0.7-0.9 s, block means +2.9 / -5.1 N m; seed 91 stays
 // within 1.5 x), the open reproduction problem of docs/diagnosis.md; nothing is named on
 // either, which is what is asserted here.

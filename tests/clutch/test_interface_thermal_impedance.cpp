@@ -1,6 +1,6 @@
 // clutch/interface_thermal_impedance.hpp against its two closed-form limits, and the size of the
-// thermal feedback on the coupling's friction slope (rig_models/driveline_stability.hpp) at the
-// issue's reviewer's point and at the take-up judder onset.
+// thermal feedback on the coupling's friction slope (rig_models/driveline_stability.hpp) at
+// a high-torque point and at the take-up judder onset.
 #include "clutch/interface_thermal_impedance.hpp"
 
 #include <gtest/gtest.h>

@@ -46,7 +46,7 @@ CoastDown coast_down(double step_factor, bool pulsation = true) {
   return r;
 }
 
-// The criterion: halving the thermal step (10 → 5 → 2.5 ms; in the driveline it is also
+// The criterion: halving the thermal step (10 → 5 → 2.5 ms; in the driveline it is also
 // the hydraulics' and the controller's step) moves the run's onset by < 5 %, with the verdict
 // unchanged. Measured (shared machine): 8.4684 / 8.4692 / 8.4689 s (+0.01 %, −0.004 %).
 // What would fail: a start transient above the threshold (the clamp applied as a step, as in

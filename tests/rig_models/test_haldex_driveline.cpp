@@ -147,7 +147,7 @@ TEST(HaldexDriveline, LockedTightTurnWindsUpTheClosedFormTorqueAtAnySpeed) {
     EXPECT_LT(test::scalar(rec, "mechanical_energy_relative_error"), 1e-6);
     torques.push_back(last(rec, "rear_axle_torque_Nm"));
   }
-  // The criterion: the wind-up does not depend on speed (within 5 %).
+  // The criterion: the wind-up does not depend on speed (within 5 %).
   const auto [lo, hi] = std::minmax_element(torques.begin(), torques.end());
   EXPECT_LT(*hi - *lo, 0.05 * *lo);
 }

@@ -107,7 +107,7 @@ TEST(InverseCharacterisation, FluidCMatrixRecoversTheOilFlowAndTheLaw) {
   // remains is the torque cell's noise in the rows' bins (measured on these seeds: sensor 0.71 %,
   // inverse 0.81 % where the ramps passed; 0.91 % for the sensor on the seeds of
   // test_friction_characterisation.cpp). The inverse method removes the thermocouple's offset
-  // but not the noise, so it is held to the 1 %, not to beat the sensor.
+  // but not the noise, so it is held to the 1 % target, not to beat the sensor.
   EXPECT_LT(pi, 0.01);
   EXPECT_LT(ei, 0.015);  // at the rows, incl. the coldest row's extrapolated high speeds (0.89 %)
 
@@ -140,7 +140,7 @@ TEST(InverseCharacterisation, FluidCMatrixRecoversTheOilFlowAndTheLaw) {
   EXPECT_EQ(va.verdict.level, vb.verdict.level);
 }
 
-// Paper E's fluid C as linear lines (smooth in T): the 1 %.
+// Paper E's fluid C as linear lines (smooth in T): the 1 % target.
 TEST(InverseCharacterisation, PaperELinearLawWithinOnePercent) {
   const Set set = round_trip("paper_e_fluid_c.toml", {30.0, 45.0, 60.0, 75.0, 90.0});
   const auto r = rig_models::characterise_inverse(set.runs, replay_inputs(set.runs), settings(LawKind::kLinear),
@@ -155,7 +155,7 @@ TEST(InverseCharacterisation, PaperELinearLawWithinOnePercent) {
 
 // Data from another thermal model (40 radial cells instead of 20, oil flow growing with slip,
 // a thermocouple lagging 0.5 s): the inverse method replays with its own 20-cell model and a
-// lag-free sensor, calibrating the oil flow on the lagging thermocouple. The 2 %.
+// lag-free sensor, calibrating the oil flow on the lagging thermocouple. The 2 % target.
 TEST(InverseCharacterisation, OtherThermalModelWithinTwoPercent) {
   const clutch::Fluid truth = io::load_fluid(SHUDDER_SOURCE_DIR "/scenarios/fluids/paper_e_fluid_c.toml");
   std::vector<analysis::RampRun> runs;

@@ -6,7 +6,7 @@
 // stepwise), so the onset time of rig_shudder_negative_slope followed the thermal step. The
 // tests below show that an isothermal unstable run oscillates only with the ripple, and that with
 // the defaults (ripple on, 1 N m) halving the thermal step moves the onset of every shipped rig
-// scenario that shudders by less than 5 % (the criterion).
+// scenario that shudders by less than 5 % (the criterion).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -86,7 +86,7 @@ Onset onset(double ripple_Nm, double thermal_step_s) {
   return {r.verdict, r.onset_time_s, visible};
 }
 
-// The criterion: halving the thermal step (10 -> 5 ms) moves the onset by < 5 %, on
+// The criterion: halving the thermal step (10 -> 5 ms) moves the onset by < 5 %, on
 // the detector's onset and on the visible one (measured: 1.8 % and 0.7 %).
 TEST(MotorRipple, NegativeSlopeOnsetChangesLessThanFivePercentWhenTheThermalStepIsHalved) {
   const Onset a = onset(1.0, 0.010), b = onset(1.0, 0.005);
@@ -164,7 +164,7 @@ TEST(MotorRipple, ScenarioKeysSetTheRippleWithinTheirBounds) {
 
 namespace {
 
-// The criterion on every shipped rig scenario, as shipped (the defaults: ripple on):
+// The criterion on every shipped rig scenario, as shipped (the defaults: ripple on):
 // halving the thermal step (10 -> 5 ms) moves the reported onset (the run's judgement:
 // the detector's threshold-crossing onset, the oscillation reaching the verdict's threshold) by < 5 %, and a
 // further halving (2.5 ms) agrees with 5 ms to < 5 % as well (convergence). Scenarios judged

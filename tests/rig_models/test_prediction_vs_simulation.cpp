@@ -37,9 +37,9 @@
 // The simulated frequency is the detector's dominant frequency: the interpolated FFT peak over
 // the oscillating part.
 //
-// Tolerances: onset speed 10 % and frequency 2 % (the targets). Measured: onset within
+// Tolerances: onset speed 10 % and frequency 2 % (the targets). Measured: onset within
 // 2 % and frequency within 0.5 %, per case in the test's recorded properties.
-// Also checked, against the linear theory rather than the targets:
+// Also checked, against the linear theory rather than the targets:
 //   * the rate dσ/dt at which the growth rate rises. The parabola's curvature is compared with
 //     the least-squares slope of the predicted margin against time, from the predicted onset to
 //     the end of the fitted frames. The tolerance is 15 %, because the tabulated law's ln-v

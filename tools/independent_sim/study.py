@@ -87,7 +87,7 @@ def tolerance_from(result, rule):
 
 
 def judge(result, truth):
-    """Outcome against the issue's target, and the parameters' relative errors."""
+    """Outcome against the target, and the parameters' relative errors."""
     named = {f["effect"]: f["parameters"] for f in result.get("final_effects", [])}
     verdict = result.get("verdict", "?")
     errors = {}

@@ -118,7 +118,7 @@ def test_nothing_hidden_names_nothing_within_the_tolerance(tmp_path, tolerance):
 @needs_cli
 def test_bearing_drag_is_named_through_the_model_form_gap(tmp_path, tolerance):
     # A bearing drag mu 0.005 (the rig's own figure, ~3.5 N m at 14.8 kN) on top of the gap:
-    # named alone, within 20 % (the target; seen +2 %).
+    # named alone, within 20 % (the target; seen +2 %).
     res = diagnose(tmp_path, sim.Hidden(bearing_mu=0.005), tolerance)
     assert res["missing_effects"] == ["bearing_drag"]
     mu = res["final_effects"][0]["parameters"]["equivalent_mu"]
