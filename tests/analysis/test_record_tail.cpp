@@ -109,7 +109,7 @@ INSTANTIATE_TEST_SUITE_P(Shapes, DetectionRecordTail,
                                            LateJudder{2000.0, 11.5, 8.0, 1.0, 2.2, 10.0, 55.0, 8.3, 0.01, 6.0}));
 
 // White noise of variance σ² on a record whose regular 1024-sample segments (50 % overlap)
-// stop 188 samples short of its end: 2048 regular segments and one more ending at the last
+// end 188 samples short of the record's end: 2048 regular segments and one more ending at the last
 // sample. Σ_k P_k df equals the mean of the 2049 segments' window-weighted mean squares to
 // round-off (Parseval per segment, the same normalisation for the extra one), and the level is
 // the one-sided white density 2σ²/fs within statistics (per segment 6.2 % relative std, over
