@@ -217,23 +217,29 @@ double blend_of_set_values(const MakiFrictionMatrix& m, double v_mm_s, double te
 
 }  // namespace
 
+// Three loads by four temperatures of distinct sets (equal and unequal C2 among neighbours),
+// shared by the bit-for-bit tests below.
+MakiFrictionMatrix three_loads_four_temps() {
+  return MakiFrictionMatrix({10000.0, 15000.0, 25000.0}, {-40.0, 20.0, 70.0, 200.0},
+                            {{-0.031, 0.0014, 0.057, 0.035},
+                             {-0.026, 0.0037, 0.035, 0.07},
+                             {-0.0024, 0.0098, 0.012, 0.101},
+                             {-0.024, 0.0024, 0.047, 0.05},
+                             {-0.024, 0.0024, 0.020, 0.084},
+                             {-0.038, 0.002, 0.037, 0.068},
+                             {-0.039, 0.001, 0.077, -0.024},
+                             {-0.039, 0.001, 0.05, 0.01},
+                             {-0.038, 0.002, 0.03, 0.02},
+                             {-0.031, 0.0014, 0.057, 0.035},
+                             {-0.026, 0.0037, 0.035, 0.07},
+                             {-0.0024, 0.0098, 0.012, 0.101}});
+}
+
 // mu() shares v^0.1 and equal-rate tanh terms between the sets and skips sets of weight zero;
 // that must give the definition's numbers bit for bit (the thermal runs' results rely on it),
 // inside the matrix, on its axes, clamped beyond them, and with equal and unequal C2.
 TEST(MakiFrictionMatrix, FastBlendEqualsTheBlendOfSetValuesBitForBit) {
-  const MakiFrictionMatrix m({10000.0, 15000.0, 25000.0}, {-40.0, 20.0, 70.0, 200.0},
-                             {{-0.031, 0.0014, 0.057, 0.035},
-                              {-0.026, 0.0037, 0.035, 0.07},
-                              {-0.0024, 0.0098, 0.012, 0.101},
-                              {-0.024, 0.0024, 0.047, 0.05},
-                              {-0.024, 0.0024, 0.020, 0.084},
-                              {-0.038, 0.002, 0.037, 0.068},
-                              {-0.039, 0.001, 0.077, -0.024},
-                              {-0.039, 0.001, 0.05, 0.01},
-                              {-0.038, 0.002, 0.03, 0.02},
-                              {-0.031, 0.0014, 0.057, 0.035},
-                              {-0.026, 0.0037, 0.035, 0.07},
-                              {-0.0024, 0.0098, 0.012, 0.101}});
+  const MakiFrictionMatrix m = three_loads_four_temps();
   int checked = 0;
   for (double v : {0.0, 3.0, 6.0, 17.3, 241.0, 590.0, 900.0, -55.0})
     for (double t : {-60.0, -40.0, 0.0, 20.0, 45.5, 70.0, 133.3, 200.0, 250.0})
@@ -249,19 +255,7 @@ TEST(MakiFrictionMatrix, FastBlendEqualsTheBlendOfSetValuesBitForBit) {
 // cached terms reused), new speeds (the cache renewed, including its length), clamped speeds,
 // and points whose four sets have other C2 than the previous call's (tanh taken on first use).
 TEST(MakiFrictionMatrix, BatchAtOneLoadEqualsPointwiseMuBitForBitWhileSpeedsRepeat) {
-  const MakiFrictionMatrix m({10000.0, 15000.0, 25000.0}, {-40.0, 20.0, 70.0, 200.0},
-                             {{-0.031, 0.0014, 0.057, 0.035},
-                              {-0.026, 0.0037, 0.035, 0.07},
-                              {-0.0024, 0.0098, 0.012, 0.101},
-                              {-0.024, 0.0024, 0.047, 0.05},
-                              {-0.024, 0.0024, 0.020, 0.084},
-                              {-0.038, 0.002, 0.037, 0.068},
-                              {-0.039, 0.001, 0.077, -0.024},
-                              {-0.039, 0.001, 0.05, 0.01},
-                              {-0.038, 0.002, 0.03, 0.02},
-                              {-0.031, 0.0014, 0.057, 0.035},
-                              {-0.026, 0.0037, 0.035, 0.07},
-                              {-0.0024, 0.0098, 0.012, 0.101}});
+  const MakiFrictionMatrix m = three_loads_four_temps();
   const shudder::clutch::FrictionLaw& law = m;
   shudder::clutch::SpeedTerms terms;
   const std::vector<std::vector<double>> speed_sets{{3.0, 17.3, 241.0, 590.0, 900.0},
