@@ -403,7 +403,7 @@ Plot stability_map_plot(const Recording& rec, const std::string& name, const std
 
 // ---- sweep -------------------------------------------------------------------------------
 
-Plot sweep_plot(const io::SweepTable& table, const std::string& name, const std::string& source) {
+MultiPlot sweep_plot(const io::SweepTable& table, const std::string& name, const std::string& source) {
   static const std::vector<std::string> kResults = {"predicted_stable",       "predicted_margin_per_s",
                                                     "predicted_frequency_Hz", "simulated_frequency_Hz",
                                                     "amplitude_Nm",           "onset_time_s"};
@@ -451,49 +451,55 @@ Plot sweep_plot(const io::SweepTable& table, const std::string& name, const std:
     return s;
   };
 
-  Plot p;
-  p.title = name + ": sweep of " + key.name + " (" + std::to_string(n) + " cases" +
-            (keys.size() > 1 ? ", other swept keys pooled" : std::string()) + ")";
-  p.xlabel = key.name + (key.units.empty() ? std::string() : " [" + display_units(key.units) + "]");
-  p.ylabel = "frequency [Hz]";
-  p.y2label = "predicted margin [1/s] (> 0: unstable)";
-  p.caption = "Against " + key.name +
-              ": the predicted frequency (line) and the simulated one (crosses) on the "
-              "left axis; the predicted margin on the right axis (dashed) with each case's simulated verdict as "
-              "its marker, so prediction and simulation can be compared case by case.";
+  // Two panels on one x axis, each with its own zero: a frequency and a growth rate are
+  // different quantities, and one axis each on the same panel invited reading one off the other.
+  const std::string title = name + ": sweep of " + key.name + " (" + std::to_string(n) + " cases" +
+                            (keys.size() > 1 ? ", other swept keys pooled" : std::string()) + ")";
+  const std::string xlabel = key.name + (key.units.empty() ? std::string() : " [" + display_units(key.units) + "]");
   // Markers on the first and last case stay clear of the borders.
   const double pad = x.back() > x.front() ? 0.04 * (x.back() - x.front()) : 0.5 * std::max(1.0, std::abs(x.front()));
-  p.x_min = x.front() - pad;
-  p.x_max = x.back() + pad;
+  Plot top;
+  top.title = "frequency: predicted (linearised) and simulated (detector)";
+  top.xlabel = xlabel;
+  top.ylabel = "frequency [Hz]";
+  top.x_min = x.front() - pad;
+  top.x_max = x.back() + pad;
   Series predicted = make("predicted frequency (linearised)", column("predicted_frequency_Hz"), 0, 7);
   Series simulated = make("simulated frequency (detector)", column("simulated_frequency_Hz"), 1, 2);
   simulated.style = SeriesStyle::kPoints;
   simulated.point_size = 2.0;
   simulated.rgb = "#000000";
   for (auto* s : {&predicted, &simulated})
-    if (has_finite(*s)) p.series.push_back(std::move(*s));
-  if (p.series.empty()) {
+    if (has_finite(*s)) top.series.push_back(std::move(*s));
+  if (top.series.empty()) {
     // Nothing oscillates anywhere (e.g. a prescribed-slip sweep): show the amplitude instead.
-    p.ylabel = "amplitude [N m]";
-    p.series.push_back(make("simulated amplitude", column("amplitude_Nm"), 1, 7));
+    top.title = "simulated amplitude (no case oscillates)";
+    top.ylabel = "amplitude [N m]";
+    top.series.push_back(make("simulated amplitude", column("amplitude_Nm"), 1, 7));
   }
 
-  // Right axis: the predicted margin, with the simulated verdict as the marker on each case.
+  // Below: the predicted margin, with the simulated verdict as the marker on each case.
+  Plot bottom;
+  bottom.title = "predicted margin (> 0: unstable), marked with each case's simulated verdict";
+  bottom.xlabel = xlabel;
+  bottom.ylabel = "predicted margin [1/s]";
+  bottom.x_min = top.x_min;
+  bottom.x_max = top.x_max;
   const std::vector<double> margin = column("predicted_margin_per_s");
-  Series m = make("predicted margin (right axis)", margin, 5, 1);
+  Series m = make("predicted margin", margin, 5, 1);
   m.style = lines ? SeriesStyle::kLines : SeriesStyle::kPoints;  // pooled cases: no zigzag
   m.dashed = true;
   m.line_width = 1.5;
   m.point_size = 2.5;
   if (has_finite(m)) {
-    p.series_y2.push_back(std::move(m));
+    bottom.series.push_back(std::move(m));
     Series zero;
     zero.label = "margin = 0";
-    zero.x = {p.x_min, p.x_max};
+    zero.x = {bottom.x_min, bottom.x_max};
     zero.y = {0.0, 0.0};
     zero.rgb = "#7f7f7f";
     zero.line_width = 1.0;
-    p.series_y2.push_back(std::move(zero));
+    bottom.series.push_back(std::move(zero));
     struct Marker {
       analysis::Verdict verdict;
       const char* label;
@@ -517,10 +523,20 @@ Plot sweep_plot(const io::SweepTable& table, const std::string& name, const std:
       s.point_type = mk.pt;
       s.point_size = 1.8;
       s.rgb = mk.rgb;
-      p.series_y2.push_back(std::move(s));
+      bottom.series.push_back(std::move(s));
     }
   }
-  return p;
+
+  MultiPlot figure;
+  figure.title = title;
+  figure.caption = "Against " + key.name +
+                   ": above, the predicted frequency (line) and the simulated one (crosses); below, the "
+                   "predicted margin (dashed, > 0: unstable) with each case's simulated verdict as its marker, "
+                   "so prediction and simulation can be compared case by case.";
+  figure.rows.push_back({std::move(top)});
+  if (!bottom.series.empty()) figure.rows.push_back({std::move(bottom)});
+  figure.height_px = figure.rows.size() > 1 ? 900 : 600;
+  return figure;
 }
 
 // ---- files -------------------------------------------------------------------------------
@@ -559,7 +575,7 @@ void plot_file(const std::string& h5_path, PlotKind kind, const std::string& out
                            "no /cases table: a run file; --what sweep needs a file written by `shudder sweep`");
     }
     const std::string name = scenario_name(io::read_run_attribute(h5_path, "scenario"), fallback);
-    write_plot(out_path, sweep_plot(table, name, h5_path));
+    write_multiplot(out_path, sweep_plot(table, name, h5_path));
     return;
   }
   Recording rec;

@@ -48,7 +48,7 @@ std::string scenario_name(const std::string& scenario_text, const std::string& f
 Plot spectrum_plot(const dynamics::Recording& rec, const std::string& name, const std::string& source);
 Plot spectrogram_plot(const dynamics::Recording& rec, const std::string& name, const std::string& source);
 Plot stability_map_plot(const dynamics::Recording& rec, const std::string& name, const std::string& source);
-Plot sweep_plot(const io::SweepTable& table, const std::string& name, const std::string& source);
+MultiPlot sweep_plot(const io::SweepTable& table, const std::string& name, const std::string& source);
 
 /// The figure of `kind` for a run recording (every kind but kSweep).
 MultiPlot run_plot(PlotKind kind, const dynamics::Recording& rec, const std::string& name, const std::string& source);

@@ -8,7 +8,11 @@ cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 # Every part switched on by name: a build/ configured by scripts/run-default.sh (which switches
 # them off) would otherwise keep them off from its cache.
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=ON -DSHUDDER_PYTHON=ON -DSHUDDER_MPI=ON \
-      -DSHUDDER_FMU=ON -DSHUDDER_BENCH=ON -DSHUDDER_PCH=ON -DSHUDDER_UNITY_BUILD=ON \
-      -DSHUDDER_WERROR="${SHUDDER_WERROR:-OFF}" >/dev/null
+# Ninja where build/ is new (it compiles the libraries side by side); an existing build/ keeps
+# the generator it was made with, which CMake cannot change in place.
+generator=()
+[ -f build/CMakeCache.txt ] || generator=(-G Ninja)
+cmake -S . -B build "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DSHUDDER_QUICK_BUILD=OFF -DBUILD_TESTING=ON \
+      -DSHUDDER_PYTHON=ON -DSHUDDER_MPI=ON -DSHUDDER_FMU=ON -DSHUDDER_BENCH=ON -DSHUDDER_PCH=ON \
+      -DSHUDDER_UNITY_BUILD=ON -DSHUDDER_UNITY_BATCH_SIZE=8 -DSHUDDER_WERROR="${SHUDDER_WERROR:-OFF}" >/dev/null
 cmake --build build -j"$(nproc)"

@@ -5,7 +5,7 @@
 #   bash scripts/install-deps.sh       everything: also tests, benchmarks, Python, MPI, FMU, fuzzing, plots
 set -euo pipefail
 cli_packages=(
-  g++ cmake make pkg-config
+  g++ cmake make ninja-build pkg-config  # ninja-build: the libraries compile side by side
   libeigen3-dev          # dense/sparse linear algebra (thermal solver, modal analysis)
   libboost-dev           # Boost.Odeint (header-only) for time integration
   libfftw3-dev           # spectra
