@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "components/clutch_judgement.hpp"
 #include "core/nan.hpp"
 #include "io/input_error.hpp"
 #include "report/text_format.hpp"
@@ -45,7 +46,30 @@ bool has_finite(const Series& s) {
   return false;
 }
 
+namespace {
+
+// A network run's judged clutch, judged as the run judged it (components/clutch_judgement.hpp):
+// its loaded window, its band from the sample rate, its repeated-oscillation rule. The generic
+// detection of a recording knows none of these and can find another peak (a shuffle mode's
+// neighbour) than the verdict's.
+std::optional<analysis::ShudderResult> network_clutch_detection(const dynamics::Recording& rec,
+                                                                const std::string& clutch) {
+  const dynamics::Signal* t = rec.find("time_s");
+  if (!t || t->values.size() < 2 || !(t->values.back() > t->values.front())) return std::nullopt;
+  const double fs = static_cast<double>(t->values.size() - 1) / (t->values.back() - t->values.front());
+  try {
+    const auto cv = components::judge_clutch(rec, clutch, std::string(rig_models::judged_torque_signal(rec)), fs);
+    if (!cv.judged) return std::nullopt;
+    return cv.verdict.judged;
+  } catch (const std::exception&) {
+    return std::nullopt;  // a channel the judgement needs is missing: nothing to mark
+  }
+}
+
+}  // namespace
+
 std::optional<analysis::ShudderResult> detect(const dynamics::Recording& rec) {
+  if (const std::string* clutch = rig_models::network_verdict_clutch(rec)) return network_clutch_detection(rec, *clutch);
   const auto detection = rig_models::recording_detection(rec);
   if (!detection) return std::nullopt;
   try {

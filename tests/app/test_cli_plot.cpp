@@ -167,6 +167,10 @@ TEST(CliPlot, SweepPlotDrawsPngAndSvgAndFileKindsAreNotMixedUp) {
                              "rig.torsion_bar.natural_frequency_Hz (2 cases)"));
   EXPECT_THAT(svg, HasSubstr("predicted frequency"));
   EXPECT_THAT(svg, HasSubstr("simulated: vibration"));
+  // Frequency and margin each in a panel of their own, each with its own zero: no right axis.
+  EXPECT_THAT(svg, HasSubstr("frequency: predicted (linearised) and simulated (detector)"));
+  EXPECT_THAT(svg, HasSubstr("predicted margin (> 0: unstable), marked with each case's simulated verdict"));
+  EXPECT_THAT(svg, Not(HasSubstr("right axis")));
 
   // A sweep file has no run signals; a run file has no /cases table.
   r = run_cli("plot sw.h5 --what torque -o t.png", dir);
@@ -179,6 +183,30 @@ TEST(CliPlot, SweepPlotDrawsPngAndSvgAndFileKindsAreNotMixedUp) {
   EXPECT_THAT(r.err, HasSubstr("rig.h5: no /cases table: a run file"));
   EXPECT_FALSE(fs::exists(dir / "t.png"));
   EXPECT_FALSE(fs::exists(dir / "s.png"));
+}
+
+// A network run's plots mark the verdict the run reached on its judged clutch (its loaded window,
+// its band from 2 Hz), not another peak a generic look at the record finds: on the Haldex car's
+// low-mu hill the coupling's control loop swings at 1.83 Hz, where the generic band (from 5 Hz)
+// would mark a 4.8 Hz side peak.
+TEST(CliPlot, NetworkSpectrumMarksTheRunsVerdict) {
+  if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
+  const auto dir = scratch_dir("plot_network_verdict");
+  const auto run = run_cli("run " + source_path("scenarios/networks/haldex_car_low_mu_uphill.toml") +
+                               " -o h.h5",
+                           dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::smatch v;
+  ASSERT_TRUE(std::regex_search(run.out, v, std::regex("Verdict: vibration at ([0-9.]+) Hz, amplitude ([0-9.]+) N m")))
+      << run.out;
+  const auto r = run_cli("plot h.h5 --what spectrum -o spectrum.svg", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string svg = slurp(dir / "spectrum.svg");
+  std::smatch s;
+  ASSERT_TRUE(std::regex_search(svg, s, std::regex("friction-induced vibration at ([0-9.]+) Hz"))) << svg;
+  EXPECT_NEAR(std::stod(s[1]), std::stod(v[1]), 0.05);  // the label's one decimal
+  ASSERT_TRUE(std::regex_search(svg, s, std::regex("detector amplitude ([0-9.]+) N m")));
+  EXPECT_NEAR(std::stod(s[1]), std::stod(v[2]), 0.05);  // both printed to three digits
 }
 
 TEST(CliPlot, BadRequestsExitTwoNamingTheProblem) {
