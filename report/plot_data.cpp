@@ -69,7 +69,8 @@ std::optional<analysis::ShudderResult> network_clutch_detection(const dynamics::
 }  // namespace
 
 std::optional<analysis::ShudderResult> detect(const dynamics::Recording& rec) {
-  if (const std::string* clutch = rig_models::network_verdict_clutch(rec)) return network_clutch_detection(rec, *clutch);
+  if (const std::string* clutch = rig_models::network_verdict_clutch(rec))
+    return network_clutch_detection(rec, *clutch);
   const auto detection = rig_models::recording_detection(rec);
   if (!detection) return std::nullopt;
   try {

@@ -192,9 +192,7 @@ TEST(CliPlot, SweepPlotDrawsPngAndSvgAndFileKindsAreNotMixedUp) {
 TEST(CliPlot, NetworkSpectrumMarksTheRunsVerdict) {
   if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
   const auto dir = scratch_dir("plot_network_verdict");
-  const auto run = run_cli("run " + source_path("scenarios/networks/haldex_car_low_mu_uphill.toml") +
-                               " -o h.h5",
-                           dir);
+  const auto run = run_cli("run " + source_path("scenarios/networks/haldex_car_low_mu_uphill.toml") + " -o h.h5", dir);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   std::smatch v;
   ASSERT_TRUE(std::regex_search(run.out, v, std::regex("Verdict: vibration at ([0-9.]+) Hz, amplitude ([0-9.]+) N m")))
