@@ -44,7 +44,7 @@ std::vector<NetworkInput> network_inputs(components::NetworkSpec& spec) {
 std::string fmi_name(const std::string& name) {
   std::string out, part;
   const auto flush = [&] {
-    if (part.empty() || std::isdigit(static_cast<unsigned char>(part.front()))) part.insert(0, "_");
+    if (part.empty() || std::isdigit(static_cast<unsigned char>(part.front()))) out += '_';
     out += part;
     part.clear();
   };
