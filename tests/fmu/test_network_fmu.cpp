@@ -21,6 +21,7 @@
 // dynamics carry over 10^4 steps. The tolerances below are the figures measured on this
 // scenario with a margin (docs/fmu.md).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -45,7 +46,15 @@ namespace {
 namespace fs = std::filesystem;
 using namespace fmu_test;
 
-const fs::path kWork = fs::temp_directory_path() / "shudder_network_fmu_test";
+// Each test process works in a folder of its own (ctest runs the tests as processes in
+// parallel, and each exports afresh), removed when the process ends.
+const fs::path kWork = fs::temp_directory_path() / ("shudder_network_fmu_test." + std::to_string(getpid()));
+struct RemovedAtExit {
+  ~RemovedAtExit() {
+    std::error_code ec;
+    fs::remove_all(kWork, ec);
+  }
+} removed_at_exit;
 
 std::string read_text(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
