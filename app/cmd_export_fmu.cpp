@@ -82,7 +82,7 @@ int export_fmu_command(const ExportFmuOptions& opt) {
     std::cout << "Wrote " << out << ": FMI 2.0 co-simulation, " << s.inputs << " inputs, " << s.outputs << " outputs, "
               << s.parameters << " parameter (fixed_step_s = " << opt.fixed_step_s << " s), GUID " << s.guid << "\n"
               << "Platforms:";
-    for (const auto& p : s.platforms) std::cout << " " << p;
+    for (std::size_t i = 0; i < s.platforms.size(); ++i) std::cout << (i ? ", " : " ") << s.platforms[i];
     if (libraries.win64.empty())
       std::cout << " (no win64 DLL beside " << libraries.linux64
                 << ": the build makes it when MinGW-w64 is installed, docs/fmu.md \"Platforms\")";
