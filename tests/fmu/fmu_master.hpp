@@ -2,7 +2,9 @@
 // A co-simulation master's pieces shared by the FMU tests (tests/fmu/test_fmu.cpp for the wet
 // clutch, tests/fmu/test_network_fmu.cpp for a network): the logger callback that keeps every
 // message, the fmi2* functions of a library looked up by name as an importing tool does, a
-// command's output, and the check that a linux64 library loads on an old glibc.
+// command's output, the check that a linux64 library loads on an old glibc, the check of a
+// win64 DLL's export and import tables, and the command line that runs a Windows program
+// under Wine.
 #include <dlfcn.h>
 #include <gtest/gtest.h>
 

@@ -387,6 +387,47 @@ TEST(NetworkFmu, AHaldexCouplingsControlUnitActsOnTheFmusClockFromItsStartAndPas
               w.where.c_str());
 }
 
+TEST(NetworkFmu, AHaldexCouplingsRawPressureSettingIsAnInputThatSetsThePacksPressure) {
+  // scenarios/networks/haldex_car_takeup_judder.toml holds the valve's pressure setting at
+  // 3 bar (a raw setting, the valve shut below it), 0.2 s long; the pump's pressure rises
+  // towards it (1.95 bar at 0.2 s). As exported, the FMU's pressure is the run's; with the
+  // input set to 1 bar the pressure levels off at the setting (1.013 bar at 0.2 s: the
+  // hydraulics' own response, not a hard cap), well below the run's.
+  static const Exported e = [] {
+    (void)exported();  // kWork made afresh
+    const fs::path scenario =
+        write_scenario("haldex_car_takeup_judder.toml", "schematic_negative_slope.toml", "haldex_judder", {}, "0.2");
+    return export_and_run(scenario, scenario);
+  }();
+  std::map<std::string, Variable> by_name;
+  for (const auto& v : e.variables) by_name[v.name] = v;
+  ASSERT_TRUE(by_name.count("haldex.valve_pressure_bar"));
+  EXPECT_EQ(by_name["haldex.valve_pressure_bar"].causality, "input");
+  EXPECT_EQ(by_name["haldex.valve_pressure_bar"].start, 3.0);
+  static Fmu f(e.dir / "binaries/linux64/shudder_network.so");
+  const unsigned pressure = by_name["haldex.pressure_bar"].vr, setting = by_name["haldex.valve_pressure_bar"].vr;
+  const auto pressure_at_200ms = [&](double setting_bar) -> double {
+    fmi2Component c = start(f, 0.0, e);
+    EXPECT_NE(c, nullptr);
+    if (!c) return NAN;
+    EXPECT_EQ(f.fmi2SetReal(c, &setting, 1, &setting_bar), fmi2OK);
+    double t = 0.0;
+    for (int k = 0; k < 200; ++k, t += 1e-3) EXPECT_EQ(f.fmi2DoStep(c, t, 1e-3, fmi2True), fmi2OK);
+    double p = NAN;
+    EXPECT_EQ(f.fmi2GetReal(c, &pressure, 1, &p), fmi2OK);
+    f.fmi2FreeInstance(c);
+    return p;
+  };
+  const double run = channel("haldex.pressure_bar", e).values[200];
+  const double as_exported = pressure_at_200ms(3.0), lowered = pressure_at_200ms(1.0);
+  std::printf(
+      "[ figure ] Haldex judder car at 0.2 s: pressure run %.6g bar, FMU %.6g bar, FMU at a 1 bar setting %.6g bar\n",
+      run, as_exported, lowered);
+  EXPECT_NEAR(as_exported, run, 1e-9 * std::abs(run));
+  EXPECT_GT(run, 1.5);
+  EXPECT_NEAR(lowered, 1.0, 0.05);
+}
+
 TEST(NetworkFmu, Win64DllIsPackedAndGivesTheLinux64OutputsUnderWine) {
   // export-fmu packs the MinGW-w64 build of the network library beside the .so. The same small
   // master (fmu/cross/fmu_load_check.cpp --network) runs both on the Haldex car from 1800 s to
