@@ -1,6 +1,7 @@
 // `shudder export-fmu SCENARIO.toml -o NAME.fmu` (docs/fmu.md "Your drivetrain as an FMU"): a
 // network scenario packed as an FMI 2.0 co-simulation FMU (fmu/network_fmu_package.hpp) around
-// the network FMU library the build made (fmu/network_fmu.cpp). linux64 only.
+// the network FMU library the build made (fmu/network_fmu.cpp): its linux64 .so and, when the
+// build cross-compiled it (MinGW-w64), its win64 .dll, found beside the .so as ../win64/.
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -43,6 +44,14 @@ std::string network_fmu_library() {
       "target shudder_network_fmu; or set SHUDDER_NETWORK_FMU_LIBRARY)");
 }
 
+// The win64 DLL beside the linux64 library: LINUX64/../win64/shudder_network.dll, as the build
+// tree's stage and the installed share/shudder/fmu/ lay them out; "" when there is none.
+std::string network_fmu_dll(const std::string& linux64) {
+  const fs::path dll = fs::path(linux64).parent_path().parent_path() / "win64/shudder_network.dll";
+  std::error_code ec;
+  return fs::is_regular_file(dll, ec) ? dll.string() : std::string();
+}
+
 }  // namespace
 
 int export_fmu_command(const ExportFmuOptions& opt) {
@@ -66,11 +75,18 @@ int export_fmu_command(const ExportFmuOptions& opt) {
     for (const auto& f : sc.fluid_paths) inputs.push_back({"fluid file", f});
     io::require_distinct_paths(inputs, {{"-o", out}});
     io::require_output_directory(out);
-    const std::string library = network_fmu_library();
-    const fmu::NetworkFmuSummary s = fmu::write_network_fmu(sc, opt.fixed_step_s, library, out);
+    fmu::NetworkFmuLibraries libraries;
+    libraries.linux64 = network_fmu_library();
+    libraries.win64 = network_fmu_dll(libraries.linux64);
+    const fmu::NetworkFmuSummary s = fmu::write_network_fmu(sc, opt.fixed_step_s, libraries, out);
     std::cout << "Wrote " << out << ": FMI 2.0 co-simulation, " << s.inputs << " inputs, " << s.outputs << " outputs, "
               << s.parameters << " parameter (fixed_step_s = " << opt.fixed_step_s << " s), GUID " << s.guid << "\n"
-              << "Platforms: linux64 only (no win64 binary: docs/fmu.md \"Your drivetrain as an FMU\")\n";
+              << "Platforms:";
+    for (std::size_t i = 0; i < s.platforms.size(); ++i) std::cout << (i ? ", " : " ") << s.platforms[i];
+    if (libraries.win64.empty())
+      std::cout << " (no win64 DLL beside " << libraries.linux64
+                << ": the build makes it when MinGW-w64 is installed, docs/fmu.md \"Platforms\")";
+    std::cout << "\n";
     return 0;
   });
 }

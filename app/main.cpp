@@ -49,8 +49,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1e-7, 1.0));  // a step from 0.1 µs to 1 s
 
   ExportFmuOptions export_fmu;
-  auto* fmu_cmd = app.add_subcommand("export-fmu",
-                                     "Pack a network scenario as an FMI 2.0 co-simulation FMU, linux64 (docs/fmu.md)");
+  auto* fmu_cmd = app.add_subcommand(
+      "export-fmu", "Pack a network scenario as an FMI 2.0 co-simulation FMU, linux64 and win64 (docs/fmu.md)");
   fmu_cmd->add_option("scenario", export_fmu.scenario, "Network scenario file (TOML, type = \"network\")")->required();
   fmu_cmd->add_option("-o,--output", export_fmu.output, "FMU written (default: <scenario name>.fmu)");
   fmu_cmd

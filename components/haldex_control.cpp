@@ -24,10 +24,11 @@ void HaldexControlUnit::start(const Eigen::VectorXd& speed_rad_s, const clutch::
   next_ = 1;
 }
 
-std::vector<double> HaldexControlUnit::instants(double duration_s) const {
+std::vector<double> HaldexControlUnit::instants(double from_s, double until_s) const {
   std::vector<double> t;
-  for (long k = 1; static_cast<double>(k) * period_s_ < duration_s - 1e-12; ++k)
-    t.push_back(static_cast<double>(k) * period_s_);
+  long k = std::max(1L, static_cast<long>(std::floor((from_s - 1e-12) / period_s_)));
+  for (; static_cast<double>(k) * period_s_ < until_s - 1e-12; ++k)
+    if (static_cast<double>(k) * period_s_ >= from_s - 1e-12) t.push_back(static_cast<double>(k) * period_s_);
   return t;
 }
 

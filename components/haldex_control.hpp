@@ -31,8 +31,10 @@ class HaldexControlUnit {
   /// from them (before the simulation takes the valve's start opening from the command), the
   /// leakage at the pack's start temperature.
   void start(const Eigen::VectorXd& speed_rad_s, const clutch::ThermalState& pack);
-  /// The unit's instants in (0, duration).
-  std::vector<double> instants(double duration_s) const;
+  /// The unit's instants k·T_c (k >= 1) in [from, until), each end to 1e-12 s, on the clock
+  /// the run started at 0: [0, duration) for a run, then [duration, ...) piece by piece for an
+  /// FMU, whose clock starts at 0 at the master's start time.
+  std::vector<double> instants(double from_s, double until_s) const;
   /// At a restart time t with the simulation's sample there: acts if t is its next instant.
   void at(double t_s, const dynamics::Sample& s);
   /// After a thermal step of the pack.

@@ -77,9 +77,11 @@ NetworkStepper::NetworkStepper(const NetworkSpec& spec, double end_s) : built_(b
   const double until_s = std::isfinite(end_s) ? end_s : cfg.duration_s;
   std::vector<double> breaks = input_breaks(spec, until_s);
   for (const auto& u : units_) {
-    const auto t = u.instants(until_s);
+    const auto t = u.instants(0.0, until_s);
     breaks.insert(breaks.end(), t.begin(), t.end());
   }
+  instants_until_s_ = std::isfinite(end_s) || units_.empty() ? INFINITY : until_s;
+  instants_chunk_s_ = cfg.duration_s;
   std::sort(breaks.begin(), breaks.end());
   breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
   // Without a wet clutch the network is integrated in one stretch between the breaks.
@@ -96,6 +98,19 @@ NetworkStepper::~NetworkStepper() = default;
 
 void NetworkStepper::advance_to(double t_s, const std::function<void(const dynamics::Sample&)>& on_sample,
                                 const std::function<void(const rig_models::SlowStep&)>& after_step) {
+  // Without an end (an FMU) the control units' instants past those known so far.
+  while (t_s >= instants_until_s_ - 1e-6) {
+    const double from = instants_until_s_, until = std::max(t_s, from) + instants_chunk_s_;
+    std::vector<double> more;
+    for (const auto& u : units_) {
+      const auto t = u.instants(from, until);
+      more.insert(more.end(), t.begin(), t.end());
+    }
+    std::sort(more.begin(), more.end());
+    more.erase(std::unique(more.begin(), more.end()), more.end());
+    coupling_->add_breaks(more);
+    instants_until_s_ = until;
+  }
   coupling_->advance_to(t_s, on_sample, [&](const rig_models::SlowStep& step) {
     for (std::size_t u = 0; u < units_.size(); ++u) units_[u].update_oil(thermal_[unit_wet_[u]]);
     if (after_step) after_step(step);

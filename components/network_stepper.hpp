@@ -13,7 +13,8 @@
 //
 // `end_s` is the scenario's duration for a run (samples at its sample rate up to it), or
 // infinity for an FMU (no samples delivered, no end; thermal steps end at the run's instants;
-// the signals' jumps are then those up to the scenario's duration).
+// the signals' jumps are then those up to the scenario's duration, the control units' instants
+// go on past it, added a duration's worth at a time as advance_to reaches them).
 
 #include <functional>
 #include <limits>
@@ -61,6 +62,8 @@ class NetworkStepper {
   std::vector<clutch::FrictionDataRange> ranges_;
   std::unique_ptr<dynamics::Simulation> sim_;
   std::unique_ptr<rig_models::MultirateCoupling> coupling_;
+  double instants_until_s_ = 0.0;  // the control units' instants are the coupling's breaks up to here
+  double instants_chunk_s_ = 0.0;  // how far each addition reaches (the scenario's duration)
 };
 
 }  // namespace shudder::components

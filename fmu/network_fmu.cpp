@@ -19,6 +19,7 @@
 // `shudder run` interpolates between thermal steps in its HDF5 file.
 //
 // The calling sequence, logging and get/set are fmu/fmi2_functions.cpp's.
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <filesystem>
@@ -134,10 +135,16 @@ class Instance : public fmu::InstanceBase {
         changed = true;
       }
     if (!changed) return;
-    // A wet clutch reads its clamp force from a schedule in its context: the held value.
-    for (auto& bc : stepper_->built().clutches)
-      if (bc.wet && bc.context)
+    // A wet clutch reads its clamp force from a schedule in its context, a Haldex coupling's
+    // hydraulics a raw pressure setting from one in its command: the held value.
+    for (auto& bc : stepper_->built().clutches) {
+      if (bc.haldex) {
+        if (const auto& p = bc.spec->haldex.valve_pressure_bar)
+          bc.command->setting_schedule_bar = rig_models::PiecewiseLinear({0.0}, {std::max((*p)(0.0), 0.0)});
+      } else if (bc.wet && bc.context) {
         bc.context->set_normal_force(rig_models::PiecewiseLinear({0.0}, {bc.scheduled_force_N(0.0)}));
+      }
+    }
     if (restart) stepper_->simulation().restart();
   }
 

@@ -31,8 +31,8 @@ std::string read_binary(const std::string& path) {
 
 }  // namespace
 
-NetworkFmuSummary write_network_fmu(const io::NetworkScenario& sc, double fixed_step_s, const std::string& library_path,
-                                    const std::string& out) {
+NetworkFmuSummary write_network_fmu(const io::NetworkScenario& sc, double fixed_step_s,
+                                    const NetworkFmuLibraries& libraries, const std::string& out) {
   // The description first: what the network cannot be as an FMU fails before anything is written.
   DescribedModel model;
   try {
@@ -69,7 +69,13 @@ NetworkFmuSummary write_network_fmu(const io::NetworkScenario& sc, double fixed_
 
   std::vector<std::pair<std::string, std::string>> files;
   files.push_back({"modelDescription.xml", xml});
-  files.push_back({std::string("binaries/linux64/") + kNetworkModelIdentifier + ".so", read_binary(library_path)});
+  NetworkFmuSummary s;
+  files.push_back({std::string("binaries/linux64/") + kNetworkModelIdentifier + ".so", read_binary(libraries.linux64)});
+  s.platforms.push_back("linux64");
+  if (!libraries.win64.empty()) {
+    files.push_back({std::string("binaries/win64/") + kNetworkModelIdentifier + ".dll", read_binary(libraries.win64)});
+    s.platforms.push_back("win64");
+  }
   std::ostringstream index;
   index.precision(17);
   index << "# Written by shudder export-fmu: the scenario the network FMU's library runs (fmu/network_fmu.cpp)\n"
@@ -84,7 +90,6 @@ NetworkFmuSummary write_network_fmu(const io::NetworkScenario& sc, double fixed_
   }
   io::write_text_file_atomically(out, io::zip_stored(files));
 
-  NetworkFmuSummary s;
   for (const auto& v : model.variables)
     (v.causality == Causality::kInput ? s.inputs : v.causality == Causality::kOutput ? s.outputs : s.parameters)++;
   s.guid = guid_of(xml);

@@ -13,10 +13,18 @@ namespace shudder::fmu {
 std::vector<NetworkInput> network_inputs(components::NetworkSpec& spec) {
   std::vector<NetworkInput> in;
   for (auto& c : spec.clutches) {
-    if (c.law == components::ClutchSpec::Law::kHaldex)
-      throw std::invalid_argument("component '" + c.name +
-                                  "': a haldex_coupling cannot be exported as an FMU "
-                                  "(its control unit runs on the scenario's clock); export a network without it");
+    if (c.law == components::ClutchSpec::Law::kHaldex) {
+      // The control unit's inputs: the pedal it reads and, in place of the unit, a raw valve setting.
+      auto& h = c.haldex;
+      in.push_back({c.name + ".pedal", "1", "accelerator pedal 0..1 (clamped) the control unit reads", &h.pedal});
+      if (h.valve_opening)
+        in.push_back({c.name + ".valve_opening_command", "1",
+                      "raw throttle valve opening commanded, 0 shut .. 1 open (clamped)", &*h.valve_opening});
+      if (h.valve_pressure_bar)
+        in.push_back({c.name + ".valve_pressure_bar", "bar", "raw pressure setting (valve shut below it)",
+                      &*h.valve_pressure_bar});
+      continue;
+    }
     in.push_back(
         {c.name + ".normal_force", "1", "normalised normal force u: F = max_force_N max(u, 0)", &c.force_signal});
   }
@@ -36,7 +44,7 @@ std::vector<NetworkInput> network_inputs(components::NetworkSpec& spec) {
 std::string fmi_name(const std::string& name) {
   std::string out, part;
   const auto flush = [&] {
-    if (part.empty() || std::isdigit(static_cast<unsigned char>(part.front()))) part.insert(0, "_");
+    if (part.empty() || std::isdigit(static_cast<unsigned char>(part.front()))) out += '_';
     out += part;
     part.clear();
   };

@@ -4,11 +4,14 @@
 // network FMU's library (which serves the variables and checks the GUID) agree by
 // construction.
 //
-// Inputs, in this order: each clutch's (or brake's) normal_force (1), each torque source's
-// torque_Nm (N.m), each speed source's speed_rpm (rpm), each motor's speed_rpm set point (rpm;
-// not for a motor with torque ripple, whose ripple follows the scenario's schedule), each
-// engine's throttle (1). Named COMPONENT.KEY after the scenario's key; the start value is the
-// scenario's signal at t = 0; while the FMU runs the master's value replaces the signal.
+// Inputs, in this order: each clutch's (or brake's) normal_force (1), or for a Haldex coupling
+// its control unit's pedal (1) and, where the scenario gives them, its raw valve_opening (as
+// valve_opening_command, 1: the output valve_opening is the valve's state) or
+// valve_pressure_bar (bar), in the clutches' order; each torque source's torque_Nm (N.m), each
+// speed source's speed_rpm (rpm), each motor's speed_rpm set point (rpm; not for a motor with
+// torque ripple, whose ripple follows the scenario's schedule), each engine's throttle (1).
+// Named COMPONENT.KEY after the scenario's key; the start value is the scenario's signal at
+// t = 0; while the FMU runs the master's value replaces the signal.
 // Outputs: the run's recorded channels but time_s (components/network_channels.hpp), named as
 // in the HDF5 run file; a torque source's torque_Nm is its input, not also an output.
 // Parameter: fixed_step_s, the internal RK4 step.
@@ -36,8 +39,7 @@ struct NetworkInput {
   components::Signal* signal = nullptr;
 };
 
-/// The inputs of `spec`, in the header's order. Throws std::invalid_argument for a network
-/// the FMU cannot run (a Haldex coupling).
+/// The inputs of `spec`, in the header's order.
 std::vector<NetworkInput> network_inputs(components::NetworkSpec& spec);
 
 /// FMI name of a channel or input name (header's rule).

@@ -115,6 +115,11 @@ void MultirateCoupling::advance_to(double t_s, const std::function<void(const dy
   }
 }
 
+void MultirateCoupling::add_breaks(const std::vector<double>& later_s) {
+  breaks_s_.erase(breaks_s_.begin(), std::lower_bound(breaks_s_.begin(), breaks_s_.end(), sim_.time_s() - snap_s_));
+  breaks_s_.insert(breaks_s_.end(), later_s.begin(), later_s.end());
+}
+
 void MultirateCoupling::finish_slow_step(double ta, double tb, const dynamics::Sample& sb) {
   const double dt = tb - ta;
   const double next_dt = step_end(k_ + 1) - tb;

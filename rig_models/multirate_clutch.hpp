@@ -98,6 +98,9 @@ class MultirateCoupling {
   /// Advances the simulation to min(t_s, end_s).
   void advance_to(double t_s, const std::function<void(const dynamics::Sample&)>& on_sample,
                   const std::function<void(const SlowStep&)>& after_step);
+  /// More breaks, sorted and after every break given so far: a coupling without an end learns
+  /// a periodic controller's instants piece by piece. Breaks already passed are dropped.
+  void add_breaks(const std::vector<double>& later_s);
 
  private:
   struct Slot;

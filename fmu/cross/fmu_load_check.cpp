@@ -3,16 +3,22 @@
 // and their outputs compared.
 //
 //   fmu_load_check LIBRARY RESOURCE_URI GUID
+//   fmu_load_check LIBRARY RESOURCE_URI GUID --network START STEP STOP VR...
 //
-// Loads LIBRARY, looks up the fmi2* functions by name, instantiates, reads the outputs in
-// initialisation mode, runs 0.5 s from start time 1800 s at 0.1 ms with the clock summed
-// (t += h, last step trimmed) and a slip and force that change every step, then one step of
-// 0.45 ms, and prints "name value" lines (%.17g). Exit status 0 when every call returned
+// Loads LIBRARY, looks up the fmi2* functions by name and instantiates. The clutch FMU (first
+// form): reads the outputs in initialisation mode, runs 0.5 s from start time 1800 s at 0.1 ms
+// with the clock summed (t += h, last step trimmed) and a slip and force that change every
+// step, then one step of 0.45 ms, and prints "name value" lines (%.17g). A network FMU made by
+// `shudder export-fmu` (second form): its inputs at their start values, from START to STOP in
+// communication steps of STEP with the clock summed and the last step trimmed, then prints
+// "VR value" for each output value reference VR. Exit status 0 when every call returned
 // fmi2OK, 1 otherwise, 2 for bad arguments or a library that does not load.
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
+#include <vector>
 
 #ifdef _WIN32
 #include <windows.h>
@@ -53,8 +59,9 @@ void check(fmi2Status s, const char* what) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 4) {
-    std::fprintf(stderr, "usage: fmu_load_check LIBRARY RESOURCE_URI GUID\n");
+  const bool network = argc >= 9 && std::string(argv[4]) == "--network";
+  if (argc != 4 && !network) {
+    std::fprintf(stderr, "usage: fmu_load_check LIBRARY RESOURCE_URI GUID [--network START STEP STOP VR...]\n");
     return 2;
   }
 #ifdef _WIN32
@@ -88,6 +95,26 @@ int main(int argc, char** argv) {
   if (!c) {
     std::fprintf(stderr, "fmu_load_check: fmi2Instantiate failed\n");
     return 1;
+  }
+  if (network) {
+    // A network FMU: start values, a summed clock, the last step trimmed to STOP.
+    const double t0 = std::atof(argv[5]), H = std::atof(argv[6]), stop = std::atof(argv[7]);
+    std::vector<fmi2ValueReference> vr;
+    for (int i = 8; i < argc; ++i) vr.push_back(static_cast<fmi2ValueReference>(std::strtoul(argv[i], nullptr, 10)));
+    std::vector<double> values(vr.size());
+    check(fmi2SetupExperiment(c, fmi2False, 0.0, t0, fmi2True, stop), "fmi2SetupExperiment");
+    check(fmi2EnterInitializationMode(c), "fmi2EnterInitializationMode");
+    check(fmi2ExitInitializationMode(c), "fmi2ExitInitializationMode");
+    for (double t = t0; t < stop - 1e-3 * H;) {
+      const double step = t + H > stop - 1e-3 * H ? stop - t : H;
+      check(fmi2DoStep(c, t, step, fmi2True), "fmi2DoStep");
+      t += step;
+    }
+    check(fmi2GetReal(c, vr.data(), vr.size(), values.data()), "fmi2GetReal");
+    for (std::size_t i = 0; i < vr.size(); ++i) std::printf("%u %.17g\n", vr[i], values[i]);
+    check(fmi2Terminate(c), "fmi2Terminate");
+    fmi2FreeInstance(c);
+    return failures == 0 ? 0 : 1;
   }
   // Value references of fmu/variables.hpp.
   const fmi2ValueReference inputs[] = {0, 1, 2};  // speed a, speed b, clamp force

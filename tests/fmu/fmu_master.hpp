@@ -2,7 +2,9 @@
 // A co-simulation master's pieces shared by the FMU tests (tests/fmu/test_fmu.cpp for the wet
 // clutch, tests/fmu/test_network_fmu.cpp for a network): the logger callback that keeps every
 // message, the fmi2* functions of a library looked up by name as an importing tool does, a
-// command's output, and the check that a linux64 library loads on an old glibc.
+// command's output, the check that a linux64 library loads on an old glibc, the check of a
+// win64 DLL's export and import tables, and the command line that runs a Windows program
+// under Wine.
 #include <dlfcn.h>
 #include <gtest/gtest.h>
 
@@ -11,6 +13,7 @@
 #include <cstdarg>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <regex>
 #include <set>
@@ -144,6 +147,47 @@ inline void expect_loads_on_glibc(const fs::path& library, const std::string& mi
     EXPECT_TRUE(allowed.count(lib)) << "needs " << lib;
   }
   EXPECT_GE(needed, 2);
+}
+
+/// A win64 FMU DLL's export table holds the 34 fmi2 functions and its imports are Windows' own
+/// DLLs only (everything else linked statically, docs/fmu.md "Platforms").
+inline void expect_win64_dll_exports(const fs::path& dll) {
+  const std::string pe = command_output("x86_64-w64-mingw32-objdump -p " + dll.string());
+  int exported = 0;
+  for (std::size_t at = pe.find("] fmi2"); at != std::string::npos; at = pe.find("] fmi2", at + 1)) ++exported;
+  EXPECT_EQ(exported, 34) << dll << "\n" << pe.substr(0, 4000);
+  std::regex imported(R"(DLL Name: (\S+))");
+  int imports = 0;
+  for (auto it = std::sregex_iterator(pe.begin(), pe.end(), imported); it != std::sregex_iterator(); ++it) {
+    std::string name = (*it)[1];
+    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char ch) { return std::tolower(ch); });
+    EXPECT_TRUE(name == "kernel32.dll" || name == "msvcrt.dll" || name.rfind("api-ms-win-", 0) == 0 ||
+                name == "user32.dll" || name == "advapi32.dll")
+        << dll << " imports " << name;
+    ++imports;
+  }
+  EXPECT_GE(imports, 1) << pe.substr(0, 4000);
+}
+
+/// The command line that runs a Windows program under Wine in the build tree's prefix
+/// (created on the first run), one Wine at a time (flock: two tests creating the prefix at
+/// once would race).
+inline std::string wine_command(const std::string& wine, const std::string& prefix, const std::string& args) {
+  return "flock " + prefix + ".lock env WINEPREFIX=" + prefix + " WINEDEBUG=-all WINEDLLOVERRIDES='mscoree,mshtml=' " +
+         wine + " " + args;
+}
+
+/// "name value" lines of a load check's output.
+inline std::map<std::string, double> name_values(const std::string& text) {
+  std::map<std::string, double> values;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream w(line);
+    std::string name;
+    double v = 0.0;
+    if (w >> name >> v) values[name] = v;
+  }
+  return values;
 }
 
 }  // namespace shudder::fmu_test

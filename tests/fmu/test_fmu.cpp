@@ -807,18 +807,7 @@ TEST(Fmu, Win64DllLoadsUnderWineAndGivesTheLinuxOutputs) {
   const fs::path dll = kStage / "binaries/win64/shudder_clutch.dll";
   ASSERT_TRUE(fs::exists(dll));
   // The DLL's export table: the 34 fmi2 functions; its imports: Windows' own DLLs only.
-  const std::string pe = command_output("x86_64-w64-mingw32-objdump -p " + dll.string());
-  int exported = 0;
-  for (std::size_t at = pe.find("] fmi2"); at != std::string::npos; at = pe.find("] fmi2", at + 1)) ++exported;
-  EXPECT_EQ(exported, 34) << pe.substr(0, 4000);
-  std::regex imported(R"(DLL Name: (\S+))");
-  for (auto it = std::sregex_iterator(pe.begin(), pe.end(), imported); it != std::sregex_iterator(); ++it) {
-    std::string name = (*it)[1];
-    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char ch) { return std::tolower(ch); });
-    EXPECT_TRUE(name == "kernel32.dll" || name == "msvcrt.dll" || name.rfind("api-ms-win-", 0) == 0 ||
-                name == "user32.dll" || name == "advapi32.dll")
-        << "the DLL imports " << name;
-  }
+  expect_win64_dll_exports(dll);
   const std::string wine = SHUDDER_WINE;
   if (wine.empty()) GTEST_SKIP() << "Wine is not installed (wine64): the DLL was checked, not run (docs/fmu.md)";
   const std::string linux_out = command_output(std::string(SHUDDER_FMU_LOAD_CHECK) + " " + kLibrary.string() + " " +
@@ -826,21 +815,12 @@ TEST(Fmu, Win64DllLoadsUnderWineAndGivesTheLinuxOutputs) {
   ASSERT_NE(linux_out.find("status=0"), std::string::npos) << linux_out;
   // Wine sees / as drive Z:. Its prefix lives in the build tree (created on the first run).
   const std::string prefix = std::string(SHUDDER_FMU_WIN64_BUILD) + "/wineprefix";
-  const std::string windows_out =
-      command_output("WINEPREFIX=" + prefix + " WINEDEBUG=-all WINEDLLOVERRIDES='mscoree,mshtml=' " + wine + " " +
-                     SHUDDER_FMU_WIN64_BUILD + "/fmu_load_check.exe 'Z:" + dll.string() +
-                     "' 'file:///Z:" + (kStage / "resources").string() + "' '" + guid() + "' 2>&1; echo status=$?");
+  const std::string windows_out = command_output(
+      wine_command(wine, prefix,
+                   std::string(SHUDDER_FMU_WIN64_BUILD) + "/fmu_load_check.exe 'Z:" + dll.string() +
+                       "' 'file:///Z:" + (kStage / "resources").string() + "' '" + guid() + "' 2>&1; echo status=$?"));
   ASSERT_NE(windows_out.find("status=0"), std::string::npos) << windows_out;
-  std::map<std::string, double> a, b;
-  for (auto [text, values] : {std::pair{&linux_out, &a}, std::pair{&windows_out, &b}}) {
-    std::istringstream in(*text);
-    std::string name;
-    double v = 0.0;
-    for (std::string line; std::getline(in, line);) {
-      std::istringstream w(line);
-      if (w >> name >> v) (*values)[name] = v;
-    }
-  }
+  std::map<std::string, double> a = name_values(linux_out), b = name_values(windows_out);
   ASSERT_EQ(a.size(), 11u) << linux_out;
   ASSERT_EQ(b.size(), 11u) << windows_out;
   // Under Wine the two agree to the bit (measured); Windows' own msvcrt may round exp/pow/log

@@ -3,11 +3,15 @@
 // library with dlopen and runs it as a master would (instantiate, set up, initialise, step, read
 // outputs), against `shudder run --fixed-step 1e-4` of the same scenario.
 //
-// The scenario: scenarios/networks/manual_launch_wet_clutch.toml (engine with idle governor,
+// The scenarios: scenarios/networks/manual_launch_wet_clutch.toml (engine with idle governor,
 // wet clutch on a falling mu-v fluid, first gear, driveshaft, tyre, car on a 12 % grade) with
-// its clutch's ramp replaced by a constant normal force u = 0.6 and 1 s long, so its signals
-// are constant and the FMU's inputs, held at their start values (the signals at t = 0), are the
-// scenario's signals exactly.
+// its clutch's ramp replaced by a constant normal force u = 0.6 and 1 s long, and
+// scenarios/networks/haldex_car_low_mu_uphill.toml (AWD car, Haldex coupling whose control unit
+// sets the valve every 10 ms from the axle speeds) with its engine torque and pedal held at
+// their full values and 0.25 s long; so their signals are constant and the FMU's inputs, held
+// at their start values (the signals at t = 0), are the scenario's signals exactly. The Haldex
+// FMU runs to 0.5 s, past its scenario's duration, against a run of the same scenario 0.5 s
+// long: the control unit's instants go on on the FMU's clock.
 //
 // Why the comparisons hold to round-off: the FMU steps the same right-hand side with the same
 // RK4 step and the same thermal-step instants (components/network_stepper.hpp). With
@@ -17,6 +21,7 @@
 // dynamics carry over 10^4 steps. The tolerances below are the figures measured on this
 // scenario with a margin (docs/fmu.md).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -41,7 +46,15 @@ namespace {
 namespace fs = std::filesystem;
 using namespace fmu_test;
 
-const fs::path kWork = fs::temp_directory_path() / "shudder_network_fmu_test";
+// Each test process works in a folder of its own (ctest runs the tests as processes in
+// parallel, and each exports afresh), removed when the process ends.
+const fs::path kWork = fs::temp_directory_path() / ("shudder_network_fmu_test." + std::to_string(getpid()));
+struct RemovedAtExit {
+  ~RemovedAtExit() {
+    std::error_code ec;
+    fs::remove_all(kWork, ec);
+  }
+} removed_at_exit;
 
 std::string read_text(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
@@ -56,18 +69,23 @@ int run_cli(const std::string& args, std::string* err = nullptr) {
   return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
 }
 
-// The test scenario (header) in kWork/networks/, its fluid in kWork/fluids/ where its
-// "../fluids/" path finds it.
-fs::path write_scenario() {
+// A shipped network with its signals held (header) in kWork/networks/NAME.toml, its fluid in
+// kWork/fluids/ where its "../fluids/" path finds it: each (pattern, replacement) applied to
+// the text, duration_s = 3.0 set to `duration`.
+fs::path write_scenario(const std::string& shipped, const std::string& fluid, const std::string& name,
+                        const std::vector<std::pair<std::string, std::string>>& held, const std::string& duration) {
   const fs::path src = fs::path(SHUDDER_SOURCE_DIR) / "scenarios";
-  std::string text = read_text(src / "networks/manual_launch_wet_clutch.toml");
-  text = std::regex_replace(text, std::regex(R"(normal_force = \{[^}]*\})"), "normal_force = 0.6");
-  text = std::regex_replace(text, std::regex(R"(duration_s = 3\.0)"), "duration_s = 1.0");
+  std::string text = read_text(src / "networks" / shipped);
+  for (const auto& [pattern, replacement] : held) {
+    const std::string before = text;
+    text = std::regex_replace(text, std::regex(pattern), replacement);
+    EXPECT_NE(text, before) << shipped << ": no " << pattern;
+  }
+  text = std::regex_replace(text, std::regex(R"(duration_s = 3\.0)"), "duration_s = " + duration);
   fs::create_directories(kWork / "networks");
   fs::create_directories(kWork / "fluids");
-  fs::copy_file(src / "fluids/schematic_launch_negative_slope.toml",
-                kWork / "fluids/schematic_launch_negative_slope.toml", fs::copy_options::overwrite_existing);
-  const fs::path path = kWork / "networks/launch_held.toml";
+  fs::copy_file(src / "fluids" / fluid, kWork / "fluids" / fluid, fs::copy_options::overwrite_existing);
+  const fs::path path = kWork / "networks" / (name + ".toml");
   std::ofstream(path) << text;
   return path;
 }
@@ -86,31 +104,57 @@ struct Exported {
   dynamics::Recording run;
 };
 
+// Exports `scenario` as NAME.fmu, unpacks it into kWork/NAME/ and runs `reference` (the
+// scenario itself, or one of another duration) with --fixed-step 1e-4.
+Exported export_and_run(const fs::path& scenario, const fs::path& reference) {
+  Exported x;
+  x.scenario = scenario;
+  const std::string name = scenario.stem().string();
+  const fs::path fmu = kWork / (name + ".fmu");
+  std::string err;
+  EXPECT_EQ(run_cli("export-fmu " + x.scenario.string() + " -o " + fmu.string(), &err), 0) << err;
+  x.dir = kWork / name;
+  fs::create_directories(x.dir);
+  const std::string unzip = "cd " + x.dir.string() + " && " + SHUDDER_CMAKE + " -E tar xf " + fmu.string();
+  EXPECT_EQ(std::system(unzip.c_str()), 0);
+  x.xml = read_text(x.dir / "modelDescription.xml");
+  std::smatch m;
+  if (std::regex_search(x.xml, m, std::regex(R"(guid="([^"]+)\")"))) x.guid = m[1];
+  const std::regex var(
+      R"re(<ScalarVariable name="([^"]+)" valueReference="(\d+)" causality="(\w+)"[^>]*>\s*<Real[^>]*?(?:start="([^"]+)")?/>)re");
+  for (auto it = std::sregex_iterator(x.xml.begin(), x.xml.end(), var); it != std::sregex_iterator(); ++it)
+    x.variables.push_back({(*it)[1], (*it)[3], static_cast<unsigned>(std::stoul((*it)[2])),
+                           (*it)[4].matched ? std::stod((*it)[4]) : 0.0});
+  const fs::path h5 = kWork / (reference.stem().string() + ".h5");
+  EXPECT_EQ(run_cli("run " + reference.string() + " --fixed-step 1e-4 -o " + h5.string(), &err), 0) << err;
+  x.run = io::read_run_hdf5(h5.string());
+  return x;
+}
+
 const Exported& exported() {
   static const Exported e = [] {
-    Exported x;
     fs::remove_all(kWork);
     fs::create_directories(kWork);
-    x.scenario = write_scenario();
-    const fs::path fmu = kWork / "launch_held.fmu";
-    std::string err;
-    EXPECT_EQ(run_cli("export-fmu " + x.scenario.string() + " -o " + fmu.string(), &err), 0) << err;
-    x.dir = kWork / "unpacked";
-    fs::create_directories(x.dir);
-    const std::string unzip = "cd " + x.dir.string() + " && " + SHUDDER_CMAKE + " -E tar xf " + fmu.string();
-    EXPECT_EQ(std::system(unzip.c_str()), 0);
-    x.xml = read_text(x.dir / "modelDescription.xml");
-    std::smatch m;
-    if (std::regex_search(x.xml, m, std::regex(R"(guid="([^"]+)\")"))) x.guid = m[1];
-    const std::regex var(
-        R"re(<ScalarVariable name="([^"]+)" valueReference="(\d+)" causality="(\w+)"[^>]*>\s*<Real[^>]*?(?:start="([^"]+)")?/>)re");
-    for (auto it = std::sregex_iterator(x.xml.begin(), x.xml.end(), var); it != std::sregex_iterator(); ++it)
-      x.variables.push_back({(*it)[1], (*it)[3], static_cast<unsigned>(std::stoul((*it)[2])),
-                             (*it)[4].matched ? std::stod((*it)[4]) : 0.0});
-    EXPECT_EQ(run_cli("run " + x.scenario.string() + " --fixed-step 1e-4 -o " + (kWork / "run.h5").string(), &err), 0)
-        << err;
-    x.run = io::read_run_hdf5((kWork / "run.h5").string());
-    return x;
+    const fs::path scenario =
+        write_scenario("manual_launch_wet_clutch.toml", "schematic_launch_negative_slope.toml", "launch_held",
+                       {{R"(normal_force = \{[^}]*\})", "normal_force = 0.6"}}, "1.0");
+    return export_and_run(scenario, scenario);
+  }();
+  return e;
+}
+
+// The Haldex car (header): exported 0.25 s long, its reference run 0.5 s long.
+const std::vector<std::pair<std::string, std::string>> kHaldexHeld = {
+    {R"(torque_Nm = \{[^}]*\})", "torque_Nm = 100.0"}, {R"(pedal = \{[^}]*\})", "pedal = 0.5882352941176471"}};
+
+const Exported& haldex_exported() {
+  static const Exported e = [] {
+    (void)exported();  // kWork made afresh
+    const fs::path scenario =
+        write_scenario("haldex_car_low_mu_uphill.toml", "lsc_fluid_c.toml", "haldex_held", kHaldexHeld, "0.25");
+    const fs::path reference = write_scenario("haldex_car_low_mu_uphill.toml", "lsc_fluid_c.toml",
+                                              "haldex_held_reference", kHaldexHeld, "0.5");
+    return export_and_run(scenario, reference);
   }();
   return e;
 }
@@ -120,12 +164,17 @@ Fmu& network_fmu() {
   return f;
 }
 
+Fmu& haldex_fmu() {
+  static Fmu f(haldex_exported().dir / "binaries/linux64/shudder_network.so");
+  return f;
+}
+
 const fmi2CallbackFunctions kCallbacks = {logger, nullptr, nullptr, nullptr, nullptr};
 
-fmi2Component start(Fmu& f, double t0) {
-  const std::string resources = "file://" + (exported().dir / "resources").string();
-  fmi2Component c = f.fmi2Instantiate("network", fmi2CoSimulation, exported().guid.c_str(), resources.c_str(),
-                                      &kCallbacks, fmi2False, fmi2False);
+fmi2Component start(Fmu& f, double t0, const Exported& e = exported()) {
+  const std::string resources = "file://" + (e.dir / "resources").string();
+  fmi2Component c = f.fmi2Instantiate("network", fmi2CoSimulation, e.guid.c_str(), resources.c_str(), &kCallbacks,
+                                      fmi2False, fmi2False);
   EXPECT_NE(c, nullptr);
   if (!c) return c;
   EXPECT_EQ(f.fmi2SetupExperiment(c, fmi2False, 0.0, t0, fmi2False, 0.0), fmi2OK);
@@ -135,8 +184,8 @@ fmi2Component start(Fmu& f, double t0) {
 }
 
 // The run's channel for an output (FMI names are the channel names here: plain component names).
-const dynamics::Signal& channel(const std::string& name) {
-  const auto* s = exported().run.find(name);
+const dynamics::Signal& channel(const std::string& name, const Exported& e = exported()) {
+  const auto* s = e.run.find(name);
   if (!s) throw std::runtime_error("the run has no channel " + name);
   return *s;
 }
@@ -149,13 +198,13 @@ struct Worst {
   std::string where;
 };
 
-void compare_at(Fmu& f, fmi2Component c, std::size_t j, bool thermal_too, std::map<std::string, double>& scale,
-                Worst& w) {
-  for (const auto& v : exported().variables) {
+void compare_at(const Exported& e, Fmu& f, fmi2Component c, std::size_t j, bool thermal_too,
+                std::map<std::string, double>& scale, Worst& w) {
+  for (const auto& v : e.variables) {
     if (v.causality != "output" || (thermal(v.name) && !thermal_too)) continue;
     double value = NAN;
     ASSERT_EQ(f.fmi2GetReal(c, &v.vr, 1, &value), fmi2OK);
-    const auto& ref = channel(v.name).values;
+    const auto& ref = channel(v.name, e).values;
     double& s = scale[v.name];
     if (s == 0.0) {
       for (double x : ref) s = std::max(s, std::abs(x));
@@ -173,20 +222,20 @@ void compare_at(Fmu& f, fmi2Component c, std::size_t j, bool thermal_too, std::m
 // Steps from t0 in communication steps of `every` samples, the master's clock t += H; compares
 // at each communication point. Thermal outputs are compared at thermal-step ends only (the run
 // interpolates them in between, the FMU holds the last thermal step's values).
-Worst master_run(double t0, int every) {
-  Fmu& f = network_fmu();
-  fmi2Component c = start(f, t0);
+// Runs to the reference run's end (`e`: the launch or the Haldex car, `f` its library).
+Worst master_run(double t0, int every, const Exported& e = exported(), Fmu& f = network_fmu()) {
+  fmi2Component c = start(f, t0, e);
   if (!c) return {INFINITY, "no instance"};
-  const std::size_t n = channel("time_s").values.size();
-  const double H = every * 1e-3;  // the run's sample interval is 1 ms
+  const std::size_t n = channel("time_s", e).values.size();
+  const double H = every * 1e-3;  // the runs' sample interval is 1 ms
   Worst w;
   std::map<std::string, double> scale;
-  compare_at(f, c, 0, true, scale, w);
+  compare_at(e, f, c, 0, true, scale, w);
   double t = t0;
   for (std::size_t j = every; j < n; j += every) {
     EXPECT_EQ(f.fmi2DoStep(c, t, H, fmi2True), fmi2OK);
     t += H;
-    compare_at(f, c, j, j % 10 == 0, scale, w);
+    compare_at(e, f, c, j, j % 10 == 0, scale, w);
   }
   f.fmi2Terminate(c);
   f.fmi2FreeInstance(c);
@@ -294,6 +343,146 @@ TEST(NetworkFmu, AStartAt1800sRunsAsTheScenarioFromZeroAndATrimmedLastStepEndsAt
     EXPECT_NEAR(value, line, 0.05 * std::abs(ref[11] - ref[10]) + 1e-9) << name;
   }
   f.fmi2FreeInstance(c);
+}
+
+TEST(NetworkFmu, AHaldexCouplingIsExportedWithItsControlUnitsPedalAsAnInput) {
+  const Exported& e = haldex_exported();
+  std::map<std::string, Variable> by_name;
+  for (const auto& v : e.variables) by_name[v.name] = v;
+  ASSERT_TRUE(by_name.count("haldex.pedal"));
+  EXPECT_EQ(by_name["haldex.pedal"].causality, "input");
+  EXPECT_EQ(by_name["haldex.pedal"].start, 0.5882352941176471);
+  EXPECT_EQ(by_name["engine_torque.torque_Nm"].start, 100.0);
+  // The valve's state and the pack's pressure are outputs (the recorded channels).
+  EXPECT_EQ(by_name["haldex.valve_opening"].causality, "output");
+  EXPECT_EQ(by_name["haldex.pressure_bar"].causality, "output");
+  EXPECT_NE(e.xml.find("<DefaultExperiment startTime=\"0\" stopTime=\"0.25\" stepSize=\"0.001\"/>"), std::string::npos);
+}
+
+TEST(NetworkFmu, AHaldexCouplingsControlUnitActsOnTheFmusClockFromItsStartAndPastTheDuration) {
+  // The control unit sets the valve every 10 ms on the FMU's clock, which starts at 0 at the
+  // master's start time (docs/fmu.md "Time"). The FMU, exported 0.25 s long, runs to 0.5 s and
+  // is compared with the run 0.5 s long: its instants go on past the exported duration. That
+  // the comparison can tell: the run's valve opening keeps changing after 0.25 s, so a unit
+  // that stopped there would hold it.
+  const Exported& e = haldex_exported();
+  const auto& opening = channel("haldex.valve_opening", e).values;
+  ASSERT_EQ(opening.size(), 501u);
+  const auto [lo, hi] = std::minmax_element(opening.begin() + 260, opening.end());
+  EXPECT_GT(*hi - *lo, 0.05) << "the reference run's unit does not act after 0.25 s: the test would not see it";
+  // 10 ms steps from 0 s: the run's integrator calls.
+  Worst w = master_run(0.0, 10, e, haldex_fmu());
+  EXPECT_LE(w.relative, 1e-12) << w.where;
+  std::printf("[ figure ] Haldex car, 10 ms steps from 0 s to 0.5 s: largest |FMU - run| / max|run| = %.3g (%s)\n",
+              w.relative, w.where.c_str());
+  // 3 ms steps: the unit's instants fall inside communication steps.
+  w = master_run(0.0, 3, e, haldex_fmu());
+  EXPECT_LE(w.relative, 1e-9) << w.where;
+  std::printf("[ figure ] Haldex car, 3 ms steps from 0 s: largest |FMU - run| / max|run| = %.3g (%s)\n", w.relative,
+              w.where.c_str());
+  // 1 ms steps from 1800 s: the instants are 1800 s + k 10 ms on the master's clock.
+  w = master_run(1800.0, 1, e, haldex_fmu());
+  EXPECT_LE(w.relative, 1e-9) << w.where;
+  std::printf("[ figure ] Haldex car, 1 ms steps from 1800 s: largest |FMU - run| / max|run| = %.3g (%s)\n", w.relative,
+              w.where.c_str());
+}
+
+TEST(NetworkFmu, AHaldexCouplingsRawPressureSettingIsAnInputThatSetsThePacksPressure) {
+  // scenarios/networks/haldex_car_takeup_judder.toml holds the valve's pressure setting at
+  // 3 bar (a raw setting, the valve shut below it), 0.2 s long; the pump's pressure rises
+  // towards it (1.95 bar at 0.2 s). As exported, the FMU's pressure is the run's; with the
+  // input set to 1 bar the pressure levels off at the setting (1.013 bar at 0.2 s: the
+  // hydraulics' own response, not a hard cap), well below the run's.
+  static const Exported e = [] {
+    (void)exported();  // kWork made afresh
+    const fs::path scenario =
+        write_scenario("haldex_car_takeup_judder.toml", "schematic_negative_slope.toml", "haldex_judder", {}, "0.2");
+    return export_and_run(scenario, scenario);
+  }();
+  std::map<std::string, Variable> by_name;
+  for (const auto& v : e.variables) by_name[v.name] = v;
+  ASSERT_TRUE(by_name.count("haldex.valve_pressure_bar"));
+  EXPECT_EQ(by_name["haldex.valve_pressure_bar"].causality, "input");
+  EXPECT_EQ(by_name["haldex.valve_pressure_bar"].start, 3.0);
+  static Fmu f(e.dir / "binaries/linux64/shudder_network.so");
+  const unsigned pressure = by_name["haldex.pressure_bar"].vr, setting = by_name["haldex.valve_pressure_bar"].vr;
+  const auto pressure_at_200ms = [&](double setting_bar) -> double {
+    fmi2Component c = start(f, 0.0, e);
+    EXPECT_NE(c, nullptr);
+    if (!c) return NAN;
+    EXPECT_EQ(f.fmi2SetReal(c, &setting, 1, &setting_bar), fmi2OK);
+    double t = 0.0;
+    for (int k = 0; k < 200; ++k, t += 1e-3) EXPECT_EQ(f.fmi2DoStep(c, t, 1e-3, fmi2True), fmi2OK);
+    double p = NAN;
+    EXPECT_EQ(f.fmi2GetReal(c, &pressure, 1, &p), fmi2OK);
+    f.fmi2FreeInstance(c);
+    return p;
+  };
+  const double run = channel("haldex.pressure_bar", e).values[200];
+  const double as_exported = pressure_at_200ms(3.0), lowered = pressure_at_200ms(1.0);
+  std::printf(
+      "[ figure ] Haldex judder car at 0.2 s: pressure run %.6g bar, FMU %.6g bar, FMU at a 1 bar setting %.6g bar\n",
+      run, as_exported, lowered);
+  EXPECT_NEAR(as_exported, run, 1e-9 * std::abs(run));
+  EXPECT_GT(run, 1.5);
+  EXPECT_NEAR(lowered, 1.0, 0.05);
+}
+
+TEST(NetworkFmu, Win64DllIsPackedAndGivesTheLinux64OutputsUnderWine) {
+  // export-fmu packs the MinGW-w64 build of the network library beside the .so. The same small
+  // master (fmu/cross/fmu_load_check.cpp --network) runs both on the Haldex car from 1800 s to
+  // 1800.5 s in 1 ms steps (summed clock, last step trimmed), past the exported 0.25 s.
+  const Exported& e = haldex_exported();
+  const fs::path dll = e.dir / "binaries/win64/shudder_network.dll";
+  if (std::string(SHUDDER_FMU_WIN64) != "1") {
+    EXPECT_FALSE(fs::exists(dll));
+    GTEST_SKIP() << "built without SHUDDER_FMU_WIN64 (no MinGW-w64): the FMU has binaries/linux64 only";
+  }
+  ASSERT_TRUE(fs::exists(dll));
+  expect_win64_dll_exports(dll);
+  const std::string wine = SHUDDER_WINE;
+  if (wine.empty()) GTEST_SKIP() << "Wine is not installed (wine64): the DLL was checked, not run (docs/fmu.md)";
+  std::string vrs;
+  std::vector<std::string> names;
+  for (const auto& v : e.variables)
+    if (v.causality == "output") {
+      vrs += " " + std::to_string(v.vr);
+      names.push_back(v.name);
+    }
+  const std::string run = " --network 1800 0.001 1800.5" + vrs;
+  const std::string linux_out = command_output(
+      std::string(SHUDDER_FMU_LOAD_CHECK) + " " + (e.dir / "binaries/linux64/shudder_network.so").string() +
+      " file://" + (e.dir / "resources").string() + " '" + e.guid + "'" + run + "; echo status=$?");
+  ASSERT_NE(linux_out.find("status=0"), std::string::npos) << linux_out;
+  const std::string prefix = std::string(SHUDDER_FMU_WIN64_BUILD) + "/wineprefix";
+  const std::string windows_out = command_output(wine_command(
+      wine, prefix,
+      std::string(SHUDDER_FMU_WIN64_BUILD) + "/fmu_load_check.exe 'Z:" + dll.string() +
+          "' 'file:///Z:" + (e.dir / "resources").string() + "' '" + e.guid + "'" + run + " 2>&1; echo status=$?"));
+  ASSERT_NE(windows_out.find("status=0"), std::string::npos) << windows_out;
+  std::map<std::string, double> a = name_values(linux_out), b = name_values(windows_out);
+  ASSERT_EQ(a.size(), names.size()) << linux_out;
+  ASSERT_EQ(b.size(), names.size()) << windows_out;
+  // As the clutch FMU's DLL: Windows' own msvcrt may round exp/pow/log differently in the last
+  // bit; 1e-9 relative is far above what that carries through 0.5 s.
+  double worst = 0.0;
+  std::string where;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::string vr = std::to_string(fmu::kFirstOutputVr + i);
+    ASSERT_TRUE(a.count(vr) && b.count(vr)) << names[i];
+    const double d = std::abs(b[vr] - a[vr]) / std::max(1.0, std::abs(a[vr]));
+    EXPECT_LE(d, 1e-9) << names[i] << ": linux64 " << a[vr] << ", win64 " << b[vr];
+    if (d >= worst) {
+      worst = d;
+      where = names[i];
+    }
+  }
+  std::printf("[ figure ] win64 DLL under Wine vs linux64, Haldex car 1800-1800.5 s: largest difference %.3g (%s)\n",
+              worst, where.c_str());
+  // It ran: the pack's pressure built up (the unit shut the valve on the spinning front axle).
+  const auto p = std::find(names.begin(), names.end(), "haldex.pressure_bar");
+  ASSERT_NE(p, names.end());
+  EXPECT_GT(a[std::to_string(fmu::kFirstOutputVr + (p - names.begin()))], 1.0);
 }
 
 TEST(NetworkFmu, AnInputReplacesTheScenariosSignal) {
