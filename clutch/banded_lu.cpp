@@ -80,9 +80,10 @@ Sweep sweep_for(int b) { return b >= 1 && b <= kMaxFixedWidth ? kSweeps[static_c
 // so A(i, k) = col_k[i - k]; each update is an axpy on two columns' contiguous, disjoint
 // entries. kB > 0: the half band width as a compile-time constant, so that away from the
 // matrix' end every column's update has exactly kB terms and compiles to straight-line vector
-// code (a 240 × 12 factorisation ≈ 400 k instructions as a loop over entries, docs/performance.md);
-// kB = 0: the width at run time. Each entry gets the same division or multiply-and-subtract,
-// in the same order of columns, either way: the factors are the same bit for bit.
+// code instead of a loop with an index computation per entry (the thermal steps' factorisations
+// are a tenth of a network run with wet clutches, docs/performance.md); kB = 0: the width at
+// run time. Each entry gets the same division or multiply-and-subtract, in the same order of
+// columns, either way: the factors are the same bit for bit.
 template <int kB>
 bool eliminate(double* data, int n, int run_time_b, std::size_t width) {
   const int b = kB > 0 ? kB : run_time_b;
@@ -99,7 +100,9 @@ bool eliminate(double* data, int n, int run_time_b, std::size_t width) {
       if (u == 0.0) continue;
       double* __restrict a = col_j - off + 1;  // A(k+1 .., j)
       if (kB > 0 && below == kB) {
-        for (int q = 0; q < kB; ++q) a[q] -= l[q] * u;
+        // As packets (Eigen's fixed size): a − l·u per entry, rounded as the loop below rounds.
+        constexpr int kRows = kB > 0 ? kB : 1;
+        Eigen::Map<Eigen::Matrix<double, kRows, 1>>(a) -= Eigen::Map<const Eigen::Matrix<double, kRows, 1>>(l) * u;
       } else {
         for (int q = 0; q < below; ++q) a[q] -= l[q] * u;
       }
