@@ -199,9 +199,9 @@ static_assert(kBlockRings % kRingsPerAnchor == 0, "every block starts on an anch
 // above its lowest speed, the case of nearly every right-hand side. Then no ring is clamped and
 // the anchors are the rings 0, 16, 32, …, so each block's speed terms are filled by straight
 // loops without a test per ring, and block_ring_torques makes the torques from them. The speed
-// terms are the same operations in the same order as SpeedTermsAlongRings', so the torques are
-// the same bit for bit (tests/clutch/test_wet_clutch.cpp compares the two passes). Returns
-// false (nothing written) where that case does not hold; the caller then takes the general pass.
+// terms are the same operations in the same order as SpeedTermsAlongRings' on such a slip, so
+// the torques are those of the general pass bit for bit. Returns false (nothing written) where
+// that case does not hold; the caller then takes the general pass.
 bool ring_torques_inside(const Eigen::VectorXd& r_m, bool rings_increasing, double ring_pitch_m,
                          const FrozenFriction& first, std::span<const double> rates, double abs_slip_rad_s,
                          const Eigen::VectorXd& radius_area_m3, double pressure_Pa,
