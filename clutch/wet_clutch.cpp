@@ -216,7 +216,7 @@ bool ring_torques_inside(const Eigen::VectorXd& r_m, bool rings_increasing, doub
   const std::size_t n_rates = rates.size();
   const double slip_pow = std::pow(abs_slip_rad_s, 0.1);
   const double speed_step_mm_s = ring_pitch_m * abs_slip_rad_s * 1e3;
-  double step[kCarriedRates];  // d_k = expm1(2 b_k Δv)
+  double step[kCarriedRates] = {};  // d_k = expm1(2 b_k Δv) (unused with one ring)
   if (n > 1)
     for (std::size_t k = 0; k < n_rates; ++k) step[k] = std::expm1(2.0 * rates[k] * speed_step_mm_s);
   for (const RingPassState& s : states) s.torque->resize(n);
