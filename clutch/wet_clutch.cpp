@@ -216,7 +216,7 @@ bool ring_torques_inside(const Eigen::VectorXd& r_m, bool rings_increasing, doub
   const std::size_t n_rates = rates.size();
   const double slip_pow = std::pow(abs_slip_rad_s, 0.1);
   const double speed_step_mm_s = ring_pitch_m * abs_slip_rad_s * 1e3;
-  double step[kCarriedRates] = {};  // d_k = expm1(2 b_k Δv) (unused with one ring)
+  double step[kCarriedRates];  // d_k = expm1(2 b_k Δv), read only between anchors (n > 1)
   if (n > 1)
     for (std::size_t k = 0; k < n_rates; ++k) step[k] = std::expm1(2.0 * rates[k] * speed_step_mm_s);
   for (const RingPassState& s : states) s.torque->resize(n);
@@ -232,12 +232,12 @@ bool ring_torques_inside(const Eigen::VectorXd& r_m, bool rings_increasing, doub
     // tanh(b_k v_i) = e_i / (e_i + 2): an exact expm1 at each anchor, the recurrence between.
     for (std::size_t k = 0; k < n_rates; ++k) {
       double* t = b.tanh[k];
-      const double d = step[k];
       for (Eigen::Index a = 0; a < m; a += kRingsPerAnchor) {
         double e = std::expm1(2.0 * rates[k] * b.speed_mm_s[a]);
         t[a] = e / (e + 2.0);
         const Eigen::Index end = std::min(a + kRingsPerAnchor, m);
         for (Eigen::Index j = a + 1; j < end; ++j) {
+          const double d = step[k];
           e += d + e * d;
           t[j] = e / (e + 2.0);
         }
