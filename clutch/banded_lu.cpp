@@ -74,6 +74,56 @@ constexpr auto kSweeps = make_sweeps(std::make_integer_sequence<int, kMaxFixedWi
 
 Sweep sweep_for(int b) { return b >= 1 && b <= kMaxFixedWidth ? kSweeps[static_cast<std::size_t>(b)] : &sweep<0>; }
 
+// The right-looking elimination of factorize() on the band storage (header): column k's
+// multipliers L(i, k) = A(i, k) / A(k, k), then the rank-one update A(i, j) -= L(i, k) U(k, j) of
+// the trailing band, one column j at a time. Column k of the band starts at data + k·width + b,
+// so A(i, k) = col_k[i - k]; each update is an axpy on two columns' contiguous, disjoint
+// entries. kB > 0: the half band width as a compile-time constant, so that away from the
+// matrix' end every column's update has exactly kB terms and compiles to straight-line vector
+// code instead of a loop with an index computation per entry (the thermal steps' factorisations
+// are a tenth of a network run with wet clutches, docs/performance.md); kB = 0: the width at
+// run time. Each entry gets the same division or multiply-and-subtract, in the same order of
+// columns, either way: the factors are the same bit for bit.
+template <int kB>
+bool eliminate(double* data, int n, int run_time_b, std::size_t width) {
+  const int b = kB > 0 ? kB : run_time_b;
+  for (int k = 0; k < n; ++k) {
+    double* __restrict col_k = data + static_cast<std::size_t>(k) * width + b;
+    const double pivot = col_k[0];
+    if (!std::isfinite(pivot) || pivot == 0.0) return false;
+    const int below = std::min(n - 1, k + b) - k;  // rows k+1 .. k+below
+    double* __restrict l = col_k + 1;              // L(k+1 .., k)
+    for (int q = 0; q < below; ++q) l[q] /= pivot;
+    for (int off = 1; off <= below; ++off) {
+      double* __restrict col_j = data + static_cast<std::size_t>(k + off) * width + b;
+      const double u = col_j[-off];  // U(k, j)
+      if (u == 0.0) continue;
+      double* __restrict a = col_j - off + 1;  // A(k+1 .., j)
+      if (kB > 0 && below == kB) {
+        // As packets (Eigen's fixed size): a − l·u per entry, rounded as the loop below rounds.
+        constexpr int kRows = kB > 0 ? kB : 1;
+        Eigen::Map<Eigen::Matrix<double, kRows, 1>>(a) -= Eigen::Map<const Eigen::Matrix<double, kRows, 1>>(l) * u;
+      } else {
+        for (int q = 0; q < below; ++q) a[q] -= l[q] * u;
+      }
+    }
+  }
+  return true;
+}
+
+using Eliminate = bool (*)(double*, int, int, std::size_t);
+
+template <int... kWidths>
+constexpr std::array<Eliminate, sizeof...(kWidths) + 1> make_eliminations(std::integer_sequence<int, kWidths...>) {
+  return {&eliminate<0>, &eliminate<kWidths + 1>...};
+}
+
+constexpr auto kEliminations = make_eliminations(std::make_integer_sequence<int, kMaxFixedWidth>{});
+
+Eliminate elimination_for(int b) {
+  return b >= 1 && b <= kMaxFixedWidth ? kEliminations[static_cast<std::size_t>(b)] : &eliminate<0>;
+}
+
 }  // namespace
 
 BandedLu::BandedLu(int n, int half_band) : n_(n), b_(half_band), width_(static_cast<std::size_t>(2 * half_band + 1)) {
@@ -96,20 +146,9 @@ bool BandedLu::factorize(const Eigen::SparseMatrix<double>& a) {
     }
   // Right-looking elimination: column k's multipliers, then the rank-one update of the
   // trailing band, one column at a time.
-  for (int k = 0; k < n_; ++k) {
-    const double pivot = at(k, k);
-    if (!std::isfinite(pivot) || pivot == 0.0) return false;
-    const int last = std::min(n_ - 1, k + b_);
-    for (int i = k + 1; i <= last; ++i) at(i, k) /= pivot;
-    for (int j = k + 1; j <= last; ++j) {
-      const double u = at(k, j);
-      if (u == 0.0) continue;
-      for (int i = k + 1; i <= last; ++i) at(i, j) -= at(i, k) * u;
-    }
-  }
-  // The solve's rows, zeros where the band reaches past the matrix' ends.
-  std::fill(lower_.begin(), lower_.end(), 0.0);
-  std::fill(upper_.begin(), upper_.end(), 0.0);
+  if (!elimination_for(b_)(data_.data(), n_, b_, width_)) return false;
+  // The solve's rows; where the band reaches past the matrix' ends they keep the zeros the
+  // constructor set (those entries are never written).
   const std::size_t b = static_cast<std::size_t>(b_);
   for (int m = 0; m < n_; ++m) {
     diag_[static_cast<std::size_t>(m)] = at(m, m);

@@ -23,6 +23,13 @@ double equal_ring_pitch_m(const Eigen::VectorXd& r) {
   return pitch > 0.0 ? pitch : 0.0;
 }
 
+// Whether r_0 < r_1 < … (and there is a ring).
+bool strictly_increasing(const Eigen::VectorXd& r) {
+  for (Eigen::Index i = 1; i < r.size(); ++i)
+    if (!(r[i] > r[i - 1])) return false;
+  return r.size() > 0;
+}
+
 // Rates whose tanh is carried along the rings by the recurrence below; tanh of further rates (a
 // frozen state whose rings span many rows of a large matrix) is taken ring by ring.
 constexpr std::size_t kCarriedRates = 16;
@@ -177,6 +184,71 @@ void block_ring_torques(const FrozenFriction& f, const SpeedBlock& b, const std:
     torque[i0 + j] = radius_area_m3[i0 + j] * pressure_Pa * mu[j] + f.viscous_Nms[i0 + j] * abs_slip;
 }
 
+// One frozen state of a pass over the rings: its torques (n_r) and, per rate of the state, the
+// index of that rate in the pass's rate list (nullptr: the same index).
+struct RingPassState {
+  const FrozenFriction* friction;
+  const std::size_t* rate_at;
+  Eigen::VectorXd* torque;
+};
+
+static_assert(kBlockRings % kRingsPerAnchor == 0, "every block starts on an anchor");
+
+// The ring torques of every state in `states` in one pass over the rings, when every ring's
+// speed lies inside the law's speeds and every rate of `rates` is carried: a slipping clutch
+// above its lowest speed, the case of nearly every right-hand side. Then no ring is clamped and
+// the anchors are the rings 0, 16, 32, …, so each block's speed terms are filled by straight
+// loops without a test per ring, and block_ring_torques makes the torques from them. The speed
+// terms are the same operations in the same order as SpeedTermsAlongRings' on such a slip, so
+// the torques are those of the general pass bit for bit. Returns false (nothing written) where
+// that case does not hold; the caller then takes the general pass.
+bool ring_torques_inside(const Eigen::VectorXd& r_m, bool rings_increasing, double ring_pitch_m,
+                         const FrozenFriction& first, std::span<const double> rates, double abs_slip_rad_s,
+                         const Eigen::VectorXd& radius_area_m3, double pressure_Pa,
+                         std::span<const RingPassState> states) {
+  const Eigen::Index n = r_m.size();
+  if (n < 1 || !rings_increasing || !(ring_pitch_m > 0.0) || rates.size() > kCarriedRates) return false;
+  // Speeds grow with the radius (rounding is monotonic): the end rings bound every ring's speed.
+  const double v_min = first.min_speed_mm_s, v_max = first.max_speed_mm_s;
+  if (r_m[0] * abs_slip_rad_s * 1e3 < v_min || r_m[n - 1] * abs_slip_rad_s * 1e3 > v_max) return false;
+  for (double rate : rates)
+    if (!(std::abs(2.0 * rate * v_max) <= kMaxCarriedExponent)) return false;
+  const std::size_t n_rates = rates.size();
+  const double slip_pow = std::pow(abs_slip_rad_s, 0.1);
+  const double speed_step_mm_s = ring_pitch_m * abs_slip_rad_s * 1e3;
+  double step[kCarriedRates];  // d_k = expm1(2 b_k Δv), read only between anchors (n > 1)
+  if (n > 1)
+    for (std::size_t k = 0; k < n_rates; ++k) step[k] = std::expm1(2.0 * rates[k] * speed_step_mm_s);
+  for (const RingPassState& s : states) s.torque->resize(n);
+  SpeedBlock b;
+  for (Eigen::Index i0 = 0; i0 < n; i0 += kBlockRings) {
+    const Eigen::Index m = std::min(kBlockRings, n - i0);
+    b.first = i0;
+    b.rings = m;
+    for (Eigen::Index j = 0; j < m; ++j) {
+      b.speed_mm_s[j] = r_m[i0 + j] * abs_slip_rad_s * 1e3;
+      b.speed_pow[j] = first.radius_pow[i0 + j] * slip_pow;
+    }
+    // tanh(b_k v_i) = e_i / (e_i + 2): an exact expm1 at each anchor, the recurrence between.
+    for (std::size_t k = 0; k < n_rates; ++k) {
+      double* t = b.tanh[k];
+      for (Eigen::Index a = 0; a < m; a += kRingsPerAnchor) {
+        double e = std::expm1(2.0 * rates[k] * b.speed_mm_s[a]);
+        t[a] = e / (e + 2.0);
+        const Eigen::Index end = std::min(a + kRingsPerAnchor, m);
+        for (Eigen::Index j = a + 1; j < end; ++j) {
+          const double d = step[k];
+          e += d + e * d;
+          t[j] = e / (e + 2.0);
+        }
+      }
+    }
+    for (const RingPassState& s : states)
+      block_ring_torques(*s.friction, b, s.rate_at, radius_area_m3, pressure_Pa, abs_slip_rad_s, *s.torque);
+  }
+  return true;
+}
+
 // Fills the regrouped form of f.curves (FrozenFriction); clears the curves if they do not share
 // one speed clamp.
 void regroup_by_rate(FrozenFriction& f) {
@@ -226,6 +298,7 @@ WetClutch::WetClutch(WetClutchParams params, Fluid fluid)
   const auto& r = thermal_.ring_radius_m();
   ring_radius_area_m3_ = r.cwiseProduct(thermal_.ring_area_m2());
   ring_pitch_m_ = equal_ring_pitch_m(r);
+  rings_increasing_ = strictly_increasing(r);
 }
 
 ThermalState WetClutch::initial_state() const {
@@ -314,6 +387,10 @@ void WetClutch::ring_torque_Nm(const FrozenFriction& f, double abs_slip, double 
     return;
   }
   const double p = pressure_Pa(force_N);
+  const RingPassState state{&f, nullptr, &torque};
+  if (ring_torques_inside(thermal_.ring_radius_m(), rings_increasing_, ring_pitch_m_, f, f.rates, abs_slip,
+                          ring_radius_area_m3_, p, std::span<const RingPassState>(&state, 1)))
+    return;
   const Eigen::Index n = ring_radius_area_m3_.size();
   torque.resize(n);
   SpeedTermsAlongRings terms(thermal_.ring_radius_m(), ring_pitch_m_, f, f.rates, abs_slip);
@@ -352,6 +429,10 @@ void WetClutch::ring_torque_pair_Nm(const FrozenFriction& fa, const FrozenFricti
     return;
   }
   const double p = pressure_Pa(force_N);
+  const RingPassState states[2] = {{&fa, nullptr, &torque_a}, {&fb, b_at, &torque_b}};
+  if (ring_torques_inside(thermal_.ring_radius_m(), rings_increasing_, ring_pitch_m_, fa,
+                          std::span<const double>(rates, n_rates), abs_slip, ring_radius_area_m3_, p, states))
+    return;
   const Eigen::Index n = ring_radius_area_m3_.size();
   torque_a.resize(n);
   torque_b.resize(n);

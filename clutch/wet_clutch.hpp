@@ -128,6 +128,7 @@ class WetClutch {
   // Spacing of the ring centres r_i = r_0 + i Δr, m; 0 if they are not equally spaced (then
   // tanh is taken ring by ring, wet_clutch.cpp).
   double ring_pitch_m_ = 0.0;
+  bool rings_increasing_ = false;  // r_i strictly increasing: the end rings bound the speeds
 };
 
 }  // namespace shudder::clutch
