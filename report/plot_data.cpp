@@ -55,14 +55,14 @@ namespace {
 std::optional<analysis::ShudderResult> network_clutch_detection(const dynamics::Recording& rec,
                                                                 const std::string& clutch) {
   const dynamics::Signal* t = rec.find("time_s");
-  if (!t || t->values.size() < 2 || !(t->values.back() > t->values.front())) return std::nullopt;
-  const double fs = static_cast<double>(t->values.size() - 1) / (t->values.back() - t->values.front());
+  if (!t) return std::nullopt;
   try {
+    const double fs = sample_rate_Hz(*t, 2, "the run", "spectrum");
     const auto cv = components::judge_clutch(rec, clutch, std::string(rig_models::judged_torque_signal(rec)), fs);
     if (!cv.judged) return std::nullopt;
     return cv.verdict.judged;
   } catch (const std::exception&) {
-    return std::nullopt;  // a channel the judgement needs is missing: nothing to mark
+    return std::nullopt;  // too short a record, or a channel the judgement needs missing: nothing to mark
   }
 }
 
