@@ -34,7 +34,7 @@
 //
 // The indices are screening numbers: a positive slope is neither necessary nor sufficient for
 // stability on a real driveline (docs/physics.md §6, Cameron); the rig's eigenvalues decide
-// (rig_models/fluid_screening.hpp).
+// (studies/fluid_screening.hpp).
 
 #include <Eigen/Dense>
 #include <array>

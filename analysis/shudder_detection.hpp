@@ -79,7 +79,7 @@
 //         by ~√(P_floor/P): at 45 dB under the fitted frames the onset is good to ~10 % of the
 //         extrapolation, and at 25 dB it is lost (tests/analysis). A deterministic floor of a
 //         simulation is smoother. The system must be quasi-static: σ changes little over a frame.
-//      e. OnsetDefinition::kThresholdCrossing (what a run reports: rig_models/recording_detection)
+//      e. OnsetDefinition::kThresholdCrossing (what a run reports: studies/recording_detection)
 //         instead places the onset where the oscillation's amplitude in the band, a_j = √(2 B_j)
 //         (a sinusoid's amplitude from its mean square), last rises through the verdict's
 //         threshold (definition 7) before the oscillating part, interpolated in dB between frame

@@ -28,7 +28,7 @@
 #include "io/output_safety.hpp"
 #include "io/scenario.hpp"
 #include "report/characterisation_report.hpp"
-#include "rig_models/inverse_characterisation.hpp"
+#include "studies/inverse_characterisation.hpp"
 
 namespace shudder::app {
 
@@ -201,10 +201,10 @@ analysis::Characterisation fit_from_sensors(const ReadRuns& runs, const analysis
 
 // --method inverse: the same settings, replayed through the clutch and thermal model (of
 // --model, else the default clutch on the conversion's annulus); its law is the one written.
-rig_models::InverseCharacterisation fit_inverse(const ReadRuns& runs, const analysis::CharacterisationSettings& s,
-                                                const std::optional<io::Scenario>& scenario,
-                                                const CharacteriseOptions& o) {
-  rig_models::InverseSettings is;
+studies::InverseCharacterisation fit_inverse(const ReadRuns& runs, const analysis::CharacterisationSettings& s,
+                                             const std::optional<io::Scenario>& scenario,
+                                             const CharacteriseOptions& o) {
+  studies::InverseSettings is;
   if (scenario) {
     is.model = io::replay_model(*scenario);
   } else {
@@ -220,9 +220,9 @@ rig_models::InverseCharacterisation fit_inverse(const ReadRuns& runs, const anal
   is.jobs = std::max(1u, std::thread::hardware_concurrency());
   is.max_iterations = o.inverse_iterations;
   const io::DiagnosisData data = io::diagnosis_data(runs.measured);
-  rig_models::InverseCharacterisation inverse;
+  studies::InverseCharacterisation inverse;
   try {
-    inverse = rig_models::characterise_inverse(runs.ramps, data.inputs, s, o.temperature_channel, is);
+    inverse = studies::characterise_inverse(runs.ramps, data.inputs, s, o.temperature_channel, is);
   } catch (const analysis::CharacterisationInputError& e) {
     throw io::InputError(e.file(), 0, "", e.what());
   }
@@ -276,7 +276,7 @@ int characterise_command(const CharacteriseOptions& o) {
     // The law: from the sensors, or (--method inverse) replayed through the model, the sensor
     // fit reported beside it.
     analysis::Characterisation c = fit_from_sensors(runs, s);
-    std::optional<rig_models::InverseCharacterisation> inverse;
+    std::optional<studies::InverseCharacterisation> inverse;
     analysis::CharacterisationSettings written = s;
     if (o.method == "inverse") {
       inverse = fit_inverse(runs, s, scenario, o);

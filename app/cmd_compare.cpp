@@ -1,6 +1,6 @@
 // `shudder compare FLUID...`: anti-shudder indices, equal-viscosity indices, breakaway ratio,
 // stability margins and a ranking of several fluids (docs/characterisation.md). Parsing and
-// printing only: rig_models::compare_fluids computes, report/comparison_report words and draws.
+// printing only: studies::compare_fluids computes, report/comparison_report words and draws.
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -18,7 +18,7 @@
 #include "io/output_safety.hpp"
 #include "io/scenario.hpp"
 #include "report/comparison_report.hpp"
-#include "rig_models/fluid_comparison.hpp"
+#include "studies/fluid_comparison.hpp"
 
 namespace shudder::app {
 
@@ -61,13 +61,13 @@ int compare_command(const CompareOptions& o) {
         throw io::InputError(f, 0, "", "no such fluid file; give fluid TOML files (docs/formats/fluid_file.md)");
       fluids.emplace_back(f, io::load_fluid(f));
     }
-    rig_models::ComparisonOptions co;
+    studies::ComparisonOptions co;
     co.screening.indices.load_N = o.load_N;
     co.viscosity_cSt = o.viscosity_cSt;
     if (!o.temps.empty()) co.screening.temps_C = parse_temps(o.temps);
     for (const auto& path : o.rigs) {
       const io::Scenario sc = io::load_scenario(path);
-      rig_models::ScreeningRig rig;
+      studies::ScreeningRig rig;
       rig.label = sc.name;
       rig.params = io::visit_kind(path, "scenario.type", sc.model, [](const auto& m) -> const rig_models::RigParams& {
         return rig_models::screening_rig(m);
@@ -75,7 +75,7 @@ int compare_command(const CompareOptions& o) {
       rig.clutch = sc.clutch;
       co.screening.rigs.push_back(rig);
     }
-    const rig_models::Comparison c = rig_models::compare_fluids(fluids, co);
+    const studies::Comparison c = studies::compare_fluids(fluids, co);
     const std::string summary = report::comparison_summary(c);
     if (!o.report.empty()) {
       const report::Report rep =

@@ -21,12 +21,12 @@
 #include "analysis/shudder_detection.hpp"
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
-#include "components/network_run.hpp"
+#include "studies/network_run.hpp"
 #include "core/overloaded.hpp"
 #include "io/network_scenario.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/model.hpp"
-#include "rig_models/run_verdict.hpp"
+#include "studies/run_verdict.hpp"
 
 namespace shudder::app {
 
@@ -55,7 +55,7 @@ struct Outcome {
 JudgedVerdict judged_run(const dynamics::Recording& rec) {
   JudgedVerdict v{"run", true, "", {}};
   try {
-    v.result = rig_models::judge_run(rec).judged;
+    v.result = studies::judge_run(rec).judged;
   } catch (const std::invalid_argument& e) {
     v.judged = false;
     v.reason = e.what();
@@ -68,7 +68,7 @@ Outcome evaluate(const std::string& text, const std::string& path) {
   if (io::scenario_type_of_text(text, path) == "network") {
     const io::NetworkScenario sc = io::load_network_scenario_text(text, path);
     o.steps = {sc.spec.settings.thermal_step_s, sc.spec.settings.integrator.max_step_s};
-    const components::NetworkRun run = components::run_network(sc.spec);
+    const studies::NetworkRun run = studies::run_network(sc.spec);
     for (const auto& c : run.verdicts) o.verdicts.push_back({c.clutch, c.judged, c.reason, c.verdict.judged});
     return o;
   }

@@ -11,7 +11,7 @@
 #include <variant>
 
 #include "analysis/diagnosis.hpp"
-#include "components/clutch_replay.hpp"
+#include "studies/clutch_replay.hpp"
 #include "components/network_builder.hpp"
 #include "app/commands.hpp"
 #include "app/guarded.hpp"
@@ -27,7 +27,7 @@
 #include "report/diagnosis_narrative.hpp"
 #include "report/diagnosis_report.hpp"
 #include "report/diagnosis_summary.hpp"
-#include "rig_models/law_data_check.hpp"
+#include "studies/law_data_check.hpp"
 
 namespace shudder::app {
 
@@ -66,17 +66,17 @@ std::vector<std::pair<std::string, double>> parse_tolerance(const std::string& t
 
 // The model the runs are replayed on, however the scenario describes it.
 struct Baseline {
-  rig_models::ReplayModel model;
+  studies::ReplayModel model;
   report::DiagnosisSubject subject;
   std::function<void(const std::vector<analysis::FittedEffect>&, const std::string&)> write_fixed;
 };
 
 // A network scenario: the clutch named by --clutch, else by the runs' `clutch` metadata, else the
-// network's only wet clutch (components/clutch_replay.hpp).
+// network's only wet clutch (studies/clutch_replay.hpp).
 Baseline network_baseline(const DiagnoseOptions& opt, const std::vector<io::MeasuredRun>& runs) {
   auto sc = std::make_shared<const io::NetworkScenario>(io::load_network_scenario(opt.model));
   for (const auto& w : sc->warnings) std::cerr << "shudder: warning: " << w << "\n";
-  const std::vector<std::string> wet = components::wet_clutch_names(sc->spec);
+  const std::vector<std::string> wet = studies::wet_clutch_names(sc->spec);
   std::string clutch = opt.clutch, key = "--clutch";
   if (clutch.empty())
     for (const auto& run : runs)
@@ -103,7 +103,7 @@ Baseline network_baseline(const DiagnoseOptions& opt, const std::vector<io::Meas
   }
   Baseline b;
   try {
-    b.model = components::clutch_replay_model(sc->spec, clutch);
+    b.model = studies::clutch_replay_model(sc->spec, clutch);
   } catch (const components::NetworkError& e) {
     throw io::InputError(opt.model, 0, key, e.what());
   }
@@ -149,26 +149,26 @@ int diagnose_command(const DiagnoseOptions& opt) {
     for (const auto& path : opt.runs) runs.push_back(io::read_measured_or_logger(path, logger, import_warnings));
     for (const auto& w : import_warnings) std::cerr << "shudder: warning: " << w << "\n";
     if (network) baseline = network_baseline(opt, runs);
-    const rig_models::ReplayModel& model = baseline->model;
+    const studies::ReplayModel& model = baseline->model;
     io::DiagnosisData data = io::diagnosis_data(runs, model);
     const analysis::DiagnosisOptions defaults;
     io::check_plausibility(runs, model, defaults.statistics_block_s, data.warnings);
     for (const auto& w : data.warnings) std::cerr << "shudder: warning: " << w << "\n";
 
-    // A gap the law's own data range explains (rig_models/law_data_check.hpp).
-    for (const auto& w : rig_models::law_above_its_data(model, data.inputs, opt.runs))
+    // A gap the law's own data range explains (studies/law_data_check.hpp).
+    for (const auto& w : studies::law_above_its_data(model, data.inputs, opt.runs))
       std::cerr << "shudder: warning: " << w << "\n";
 
     std::vector<std::string> skipped;
-    const auto candidates = rig_models::replay_candidates(model, &skipped);
+    const auto candidates = studies::replay_candidates(model, &skipped);
     analysis::DiagnosisOptions o;
     o.jobs = opt.jobs ? opt.jobs : std::max(1u, std::thread::hardware_concurrency());
     o.torque_block_statistics = model.kind == ModelKind::kRig;
     o.max_effects = opt.max_effects;
     o.tolerance = tolerance;
-    const auto reproduce = rig_models::replay_reproducer(model, data.inputs);
+    const auto reproduce = studies::replay_reproducer(model, data.inputs);
     const auto result = analysis::diagnose(data.runs, candidates,
-                                           rig_models::replay_simulator(model, std::move(data.inputs)), o, reproduce);
+                                           studies::replay_simulator(model, std::move(data.inputs)), o, reproduce);
     for (const auto& w : result.warnings) std::cerr << "shudder: warning: " << w << "\n";
 
     const std::string text = report::diagnosis_summary(baseline->subject, result, skipped);

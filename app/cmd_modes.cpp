@@ -1,7 +1,7 @@
 // `shudder modes`: natural frequencies, mode shapes and damped eigenvalues of a rig scenario's
 // torsional network, with the clutch slipping (no stiffness through the contact) and stuck; for
 // a driveline, its linearisation about the manoeuvre's quasi-static operating point with the
-// coupling slipping and locked (rig_models/driveline_stability.hpp); for a network, every clutch
+// coupling slipping and locked (studies/driveline_stability.hpp); for a network, every clutch
 // slipping, every clutch stuck and each clutch alone slipping.
 #include <algorithm>
 #include <cmath>
@@ -20,7 +20,7 @@
 #include "io/network_scenario.hpp"
 #include "components/network_builder.hpp"
 #include "io/scenario.hpp"
-#include "rig_models/driveline_stability.hpp"
+#include "studies/driveline_stability.hpp"
 #include "rig_models/lsctr_rig.hpp"
 #include "rig_models/model.hpp"
 
@@ -65,7 +65,7 @@ void print_rig_modes(const io::Scenario& sc, const rig_models::RigModel& model) 
 
 // One driveline mode per line: eigenvalue, frequency, damping ratio and the parts that move
 // (|speed| ≥ 0.1 of the largest; a sign for parts in or against phase, else the phase in degrees).
-void print_driveline_modes(const rig_models::DrivelineStability& st, const char* title) {
+void print_driveline_modes(const studies::DrivelineStability& st, const char* title) {
   std::printf("%s\n     real [1/s]      imag [1/s]   frequency [Hz]   damping ratio   shape (node speed / largest)\n",
               title);
   for (const auto& m : st.modes) {
@@ -88,24 +88,24 @@ void print_driveline_modes(const rig_models::DrivelineStability& st, const char*
 void print_driveline(const io::Scenario& sc, const rig_models::DrivelineModel& model, const std::string& run) {
   const clutch::WetClutch clutch = sc.make_clutch();
   const rig_models::HaldexDriveline dl(model.params, clutch, model.manoeuvre);
-  rig_models::DrivelineOperatingPoint op;
+  studies::DrivelineOperatingPoint op;
   if (run.empty()) {
-    op = rig_models::quasi_static_operating_point(dl, clutch, model.manoeuvre);
+    op = studies::quasi_static_operating_point(dl, clutch, model.manoeuvre);
   } else {
     // The run's mean operating point: the one its summary's shuffle mode is linearised at.
     const dynamics::Recording rec = io::read_run_hdf5(run);
     const auto* t = rec.find("time_s");
     if (!t || t->values.empty()) throw io::InputError(run, 0, "time_s", "the run file has no time channel");
     try {
-      op = rig_models::recorded_operating_point(rec, 0.0, t->values.back());
+      op = studies::recorded_operating_point(rec, 0.0, t->values.back());
     } catch (const std::invalid_argument& e) {
       throw io::InputError(run, 0, "--run",
                            std::string("is not a driveline run this command can linearise: ") + e.what());
     }
     std::printf("At the mean operating point of %s (0 to %.4g s)\n", run.c_str(), t->values.back());
   }
-  const auto slipping = rig_models::driveline_stability(dl, clutch, op, false);
-  const auto locked = rig_models::driveline_stability(dl, clutch, op, true);
+  const auto slipping = studies::driveline_stability(dl, clutch, op, false);
+  const auto locked = studies::driveline_stability(dl, clutch, op, true);
   std::printf(
       "Scenario %s: driveline linearised at %.3g km/h, coupling slip %.4g rpm, clamp force %.5g N, "
       "interface %.4g degC; tyre forces FL/FR/RL/RR %.4g/%.4g/%.4g/%.4g N\n",
@@ -115,7 +115,7 @@ void print_driveline(const io::Scenario& sc, const rig_models::DrivelineModel& m
   print_driveline_modes(slipping, "Coupling slipping:");
   std::printf("\n");
   print_driveline_modes(locked, "Coupling locked:");
-  const auto least = rig_models::least_damped_mode(slipping);
+  const auto least = studies::least_damped_mode(slipping);
   std::printf("\nLeast-damped oscillatory mode (slipping): %.3f Hz, growth rate %.4g 1/s, damping ratio %.4g: %s\n",
               least.frequency_Hz, least.growth_per_s, least.damping_ratio,
               least.growth_per_s > 0 ? "UNSTABLE (judder predicted)" : "stable");

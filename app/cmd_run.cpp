@@ -28,6 +28,7 @@
 #include "io/sweep_spec.hpp"
 #include "rig_models/energy_guard.hpp"
 #include "rig_models/model.hpp"
+#include "studies/model_studies.hpp"
 #include "rig_models/realtime_run.hpp"
 
 namespace shudder::app {
@@ -80,7 +81,7 @@ int run_command(const RunOptions& opt) {
     const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     // The kind's extra analysis (the rig's stability map for `shudder plot`) goes into the recording.
     const std::vector<std::string> analysis_warnings = std::visit(
-        [&](const auto& m) { return rig_models::add_run_analysis(m, clutch, scenario.clutch.start_temp_C, rec); },
+        [&](const auto& m) { return studies::add_run_analysis(m, clutch, scenario.clutch.start_temp_C, rec); },
         scenario.model);
     for (const auto& w : analysis_warnings) std::cerr << "shudder: warning: " << w << "\n";
 

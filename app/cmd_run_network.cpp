@@ -10,7 +10,7 @@
 
 #include "app/commands.hpp"
 #include "components/network_builder.hpp"
-#include "components/network_run.hpp"
+#include "studies/network_run.hpp"
 #include "io/hdf5_run.hpp"
 #include "io/input_error.hpp"
 #include "io/measurement_csv.hpp"
@@ -106,7 +106,7 @@ int run_network_command(const RunOptions& opt) {
                              " samples per channel; lower the rate (at most 5e7 samples)");
 
   const auto t0 = std::chrono::steady_clock::now();
-  const components::NetworkRun run = components::run_network(sc.spec);
+  const studies::NetworkRun run = studies::run_network(sc.spec);
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   io::write_run_hdf5(out, run.recording, sc.text, sc.fluid_texts);
   if (const std::string bad = rig_models::energy_balance_violation(run.recording); !bad.empty())

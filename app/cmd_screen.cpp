@@ -1,6 +1,6 @@
 // `shudder screen`: a fluid's friction data screened for vibration risk (docs/screening.md).
 // Parsing and printing only: the indices, maps and verdict come from
-// rig_models::screen_fluid (analysis/anti_shudder_indices.hpp underneath).
+// studies::screen_fluid (analysis/anti_shudder_indices.hpp underneath).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -18,7 +18,7 @@
 #include "io/kind_refusal.hpp"
 #include "io/scenario.hpp"
 #include "io/screening_json.hpp"
-#include "rig_models/fluid_screening.hpp"
+#include "studies/fluid_screening.hpp"
 
 namespace shudder::app {
 
@@ -69,7 +69,7 @@ std::string pad(const std::string& s, std::size_t width) {
   return std::string(width > cols ? width - cols : 0, ' ') + s;
 }
 
-void print_indices(const rig_models::ScreeningReport& rep) {
+void print_indices(const studies::ScreeningReport& rep) {
   std::printf(
       "\nAnti-shudder indices at %.0f N (* speed outside the law's data: held friction; "
       "! on the risk side):\n",
@@ -132,7 +132,7 @@ void print_runs(const std::vector<analysis::RegionRun>& runs, const std::vector<
   if (!line.empty()) std::printf("    %s\n", line.c_str());
 }
 
-void print_slope(const rig_models::ScreeningReport& rep) {
+void print_slope(const studies::ScreeningReport& rep) {
   const auto& m = rep.slope.dmu_dv_s_per_m;
   const auto& s = rep.slope.speeds_rpm;
   const auto& t = rep.slope.temps_C;
@@ -154,7 +154,7 @@ void print_slope(const rig_models::ScreeningReport& rep) {
   print_runs(rep.negative_slope, t);
 }
 
-void print_stability(const rig_models::ScreeningReport& rep) {
+void print_stability(const studies::ScreeningReport& rep) {
   std::printf("\nStability of steady sliding at %.0f N, isothermal (margin > 0: vibration grows):\n", rep.load_N);
   for (const auto& rig : rep.rigs) {
     const auto& e = rig.unstable_extent;
@@ -187,13 +187,13 @@ int screen_command(const ScreenOptions& opt) {
     if (!(std::isfinite(opt.load_N) && opt.load_N > 0))
       throw io::InputError("--load-N", 0, "", "must be a finite normal force > 0 N, e.g. 20000");
 
-    rig_models::ScreeningOptions so;
+    studies::ScreeningOptions so;
     so.indices.load_N = opt.load_N;
     if (!opt.temps.empty()) so.temps_C = parse_temperatures(opt.temps);
     if (!opt.rig.empty()) {
       const io::Scenario sc = io::load_scenario(opt.rig);
       for (const auto& w : sc.warnings) std::cerr << "shudder: warning: " << w << "\n";
-      rig_models::ScreeningRig rig;
+      studies::ScreeningRig rig;
       rig.params =
           io::visit_kind(opt.rig, "scenario.type", sc.model,
                          [](const auto& m) -> const rig_models::RigParams& { return rig_models::screening_rig(m); });
@@ -201,7 +201,7 @@ int screen_command(const ScreenOptions& opt) {
       so.rigs.push_back(rig);
     }
 
-    const rig_models::ScreeningReport rep = rig_models::screen_fluid(fluid, so);
+    const studies::ScreeningReport rep = studies::screen_fluid(fluid, so);
 
     // Report.
     const auto& vr = rep.law_speed_range_mm_s;

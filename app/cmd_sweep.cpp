@@ -25,7 +25,7 @@
 #include "app/guarded.hpp"
 #include "app/mpi_sweep.hpp"
 #include "app/output_size.hpp"
-#include "components/network_run.hpp"
+#include "studies/network_run.hpp"
 #include "core/parallel_for.hpp"
 #include "dynamics/signal_names.hpp"
 #include "io/hdf5_run.hpp"
@@ -40,6 +40,7 @@
 #include "io/sweep_spec.hpp"
 #include "rig_models/energy_guard.hpp"
 #include "rig_models/model.hpp"
+#include "studies/model_studies.hpp"
 
 namespace shudder::app {
 
@@ -59,7 +60,7 @@ double verdict_code(const std::string& v) { return static_cast<double>(analysis:
 constexpr const char* kFailed = "failed";
 
 // A case's outcome as the part file's summary scalars.
-std::vector<dynamics::Scalar> outcome_scalars(const rig_models::CaseOutcome& o) {
+std::vector<dynamics::Scalar> outcome_scalars(const studies::CaseOutcome& o) {
   return {{"predicted_stable", "1", o.predicted_stable ? 1.0 : 0.0},
           {"predicted_margin_per_s", "1/s", o.predicted_margin_per_s},
           {"predicted_frequency_Hz", "Hz", o.predicted_frequency_Hz},
@@ -70,16 +71,16 @@ std::vector<dynamics::Scalar> outcome_scalars(const rig_models::CaseOutcome& o) 
 }
 
 // A network case: the run's verdict (its worst clutch) and that clutch's linear prediction
-// (components/clutch_prediction.hpp) as the outcome; kept: time and every clutch's torque and slip.
-rig_models::CaseOutcome run_network_case(const std::string& text, const std::string& path, dynamics::Recording& kept) {
+// (studies/clutch_prediction.hpp) as the outcome; kept: time and every clutch's torque and slip.
+studies::CaseOutcome run_network_case(const std::string& text, const std::string& path, dynamics::Recording& kept) {
   const io::NetworkScenario sc = io::load_network_scenario_text(text, path);
-  const components::NetworkRun run = components::run_network(sc.spec);
+  const studies::NetworkRun run = studies::run_network(sc.spec);
   if (const std::string bad = rig_models::energy_balance_violation(run.recording); !bad.empty())
     throw std::runtime_error("numerical failure: " + bad);
   kept.signals.push_back(*run.recording.find(sn::kTime));
   for (const auto& c : sc.spec.clutches)
     for (const char* q : {".torque_Nm", ".slip_rpm"}) kept.signals.push_back(*run.recording.find(c.name + q));
-  rig_models::CaseOutcome o;
+  studies::CaseOutcome o;
   if (run.worst >= 0) {
     const auto& v = run.verdicts[static_cast<std::size_t>(run.worst)].verdict;
     const auto& r = v.judged;
@@ -104,7 +105,7 @@ void run_case(const std::string& text, const std::string& path, const std::strin
   dynamics::Recording kept;
   try {
     if (io::scenario_type_of_text(text, path) == "network") {
-      const rig_models::CaseOutcome o = run_network_case(text, path, kept);
+      const studies::CaseOutcome o = run_network_case(text, path, kept);
       kept.scalars = outcome_scalars(o);
       io::write_run_hdf5(part, kept, text, "", io::RunCompression::kNone);
       return;
@@ -112,8 +113,8 @@ void run_case(const std::string& text, const std::string& path, const std::strin
     const io::Scenario sc = io::load_scenario_text(text, path);
     const clutch::WetClutch clutch = sc.make_clutch();
     dynamics::Recording rec;
-    const rig_models::CaseOutcome o = io::visit_kind(
-        path, "scenario.type", sc.model, [&](const auto& m) { return rig_models::evaluate_case(m, clutch, rec); });
+    const studies::CaseOutcome o = io::visit_kind(
+        path, "scenario.type", sc.model, [&](const auto& m) { return studies::evaluate_case(m, clutch, rec); });
     // A case whose energy accounts do not close is a numerical failure, not a result.
     if (const std::string bad = rig_models::energy_balance_violation(rec); !bad.empty())
       throw std::runtime_error("numerical failure: " + bad);
@@ -152,7 +153,7 @@ SweepBase load_sweep_base(const std::string& path) {
     return b;
   }
   const io::Scenario sc = io::load_scenario(path);
-  io::visit_kind(path, "scenario.type", sc.model, [](const auto& m) { rig_models::require_sweep(m); });
+  io::visit_kind(path, "scenario.type", sc.model, [](const auto& m) { studies::require_sweep(m); });
   b = {false, sc.name, sc.text, sc.fluid_text, {sc.fluid_path}, sc.warnings};
   return b;
 }

@@ -54,7 +54,7 @@
 #include "rig_models/effect_registry.hpp"
 #include "rig_models/model.hpp"
 #include "rig_models/prescribed_slip.hpp"
-#include "rig_models/replay.hpp"
+#include "studies/replay.hpp"
 
 using namespace shudder;
 
@@ -131,7 +131,7 @@ void run_diagnosis(benchmark::State& state, const std::string& model_text, const
   const auto scenario = io::load_scenario_text(model_text, kCase2Path);
   const auto model = io::replay_model(scenario);
   std::vector<std::string> skipped;
-  const auto candidates = rig_models::replay_candidates(model, &skipped);
+  const auto candidates = studies::replay_candidates(model, &skipped);
   analysis::DiagnosisOptions o;
   o.jobs = 2;
   o.torque_block_statistics = model.kind == ModelKind::kRig;
@@ -141,8 +141,8 @@ void run_diagnosis(benchmark::State& state, const std::string& model_text, const
   for (auto _ : state) {
     io::DiagnosisData data = io::diagnosis_data(runs);
     // As `shudder diagnose` does: the replay's reproduction error measured too (one run each).
-    const auto reproduce = rig_models::replay_reproducer(model, data.inputs);
-    r = analysis::diagnose(data.runs, candidates, rig_models::replay_simulator(model, std::move(data.inputs)), o,
+    const auto reproduce = studies::replay_reproducer(model, data.inputs);
+    r = analysis::diagnose(data.runs, candidates, studies::replay_simulator(model, std::move(data.inputs)), o,
                            reproduce);
     state.counters["verdict"] = static_cast<double>(r.verdict);
     benchmark::DoNotOptimize(r);

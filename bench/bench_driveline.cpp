@@ -16,6 +16,7 @@
 #include "io/scenario.hpp"
 #include "rig_models/haldex_driveline.hpp"
 #include "rig_models/model.hpp"
+#include "studies/model_studies.hpp"
 
 using namespace shudder;
 
@@ -58,7 +59,7 @@ void BM_Driveline_ParkingTurn_10s(benchmark::State& state) {
 }
 
 // What `shudder run` adds after the simulation: the verdict's prediction and the three coupling
-// stability maps (12 × 9 cells each) of rig_models::add_run_analysis.
+// stability maps (12 × 9 cells each) of studies::add_run_analysis.
 void BM_Driveline_RunAnalysis(benchmark::State& state) {
   const auto sc = io::load_scenario(SHUDDER_SOURCE_DIR "/scenarios/driveline_tight_turn.toml");
   const auto& model = std::get<rig_models::DrivelineModel>(sc.model);
@@ -66,7 +67,7 @@ void BM_Driveline_RunAnalysis(benchmark::State& state) {
   const dynamics::Recording simulated = rig_models::simulate(model, clutch);
   for (auto _ : state) {
     dynamics::Recording rec = simulated;
-    benchmark::DoNotOptimize(rig_models::add_run_analysis(model, clutch, sc.clutch.start_temp_C, rec));
+    benchmark::DoNotOptimize(studies::add_run_analysis(model, clutch, sc.clutch.start_temp_C, rec));
   }
 }
 

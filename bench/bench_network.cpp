@@ -13,7 +13,7 @@
 #include <sstream>
 #include <string>
 
-#include "components/network_run.hpp"
+#include "studies/network_run.hpp"
 #include "io/network_scenario.hpp"
 
 using namespace shudder;
@@ -49,10 +49,10 @@ std::string network_text(int chain, int clutches) {
 void run(benchmark::State& state, int chain, int clutches) {
   const auto sc = io::load_network_scenario_text(network_text(chain, clutches), "bench_network.toml");
   double wall_s = 0.0;
-  components::NetworkRun result;
+  studies::NetworkRun result;
   for (auto _ : state) {
     const auto t0 = std::chrono::steady_clock::now();
-    result = components::run_network(sc.spec);
+    result = studies::run_network(sc.spec);
     wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     benchmark::DoNotOptimize(result);
   }

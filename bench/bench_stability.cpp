@@ -8,7 +8,7 @@
 
 #include "io/scenario.hpp"
 #include "rig_models/model.hpp"
-#include "rig_models/rig_stability.hpp"
+#include "studies/rig_stability.hpp"
 
 using namespace shudder;
 
@@ -25,8 +25,7 @@ void BM_StabilityMap100x100_FluidC_378Hz(benchmark::State& state) {
   const auto clutch = sc.make_clutch();
   const auto speeds = linspace(20.0, 120.0, 100), temps = linspace(20.0, 120.0, 100);
   for (auto _ : state) {
-    auto map =
-        rig_models::stability_map(std::get<rig_models::RigModel>(sc.model).params, clutch, 15000.0, speeds, temps);
+    auto map = studies::stability_map(std::get<rig_models::RigModel>(sc.model).params, clutch, 15000.0, speeds, temps);
     benchmark::DoNotOptimize(map);
   }
   state.counters["points_per_s"] =

@@ -4,18 +4,18 @@
 #include <cmath>
 #include <deque>
 
-#include "components/clutch_prediction.hpp"
 #include "components/network_builder.hpp"
 #include "components/network_channels.hpp"
-#include "components/network_stepper.hpp"
 #include "rig_models/energy_scalars.hpp"
 #include "rig_models/friction_range_block.hpp"
 
 namespace shudder::components {
 
-NetworkRun run_network(const NetworkSpec& spec) {
+NetworkSimulation simulate_network(const NetworkSpec& spec) {
   const auto& cfg = spec.settings;
-  NetworkStepper stepper(spec, cfg.duration_s);
+  NetworkSimulation run;
+  run.stepper = std::make_unique<NetworkStepper>(spec, cfg.duration_s);
+  NetworkStepper& stepper = *run.stepper;
   BuiltNetwork* built = &stepper.built();
   const dynamics::Simulation& sim = stepper.simulation();
   const std::vector<clutch::ThermalState>& thermal = stepper.thermal();
@@ -23,12 +23,11 @@ NetworkRun run_network(const NetworkSpec& spec) {
 
   std::deque<std::string> names;  // the channel names the recorder's channels view
   std::vector<NetworkChannel> channels = network_channels(spec, *built, wet_index, names);
-  NetworkRun run;
   dynamics::Recording& rec = run.recording;
   NetworkRecorder recorder(rec, std::move(channels));
   // States kept every kSnapshotInterval_s (or every sample, if sparser) for the predictions.
   constexpr double kSnapshotInterval_s = 5e-3;
-  std::vector<dynamics::Sample> snapshots;
+  std::vector<dynamics::Sample>& snapshots = run.snapshots;
   double next_snapshot_s = 0.0;
   const auto keep_snapshot = [&](const dynamics::Sample& s) {
     if (s.t_s < next_snapshot_s - 1e-12) return;
@@ -93,36 +92,13 @@ NetworkRun run_network(const NetworkSpec& spec) {
   }
   if (!wet.empty()) rec.scalars.push_back({"energy_balance_relative_error", "1", worst_thermal});
 
-  // Verdicts, each on its clutch's loaded window (components/clutch_judgement.hpp).
-  for (const BuiltClutch& bc : built->clutches)
-    run.verdicts.push_back(judge_clutch(rec, bc.name(),
-                                        (bc.spec->judged_on.empty() ? bc.name() : bc.spec->judged_on) + ".torque_Nm",
-                                        cfg.sample_rate_Hz));
-  for (std::size_t c = 0; c < run.verdicts.size(); ++c)
-    if (run.verdicts[c].judged)
-      run.verdicts[c].verdict.prediction = predict_clutch(*built, c, run.verdicts[c].verdict.window, snapshots);
-  run.worst = worst_verdict(run.verdicts);
-  add_verdict_blocks(rec, run.verdicts, run.worst,
-                     built->clutches.empty() ? "the network has no clutch to judge"
-                                             : (run.verdicts.empty() ? "" : run.verdicts.front().reason));
-  // Per wet clutch: its friction data range block, and in its verdict block (and the run's, for
-  // the clutch it names) the share of the run its law was used outside its data: a verdict
-  // reached there is an extrapolation of the law.
+  // Per wet clutch: its friction data range block (rig_models/friction_range_block.hpp).
   for (std::size_t c = 0; c < built->clutches.size(); ++c) {
     const BuiltClutch& bc = built->clutches[c];
     if (!bc.wet) continue;
     auto range = rig_models::friction_range_block(stepper.data_ranges()[static_cast<std::size_t>(wet_index[c])]);
-    const auto* f = range.find_scalar("fraction_outside");
-    const double outside = f ? f->value : std::nan("");
     range.name = std::string(rig_models::kFrictionRangeBlock) + "." + bc.name();
     rec.blocks.push_back(std::move(range));
-    for (auto& b : rec.blocks) {
-      const bool of_this_clutch =
-          b.name == "verdict." + bc.name() || (b.name == "verdict" && static_cast<int>(c) == run.worst);
-      const auto* verdict = b.find_text("verdict");
-      if (of_this_clutch && verdict && verdict->value != "not_judged")
-        b.scalars.push_back({"outside_data_fraction", "1", outside});
-    }
   }
   return run;
 }

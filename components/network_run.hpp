@@ -1,5 +1,6 @@
 #pragma once
-// Runs a network (components/network_builder.hpp) and judges every clutch in it.
+// Runs a network (components/network_builder.hpp) to the scenario's duration and records it;
+// judging its clutches is a study of the run (studies/network_run.hpp).
 //
 // Integration: dynamics::Simulation (dopri5, exact stick/slip events) with every wet clutch
 // coupled multi-rate (rig_models/multirate_clutch.hpp: each clutch's thermal model advanced
@@ -11,31 +12,30 @@
 //
 // Recording (docs/formats/network_file.md "Output"): `time_s`, then channels named
 // `<component>.<quantity>_<unit>`, e.g. `launch_clutch.slip_rpm`; summary scalars (the energy
-// account; per clutch its friction work, per wet clutch its peak interface temperature); a
-// verdict block per clutch (`verdict.<clutch>`: rig_models/run_verdict.hpp's block judged on that
-// clutch's torque and slip) and the run's `verdict` block, the worst clutch's verdict with text
-// `clutch` naming it (stick_slip over vibration over none; between equals, the larger amplitude).
+// account; per clutch its friction work, per wet clutch its peak interface temperature and heat
+// account); per wet clutch its friction data range block `friction_data_range.CLUTCH`.
 
-// Judging: components/clutch_judgement.hpp.
-
-#include <string>
+#include <memory>
 #include <vector>
 
 #include "components/network_spec.hpp"
+#include "components/network_stepper.hpp"
 #include "dynamics/recording.hpp"
-#include "components/clutch_judgement.hpp"
 
 namespace shudder::components {
 
-struct NetworkRun {
+struct NetworkSimulation {
   dynamics::Recording recording;
-  std::vector<ClutchVerdict> verdicts;  // one per clutch, in the spec's order
-  int worst = -1;                       // index into verdicts of the run's verdict; -1: no clutch
+  /// The network as the run left it (its clutches' held inputs, its control units' commands):
+  /// what a linearisation about the run's states takes.
+  std::unique_ptr<NetworkStepper> stepper;
+  /// The run's states every 5 ms (or every sample, if sparser), ascending in time.
+  std::vector<dynamics::Sample> snapshots;
   double energy_imbalance_J = 0.0, energy_scale_J = 0.0;
 };
 
-/// Builds, runs and judges; throws NetworkError (bad network), std::runtime_error (numerical
-/// failure).
-NetworkRun run_network(const NetworkSpec& spec);
+/// Builds and runs `spec` (which must outlive the result); throws NetworkError (bad network),
+/// std::runtime_error (numerical failure).
+NetworkSimulation simulate_network(const NetworkSpec& spec);
 
 }  // namespace shudder::components

@@ -222,7 +222,7 @@ std::string method_json(const analysis::Characterisation& c, const analysis::Cha
 
 }  // namespace
 
-std::string characterisation_json(const rig_models::InverseCharacterisation& r,
+std::string characterisation_json(const studies::InverseCharacterisation& r,
                                   const analysis::CharacterisationSettings& s, const std::vector<std::string>& runs,
                                   const std::string& fluid_path) {
   std::string doc = characterisation_json(r.inverse, r.settings, runs, fluid_path);

@@ -14,7 +14,7 @@
 
 #include "analysis/breakaway.hpp"
 #include "analysis/friction_characterisation.hpp"
-#include "rig_models/inverse_characterisation.hpp"
+#include "studies/inverse_characterisation.hpp"
 
 namespace shudder::io {
 
@@ -40,7 +40,7 @@ std::string characterisation_json(const analysis::Characterisation& c, const ana
 /// RMS and max residual and the parameters (Mäki sets or node mu), the replayed torque's RMS
 /// misfit with each method's law, the thermal calibration (oil flow before/after, temperature
 /// RMS) and the iteration count. `s` are the sensor method's settings.
-std::string characterisation_json(const rig_models::InverseCharacterisation& r,
+std::string characterisation_json(const studies::InverseCharacterisation& r,
                                   const analysis::CharacterisationSettings& s, const std::vector<std::string>& runs,
                                   const std::string& fluid_path);
 

@@ -20,7 +20,7 @@ std::string indices(const analysis::AntiShudderIndices& at) {
 
 }  // namespace
 
-std::string comparison_json(const rig_models::Comparison& c) {
+std::string comparison_json(const studies::Comparison& c) {
   std::ostringstream o;
   o << "{\n  \"format\": \"shudder-compare/1\",\n  \"load_N\": " << json_number(c.load_N)
     << ",\n  \"viscosity_cSt\": " << json_number(c.viscosity_cSt) << ",\n  \"temperatures_C\": [";

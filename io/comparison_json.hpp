@@ -6,10 +6,10 @@
 // digits, NaN as null; written through a temporary file and a rename by the caller.
 #include <string>
 
-#include "rig_models/fluid_comparison.hpp"
+#include "studies/fluid_comparison.hpp"
 
 namespace shudder::io {
 
-std::string comparison_json(const rig_models::Comparison& c);
+std::string comparison_json(const studies::Comparison& c);
 
 }  // namespace shudder::io

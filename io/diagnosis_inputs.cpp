@@ -7,15 +7,16 @@
 
 #include "dynamics/signal_names.hpp"
 #include "io/input_error.hpp"
+#include "studies/model_studies.hpp"
 #include "io/kind_refusal.hpp"
 #include "rig_models/coupling_measurement.hpp"
 #include "rig_models/rig_names.hpp"
 
 namespace shudder::io {
 
-rig_models::ReplayModel replay_model(const Scenario& s) {
-  rig_models::ReplayModel m = visit_kind(s.path, "scenario.type", s.model, [&](const auto& kind_model) {
-    return rig_models::replay_model(kind_model, s.stick_time);
+studies::ReplayModel replay_model(const Scenario& s) {
+  studies::ReplayModel m = visit_kind(s.path, "scenario.type", s.model, [&](const auto& kind_model) {
+    return studies::replay_model(kind_model, s.stick_time);
   });
   m.clutch = s.clutch;
   m.fluid = s.fluid;
@@ -59,7 +60,7 @@ DiagnosisData read_runs(const std::vector<MeasuredRun>& runs) {
     if (const auto* c = run.column(sn::kSumpTemp)) dr.sump_temp_C = *c;
     if (const auto* c = run.column(sn::kIrTemp)) dr.ir_temp_C = *c;
 
-    rig_models::ReplayInputs in;
+    studies::ReplayInputs in;
     in.time_s = dr.time_s;
     in.speed_rpm = dr.speed_rpm;
     in.normal_force_N = dr.normal_force_N;
@@ -75,7 +76,7 @@ DiagnosisData read_runs(const std::vector<MeasuredRun>& runs) {
     }
     if (const auto sensor = run.meta("temp_sensor")) {
       try {
-        rig_models::parse_temp_sensor(*sensor, in);
+        studies::parse_temp_sensor(*sensor, in);
       } catch (const std::exception&) {
         throw InputError(run.path, 0, "temp_sensor", "'" + *sensor + "' has an r_mm or z_mm that is not a number");
       }
@@ -95,11 +96,11 @@ DiagnosisData read_runs(const std::vector<MeasuredRun>& runs) {
 }  // namespace
 
 DiagnosisData diagnosis_data(const std::vector<MeasuredRun>& runs) {
-  rig_models::ReplayModel lsctr;
+  studies::ReplayModel lsctr;
   return diagnosis_data(runs, lsctr);
 }
 
-DiagnosisData diagnosis_data(const std::vector<MeasuredRun>& runs, const rig_models::ReplayModel& model) {
+DiagnosisData diagnosis_data(const std::vector<MeasuredRun>& runs, const studies::ReplayModel& model) {
   DiagnosisData d = read_runs(runs);
   if (d.rig.empty()) return d;
   if (d.rig == model.rig) return d;

@@ -9,7 +9,7 @@
 #include "analysis/diagnosis.hpp"
 #include "io/measured_run.hpp"
 #include "io/scenario.hpp"
-#include "rig_models/replay.hpp"
+#include "studies/replay.hpp"
 
 namespace shudder::io {
 
@@ -18,11 +18,11 @@ namespace shudder::io {
 inline constexpr std::size_t diagnosis_min_rows = 20;
 inline constexpr double diagnosis_min_duration_s = 1.0;
 
-rig_models::ReplayModel replay_model(const Scenario& scenario);
+studies::ReplayModel replay_model(const Scenario& scenario);
 
 struct DiagnosisData {
   std::vector<analysis::DiagnosisRun> runs;
-  std::vector<rig_models::ReplayInputs> inputs;
+  std::vector<studies::ReplayInputs> inputs;
   std::string rig;  // the runs' common `rig` metadata ("" if none says)
   std::vector<std::string> warnings;
 };
@@ -32,6 +32,6 @@ struct DiagnosisData {
 /// Warns when the runs' `rig` is not the model's (`model`: the replay model's kind of data,
 /// "lsctr" or a driveline's rig_models::kCouplingRig).
 DiagnosisData diagnosis_data(const std::vector<MeasuredRun>& runs);
-DiagnosisData diagnosis_data(const std::vector<MeasuredRun>& runs, const rig_models::ReplayModel& model);
+DiagnosisData diagnosis_data(const std::vector<MeasuredRun>& runs, const studies::ReplayModel& model);
 
 }  // namespace shudder::io

@@ -53,7 +53,7 @@ bool same_data(const MeasuredRun& a, const MeasuredRun& b) {
 }
 
 // The slowest time constant of the thermal effects the model has on (s; 0 if none).
-double slowest_time_constant_s(const rig_models::ReplayModel& model) {
+double slowest_time_constant_s(const studies::ReplayModel& model) {
   const auto& th = model.clutch.thermal;
   double tau = 0;
   if (th.rig_heat_capacity && th.rig_conductance_W_per_K > 0)
@@ -64,7 +64,7 @@ double slowest_time_constant_s(const rig_models::ReplayModel& model) {
 
 }  // namespace
 
-void check_plausibility(const std::vector<MeasuredRun>& runs, const rig_models::ReplayModel& model,
+void check_plausibility(const std::vector<MeasuredRun>& runs, const studies::ReplayModel& model,
                         double statistics_block_s, std::vector<std::string>& warnings) {
   double total_s = 0;
   for (std::size_t i = 0; i < runs.size(); ++i) {

@@ -20,13 +20,13 @@
 #include <vector>
 
 #include "io/measured_run.hpp"
-#include "rig_models/replay.hpp"
+#include "studies/replay.hpp"
 
 namespace shudder::io {
 
 /// Throws InputError (exit 2) naming the file and column for what looks wrong; appends a
 /// warning for what is only suspicious.
-void check_plausibility(const std::vector<MeasuredRun>& runs, const rig_models::ReplayModel& model,
+void check_plausibility(const std::vector<MeasuredRun>& runs, const studies::ReplayModel& model,
                         double statistics_block_s, std::vector<std::string>& warnings);
 
 }  // namespace shudder::io

@@ -86,7 +86,7 @@ std::string json_string(const std::string& s) {
   return out + "\"";
 }
 
-std::string screening_json(const rig_models::ScreeningReport& rep, const std::string& fluid_file) {
+std::string screening_json(const studies::ScreeningReport& rep, const std::string& fluid_file) {
   const auto& idx = rep.indices;
   const std::size_t nt = idx.size();
   std::ostringstream os;
@@ -153,7 +153,7 @@ std::string screening_json(const rig_models::ScreeningReport& rep, const std::st
   return os.str();
 }
 
-void write_screening_json(const rig_models::ScreeningReport& report, const std::string& fluid_file,
+void write_screening_json(const studies::ScreeningReport& report, const std::string& fluid_file,
                           const std::string& path) {
   write_text_file_atomically(path, screening_json(report, fluid_file));
 }

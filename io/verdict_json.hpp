@@ -1,5 +1,5 @@
 #pragma once
-// Writes a run's verdict block (rig_models/run_verdict.hpp, /analysis/verdict in its HDF5) as
+// Writes a run's verdict block (studies/run_verdict.hpp, /analysis/verdict in its HDF5) as
 // JSON, format "shudder-verdict/1" (docs/formats/run_output.md): one flat object with the block's texts
 // and scalars under the names the HDF5 uses, so the two never differ:
 //   {"format": "shudder-verdict/1", "verdict": "vibration", "judged_signals": "...",

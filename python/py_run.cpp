@@ -7,12 +7,13 @@
 #include <variant>
 
 #include "app/output_size.hpp"
-#include "components/network_run.hpp"
+#include "studies/network_run.hpp"
 #include "io/hdf5_run.hpp"
 #include "io/network_scenario.hpp"
 #include "io/output_safety.hpp"
 #include "rig_models/energy_guard.hpp"
 #include "rig_models/model.hpp"
+#include "studies/model_studies.hpp"
 
 namespace shudder::python {
 
@@ -67,9 +68,7 @@ RunOutcome run(const io::Scenario& scenario, const std::string& output, bool for
   out.recording = std::visit([&](const auto& m) { return rig_models::simulate(m, clutch); }, scenario.model);
   out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto analysis_warnings = std::visit(
-      [&](const auto& m) {
-        return rig_models::add_run_analysis(m, clutch, scenario.clutch.start_temp_C, out.recording);
-      },
+      [&](const auto& m) { return studies::add_run_analysis(m, clutch, scenario.clutch.start_temp_C, out.recording); },
       scenario.model);
   out.warnings.insert(out.warnings.end(), analysis_warnings.begin(), analysis_warnings.end());
   if (!output.empty()) io::write_run_hdf5(output, out.recording, scenario.text, scenario.fluid_text);
@@ -95,7 +94,7 @@ RunOutcome run_network(const std::string& path, const std::vector<std::pair<std:
   RunOutcome out;
   out.warnings = sc.warnings;
   const auto t0 = std::chrono::steady_clock::now();
-  out.recording = components::run_network(sc.spec).recording;
+  out.recording = studies::run_network(sc.spec).recording;
   out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!output.empty()) io::write_run_hdf5(output, out.recording, sc.text, sc.fluid_texts);
   if (const std::string bad = rig_models::energy_balance_violation(out.recording); !bad.empty())

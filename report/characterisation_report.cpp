@@ -87,7 +87,7 @@ std::string breakaway_summary(const analysis::BreakawayMeasurement& m, double wr
   return o.str();
 }
 
-std::string method_comparison_summary(const rig_models::InverseCharacterisation& r,
+std::string method_comparison_summary(const studies::InverseCharacterisation& r,
                                       const analysis::CharacterisationSettings& sensor_settings) {
   std::ostringstream o;
   const auto& nodes = r.inverse.node_speeds_mm_s;

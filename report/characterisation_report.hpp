@@ -16,7 +16,7 @@
 #include "analysis/breakaway.hpp"
 #include "analysis/friction_characterisation.hpp"
 #include "report/plots.hpp"
-#include "rig_models/inverse_characterisation.hpp"
+#include "studies/inverse_characterisation.hpp"
 
 namespace shudder::report {
 
@@ -27,7 +27,7 @@ std::string characterisation_summary(const analysis::Characterisation& c, const 
 /// `--method inverse`: both methods side by side — per row the RMS/max residual of each law
 /// against its own compensated data and mu at the first, middle and last node — the replayed
 /// torque's RMS misfit with each law, the thermal calibration and the iterations.
-std::string method_comparison_summary(const rig_models::InverseCharacterisation& r,
+std::string method_comparison_summary(const studies::InverseCharacterisation& r,
                                       const analysis::CharacterisationSettings& sensor_settings);
 
 /// "1.28–1.31 over 3 starts" style range of the measured events (for the fluid file's source).

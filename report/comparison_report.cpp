@@ -23,12 +23,12 @@ std::string comparison_number(const char* fmt, double x) { return number(x, fmt)
 
 }  // namespace
 
-std::string comparison_summary(const rig_models::Comparison& c) {
+std::string comparison_summary(const studies::Comparison& c) {
   std::ostringstream o;
   o << "Fluids compared at " << comparison_number("%.0f", c.load_N)
     << " N (indices: docs/screening.md; equal viscosity " << comparison_number("%.3g", c.viscosity_cSt)
     << " cSt as Paper E Table 5)\n";
-  std::vector<const rig_models::FluidComparison*> sorted;
+  std::vector<const studies::FluidComparison*> sorted;
   for (const auto& fl : c.fluids) sorted.push_back(&fl);
   std::stable_sort(sorted.begin(), sorted.end(), [](auto a, auto b) { return a->rank < b->rank; });
 
@@ -108,7 +108,7 @@ std::string comparison_summary(const rig_models::Comparison& c) {
   return o.str();
 }
 
-Report write_comparison_report(const std::string& dir, const rig_models::Comparison& c,
+Report write_comparison_report(const std::string& dir, const studies::Comparison& c,
                                const std::vector<std::pair<std::string, clutch::Fluid>>& fluids,
                                const std::string& summary_text, const std::vector<std::string>& data_files) {
   namespace fs = std::filesystem;

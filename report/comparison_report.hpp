@@ -9,14 +9,14 @@
 
 #include "clutch/fluid.hpp"
 #include "report/plots.hpp"
-#include "rig_models/fluid_comparison.hpp"
+#include "studies/fluid_comparison.hpp"
 
 namespace shudder::report {
 
-std::string comparison_summary(const rig_models::Comparison& c);
+std::string comparison_summary(const studies::Comparison& c);
 
 /// `dir`/summary.txt, one mu_v_<T>C.png per temperature and index.html linking `data_files`.
-Report write_comparison_report(const std::string& dir, const rig_models::Comparison& c,
+Report write_comparison_report(const std::string& dir, const studies::Comparison& c,
                                const std::vector<std::pair<std::string, clutch::Fluid>>& fluids,
                                const std::string& summary_text, const std::vector<std::string>& data_files = {});
 

@@ -18,7 +18,7 @@ struct DiagnosisSubject {
 };
 DiagnosisSubject diagnosis_subject(const io::Scenario& scenario);
 
-/// `skipped`: the effects that were no candidate, with why (rig_models::replay_candidates).
+/// `skipped`: the effects that were no candidate, with why (studies::replay_candidates).
 std::string diagnosis_summary(const DiagnosisSubject& subject, const analysis::DiagnosisResult& result,
                               const std::vector<std::string>& skipped);
 

@@ -17,7 +17,7 @@ std::string format(const char* fmt, double a, double b = 0, double c = 0) {
   return buf;
 }
 
-std::string verdict_line(const rig_models::RunVerdict& v) {
+std::string verdict_line(const studies::RunVerdict& v) {
   const auto& r = v.judged;
   const std::string name(analysis::to_string(r.verdict));
   if (r.verdict == analysis::Verdict::kNone)
@@ -31,8 +31,8 @@ std::string verdict_line(const rig_models::RunVerdict& v) {
   return name + format(" at %.3g Hz, amplitude %.3g N m", r.frequency_Hz, r.amplitude_Nm) + onset;
 }
 
-// Linear theory about the judged window (components/clutch_prediction.hpp), in one line.
-std::string prediction_line(const rig_models::Prediction& p) {
+// Linear theory about the judged window (studies/clutch_prediction.hpp), in one line.
+std::string prediction_line(const studies::Prediction& p) {
   if (!p.made) return p.method;  // "not predicted: <why>"
   // A zero margin is a mode that neither grows nor decays (a free rotation the constraints leave).
   std::string s = p.margin_per_s > 0 ? "predicted: UNSTABLE"
@@ -60,7 +60,7 @@ double scalar(const dynamics::Recording& rec, const std::string& name) {
 
 }  // namespace
 
-void print_network_summary(std::ostream& os, const io::NetworkScenario& sc, const components::NetworkRun& run) {
+void print_network_summary(std::ostream& os, const io::NetworkScenario& sc, const studies::NetworkRun& run) {
   const auto& spec = sc.spec;
   const auto& rec = run.recording;
   os << "Scenario: " << sc.name << " (network)";

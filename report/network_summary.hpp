@@ -4,11 +4,11 @@
 
 #include <ostream>
 
-#include "components/network_run.hpp"
+#include "studies/network_run.hpp"
 #include "io/network_scenario.hpp"
 
 namespace shudder::report {
 
-void print_network_summary(std::ostream& os, const io::NetworkScenario& scenario, const components::NetworkRun& run);
+void print_network_summary(std::ostream& os, const io::NetworkScenario& scenario, const studies::NetworkRun& run);
 
 }  // namespace shudder::report

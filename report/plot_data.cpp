@@ -4,11 +4,11 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "components/clutch_judgement.hpp"
+#include "studies/clutch_judgement.hpp"
 #include "core/nan.hpp"
 #include "io/input_error.hpp"
 #include "report/text_format.hpp"
-#include "rig_models/recording_detection.hpp"
+#include "studies/recording_detection.hpp"
 
 namespace shudder::report {
 
@@ -48,7 +48,7 @@ bool has_finite(const Series& s) {
 
 namespace {
 
-// A network run's judged clutch, judged as the run judged it (components/clutch_judgement.hpp):
+// A network run's judged clutch, judged as the run judged it (studies/clutch_judgement.hpp):
 // its loaded window, its band from the sample rate, its repeated-oscillation rule. The generic
 // detection of a recording knows none of these and can find another peak (a shuffle mode's
 // neighbour) than the verdict's.
@@ -58,7 +58,7 @@ std::optional<analysis::ShudderResult> network_clutch_detection(const dynamics::
   if (!t) return std::nullopt;
   try {
     const double fs = sample_rate_Hz(*t, 2, "the run", "spectrum");
-    const auto cv = components::judge_clutch(rec, clutch, std::string(rig_models::judged_torque_signal(rec)), fs);
+    const auto cv = studies::judge_clutch(rec, clutch, std::string(studies::judged_torque_signal(rec)), fs);
     if (!cv.judged) return std::nullopt;
     return cv.verdict.judged;
   } catch (const std::exception&) {
@@ -69,12 +69,11 @@ std::optional<analysis::ShudderResult> network_clutch_detection(const dynamics::
 }  // namespace
 
 std::optional<analysis::ShudderResult> detect(const dynamics::Recording& rec) {
-  if (const std::string* clutch = rig_models::network_verdict_clutch(rec))
-    return network_clutch_detection(rec, *clutch);
-  const auto detection = rig_models::recording_detection(rec);
+  if (const std::string* clutch = studies::network_verdict_clutch(rec)) return network_clutch_detection(rec, *clutch);
+  const auto detection = studies::recording_detection(rec);
   if (!detection) return std::nullopt;
   try {
-    return rig_models::judge_recording(*detection);
+    return studies::judge_recording(*detection);
   } catch (const std::invalid_argument&) {
     return std::nullopt;
   }

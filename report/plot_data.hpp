@@ -28,8 +28,8 @@ Series series_of(const dynamics::Signal& x, const dynamics::Signal& y, std::stri
 bool has_finite(const Series& s);
 
 /// The shudder detector on a recording, with the channels and band its run was judged on
-/// (rig_models/recording_detection.hpp; a network run's judged clutch as
-/// components/clutch_judgement.hpp judges it); nothing if the record cannot be analysed.
+/// (studies/recording_detection.hpp; a network run's judged clutch as
+/// studies/clutch_judgement.hpp judges it); nothing if the record cannot be analysed.
 std::optional<analysis::ShudderResult> detect(const dynamics::Recording& rec);
 
 /// Whether `d` found shudder (vibration or stick-slip) with a usable frequency.

@@ -17,8 +17,8 @@
 
 #include "analysis/shudder_detection.hpp"
 #include "analysis/spectrum.hpp"
-#include "rig_models/recording_detection.hpp"
-#include "rig_models/run_verdict.hpp"
+#include "studies/recording_detection.hpp"
+#include "studies/run_verdict.hpp"
 #include "io/atomic_file.hpp"
 #include "io/hdf5_run.hpp"
 #include "io/input_error.hpp"
@@ -96,7 +96,7 @@ std::optional<analysis::Peak> peak_near(const analysis::Spectrum& sp, double f, 
 Plot spectrum_plot(const Recording& rec, const std::string& name, const std::string& source) {
   const Signal& t = require_signal(rec, "time_s", source, "spectrum");
   // The torque the run was judged on: the torque cell, or a driveline's coupling.
-  const std::string_view torque_name = rig_models::judged_torque_signal(rec);
+  const std::string_view torque_name = studies::judged_torque_signal(rec);
   const Signal& torque = require_signal(rec, torque_name, source, "spectrum");
   const double fs = sample_rate_Hz(t, 64, source, "spectrum");
   const std::size_t n = t.values.size();
@@ -192,7 +192,7 @@ Plot spectrum_plot(const Recording& rec, const std::string& name, const std::str
 
 Plot spectrogram_plot(const Recording& rec, const std::string& name, const std::string& source) {
   const Signal& t = require_signal(rec, "time_s", source, "spectrogram");
-  const Signal& torque = require_signal(rec, rig_models::judged_torque_signal(rec), source, "spectrogram");
+  const Signal& torque = require_signal(rec, studies::judged_torque_signal(rec), source, "spectrogram");
   const double fs = sample_rate_Hz(t, 256, source, "spectrogram");
   const std::size_t n = t.values.size();
 

@@ -9,7 +9,7 @@
 #include "io/verdict_json.hpp"
 #include "report/plots.hpp"
 #include "report/text_format.hpp"
-#include "rig_models/run_verdict.hpp"
+#include "studies/run_verdict.hpp"
 
 namespace shudder::report {
 
@@ -74,7 +74,7 @@ Report write_run_report(const std::string& dir, const dynamics::Recording& rec, 
   index.title = "shudder run: " + name;
   index.summary = summary;
   index.data_files = {run_file};
-  if (const auto* verdict = rec.find_block(rig_models::kVerdictBlock)) {
+  if (const auto* verdict = rec.find_block(studies::kVerdictBlock)) {
     io::write_verdict_json(*verdict, path("verdict.json"));
     report.files.push_back(path("verdict.json"));
     const auto* text = verdict->find_text("verdict");

@@ -9,7 +9,7 @@
 
 #include "dynamics/signal_names.hpp"
 #include "rig_models/friction_range_block.hpp"
-#include "rig_models/run_verdict.hpp"
+#include "studies/run_verdict.hpp"
 #include "core/nan.hpp"
 
 namespace shudder::report {
@@ -186,11 +186,11 @@ constexpr double kControlLoopSwing = 0.2;
 // warning at the top of its summary (outside_data_fraction in the verdict block).
 constexpr double kMostlyOutsideData = 0.5;
 
-// The verdict block (rig_models/run_verdict.hpp) in three lines: what the run shows, the
+// The verdict block (studies/run_verdict.hpp) in three lines: what the run shows, the
 // operating point it was judged at, and what linear theory predicted there; a fourth for
 // stick-slip, which that theory cannot predict.
 void print_verdict(std::ostream& os, const char* label, const dynamics::Recording& rec) {
-  const auto* b = rec.find_block(rig_models::kVerdictBlock);
+  const auto* b = rec.find_block(studies::kVerdictBlock);
   if (!b) {
     os << label << ": not judged (no verdict in the recording)\n";
     return;

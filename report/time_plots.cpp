@@ -8,7 +8,7 @@
 #include "core/nan.hpp"
 #include "io/input_error.hpp"
 #include "report/plot_data.hpp"
-#include "rig_models/recording_detection.hpp"
+#include "studies/recording_detection.hpp"
 
 namespace shudder::report {
 
@@ -259,7 +259,7 @@ Series slice(const Series& s, double from_x, double to_x) {
 }
 
 MultiPlot torque_plot(const Recording& rec, const std::string& name, const std::string& source) {
-  if (rig_models::network_verdict_clutch(rec)) return network_torque_plot(rec, name, source);
+  if (studies::network_verdict_clutch(rec)) return network_torque_plot(rec, name, source);
   const Signal& t = require_signal(rec, "time_s", source, "torque");
   const Signal& torque = require_signal(rec, "torque_Nm", source, "torque");
   // The sliding speed explains the torque's shape (ramps, breakaway): its own panel.

@@ -1,7 +1,7 @@
 #pragma once
 // A measured vehicle run of the Haldex coupling: what an instrumented coupling in a car gives,
 // in the measured-run format (docs/formats/measured_run.md, io/measured_run.hpp), so that
-// `shudder diagnose` can replay it through the coupling alone (rig_models/replay.hpp).
+// `shudder diagnose` can replay it through the coupling alone (studies/replay.hpp).
 //
 // The columns keep the format's meaning, read at the coupling instead of the rig's disc:
 //   speed_rpm       the pack's slip, input half (propeller-shaft side) minus output half (rear

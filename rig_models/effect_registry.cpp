@@ -211,7 +211,7 @@ std::vector<EffectDefinition> build() {
 ,
     // Acts in the recorded normal force (prescribed slip and rig, rig_models/prescribed_slip.hpp;
     // a driveline's measured clamp force, rig_models/coupling_measurement.hpp); a replay drives
-    // the model with F_rec / g_F (rig_models/replay.cpp). Bounds as the torque cell's.
+    // the model with F_rec / g_F (studies/replay.cpp). Bounds as the torque cell's.
     {"load_sensor_gain", "the load cell reads a fixed fraction high or low",
      [](auto& t) -> auto& {return t.load_cell.gain_fault;
 }
@@ -226,7 +226,7 @@ std::vector<EffectDefinition> build() {
 }
 ,
     // Acts in clutch::ThermalModel (the reading of the thermocouple); in a replay the discs
-    // then start at the sump's measured temperature (rig_models/replay.hpp).
+    // then start at the sump's measured temperature (studies/replay.hpp).
     {"thermocouple_offset", "the thermocouple reads a constant temperature too much",
      [](auto& t) -> auto& {return t.clutch.thermal.thermocouple_offset;
 }

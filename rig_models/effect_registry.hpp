@@ -5,7 +5,7 @@
 // ones the diagnosis' bounds and starting guesses), its non-numeric choices, and the model
 // kinds it does nothing in. Derived from it, and from nowhere else:
 //   * io/scenario.cpp       reads `[effects.NAME]` (keys, ranges, messages, inert-kind warnings)
-//   * rig_models/replay.cpp switches effects on for the diagnosis and lists its candidates
+//   * studies/replay.cpp switches effects on for the diagnosis and lists its candidates
 //   * app/                  the default and range of `shudder diagnose --max-effects`
 //   * docs/effects.md       the effects tables (tests/rig_models/test_effect_registry.cpp
 //                           checks them against this list, and the names against docs/formats/diagnosis_json.md)
@@ -39,7 +39,7 @@ struct ConstEffectTarget {
 };
 
 /// The parameter structs effects write into. A scenario builds it from its clutch, bearing drag
-/// and stick-time settings; a ReplayModel from its own (rig_models/replay.hpp).
+/// and stick-time settings; a ReplayModel from its own (studies/replay.hpp).
 struct EffectTarget {
   clutch::WetClutchParams& clutch;
   BearingDrag& bearing_drag;

@@ -7,15 +7,12 @@
 #include <stdexcept>
 #include <string>
 
-#include "analysis/shudder_detection.hpp"
 #include "clutch/fluid.hpp"
 #include "core/units.hpp"
 #include "dynamics/signal_names.hpp"
 #include "rig_models/channel_recorder.hpp"
-#include "rig_models/driveline_stability.hpp"
 #include "rig_models/energy_scalars.hpp"
 #include "rig_models/multirate_clutch.hpp"
-#include "rig_models/recording_detection.hpp"
 
 namespace shudder::rig_models {
 
@@ -401,20 +398,6 @@ std::vector<double> control_instants_s(double control_period_s, double duration_
   return times;
 }
 
-// Judder or stick-slip of the coupling, judged on its torque and slip as on the rig, with the
-// channels and band every reader of this recording uses (rig_models/recording_detection.hpp).
-analysis::ShudderResult judge_coupling(const dynamics::Recording& rec) {
-  const RecordingDetection detection = *recording_detection(rec);
-  analysis::ShudderResult judder;
-  try {
-    judder = judge_recording(detection);
-  } catch (const std::invalid_argument&) {
-    judder.verdict = analysis::Verdict::kNone;  // too short a record to judge (< 64 samples)
-    judder.frequency_Hz = judder.amplitude_Nm = std::numeric_limits<double>::quiet_NaN();
-  }
-  return judder;
-}
-
 }  // namespace
 
 dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::WetClutch& clutch,
@@ -496,26 +479,16 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
   const double n_if = clutch.params().sliding_interfaces;
   const auto me = sim.energy();
   const auto& cnt = sim.counters();
-  // The locked coupling's lowest oscillating mode (the shuffle), linearised about the run's mean
-  // operating point (driveline_stability.hpp: the engine's torque–speed slope, the tyres'
-  // relaxation at the run's speed, the shafts' dampers): the point and the method that
-  // `shudder modes SCENARIO --run RUN.h5` prints, so both give the same numbers.
+  // The coupling's verdict and the locked shuffle mode are studies of this recording
+  // (studies/driveline_judgement.hpp), added with the run's analysis.
   const dynamics::Sample end = sim.sample();
   const double engine_slope = dl.engine_slope_Nms_per_rad(end.t_s, end.omega_rad_s[D::kEngine]);
-  const LockedShuffle shuffle = run_shuffle_mode(dl, clutch, rec, cfg.duration_s);
-  const double shuffle_Hz = shuffle.frequency_Hz, shuffle_zeta = shuffle.damping_ratio;
-  const analysis::ShudderResult judder = judge_coupling(rec);
   rec.scalars = {
-      {"coupling_verdict_code", "1", static_cast<double>(judder.verdict)},
-      {"coupling_oscillation_frequency_Hz", "Hz", judder.frequency_Hz},
-      {"coupling_oscillation_amplitude_Nm", "N m", judder.amplitude_Nm},
       {"heat_generated_J", "J", n_if * ts.energy.generated_J},
       {"peak_interface_temp_C", "degC", peak_C},
       {"friction_work_J", "J", me.friction_heat_J},
       {"mechanical_energy_relative_error", "1",
        mechanical_energy_relative_error(me, MechanicalEnergyScale::kLargestEnergyInPlay)},
-      {"shuffle_frequency_Hz", "Hz", shuffle_Hz},
-      {"shuffle_damping_ratio", "1", shuffle_zeta},
       {"piston_area_m2", "m^2", dl.hydraulics().piston_area_m2()},
       {"engine_torque_speed_slope_Nms_per_rad", "N m s/rad", engine_slope},
       {"engine_stall_time_s", "s", stall_time_s},

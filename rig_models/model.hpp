@@ -8,6 +8,8 @@
 // and overload resolution picks the kind's function at compile time, so a new kind that lacks
 // a capability's overload does not compile (tests/rig_models/test_model_capabilities.cpp checks
 // every alternative against the list). There is deliberately no catch-all template.
+// What a kind's runs are judged and studied with (the run's verdict, sweep cases, the replay a
+// diagnosis fits) is declared the same way, one level up, in studies/model_studies.hpp.
 //
 // A kind that cannot do something still has the overload; it throws KindNotSupported with the
 // reason, which the command turns into its input error (io/kind_refusal.hpp: exit 2, naming the
@@ -22,12 +24,10 @@
 #include "clutch/wet_clutch.hpp"
 #include "core/model_kind.hpp"
 #include "dynamics/recording.hpp"
-#include "rig_models/case_evaluation.hpp"
 #include "rig_models/drive_cycle.hpp"
 #include "rig_models/haldex_driveline.hpp"
 #include "rig_models/lsctr_rig.hpp"
 #include "rig_models/prescribed_slip.hpp"
-#include "rig_models/replay.hpp"
 
 namespace shudder::rig_models {
 
@@ -79,19 +79,6 @@ dynamics::Recording simulate(const PrescribedSlipModel& model, const clutch::Wet
 dynamics::Recording simulate(const RigModel& model, const clutch::WetClutch& clutch);
 dynamics::Recording simulate(const DrivelineModel& model, const clutch::WetClutch& clutch);
 
-/// The run's extra analysis, stored in `rec`: every kind's verdict block (run_verdict.hpp:
-/// judged verdict, operating point, and the prediction there — the rig's linear stability, "not
-/// predicted" for the others) and the rig's stability map (/analysis/stability_map, for
-/// `shudder plot`; a record too short to judge gets a "not_judged" block with the reason).
-/// Returns warnings (without the "shudder: warning: " prefix): a map that cannot be made (e.g.
-/// a cycle that never loads the clutch) costs the run nothing but is said.
-std::vector<std::string> add_run_analysis(const PrescribedSlipModel& model, const clutch::WetClutch& clutch,
-                                          double start_temp_C, dynamics::Recording& rec);
-std::vector<std::string> add_run_analysis(const RigModel& model, const clutch::WetClutch& clutch, double start_temp_C,
-                                          dynamics::Recording& rec);
-std::vector<std::string> add_run_analysis(const DrivelineModel& model, const clutch::WetClutch& clutch,
-                                          double start_temp_C, dynamics::Recording& rec);
-
 /// Whether the run report draws the rig's plots (spectrogram, stability map; report/plots.hpp).
 constexpr bool has_rig_plots(const PrescribedSlipModel&) { return false; }
 constexpr bool has_rig_plots(const RigModel&) { return true; }
@@ -109,34 +96,10 @@ MeasuredExport measured_run_export(const PrescribedSlipModel& model, const dynam
 MeasuredExport measured_run_export(const RigModel& model, const dynamics::Recording& rec);
 MeasuredExport measured_run_export(const DrivelineModel& model, const dynamics::Recording& rec);
 
-// ---- shudder sweep --------------------------------------------------------------------------
-
-/// Whether sweeps judge this kind's cases; throws KindNotSupported if not. Checked on the
-/// base scenario before any case runs.
-void require_sweep(const PrescribedSlipModel& model);
-void require_sweep(const RigModel& model);
-void require_sweep(const DrivelineModel& model);
-
-/// One sweep case: runs the model into `rec`, predicts and judges it (case_evaluation.hpp).
-/// Throws KindNotSupported where require_sweep does.
-CaseOutcome evaluate_case(const PrescribedSlipModel& model, const clutch::WetClutch& clutch, dynamics::Recording& rec);
-CaseOutcome evaluate_case(const RigModel& model, const clutch::WetClutch& clutch, dynamics::Recording& rec);
-CaseOutcome evaluate_case(const DrivelineModel& model, const clutch::WetClutch& clutch, dynamics::Recording& rec);
-
-// ---- shudder diagnose -----------------------------------------------------------------------
-
-/// The model a measured run is replayed on (rig_models/replay.hpp), without its clutch and
-/// fluid, which the caller sets. `stick_time` is the scenario's [effects.stick_time_static_friction]
-/// as read: a prescribed-slip model has no rig to hold it, but the candidate list must still
-/// know whether that effect is on. A driveline replays its coupling alone (ReplayModel::kind kDriveline).
-ReplayModel replay_model(const PrescribedSlipModel& model, const StickTimeFriction& stick_time);
-ReplayModel replay_model(const RigModel& model, const StickTimeFriction& stick_time);
-ReplayModel replay_model(const DrivelineModel& model, const StickTimeFriction& stick_time);
-
 // ---- shudder modes, shudder screen --rig ----------------------------------------------------
 
 /// What `shudder modes` analyses: a rig's torsional network (bar and housing), or a driveline
-/// linearised about its manoeuvre's operating point (rig_models/driveline_stability.hpp).
+/// linearised about its manoeuvre's operating point (studies/driveline_stability.hpp).
 /// Throws KindNotSupported for kinds without a network.
 using ModalSubject = std::variant<const RigModel*, const DrivelineModel*>;
 ModalSubject modal_subject(const PrescribedSlipModel& model);

@@ -28,7 +28,7 @@ namespace shudder::rig_models {
 
 struct MotorRipple {
   // On by default (the estimate, see header). The diagnosis' replay models it too: its set-point
-  // recovery subtracts the ripple before inverting the speed loop (rig_models/speed_setpoint.hpp).
+  // recovery subtracts the ripple before inverting the speed loop (studies/speed_setpoint.hpp).
   double amplitude_Nm = 1.0;
   double periods_per_rev = 576.0;  // estimate, see header
 };

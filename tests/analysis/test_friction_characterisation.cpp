@@ -15,7 +15,7 @@
 #include "analysis/friction_characterisation.hpp"
 #include "clutch/maki_friction.hpp"
 #include "io/fluid_loader.hpp"
-#include "rig_models/fluid_screening.hpp"
+#include "studies/fluid_screening.hpp"
 #include "tests/support/characterisation_errors.hpp"
 #include "tests/support/ramp_runs.hpp"
 
@@ -356,7 +356,7 @@ TEST(CharacteriseRoundTrip, IndicesFollowTheTruth) {
   // The screening verdict (default 100/300/500 Hz rigs, 15 kN, 40 and 60 °C) is the truth's.
   clutch::Fluid fitted = rt.truth;
   fitted.friction = quad.law;
-  rig_models::ScreeningOptions so;
+  studies::ScreeningOptions so;
   so.indices.load_N = 15000.0;
   so.temps_C = {40.0, 60.0};
   // Judged where the runs have data (starts 30–70 °C, ramps warm to ~100 °C): over the law's
@@ -364,7 +364,7 @@ TEST(CharacteriseRoundTrip, IndicesFollowTheTruth) {
   // -40…-30 °C since fluid C's reconstructed rows rise with speed), which no
   // characterisation of these runs can see.
   for (double t = 30.0; t <= 100.0; t += 5.0) so.map_temps_C.push_back(t);
-  const auto a = rig_models::screen_fluid(fitted, so), b = rig_models::screen_fluid(rt.truth, so);
+  const auto a = studies::screen_fluid(fitted, so), b = studies::screen_fluid(rt.truth, so);
   std::printf("[ figures  ] screen verdict: characterised %s, truth %s\n", analysis::risk_level_name(a.verdict.level),
               analysis::risk_level_name(b.verdict.level));
   // The rigs' predictions must agree point for point in kind (stable everywhere or not). The

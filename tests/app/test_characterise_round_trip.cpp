@@ -28,8 +28,8 @@
 #include "io/fluid_loader.hpp"
 #include "io/measured_run.hpp"
 #include "io/scenario.hpp"
-#include "rig_models/law_data_check.hpp"
-#include "rig_models/replay.hpp"
+#include "studies/law_data_check.hpp"
+#include "studies/replay.hpp"
 #include "tests/support/cli.hpp"
 #include "tests/support/diagnosis_probe.hpp"
 #include "tests/support/diagnosis_runs.hpp"
@@ -92,7 +92,7 @@ std::pair<double, double> replay_rms(const std::string& model_text, const fs::pa
   const auto model = io::replay_model(s);
   const std::vector<io::MeasuredRun> runs{io::read_measured_run(csv.string())};
   const auto in = io::diagnosis_data(runs, model);
-  const auto out = rig_models::replay(model, in.inputs.front());
+  const auto out = studies::replay(model, in.inputs.front());
   const auto& m = runs.front().required("torque_Nm");
   double ss = 0.0;
   for (std::size_t k = 0; k < m.size(); ++k) ss += std::pow(out.torque_Nm[k] - m[k], 2);
@@ -132,7 +132,7 @@ TEST(RoundTripRadius, ARunAboveTheLawsDataIsNamedAsTheLikelyCause) {
     const io::Scenario s = io::load_scenario_text(model_text, (data().dir / "model.toml").string());
     const auto model = io::replay_model(s);
     const std::vector<io::MeasuredRun> runs{io::read_measured_run(data().run.at(key).string())};
-    return rig_models::law_above_its_data(model, io::diagnosis_data(runs, model).inputs, {key});
+    return studies::law_above_its_data(model, io::diagnosis_data(runs, model).inputs, {key});
   };
   // Without the hot row the law ends at the 100 °C row; the run from 100 °C heats past it.
   const auto plain = warnings(characterise("model", "--no-hot-row"), "20_100");

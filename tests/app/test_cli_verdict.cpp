@@ -164,7 +164,7 @@ TEST(CliVerdict, SteadyRigRunSaysNoneAndIsPredictedStable) {
 }
 
 // The driveline stores the same block, with its own linear prediction (
-// rig_models/driveline_stability.hpp) at the judged window's mean point.
+// studies/driveline_stability.hpp) at the judged window's mean point.
 TEST(CliVerdict, DrivelineRunHasTheSameBlockWithTheDrivelinePrediction) {
   const auto dir = scratch_dir("cli_verdict_driveline");
   write_file(dir / "s.toml", test::shipped_scenario_text("driveline_tight_turn.toml"));

@@ -1,7 +1,7 @@
 // `shudder diagnose` on driveline scenarios. A driveline run writes a measured
 // vehicle run of its Haldex coupling (`run --measurement`: slip, clamp force, coupling torque,
 // the pack's thermocouple and oil; rig_models/coupling_measurement.hpp), and the diagnosis
-// replays it through the coupling alone (prescribed slip through the pack, rig_models/replay.hpp).
+// replays it through the coupling alone (prescribed slip through the pack, studies/replay.hpp).
 //
 // The car: a 10 % curve (legacy turn_ratio 1.1) at 20 km/h on 40 N m, the valve's pressure
 // setting ramped 0 → 6 bar over 3 s: the coupling slips 33–60 rpm throughout (never locks) at
@@ -19,7 +19,7 @@
 #include "io/scenario.hpp"
 #include "rig_models/coupling_measurement.hpp"
 #include "rig_models/model.hpp"
-#include "rig_models/replay.hpp"
+#include "studies/replay.hpp"
 #include "tests/support/cli.hpp"
 #include "tests/support/diagnosis_runs.hpp"
 
@@ -107,7 +107,7 @@ TEST(DiagnoseDriveline, CandidatesAreTheEffectsThatActOnTheCoupling) {
   const auto scenario = io::load_scenario_text(coupling_scenario(), "car.toml");
   const auto model = io::replay_model(scenario);
   std::vector<std::string> skipped, names;
-  for (const auto& c : rig_models::replay_candidates(model, &skipped)) names.push_back(c.name);
+  for (const auto& c : studies::replay_candidates(model, &skipped)) names.push_back(c.name);
   EXPECT_THAT(names, ::testing::UnorderedElementsAre("rig_heat_capacity", "temperature_sensor_lag", "viscous_shear",
                                                      "torque_sensor_gain", "torque_sensor_offset", "load_sensor_gain",
                                                      "thermocouple_offset"));
@@ -127,7 +127,7 @@ TEST(DiagnoseDriveline, ReplayOfTheCouplingReproducesItsTorqueAndTemperature) {
   const auto run = measured_run("clean", "", "");
   const auto model = io::replay_model(io::load_scenario_text(coupling_scenario(), "car.toml"));
   const auto data = io::diagnosis_data({run}, model);
-  const auto out = rig_models::replay(model, data.inputs.front());
+  const auto out = studies::replay(model, data.inputs.front());
   double torque_ss = 0, late_ss = 0, temp_ss = 0;
   std::size_t late = 0;
   const auto& time = *run.column("time_s");
@@ -161,8 +161,8 @@ TEST(DiagnoseDriveline, ReplayFinishesOnASampleJustPastAStepEnd) {
   ASSERT_EQ(in.time_s.front(), 0.0);
   ASSERT_NEAR(in.time_s[30], 0.03, 1e-12);  // 1 kHz rows
   in.time_s[30] = 0.030000000010000003;
-  const auto out = rig_models::replay(model, in);
-  const auto ref = rig_models::replay(model, io::diagnosis_data({run}, model).inputs.front());
+  const auto out = studies::replay(model, in);
+  const auto ref = studies::replay(model, io::diagnosis_data({run}, model).inputs.front());
   // The moved sample is 1e-11 s later: the replayed torque there moves by far less than the
   // 0.02 N m the replay reproduces the driveline to.
   EXPECT_NEAR(out.torque_Nm[30], ref.torque_Nm[30], 0.02);

@@ -1,7 +1,7 @@
 // `shudder diagnose` on a network scenario: a measured run of one wet clutch of the network
 // (`run --measurement` writes RUN.CLUTCH.csv, metadata `rig: network_clutch`, `clutch: NAME`)
 // replayed through that clutch alone, its slip and clamp force imposed sample by sample
-// (components/clutch_replay.hpp).
+// (studies/clutch_replay.hpp).
 //
 // The network: a speed-controlled motor turns a drive at 120 rpm; the wet clutch `pack` (fluid
 // C, 16 interfaces) joins it to a housing on a 378 Hz torsion bar, its force ramped 0 → 10 kN
@@ -15,11 +15,11 @@
 #include <iostream>
 
 #include "analysis/diagnosis.hpp"
-#include "components/clutch_replay.hpp"
+#include "studies/clutch_replay.hpp"
 #include "io/diagnosis_inputs.hpp"
 #include "io/measured_run.hpp"
 #include "io/network_scenario.hpp"
-#include "rig_models/replay.hpp"
+#include "studies/replay.hpp"
 #include "tests/support/cli.hpp"
 
 namespace shudder {
@@ -82,10 +82,10 @@ TEST(DiagnoseNetwork, ReplayOfAClutchReproducesItsTorqueAndTemperature) {
   const auto dir = measured("clean", "", "");
   const auto run = io::read_measured_run((dir / "run.pack.csv").string());
   const auto sc = io::load_network_scenario((dir / "net.toml").string());
-  const auto model = components::clutch_replay_model(sc.spec, "pack");
+  const auto model = studies::clutch_replay_model(sc.spec, "pack");
   const auto data = io::diagnosis_data({run}, model);
   EXPECT_TRUE(data.warnings.empty());
-  const auto out = rig_models::replay(model, data.inputs.front());
+  const auto out = studies::replay(model, data.inputs.front());
   const auto& torque = *run.column("torque_Nm");
   const auto& temp = *run.column("temp_C");
   double torque_ss = 0, temp_ss = 0;

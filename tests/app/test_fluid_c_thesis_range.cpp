@@ -14,7 +14,7 @@
 
 #include "io/fluid_loader.hpp"
 #include "io/scenario.hpp"
-#include "rig_models/fluid_screening.hpp"
+#include "studies/fluid_screening.hpp"
 #include "tests/support/cli.hpp"
 
 namespace shudder {
@@ -27,17 +27,17 @@ using test::shipped_scenario_text;
 using test::source_path;
 using test::write_file;
 
-rig_models::ScreeningRig rig_of(const std::string& scenario) {
+studies::ScreeningRig rig_of(const std::string& scenario) {
   const auto sc = io::load_scenario(source_path("scenarios/" + scenario));
-  rig_models::ScreeningRig rig;
+  studies::ScreeningRig rig;
   rig.params = std::get<rig_models::RigModel>(sc.model).params;
   rig.clutch = sc.clutch;
   return rig;
 }
 
 // The thesis' data range as the screening grid: 1–100 rpm in 1 rpm, -20…90 °C in 5 °C.
-rig_models::ScreeningOptions thesis_range(double load_N) {
-  rig_models::ScreeningOptions so;
+studies::ScreeningOptions thesis_range(double load_N) {
+  studies::ScreeningOptions so;
   so.indices.load_N = load_N;
   so.temps_C = {-20.0};
   for (int rpm = 1; rpm <= 100; ++rpm) so.map_speeds_rpm.push_back(rpm);
@@ -50,7 +50,7 @@ rig_models::ScreeningOptions thesis_range(double load_N) {
 TEST(FluidCThesisRange, PredictedStableOnBothBarsAt10To25kN) {
   const auto fluid = io::load_fluid(source_path("scenarios/fluids/lsc_fluid_c.toml"));
   for (const double load_N : {10000.0, 15000.0, 20000.0, 25000.0}) {
-    const auto rep = rig_models::screen_fluid(fluid, thesis_range(load_N));
+    const auto rep = studies::screen_fluid(fluid, thesis_range(load_N));
     ASSERT_EQ(rep.rigs.size(), 2u);
     for (const auto& rig : rep.rigs) {
       EXPECT_TRUE(rig.unstable.empty()) << rig.label << " at " << load_N << " N: largest margin "
@@ -69,7 +69,7 @@ TEST(FluidCThesisRange, NotAtRiskAtMinus20C) {
   for (const double load_N : {10000.0, 15000.0, 20000.0, 25000.0}) {
     auto so = thesis_range(load_N);
     so.map_temps_C = {-20.0};
-    const auto rep = rig_models::screen_fluid(fluid, so);
+    const auto rep = studies::screen_fluid(fluid, so);
     EXPECT_EQ(rep.verdict.level, analysis::RiskLevel::kLow) << load_N << " N: " << rep.verdict.text;
   }
 }
@@ -80,7 +80,7 @@ TEST(FluidCThesisRange, NegativeSlopeFluidStillPredictedUnstable) {
   const auto fluid = io::load_fluid(source_path("scenarios/fluids/schematic_negative_slope.toml"));
   auto so = thesis_range(9000.0);
   so.map_temps_C = {40.0};
-  const auto rep = rig_models::screen_fluid(fluid, so);
+  const auto rep = studies::screen_fluid(fluid, so);
   EXPECT_EQ(rep.verdict.level, analysis::RiskLevel::kRisk) << rep.verdict.text;
   EXPECT_FALSE(rep.rigs.at(0).unstable.empty());
 }

@@ -23,13 +23,15 @@ const std::map<std::string, std::set<std::string>>& allowed() {
       {"clutch", {"core"}},
       {"dynamics", {"core"}},
       {"analysis", {"core", "clutch", "dynamics"}},
-      {"rig_models", {"core", "clutch", "dynamics", "analysis"}},
-      {"components", {"core", "clutch", "dynamics", "analysis", "rig_models"}},
-      {"io", {"core", "clutch", "dynamics", "analysis", "rig_models", "components"}},
-      {"report", {"core", "clutch", "dynamics", "analysis", "rig_models", "components", "io"}},
-      {"app", {"core", "clutch", "dynamics", "analysis", "rig_models", "components", "io", "report", "fmu"}},
-      {"python", {"core", "clutch", "dynamics", "analysis", "rig_models", "components", "io", "report", "app"}},
-      {"fmu", {"core", "clutch", "dynamics", "analysis", "rig_models", "components", "io"}},  // the FMU, beside app
+      {"rig_models", {"core", "clutch", "dynamics"}},  // the machines: no analysis
+      {"components", {"core", "clutch", "dynamics", "rig_models"}},
+      {"studies", {"core", "clutch", "dynamics", "analysis", "rig_models", "components"}},
+      {"io", {"core", "clutch", "dynamics", "analysis", "rig_models", "components", "studies"}},
+      {"report", {"core", "clutch", "dynamics", "analysis", "rig_models", "components", "studies", "io"}},
+      {"app", {"core", "clutch", "dynamics", "analysis", "rig_models", "components", "studies", "io", "report", "fmu"}},
+      {"python",
+       {"core", "clutch", "dynamics", "analysis", "rig_models", "components", "studies", "io", "report", "app"}},
+      {"fmu", {"core", "clutch", "dynamics", "rig_models", "components", "io"}},  // the FMU, beside app: steps only
   };
   return k;
 }

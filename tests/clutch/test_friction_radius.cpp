@@ -19,7 +19,7 @@
 #include "clutch/wet_clutch.hpp"
 #include "io/fluid_loader.hpp"
 #include "io/input_error.hpp"
-#include "rig_models/fluid_screening.hpp"
+#include "studies/fluid_screening.hpp"
 
 namespace {
 
@@ -137,12 +137,12 @@ TEST(FrictionRadius, ScreenReadsRpmAtTheRecordedRadius) {
                    "mu = [[0.1001, 0.2]]\n",
                    "t.toml")
                    .friction;
-  rig_models::ScreeningOptions o;
+  studies::ScreeningOptions o;
   o.temps_C = {40.0};
   o.rigs = {};
   for (const double r_mm : {0.0, 40.0}) {
     f.friction_radius_mm = r_mm;
-    const auto rep = rig_models::screen_fluid(f, o);
+    const auto rep = studies::screen_fluid(f, o);
     EXPECT_EQ(rep.mean_radius_mm, r_mm > 0 ? r_mm : analysis::kRigMeanRadius_mm);
   }
 }

@@ -1,5 +1,5 @@
 // clutch/interface_thermal_impedance.hpp against its two closed-form limits, and the size of the
-// thermal feedback on the coupling's friction slope (rig_models/driveline_stability.hpp) at
+// thermal feedback on the coupling's friction slope (studies/driveline_stability.hpp) at
 // a high-torque point and at the take-up judder onset.
 #include "clutch/interface_thermal_impedance.hpp"
 
@@ -11,7 +11,7 @@
 #include <numbers>
 
 #include "io/scenario.hpp"
-#include "rig_models/driveline_stability.hpp"
+#include "studies/driveline_stability.hpp"
 #include "rig_models/model.hpp"
 
 namespace shudder::clutch {
@@ -58,16 +58,16 @@ TEST(InterfaceThermalImpedance, ThermalFeedbackOnTheCouplingSlope) {
   const WetClutch clutch = sc.make_clutch();
   const auto& model = std::get<rig_models::DrivelineModel>(sc.model);
   const rig_models::HaldexDriveline dl(model.params, clutch, model.manoeuvre);
-  rig_models::DrivelineOperatingPoint op;
+  studies::DrivelineOperatingPoint op;
   op.interface_temp_C = 60.0;
   op.coupling_slip_rad_s = 10.0 * 2 * std::numbers::pi / 60.0;
   // Clamp force for 125 N m per interface (2 kN m for the pack): rescaled on the torque (μ
   // depends a little on the load).
   op.clamp_force_N = 20000.0;
   for (int i = 0; i < 4; ++i)
-    op.clamp_force_N *= 2000.0 / rig_models::coupling_thermal_feedback(dl, clutch, op, 4.0).coupling_torque_Nm;
-  const auto at4 = rig_models::coupling_thermal_feedback(dl, clutch, op, 4.0);
-  const auto at378 = rig_models::coupling_thermal_feedback(dl, clutch, op, 378.0);
+    op.clamp_force_N *= 2000.0 / studies::coupling_thermal_feedback(dl, clutch, op, 4.0).coupling_torque_Nm;
+  const auto at4 = studies::coupling_thermal_feedback(dl, clutch, op, 4.0);
+  const auto at378 = studies::coupling_thermal_feedback(dl, clutch, op, 378.0);
   EXPECT_NEAR(at4.coupling_torque_Nm, 2000.0, 1.0);  // the rescaling's fixed point
   std::printf(
       "thermal feedback per interface at 125 N m, %.0f N: 4 Hz %.4f, 378 Hz %.4f N m s/rad (isothermal "

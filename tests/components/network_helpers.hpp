@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "components/network_run.hpp"
+#include "studies/network_run.hpp"
 #include "components/network_spec.hpp"
 #include "dynamics/recording.hpp"
 

@@ -13,11 +13,12 @@
 #include <vector>
 
 #include "components/driveline_expansion.hpp"
-#include "components/network_run.hpp"
+#include "studies/network_run.hpp"
+#include "studies/driveline_judgement.hpp"
 #include "io/scenario.hpp"
 #include "dynamics/signal_names.hpp"
 #include "rig_models/model.hpp"
-#include "rig_models/recording_detection.hpp"
+#include "studies/recording_detection.hpp"
 #include "tests/components/network_helpers.hpp"
 
 namespace shudder::components {
@@ -29,8 +30,10 @@ TEST_P(DrivelineExpansion, NetworkPathGivesTheDrivelineRun) {
   const auto sc = io::load_scenario(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/" + GetParam() + ".toml");
   const auto& m = std::get<rig_models::DrivelineModel>(sc.model);
   const NetworkSpec spec = expand_driveline(m.params, sc.clutch, sc.fluid, m.manoeuvre, m.settings);
-  const NetworkRun run = run_network(spec);
-  const auto drv = rig_models::simulate(m, sc.make_clutch());
+  const studies::NetworkRun run = studies::run_network(spec);
+  const auto clutch = sc.make_clutch();
+  auto drv = rig_models::simulate(m, clutch);
+  studies::add_driveline_judgement(m.params, clutch, m.manoeuvre, m.settings, drv);
   double worst = 0;
   for (const auto& [net, kind] :
        std::vector<std::pair<std::string, std::string>>{{"haldex.torque_Nm", "coupling_torque_Nm"},
@@ -51,8 +54,8 @@ TEST_P(DrivelineExpansion, NetworkPathGivesTheDrivelineRun) {
   const bool raw_valve = m.manoeuvre.valve_opening || m.manoeuvre.valve_pressure_bar;
   EXPECT_LT(worst, raw_valve ? 3e-3 : 1e-8);
   // The same run judged by the same judge: the network run's coupling channels under the driveline
-  // kind's names, judged as the driveline kind judges its own (rig_models/recording_detection.hpp).
-  // The network's own clutch judge (components/clutch_judgement.hpp) has its own sustained rule
+  // kind's names, judged as the driveline kind judges its own (studies/recording_detection.hpp).
+  // The network's own clutch judge (studies/clutch_judgement.hpp) has its own sustained rule
   // and may read a run at that rule's edge otherwise (docs/driveline.md); that is a property of
   // the judges, not of the expansion this test holds to the driveline run.
   namespace sn = dynamics::signal_names;
@@ -66,9 +69,9 @@ TEST_P(DrivelineExpansion, NetworkPathGivesTheDrivelineRun) {
                                                              {"haldex.stuck", sn::kStuck}})
     if (const auto* c = run.recording.find(net))
       as_driveline.add_signal(std::string(kind), c->units).values = c->values;
-  const auto detection = rig_models::recording_detection(as_driveline);
+  const auto detection = studies::recording_detection(as_driveline);
   ASSERT_TRUE(detection.has_value());
-  const analysis::ShudderResult judged = rig_models::judge_recording(*detection);
+  const analysis::ShudderResult judged = studies::judge_recording(*detection);
   EXPECT_EQ(static_cast<double>(judged.verdict), test::scalar(drv, "coupling_verdict_code"));
 }
 

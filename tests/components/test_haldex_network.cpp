@@ -10,7 +10,8 @@
 #include <cmath>
 #include <string>
 
-#include "components/network_run.hpp"
+#include "studies/network_run.hpp"
+#include "studies/driveline_judgement.hpp"
 #include "io/input_error.hpp"
 #include "io/network_scenario.hpp"
 #include "io/scenario.hpp"
@@ -23,17 +24,20 @@ namespace {
 
 struct Pair {
   dynamics::Recording network, driveline;
-  NetworkRun run;
+  studies::NetworkRun run;
 };
 
 Pair run_both(const std::string& network_file, const std::string& driveline_file) {
   const std::string root = std::string(SHUDDER_SOURCE_DIR) + "/scenarios/";
   const auto net = io::load_network_scenario(root + network_file);
   Pair p;
-  p.run = run_network(net.spec);
+  p.run = studies::run_network(net.spec);
   p.network = p.run.recording;
   const auto sc = io::load_scenario(root + driveline_file);
-  p.driveline = rig_models::simulate(std::get<rig_models::DrivelineModel>(sc.model), sc.make_clutch());
+  const auto& model = std::get<rig_models::DrivelineModel>(sc.model);
+  const auto clutch = sc.make_clutch();
+  p.driveline = rig_models::simulate(model, clutch);
+  studies::add_driveline_judgement(model.params, clutch, model.manoeuvre, model.settings, p.driveline);
   return p;
 }
 

@@ -40,7 +40,7 @@ TEST(NetworkClosedForm, TwoInertiasLockUpTimeSpeedAndHeat) {
   spec.inertias = {inertia("a", j1, w1), inertia("b", j2, w2)};
   spec.clutches = {plain_clutch("c", "a", "b", T)};
   spec.settings = settings(2.0, 10000.0);
-  const auto run = run_network(spec);
+  const auto run = studies::run_network(spec);
   const double j_eff = j1 * j2 / (j1 + j2), dw0 = w1 - w2;
   const double t_lock = dw0 * j_eff / T, w_f = (j1 * w1 + j2 * w2) / (j1 + j2);
   EXPECT_NEAR(first_change_s(run.recording, "c.stuck"), t_lock, 1e-4);  // one sample
@@ -62,7 +62,7 @@ TEST(NetworkClosedForm, BrakeBreaksAwayWhenTheTorqueExceedsItsPeak) {
   spec.clutches = {plain_clutch("brake", "drum", kGroundNode, Tk, peak)};
   spec.torque_sources = {{"load", "drum", Signal::ramp(0.0, a * 2.0, 0.0, 2.0)}};
   spec.settings = settings(1.0, 10000.0);
-  const auto run = run_network(spec);
+  const auto run = studies::run_network(spec);
   const double t_b = peak * Tk / a;
   EXPECT_NEAR(first_change_s(run.recording, "brake.stuck"), t_b, 1e-4);
   const double t = 1.0;
@@ -82,7 +82,7 @@ TEST(NetworkClosedForm, FreewheelDrivesOneWayOnly) {
   spec.freewheels = {{"sprag", "driving", "driven", 0.0}};
   spec.torque_sources = {{"crank", "driving", Signal::sine(0.0, T0, 1.0, 0.0, 0.0)}};
   spec.settings = settings(0.75, 10000.0);
-  const auto run = run_network(spec);
+  const auto run = studies::run_network(spec);
   const auto& t = channel(run.recording, "time_s");
   const auto& w1 = channel(run.recording, "driving.speed_rpm");
   const auto& w2 = channel(run.recording, "driven.speed_rpm");
@@ -118,7 +118,7 @@ TEST(NetworkClosedForm, BacklashFreeFlightAcrossTheGap) {
   spec.shafts = {{"shaft", "a", "b", k, 0.0, lash}};
   spec.torque_sources = {{"none", "a", Signal::constant(0.0)}};
   spec.settings = settings(0.06, 100000.0);
-  const auto run = run_network(spec);
+  const auto run = studies::run_network(spec);
   const auto& t = channel(run.recording, "time_s");
   const auto& tq = channel(run.recording, "shaft.torque_Nm");
   double first = NAN, release = NAN, second = NAN;
@@ -147,7 +147,7 @@ TEST(NetworkClosedForm, GearReflectsTheOutputInertia) {
   spec.gears = {{"pair", "in", "out", r}};
   spec.torque_sources = {{"drive", "in", Signal::constant(T)}};
   spec.settings = settings(t_end, 1000.0);
-  const auto run = run_network(spec);
+  const auto run = studies::run_network(spec);
   const double w = T * t_end / (j1 + j2 / (r * r));
   EXPECT_NEAR(channel(run.recording, "in.speed_rpm").back(), rpm(w), 1e-8 * rpm(w));
   EXPECT_NEAR(channel(run.recording, "out.speed_rpm").back(), rpm(w / r), 1e-8 * rpm(w));
@@ -166,7 +166,7 @@ TEST(NetworkClosedForm, TwoContactsStickAtTheHandDerivedTimes) {
   spec.inertias = {inertia("one", 1.0, 100.0), inertia("two", 1.0), inertia("three", 1.0)};
   spec.clutches = {plain_clutch("c1", "one", "two", 20.0), plain_clutch("c2", "two", "three", 5.0)};
   spec.settings = settings(8.0, 1000.0);
-  const auto run = run_network(spec);
+  const auto run = studies::run_network(spec);
   const auto& t = channel(run.recording, "time_s");
   const auto& w1 = channel(run.recording, "one.speed_rpm");
   const auto& w2 = channel(run.recording, "two.speed_rpm");

@@ -10,11 +10,11 @@
 #include <limits>
 #include <string>
 
-#include "components/network_run.hpp"
+#include "studies/network_run.hpp"
 #include "components/rig_expansion.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/model.hpp"
-#include "rig_models/run_verdict.hpp"
+#include "studies/run_verdict.hpp"
 #include "tests/components/network_helpers.hpp"
 
 namespace shudder::components {
@@ -26,7 +26,7 @@ TEST_P(RigExpansion, NetworkPathGivesTheRigRun) {
   const auto sc = io::load_scenario(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/" + GetParam() + ".toml");
   const auto& m = std::get<rig_models::RigModel>(sc.model);
   const NetworkSpec spec = expand_rig(m.params, sc.clutch, sc.fluid, m.cycle, m.settings);
-  const NetworkRun run = run_network(spec);
+  const studies::NetworkRun run = studies::run_network(spec);
   const auto rig = rig_models::simulate(m, sc.make_clutch());
   double worst = 0;
   for (const auto& [net, kind] :
@@ -36,7 +36,7 @@ TEST_P(RigExpansion, NetworkPathGivesTheRigRun) {
                                                         {"clutch.interface_max_temp_C", "interface_max_temp_C"},
                                                         {"clutch.temp_C", "temp_C"}})
     worst = std::max(worst, test::relative_difference(test::channel(run.recording, net), test::channel(rig, kind)));
-  const auto judged = rig_models::judge_run(rig).judged;
+  const auto judged = studies::judge_run(rig).judged;
   const auto& v = run.verdicts.at(0).verdict.judged;
   EXPECT_EQ(v.verdict, judged.verdict);
   if (judged.verdict == analysis::Verdict::kVibration) {

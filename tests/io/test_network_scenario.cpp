@@ -9,7 +9,7 @@
 
 #include "io/input_error.hpp"
 #include "io/network_components.hpp"
-#include "components/network_run.hpp"
+#include "studies/network_run.hpp"
 #include "io/network_scenario.hpp"
 #include "tests/support/cli.hpp"
 
@@ -206,7 +206,7 @@ geometry_factor_m = 0.5
 max_force_N = 2e5
 )",
                                              "extreme.toml");
-  const auto run = components::run_network(sc.spec);
+  const auto run = studies::run_network(sc.spec);
   EXPECT_LT(std::abs(run.recording.find_scalar("mechanical_energy_relative_error")->value), 1e-6);
   // Momentum about the wheel: J_pinion r^2 w_hub0 = (J_pinion r^2 + J_wheel) w_end (massless hub).
   const double r = 100.0, w_hub0 = 20000.0 / r, j_ref = 1e-6 * r * r;

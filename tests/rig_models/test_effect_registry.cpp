@@ -26,7 +26,7 @@
 #include "io/scenario.hpp"
 #include "io/toml_reader.hpp"
 #include "rig_models/effect_registry.hpp"
-#include "rig_models/replay.hpp"
+#include "studies/replay.hpp"
 #include "tests/support/cli.hpp"
 
 namespace shudder {
@@ -211,8 +211,8 @@ TEST(EffectRegistry, ScenarioReaderAndDiagnosisSetTheSameMembers) {
     if (e.parameters.empty()) continue;
     SCOPED_TRACE(e.name);
     // Through the registry on a model: every parameter set in SI, the effect switched on.
-    rig_models::ReplayModel expected;
-    auto target = rig_models::effect_target(expected);
+    studies::ReplayModel expected;
+    auto target = studies::effect_target(expected);
     e.enabled(target) = true;
     std::ostringstream toml;
     toml.precision(17);  // round-trips a double through the text
@@ -229,20 +229,20 @@ TEST(EffectRegistry, ScenarioReaderAndDiagnosisSetTheSameMembers) {
     // Through a scenario file: the reader must land each value in the same member, same scale.
     const auto loaded =
         io::replay_model(io::load_scenario_text(base + toml.str(), test::source_path("scenarios/x.toml")));
-    EXPECT_TRUE(rig_models::effect_enabled(loaded, e.name));
-    const auto want = rig_models::effect_target(std::as_const(expected));
+    EXPECT_TRUE(studies::effect_enabled(loaded, e.name));
+    const auto want = studies::effect_target(std::as_const(expected));
     for (const auto& p : e.parameters)  // same operations on the same value: equal, not close
-      EXPECT_EQ(p.member(rig_models::effect_target(loaded)), p.member(want)) << p.key;
+      EXPECT_EQ(p.member(studies::effect_target(loaded)), p.member(want)) << p.key;
 
     // And the diagnosis' enable_effect with the same values (its fitted ones) lands them there too.
-    rig_models::ReplayModel enabled;
-    auto enabled_target = rig_models::effect_target(enabled);
+    studies::ReplayModel enabled;
+    auto enabled_target = studies::effect_target(enabled);
     for (const auto& p : e.parameters)
       if (!p.fit) p.member(enabled_target) = p.member(want);  // not fitted: as the scenario set it
-    rig_models::enable_effect(enabled, e.name, fitted_values);
-    EXPECT_TRUE(rig_models::effect_enabled(enabled, e.name));
+    studies::enable_effect(enabled, e.name, fitted_values);
+    EXPECT_TRUE(studies::effect_enabled(enabled, e.name));
     for (const auto& p : e.parameters)
-      EXPECT_EQ(p.member(rig_models::effect_target(std::as_const(enabled))), p.member(want)) << p.key;
+      EXPECT_EQ(p.member(studies::effect_target(std::as_const(enabled))), p.member(want)) << p.key;
   }
 }
 
@@ -257,21 +257,21 @@ TEST(EffectRegistry, ChoiceIsReadIntoItsMember) {
 }
 
 TEST(EffectRegistry, EnableEffectChecksNameAndValueCount) {
-  rig_models::ReplayModel m;
+  studies::ReplayModel m;
   try {
-    rig_models::enable_effect(m, "rig_heat_capacity", {150.0});
+    studies::enable_effect(m, "rig_heat_capacity", {150.0});
     ADD_FAILURE() << "one value for a two-parameter effect was accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(std::string(e.what()), "effect rig_heat_capacity takes 2 parameters, got 1");
   }
   try {
-    rig_models::enable_effect(m, "magic_cooling", {});
+    studies::enable_effect(m, "magic_cooling", {});
     ADD_FAILURE() << "an unknown effect was accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(std::string(e.what()),
               "unknown effect 'magic_cooling'; valid effects are: " + rig_models::effect_names_list());
   }
-  EXPECT_THROW(rig_models::effect_enabled(m, "magic_cooling"), std::invalid_argument);
+  EXPECT_THROW(studies::effect_enabled(m, "magic_cooling"), std::invalid_argument);
 }
 
 TEST(EffectRegistry, ScenarioRejectsAnUnknownEffectListingTheValidOnes) {
@@ -293,17 +293,17 @@ bool is_candidate(const std::vector<analysis::EffectCandidate>& cs, const std::s
 }
 
 TEST(EffectRegistry, StickTimeIsACandidateOnTheRigOnly) {
-  rig_models::ReplayModel slip;
+  studies::ReplayModel slip;
   std::vector<std::string> skipped;
-  const auto slip_candidates = rig_models::replay_candidates(slip, &skipped);
+  const auto slip_candidates = studies::replay_candidates(slip, &skipped);
   EXPECT_FALSE(is_candidate(slip_candidates, "stick_time_static_friction"));
   EXPECT_EQ(skipped, std::vector<std::string>{"stick_time_static_friction: the slip is imposed, nothing sticks"});
   EXPECT_TRUE(is_candidate(slip_candidates, "bearing_drag"));
 
-  rig_models::ReplayModel rig;
+  studies::ReplayModel rig;
   rig.kind = ModelKind::kRig;
   skipped.clear();
-  const auto rig_candidates = rig_models::replay_candidates(rig, &skipped);
+  const auto rig_candidates = studies::replay_candidates(rig, &skipped);
   EXPECT_TRUE(is_candidate(rig_candidates, "stick_time_static_friction"));
   const std::string loop = ": the rig's torque cell also drives its speed loop; not modelled there yet";
   EXPECT_EQ(skipped, (std::vector<std::string>{

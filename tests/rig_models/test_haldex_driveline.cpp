@@ -23,6 +23,7 @@
 
 #include "core/units.hpp"
 
+#include "studies/driveline_judgement.hpp"
 #include "io/fluid_loader.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/haldex_driveline.hpp"
@@ -67,7 +68,8 @@ TEST(HaldexDriveline, LockedStraightDrivingAcceleratesLikeOneInertia) {
   in.start_speed_km_h = 10.0;
   DrivelineSettings s;
   s.duration_s = 3.0;
-  const auto rec = run_driveline(p, pack.clutch, in, s);
+  auto rec = run_driveline(p, pack.clutch, in, s);
+  studies::add_driveline_judgement(p, pack.clutch, in, s, rec);
 
   const HaldexDriveline dl(p, pack.clutch, in);
   const Eigen::VectorXd ratio = dl.rolling_speed_ratios();
@@ -268,7 +270,9 @@ dynamics::Recording tight_turn(const Pack& pack) {
   in.valve_pressure_bar = PiecewiseLinear({0.0}, {30.0});  // raw: the valve shut up to the relief
   DrivelineSettings s;
   s.duration_s = 5.0;
-  return run_driveline(p, pack.clutch, in, s);
+  auto rec = run_driveline(p, pack.clutch, in, s);
+  studies::add_driveline_judgement(p, pack.clutch, in, s, rec);
+  return rec;
 }
 
 TEST(HaldexDriveline, TightTurnStickSlipsOnlyWithAHighStaticFriction) {

@@ -18,6 +18,7 @@
 #include "io/kind_refusal.hpp"
 #include "io/scenario.hpp"
 #include "rig_models/model.hpp"
+#include "studies/model_studies.hpp"
 
 namespace shudder {
 namespace {
@@ -41,7 +42,7 @@ concept Simulates = requires(const M& m, Args a) {
 };
 template <class M>
 concept HasRunAnalysis = requires(const M& m, Args a) {
-  { rig_models::add_run_analysis(m, a.clutch, 40.0, a.rec) } -> std::same_as<std::vector<std::string>>;
+  { studies::add_run_analysis(m, a.clutch, 40.0, a.rec) } -> std::same_as<std::vector<std::string>>;
   { rig_models::has_rig_plots(m) } -> std::same_as<bool>;
 };
 template <class M>
@@ -50,12 +51,12 @@ concept SaysMeasuredRunExport = requires(const M& m, Args a) {
 };
 template <class M>
 concept SaysSweep = requires(const M& m, Args a) {
-  { rig_models::require_sweep(m) } -> std::same_as<void>;
-  { rig_models::evaluate_case(m, a.clutch, a.rec) } -> std::same_as<rig_models::CaseOutcome>;
+  { studies::require_sweep(m) } -> std::same_as<void>;
+  { studies::evaluate_case(m, a.clutch, a.rec) } -> std::same_as<studies::CaseOutcome>;
 };
 template <class M>
 concept SaysReplay = requires(const M& m, Args a) {
-  { rig_models::replay_model(m, a.stick_time) } -> std::same_as<rig_models::ReplayModel>;
+  { studies::replay_model(m, a.stick_time) } -> std::same_as<studies::ReplayModel>;
 };
 template <class M>
 concept SaysModes = requires(const M& m) {
@@ -110,11 +111,11 @@ std::string refusal(const std::string& path, const std::string& key, Capability&
 // kinds (app/cmd_*.cpp at 6fc3277); they must stay byte-identical.
 TEST(ModelCapabilities, DrivelineExportsItsCouplingAndReplaysItAlone) {
   // Sweeps accept driveline cases now: the capability passes and a case evaluates.
-  EXPECT_EQ(refusal(kDriveline, "scenario.type", [](const auto& m) { rig_models::require_sweep(m); }), "(accepted)");
+  EXPECT_EQ(refusal(kDriveline, "scenario.type", [](const auto& m) { studies::require_sweep(m); }), "(accepted)");
   // A measured run of the coupling, replayed through the pack alone.
   const io::Scenario sc = io::load_scenario(kDriveline);
   const auto& dl = std::get<rig_models::DrivelineModel>(sc.model);
-  const rig_models::ReplayModel m = io::replay_model(sc);
+  const studies::ReplayModel m = io::replay_model(sc);
   EXPECT_EQ(m.kind, ModelKind::kDriveline);
   EXPECT_EQ(m.settings.thermal_step_s, dl.settings.slow_step_s);
   EXPECT_EQ(m.clutch.thermal.sump_volume_m3, sc.clutch.thermal.sump_volume_m3);  // the pack's own oil
@@ -177,11 +178,11 @@ TEST(ModelCapabilities, AcceptingKindsYieldTheirOwnModel) {
 
   rig_models::StickTimeFriction on;
   on.enabled = true;
-  const rig_models::ReplayModel ps_replay = rig_models::replay_model(ps_model, on);
+  const studies::ReplayModel ps_replay = studies::replay_model(ps_model, on);
   EXPECT_EQ(ps_replay.kind, ModelKind::kPrescribedSlip);
   EXPECT_TRUE(ps_replay.rig_params.stick_time.enabled);  // the scenario's switch reaches the candidate list
   EXPECT_EQ(ps_replay.settings.duration_s, ps_model.settings.duration_s);
-  const rig_models::ReplayModel rig_replay = rig_models::replay_model(rig_model, on);
+  const studies::ReplayModel rig_replay = studies::replay_model(rig_model, on);
   EXPECT_EQ(rig_replay.kind, ModelKind::kRig);
   EXPECT_EQ(rig_replay.rig_params.stick_time.enabled, rig_model.params.stick_time.enabled);  // the rig's own
   EXPECT_EQ(rig_replay.settings.sample_rate_Hz, rig_model.settings.sample_rate_Hz);
@@ -191,7 +192,7 @@ TEST(ModelCapabilities, AcceptingKindsYieldTheirOwnModel) {
   // judged (here: empty) is a valid run whose block says so, without a warning. (Before the
   // verdict block, prescribed slip left the recording as it was.)
   dynamics::Recording rec;
-  EXPECT_TRUE(rig_models::add_run_analysis(ps_model, ps.make_clutch(), 40.0, rec).empty());
+  EXPECT_TRUE(studies::add_run_analysis(ps_model, ps.make_clutch(), 40.0, rec).empty());
   EXPECT_TRUE(rec.maps.empty());
   ASSERT_EQ(rec.blocks.size(), 1u);
   EXPECT_EQ(rec.blocks.front().find_text("verdict")->value, "not_judged");

@@ -24,7 +24,7 @@
 #include "rig_models/energy_guard.hpp"
 #include "rig_models/lsctr_rig.hpp"
 #include "rig_models/motor_ripple.hpp"
-#include "rig_models/recording_detection.hpp"
+#include "studies/recording_detection.hpp"
 #include "tests/support/models.hpp"
 
 namespace {
@@ -73,9 +73,9 @@ Onset onset(double ripple_Nm, double thermal_step_s) {
   m.settings.thermal_step_s = thermal_step_s;
   m.settings.duration_s = 1.0;
   const auto rec = shudder::rig_models::run_rig(m.params, sc.make_clutch(), m.cycle, m.settings);
-  const auto det = shudder::rig_models::recording_detection(rec);
+  const auto det = shudder::studies::recording_detection(rec);
   EXPECT_TRUE(det.has_value());
-  const auto r = shudder::rig_models::judge_recording(*det);
+  const auto r = shudder::studies::judge_recording(*det);
   const auto& t = rec.find("time_s")->values;
   const auto& q = rec.find("torque_Nm")->values;
   double visible = std::nan("");
@@ -125,9 +125,9 @@ TEST(MotorRipple, StableRigCaseStaysWithoutShudder) {
   auto& m = shudder::test::rig_model(sc);
   ASSERT_EQ(m.params.motor_ripple.amplitude_Nm, 1.0);  // the default: the estimate (motor_ripple.hpp)
   const auto rec = shudder::rig_models::run_rig(m.params, sc.make_clutch(), m.cycle, m.settings);
-  const auto det = shudder::rig_models::recording_detection(rec);
+  const auto det = shudder::studies::recording_detection(rec);
   ASSERT_TRUE(det.has_value());
-  EXPECT_EQ(shudder::rig_models::judge_recording(*det).verdict, shudder::analysis::Verdict::kNone);
+  EXPECT_EQ(shudder::studies::judge_recording(*det).verdict, shudder::analysis::Verdict::kNone);
 }
 
 }  // namespace
@@ -186,9 +186,9 @@ TEST_P(ShippedRigOnset, ChangesLessThanFivePercentWhenTheThermalStepIsHalved) {
     // The hold changes what the friction reads, not the energy accounts: the run's guard
     // (thermal 1e-6, mechanical 1e-3, rig_models/energy_guard.hpp) passes at every step size.
     EXPECT_EQ(shudder::rig_models::energy_balance_violation(rec), "") << step_factor;
-    const auto det = shudder::rig_models::recording_detection(rec);
+    const auto det = shudder::studies::recording_detection(rec);
     EXPECT_TRUE(det.has_value());
-    return shudder::rig_models::judge_recording(*det);
+    return shudder::studies::judge_recording(*det);
   };
   const auto a = judge(1.0), b = judge(0.5), c = judge(0.25);
   std::printf("%s: verdict %s / %s / %s, onset %.4f / %.4f / %.4f s\n", GetParam(),

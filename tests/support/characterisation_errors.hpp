@@ -1,7 +1,7 @@
 #pragma once
 // How far a characterised friction law is from the known law the synthetic ramps were made with
 // (tests/support/ramp_runs.hpp), as the characterisation tests of the sensor method
-// (analysis/friction_characterisation) and of the inverse method (rig_models/inverse_characterisation)
+// (analysis/friction_characterisation) and of the inverse method (studies/inverse_characterisation)
 // judge it: relative error |mu_fit / mu_true − 1| at the states the data hold.
 #include <algorithm>
 #include <cmath>

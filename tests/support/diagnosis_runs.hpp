@@ -15,7 +15,7 @@
 #include "io/diagnosis_inputs.hpp"
 #include "io/measured_run.hpp"
 #include "io/scenario.hpp"
-#include "rig_models/replay.hpp"
+#include "studies/replay.hpp"
 #include "tests/support/cli.hpp"
 
 namespace shudder::test {
@@ -44,10 +44,10 @@ inline analysis::DiagnosisResult diagnose_measured(const std::vector<io::Measure
                                                    Reproduction reproduction = Reproduction::kCounted) {
   const auto replay = io::replay_model(model);
   auto data = io::diagnosis_data(runs, replay);
-  const auto reproduce = reproduction == Reproduction::kCounted ? rig_models::replay_reproducer(replay, data.inputs)
-                                                                : analysis::Reproducer{};
-  return analysis::diagnose(data.runs, rig_models::replay_candidates(replay, nullptr),
-                            rig_models::replay_simulator(replay, std::move(data.inputs)), o, reproduce);
+  const auto reproduce =
+      reproduction == Reproduction::kCounted ? studies::replay_reproducer(replay, data.inputs) : analysis::Reproducer{};
+  return analysis::diagnose(data.runs, studies::replay_candidates(replay, nullptr),
+                            studies::replay_simulator(replay, std::move(data.inputs)), o, reproduce);
 }
 
 /// The same on the measured CSVs `csvs`, against the scenario `model_text` read as if it stood
