@@ -26,7 +26,7 @@
 #include "report/plots.hpp"
 #include "io/scenario.hpp"
 #include "io/sweep_spec.hpp"
-#include "rig_models/energy_guard.hpp"
+#include "components/energy_guard.hpp"
 #include "rig_models/model.hpp"
 #include "studies/model_studies.hpp"
 #include "rig_models/realtime_run.hpp"
@@ -100,7 +100,7 @@ int run_command(const RunOptions& opt) {
     }
     // Energy accounts that do not close mean the numbers are wrong: a numerical failure (exit
     // 1), reported after the files are written so the user can inspect what went wrong.
-    if (const std::string bad = rig_models::energy_balance_violation(rec); !bad.empty())
+    if (const std::string bad = components::energy_balance_violation(rec); !bad.empty())
       throw std::runtime_error("numerical failure: " + bad + "; the run is written to " + out +
                                " for inspection, but its results cannot be trusted");
 

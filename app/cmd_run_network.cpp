@@ -18,7 +18,7 @@
 #include "io/network_scenario.hpp"
 #include "io/output_safety.hpp"
 #include "report/network_summary.hpp"
-#include "rig_models/energy_guard.hpp"
+#include "components/energy_guard.hpp"
 
 namespace shudder::app {
 
@@ -109,7 +109,7 @@ int run_network_command(const RunOptions& opt) {
   const studies::NetworkRun run = studies::run_network(sc.spec);
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   io::write_run_hdf5(out, run.recording, sc.text, sc.fluid_texts);
-  if (const std::string bad = rig_models::energy_balance_violation(run.recording); !bad.empty())
+  if (const std::string bad = components::energy_balance_violation(run.recording); !bad.empty())
     throw std::runtime_error("numerical failure: " + bad + "; the run is written to " + out +
                              " for inspection, but its results cannot be trusted");
   if (!opt.measurement.empty())

@@ -38,7 +38,7 @@
 #include "report/run_report_directory.hpp"
 #include "io/scenario.hpp"
 #include "io/sweep_spec.hpp"
-#include "rig_models/energy_guard.hpp"
+#include "components/energy_guard.hpp"
 #include "rig_models/model.hpp"
 #include "studies/model_studies.hpp"
 
@@ -75,7 +75,7 @@ std::vector<dynamics::Scalar> outcome_scalars(const studies::CaseOutcome& o) {
 studies::CaseOutcome run_network_case(const std::string& text, const std::string& path, dynamics::Recording& kept) {
   const io::NetworkScenario sc = io::load_network_scenario_text(text, path);
   const studies::NetworkRun run = studies::run_network(sc.spec);
-  if (const std::string bad = rig_models::energy_balance_violation(run.recording); !bad.empty())
+  if (const std::string bad = components::energy_balance_violation(run.recording); !bad.empty())
     throw std::runtime_error("numerical failure: " + bad);
   kept.signals.push_back(*run.recording.find(sn::kTime));
   for (const auto& c : sc.spec.clutches)
@@ -116,7 +116,7 @@ void run_case(const std::string& text, const std::string& path, const std::strin
     const studies::CaseOutcome o = io::visit_kind(
         path, "scenario.type", sc.model, [&](const auto& m) { return studies::evaluate_case(m, clutch, rec); });
     // A case whose energy accounts do not close is a numerical failure, not a result.
-    if (const std::string bad = rig_models::energy_balance_violation(rec); !bad.empty())
+    if (const std::string bad = components::energy_balance_violation(rec); !bad.empty())
       throw std::runtime_error("numerical failure: " + bad);
     if (rec.find(sn::kCouplingSlip)) {
       for (const std::string_view name : kKeptCouplingSignals)

@@ -35,9 +35,9 @@ const std::vector<analysis::RampRun>& runs_1750() {
       for (int k = 0; k < 12; ++k, ++sim) {
         clutch::WetClutchParams p;
         p.start_temp_C = p.sump_start_temp_C = -20.0 + 10.0 * k;
-        const rig_models::DriveCycle cycle{
-            rig_models::PiecewiseLinear({0.0, 5.0, 15.0, 17.0, 27.0, 30.0}, {1.0, 1.0, 100.0, 100.0, 1.0, 1.0}),
-            rig_models::PiecewiseLinear({0.0}, {load})};
+        const components::DriveCycle cycle{
+            components::PiecewiseLinear({0.0, 5.0, 15.0, 17.0, 27.0, 30.0}, {1.0, 1.0, 100.0, 100.0, 1.0, 1.0}),
+            components::PiecewiseLinear({0.0}, {load})};
         rig_models::PrescribedSlipSettings s;
         s.duration_s = 30.0;
         s.sample_rate_Hz = 100.0;

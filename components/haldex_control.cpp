@@ -45,8 +45,8 @@ void HaldexControlUnit::update_oil(const clutch::ThermalState& pack) {
   c_.command->leak_scale = nu40_cSt_ / viscosity_.kinematic_cSt(pack.sump_temp_C);
 }
 
-rig_models::ControllerReading HaldexControlUnit::reading(double t_s, double front_rad_s, double rear_rad_s) const {
-  rig_models::ControllerReading r;
+components::ControllerReading HaldexControlUnit::reading(double t_s, double front_rad_s, double rear_rad_s) const {
+  components::ControllerReading r;
   const double vehicle_rad_s = std::min(front_rad_s / h_.front_path_ratio, rear_rad_s / h_.rear_path_ratio);
   r.vehicle_speed_km_h = vehicle_rad_s * h_.wheel_radius_m * 3.6;
   r.front_axle_rpm = units::rad_s_to_rpm(front_rad_s);

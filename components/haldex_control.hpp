@@ -2,7 +2,7 @@
 // A Haldex coupling's control unit in a network run (a haldex_coupling component): what the
 // driveline scenario's car does for its one coupling, for any coupling of any network.
 //
-// Every control period T_c (rig_models/haldex_controller.hpp) the unit reads the two axle nodes'
+// Every control period T_c (components/haldex_controller.hpp) the unit reads the two axle nodes'
 // mean speeds over the period just ended (the angle each turned over T_c, as a pulse-counting
 // wheel-speed sensor gives it), low-passes them with τ_f, and sets the throttle valve's opening
 // it holds until the next instant:
@@ -19,7 +19,7 @@
 #include "clutch/thermal_model.hpp"
 #include "components/network_builder.hpp"
 #include "dynamics/simulation.hpp"
-#include "rig_models/haldex_controller.hpp"
+#include "components/haldex_controller.hpp"
 
 namespace shudder::components {
 
@@ -40,17 +40,17 @@ class HaldexControlUnit {
   /// After a thermal step of the pack.
   void update_oil(const clutch::ThermalState& pack);
   /// The reading the unit makes of axle speeds (rad/s) at time t.
-  rig_models::ControllerReading reading(double t_s, double front_rad_s, double rear_rad_s) const;
+  components::ControllerReading reading(double t_s, double front_rad_s, double rear_rad_s) const;
   /// The opening it commands for them.
   double commanded_opening(double t_s, double front_rad_s, double rear_rad_s) const;
 
  private:
   const BuiltClutch& c_;
   const HaldexSpec& h_;
-  rig_models::HaldexController controller_;
+  components::HaldexController controller_;
   clutch::WaltherViscosity viscosity_;
   double nu40_cSt_ = 0, period_s_ = 0, filter_s_ = 0;
-  rig_models::SampledSpeedSignal front_, rear_;
+  components::SampledSpeedSignal front_, rear_;
   long next_ = 1;  // the next instant is next_ · T_c
 };
 

@@ -11,7 +11,7 @@
 #include "components/one_way_clutch.hpp"
 #include "core/nearest_name.hpp"
 #include "core/units.hpp"
-#include "rig_models/haldex_driveline.hpp"
+#include "components/pack_oil.hpp"
 
 namespace shudder::components {
 
@@ -19,11 +19,11 @@ namespace {
 
 constexpr double kGravity_m_s2 = 9.80665;
 
-// The wet clutch reads its clamp force as a piecewise-linear schedule (rig_models/drive_cycle.hpp):
+// The wet clutch reads its clamp force as a piecewise-linear schedule (components/drive_cycle.hpp):
 // the signal at its knots (a jump becomes a 1 µs ramp) and, for a sine or a product, at 20000
 // points over the run besides: a sine of f Hz over D s gets 20000 / (f D) points a period, and at
 // 20 a period the chords miss it by at most 1 - cos(pi / 20) = 1.2 % of its amplitude.
-rig_models::PiecewiseLinear force_schedule(const Signal& s, double scale_N, double duration_s,
+components::PiecewiseLinear force_schedule(const Signal& s, double scale_N, double duration_s,
                                            bool clamp_at_zero = true) {
   constexpr double kJump_s = 1e-6;
   std::vector<double> t{0.0, duration_s};
@@ -72,24 +72,24 @@ struct Builder {
 };
 
 // The Haldex coupling: the pack as a wet clutch in its own oil, clamped by its hydraulics
-// (rig_models/haldex_coupling_law.hpp); the nodes its control unit reads.
+// (components/haldex_coupling_law.hpp); the nodes its control unit reads.
 void build_haldex(const ClutchSpec& c, BuiltClutch& bc, const Builder& b, double duration_s) {
   const HaldexSpec& h = c.haldex;
   try {
     const clutch::WetClutchParams pack = pack_params(c);
     bc.wet = std::make_unique<clutch::WetClutch>(pack, c.wet.fluid);
-    const rig_models::HaldexHydraulics hydraulics(
+    const components::HaldexHydraulics hydraulics(
         h.hydraulics, pack.sliding_interfaces * h.nominal_friction * bc.wet->mean_radius_m());
-    const rig_models::ClutchContact contact(*bc.wet, c.wet.bearing_drag, c.wet.stick_time);
-    bc.context = std::make_shared<rig_models::ClutchContext>(
-        contact.start_inputs(rig_models::PiecewiseLinear({0.0}, {hydraulics.clamp_force_N(0.0)})));
-    bc.command = std::make_shared<rig_models::HaldexCommand>();
+    const components::ClutchContact contact(*bc.wet, c.wet.bearing_drag, c.wet.stick_time);
+    bc.context = std::make_shared<components::ClutchContext>(
+        contact.start_inputs(components::PiecewiseLinear({0.0}, {hydraulics.clamp_force_N(0.0)})));
+    bc.command = std::make_shared<components::HaldexCommand>();
     bc.command->setting_bar = h.hydraulics.relief_pressure_bar;
     if (h.valve_pressure_bar) {
       bc.command->setting_schedule_bar = force_schedule(*h.valve_pressure_bar, 1.0, duration_s);
       bc.command->opening = 0.0;  // shut below the setting
     }
-    bc.haldex = std::make_shared<const rig_models::HaldexCouplingLaw>(contact, bc.context, hydraulics, bc.command);
+    bc.haldex = std::make_shared<const components::HaldexCouplingLaw>(contact, bc.context, hydraulics, bc.command);
   } catch (const std::invalid_argument& e) {
     throw NetworkError(c.name, e.what());
   }
@@ -173,12 +173,12 @@ struct Assembly {
         } catch (const std::invalid_argument& e) {
           throw NetworkError(c.name, e.what());
         }
-        const rig_models::ClutchContact contact(*bc.wet, c.wet.bearing_drag, c.wet.stick_time);
-        bc.context = std::make_shared<rig_models::ClutchContext>(
+        const components::ClutchContact contact(*bc.wet, c.wet.bearing_drag, c.wet.stick_time);
+        bc.context = std::make_shared<components::ClutchContext>(
             contact.start_inputs(force_schedule(c.force_signal, c.max_force_N, duration)));
         bc.geometry_factor_m = c.wet.clutch.sliding_interfaces * bc.wet->mean_radius_m();
         bc.contact =
-            net.add_contact({c.name, a, bb, std::make_shared<rig_models::ClutchContactLaw>(contact, bc.context)});
+            net.add_contact({c.name, a, bb, std::make_shared<components::ClutchContactLaw>(contact, bc.context)});
       } else {
         build_haldex(c, bc, b, duration);
         bc.contact = net.add_contact({c.name, a, bb, bc.haldex});
@@ -255,9 +255,9 @@ struct Assembly {
 
   // A tyre on an axle: its share of the axle's static load on the grade (the vehicle's weight
   // split, moved rearwards by m g (h/L) sin θ uphill) and the transfer ± m h/(n L) per unit
-  // acceleration, n the axle's tyres on that vehicle (rig_models/tyre.hpp).
-  rig_models::TyreParams axle_tyre_params(const TyreSpec& t, const VehicleSpec& v) const {
-    rig_models::TyreParams p = t.params;
+  // acceleration, n the axle's tyres on that vehicle (components/tyre.hpp).
+  components::TyreParams axle_tyre_params(const TyreSpec& t, const VehicleSpec& v) const {
+    components::TyreParams p = t.params;
     p.load_transfer.path_ratio = t.path_ratio;
     if (t.axle == TyreSpec::Axle::kNone) return p;
     if (!v.wheelbase_m || !v.front_axle_load_share)
@@ -293,7 +293,7 @@ struct Assembly {
       if (!(t.path_ratio > 0)) throw NetworkError(t.name, "path_ratio must be > 0");
       std::shared_ptr<const dynamics::ForceLaw> law;
       try {
-        law = std::make_shared<rig_models::BrushTyre>(axle_tyre_params(t, *vit));
+        law = std::make_shared<components::BrushTyre>(axle_tyre_params(t, *vit));
       } catch (const std::invalid_argument& e) {
         throw NetworkError(t.name, e.what());
       }
@@ -308,7 +308,7 @@ struct Assembly {
       road.radius_m = v.wheel_radius_m;
       std::shared_ptr<const dynamics::ForceLaw> law;
       try {
-        law = std::make_shared<rig_models::RoadLoad>(road);
+        law = std::make_shared<components::RoadLoad>(road);
       } catch (const std::invalid_argument& e) {
         throw NetworkError(v.name, e.what());
       }
@@ -327,7 +327,7 @@ struct Assembly {
       const int n = b.node(f.name, "node", f.node, false);
       std::shared_ptr<const dynamics::ForceLaw> law;
       try {
-        law = std::make_shared<rig_models::EnginePulsationLaw>(f.params, units::rpm_to_rad_s(f.stall_speed_rpm),
+        law = std::make_shared<components::EnginePulsationLaw>(f.params, units::rpm_to_rad_s(f.stall_speed_rpm),
                                                                units::rpm_to_rad_s(f.idle_speed_rpm));
       } catch (const std::invalid_argument& e) {
         throw NetworkError(f.name, e.what());
@@ -369,9 +369,9 @@ struct Assembly {
         Eigen::Map<const Eigen::VectorXd>(motor_integrals.data(), static_cast<Eigen::Index>(motor_integrals.size()));
     for (const auto& e : spec.engines) {
       const int n = b.node(e.name, "node", e.node, false);
-      std::shared_ptr<const rig_models::Engine> engine;
+      std::shared_ptr<const components::Engine> engine;
       try {
-        engine = std::make_shared<const rig_models::Engine>(e.params);
+        engine = std::make_shared<const components::Engine>(e.params);
       } catch (const std::invalid_argument& err) {
         throw NetworkError(e.name, err.what());
       }
@@ -382,12 +382,12 @@ struct Assembly {
       };
       out.engine_sources.push_back(net.add_torque_source(std::move(src)));
     }
-    // A drive's torque ripple at its speed reference's revolutions (rig_models/motor_ripple.hpp).
+    // A drive's torque ripple at its speed reference's revolutions (components/motor_ripple.hpp).
     for (const auto& m : spec.motors) {
       if (m.ripple.amplitude_Nm == 0.0) continue;
       if (!(m.ripple.amplitude_Nm > 0) || !(m.ripple.periods_per_rev > 0))
         throw NetworkError(m.name, "ripple_amplitude_Nm must be >= 0 and ripple_periods_per_rev > 0");
-      const rig_models::MotorRippleTorque ripple(m.ripple, force_schedule(m.speed_rpm, 1.0, duration, false));
+      const components::MotorRippleTorque ripple(m.ripple, force_schedule(m.speed_rpm, 1.0, duration, false));
       out.ripple_sources.push_back(net.add_torque_source(
           {m.name + ".ripple", b.node(m.name, "node", m.node, false), [ripple](double t) { return ripple(t); }}));
     }
@@ -410,11 +410,9 @@ struct Assembly {
 clutch::WetClutchParams pack_params(const ClutchSpec& c) {
   clutch::WetClutchParams pack = c.wet.clutch;
   if (c.law != ClutchSpec::Law::kHaldex) return pack;
-  rig_models::DrivelineParams oil;
-  oil.pack_oil_volume_ml = c.haldex.pack_oil_volume_ml;
-  oil.pack_cooling_flow_ml_min = c.haldex.pack_cooling_flow_ml_min;
   clutch::ThermalParams with_pack_oil = pack.thermal;
-  rig_models::apply_pack_oil(oil, pack.sliding_interfaces, with_pack_oil);
+  apply_pack_oil(c.haldex.pack_oil_volume_ml, c.haldex.pack_cooling_flow_ml_min, pack.sliding_interfaces,
+                 with_pack_oil);
   if (!c.wet.oil_volume_given) pack.thermal.sump_volume_m3 = with_pack_oil.sump_volume_m3;
   if (!c.wet.oil_flow_given) pack.thermal.supply_flow_m3_s = with_pack_oil.supply_flow_m3_s;
   return pack;

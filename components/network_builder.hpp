@@ -25,7 +25,7 @@
 #include "components/network_spec.hpp"
 #include "dynamics/network.hpp"
 #include "dynamics/simulation.hpp"
-#include "rig_models/haldex_coupling_law.hpp"
+#include "components/haldex_coupling_law.hpp"
 
 namespace shudder::components {
 
@@ -47,11 +47,11 @@ struct BuiltClutch {
   double geometry_factor_m = 0.0;                      // torque per unit μ F: plain R, wet n r_mean
   std::shared_ptr<const PlainFrictionLaw> plain;       // plain law
   std::unique_ptr<clutch::WetClutch> wet;              // wet law: the clutch...
-  std::shared_ptr<rig_models::ClutchContext> context;  // ...and the inputs its run holds
+  std::shared_ptr<components::ClutchContext> context;  // ...and the inputs its run holds
   // Haldex law: the coupling's law, the command its control unit sets, the nodes it reads, and
   // where its states (pressure, valve opening) sit in Sample::contact_states.
-  std::shared_ptr<const rig_models::HaldexCouplingLaw> haldex;
-  std::shared_ptr<rig_models::HaldexCommand> command;
+  std::shared_ptr<const components::HaldexCouplingLaw> haldex;
+  std::shared_ptr<components::HaldexCommand> command;
   int front_axle_node = -1, rear_axle_node = -1, state_index = -1;
   /// The normal (clamp) force at a sample, N: the force signal's, or the coupling's hydraulics'.
   double normal_force_N(const dynamics::Sample& s) const;

@@ -53,10 +53,10 @@ std::vector<NetworkChannel> network_channels(const NetworkSpec& spec, const Buil
     if (bc.haldex) {
       const int z = bc.state_index;
       ch.push_back(NetworkRecorder::sampled(name(cn, "pressure_bar"), "bar", [z](const Sample& s) {
-        return s.contact_states[z + rig_models::HaldexCouplingLaw::kPressure];
+        return s.contact_states[z + components::HaldexCouplingLaw::kPressure];
       }));
       ch.push_back(NetworkRecorder::sampled(name(cn, "valve_opening"), "1", [z](const Sample& s) {
-        return s.contact_states[z + rig_models::HaldexCouplingLaw::kOpening];
+        return s.contact_states[z + components::HaldexCouplingLaw::kOpening];
       }));
     }
     if (bc.wet) {

@@ -6,8 +6,8 @@
 
 #include "components/network_builder.hpp"
 #include "components/network_channels.hpp"
-#include "rig_models/energy_scalars.hpp"
-#include "rig_models/friction_range_block.hpp"
+#include "components/energy_scalars.hpp"
+#include "components/friction_range_block.hpp"
 
 namespace shudder::components {
 
@@ -51,7 +51,7 @@ NetworkSimulation simulate_network(const NetworkSpec& spec) {
         recorder.sample(s);
         keep_snapshot(s);
       },
-      [&](const rig_models::SlowStep& step) {
+      [&](const components::SlowStep& step) {
         for (std::size_t w = 0; w < wet.size(); ++w)
           peak_C[w] = std::max(peak_C[w], wet[w]->thermal().interface_temps_C(thermal[w]).maxCoeff());
         recorder.step(slow, step.ta_s, step.tb_s);
@@ -73,7 +73,7 @@ NetworkSimulation simulate_network(const NetworkSpec& spec) {
       {"breakaway_events", "1", static_cast<double>(sim.counters().breakaway_events)},
   };
   if (cfg.integrator.fixed_step_s > 0) rec.scalars.push_back({"fixed_step_s", "s", cfg.integrator.fixed_step_s});
-  // Each wet clutch's heat account (rig_models/energy_scalars.hpp) under its name; the run's
+  // Each wet clutch's heat account (components/energy_scalars.hpp) under its name; the run's
   // energy_balance_relative_error is the worst of them, so the energy guard judges every clutch.
   double worst_thermal = 0.0;
   for (std::size_t c = 0, w = 0; c < built->clutches.size(); ++c) {
@@ -81,7 +81,7 @@ NetworkSimulation simulate_network(const NetworkSpec& spec) {
     rec.scalars.push_back({cn + ".friction_work_J", "J", sim.friction_work_J(built->clutches[c].contact)});
     if (built->clutches[c].wet) {
       rec.scalars.push_back({cn + ".peak_interface_temp_C", "degC", peak_C[w]});
-      for (auto sc : rig_models::heat_account_scalars(*built->clutches[c].wet, thermal[w])) {
+      for (auto sc : components::heat_account_scalars(*built->clutches[c].wet, thermal[w])) {
         if (sc.name == "energy_balance_relative_error")
           worst_thermal = std::isfinite(sc.value) ? std::max(worst_thermal, std::abs(sc.value)) : sc.value;
         sc.name = cn + "." + sc.name;
@@ -92,12 +92,12 @@ NetworkSimulation simulate_network(const NetworkSpec& spec) {
   }
   if (!wet.empty()) rec.scalars.push_back({"energy_balance_relative_error", "1", worst_thermal});
 
-  // Per wet clutch: its friction data range block (rig_models/friction_range_block.hpp).
+  // Per wet clutch: its friction data range block (components/friction_range_block.hpp).
   for (std::size_t c = 0; c < built->clutches.size(); ++c) {
     const BuiltClutch& bc = built->clutches[c];
     if (!bc.wet) continue;
-    auto range = rig_models::friction_range_block(stepper.data_ranges()[static_cast<std::size_t>(wet_index[c])]);
-    range.name = std::string(rig_models::kFrictionRangeBlock) + "." + bc.name();
+    auto range = components::friction_range_block(stepper.data_ranges()[static_cast<std::size_t>(wet_index[c])]);
+    range.name = std::string(components::kFrictionRangeBlock) + "." + bc.name();
     rec.blocks.push_back(std::move(range));
   }
   return run;

@@ -3,7 +3,7 @@
 // judging its clutches is a study of the run (studies/network_run.hpp).
 //
 // Integration: dynamics::Simulation (dopri5, exact stick/slip events) with every wet clutch
-// coupled multi-rate (rig_models/multirate_clutch.hpp: each clutch's thermal model advanced
+// coupled multi-rate (components/multirate_clutch.hpp: each clutch's thermal model advanced
 // every thermal step with the friction heat its own contact accumulated, its ring temperatures
 // on a first-order hold); the stepper restarts at every jump of an input signal. A network
 // without wet clutches is integrated in one stretch between those jumps. With

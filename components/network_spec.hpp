@@ -14,13 +14,13 @@
 #include "components/plain_friction.hpp"
 #include "components/signal.hpp"
 #include "dynamics/simulation.hpp"
-#include "rig_models/clutch_contact.hpp"
-#include "rig_models/engine.hpp"
-#include "rig_models/engine_pulsation.hpp"
-#include "rig_models/haldex_controller.hpp"
-#include "rig_models/haldex_hydraulics.hpp"
-#include "rig_models/motor_ripple.hpp"
-#include "rig_models/tyre.hpp"
+#include "components/clutch_contact.hpp"
+#include "components/engine.hpp"
+#include "components/engine_pulsation.hpp"
+#include "components/haldex_controller.hpp"
+#include "components/haldex_hydraulics.hpp"
+#include "components/motor_ripple.hpp"
+#include "components/tyre.hpp"
 
 namespace shudder::components {
 
@@ -53,21 +53,21 @@ struct WetPackSpec {
   std::string fluid_path, fluid_text;
   clutch::Fluid fluid;
   clutch::WetClutchParams clutch;
-  rig_models::BearingDrag bearing_drag;
-  rig_models::StickTimeFriction stick_time;
+  components::BearingDrag bearing_drag;
+  components::StickTimeFriction stick_time;
   std::vector<std::string> enabled_effects;
   bool oil_volume_given = false, oil_flow_given = false;  // the [clutch] table's oil.sump_volume_ml, supply_flow_ml_min
 };
-/// A Haldex limited-slip coupling's own parts beside its wet pack (rig_models/haldex_coupling_law.hpp):
+/// A Haldex limited-slip coupling's own parts beside its wet pack (components/haldex_coupling_law.hpp):
 /// the hydraulics that clamp the pack (F = F_preload + A p, p a state of the run) and the control
 /// unit that sets their throttle valve every control period from two axle speeds, sampled and
-/// filtered as a real unit reads them (rig_models/haldex_controller.hpp), or raw valve schedules.
+/// filtered as a real unit reads them (components/haldex_controller.hpp), or raw valve schedules.
 struct HaldexSpec {
-  rig_models::HaldexHydraulicsParams hydraulics;
-  rig_models::HaldexControllerParams controller;
+  components::HaldexHydraulicsParams hydraulics;
+  components::HaldexControllerParams controller;
   double nominal_friction = 0.12;  // μ_nom of the preload's force (estimate: wet clutch)
   // The pack's own oil, shared by its interfaces unless the [clutch] table's oil says otherwise
-  // (rig_models/haldex_driveline.hpp apply_pack_oil).
+  // (components/pack_oil.hpp).
   double pack_oil_volume_ml = 600.0, pack_cooling_flow_ml_min = 300.0;
   std::string front_axle, rear_axle;  // nodes whose speeds the unit reads (each axle's carrier)
   // ρ̄ of each axle: its wheels' mean path over the vehicle's in a steady turn (1 straight); the
@@ -110,13 +110,13 @@ struct MotorSpec {
   Signal speed_rpm = Signal::constant(0.0);  // the speed loop's set point
   double kp_Nms_per_rad = 0.0, ki_Nm_per_rad = 0.0, torque_limit_Nm = 0.0;
   double start_torque_Nm = 0.0;  // the integrator's torque at t = 0 (ki ∫e = start torque)
-  rig_models::MotorRipple ripple{0.0,
+  components::MotorRipple ripple{0.0,
                                  576.0};  // the drive's torque ripple A sin(2π N rev) (motor_ripple.hpp); A = 0: none
 };
-/// rig_models/engine.hpp's torque map on a node, driven by a throttle signal (0–1).
+/// components/engine.hpp's torque map on a node, driven by a throttle signal (0–1).
 struct EngineSpec {
   std::string name, node;
-  rig_models::EngineParams params;
+  components::EngineParams params;
   Signal throttle = Signal::constant(0.0);
 };
 /// The car's translational mass as a node of inertia m r² (speed ω = v / r) with its road load
@@ -126,19 +126,19 @@ struct VehicleSpec {
   double mass_kg = 0.0, wheel_radius_m = 0.0, speed_m_s = 0.0, grade_percent = 0.0;
   double cg_height_m = 0.0;                                  // h; 0: no load transfer
   std::optional<double> wheelbase_m, front_axle_load_share;  // required by tyres with an axle
-  rig_models::RoadLoadParams road;                           // rolling_resistance_N from f_r m g cos θ when not given
+  components::RoadLoadParams road;                           // rolling_resistance_N from f_r m g cos θ when not given
 };
-/// A tyre between a wheel node and a vehicle node (rig_models/tyre.hpp).
+/// A tyre between a wheel node and a vehicle node (components/tyre.hpp).
 struct TyreSpec {
   std::string name, wheel, vehicle;
-  rig_models::TyreParams params;  // vertical_load_N and load_transfer set by the builder for an axle
+  components::TyreParams params;  // vertical_load_N and load_transfer set by the builder for an axle
   double path_ratio = 1.0;        // ρ: the wheel's path over the vehicle's in a steady turn (1 straight)
   enum class Axle { kNone, kFront, kRear } axle = Axle::kNone;
 };
-/// An engine's firing-order torque pulsation on a node (rig_models/engine_pulsation.hpp).
+/// An engine's firing-order torque pulsation on a node (components/engine_pulsation.hpp).
 struct FiringPulsationSpec {
   std::string name, node;
-  rig_models::EnginePulsation params;
+  components::EnginePulsation params;
   double stall_speed_rpm = 0.0, idle_speed_rpm = 0.0;
 };
 

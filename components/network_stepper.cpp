@@ -65,7 +65,7 @@ NetworkStepper::NetworkStepper(const NetworkSpec& spec, double end_s) : built_(b
   ranges_.reserve(thermal_.size());
   for (const auto& bc : built_->clutches)
     if (bc.wet) ranges_.emplace_back(*bc.wet->fluid().friction);
-  std::vector<rig_models::MultirateClutch> wet;
+  std::vector<components::MultirateClutch> wet;
   for (std::size_t c = 0; c < built_->clutches.size(); ++c) {
     const BuiltClutch& bc = built_->clutches[c];
     if (!bc.wet) continue;
@@ -86,7 +86,7 @@ NetworkStepper::NetworkStepper(const NetworkSpec& spec, double end_s) : built_(b
   breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
   // Without a wet clutch the network is integrated in one stretch between the breaks.
   const double slow_step = wet.empty() ? (std::isfinite(end_s) ? end_s : cfg.duration_s) : cfg.thermal_step_s;
-  coupling_ = std::make_unique<rig_models::MultirateCoupling>(
+  coupling_ = std::make_unique<components::MultirateCoupling>(
       *sim_, wet, end_s, slow_step, cfg.sample_rate_Hz, std::move(breaks),
       units_.empty() ? std::function<void(double)>() : [this](double t) {
         const dynamics::Sample s = sim_->sample();
@@ -97,7 +97,7 @@ NetworkStepper::NetworkStepper(const NetworkSpec& spec, double end_s) : built_(b
 NetworkStepper::~NetworkStepper() = default;
 
 void NetworkStepper::advance_to(double t_s, const std::function<void(const dynamics::Sample&)>& on_sample,
-                                const std::function<void(const rig_models::SlowStep&)>& after_step) {
+                                const std::function<void(const components::SlowStep&)>& after_step) {
   // Without an end (an FMU) the control units' instants past those known so far.
   while (t_s >= instants_until_s_ - 1e-6) {
     const double from = instants_until_s_, until = std::max(t_s, from) + instants_chunk_s_;
@@ -111,7 +111,7 @@ void NetworkStepper::advance_to(double t_s, const std::function<void(const dynam
     coupling_->add_breaks(more);
     instants_until_s_ = until;
   }
-  coupling_->advance_to(t_s, on_sample, [&](const rig_models::SlowStep& step) {
+  coupling_->advance_to(t_s, on_sample, [&](const components::SlowStep& step) {
     for (std::size_t u = 0; u < units_.size(); ++u) units_[u].update_oil(thermal_[unit_wet_[u]]);
     if (after_step) after_step(step);
   });

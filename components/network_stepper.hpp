@@ -4,7 +4,7 @@
 // network FMU (fmu/network_fmu.cpp) advances one communication step at a time.
 //
 // Contents: the built network, one thermal state per wet clutch (the multi-rate coupling,
-// rig_models/multirate_clutch.hpp, advances them every thermal step with the friction heat
+// components/multirate_clutch.hpp, advances them every thermal step with the friction heat
 // their contacts accumulated), each Haldex coupling's control unit (its command set at the
 // start, at its instants and, with the oil, after every thermal step), each wet clutch's
 // friction data tally, and the simulation (dopri5, or the fixed-step RK4 of
@@ -25,7 +25,7 @@
 #include "components/haldex_control.hpp"
 #include "components/network_builder.hpp"
 #include "dynamics/simulation.hpp"
-#include "rig_models/multirate_clutch.hpp"
+#include "components/multirate_clutch.hpp"
 
 namespace shudder::components {
 
@@ -40,7 +40,7 @@ class NetworkStepper {
   /// Advances to min(t_s, end): `on_sample` at every sample time passed, `after_step` after
   /// every thermal step completed (the control units already updated with its oil).
   void advance_to(double t_s, const std::function<void(const dynamics::Sample&)>& on_sample = {},
-                  const std::function<void(const rig_models::SlowStep&)>& after_step = {});
+                  const std::function<void(const components::SlowStep&)>& after_step = {});
 
   const BuiltNetwork& built() const { return *built_; }
   BuiltNetwork& built() { return *built_; }
@@ -61,7 +61,7 @@ class NetworkStepper {
   std::vector<std::size_t> unit_wet_;  // each unit's coupling's index into thermal_
   std::vector<clutch::FrictionDataRange> ranges_;
   std::unique_ptr<dynamics::Simulation> sim_;
-  std::unique_ptr<rig_models::MultirateCoupling> coupling_;
+  std::unique_ptr<components::MultirateCoupling> coupling_;
   double instants_until_s_ = 0.0;  // the control units' instants are the coupling's breaks up to here
   double instants_chunk_s_ = 0.0;  // how far each addition reaches (the scenario's duration)
 };

@@ -132,7 +132,7 @@ class Instance : public fmu::InstanceBase {
     coupling.reset();  // it refers to the clutch it replaces
     clutch = std::make_unique<clutch::WetClutch>(p, io::load_fluid(path.string()));
     info("fluid loaded: '" + clutch->fluid().name + "' from " + path.string());
-    rig_models::BearingDrag drag;
+    components::BearingDrag drag;
     drag.enabled = num(v::kBearingDrag) != 0.0;
     drag.equivalent_mu = num(v::kBearingDragMu);
     drag.radius_m = num(v::kBearingDragRadius) * 1e-3;

@@ -140,9 +140,9 @@ class Instance : public fmu::InstanceBase {
     for (auto& bc : stepper_->built().clutches) {
       if (bc.haldex) {
         if (const auto& p = bc.spec->haldex.valve_pressure_bar)
-          bc.command->setting_schedule_bar = rig_models::PiecewiseLinear({0.0}, {std::max((*p)(0.0), 0.0)});
+          bc.command->setting_schedule_bar = components::PiecewiseLinear({0.0}, {std::max((*p)(0.0), 0.0)});
       } else if (bc.wet && bc.context) {
-        bc.context->set_normal_force(rig_models::PiecewiseLinear({0.0}, {bc.scheduled_force_N(0.0)}));
+        bc.context->set_normal_force(components::PiecewiseLinear({0.0}, {bc.scheduled_force_N(0.0)}));
       }
     }
     if (restart) stepper_->simulation().restart();

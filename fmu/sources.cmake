@@ -24,9 +24,9 @@ set(FMU_NETWORK_SOURCES
 foreach(source
     components/signal components/network_builder components/network_checks components/network_channels
     components/network_stepper components/lash_shaft components/plain_friction components/haldex_control
-    rig_models/clutch_contact rig_models/drive_cycle rig_models/multirate_clutch rig_models/effect_registry rig_models/pack_oil
-    rig_models/haldex_coupling_law rig_models/haldex_hydraulics rig_models/haldex_controller rig_models/engine
-    rig_models/engine_pulsation rig_models/motor_ripple rig_models/tyre
+    components/clutch_contact components/drive_cycle components/multirate_clutch rig_models/effect_registry components/pack_oil
+    components/haldex_coupling_law components/haldex_hydraulics components/haldex_controller components/engine
+    components/engine_pulsation components/motor_ripple components/tyre
     io/network_scenario io/network_components io/scenario io/haldex_tables io/fluid_loader io/toml_reader)
   list(APPEND FMU_NETWORK_SOURCES ${SHUDDER_SOURCE_DIR}/${source}.cpp)
 endforeach()

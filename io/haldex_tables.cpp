@@ -2,7 +2,7 @@
 
 namespace shudder::io {
 
-void read_haldex_hydraulics(TomlTable& h, rig_models::HaldexHydraulicsParams& hp) {
+void read_haldex_hydraulics(TomlTable& h, components::HaldexHydraulicsParams& hp) {
   // A first-generation coupling; the lumped keys of a generation-mixing model are refused with
   // what replaces them.
   if (h.has("torque_per_bar_Nm"))
@@ -31,7 +31,7 @@ void read_haldex_hydraulics(TomlTable& h, rig_models::HaldexHydraulicsParams& hp
   h.finish();
 }
 
-void read_haldex_controller(TomlTable& c, rig_models::HaldexControllerParams& cp) {
+void read_haldex_controller(TomlTable& c, components::HaldexControllerParams& cp) {
   // Speeds in km/h, slip in axle rpm.
   cp.lock_slip_rpm = c.number_or("lock_slip_rpm", cp.lock_slip_rpm, Range::positive());
   cp.pedal_gain = c.number_or("pedal_gain", cp.pedal_gain, Range::closed(0.0, 1.0));

@@ -5,9 +5,9 @@
 #include <stdexcept>
 
 #include "components/network_spec.hpp"
-#include "rig_models/engine.hpp"
-#include "rig_models/engine_pulsation.hpp"
-#include "rig_models/tyre.hpp"
+#include "components/engine.hpp"
+#include "components/engine_pulsation.hpp"
+#include "components/tyre.hpp"
 
 namespace shudder::io {
 
@@ -133,8 +133,8 @@ std::vector<KeyDecl> haldex_keys() {
 }
 
 std::vector<ComponentDecl> make_components() {
-  const rig_models::EngineParams engine;
-  const rig_models::TyreParams tyre;
+  const components::EngineParams engine;
+  const components::TyreParams tyre;
   std::vector<ComponentDecl> d;
   d.push_back({"inertia",
                "a rigid rotating body: a node of the network",
@@ -211,18 +211,18 @@ std::vector<ComponentDecl> make_components() {
            number("start_torque_Nm", "N m", 0.0, {},
                   "the integrator's torque at t = 0 (a loop already holding a steady load; needs ki > 0)"),
            number("ripple_amplitude_Nm", "N m", 0.0, Range::non_negative(),
-                  "the drive's torque ripple A sin(2 pi N revolutions of the set point) (rig_models/motor_ripple.hpp); "
+                  "the drive's torque ripple A sin(2 pi N revolutions of the set point) (components/motor_ripple.hpp); "
                   "0: none"),
            number("ripple_periods_per_rev", "1", 576.0, Range::positive(), "N: ripple periods per revolution"),
        }});
   d.push_back(
       {"engine",
-       "combustion engine torque from a throttle map, losses and an idle governor (rig_models/engine.hpp)",
+       "combustion engine torque from a throttle map, losses and an idle governor (components/engine.hpp)",
        {
            node("node", "crankshaft node"),
            signal("throttle", "1", "throttle 0..1 (clamped)"),
            table("full_load", "`speed_rpm` (ascending) and `torque_Nm`: full-load torque curve",
-                 "default: a 2-litre petrol engine's curve (estimate, rig_models/engine.hpp)"),
+                 "default: a 2-litre petrol engine's curve (estimate, components/engine.hpp)"),
            number("idle_speed_rpm", "rpm", engine.idle_speed_rpm, Range::positive(),
                   "idle governor's set speed (above stall_speed_rpm)"),
            number("stall_speed_rpm", "rpm", engine.stall_speed_rpm, Range::positive(),
@@ -245,9 +245,9 @@ std::vector<ComponentDecl> make_components() {
                    number("grade_percent", "%", 0.0, Range::closed(-100.0, 100.0), "road grade, uphill positive"),
                    number("rolling_resistance_coefficient", "1", 0.012, Range::closed(0.0, 0.5),
                           "f_r: rolling resistance f_r m g cos(grade) (Gillespie 1992, ch. 4)"),
-                   number("drag_area_m2", "m^2", rig_models::RoadLoadParams{}.drag_coefficient_area_m2,
+                   number("drag_area_m2", "m^2", components::RoadLoadParams{}.drag_coefficient_area_m2,
                           Range::non_negative(), "c_d A"),
-                   number("air_density_kg_m3", "kg/m^3", rig_models::RoadLoadParams{}.air_density_kg_m3,
+                   number("air_density_kg_m3", "kg/m^3", components::RoadLoadParams{}.air_density_kg_m3,
                           Range::positive(), "air density"),
                    number("cg_height_m", "m", 0.0, Range::closed(0.0, 5.0),
                           "h: centre of gravity above the road; its tyres with an `axle` take the load transfer m a h "
@@ -261,7 +261,7 @@ std::vector<ComponentDecl> make_components() {
   d.push_back(
       {"tyre",
        "longitudinal tyre force with slip stiffness, relaxation length, road friction and its axle's load "
-       "(rig_models/tyre.hpp)",
+       "(components/tyre.hpp)",
        {
            node("wheel", "wheel node"),
            node("vehicle", "the vehicle component it drives"),
@@ -272,7 +272,7 @@ std::vector<ComponentDecl> make_components() {
                            "required with axle = \"none\"; not with an axle"),
            optional_number("slip_stiffness_per_load", "1", Range::positive(),
                            "C_kappa / F_z: the slip stiffness follows the load (Magic Formula dry tarmac B C D = 19, "
-                           "rig_models/tyre.hpp)",
+                           "components/tyre.hpp)",
                            "default 19 unless `slip_stiffness_N` is given; not both"),
            optional_number("slip_stiffness_N", "N", Range::positive(),
                            "C_kappa per unit slip, absolute (independent of the load)",
@@ -287,16 +287,16 @@ std::vector<ComponentDecl> make_components() {
        }});
   d.push_back({"haldex_coupling",
                "Haldex limited-slip coupling: a wet disc pack clamped by its own pump pressure, the throttle valve set "
-               "by a sampled control unit (rig_models/haldex_coupling_law.hpp)",
+               "by a sampled control unit (components/haldex_coupling_law.hpp)",
                haldex_keys()});
   d.push_back({"firing_pulsation",
                "an engine's firing-order torque pulsation on a node, A s(speed) sin(z/2 crank angle) "
-               "(rig_models/engine_pulsation.hpp)",
+               "(components/engine_pulsation.hpp)",
                {
                    node("node", "crankshaft node"),
-                   number("amplitude_Nm", "N m", rig_models::EnginePulsation{}.amplitude_Nm, Range::non_negative(),
+                   number("amplitude_Nm", "N m", components::EnginePulsation{}.amplitude_Nm, Range::non_negative(),
                           "A: the pulsation that passes the flywheel and damper"),
-                   integer("cylinders", rig_models::EnginePulsation{}.cylinders, 1, 16, "z, four-stroke"),
+                   integer("cylinders", components::EnginePulsation{}.cylinders, 1, 16, "z, four-stroke"),
                    number("stall_speed_rpm", "rpm", engine.stall_speed_rpm, Range::positive(), "no firing below it"),
                    number("idle_speed_rpm", "rpm", engine.idle_speed_rpm, Range::positive(),
                           "full pulsation from it (above stall_speed_rpm)"),

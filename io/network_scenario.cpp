@@ -274,7 +274,7 @@ void read_component(TomlTable& c, const std::string& name, const std::string& pa
       if (n.size() != tq.size()) fl->fail("torque_Nm", "needs one value per speed_rpm");
       for (std::size_t i = 1; i < n.size(); ++i)
         if (!(n[i] > n[i - 1])) fl->fail("speed_rpm", "must be strictly increasing");
-      p.full_load_torque_Nm = rig_models::PiecewiseLinear(n, tq);
+      p.full_load_torque_Nm = components::PiecewiseLinear(n, tq);
       fl->finish();
     }
     p.idle_speed_rpm = num("idle_speed_rpm");

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "components/pack_oil.hpp"
 #include "core/units.hpp"
 #include "io/fluid_loader.hpp"
 #include "io/haldex_tables.hpp"
@@ -34,7 +35,7 @@ struct Draft {
   std::string fluid_text;
   clutch::Fluid fluid;
   clutch::WetClutchParams clutch;
-  rig_models::DriveCycle cycle;                           // prescribed_slip and rig
+  components::DriveCycle cycle;                           // prescribed_slip and rig
   rig_models::PrescribedSlipSettings settings;            // duration, steps, sampling, bearing drag
   rig_models::RigParams rig;                              // rig (stick-time friction: every kind)
   rig_models::DrivelineParams driveline;                  // driveline
@@ -127,7 +128,7 @@ void read_clutch(TomlTable& root, Draft& s) {
   c.finish();
 }
 
-rig_models::PiecewiseLinear read_schedule(TomlTable& drive, const std::string& key, const std::vector<double>& times,
+components::PiecewiseLinear read_schedule(TomlTable& drive, const std::string& key, const std::vector<double>& times,
                                           Range range) {
   // A single number means constant; an array must align with time_s.
   if (!drive.is_array(key)) return {{0.0}, {drive.number(key, range)}};
@@ -180,7 +181,7 @@ void read_rig(TomlTable& root, Draft& s) {
       r.speed_loop_bandwidth_Hz =
           motor->number_or("speed_loop_bandwidth_Hz", r.speed_loop_bandwidth_Hz, Range::closed(0.01, 1000.0));
       r.motor_torque_limit_Nm = motor->number_or("torque_limit_Nm", r.motor_torque_limit_Nm, Range::positive());
-      // Torque ripple, the seed of friction-induced vibration (rig_models/motor_ripple.hpp).
+      // Torque ripple, the seed of friction-induced vibration (components/motor_ripple.hpp).
       // Bounds: up to 10 % of the rated 500 N m (more is a faulty drive, not a ripple); up to
       // 2000 periods/rev (4 kHz at 125 rpm: beyond, the integrator's step is set by the ripple).
       r.motor_ripple.amplitude_Nm =
@@ -258,7 +259,7 @@ void read_driveline(TomlTable& root, Draft& s) {
         if (torques.size() != speeds.size())
           e->fail("full_load_torque_Nm",
                   "needs one value per full_load_speed_rpm (" + std::to_string(speeds.size()) + ")");
-        ep.full_load_torque_Nm = rig_models::PiecewiseLinear(speeds, torques);
+        ep.full_load_torque_Nm = components::PiecewiseLinear(speeds, torques);
       }
       ep.stall_speed_rpm = e->number_or("stall_speed_rpm", ep.stall_speed_rpm, Range::closed(50.0, 2000.0));
       ep.idle_speed_rpm =
@@ -269,7 +270,7 @@ void read_driveline(TomlTable& root, Draft& s) {
           e->number_or("idle_governor_gain_Nms_per_rad", ep.idle_governor_gain_Nms_per_rad, Range::closed(0.0, 1000.0));
       ep.loss_torque_idle_Nm = e->number_or("loss_torque_idle_Nm", ep.loss_torque_idle_Nm, Range::closed(0.0, 500.0));
       ep.loss_torque_max_Nm = e->number_or("loss_torque_max_Nm", ep.loss_torque_max_Nm, Range::closed(0.0, 500.0));
-      // Firing pulsation, the driveline's seed (rig_models/engine_pulsation.hpp). Up to 100 N m:
+      // Firing pulsation, the driveline's seed (components/engine_pulsation.hpp). Up to 100 N m:
       // the undamped 2nd-order gas torque of a car engine; more is not a pulsation. 1–16 cylinders.
       auto& fp = p.engine_pulsation;
       fp.amplitude_Nm = e->number_or("firing_pulsation_Nm", fp.amplitude_Nm, Range::closed(0.0, 100.0));
@@ -288,7 +289,7 @@ void read_driveline(TomlTable& root, Draft& s) {
   for (std::size_t i = 1; i < times.size(); ++i)
     if (times[i] <= times[i - 1]) m.fail("time_s", "must be strictly increasing");
   if (m.has("throttle")) {
-    // The engine map (rig_models/engine.hpp) instead of a raw torque schedule.
+    // The engine map (components/engine.hpp) instead of a raw torque schedule.
     if (m.has("engine_torque_Nm"))
       m.fail("throttle", "engine_torque_Nm is given too; give either a throttle (the engine map) or a torque schedule");
     s.manoeuvre.throttle = read_schedule(m, "throttle", times, Range::closed(0.0, 1.0));
@@ -339,7 +340,7 @@ void read_driveline(TomlTable& root, Draft& s) {
   }
   // The disc pack sits in the coupling's own oil unless [clutch.oil] says otherwise.
   clutch::ThermalParams pack = s.clutch.thermal;
-  rig_models::apply_pack_oil(p, s.clutch.sliding_interfaces, pack);
+  components::apply_pack_oil(p.pack_oil_volume_ml, p.pack_cooling_flow_ml_min, s.clutch.sliding_interfaces, pack);
   if (!s.oil_volume_given) s.clutch.thermal.sump_volume_m3 = pack.sump_volume_m3;
   if (!s.oil_flow_given) s.clutch.thermal.supply_flow_m3_s = pack.supply_flow_m3_s;
 }

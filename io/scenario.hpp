@@ -33,7 +33,7 @@ struct Scenario {
   // [effects.stick_time_static_friction] as read. Applied to the rig and driveline models; kept
   // here because a prescribed_slip model has no use for it but the diagnosis must still know
   // whether it is switched on (io/diagnosis_inputs.cpp).
-  rig_models::StickTimeFriction stick_time;
+  components::StickTimeFriction stick_time;
   std::vector<std::string> enabled_effects;  // registry names (rig_models/effect_registry.hpp)
   std::vector<std::string> warnings;         // accepted but worth telling the user
 

@@ -11,7 +11,7 @@
 #include "io/hdf5_run.hpp"
 #include "io/network_scenario.hpp"
 #include "io/output_safety.hpp"
-#include "rig_models/energy_guard.hpp"
+#include "components/energy_guard.hpp"
 #include "rig_models/model.hpp"
 #include "studies/model_studies.hpp"
 
@@ -72,7 +72,7 @@ RunOutcome run(const io::Scenario& scenario, const std::string& output, bool for
       scenario.model);
   out.warnings.insert(out.warnings.end(), analysis_warnings.begin(), analysis_warnings.end());
   if (!output.empty()) io::write_run_hdf5(output, out.recording, scenario.text, scenario.fluid_text);
-  if (const std::string bad = rig_models::energy_balance_violation(out.recording); !bad.empty())
+  if (const std::string bad = components::energy_balance_violation(out.recording); !bad.empty())
     throw std::runtime_error("numerical failure: " + bad +
                              (output.empty() ? "" : "; the run is written to " + output + " for inspection") +
                              ", but its results cannot be trusted");
@@ -97,7 +97,7 @@ RunOutcome run_network(const std::string& path, const std::vector<std::pair<std:
   out.recording = studies::run_network(sc.spec).recording;
   out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!output.empty()) io::write_run_hdf5(output, out.recording, sc.text, sc.fluid_texts);
-  if (const std::string bad = rig_models::energy_balance_violation(out.recording); !bad.empty())
+  if (const std::string bad = components::energy_balance_violation(out.recording); !bad.empty())
     throw std::runtime_error("numerical failure: " + bad + ", but its results cannot be trusted");
   return out;
 }

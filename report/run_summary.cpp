@@ -8,7 +8,7 @@
 #include <variant>
 
 #include "dynamics/signal_names.hpp"
-#include "rig_models/friction_range_block.hpp"
+#include "components/friction_range_block.hpp"
 #include "studies/run_verdict.hpp"
 #include "core/nan.hpp"
 
@@ -271,7 +271,7 @@ void print_run_summary(std::ostream& os, const io::Scenario& sc, const dynamics:
   os << "\n\n";
   // A friction law used outside its data for most of the run: said before anything else, since
   // every verdict below is then an extrapolation of the law.
-  if (const auto* b = rec.find_block(rig_models::kFrictionRangeBlock))
+  if (const auto* b = rec.find_block(components::kFrictionRangeBlock))
     if (const auto* f = b->find_scalar("fraction_outside"); f && f->value > kMostlyOutsideData) {
       std::snprintf(
           line, sizeof line,
@@ -282,8 +282,8 @@ void print_run_summary(std::ostream& os, const io::Scenario& sc, const dynamics:
     }
   // The verdict first: whether it shuddered is what a reader looks for.
   print_verdict(os, sc.kind() == ModelKind::kDriveline ? "Coupling judder" : "Shudder", rec);
-  // Friction outside its data (rig_models/friction_range_block.hpp): said once, every kind.
-  if (const auto* b = rec.find_block(rig_models::kFrictionRangeBlock))
+  // Friction outside its data (components/friction_range_block.hpp): said once, every kind.
+  if (const auto* b = rec.find_block(components::kFrictionRangeBlock))
     if (const auto* t = b->find_text("summary")) os << "Friction data: " << t->value << "\n";
   os << "\n";
   // Each kind's own section: one print_section overload per kind above (no fallback, so a new

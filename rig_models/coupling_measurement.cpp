@@ -7,8 +7,9 @@
 
 namespace shudder::rig_models {
 
-dynamics::Recording coupling_measurement(const dynamics::Recording& driveline, const TorqueCell& torque_cell,
-                                         const LoadCell& load_cell) {
+dynamics::Recording coupling_measurement(const dynamics::Recording& driveline,
+                                         const components::TorqueCell& torque_cell,
+                                         const components::LoadCell& load_cell) {
   namespace sn = dynamics::signal_names;
   dynamics::Recording out;
   // (column, driveline channel, unit, sensor reading of the true value)

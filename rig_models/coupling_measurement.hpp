@@ -29,7 +29,8 @@ namespace shudder::rig_models {
 /// The measured-run channels of a driveline recording (rig_models/haldex_driveline.hpp), named
 /// as the format's columns (file comment), with the sensors' faults applied. Throws
 /// std::invalid_argument if the recording lacks one of the coupling's channels.
-dynamics::Recording coupling_measurement(const dynamics::Recording& driveline, const TorqueCell& torque_cell,
-                                         const LoadCell& load_cell);
+dynamics::Recording coupling_measurement(const dynamics::Recording& driveline,
+                                         const components::TorqueCell& torque_cell,
+                                         const components::LoadCell& load_cell);
 
 }  // namespace shudder::rig_models

@@ -101,7 +101,7 @@ std::vector<EffectDefinition> build() {
 , {}, {}
 }
 ,
-    // Acts in the torque cell (prescribed slip and rig_models::ClutchContactLaw); heats no disc.
+    // Acts in the torque cell (prescribed slip and components::ClutchContactLaw); heats no disc.
     {"bearing_drag", "the torque cell also carries bearing friction",
      [](auto& t) -> auto& {return t.bearing_drag.enabled;
 }
@@ -122,7 +122,7 @@ std::vector<EffectDefinition> build() {
 }
 }
 ,
-    // Acts in rig_models::ClutchContactLaw: the static capacity of stick phases.
+    // Acts in components::ClutchContactLaw: the static capacity of stick phases.
     {"stick_time_static_friction", "breakaway friction grows with the time stuck",
      [](auto& t) -> auto& {return t.stick_time.enabled;
 }

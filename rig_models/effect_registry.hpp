@@ -22,7 +22,7 @@
 
 #include "clutch/wet_clutch.hpp"
 #include "core/model_kind.hpp"
-#include "rig_models/clutch_contact.hpp"
+#include "components/clutch_contact.hpp"
 #include "rig_models/prescribed_slip.hpp"
 
 namespace shudder::rig_models {
@@ -31,22 +31,22 @@ namespace shudder::rig_models {
 /// has on).
 struct ConstEffectTarget {
   const clutch::WetClutchParams& clutch;
-  const BearingDrag& bearing_drag;
-  const StickTimeFriction& stick_time;
-  const TorqueCell& torque_cell;
-  const LoadCell& load_cell;
-  const FrictionDrift& friction_drift;
+  const components::BearingDrag& bearing_drag;
+  const components::StickTimeFriction& stick_time;
+  const components::TorqueCell& torque_cell;
+  const components::LoadCell& load_cell;
+  const components::FrictionDrift& friction_drift;
 };
 
 /// The parameter structs effects write into. A scenario builds it from its clutch, bearing drag
 /// and stick-time settings; a ReplayModel from its own (studies/replay.hpp).
 struct EffectTarget {
   clutch::WetClutchParams& clutch;
-  BearingDrag& bearing_drag;
-  StickTimeFriction& stick_time;
-  TorqueCell& torque_cell;
-  LoadCell& load_cell;
-  FrictionDrift& friction_drift;
+  components::BearingDrag& bearing_drag;
+  components::StickTimeFriction& stick_time;
+  components::TorqueCell& torque_cell;
+  components::LoadCell& load_cell;
+  components::FrictionDrift& friction_drift;
 
   operator ConstEffectTarget() const {  // NOLINT: a view
     return {clutch, bearing_drag, stick_time, torque_cell, load_cell, friction_drift};

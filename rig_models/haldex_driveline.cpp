@@ -1,4 +1,4 @@
-#include "rig_models/friction_range_block.hpp"
+#include "components/friction_range_block.hpp"
 #include "rig_models/haldex_driveline.hpp"
 
 #include <algorithm>
@@ -10,9 +10,9 @@
 #include "clutch/fluid.hpp"
 #include "core/units.hpp"
 #include "dynamics/signal_names.hpp"
-#include "rig_models/channel_recorder.hpp"
-#include "rig_models/energy_scalars.hpp"
-#include "rig_models/multirate_clutch.hpp"
+#include "components/channel_recorder.hpp"
+#include "components/energy_scalars.hpp"
+#include "components/multirate_clutch.hpp"
 
 namespace shudder::rig_models {
 
@@ -56,7 +56,7 @@ HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::We
       controller_(params.controller),
       valve_opening_(inputs.valve_opening),
       valve_pressure_bar_(inputs.valve_pressure_bar),
-      contact_(clutch, BearingDrag{}, params.stick_time),
+      contact_(clutch, components::BearingDrag{}, params.stick_time),
       engine_torque_Nm_(inputs.engine_torque_Nm),
       throttle_(inputs.throttle),
       engine_(params.engine) {
@@ -128,7 +128,7 @@ HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::We
   const double transfer_kg = p_.vehicle_mass_kg * p_.cg_height_m / (2.0 * p_.wheelbase_m);
   for (int w = 0; w < 4; ++w) {
     const bool front = w < 2;
-    TyreParams t;
+    components::TyreParams t;
     t.slip_stiffness_N = p_.tyre_slip_stiffness_N;
     t.slip_stiffness_per_load = p_.tyre_slip_stiffness_per_load;
     t.vertical_load_N = 0.5 * axle_N[front ? 0 : 1];
@@ -137,22 +137,22 @@ HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::We
     t.radius_m = r;
     t.load_transfer.load_per_acceleration_kg = front ? -transfer_kg : transfer_kg;
     t.load_transfer.path_ratio = path_ratios_[static_cast<std::size_t>(w)];
-    tyres_[static_cast<std::size_t>(w)] = std::make_shared<const BrushTyre>(t);
+    tyres_[static_cast<std::size_t>(w)] = std::make_shared<const components::BrushTyre>(t);
   }
-  RoadLoadParams rl;
+  components::RoadLoadParams rl;
   rl.rolling_resistance_N = p_.rolling_resistance_coefficient * weight_N * std::cos(theta);
   rl.drag_coefficient_area_m2 = p_.drag_coefficient_area_m2;
   rl.air_density_kg_m3 = p_.air_density_kg_m3;
   rl.radius_m = r;
-  road_load_ = std::make_shared<const RoadLoad>(rl);
+  road_load_ = std::make_shared<const components::RoadLoad>(rl);
   grade_torque_Nm_ = -weight_N * std::sin(theta) * r;
 
   // Builds the network once to validate it; runs build their own around their context.
   network();
 }
 
-HaldexCommand HaldexDriveline::start_command() const {
-  HaldexCommand c;
+components::HaldexCommand HaldexDriveline::start_command() const {
+  components::HaldexCommand c;
   c.setting_bar = p_.hydraulics.relief_pressure_bar;
   c.setting_schedule_bar = valve_pressure_bar_;
   if (valve_pressure_bar_) c.opening = 0.0;
@@ -161,27 +161,27 @@ HaldexCommand HaldexDriveline::start_command() const {
 
 Eigen::VectorXd HaldexDriveline::coupling_states(double clamp_force_N, double opening) const {
   Eigen::VectorXd z(2);
-  z[HaldexCouplingLaw::kPressure] = hydraulics_.pressure_for_force_bar(clamp_force_N);
-  z[HaldexCouplingLaw::kOpening] = opening;
+  z[components::HaldexCouplingLaw::kPressure] = hydraulics_.pressure_for_force_bar(clamp_force_N);
+  z[components::HaldexCouplingLaw::kOpening] = opening;
   return z;
 }
 
-ClutchHeldInputs HaldexDriveline::start_inputs() const {
-  return contact_.start_inputs(PiecewiseLinear({0.0}, {hydraulics_.clamp_force_N(0.0)}));
+components::ClutchHeldInputs HaldexDriveline::start_inputs() const {
+  return contact_.start_inputs(components::PiecewiseLinear({0.0}, {hydraulics_.clamp_force_N(0.0)}));
 }
 
-dynamics::TorsionalNetwork HaldexDriveline::network(std::shared_ptr<ClutchContext> coupling_context,
-                                                    std::shared_ptr<HaldexCommand> command) const {
-  return build(
-      std::make_shared<HaldexCouplingLaw>(contact_, std::move(coupling_context), hydraulics_, std::move(command)));
+dynamics::TorsionalNetwork HaldexDriveline::network(std::shared_ptr<components::ClutchContext> coupling_context,
+                                                    std::shared_ptr<components::HaldexCommand> command) const {
+  return build(std::make_shared<components::HaldexCouplingLaw>(contact_, std::move(coupling_context), hydraulics_,
+                                                               std::move(command)));
 }
 
-dynamics::TorsionalNetwork HaldexDriveline::network(std::shared_ptr<ClutchContext> coupling_context) const {
-  return network(std::move(coupling_context), std::make_shared<HaldexCommand>(start_command()));
+dynamics::TorsionalNetwork HaldexDriveline::network(std::shared_ptr<components::ClutchContext> coupling_context) const {
+  return network(std::move(coupling_context), std::make_shared<components::HaldexCommand>(start_command()));
 }
 
 dynamics::TorsionalNetwork HaldexDriveline::network() const {
-  return network(std::make_shared<ClutchContext>(start_inputs()));
+  return network(std::make_shared<components::ClutchContext>(start_inputs()));
 }
 
 dynamics::TorsionalNetwork HaldexDriveline::build(std::shared_ptr<const dynamics::ContactLaw> law) const {
@@ -227,19 +227,19 @@ dynamics::TorsionalNetwork HaldexDriveline::build(std::shared_ptr<const dynamics
   n.add_force_element(dynamics::ForceElement{"road_load", kVehicle, dynamics::kGround, 1.0, road_load_});
   // The engine's firing pulsation, the driveline's physical seed (engine_pulsation.hpp).
   if (p_.engine_pulsation.amplitude_Nm > 0)
-    n.add_force_element(dynamics::ForceElement{
-        "engine_firing_pulsation", kEngine, dynamics::kGround, 1.0,
-        std::make_shared<const EnginePulsationLaw>(p_.engine_pulsation, units::rpm_to_rad_s(p_.engine.stall_speed_rpm),
+    n.add_force_element(dynamics::ForceElement{"engine_firing_pulsation", kEngine, dynamics::kGround, 1.0,
+                                               std::make_shared<const components::EnginePulsationLaw>(
+                                                   p_.engine_pulsation, units::rpm_to_rad_s(p_.engine.stall_speed_rpm),
                                                    units::rpm_to_rad_s(p_.engine.idle_speed_rpm))});
 
   n.add_contact(dynamics::FrictionContact{"haldex_coupling", kCouplingIn, kCouplingOut, std::move(law)});
   if (throttle_) {
-    const Engine engine = engine_;
-    const PiecewiseLinear throttle = *throttle_;
+    const components::Engine engine = engine_;
+    const components::PiecewiseLinear throttle = *throttle_;
     n.add_torque_source(dynamics::TorqueSource{
         "engine", kEngine, {}, [engine, throttle](double t, double w) { return engine.torque_Nm(w, throttle(t)); }});
   } else {
-    const PiecewiseLinear engine = engine_torque_Nm_;
+    const components::PiecewiseLinear engine = engine_torque_Nm_;
     n.add_torque_source(dynamics::TorqueSource{"engine", kEngine, [engine](double t) { return engine(t); }});
   }
   if (grade_torque_Nm_ != 0.0) {
@@ -261,9 +261,9 @@ double HaldexDriveline::pedal(double t) const {
   return peak > 0 ? std::clamp(engine_torque_Nm_(t) / peak, 0.0, 1.0) : 0.0;
 }
 
-ControllerReading HaldexDriveline::reading(double t, double front_rad_s, double rear_rad_s) const {
+components::ControllerReading HaldexDriveline::reading(double t, double front_rad_s, double rear_rad_s) const {
   const Eigen::VectorXd rolling = rolling_speed_ratios();
-  ControllerReading r;
+  components::ControllerReading r;
   // Each axle's speed over its path ratio is the car's as that axle sees it; the slower one
   // slips least in traction.
   const double vehicle_rad_s = std::min(front_rad_s / rolling[kFrontDiff], rear_rad_s / rolling[kRearDiff]);
@@ -312,7 +312,7 @@ Eigen::VectorXd HaldexDriveline::rolling_speed_ratios() const {
 
 namespace {
 
-using DrivelineRecorder = ChannelRecorder<dynamics::Sample, clutch::ThermalState>;
+using DrivelineRecorder = components::ChannelRecorder<dynamics::Sample, clutch::ThermalState>;
 
 // The run's channels: mechanical ones and the coupling's pressure and valve (its contact law's
 // states, from index z_coupling) at every sample, the interface temperatures from the thermal
@@ -326,7 +326,7 @@ std::vector<DrivelineRecorder::Channel> driveline_channels(
   using dynamics::Sample;
   using D = HaldexDriveline;
   const auto pressure_bar = [z_coupling](const Sample& s) {
-    return s.contact_states[z_coupling + HaldexCouplingLaw::kPressure];
+    return s.contact_states[z_coupling + components::HaldexCouplingLaw::kPressure];
   };
   return {
       Recorder::sampled(sn::kTime, "s", [](const Sample& s) { return s.t_s; }),
@@ -356,9 +356,10 @@ std::vector<DrivelineRecorder::Channel> driveline_channels(
           sn::kStuck, "1",
           [](const Sample& s) { return static_cast<double>(s.modes[D::kCoupling] == dynamics::ContactMode::kStuck); }),
       Recorder::sampled(sn::kPressure, "bar", pressure_bar),
-      Recorder::sampled(
-          sn::kValveOpening, "1",
-          [z_coupling](const Sample& s) { return s.contact_states[z_coupling + HaldexCouplingLaw::kOpening]; }),
+      Recorder::sampled(sn::kValveOpening, "1",
+                        [z_coupling](const Sample& s) {
+                          return s.contact_states[z_coupling + components::HaldexCouplingLaw::kOpening];
+                        }),
       Recorder::sampled(sn::kClampForce, "N", clamp_force_N),
       Recorder::sampled(sn::kWheelSpeedFL, "rpm",
                         [](const Sample& s) { return units::rad_s_to_rpm(s.omega_rad_s[D::kFrontLeftWheel]); }),
@@ -410,18 +411,18 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
   using D = HaldexDriveline;
   const auto& th = clutch.thermal();
   clutch::ThermalState ts = clutch.initial_state();
-  const auto coupling_context = std::make_shared<ClutchContext>(dl.start_inputs());
+  const auto coupling_context = std::make_shared<components::ClutchContext>(dl.start_inputs());
   coupling_context->set_ring_temperatures(th.interface_temps_C(ts));
   // Laminar leakage scales with 1/ν of the coupling's oil (its sump temperature), Walther's law.
   const clutch::WaltherViscosity viscosity(clutch.fluid().nu40_cSt, clutch.fluid().nu100_cSt);
   const double nu40_cSt = viscosity.kinematic_cSt(40.0);
-  const auto command = std::make_shared<HaldexCommand>(dl.start_command());
+  const auto command = std::make_shared<components::HaldexCommand>(dl.start_command());
   command->leak_scale = nu40_cSt / viscosity.kinematic_cSt(ts.sump_temp_C);
   // The control unit's speed signals start steady at the rolling speeds, and its first command
   // is set from them before the network takes the valve's start opening from it.
   const double w_vehicle = inputs.start_speed_km_h / 3.6 / params.wheel_radius_m;
   const Eigen::VectorXd w_start = dl.rolling_speed_ratios() * w_vehicle;
-  SampledSpeedSignal front_axle, rear_axle;
+  components::SampledSpeedSignal front_axle, rear_axle;
   front_axle.start(0.0, w_start[D::kFrontDiff]);
   rear_axle.start(0.0, w_start[D::kRearDiff]);
   command->opening = dl.commanded_opening(0.0, front_axle.value_rad_s(), rear_axle.value_rad_s());
@@ -431,7 +432,7 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
   sim.initialize(0.0, Eigen::VectorXd::Zero(D::kNodes), w_start, Eigen::VectorXd());
   const int z_coupling = sim.contact_state_index(D::kCoupling);
   const auto pressure_bar = [z_coupling](const dynamics::Sample& s) {
-    return s.contact_states[z_coupling + HaldexCouplingLaw::kPressure];
+    return s.contact_states[z_coupling + components::HaldexCouplingLaw::kPressure];
   };
   const auto clamp_force_N = [&](const dynamics::Sample& s) { return dl.hydraulics().clamp_force_N(pressure_bar(s)); };
 
@@ -453,14 +454,15 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
   const double control_period_s = 1e-3 * params.controller.control_period_ms;
   const std::vector<double> control_times_s = control_instants_s(control_period_s, cfg.duration_s);
   const double filter_s = 1e-3 * params.controller.speed_filter_time_constant_ms;
-  run_multirate(
-      sim, {MultirateClutch{coupling_context.get(), &clutch, &ts, D::kCoupling, &data_range, clamp_force_N}},
+  components::run_multirate(
+      sim,
+      {components::MultirateClutch{coupling_context.get(), &clutch, &ts, D::kCoupling, &data_range, clamp_force_N}},
       cfg.duration_s, cfg.slow_step_s, cfg.sample_rate_Hz,
       [&](const dynamics::Sample& s) {
         watch_stall(s);
         recorder.sample(s);
       },
-      [&](const SlowStep& step) {
+      [&](const components::SlowStep& step) {
         command->leak_scale = nu40_cSt / viscosity.kinematic_cSt(ts.sump_temp_C);
         peak_C = std::max(peak_C, th.interface_temps_C(ts).maxCoeff());
         recorder.step(ts, step.ta_s, step.tb_s);
@@ -474,7 +476,7 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
         const double rear = rear_axle.update(s.theta_rad[D::kRearDiff], control_period_s, filter_s);
         command->opening = dl.commanded_opening(t, front, rear);
       });
-  rec.blocks.push_back(friction_range_block(data_range));
+  rec.blocks.push_back(components::friction_range_block(data_range));
 
   const double n_if = clutch.params().sliding_interfaces;
   const auto me = sim.energy();
@@ -488,7 +490,7 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
       {"peak_interface_temp_C", "degC", peak_C},
       {"friction_work_J", "J", me.friction_heat_J},
       {"mechanical_energy_relative_error", "1",
-       mechanical_energy_relative_error(me, MechanicalEnergyScale::kLargestEnergyInPlay)},
+       components::mechanical_energy_relative_error(me, components::MechanicalEnergyScale::kLargestEnergyInPlay)},
       {"piston_area_m2", "m^2", dl.hydraulics().piston_area_m2()},
       {"engine_torque_speed_slope_Nms_per_rad", "N m s/rad", engine_slope},
       {"engine_stall_time_s", "s", stall_time_s},

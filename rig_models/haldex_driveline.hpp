@@ -12,7 +12,7 @@
 //
 //   ═(r)═ a gear: ω_a = r ω_b;  ─ a shaft (spring k and damper c);  ┤├ the clutch;
 //   ⟨open diff⟩ ω_l + ω_r = 2 ω_carrier (dynamics::Differential; equal torques left and right);
-//   ~tyre(ρ)~ rig_models/tyre.hpp: the brush tyre with its relaxation length and the wheel's road
+//   ~tyre(ρ)~ components/tyre.hpp: the brush tyre with its relaxation length and the wheel's road
 //     friction, between the wheel and the vehicle seen through ρ.
 //   vehicle: the car's mass as an inertia m r_w² turning at v / r_w, v the rear axle centre's speed.
 //   ρ_i: wheel i's path over the rear axle centre's in a steady turn (kinematic, no side slip):
@@ -20,7 +20,7 @@
 //     (rear axle centre), wheelbase L, track w. With the coupling locked, the front axle's longer
 //     path winds the driveline up through the tyres' slip: the tight-turn case. (A legacy
 //     `turn_ratio` ρ puts both front wheels on ρ and both rear on 1.)
-//   Vertical loads (rig_models/tyre.hpp): each axle's static load on the grade θ (uphill > 0),
+//   Vertical loads (components/tyre.hpp): each axle's static load on the grade θ (uphill > 0),
 //     F_z,front = m g (s_f cos θ − (h/L) sin θ),  F_z,rear = m g ((1 − s_f) cos θ + (h/L) sin θ),
 //   split equally between its two tyres (s_f the front axle's share on the level, h the centre of
 //   gravity's height, L the wheelbase), plus the dynamic transfer ∓ m h ā / (2 L) per tyre of the
@@ -29,11 +29,11 @@
 //   the coupling: the wet clutch of clutch/ clamped by F = F_preload + A p from HaldexHydraulics
 //     (a Gen I coupling: pump ∝ |Δω|, throttle valve on the return, relief valve, oil and pack
 //     compliance), one contact law with the pressure and the valve's opening as its states,
-//     integrated with the motion (rig_models/haldex_coupling_law.hpp); the valve commanded by
+//     integrated with the motion (components/haldex_coupling_law.hpp); the valve commanded by
 //     HaldexController every control period from sampled, filtered axle speeds
-//     (rig_models/haldex_controller.hpp), or by a raw schedule. The thermal step sets only the
+//     (components/haldex_controller.hpp), or by a raw schedule. The thermal step sets only the
 //     disc temperatures' update. The pack's own oil (volume, cooling flow) replaces the rig's sump
-//     and forced flow: apply_pack_oil().
+//     and forced flow (components/pack_oil.hpp).
 //
 // Parameters are not in the thesis: every default below is an ESTIMATE for a mid-size AWD car of
 // the thesis' era (1.7 t, 1st gear; wheelbase and track of a VW Golf IV 4motion, the first
@@ -48,14 +48,14 @@
 #include "dynamics/network.hpp"
 #include "dynamics/recording.hpp"
 #include "dynamics/simulation.hpp"
-#include "rig_models/clutch_contact.hpp"
-#include "rig_models/drive_cycle.hpp"
-#include "rig_models/engine.hpp"
-#include "rig_models/engine_pulsation.hpp"
-#include "rig_models/haldex_controller.hpp"
-#include "rig_models/haldex_coupling_law.hpp"
-#include "rig_models/haldex_hydraulics.hpp"
-#include "rig_models/tyre.hpp"
+#include "components/clutch_contact.hpp"
+#include "components/drive_cycle.hpp"
+#include "components/engine.hpp"
+#include "components/engine_pulsation.hpp"
+#include "components/haldex_controller.hpp"
+#include "components/haldex_coupling_law.hpp"
+#include "components/haldex_hydraulics.hpp"
+#include "components/tyre.hpp"
 
 namespace shudder::rig_models {
 
@@ -74,7 +74,7 @@ struct DrivelineParams {
   // The relaxation length then follows the load: σ = C_κ r² / k_tyre (0.19 m front, 0.13 m rear
   // on the level with c_κ = 19).
   double tyre_stiffness_Nm_per_rad = 50000.0;
-  // Slip stiffness: c_κ = C_κ/F_z (default rig_models::kDefaultSlipStiffnessPerLoad, the Magic
+  // Slip stiffness: c_κ = C_κ/F_z (default components::kDefaultSlipStiffnessPerLoad, the Magic
   // Formula's dry-tarmac B C D = 19, tyre.hpp), or an absolute C_κ per tyre (N) independent of the
   // load; at most one of the two.
   std::optional<double> tyre_slip_stiffness_per_load;
@@ -98,25 +98,25 @@ struct DrivelineParams {
   double turn_ratio = 1.0;                          // legacy ρ of the front axle, see header
   double nominal_friction = 0.12;                   // μ_nom for the preload's force (estimate: wet clutch)
   // The coupling's own oil (estimates: a Gen I unit holds ~0.6 l; the pack is splash- and
-  // pump-washed, no forced cooling circuit): shared by the pack's interfaces, see apply_pack_oil().
+  // pump-washed, no forced cooling circuit): shared by the pack's interfaces (components/pack_oil.hpp).
   double pack_oil_volume_ml = 600.0;
   double pack_cooling_flow_ml_min = 300.0;
-  HaldexHydraulicsParams hydraulics;
-  HaldexControllerParams controller;  // used unless the manoeuvre gives a raw valve schedule
-  EngineParams engine;                // used when the manoeuvre gives a throttle
-  StickTimeFriction stick_time;       // the `stick_time_static_friction` effect
-  EnginePulsation engine_pulsation;   // firing-order torque pulsation (engine_pulsation.hpp); 0 N m: none
+  components::HaldexHydraulicsParams hydraulics;
+  components::HaldexControllerParams controller;  // used unless the manoeuvre gives a raw valve schedule
+  components::EngineParams engine;                // used when the manoeuvre gives a throttle
+  components::StickTimeFriction stick_time;       // the `stick_time_static_friction` effect
+  components::EnginePulsation engine_pulsation;   // firing-order torque pulsation (engine_pulsation.hpp); 0 N m: none
   // Tolerances as for the rig: speeds of ~1–100 rad/s, twists of ~1e-2 rad.
   dynamics::IntegratorSettings integrator{1e-6, 1e-6, 1e-3, 1e-6, 1e-10};
 };
 
 struct DrivelineInputs {
-  PiecewiseLinear engine_torque_Nm{{0.0}, {0.0}};  // raw schedule, used without a throttle
-  std::optional<PiecewiseLinear> throttle;         // 0–1: the engine map of rig_models/engine.hpp
+  components::PiecewiseLinear engine_torque_Nm{{0.0}, {0.0}};  // raw schedule, used without a throttle
+  std::optional<components::PiecewiseLinear> throttle;         // 0–1: the engine map of components/engine.hpp
   // The throttle valve: a raw opening schedule (0 shut – 1 open) and/or a raw pressure setting
   // (an ideal cap, the valve shut below it); neither: the controller model decides.
-  std::optional<PiecewiseLinear> valve_opening;
-  std::optional<PiecewiseLinear> valve_pressure_bar;
+  std::optional<components::PiecewiseLinear> valve_opening;
+  std::optional<components::PiecewiseLinear> valve_pressure_bar;
   double start_speed_km_h = 0.0;                            // vehicle speed at t = 0, every part rolling with it
   double turn_radius_m = 0.0;                               // R of the rear axle centre, left turn; 0 = straight
   std::array<double, 4> road_friction{1.0, 1.0, 1.0, 1.0};  // μ per wheel: FL, FR, RL, RR (dry asphalt ≈ 1)
@@ -138,23 +138,23 @@ class HaldexDriveline {
   HaldexDriveline(const DrivelineParams& params, const clutch::WetClutch& clutch, const DrivelineInputs& inputs);
 
   /// Every ring at the clutch's start temperature, the clamp force of the unpressurised pump.
-  ClutchHeldInputs start_inputs() const;
+  components::ClutchHeldInputs start_inputs() const;
   /// The command at the start: the valve open, the raw pressure setting if one is given.
-  HaldexCommand start_command() const;
+  components::HaldexCommand start_command() const;
   /// The network with the coupling's law bound to the run's held inputs.
-  dynamics::TorsionalNetwork network(std::shared_ptr<ClutchContext> coupling_context,
-                                     std::shared_ptr<HaldexCommand> command) const;
+  dynamics::TorsionalNetwork network(std::shared_ptr<components::ClutchContext> coupling_context,
+                                     std::shared_ptr<components::HaldexCommand> command) const;
   /// The same with a fresh start_command() (its states then set by the caller, e.g. for modes).
-  dynamics::TorsionalNetwork network(std::shared_ptr<ClutchContext> coupling_context) const;
+  dynamics::TorsionalNetwork network(std::shared_ptr<components::ClutchContext> coupling_context) const;
   /// The network bound to a fresh context at start_inputs() (for inspection and modes).
   dynamics::TorsionalNetwork network() const;
   /// The coupling law's states [p, u] for a clamp force and valve opening (operating points).
   Eigen::VectorXd coupling_states(double clamp_force_N, double opening) const;
-  const HaldexHydraulics& hydraulics() const { return hydraulics_; }
-  const HaldexController& controller() const { return controller_; }
+  const components::HaldexHydraulics& hydraulics() const { return hydraulics_; }
+  const components::HaldexController& controller() const { return controller_; }
   /// What the control unit reads at time t from the (sampled, filtered) axle speeds: the vehicle
   /// speed it estimates from the slower axle (as an ABS reference speed does), the turn, the pedal.
-  ControllerReading reading(double t_s, double front_axle_rad_s, double rear_axle_rad_s) const;
+  components::ControllerReading reading(double t_s, double front_axle_rad_s, double rear_axle_rad_s) const;
   /// The valve opening commanded at time t for those axle speeds (the controller's, or the raw
   /// schedule's; shut under a raw pressure setting).
   double commanded_opening(double t_s, double front_axle_rad_s, double rear_axle_rad_s) const;
@@ -171,14 +171,14 @@ class HaldexDriveline {
   /// ρ of each wheel (FL, FR, RL, RR), see the header.
   const std::array<double, 4>& path_ratios() const { return path_ratios_; }
   /// The tyre of wheel i (FL, FR, RL, RR).
-  const BrushTyre& tyre(int wheel) const { return *tyres_[static_cast<std::size_t>(wheel)]; }
-  const RoadLoad& road_load() const { return *road_load_; }
+  const components::BrushTyre& tyre(int wheel) const { return *tyres_[static_cast<std::size_t>(wheel)]; }
+  const components::RoadLoad& road_load() const { return *road_load_; }
   /// The engine's torque at a time and crankshaft speed: the map with the throttle, or the schedule.
   double engine_torque_Nm(double t_s, double omega_rad_s) const;
   /// dT/dω of the engine there (0 for a raw schedule), N m s/rad.
   double engine_slope_Nms_per_rad(double t_s, double omega_rad_s) const;
   bool engine_mapped() const { return throttle_.has_value(); }
-  const Engine& engine() const { return engine_; }
+  const components::Engine& engine() const { return engine_; }
   /// The grade's torque on the vehicle node, −m g sin θ r_w (N m).
   double grade_torque_Nm() const { return grade_torque_Nm_; }
 
@@ -209,28 +209,23 @@ class HaldexDriveline {
  private:
   dynamics::TorsionalNetwork build(std::shared_ptr<const dynamics::ContactLaw> coupling_law) const;
   DrivelineParams p_;
-  HaldexHydraulics hydraulics_;
-  HaldexController controller_;
-  std::optional<PiecewiseLinear> valve_opening_, valve_pressure_bar_;
+  components::HaldexHydraulics hydraulics_;
+  components::HaldexController controller_;
+  std::optional<components::PiecewiseLinear> valve_opening_, valve_pressure_bar_;
   double turn_axle_ratio_ = 1.0;
-  ClutchContact contact_;
-  PiecewiseLinear engine_torque_Nm_;
-  std::optional<PiecewiseLinear> throttle_;
-  Engine engine_;
+  components::ClutchContact contact_;
+  components::PiecewiseLinear engine_torque_Nm_;
+  std::optional<components::PiecewiseLinear> throttle_;
+  components::Engine engine_;
   std::array<double, 4> path_ratios_{};
-  std::array<std::shared_ptr<const BrushTyre>, 4> tyres_;
-  std::shared_ptr<const RoadLoad> road_load_;
+  std::array<std::shared_ptr<const components::BrushTyre>, 4> tyres_;
+  std::shared_ptr<const components::RoadLoad> road_load_;
   double grade_torque_Nm_ = 0;
 };
 
 /// The static axle loads (front, rear; N) on a grade (%, uphill > 0): the car's weight split by
 /// front_axle_load_share on the level, moved rearwards by m g (h/L) sin θ uphill (see the header).
 std::array<double, 2> static_axle_loads_N(const DrivelineParams& params, double grade_percent);
-
-/// The coupling's own oil in the disc pack's thermal model: each of the n interfaces' domains gets
-/// 1/n of the pack's oil volume as its sump and 1/n of its cooling flow (the rig's disc has its
-/// own 0.5 l sump and 200 ml/min forced flow per interface).
-void apply_pack_oil(const DrivelineParams& params, int sliding_interfaces, clutch::ThermalParams& thermal);
 
 /// Simulates the driveline with the coupling's thermal model and hydraulics (multi-rate) and
 /// records speeds, torques, pressure and temperatures; judges the coupling's judder from its

@@ -1,4 +1,4 @@
-#include "rig_models/friction_range_block.hpp"
+#include "components/friction_range_block.hpp"
 #include "rig_models/lsctr_rig.hpp"
 
 #include <algorithm>
@@ -7,9 +7,9 @@
 
 #include "core/units.hpp"
 #include "dynamics/signal_names.hpp"
-#include "rig_models/channel_recorder.hpp"
-#include "rig_models/energy_scalars.hpp"
-#include "rig_models/multirate_clutch.hpp"
+#include "components/channel_recorder.hpp"
+#include "components/energy_scalars.hpp"
+#include "components/multirate_clutch.hpp"
 
 namespace shudder::rig_models {
 
@@ -42,7 +42,7 @@ SpeedLoopGains speed_loop_gains(const RigParams& p) {
   return {kp, kp * wc / 4.0};
 }
 
-LsctrRig::LsctrRig(const RigParams& params, const clutch::WetClutch& clutch, const DriveCycle& cycle)
+LsctrRig::LsctrRig(const RigParams& params, const clutch::WetClutch& clutch, const components::DriveCycle& cycle)
     : p_(params),
       contact_(clutch, params.bearing_drag, params.stick_time),
       speed_rpm_(cycle.slip_speed_rpm),
@@ -59,7 +59,8 @@ LsctrRig::LsctrRig(const RigParams& params, const clutch::WetClutch& clutch, con
   kp_ = gains.kp_Nms_per_rad;
   ki_ = gains.ki_Nm_per_rad;
   // The tuning's modal analysis does not evaluate the clutch law; any context serves.
-  const auto law = std::make_shared<ClutchContactLaw>(contact_, std::make_shared<ClutchContext>(start_inputs()));
+  const auto law = std::make_shared<components::ClutchContactLaw>(
+      contact_, std::make_shared<components::ClutchContext>(start_inputs()));
   const auto damping = [&](double k_bar) {
     return 2.0 * p_.bar_damping_ratio * std::sqrt(k_bar * p_.housing_inertia_kg_m2);
   };
@@ -88,32 +89,32 @@ LsctrRig::LsctrRig(const RigParams& params, const clutch::WetClutch& clutch, con
 
 dynamics::TorsionalNetwork LsctrRig::build(double k_bar, double c_bar,
                                            std::shared_ptr<const dynamics::ContactLaw> law) const {
-  const PiecewiseLinear speed = speed_rpm_;
+  const components::PiecewiseLinear speed = speed_rpm_;
   dynamics::TorsionalNetwork n;
   n.add_inertia({"drive", p_.drive_inertia_kg_m2});
   n.add_inertia({"housing", p_.housing_inertia_kg_m2});
   n.add_motor({"motor", kDrive, [speed](double t) { return units::rpm_to_rad_s(speed(t)); }, kp_, ki_,
                p_.motor_torque_limit_Nm});
   if (p_.motor_ripple.amplitude_Nm > 0)
-    n.add_torque_source({"motor_ripple", kDrive, MotorRippleTorque(p_.motor_ripple, speed_rpm_)});
+    n.add_torque_source({"motor_ripple", kDrive, components::MotorRippleTorque(p_.motor_ripple, speed_rpm_)});
   n.add_contact({"clutch", kDrive, kHousing, std::move(law)});
   n.add_shaft({"torsion_bar", kHousing, dynamics::kGround, k_bar, c_bar});
   n.validate();
   return n;
 }
 
-dynamics::TorsionalNetwork LsctrRig::network(std::shared_ptr<ClutchContext> clutch_context) const {
-  return build(k_network_, c_bar_, std::make_shared<ClutchContactLaw>(contact_, std::move(clutch_context)));
+dynamics::TorsionalNetwork LsctrRig::network(std::shared_ptr<components::ClutchContext> clutch_context) const {
+  return build(k_network_, c_bar_, std::make_shared<components::ClutchContactLaw>(contact_, std::move(clutch_context)));
 }
 
-dynamics::TorsionalNetwork LsctrRig::network(std::shared_ptr<ClutchContext> clutch_context,
+dynamics::TorsionalNetwork LsctrRig::network(std::shared_ptr<components::ClutchContext> clutch_context,
                                              double bar_damping_ratio) const {
   const double c_bar = 2.0 * bar_damping_ratio * std::sqrt(k_network_ * p_.housing_inertia_kg_m2);
-  return build(k_network_, c_bar, std::make_shared<ClutchContactLaw>(contact_, std::move(clutch_context)));
+  return build(k_network_, c_bar, std::make_shared<components::ClutchContactLaw>(contact_, std::move(clutch_context)));
 }
 
 dynamics::TorsionalNetwork LsctrRig::network() const {
-  return network(std::make_shared<ClutchContext>(start_inputs()));
+  return network(std::make_shared<components::ClutchContext>(start_inputs()));
 }
 
 double LsctrRig::clutch_side_frequency_Hz() const {
@@ -122,15 +123,15 @@ double LsctrRig::clutch_side_frequency_Hz() const {
   return m.frequencies_Hz[clutch_side_mode(m)];
 }
 
-dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& clutch, const DriveCycle& cycle,
-                            const RigSettings& cfg) {
+dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& clutch,
+                            const components::DriveCycle& cycle, const RigSettings& cfg) {
   if (!(cfg.duration_s > 0) || !(cfg.thermal_step_s > 0) || !(cfg.sample_rate_Hz > 0))
     throw std::invalid_argument("duration, thermal step and sample rate must be > 0");
   const LsctrRig rig(params, clutch, cycle);
   const auto& th = clutch.thermal();
   clutch::ThermalState ts = clutch.initial_state();
-  const auto clutch_context =
-      std::make_shared<ClutchContext>(ClutchHeldInputs{th.interface_temps_C(ts), cycle.normal_force_N});
+  const auto clutch_context = std::make_shared<components::ClutchContext>(
+      components::ClutchHeldInputs{th.interface_temps_C(ts), cycle.normal_force_N});
   const auto& law = rig.clutch_contact();
   const dynamics::TorsionalNetwork network = rig.network(clutch_context);
 
@@ -151,7 +152,7 @@ dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& cl
   // Channels: mechanical ones come from dynamics samples, thermal ones from the thermal state,
   // interpolated across each thermal step (channel_recorder.hpp).
   namespace sn = dynamics::signal_names;
-  using Recorder = ChannelRecorder<dynamics::Sample, clutch::ThermalState>;
+  using Recorder = components::ChannelRecorder<dynamics::Sample, clutch::ThermalState>;
   using clutch::ThermalState;
   using dynamics::Sample;
   const double n_if = clutch.params().sliding_interfaces;
@@ -202,10 +203,10 @@ dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& cl
   std::sort(snaps.begin(), snaps.end());
   std::size_t next_snap = 0;
   clutch::FrictionDataRange data_range(*clutch.fluid().friction);
-  run_multirate(
+  components::run_multirate(
       sim, *clutch_context, clutch, ts, LsctrRig::kClutch, cfg.duration_s, cfg.thermal_step_s, cfg.sample_rate_Hz,
       [&](const dynamics::Sample& s) { recorder.sample(s); },
-      [&](const SlowStep& step) {
+      [&](const components::SlowStep& step) {
         peak_interface_C = std::max(peak_interface_C, th.interface_temps_C(ts).maxCoeff());
         recorder.step(ts, step.ta_s, step.tb_s);
         const double dt = step.tb_s - step.ta_s;
@@ -215,17 +216,17 @@ dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& cl
         }
       },
       &data_range);
-  rec.blocks.push_back(friction_range_block(data_range));
+  rec.blocks.push_back(components::friction_range_block(data_range));
 
   const int nr = th.radial_cells();
   for (int i = 0; i < nr; ++i) rec.grid_r_m.push_back(th.ring_radius_m()[i]);
   for (int j = 0; j < th.nodes_per_ring(); ++j) rec.grid_z_m.push_back(th.node_z_m()[j]);
   const auto me = sim.energy();
   const auto& cnt = sim.counters();
-  rec.scalars = heat_account_scalars(clutch, ts);
+  rec.scalars = components::heat_account_scalars(clutch, ts);
   const std::vector<dynamics::Scalar> more = {
       {"mechanical_energy_relative_error", "1",
-       mechanical_energy_relative_error(me, MechanicalEnergyScale::kSourceWork)},
+       components::mechanical_energy_relative_error(me, components::MechanicalEnergyScale::kSourceWork)},
       {"friction_work_J", "J", me.friction_heat_J},
       {"peak_interface_temp_C", "degC", peak_interface_C},
       {"final_max_temp_C", "degC", th.max_temp_C(ts)},

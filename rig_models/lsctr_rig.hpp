@@ -26,10 +26,11 @@
 
 #include "clutch/wet_clutch.hpp"
 #include "dynamics/network.hpp"
+#include "dynamics/recording.hpp"
 #include "dynamics/simulation.hpp"
-#include "rig_models/clutch_contact.hpp"
-#include "rig_models/drive_cycle.hpp"
-#include "rig_models/motor_ripple.hpp"
+#include "components/clutch_contact.hpp"
+#include "components/drive_cycle.hpp"
+#include "components/motor_ripple.hpp"
 
 namespace shudder::rig_models {
 
@@ -45,10 +46,10 @@ struct RigParams {
   bool start_at_rest = false;                         // true: everything at rest, bar unloaded, clutch stuck (a test
                                                       // started from standstill); false: steady sliding at the
                                                       // cycle's first speed with the bar carrying the friction torque
-  MotorRipple motor_ripple;                           // the drive's torque ripple (motor_ripple.hpp); amplitude 0: none
-  BearingDrag bearing_drag;
-  LoadCell load_cell;  // records g_F * F as normal_force_N (prescribed_slip.hpp)
-  StickTimeFriction stick_time;
+  components::MotorRipple motor_ripple;               // the drive's torque ripple (motor_ripple.hpp); amplitude 0: none
+  components::BearingDrag bearing_drag;
+  components::LoadCell load_cell;  // records g_F * F as normal_force_N (prescribed_slip.hpp)
+  components::StickTimeFriction stick_time;
   // Tolerances: the bar twist is ~1e-3 rad and the slip ~0.1–10 rad/s, so 1e-6 absolute and
   // 1e-5 relative per step keep torques to ~0.1 % while the 100–500 Hz bar mode, not accuracy,
   // sets the step (dopri5's stability limit |λ|·h ≈ 3.3). Events are located to 1e-10 s.
@@ -75,15 +76,16 @@ SpeedLoopGains speed_loop_gains(const RigParams& params);
 class LsctrRig {
  public:
   /// Throws std::invalid_argument for invalid parameters.
-  LsctrRig(const RigParams& params, const clutch::WetClutch& clutch, const DriveCycle& cycle);
+  LsctrRig(const RigParams& params, const clutch::WetClutch& clutch, const components::DriveCycle& cycle);
 
-  const ClutchContact& clutch_contact() const { return contact_; }
+  const components::ClutchContact& clutch_contact() const { return contact_; }
   /// Every ring at the clutch's start temperature, the cycle's clamp force.
-  ClutchHeldInputs start_inputs() const { return contact_.start_inputs(force_N_); }
+  components::ClutchHeldInputs start_inputs() const { return contact_.start_inputs(force_N_); }
   /// The network with its clutch law bound to `clutch_context`.
-  dynamics::TorsionalNetwork network(std::shared_ptr<ClutchContext> clutch_context) const;
+  dynamics::TorsionalNetwork network(std::shared_ptr<components::ClutchContext> clutch_context) const;
   /// The same with the bar's damping ratio replaced (its stiffness held).
-  dynamics::TorsionalNetwork network(std::shared_ptr<ClutchContext> clutch_context, double bar_damping_ratio) const;
+  dynamics::TorsionalNetwork network(std::shared_ptr<components::ClutchContext> clutch_context,
+                                     double bar_damping_ratio) const;
   /// The network bound to a fresh context at start_inputs() (modal analysis does not evaluate
   /// the law; nothing is shared with other callers).
   dynamics::TorsionalNetwork network() const;
@@ -100,8 +102,8 @@ class LsctrRig {
  private:
   dynamics::TorsionalNetwork build(double k_bar, double c_bar, std::shared_ptr<const dynamics::ContactLaw> law) const;
   RigParams p_;
-  ClutchContact contact_;
-  PiecewiseLinear speed_rpm_, force_N_;
+  components::ClutchContact contact_;
+  components::PiecewiseLinear speed_rpm_, force_N_;
   double k_bar_ = 0, c_bar_ = 0, kp_ = 0, ki_ = 0;
   // Stiffness the network is built with: k_bar_ itself unless the tuning loop ran out of
   // iterations (then k_bar_ holds the next correction, as it always has).
@@ -111,7 +113,7 @@ class LsctrRig {
 
 /// Simulates the rig on the cycle with the clutch's thermal model (multi-rate coupling) and
 /// records the sensors (docs/formats/measured_run.md names) plus internal signals.
-dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& clutch, const DriveCycle& cycle,
-                            const RigSettings& settings);
+dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& clutch,
+                            const components::DriveCycle& cycle, const RigSettings& settings);
 
 }  // namespace shudder::rig_models

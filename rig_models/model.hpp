@@ -24,7 +24,7 @@
 #include "clutch/wet_clutch.hpp"
 #include "core/model_kind.hpp"
 #include "dynamics/recording.hpp"
-#include "rig_models/drive_cycle.hpp"
+#include "components/drive_cycle.hpp"
 #include "rig_models/haldex_driveline.hpp"
 #include "rig_models/lsctr_rig.hpp"
 #include "rig_models/prescribed_slip.hpp"
@@ -33,14 +33,14 @@ namespace shudder::rig_models {
 
 /// Paper G's set-up: slip speed and force imposed (rig_models/prescribed_slip.hpp).
 struct PrescribedSlipModel {
-  DriveCycle cycle;
+  components::DriveCycle cycle;
   PrescribedSlipSettings settings;  // duration, steps, sampling, snapshots, bearing drag
 };
 
 /// The LSCTR rig (rig_models/lsctr_rig.hpp) following a drive cycle.
 struct RigModel {
   RigParams params;  // bearing drag and stick-time friction included
-  DriveCycle cycle;
+  components::DriveCycle cycle;
   RigSettings settings;
 };
 
@@ -50,8 +50,8 @@ struct DrivelineModel {
   DrivelineInputs manoeuvre;
   DrivelineSettings settings;
   // The instrumented coupling's sensors: they act on its measured run only (coupling_measurement.hpp).
-  TorqueCell torque_cell;
-  LoadCell load_cell;
+  components::TorqueCell torque_cell;
+  components::LoadCell load_cell;
 };
 
 using Model = std::variant<PrescribedSlipModel, RigModel, DrivelineModel>;

@@ -1,4 +1,4 @@
-#include "rig_models/friction_range_block.hpp"
+#include "components/friction_range_block.hpp"
 #include "rig_models/prescribed_slip.hpp"
 
 #include <algorithm>
@@ -8,9 +8,9 @@
 
 #include "core/units.hpp"
 #include "dynamics/signal_names.hpp"
-#include "rig_models/channel_recorder.hpp"
+#include "components/channel_recorder.hpp"
 #include "rig_models/thermal_step_plan.hpp"
-#include "rig_models/energy_scalars.hpp"
+#include "components/energy_scalars.hpp"
 
 namespace shudder::rig_models {
 
@@ -25,10 +25,10 @@ struct Probe {
 // The friction side of a Probe at time t with the ring temperatures ring_T (and the film's mean
 // mean_interface_C for the oil flow): slip, force, torques, friction coefficient, heat, flow.
 // `heat` gets the ring heat powers.
-void measure_friction(Probe& p, const clutch::WetClutch& clutch, const DriveCycle& cycle, const BearingDrag& drag,
-                      const TorqueCell& cell, const LoadCell& load_cell, double drift, double t,
-                      const Eigen::VectorXd& ring_T, double mean_interface_C, Eigen::VectorXd& heat,
-                      clutch::WetClutch::RingScratch& scratch) {
+void measure_friction(Probe& p, const clutch::WetClutch& clutch, const components::DriveCycle& cycle,
+                      const components::BearingDrag& drag, const components::TorqueCell& cell,
+                      const components::LoadCell& load_cell, double drift, double t, const Eigen::VectorXd& ring_T,
+                      double mean_interface_C, Eigen::VectorXd& heat, clutch::WetClutch::RingScratch& scratch) {
   const auto& th = clutch.thermal();
   const double slip_rpm = cycle.slip_speed_rpm(t);
   const double slip = units::rpm_to_rad_s(slip_rpm);
@@ -53,9 +53,10 @@ void measure_friction(Probe& p, const clutch::WetClutch& clutch, const DriveCycl
 // what the next backward Euler step's Simpson rule needs at its start, so the step reuses them.
 // The ring torques are evaluated once for the torque and the heat (WetClutch::torque_Nm and
 // ring_heat_W would each evaluate them, with the same numbers).
-Probe measure(const clutch::WetClutch& clutch, const clutch::ThermalState& s, const DriveCycle& cycle,
-              const BearingDrag& drag, const TorqueCell& cell, const LoadCell& load_cell, double drift, double t,
-              Eigen::VectorXd& heat, clutch::WetClutch::RingScratch& scratch) {
+Probe measure(const clutch::WetClutch& clutch, const clutch::ThermalState& s, const components::DriveCycle& cycle,
+              const components::BearingDrag& drag, const components::TorqueCell& cell,
+              const components::LoadCell& load_cell, double drift, double t, Eigen::VectorXd& heat,
+              clutch::WetClutch::RingScratch& scratch) {
   const auto& th = clutch.thermal();
   const Eigen::VectorXd ring_T = th.interface_temps_C(s);
   Probe p{};
@@ -73,7 +74,7 @@ Probe measure(const clutch::WetClutch& clutch, const clutch::ThermalState& s, co
 
 }  // namespace
 
-dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const DriveCycle& cycle,
+dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const components::DriveCycle& cycle,
                                         const PrescribedSlipSettings& cfg) {
   if (!(cfg.duration_s > 0.0)) throw std::invalid_argument("duration must be > 0");
   if (!(cfg.thermal_step_s > 0.0)) throw std::invalid_argument("thermal step must be > 0");
@@ -83,7 +84,7 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
   // Every channel but the time is evaluated at the thermal steps' ends (a Probe) and
   // interpolated to the samples in between (channel_recorder.hpp).
   namespace sn = dynamics::signal_names;
-  using Recorder = ChannelRecorder<double, Probe>;
+  using Recorder = components::ChannelRecorder<double, Probe>;
   const auto probed = [](std::string_view name, std::string_view units, double Probe::*field) {
     return Recorder::interpolated(name, units, [field](const Probe& p) { return p.*field; });
   };
@@ -234,11 +235,11 @@ dynamics::Recording run_prescribed_slip(const clutch::WetClutch& clutch, const D
   for (int j = 0; j < th.nodes_per_ring(); ++j) rec.grid_z_m.push_back(th.node_z_m()[j]);
 
   // Summary scalars: energy in the whole clutch (all interfaces).
-  rec.scalars = heat_account_scalars(clutch, state);
+  rec.scalars = components::heat_account_scalars(clutch, state);
   rec.scalars.push_back({"peak_interface_temp_C", "degC", peak_interface_C});
   rec.scalars.push_back({"final_max_temp_C", "degC", th.max_temp_C(state)});
   rec.scalars.push_back({"thermal_steps", "1", static_cast<double>(thermal_steps)});
-  rec.blocks.push_back(friction_range_block(data_range));
+  rec.blocks.push_back(components::friction_range_block(data_range));
   return rec;
 }
 

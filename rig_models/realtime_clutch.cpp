@@ -17,7 +17,7 @@ long steps_per_thermal_step(const RealtimeSettings& s) {
   return static_cast<long>(n);
 }
 
-RealtimeClutch::RealtimeClutch(const clutch::WetClutch& clutch, const BearingDrag& drag,
+RealtimeClutch::RealtimeClutch(const clutch::WetClutch& clutch, const components::BearingDrag& drag,
                                const RealtimeSettings& settings, double force_N)
     : clutch_(clutch),
       drag_(drag),

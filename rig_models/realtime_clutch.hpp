@@ -8,7 +8,7 @@
 //
 // The equations are the clutch's own (clutch::WetClutch): the friction frozen at the latched
 // temperatures while the friction load is within 1e-4 of the load it was frozen at (as
-// rig_models::ClutchContact does), the direct evaluation otherwise. Both read buffers sized at
+// components::ClutchContact does), the direct evaluation otherwise. Both read buffers sized at
 // construction, so a step allocates nothing.
 
 #include <Eigen/Dense>
@@ -31,7 +31,7 @@ long steps_per_thermal_step(const RealtimeSettings& settings);
 class RealtimeClutch {
  public:
   /// `clutch` must outlive this object; `force_N` is the clamp force at the start.
-  RealtimeClutch(const clutch::WetClutch& clutch, const BearingDrag& drag, const RealtimeSettings& settings,
+  RealtimeClutch(const clutch::WetClutch& clutch, const components::BearingDrag& drag, const RealtimeSettings& settings,
                  double force_N);
 
   /// Kinetic torque magnitude of all interfaces plus bearing drag at |Δω| and F, N m; the
@@ -70,7 +70,7 @@ class RealtimeClutch {
 
  private:
   const clutch::WetClutch& clutch_;
-  BearingDrag drag_;
+  components::BearingDrag drag_;
   RealtimeSettings cfg_;
   long steps_per_window_;
   ThermalTask task_;

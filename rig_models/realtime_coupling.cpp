@@ -4,7 +4,7 @@
 
 namespace shudder::rig_models {
 
-RealtimeCoupling::RealtimeCoupling(const clutch::WetClutch& clutch, const BearingDrag& drag,
+RealtimeCoupling::RealtimeCoupling(const clutch::WetClutch& clutch, const components::BearingDrag& drag,
                                    const RealtimeSettings& settings, double force_N)
     : clutch_(clutch, drag, settings, force_N),
       drag_(drag),

@@ -20,8 +20,8 @@ class RealtimeCoupling {
  public:
   /// `clutch` must outlive this object; `force_N` is the clamp force at t = 0 (the first
   /// frozen friction). Throws std::invalid_argument for invalid settings.
-  RealtimeCoupling(const clutch::WetClutch& clutch, const BearingDrag& drag, const RealtimeSettings& settings,
-                   double force_N);
+  RealtimeCoupling(const clutch::WetClutch& clutch, const components::BearingDrag& drag,
+                   const RealtimeSettings& settings, double force_N);
 
   /// Advances one fixed step with Δω (rad/s) and F (N) held over it. Allocates nothing.
   /// `fraction` (0, 1] shortens the step to fraction × the fixed step (a co-simulation master's
@@ -42,7 +42,7 @@ class RealtimeCoupling {
 
  private:
   RealtimeClutch clutch_;
-  BearingDrag drag_;
+  components::BearingDrag drag_;
   Eigen::VectorXd heat_J_;  // (n_r) scratch
   double steps_ = 0.0;      // fixed steps taken (an exact integer while all steps are whole)
   double t_s_ = 0.0, torque_Nm_ = 0.0, clutch_torque_Nm_ = 0.0, heat_W_ = 0.0;

@@ -9,7 +9,7 @@
 
 #include "core/units.hpp"
 #include "dynamics/signal_names.hpp"
-#include "rig_models/energy_scalars.hpp"
+#include "components/energy_scalars.hpp"
 #include "rig_models/realtime_coupling.hpp"
 
 namespace shudder::rig_models {
@@ -58,7 +58,7 @@ void finish_recording(dynamics::Recording& rec, RealtimeClutch& clutch, double s
   const auto& th = clutch.clutch().thermal();
   for (int i = 0; i < th.radial_cells(); ++i) rec.grid_r_m.push_back(th.ring_radius_m()[i]);
   for (int j = 0; j < th.nodes_per_ring(); ++j) rec.grid_z_m.push_back(th.node_z_m()[j]);
-  rec.scalars = heat_account_scalars(clutch.clutch(), clutch.thermal_state());
+  rec.scalars = components::heat_account_scalars(clutch.clutch(), clutch.thermal_state());
   rec.scalars.push_back({"final_max_temp_C", "degC", th.max_temp_C(clutch.thermal_state())});
   rec.scalars.push_back({"fixed_step_s", "s", step_s});
   rec.scalars.push_back({"thermal_steps", "1", static_cast<double>(thermal_steps)});

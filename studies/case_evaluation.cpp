@@ -36,7 +36,7 @@ void fill_simulated(const dynamics::Recording& rec, CaseOutcome& o) {
 }  // namespace
 
 CaseOutcome evaluate_rig_case(const rig_models::RigParams& params, const clutch::WetClutch& clutch,
-                              const rig_models::DriveCycle& cycle, const rig_models::RigSettings& settings,
+                              const components::DriveCycle& cycle, const rig_models::RigSettings& settings,
                               dynamics::Recording& rec, double interval_s) {
   rec = rig_models::run_rig(params, clutch, cycle, settings);
   CaseOutcome o;
@@ -50,7 +50,7 @@ CaseOutcome evaluate_rig_case(const rig_models::RigParams& params, const clutch:
   double worst = -std::numeric_limits<double>::infinity();
   for (double t = 0.0; t <= settings.duration_s + 1e-12; t += interval_s) {
     const double slip = cycle.slip_speed_rpm(t);
-    const rig_models::ClutchHeldInputs held{
+    const components::ClutchHeldInputs held{
         Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), at(*time, *temp, t)), cycle.normal_force_N};
     analysis::StabilityPoint p;
     try {
@@ -70,7 +70,7 @@ CaseOutcome evaluate_rig_case(const rig_models::RigParams& params, const clutch:
   return o;
 }
 
-CaseOutcome evaluate_prescribed_case(const clutch::WetClutch& clutch, const rig_models::DriveCycle& cycle,
+CaseOutcome evaluate_prescribed_case(const clutch::WetClutch& clutch, const components::DriveCycle& cycle,
                                      const rig_models::PrescribedSlipSettings& settings, dynamics::Recording& rec) {
   rec = rig_models::run_prescribed_slip(clutch, cycle, settings);
   CaseOutcome o;

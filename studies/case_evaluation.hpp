@@ -10,7 +10,7 @@
 
 #include "clutch/wet_clutch.hpp"
 #include "dynamics/recording.hpp"
-#include "rig_models/drive_cycle.hpp"
+#include "components/drive_cycle.hpp"
 #include "rig_models/haldex_driveline.hpp"
 #include "rig_models/lsctr_rig.hpp"
 #include "rig_models/prescribed_slip.hpp"
@@ -30,11 +30,11 @@ struct CaseOutcome {
 
 /// Runs the rig case, records it into `rec`, and evaluates prediction and simulation.
 CaseOutcome evaluate_rig_case(const rig_models::RigParams& params, const clutch::WetClutch& clutch,
-                              const rig_models::DriveCycle& cycle, const rig_models::RigSettings& settings,
+                              const components::DriveCycle& cycle, const rig_models::RigSettings& settings,
                               dynamics::Recording& rec, double prediction_interval_s = 0.05);
 
 /// Prescribed slip has no torsional dynamics: nothing can vibrate, the prediction is empty.
-CaseOutcome evaluate_prescribed_case(const clutch::WetClutch& clutch, const rig_models::DriveCycle& cycle,
+CaseOutcome evaluate_prescribed_case(const clutch::WetClutch& clutch, const components::DriveCycle& cycle,
                                      const rig_models::PrescribedSlipSettings& settings, dynamics::Recording& rec);
 
 /// The driveline: the run and its coupling judged as `shudder run` judges it (the driveline's own

@@ -43,14 +43,14 @@ Eigen::VectorXd rolling_node_speeds(const rig_models::HaldexDriveline& dl, doubl
 }
 
 // A tyre's load when the car accelerates steadily at a (m/s²): its static load and transfer.
-double tyre_load_N(const rig_models::BrushTyre& tyre, double vehicle_speed_m_s, double acceleration_m_s2) {
+double tyre_load_N(const components::BrushTyre& tyre, double vehicle_speed_m_s, double acceleration_m_s2) {
   std::array<double, 3> z{};
   tyre.steady_states(0.0, vehicle_speed_m_s, acceleration_m_s2, z.data());
   return tyre.vertical_load_N(z.data());
 }
 
 // The tyre deflection u that carries force F on the brush curve at load F_z (the edge if saturated).
-double tyre_deflection_m(const rig_models::BrushTyre& tyre, double force_N, double vertical_load_N) {
+double tyre_deflection_m(const components::BrushTyre& tyre, double force_N, double vertical_load_N) {
   const double limit = tyre.params().road_friction * vertical_load_N;
   const double frac = std::min(std::abs(force_N) / limit, 0.999);
   const double a = 1.0 - std::cbrt(1.0 - frac);
@@ -85,7 +85,7 @@ DrivelineOperatingPoint quasi_static_operating_point(const rig_models::HaldexDri
   const auto floor_slip = [&](double slip) {
     return std::abs(slip) >= min_slip ? slip : std::copysign(min_slip, slip);
   };
-  auto ctx = std::make_shared<rig_models::ClutchContext>(dl.start_inputs());
+  auto ctx = std::make_shared<components::ClutchContext>(dl.start_inputs());
   ctx->set_ring_temperatures(Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), op.interface_temp_C));
   const dynamics::TorsionalNetwork net = dl.network(ctx);
   double j_eq = 0.0, j_front = 0.0, j_rear = 0.0;
@@ -132,7 +132,7 @@ DrivelineOperatingPoint quasi_static_operating_point(const rig_models::HaldexDri
     const double rear_axle_Nm = m_c * p.rear_diff_ratio - j_rear * s[D::kRearDiff] * dwv;
     op.tyre_force_N = {front_axle_Nm / (2 * r), front_axle_Nm / (2 * r), rear_axle_Nm / (2 * r),
                        rear_axle_Nm / (2 * r)};
-    // Wheel speeds from the steady slips κ = (ω r − V)/max(|V|, |ω r|) (rig_models/tyre.hpp).
+    // Wheel speeds from the steady slips κ = (ω r − V)/max(|V|, |ω r|) (components/tyre.hpp).
     const std::array<int, 4> wheel{D::kFrontLeftWheel, D::kFrontRightWheel, D::kRearLeftWheel, D::kRearRightWheel};
     const std::array<int, 4> side{D::kFrontSideLeft, D::kFrontSideRight, D::kRearSideLeft, D::kRearSideRight};
     for (int i = 0; i < 4; ++i) {
@@ -219,7 +219,7 @@ dynamics::LinearSystem linearise_driveline(const rig_models::HaldexDriveline& dl
   if (!std::isfinite(op.interface_temp_C) || !std::isfinite(op.vehicle_speed_m_s) ||
       !std::isfinite(op.coupling_slip_rad_s) || !std::isfinite(op.t_s))
     throw std::invalid_argument("driveline stability: the operating point must be finite");
-  auto ctx = std::make_shared<rig_models::ClutchContext>(dl.start_inputs());
+  auto ctx = std::make_shared<components::ClutchContext>(dl.start_inputs());
   ctx->set_ring_temperatures(Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), op.interface_temp_C));
   const dynamics::TorsionalNetwork net = dl.network(ctx);
 
@@ -257,7 +257,7 @@ dynamics::LinearSystem linearise_driveline(const rig_models::HaldexDriveline& dl
     at.omega_rad_s = lop.omega_rad_s;
     const double opening = dl.valve_opening(at);
     lop.contact_states = dl.coupling_states(op.clamp_force_N, opening);
-    double& p_bar = lop.contact_states[rig_models::HaldexCouplingLaw::kPressure];
+    double& p_bar = lop.contact_states[components::HaldexCouplingLaw::kPressure];
     const double cap_bar = std::min(dl.valve_setting_bar(op.t_s), dl.params().hydraulics.relief_pressure_bar);
     if (!coupling_locked && std::abs(p_bar - cap_bar) <= 1e-9 * cap_bar) {
       const clutch::WaltherViscosity viscosity(clutch.fluid().nu40_cSt, clutch.fluid().nu100_cSt);
@@ -307,7 +307,7 @@ CouplingMode least_damped_mode(const DrivelineStability& st) {
 ThermalFeedback coupling_thermal_feedback(const rig_models::HaldexDriveline& dl, const clutch::WetClutch& clutch,
                                           const DrivelineOperatingPoint& op, double frequency_Hz) {
   const int n_rings = clutch.thermal().radial_cells();
-  auto ctx = std::make_shared<rig_models::ClutchContext>(dl.start_inputs());
+  auto ctx = std::make_shared<components::ClutchContext>(dl.start_inputs());
   const dynamics::TorsionalNetwork net = dl.network(ctx);
   const auto& law = *net.contacts()[D::kCoupling].law;
   const double slip = std::abs(op.coupling_slip_rad_s);

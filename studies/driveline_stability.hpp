@@ -7,7 +7,7 @@
 //                        F and interface temperature T, all rings at T (the ISOTHERMAL slope:
 //                        temperature held, docs/physics.md §6); a falling μ–v curve is negative damping.
 //                        Locked: the constraint ω_in = ω_out instead.
-//   tyres                the relaxation state u of each wheel (rig_models/tyre.hpp):
+//   tyres                the relaxation state u of each wheel (components/tyre.hpp):
 //                        δF = F'(κ')/σ δu, δu̇ = r(δω_w − ρ δω_v) − (V_t/σ) δu − κ' δV_t —
 //                        at speed V a spring C_κ r²/σ in series with a damper C_κ r²/V
 //                        (the slip's damping falls with speed; at rest a pure spring).

@@ -23,8 +23,8 @@ RigScreen screen_rig(const ScreeningRig& spec, const clutch::Fluid& fluid, doubl
   const clutch::WetClutch clutch(spec.clutch, fluid);
   RigScreen out;
   // The bar's actual clutch-side frequency (the stiffness may be given directly).
-  const rig_models::DriveCycle cycle{rig_models::PiecewiseLinear({0.0}, {speeds_rpm.front()}),
-                                     rig_models::PiecewiseLinear({0.0}, {load_N})};
+  const components::DriveCycle cycle{components::PiecewiseLinear({0.0}, {speeds_rpm.front()}),
+                                     components::PiecewiseLinear({0.0}, {load_N})};
   out.clutch_side_frequency_Hz = rig_models::LsctrRig(spec.params, clutch, cycle).clutch_side_frequency_Hz();
   out.label = spec.label.empty() ? default_label(out.clutch_side_frequency_Hz) : spec.label;
   out.map = stability_map(spec.params, clutch, load_N, speeds_rpm, temps_C);

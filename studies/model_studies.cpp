@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "dynamics/signal_names.hpp"
-#include "rig_models/friction_range_block.hpp"
+#include "components/friction_range_block.hpp"
 #include "rig_models/haldex_driveline.hpp"
 #include "rig_models/rig_names.hpp"
 #include "studies/driveline_judgement.hpp"
@@ -55,7 +55,7 @@ void add_verdict(dynamics::Recording& rec, Predict predict) {
   // How much of the run the friction law was used outside its data (friction_range_block.hpp):
   // a verdict reached there is an extrapolation of the law, and says so.
   double outside = std::numeric_limits<double>::quiet_NaN();
-  if (const auto* range = rec.find_block(rig_models::kFrictionRangeBlock))
+  if (const auto* range = rec.find_block(components::kFrictionRangeBlock))
     if (const auto* f = range->find_scalar("fraction_outside")) outside = f->value;
   block.scalars.push_back({"outside_data_fraction", "1", outside});
   rec.blocks.push_back(std::move(block));
@@ -79,7 +79,7 @@ CaseOutcome evaluate_case(const rig_models::PrescribedSlipModel& model, const cl
 }
 
 ReplayModel replay_model(const rig_models::PrescribedSlipModel& model,
-                         const rig_models::StickTimeFriction& stick_time) {
+                         const components::StickTimeFriction& stick_time) {
   ReplayModel m;
   m.kind = ModelKind::kPrescribedSlip;
   m.settings = model.settings;
@@ -106,7 +106,7 @@ CaseOutcome evaluate_case(const rig_models::RigModel& model, const clutch::WetCl
 }
 
 // The rig carries its own stick-time friction in params; the scenario's copy is the same.
-ReplayModel replay_model(const rig_models::RigModel& model, const rig_models::StickTimeFriction&) {
+ReplayModel replay_model(const rig_models::RigModel& model, const components::StickTimeFriction&) {
   ReplayModel m;
   m.kind = ModelKind::kRig;
   m.settings.duration_s = model.settings.duration_s;
@@ -167,7 +167,7 @@ CaseOutcome evaluate_case(const rig_models::DrivelineModel& model, const clutch:
 // The coupling alone: its measured slip and clamp force imposed on the pack (prescribed slip),
 // the pack's oil already in the clutch's thermal parameters (io/scenario.cpp), the pack's
 // thermal step; the instrumented coupling's sensors as the prescribed-slip cells.
-ReplayModel replay_model(const rig_models::DrivelineModel& model, const rig_models::StickTimeFriction&) {
+ReplayModel replay_model(const rig_models::DrivelineModel& model, const components::StickTimeFriction&) {
   ReplayModel m;
   m.kind = ModelKind::kDriveline;
   m.inputs_as_measured = true;

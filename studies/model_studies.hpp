@@ -19,10 +19,6 @@
 
 namespace shudder::studies {
 
-using rig_models::DrivelineModel;
-using rig_models::PrescribedSlipModel;
-using rig_models::RigModel;
-
 // ---- shudder run ----------------------------------------------------------------------------
 
 /// The run's extra analysis, stored in `rec`: every kind's verdict block (run_verdict.hpp:
@@ -60,9 +56,9 @@ CaseOutcome evaluate_case(const rig_models::DrivelineModel& model, const clutch:
 /// fluid, which the caller sets. `stick_time` is the scenario's [effects.stick_time_static_friction]
 /// as read: a prescribed-slip model has no rig to hold it, but the candidate list must still
 /// know whether that effect is on. A driveline replays its coupling alone (ReplayModel::kind kDriveline).
-ReplayModel replay_model(const rig_models::PrescribedSlipModel& model, const rig_models::StickTimeFriction& stick_time);
-ReplayModel replay_model(const rig_models::RigModel& model, const rig_models::StickTimeFriction& stick_time);
-ReplayModel replay_model(const rig_models::DrivelineModel& model, const rig_models::StickTimeFriction& stick_time);
+ReplayModel replay_model(const rig_models::PrescribedSlipModel& model, const components::StickTimeFriction& stick_time);
+ReplayModel replay_model(const rig_models::RigModel& model, const components::StickTimeFriction& stick_time);
+ReplayModel replay_model(const rig_models::DrivelineModel& model, const components::StickTimeFriction& stick_time);
 
 // ---- shudder modes
 

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "components/network_run.hpp"
-#include "rig_models/friction_range_block.hpp"
+#include "components/friction_range_block.hpp"
 #include "studies/clutch_prediction.hpp"
 
 namespace shudder::studies {
@@ -35,7 +35,7 @@ NetworkRun run_network(const components::NetworkSpec& spec) {
   for (std::size_t c = 0; c < built.clutches.size(); ++c) {
     const components::BuiltClutch& bc = built.clutches[c];
     if (!bc.wet) continue;
-    const auto* range = rec.find_block(std::string(rig_models::kFrictionRangeBlock) + "." + bc.name());
+    const auto* range = rec.find_block(std::string(components::kFrictionRangeBlock) + "." + bc.name());
     const auto* f = range ? range->find_scalar("fraction_outside") : nullptr;
     const double outside = f ? f->value : std::nan("");
     for (auto& b : rec.blocks) {

@@ -18,7 +18,7 @@ namespace {
 constexpr int kCouplingStepsPerStep = 10;
 
 // Mean of `x` over consecutive windows of `window_s`, at the windows' mean times.
-rig_models::PiecewiseLinear window_means(const std::vector<double>& t, const std::vector<double>& x, double t0,
+components::PiecewiseLinear window_means(const std::vector<double>& t, const std::vector<double>& x, double t0,
                                          double window_s) {
   std::vector<double> times, values;
   for (std::size_t b = 0; b < t.size();) {
@@ -43,7 +43,7 @@ rig_models::PiecewiseLinear window_means(const std::vector<double>& t, const std
 // `x` at its own sample times (relative to t0), joined linearly: a measured signal that is
 // continuous and sampled finely enough for its motion (a coupling's clamp force and slip, which the
 // driveline integrates with the motion and records at 1 kHz). Repeated times keep the first.
-rig_models::PiecewiseLinear samples_as_measured(const std::vector<double>& t, const std::vector<double>& x, double t0) {
+components::PiecewiseLinear samples_as_measured(const std::vector<double>& t, const std::vector<double>& x, double t0) {
   std::vector<double> times, values;
   for (std::size_t i = 0; i < t.size(); ++i)
     if (times.empty() || t[i] - t0 > times.back()) {
@@ -114,7 +114,7 @@ ReplayOutput replay(const ReplayModel& model, const ReplayInputs& in) {
   if (in.thermocouple_z_mm) cp.thermal.thermocouple_z_m = *in.thermocouple_z_mm * 1e-3;
   const clutch::WetClutch clutch(cp, model.fluid);
 
-  rig_models::DriveCycle cycle;
+  components::DriveCycle cycle;
   // A coupling's slip and clamp force are continuous (its hydraulics are integrated with the
   // motion, rig_models/haldex_driveline.hpp) and recorded finely: imposed as measured. A rig's
   // inputs are averaged over windows of `input_window_s` against the sensors' noise.

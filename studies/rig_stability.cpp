@@ -21,20 +21,20 @@ void check_operating_point(double force_N, double slip_rpm, double temp_C) {
 }
 
 // Constant force, constant speed: the cycle the linearisation is about.
-rig_models::DriveCycle steady_cycle(double force_N, double slip_rpm) {
-  return {rig_models::PiecewiseLinear({0.0}, {slip_rpm}), rig_models::PiecewiseLinear({0.0}, {force_N})};
+components::DriveCycle steady_cycle(double force_N, double slip_rpm) {
+  return {components::PiecewiseLinear({0.0}, {slip_rpm}), components::PiecewiseLinear({0.0}, {force_N})};
 }
 
 // Every ring at temp_C, the force of `rig`'s cycle.
-rig_models::ClutchHeldInputs uniform_inputs(const rig_models::LsctrRig& rig, const clutch::WetClutch& clutch,
+components::ClutchHeldInputs uniform_inputs(const rig_models::LsctrRig& rig, const clutch::WetClutch& clutch,
                                             double temp_C) {
-  rig_models::ClutchHeldInputs in = rig.start_inputs();
+  components::ClutchHeldInputs in = rig.start_inputs();
   in.ring_temp_C = Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), temp_C);
   return in;
 }
 
 // Steady clutch torque above the motor's limit: the speed loop cannot hold the slip.
-bool motor_saturates(const rig_models::LsctrRig& rig, rig_models::ClutchContext& clutch, double slip_rad_s,
+bool motor_saturates(const rig_models::LsctrRig& rig, components::ClutchContext& clutch, double slip_rad_s,
                      double t_s) {
   if (slip_rad_s == 0.0) return false;  // stuck: the torque is whatever the bar carries
   return rig.clutch_contact().kinetic_torque_Nm(clutch, std::abs(slip_rad_s), t_s) > rig.params().motor_torque_limit_Nm;
@@ -48,7 +48,7 @@ StabilityPoint linearise_rig(const dynamics::TorsionalNetwork& network, double s
 }
 
 // The stability of `network` (the rig's, its clutch law bound to `clutch`) at one slip.
-StabilityPoint stability_at(const rig_models::LsctrRig& rig, rig_models::ClutchContext& clutch,
+StabilityPoint stability_at(const rig_models::LsctrRig& rig, components::ClutchContext& clutch,
                             const dynamics::TorsionalNetwork& network, double slip_rpm, double t_s = 0.0) {
   const double slip = units::rpm_to_rad_s(slip_rpm);
   if (motor_saturates(rig, clutch, slip, t_s))
@@ -62,9 +62,9 @@ StabilityPoint stability_at(const rig_models::LsctrRig& rig, rig_models::ClutchC
 
 }  // namespace
 
-StabilityPoint rig_stability(const rig_models::LsctrRig& rig, const rig_models::ClutchHeldInputs& clutch_inputs,
+StabilityPoint rig_stability(const rig_models::LsctrRig& rig, const components::ClutchHeldInputs& clutch_inputs,
                              double slip_rpm, double t_s) {
-  const auto context = std::make_shared<rig_models::ClutchContext>(clutch_inputs);
+  const auto context = std::make_shared<components::ClutchContext>(clutch_inputs);
   return stability_at(rig, *context, rig.network(context), slip_rpm, t_s);
 }
 
@@ -93,7 +93,7 @@ StabilityMap stability_map(const rig_models::RigParams& params, const clutch::We
 
   // One rig: the speed reference only feeds the motor's steady state, not its linear loop.
   const rig_models::LsctrRig rig(params, clutch, steady_cycle(force_N, speeds_rpm.empty() ? 0.0 : speeds_rpm.front()));
-  const auto context = std::make_shared<rig_models::ClutchContext>(rig.start_inputs());
+  const auto context = std::make_shared<components::ClutchContext>(rig.start_inputs());
   const dynamics::TorsionalNetwork network = rig.network(context);
   // Temperatures outside: setting them rebuilds the law's frozen friction once per column.
   for (Eigen::Index j = 0; j < nt; ++j) {
@@ -126,7 +126,7 @@ double critical_bar_damping_ratio(const rig_models::RigParams& params, const clu
   p.bar_stiffness_Nm_per_rad =
       rig_models::LsctrRig(params, clutch, steady_cycle(force_N, slip_rpm)).bar_stiffness_Nm_per_rad();
   const rig_models::LsctrRig rig(p, clutch, steady_cycle(force_N, slip_rpm));
-  const auto context = std::make_shared<rig_models::ClutchContext>(uniform_inputs(rig, clutch, interface_temp_C));
+  const auto context = std::make_shared<components::ClutchContext>(uniform_inputs(rig, clutch, interface_temp_C));
   const auto margin = [&](double zeta) {
     return stability_at(rig, *context, rig.network(context, zeta), slip_rpm).margin_per_s;
   };
@@ -149,12 +149,12 @@ CriticalBar critical_bar(const rig_models::RigParams& params, const clutch::WetC
   // The bar is given by its frequency (stiffness derived from the modal analysis).
   rig_models::RigParams p = params;
   p.bar_stiffness_Nm_per_rad = 0.0;
-  const rig_models::DriveCycle cycle = steady_cycle(force_N, slip_rpm);
-  std::shared_ptr<rig_models::ClutchContext> context;  // the operating point, made with the first rig
+  const components::DriveCycle cycle = steady_cycle(force_N, slip_rpm);
+  std::shared_ptr<components::ClutchContext> context;  // the operating point, made with the first rig
   const auto unstable = [&](double f) {
     p.bar_natural_frequency_Hz = f;
     const rig_models::LsctrRig rig(p, clutch, cycle);
-    if (!context) context = std::make_shared<rig_models::ClutchContext>(uniform_inputs(rig, clutch, interface_temp_C));
+    if (!context) context = std::make_shared<components::ClutchContext>(uniform_inputs(rig, clutch, interface_temp_C));
     return stability_at(rig, *context, rig.network(context), slip_rpm).margin_per_s > 0.0;
   };
   const bool lo_unstable = unstable(lo_Hz);

@@ -32,7 +32,7 @@ using analysis::StabilityPoint;
 /// Linearises `rig` about steady sliding at `slip_rpm` (0: clutch stuck) with the clutch at the
 /// operating point `clutch_inputs` (ring temperatures, clamp force), the laws evaluated at `t_s`.
 /// Throws std::invalid_argument if the steady clutch torque exceeds the motor's torque limit.
-StabilityPoint rig_stability(const rig_models::LsctrRig& rig, const rig_models::ClutchHeldInputs& clutch_inputs,
+StabilityPoint rig_stability(const rig_models::LsctrRig& rig, const components::ClutchHeldInputs& clutch_inputs,
                              double slip_rpm, double t_s = 0.0);
 
 /// Builds the rig with a constant-force, constant-speed cycle and linearises at `slip_rpm` with

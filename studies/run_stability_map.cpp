@@ -21,7 +21,7 @@ std::vector<double> linspace(double lo, double hi, int n) {
 }  // namespace
 
 dynamics::Map2D run_stability_map(const rig_models::RigParams& params, const clutch::WetClutch& clutch,
-                                  const rig_models::DriveCycle& cycle, double start_temp_C,
+                                  const components::DriveCycle& cycle, double start_temp_C,
                                   const RunStabilityMapSettings& s) {
   if (s.n_speeds < 2 || s.n_temps < 2)
     throw std::invalid_argument("stability map: need at least 2 speeds and 2 temperatures");

@@ -20,7 +20,7 @@
 
 #include "clutch/wet_clutch.hpp"
 #include "dynamics/recording.hpp"
-#include "rig_models/drive_cycle.hpp"
+#include "components/drive_cycle.hpp"
 #include "rig_models/lsctr_rig.hpp"
 
 namespace shudder::studies {
@@ -38,7 +38,7 @@ struct RunStabilityMapSettings {
 /// Throws std::invalid_argument for a cycle that never loads the clutch, fewer than 2 points on
 /// an axis or an empty span.
 dynamics::Map2D run_stability_map(const rig_models::RigParams& params, const clutch::WetClutch& clutch,
-                                  const rig_models::DriveCycle& cycle, double start_temp_C,
+                                  const components::DriveCycle& cycle, double start_temp_C,
                                   const RunStabilityMapSettings& settings = {});
 
 }  // namespace shudder::studies

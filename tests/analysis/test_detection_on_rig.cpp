@@ -113,7 +113,7 @@ TEST(DetectionOnRig, NegativeSlopeFluidIsVibrationAtTheClutchSideFrequency) {
   const auto clutch = sc.make_clutch();
   const auto rig_model = shudder::test::rig_model(sc);
   const shudder::rig_models::LsctrRig rig(rig_model.params, clutch, rig_model.cycle);
-  shudder::rig_models::ClutchContext start(
+  shudder::components::ClutchContext start(
       {clutch.thermal().interface_temps_C(clutch.initial_state()), rig_model.cycle.normal_force_N});
   const double slope_Nms =
       rig.clutch_contact().kinetic_torque_slope_Nms(start, shudder::units::rpm_to_rad_s(30.0), 0.0);

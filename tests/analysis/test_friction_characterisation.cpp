@@ -43,7 +43,7 @@ TEST(MakiFit, RecoversAPaperGSetFromExactSamples) {
   EXPECT_NEAR(p[1], 0.001, 1e-5);
 }
 
-analysis::RampRun profile_run(const rig_models::DriveCycle& cycle, double duration_s) {
+analysis::RampRun profile_run(const components::DriveCycle& cycle, double duration_s) {
   analysis::RampRun r;
   r.name = "profile";
   for (double t = 0.0; t <= duration_s + 1e-9; t += 0.01) {
@@ -79,9 +79,9 @@ TEST(RampSearch, RejectsAStepALoadChangeAndASmallSweep) {
   // Paper E's return from 100 to 1 rpm is a step (rejected: too short); a ramp during which
   // the load doubles is no row of a matrix; a 1 -> 15 rpm sweep spans too little.
   // The 26 -> 29 s return to 1 rpm is a proper (3 s) down-ramp and is used.
-  rig_models::DriveCycle c{
-      rig_models::PiecewiseLinear({0, 3, 13, 13.01, 16, 26, 29, 31}, {1, 1, 100, 1, 1, 100, 1, 15}),
-      rig_models::PiecewiseLinear({0, 15, 16, 26}, {20000, 20000, 10000, 20000})};
+  components::DriveCycle c{
+      components::PiecewiseLinear({0, 3, 13, 13.01, 16, 26, 29, 31}, {1, 1, 100, 1, 1, 100, 1, 15}),
+      components::PiecewiseLinear({0, 15, 16, 26}, {20000, 20000, 10000, 20000})};
   const auto found = analysis::find_ramps(profile_run(c, 33.0), 0);
   ASSERT_EQ(found.ramps.size(), 2u);
   EXPECT_NEAR(found.ramps[0].t_start_s, 3.0, 0.11);

@@ -70,7 +70,7 @@ TEST(CliDriveline, RejectsBothTurnKeys) {
                   {"s.toml", "turn_radius_m", "either"});
 }
 
-// The tyres' slip stiffness: c_κ F_z or an absolute C_κ, not both (rig_models/tyre.hpp).
+// The tyres' slip stiffness: c_κ F_z or an absolute C_κ, not both (components/tyre.hpp).
 TEST(CliDriveline, RejectsBothTyreSlipStiffnesses) {
   expect_rejected(
       test::run_scenario_in("cli_driveline_kappa", tight_turn("\n[driveline]\ntyre_slip_stiffness_N = 1.5e5\n"

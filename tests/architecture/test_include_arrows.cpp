@@ -23,8 +23,8 @@ const std::map<std::string, std::set<std::string>>& allowed() {
       {"clutch", {"core"}},
       {"dynamics", {"core"}},
       {"analysis", {"core", "clutch", "dynamics"}},
-      {"rig_models", {"core", "clutch", "dynamics"}},  // the machines: no analysis
-      {"components", {"core", "clutch", "dynamics", "rig_models"}},
+      {"components", {"core", "clutch", "dynamics"}},                // the elements and the network
+      {"rig_models", {"core", "clutch", "dynamics", "components"}},  // the machines: no analysis
       {"studies", {"core", "clutch", "dynamics", "analysis", "rig_models", "components"}},
       {"io", {"core", "clutch", "dynamics", "analysis", "rig_models", "components", "studies"}},
       {"report", {"core", "clutch", "dynamics", "analysis", "rig_models", "components", "studies", "io"}},

@@ -9,7 +9,7 @@
 #include <complex>
 #include <memory>
 
-#include "rig_models/tyre.hpp"
+#include "components/tyre.hpp"
 #include "tests/dynamics/test_laws.hpp"
 
 namespace shudder::dynamics {
@@ -70,7 +70,7 @@ TEST(Linearisation, SlippingContactSlopeIsDamping) {
 //   δu̇ = r (δω_w − δω_v) − (V/σ) δu,  J_w δω̇_w = −r k_u δu,  J_v δω̇_v = r k_u δu  (k_u = C_κ/σ)
 //   ⇒ δü + (V/σ) δu̇ + r² k_u (1/J_w + 1/J_v) δu = 0: the tyre's slip damping falls with speed.
 TEST(Linearisation, TyreRelaxationMatchesClosedForm) {
-  rig_models::TyreParams tp;
+  components::TyreParams tp;
   tp.slip_stiffness_N = 1.2e5;
   tp.relaxation_length_m = 0.4;
   tp.vertical_load_N = 5000.0;
@@ -80,7 +80,7 @@ TEST(Linearisation, TyreRelaxationMatchesClosedForm) {
     TorsionalNetwork net;
     net.add_inertia({"wheel", jw});
     net.add_inertia({"car", jv});
-    net.add_force_element({"tyre", 0, 1, 1.0, std::make_shared<rig_models::BrushTyre>(tp)});
+    net.add_force_element({"tyre", 0, 1, 1.0, std::make_shared<components::BrushTyre>(tp)});
     LinearOperatingPoint op;
     op.omega_rad_s = Eigen::Vector2d(v / tp.radius_m, v / tp.radius_m);
     op.element_states = Eigen::VectorXd::Zero(1);

@@ -30,7 +30,7 @@
 #include "fmu/step_split.hpp"
 #include "fmu/variables.hpp"
 #include "io/hdf5_run.hpp"
-#include "rig_models/drive_cycle.hpp"
+#include "components/drive_cycle.hpp"
 
 namespace shudder {
 namespace {
@@ -82,8 +82,8 @@ void set(Fmu& f, fmi2Component c, unsigned ref, double v) { EXPECT_EQ(f.fmi2SetR
 // interfaces, 60 °C start, viscous shear on (parameters away from the defaults).
 struct Drive {
   std::vector<double> time_s, slip_rpm, force_N;
-  rig_models::PiecewiseLinear slip() const { return {time_s, slip_rpm}; }
-  rig_models::PiecewiseLinear force() const { return {time_s, force_N}; }
+  components::PiecewiseLinear slip() const { return {time_s, slip_rpm}; }
+  components::PiecewiseLinear force() const { return {time_s, force_N}; }
 };
 const Drive kDrive = {{0.0, 0.4, 1.0, 1.5}, {5.0, 60.0, 30.0, 80.0}, {8000.0, 20000.0, 15000.0, 25000.0}};
 // Ten minutes of engagements: slip and force swing every 30 s (the temperatures rise and fall).
@@ -151,8 +151,8 @@ void configure(Fmu& f, fmi2Component c) {
 
 // The scenario's inputs of internal step k (time k·h from the start), the slip given as speed
 // a alone so the FMU's slip a − b is the scenario's to the bit.
-void set_inputs(Fmu& f, fmi2Component c, long k, const rig_models::PiecewiseLinear& slip_rpm,
-                const rig_models::PiecewiseLinear& force_N) {
+void set_inputs(Fmu& f, fmi2Component c, long k, const components::PiecewiseLinear& slip_rpm,
+                const components::PiecewiseLinear& force_N) {
   const double t = static_cast<double>(k) * kStep;
   set(f, c, vr::kSpeedA, units::rpm_to_rad_s(slip_rpm(t)));
   set(f, c, vr::kSpeedB, 0.0);

@@ -164,7 +164,7 @@ TEST(NetworkScenario, OutOfRangeAndMalformedInputsAreInputErrors) {
   refused(two_inertias("[network.tyre]\ntype = \"tyre\"\nwheel = \"wheel_side\"\nvehicle = \"engine_side\"\n"
                        "vertical_load_N = 4000\n"),
           "not a component of type \"vehicle\"");
-  // A tyre's load and slip stiffness: one source each (rig_models/tyre.hpp).
+  // A tyre's load and slip stiffness: one source each (components/tyre.hpp).
   const std::string car =
       "[network.car]\ntype = \"vehicle\"\nmass_kg = 1500\nwheel_radius_m = 0.3\n"
       "wheelbase_m = 2.5\nfront_axle_load_share = 0.6\ncg_height_m = 0.5\n";

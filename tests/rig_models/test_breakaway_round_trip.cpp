@@ -25,8 +25,8 @@ analysis::RampRun rig_run_from_rest(double breakaway_ratio, unsigned seed) {
   sc.fluid.breakaway_ratio = breakaway_ratio;
   auto& m = test::rig_model(sc);
   // Held at rest (stuck) for 0.3 s, then a 10 rpm/s ramp to 10 rpm at 15 kN.
-  m.cycle = {rig_models::PiecewiseLinear({0.0, 0.3, 1.3}, {0.0, 0.0, 10.0}),
-             rig_models::PiecewiseLinear({0.0}, {15000.0})};
+  m.cycle = {components::PiecewiseLinear({0.0, 0.3, 1.3}, {0.0, 0.0, 10.0}),
+             components::PiecewiseLinear({0.0}, {15000.0})};
   m.settings.duration_s = 1.3;
   m.settings.sample_rate_Hz = 1000.0;  // a rig logger's rate; the wind-up lasts ~50 samples
   const dynamics::Recording rec = rig_models::run_rig(m.params, sc.make_clutch(), m.cycle, m.settings);

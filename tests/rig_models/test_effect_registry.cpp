@@ -53,11 +53,11 @@ io::Range toml_range(const rig_models::ValueRange& r) { return {r.min, r.max, r.
 // The parameter structs as a scenario that omits `[effects]` has them.
 struct Defaults {
   clutch::WetClutchParams clutch;
-  rig_models::BearingDrag bearing_drag;
-  rig_models::StickTimeFriction stick_time;
-  rig_models::TorqueCell torque_cell;
-  rig_models::LoadCell load_cell;
-  rig_models::FrictionDrift friction_drift;
+  components::BearingDrag bearing_drag;
+  components::StickTimeFriction stick_time;
+  components::TorqueCell torque_cell;
+  components::LoadCell load_cell;
+  components::FrictionDrift friction_drift;
   rig_models::EffectTarget target() {
     return {clutch, bearing_drag, stick_time, torque_cell, load_cell, friction_drift};
   }

@@ -1,4 +1,4 @@
-// Friction outside its data (clutch/friction_data_range, rig_models/friction_range_block):
+// Friction outside its data (clutch/friction_data_range, components/friction_range_block):
 // the tally against hand-counted steps, and a prescribed-slip run at 5 kN (below fluid C's
 // 10 kN first load) that says so for its whole duration, once, in its block.
 #include <gmock/gmock.h>
@@ -7,7 +7,7 @@
 #include "clutch/friction_data_range.hpp"
 #include "clutch/maki_friction.hpp"
 #include "io/fluid_loader.hpp"
-#include "rig_models/friction_range_block.hpp"
+#include "components/friction_range_block.hpp"
 #include "tests/support/ramp_runs.hpp"
 
 namespace {
@@ -35,7 +35,7 @@ TEST(FrictionDataRange, CountsEachRangeAndEachStepOnce) {
   EXPECT_DOUBLE_EQ(r.load_above_s, 3.0);
   EXPECT_DOUBLE_EQ(r.min_speed_mm_s, 4.0);
   EXPECT_DOUBLE_EQ(r.max_speed_mm_s, 1000.0);
-  const auto b = rig_models::friction_range_block(r);
+  const auto b = components::friction_range_block(r);
   EXPECT_DOUBLE_EQ(b.find_scalar("fraction_outside")->value, 0.9);
   EXPECT_THAT(b.find_text("summary")->value,
               ::testing::HasSubstr("clamp force up to 3e+04 N, above the data's 2.5e+04 N for 30 % of the run"));
@@ -47,10 +47,10 @@ TEST(FrictionDataRange, APrescribedSlipRunBelowTheMatrixLoadsSaysSoInItsBlock) {
   p.start_temp_C = p.sump_start_temp_C = 60.0;
   rig_models::PrescribedSlipSettings s;
   s.duration_s = 2.0;
-  const rig_models::DriveCycle cycle{rig_models::PiecewiseLinear({0.0}, {30.0}),
-                                     rig_models::PiecewiseLinear({0.0}, {5000.0})};
+  const components::DriveCycle cycle{components::PiecewiseLinear({0.0}, {30.0}),
+                                     components::PiecewiseLinear({0.0}, {5000.0})};
   const auto rec = rig_models::run_prescribed_slip(clutch::WetClutch(p, fluid), cycle, s);
-  const auto* b = rec.find_block(rig_models::kFrictionRangeBlock);
+  const auto* b = rec.find_block(components::kFrictionRangeBlock);
   ASSERT_NE(b, nullptr);
   EXPECT_DOUBLE_EQ(b->find_scalar("fraction_load_below")->value, 1.0);
   EXPECT_DOUBLE_EQ(b->find_scalar("fraction_speed_below")->value, 0.0);  // 30 rpm: 120–180 mm/s

@@ -64,7 +64,7 @@ TEST(HaldexDriveline, LockedStraightDrivingAcceleratesLikeOneInertia) {
   DrivelineParams p = without_road_load();
   p.hydraulics.preload_torque_Nm = 5000.0;  // locked throughout: a test of the network
   DrivelineInputs in;
-  in.engine_torque_Nm = PiecewiseLinear({0.0}, {100.0});
+  in.engine_torque_Nm = components::PiecewiseLinear({0.0}, {100.0});
   in.start_speed_km_h = 10.0;
   DrivelineSettings s;
   s.duration_s = 3.0;
@@ -128,7 +128,7 @@ TEST(HaldexDriveline, LockedTightTurnWindsUpTheClosedFormTorqueAtAnySpeed) {
   // 811 N m: the tyres' slip stiffness c_κ F_z (tyre.hpp) is 0.42–0.63 of the former fixed
   // 1.5e5 N, so the same kinematic mismatch winds up less torque.
   ASSERT_GT(expected.rear_axle_torque_Nm, 500.0);
-  in.engine_torque_Nm = PiecewiseLinear({0.0}, {expected.engine_torque_Nm});
+  in.engine_torque_Nm = components::PiecewiseLinear({0.0}, {expected.engine_torque_Nm});
   std::vector<double> torques;
   for (double speed_km_h : {5.0, 10.0, 20.0}) {
     in.start_speed_km_h = speed_km_h;
@@ -186,7 +186,7 @@ TEST(HaldexDriveline, SplitMuLaunchSpinsTheIceWheelAndDrivesTheRear) {
   DrivelineParams p;
   DrivelineInputs in;
   in.road_friction = {0.1, 1.0, 1.0, 1.0};  // front left on ice
-  in.engine_torque_Nm = PiecewiseLinear({0.0}, {250.0});
+  in.engine_torque_Nm = components::PiecewiseLinear({0.0}, {250.0});
   DrivelineSettings s;
   s.duration_s = 1.5;
   const auto rec = run_driveline(p, pack.clutch, in, s);
@@ -238,8 +238,8 @@ TEST(HaldexDriveline, OpenCouplingDrivesTheFrontAxleOnly) {
   p.hydraulics.preload_torque_Nm = 0.0;
   p.turn_ratio = 1.04;  // slip pumps, but the valve is shut
   DrivelineInputs in;
-  in.engine_torque_Nm = PiecewiseLinear({0.0}, {80.0});
-  in.valve_pressure_bar = PiecewiseLinear({0.0}, {0.0});
+  in.engine_torque_Nm = components::PiecewiseLinear({0.0}, {80.0});
+  in.valve_pressure_bar = components::PiecewiseLinear({0.0}, {0.0});
   in.start_speed_km_h = 5.0;
   DrivelineSettings s;
   s.duration_s = 1.0;
@@ -265,9 +265,9 @@ dynamics::Recording tight_turn(const Pack& pack) {
   // with this fluid (measured: 0 stick events; docs/driveline.md).
   p.hydraulics.preload_torque_Nm = 50.0;
   DrivelineInputs in;
-  in.engine_torque_Nm = PiecewiseLinear({0.0, 0.5, 5.0}, {0.0, 30.0, 30.0});
+  in.engine_torque_Nm = components::PiecewiseLinear({0.0, 0.5, 5.0}, {0.0, 30.0, 30.0});
   in.start_speed_km_h = 5.0;
-  in.valve_pressure_bar = PiecewiseLinear({0.0}, {30.0});  // raw: the valve shut up to the relief
+  in.valve_pressure_bar = components::PiecewiseLinear({0.0}, {30.0});  // raw: the valve shut up to the relief
   DrivelineSettings s;
   s.duration_s = 5.0;
   auto rec = run_driveline(p, pack.clutch, in, s);

@@ -57,7 +57,7 @@ using shudder::test::signal;
 using shudder::test::record;
 
 // The closed forms below describe the undisturbed rig, so the motor's torque ripple (
-// tests/rig_models/test_motor_ripple.cpp) is switched off in every run of this file.
+// tests/components/test_motor_ripple.cpp) is switched off in every run of this file.
 shudder::rig_models::RigParams without_ripple(shudder::rig_models::RigParams p) {
   p.motor_ripple.amplitude_Nm = 0.0;
   return p;
@@ -503,7 +503,7 @@ TEST(RigStickSlip, SlipReturnsToZeroEveryCycleStuckIsExactAndTheJumpIsTwiceTheFr
 
   const LsctrRig rig(shudder::test::rig_model(sc).params, clutch, shudder::test::rig_model(sc).cycle);
   const auto& law = rig.clutch_contact();
-  shudder::rig_models::ClutchContext start(rig.start_inputs());
+  shudder::components::ClutchContext start(rig.start_inputs());
   const double t_mid = 0.5;  // constant force: any time
   const double T_s = law.static_capacity_Nm(start, t_mid, 0.0);
   const double T_k = law.kinetic_torque_Nm(start, 0.0, t_mid);

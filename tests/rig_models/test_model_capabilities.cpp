@@ -29,7 +29,7 @@ using rig_models::Model;
 struct Args {
   const clutch::WetClutch& clutch;
   dynamics::Recording& rec;
-  const rig_models::StickTimeFriction& stick_time;
+  const components::StickTimeFriction& stick_time;
 };
 template <class M>
 concept HasKind = requires(const M& m) {
@@ -176,7 +176,7 @@ TEST(ModelCapabilities, AcceptingKindsYieldTheirOwnModel) {
   EXPECT_TRUE(rig_models::has_rig_plots(rig_model));
   EXPECT_FALSE(rig_models::has_rig_plots(ps_model));
 
-  rig_models::StickTimeFriction on;
+  components::StickTimeFriction on;
   on.enabled = true;
   const studies::ReplayModel ps_replay = studies::replay_model(ps_model, on);
   EXPECT_EQ(ps_replay.kind, ModelKind::kPrescribedSlip);

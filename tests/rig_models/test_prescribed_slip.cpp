@@ -17,7 +17,7 @@
 #include "clutch/wet_clutch.hpp"
 #include "core/units.hpp"
 #include "io/fluid_loader.hpp"
-#include "rig_models/drive_cycle.hpp"
+#include "components/drive_cycle.hpp"
 #include "rig_models/prescribed_slip.hpp"
 #include "tests/support/recording.hpp"
 
@@ -25,9 +25,9 @@ namespace {
 
 using shudder::clutch::WetClutch;
 using shudder::clutch::WetClutchParams;
+using shudder::components::DriveCycle;
+using shudder::components::PiecewiseLinear;
 using shudder::dynamics::Recording;
-using shudder::rig_models::DriveCycle;
-using shudder::rig_models::PiecewiseLinear;
 using shudder::rig_models::PrescribedSlipSettings;
 using shudder::rig_models::run_prescribed_slip;
 

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "io/scenario.hpp"
-#include "rig_models/drive_cycle.hpp"
+#include "components/drive_cycle.hpp"
 #include "rig_models/model.hpp"
 
 namespace shudder {
@@ -112,7 +112,7 @@ TEST(PrescribedSlipBdf2, SamplesInsideAStepFollowTheCycleAndTheFriction) {
   Runs runs;
   auto& m = std::get<rig_models::PrescribedSlipModel>(runs.sc.model);
   m.settings.duration_s = 0.5;
-  m.cycle.slip_speed_rpm = rig_models::PiecewiseLinear({0.0, 0.015, 0.5}, {1.0, 3.0, 5.0});
+  m.cycle.slip_speed_rpm = components::PiecewiseLinear({0.0, 0.015, 0.5}, {1.0, 3.0, 5.0});
   const auto coarse = runs.run(ThermalScheme::kBdf2, 0.04);
   const auto fine = runs.run(ThermalScheme::kBdf2, 0.00125);
   const auto& t = values(coarse, "time_s");
@@ -133,8 +133,8 @@ TEST(PrescribedSlipBdf2, AbruptCycleStaysWithinBackwardEulerAtTenMilliseconds) {
   auto& m = std::get<rig_models::PrescribedSlipModel>(runs.sc.model);
   m.settings.duration_s = 6.0;
   m.settings.snapshot_times_s.clear();
-  m.cycle.slip_speed_rpm = rig_models::PiecewiseLinear({0.0, 3.0, 3.002, 6.0}, {60.0, 60.0, 5.0, 5.0});
-  m.cycle.normal_force_N = rig_models::PiecewiseLinear({0.0, 1.0, 1.005, 6.0}, {2000.0, 2000.0, 25300.0, 25300.0});
+  m.cycle.slip_speed_rpm = components::PiecewiseLinear({0.0, 3.0, 3.002, 6.0}, {60.0, 60.0, 5.0, 5.0});
+  m.cycle.normal_force_N = components::PiecewiseLinear({0.0, 1.0, 1.005, 6.0}, {2000.0, 2000.0, 25300.0, 25300.0});
   const auto ref = runs.run(ThermalScheme::kBackwardEuler, 0.0005);
   const auto be10 = runs.run(ThermalScheme::kBackwardEuler, 0.01);
   const auto bdf = runs.run(ThermalScheme::kBdf2, 0.04);

@@ -20,7 +20,7 @@
 #include "core/units.hpp"
 #include "io/scenario.hpp"
 #include "studies/driveline_stability.hpp"
-#include "rig_models/energy_guard.hpp"
+#include "components/energy_guard.hpp"
 #include "rig_models/model.hpp"
 #include "studies/recording_detection.hpp"
 
@@ -78,8 +78,8 @@ TEST(DrivelineOnset, CoastDownOnsetChangesLessThanFivePercentWhenTheThermalStepI
     EXPECT_NEAR(r->verdict.frequency_Hz, mode_Hz, 0.05 * mode_Hz);
     // Grown out of steady sliding, not left over from the start: after the 2 s take-up.
     EXPECT_GT(r->verdict.onset_time_s, 3.0);
-    // The energy accounts close at every step (rig_models/energy_guard.hpp: 1e-6 / 1e-3).
-    EXPECT_EQ(energy_balance_violation(r->rec), "");
+    // The energy accounts close at every step (components/energy_guard.hpp: 1e-6 / 1e-3).
+    EXPECT_EQ(components::energy_balance_violation(r->rec), "");
   }
   EXPECT_LT(std::abs(b.verdict.onset_time_s / a.verdict.onset_time_s - 1.0), 0.05);
   EXPECT_LT(std::abs(c.verdict.onset_time_s / b.verdict.onset_time_s - 1.0), 0.05);

@@ -43,7 +43,7 @@ dynamics::Recording simulate_at(const TakeUp& c, double force_N, double duration
   params.hydraulics.preload_torque_Nm =
       force_N * c.clutch.params().sliding_interfaces * params.nominal_friction * c.clutch.mean_radius_m();
   DrivelineInputs in = c.inputs;
-  in.valve_pressure_bar = PiecewiseLinear({0.0}, {0.0});
+  in.valve_pressure_bar = components::PiecewiseLinear({0.0}, {0.0});
   DrivelineSettings settings;
   settings.duration_s = duration_s;
   return run_driveline(params, c.clutch, in, settings);
@@ -85,7 +85,7 @@ TEST(DrivelinePrediction, TakeUpJudderOnsetAndFrequencyMatchTheSimulation) {
   TakeUp c = take_up();
   // The predicted system is the simulated one: the valve's setting at 0 (simulate_at), so the
   // relief valve passes the pump's flow and the pressure follows the slip as simulated.
-  c.inputs.valve_pressure_bar = PiecewiseLinear({0.0}, {0.0});
+  c.inputs.valve_pressure_bar = components::PiecewiseLinear({0.0}, {0.0});
   // The engine holds the car's speed against the coupling's scrub and the road load (so the
   // operating point stays where it was predicted): T_e s_e = M_c (s_in − s_out) + F_road r.
   {
@@ -97,7 +97,7 @@ TEST(DrivelinePrediction, TakeUpJudderOnsetAndFrequencyMatchTheSimulation) {
     const double hold = (m_c * (s[D::kCouplingIn] - s[D::kCouplingOut]) +
                          dl.road_load().force_N(op.vehicle_speed_m_s) * c.params.wheel_radius_m) /
                         s[D::kEngine];
-    c.inputs.engine_torque_Nm = PiecewiseLinear({0.0}, {hold});
+    c.inputs.engine_torque_Nm = components::PiecewiseLinear({0.0}, {hold});
   }
   const HaldexDriveline dl(c.params, c.clutch, c.inputs);
   // The bracket holds the one crossing: stable at 50 N, unstable at 3 kN (+186 1/s). Not 5 kN:

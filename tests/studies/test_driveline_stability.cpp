@@ -25,7 +25,7 @@ io::Scenario tight_turn() {
 DrivelineInputs take_up_inputs() {
   DrivelineInputs in;
   in.start_speed_km_h = 10.0;
-  in.valve_pressure_bar = PiecewiseLinear({0.0}, {3.0});
+  in.valve_pressure_bar = components::PiecewiseLinear({0.0}, {3.0});
   return in;
 }
 
@@ -93,7 +93,7 @@ TEST(DrivelineStability, MatrixEqualsFiniteDifferenceJacobianOfTheNonlinearRhs) 
   auto model = std::get<DrivelineModel>(sc.model);
   model.params.turn_ratio = 1.1;
   DrivelineInputs in = take_up_inputs();
-  in.throttle = PiecewiseLinear({0.0}, {0.1});
+  in.throttle = components::PiecewiseLinear({0.0}, {0.1});
   const clutch::WetClutch clutch(
       sc.clutch, io::load_fluid(std::string(SHUDDER_SOURCE_DIR) + "/scenarios/fluids/schematic_negative_slope.toml"));
   const HaldexDriveline dl(model.params, clutch, in);
@@ -106,7 +106,7 @@ TEST(DrivelineStability, MatrixEqualsFiniteDifferenceJacobianOfTheNonlinearRhs) 
   const studies::DrivelineStability st = studies::driveline_stability(dl, clutch, op, false);
   ASSERT_LT(st.coupling_slope_Nms, 0.0);
 
-  auto ctx = std::make_shared<ClutchContext>(dl.start_inputs());
+  auto ctx = std::make_shared<components::ClutchContext>(dl.start_inputs());
   ctx->set_ring_temperatures(Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), op.interface_temp_C));
   const dynamics::TorsionalNetwork net = dl.network(ctx);
   // The same operating point as driveline_stability: its node speeds and tyre deflections.

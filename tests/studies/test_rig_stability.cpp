@@ -43,11 +43,11 @@ namespace {
 
 using shudder::analysis::StabilityPoint;
 using shudder::clutch::WetClutch;
+using shudder::components::DriveCycle;
+using shudder::components::PiecewiseLinear;
 using shudder::io::load_scenario;
 using shudder::io::Scenario;
-using shudder::rig_models::DriveCycle;
 using shudder::rig_models::LsctrRig;
-using shudder::rig_models::PiecewiseLinear;
 using shudder::studies::critical_bar;
 using shudder::studies::critical_bar_damping_ratio;
 using shudder::studies::rig_stability;
@@ -65,15 +65,15 @@ using shudder::test::record;
 // The rig at one operating point, with the clutch's rings at one temperature.
 struct Point {
   LsctrRig rig;
-  shudder::rig_models::ClutchHeldInputs clutch_inputs;  // the operating point's held inputs
+  shudder::components::ClutchHeldInputs clutch_inputs;  // the operating point's held inputs
   double slope_Nms;                                     // dM/d|Δω| of the clutch at the point
 };
 Point point(const Scenario& sc, const WetClutch& clutch, double force_N, double slip_rpm, double temp_C) {
   const DriveCycle cycle{PiecewiseLinear({0.0}, {slip_rpm}), PiecewiseLinear({0.0}, {force_N})};
   LsctrRig rig(shudder::test::rig_model(sc).params, clutch, cycle);
-  const shudder::rig_models::ClutchHeldInputs held{Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), temp_C),
+  const shudder::components::ClutchHeldInputs held{Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), temp_C),
                                                    cycle.normal_force_N};
-  shudder::rig_models::ClutchContext context(held);
+  shudder::components::ClutchContext context(held);
   const double s = rig.clutch_contact().kinetic_torque_slope_Nms(context, slip_rpm * kRadPerSPerRpm, 0.0);
   return {std::move(rig), held, s};
 }

@@ -67,7 +67,7 @@ TEST(SpeedSetpoint, RejectsMismatchedInputs) {
 }
 
 // Window means as the replay takes them (consecutive 0.05 s windows at their mean times).
-PiecewiseLinear window_means(const std::vector<double>& t, const std::vector<double>& x) {
+components::PiecewiseLinear window_means(const std::vector<double>& t, const std::vector<double>& x) {
   std::vector<double> tm, xm;
   for (std::size_t b = 0; b < t.size();) {
     std::size_t e = b;

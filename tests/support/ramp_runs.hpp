@@ -17,13 +17,13 @@
 
 namespace shudder::test {
 
-inline rig_models::DriveCycle paper_d_cycle(double load_N, double t_ramp_s = 10.0) {
+inline components::DriveCycle paper_d_cycle(double load_N, double t_ramp_s = 10.0) {
   const double t1 = 5.0, t2 = t1 + t_ramp_s, t3 = t2 + 2.0, t4 = t3 + t_ramp_s, t5 = t4 + 3.0;
-  return {rig_models::PiecewiseLinear({0.0, t1, t2, t3, t4, t5}, {1.0, 1.0, 100.0, 100.0, 1.0, 1.0}),
-          rig_models::PiecewiseLinear({0.0}, {load_N})};
+  return {components::PiecewiseLinear({0.0, t1, t2, t3, t4, t5}, {1.0, 1.0, 100.0, 100.0, 1.0, 1.0}),
+          components::PiecewiseLinear({0.0}, {load_N})};
 }
 
-inline rig_models::DriveCycle paper_e_cycle(double load_N, int ramps = 5) {
+inline components::DriveCycle paper_e_cycle(double load_N, int ramps = 5) {
   std::vector<double> t, w;
   for (int k = 0; k < ramps; ++k) {
     const double t0 = 13.0 * k;
@@ -32,7 +32,7 @@ inline rig_models::DriveCycle paper_e_cycle(double load_N, int ramps = 5) {
   }
   t.push_back(13.0 * ramps);
   w.push_back(1.0);
-  return {rig_models::PiecewiseLinear(t, w), rig_models::PiecewiseLinear({0.0}, {load_N})};
+  return {components::PiecewiseLinear(t, w), components::PiecewiseLinear({0.0}, {load_N})};
 }
 
 /// Another thermal model than the one the characterisations replay or compensate with, as a
@@ -54,7 +54,7 @@ inline void other_thermal_model(clutch::WetClutchParams& p) {
 /// parameters (another thermal model than the one the characterisation is judged by). `temp_channel` may name a model
 /// signal the measured run does not carry (e.g. interface_mean_temp_C: the temperature a
 /// sensor would need to read for exact compensation), taken noise-free from the recording.
-inline analysis::RampRun simulated_ramp_run(const clutch::Fluid& fluid, const rig_models::DriveCycle& cycle,
+inline analysis::RampRun simulated_ramp_run(const clutch::Fluid& fluid, const components::DriveCycle& cycle,
                                             double start_temp_C, unsigned seed, double rate_Hz = 100.0,
                                             const std::string& temp_channel = "temp_C",
                                             const std::function<void(clutch::WetClutchParams&)>& vary = {},
