@@ -91,6 +91,16 @@ std::optional<analysis::Peak> peak_near(const analysis::Spectrum& sp, double f, 
   }
 }
 
+// The spectrum's amplitude at `f`, linear between the bins around it; nullopt outside its bins.
+std::optional<double> amplitude_at(const analysis::Spectrum& sp, double f) {
+  const auto& fr = sp.frequency_Hz;
+  const auto above = std::upper_bound(fr.begin(), fr.end(), f);
+  if (above == fr.begin() || above == fr.end()) return std::nullopt;
+  const std::size_t k = static_cast<std::size_t>(above - fr.begin());
+  const double w = (f - fr[k - 1]) / (fr[k] - fr[k - 1]);
+  return (1.0 - w) * sp.amplitude[k - 1] + w * sp.amplitude[k];
+}
+
 }  // namespace
 
 Plot spectrum_plot(const Recording& rec, const std::string& name, const std::string& source) {
@@ -147,28 +157,53 @@ Plot spectrum_plot(const Recording& rec, const std::string& name, const std::str
     p.series.push_back(std::move(o));
   }
 
-  // The detected peak, interpolated in the spectrum the detector's frequency comes from.
   if (!(std::isfinite(f_focus) && f_focus < 0.5 * fs)) return p;
+  if (!shudder) {
+    // No shudder: the detector's own figures for its strongest oscillation (the frequency and
+    // amplitude the summary prints), marked on the whole record's curve at that frequency. The
+    // curve's own peak nearby may sit elsewhere: the detector judged its window (a network
+    // clutch's loaded part of the run), the curve is the whole record.
+    const auto level = amplitude_at(whole, f_focus);
+    if (!level) return p;
+    Series mark;
+    mark.label = "strongest oscillation the detector examined (no shudder detected)";
+    mark.x = {f_focus};
+    mark.y = {*level};
+    mark.style = SeriesStyle::kPoints;
+    mark.point_type = 6;
+    mark.point_size = 2.0;
+    mark.color = 1;
+    p.series.push_back(std::move(mark));
+    // Above the threshold yet none: the rule that a judder lasts (a driveline's or a network
+    // clutch's) set the oscillation aside as a transient.
+    const bool transient = det->amplitude_Nm >= det->threshold_Nm;
+    p.labels.push_back({f_focus, *level,
+                        "no shudder: largest oscillation " + plot_number("%.3g", det->amplitude_Nm) + " N m at " +
+                            plot_number("%.3g", f_focus) + " Hz\n" +
+                            (transient ? "above the threshold " + plot_number("%.3g", det->threshold_Nm) +
+                                             " N m but not sustained (a transient)"
+                                       : "under the threshold " + plot_number("%.3g", det->threshold_Nm) + " N m")});
+    p.caption =
+        "Amplitude spectrum of the judged torque over the whole record; the open circle marks the frequency of"
+        " the strongest oscillation the shudder detector examined, which stayed under its threshold or did not last. "
+        "Its"
+        " amplitude is the detector's (half the peak-to-peak of the torque less its one-period moving mean,"
+        " analysis/shudder_detection.hpp, definition 6), the curve's the fundamental's over the whole record.";
+    return p;
+  }
+  // The detected peak, interpolated in the spectrum the detector's frequency comes from.
   const auto peak = peak_near(osc ? *osc : whole, f_focus, fs);
   if (!peak) return p;  // no bin in the band (record too short for that frequency)
   const auto whole_peak = peak_near(whole, f_focus, fs);
   Series mark;
-  mark.label = shudder ? "detected shudder frequency" : "largest peak (no shudder detected)";
+  mark.label = "detected shudder frequency";
   mark.x = {peak->frequency_Hz};
   mark.y = {peak->amplitude};
   mark.style = SeriesStyle::kPoints;
-  mark.point_type = shudder ? 7 : 6;
+  mark.point_type = 7;
   mark.point_size = 2.0;
   mark.color = 1;
   p.series.push_back(std::move(mark));
-  if (!shudder) {
-    p.labels.push_back(
-        {peak->frequency_Hz, peak->amplitude, plot_number("%.1f", peak->frequency_Hz) + " Hz: no shudder detected"});
-    p.caption =
-        "Amplitude spectrum of the judged torque over the whole record; the open circle marks the"
-        " strongest peak the shudder detector examined, which stayed under its threshold.";
-    return p;
-  }
   const std::string detector = plot_number("%.3g", det->amplitude_Nm);
   p.labels.push_back(
       {peak->frequency_Hz, peak->amplitude,

@@ -207,6 +207,40 @@ TEST(CliPlot, NetworkSpectrumMarksTheRunsVerdict) {
   EXPECT_NEAR(std::stod(s[1]), std::stod(v[2]), 0.05);  // both printed to three digits
 }
 
+// A run that reads none: the spectrum's mark names the detector's strongest oscillation, the
+// figures the summary prints, not the whole record's spectral peak nearby (which, for a network
+// clutch judged over its loaded window, can lie a bin or more away).
+TEST(CliPlot, NetworkSpectrumOfANoneVerdictNamesTheDetectorsFigures) {
+  if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
+  const auto dir = scratch_dir("plot_network_none");
+  const auto run = run_cli("run " + source_path("scenarios/networks/four_inertia_chain.toml") + " -o c.h5", dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::smatch v;
+  ASSERT_TRUE(std::regex_search(run.out, v,
+                                std::regex("Verdict: none \\(largest oscillation ([0-9.]+) N m at ([0-9.]+) Hz\\)")))
+      << run.out;
+  const auto r = run_cli("plot c.h5 --what spectrum -o spectrum.svg", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string svg = slurp(dir / "spectrum.svg");
+  std::smatch s;
+  ASSERT_TRUE(std::regex_search(svg, s, std::regex("no shudder: largest oscillation ([0-9.]+) N m at ([0-9.]+) Hz")))
+      << svg;
+  EXPECT_EQ(s[1].str(), v[1].str());  // both printed to three digits
+  EXPECT_EQ(s[2].str(), v[2].str());
+  // The chain's clutches ring well above the threshold as they lock, once each: a transient,
+  // which the summary's none already says and the label must not call "under the threshold".
+  ASSERT_TRUE(
+      std::regex_search(svg, s, std::regex("above the threshold ([0-9.]+) N m but not sustained \\(a transient\\)")));
+  EXPECT_GT(std::stod(v[1]), std::stod(s[1]));
+  EXPECT_THAT(svg, Not(HasSubstr("under the threshold")));
+  // Prescribed slip at constant speed rings far below the threshold.
+  const auto quiet = run_in("plot_prescribed_none", short_prescribed_scenario(), "pg.h5");
+  ASSERT_EQ(run_cli("plot pg.h5 --what spectrum -o pg.svg", quiet).exit_code, 0);
+  const std::string quiet_svg = slurp(quiet / "pg.svg");
+  EXPECT_THAT(quiet_svg, HasSubstr("under the threshold"));
+  EXPECT_THAT(quiet_svg, Not(HasSubstr("not sustained")));
+}
+
 TEST(CliPlot, BadRequestsExitTwoNamingTheProblem) {
   const auto dir = run_in("plot_bad", short_rig_scenario(), "rig.h5");
   struct Case {
