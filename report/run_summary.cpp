@@ -210,11 +210,12 @@ void print_verdict(std::ostream& os, const char* label, const dynamics::Recordin
     return;
   }
   if (verdict == "none" && value("amplitude_Nm") >= value("threshold_Nm"))
-    // Above the threshold yet none: the driveline's sustained-oscillation rule discarded it.
-    std::snprintf(line, sizeof line,
-                  "%s: none (an oscillation of %.3g N m at %.2f Hz dies out before the end: not sustained; judged "
-                  "on %s)\n",
-                  label, value("amplitude_Nm"), value("peak_frequency_Hz"), text("judged_signals").c_str());
+    // Above the threshold yet none: the sustained-oscillation rule (keep_if_repeated) set it aside.
+    std::snprintf(
+        line, sizeof line,
+        "%s: none (an oscillation of %.3g N m at %.2f Hz that dies away or does not repeat: not sustained; judged "
+        "on %s)\n",
+        label, value("amplitude_Nm"), value("peak_frequency_Hz"), text("judged_signals").c_str());
   else if (verdict == "none")
     std::snprintf(line, sizeof line,
                   "%s: none (largest oscillation %.3g N m, under the threshold %.3g N m; judged on %s)\n", label,

@@ -7,7 +7,6 @@
 #include <stdexcept>
 #include <utility>
 
-#include "studies/transient_oscillation.hpp"
 #include "dynamics/signal_names.hpp"
 #include "studies/recording_detection.hpp"
 
@@ -30,27 +29,6 @@ std::pair<std::size_t, std::size_t> loaded_window(const std::vector<double>& stu
   std::size_t i1 = force.size();
   while (i1 > i0 && !(force[i1 - 1] > 0 && stuck[i1 - 1] < 0.5)) --i1;
   return {i0, i1};
-}
-
-// A verdict needs the oscillation to repeat (studies/transient_oscillation.hpp): stick-slip at
-// least two stick onsets in the window; a vibration kMinJudgedCycles cycles whose swings pass
-// half the verdict's threshold, and an amplitude over the window's last two periods at least half
-// the largest period's (a ringing that dies out is the drivetrain answering a step, not judder). One transient (a force
-// ramp's corner) reads as none, its amplitude and peak frequency kept, as the detector's own rule for a record without
-// oscillation.
-void confirm_repeated(const studies::RecordingDetection& d, analysis::ShudderResult& r) {
-  if (r.verdict == analysis::Verdict::kNone || !(r.frequency_Hz > 0)) return;
-  if (r.verdict == analysis::Verdict::kStickSlip && stick_onsets(d.input.stuck) >= 2) return;
-  const int swings = oscillation_swings(d.input.time_s, d.input.torque_Nm, r.frequency_Hz, 0.5 * r.threshold_Nm);
-  const auto periods = period_amplitudes_from_end(d.input.time_s, d.input.torque_Nm, r.frequency_Hz);
-  const bool sustained =
-      periods.size() >= 2 && 0.5 * (periods[0] + periods[1]) >= 0.5 * *std::max_element(periods.begin(), periods.end());
-  if (r.verdict == analysis::Verdict::kVibration && swings >= static_cast<int>(2 * kMinJudgedCycles) && sustained)
-    return;
-  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-  r.verdict = analysis::Verdict::kNone;
-  r.frequency_Hz = r.onset_time_s = r.growth_rate_per_s = r.growth_acceleration_per_s2 = kNaN;
-  r.at_onset = {kNaN, kNaN, kNaN, kNaN};
 }
 
 }  // namespace
@@ -101,7 +79,7 @@ ClutchVerdict judge_clutch(const dynamics::Recording& rec, const std::string& cl
       try {
         cv.verdict = studies::judge_detection(d);
         cv.judged = true;
-        confirm_repeated(d, cv.verdict.judged);
+        keep_if_repeated(d, cv.verdict.judged);
       } catch (const std::invalid_argument& err) {
         cv.reason = err.what();
       }

@@ -9,9 +9,9 @@
 // starts at max(2 Hz, 3 / window length): a car's shuffle and take-up modes lie at a few Hz, and
 // a frequency counts only if the window holds three of its cycles. A window of fewer than
 // kMinJudgedSamples samples is "not judged", with the reason. An oscillation counts only if it
-// lasts to the window's end (the last two periods' amplitude at least half the largest period's,
-// studies/transient_oscillation.hpp): a ringing that dies out while the clutch still slips is
-// the drivetrain answering a step; a judder lasts until the clutch locks or opens.
+// repeats and lasts to the window's end (studies/recording_detection.hpp's keep_if_repeated, the
+// rule a driveline's coupling is judged by): a ringing that dies out while the clutch still
+// slips is the drivetrain answering a step; a judder lasts until the clutch locks or opens.
 // The run's verdict is the worst clutch's: stick_slip over vibration over none; between equals,
 // the larger amplitude. Blocks: `verdict.CLUTCH` per clutch (studies/run_verdict.hpp's block)
 // and `verdict` with the text `clutch` naming the worst.
@@ -27,8 +27,6 @@ namespace shudder::studies {
 
 /// The lowest frequency a network clutch's oscillation is searched from, Hz (header).
 inline constexpr double kNetworkMinFrequency_Hz = 2.0;
-/// Cycles of the lowest searched frequency the loaded window must hold.
-inline constexpr double kMinJudgedCycles = 3.0;
 /// Fewest samples judged (the detector's own minimum, analysis/shudder_detection.hpp).
 inline constexpr std::size_t kMinJudgedSamples = 64;
 

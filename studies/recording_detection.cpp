@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <span>
 
 #include "dynamics/signal_names.hpp"
+#include "studies/transient_oscillation.hpp"
 
 namespace shudder::studies {
 
@@ -13,26 +15,24 @@ namespace sn = dynamics::signal_names;
 
 namespace {
 
-// Half peak-to-peak of x minus its centred one-period moving mean, over the last
-// max(2 periods, a tenth) of the record (uniform sampling).
-double final_oscillation_amplitude_Nm(std::span<const double> t, std::span<const double> x, double period_s) {
-  const std::size_t n = t.size();
-  if (n < 4) return 0.0;
-  const double dt = (t.back() - t.front()) / static_cast<double>(n - 1);
-  const std::size_t half = std::max<std::size_t>(1, static_cast<std::size_t>(0.5 * period_s / dt));
-  const double span_s = std::max(2.0 * period_s, 0.1 * (t.back() - t.front()));
-  const std::size_t from = n - std::min(n, static_cast<std::size_t>(span_s / dt) + half);
-  double lo = 0, hi = 0;
-  bool any = false;
-  for (std::size_t i = std::max(from, half); i + half < n; ++i) {
-    double mean = 0;
-    for (std::size_t j = i - half; j <= i + half; ++j) mean += x[j];
-    const double r = x[i] - mean / static_cast<double>(2 * half + 1);
-    lo = any ? std::min(lo, r) : r;
-    hi = any ? std::max(hi, r) : r;
-    any = true;
-  }
-  return any ? 0.5 * (hi - lo) : 0.0;
+// The envelope decay, as a damping ratio, below which an oscillation holds (header).
+constexpr double kSustainedDampingRatio = 0.005;
+
+// Whether the oscillation at `frequency_Hz` holds: its per-period amplitudes (the last period
+// first) fall from the largest to the mean of the last two by less per period than a mode of
+// damping ratio kSustainedDampingRatio would, exp(-2 pi zeta). With the largest among the last
+// two periods it holds or grows.
+bool envelope_holds(std::span<const double> time_s, std::span<const double> torque_Nm, double frequency_Hz) {
+  const auto periods = period_amplitudes_from_end(time_s, torque_Nm, frequency_Hz);
+  if (periods.size() < 2) return false;
+  const auto largest = std::max_element(periods.begin(), periods.end());
+  const auto k = static_cast<double>(largest - periods.begin());
+  if (k <= 1.0) return true;
+  const double end = 0.5 * (periods[0] + periods[1]);
+  if (!(end > 0.0)) return false;
+  // The end's mean sits half a period from the last period's start: k - 0.5 periods of decay.
+  const double decay_per_period = std::log(*largest / end) / (k - 0.5);
+  return decay_per_period < 2.0 * std::numbers::pi * kSustainedDampingRatio;
 }
 
 }  // namespace
@@ -85,21 +85,24 @@ std::optional<RecordingDetection> recording_detection(const dynamics::Recording&
   return d;
 }
 
+void keep_if_repeated(const RecordingDetection& d, analysis::ShudderResult& r) {
+  if (r.verdict == analysis::Verdict::kNone || !(std::isfinite(r.frequency_Hz) && r.frequency_Hz > 0)) return;
+  const bool stuck_recorded = !d.input.stuck.empty();
+  if (r.verdict == analysis::Verdict::kStickSlip && stuck_recorded && stick_onsets(d.input.stuck) >= 2) return;
+  if (r.verdict == analysis::Verdict::kVibration || !stuck_recorded) {
+    const int swings = oscillation_swings(d.input.time_s, d.input.torque_Nm, r.frequency_Hz, 0.5 * r.threshold_Nm);
+    const bool lasts = envelope_holds(d.input.time_s, d.input.torque_Nm, r.frequency_Hz);
+    if (swings >= static_cast<int>(2 * kMinJudgedCycles) && lasts) return;
+  }
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  r.verdict = analysis::Verdict::kNone;
+  r.frequency_Hz = r.onset_time_s = r.growth_rate_per_s = r.growth_acceleration_per_s2 = kNaN;
+  r.at_onset = {kNaN, kNaN, kNaN, kNaN};
+}
+
 analysis::ShudderResult judge_recording(const RecordingDetection& d) {
   analysis::ShudderResult r = analysis::detect_shudder(d.input, d.settings);
-  if (d.sustained_only && r.verdict != analysis::Verdict::kNone && std::isfinite(r.frequency_Hz) &&
-      r.frequency_Hz > 0) {
-    const double end_amplitude =
-        final_oscillation_amplitude_Nm(d.input.time_s, d.input.torque_Nm, 1.0 / r.frequency_Hz);
-    if (end_amplitude < 0.5 * r.amplitude_Nm) {
-      // No verdict, so none of its timing either (ShudderResult's convention for none):
-      // peak_frequency_Hz and amplitude_Nm still say what rang.
-      constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-      r.verdict = analysis::Verdict::kNone;
-      r.frequency_Hz = r.onset_time_s = r.growth_rate_per_s = r.growth_acceleration_per_s2 = kNaN;
-      r.at_onset = {kNaN, kNaN, kNaN, kNaN};
-    }
-  }
+  if (d.sustained_only) keep_if_repeated(d, r);
   return r;
 }
 

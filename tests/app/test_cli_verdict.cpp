@@ -204,7 +204,7 @@ TEST(CliVerdict, DrivelineRunHasTheSameBlockWithTheDrivelinePrediction) {
   EXPECT_TRUE(std::isnan(block_scalar(*b, "onset_time_s")));
   EXPECT_NEAR(block_scalar(*b, "peak_frequency_Hz"), 2.95, 0.1);
   EXPECT_GT(block_scalar(*b, "amplitude_Nm"), block_scalar(*b, "threshold_Nm"));
-  EXPECT_THAT(r.out, HasSubstr("Coupling judder: none (an oscillation of 2.79 N m at 2.92 Hz dies out"));
+  EXPECT_THAT(r.out, HasSubstr("Coupling judder: none (an oscillation of 2.79 N m at 2.92 Hz that dies away"));
   EXPECT_THAT(r.out, HasSubstr("Predicted there: stable"));
   expect_json_matches_block(test::parse(test::slurp(dir / "rep" / "verdict.json")), *b);
 }
