@@ -24,7 +24,11 @@
 #include "rig_models/model.hpp"
 #include "studies/recording_detection.hpp"
 
-namespace shudder::rig_models {
+namespace shudder::studies {
+
+// The machines these studies are made of.
+using namespace rig_models;
+
 namespace {
 
 struct CoastDown {
@@ -142,4 +146,4 @@ TEST(DrivelineOnset, CoastDownSeedIsTheFiringPulsationsSecondOrder) {
 }
 
 }  // namespace
-}  // namespace shudder::rig_models
+}  // namespace shudder::studies

@@ -16,7 +16,11 @@
 #include "studies/driveline_stability.hpp"
 #include "rig_models/model.hpp"
 
-namespace shudder::rig_models {
+namespace shudder::studies {
+
+// The machines these studies are made of.
+using namespace rig_models;
+
 namespace {
 
 struct TakeUp {
@@ -145,4 +149,4 @@ TEST(DrivelinePrediction, TakeUpJudderOnsetAndFrequencyMatchTheSimulation) {
 }
 
 }  // namespace
-}  // namespace shudder::rig_models
+}  // namespace shudder::studies

@@ -12,7 +12,11 @@
 #include "rig_models/model.hpp"
 #include "io/scenario.hpp"
 
-namespace shudder::rig_models {
+namespace shudder::studies {
+
+// The machines these studies are made of.
+using namespace rig_models;
+
 namespace {
 
 using D = HaldexDriveline;
@@ -224,9 +228,9 @@ TEST(DrivelineStability, SlippingHasOneDegreeOfFreedomMoreThanLocked) {
 }
 
 }  // namespace
-}  // namespace shudder::rig_models
+}  // namespace shudder::studies
 
-namespace shudder::rig_models {
+namespace shudder::studies {
 namespace {
 
 // The maps' and the onset search's shortcut (no mode shapes, no stability point) gives the
@@ -301,9 +305,9 @@ TEST(DrivelineStability, CouplingMapsAreTheLinearisationAtEachCell) {
 }
 
 }  // namespace
-}  // namespace shudder::rig_models
+}  // namespace shudder::studies
 
-namespace shudder::rig_models {
+namespace shudder::studies {
 namespace {
 
 // Two-inertia reduction of the locked, straight driveline at rest, in the axle's speed:
@@ -348,4 +352,4 @@ TEST(DrivelineStability, LockedShuffleMatchesATwoInertiaReduction) {
 }
 
 }  // namespace
-}  // namespace shudder::rig_models
+}  // namespace shudder::studies

@@ -20,7 +20,11 @@
 #include "tests/support/models.hpp"
 #include "tests/support/recording.hpp"
 
-namespace shudder::rig_models {
+namespace shudder::studies {
+
+// The machines these studies are made of.
+using namespace rig_models;
+
 namespace {
 
 // The closed forms below are for a loop without the motor's torque ripple (their inputs carry
@@ -134,4 +138,4 @@ TEST(SpeedSetpoint, RecoversTheSetPointOfAStickSlipRun) {
 }
 
 }  // namespace
-}  // namespace shudder::rig_models
+}  // namespace shudder::studies
