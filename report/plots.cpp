@@ -184,11 +184,11 @@ Plot spectrum_plot(const Recording& rec, const std::string& name, const std::str
                                              " N m but not sustained (a transient)"
                                        : "under the threshold " + plot_number("%.3g", det->threshold_Nm) + " N m")});
     p.caption =
-        "Amplitude spectrum of the judged torque over the whole record; the open circle marks the frequency of"
-        " the strongest oscillation the shudder detector examined, which stayed under its threshold or did not last. "
-        "Its"
-        " amplitude is the detector's (half the peak-to-peak of the torque less its one-period moving mean,"
-        " analysis/shudder_detection.hpp, definition 6), the curve's the fundamental's over the whole record.";
+        "Amplitude spectrum of the judged torque over the whole record; the open circle marks the frequency"
+        " of the strongest oscillation the shudder detector examined, which stayed under its threshold or"
+        " did not last. Its amplitude is the detector's (half the peak-to-peak of the torque less its"
+        " one-period moving mean, analysis/shudder_detection.hpp, definition 6), the curve's the"
+        " fundamental's over the whole record.";
     return p;
   }
   // The detected peak, interpolated in the spectrum the detector's frequency comes from.
