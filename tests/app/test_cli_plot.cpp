@@ -52,6 +52,23 @@ fs::path run_in(const std::string& name, const std::string& scenario, const std:
   return d;
 }
 
+// A shipped network file run into DIR/STEM.h5 and its spectrum plotted to DIR/STEM.svg: the
+// run's summary and the plot's SVG text (empty, with the failure recorded, if a command fails).
+struct RunAndPlot {
+  std::string summary, svg;
+};
+RunAndPlot network_spectrum(const fs::path& dir, const std::string& network, const std::string& stem) {
+  const auto run =
+      run_cli("run " + source_path("scenarios/networks/" + network + ".toml") + " -o " + stem + ".h5", dir);
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  const auto plot = run_cli("plot " + stem + ".h5 --what spectrum -o " + stem + ".svg", dir);
+  EXPECT_EQ(plot.exit_code, 0) << plot.err;
+  return {run.out, run.exit_code == 0 && plot.exit_code == 0 ? slurp(dir / (stem + ".svg")) : std::string()};
+}
+
+// A network summary's none verdict: its largest oscillation's amplitude and frequency.
+const std::regex kNoneVerdict("Verdict: none \\(largest oscillation ([0-9.]+) N m at ([0-9.]+) Hz\\)");
+
 }  // namespace
 
 TEST(CliPlot, RigRunStoresAStabilityMapThatPlacesTheRunInItsUnstableRegion) {
@@ -194,28 +211,20 @@ TEST(CliPlot, SweepPlotDrawsPngAndSvgAndFileKindsAreNotMixedUp) {
 TEST(CliPlot, NetworkSpectrumMarksTheRunsVerdict) {
   if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
   const auto dir = scratch_dir("plot_network_verdict");
-  const auto run = run_cli("run " + source_path("scenarios/networks/haldex_car_takeup_judder.toml") + " -o h.h5", dir);
-  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto judder = network_spectrum(dir, "haldex_car_takeup_judder", "takeup");
   std::smatch v;
-  ASSERT_TRUE(std::regex_search(run.out, v, std::regex("Verdict: vibration at ([0-9.]+) Hz, amplitude ([0-9.]+) N m")))
-      << run.out;
-  const auto r = run_cli("plot h.h5 --what spectrum -o spectrum.svg", dir);
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  const std::string svg = slurp(dir / "spectrum.svg");
+  ASSERT_TRUE(
+      std::regex_search(judder.summary, v, std::regex("Verdict: vibration at ([0-9.]+) Hz, amplitude ([0-9.]+) N m")))
+      << judder.summary;
   std::smatch s;
-  ASSERT_TRUE(std::regex_search(svg, s, std::regex("friction-induced vibration at ([0-9.]+) Hz"))) << svg;
+  ASSERT_TRUE(std::regex_search(judder.svg, s, std::regex("friction-induced vibration at ([0-9.]+) Hz"))) << judder.svg;
   EXPECT_NEAR(std::stod(s[1]), std::stod(v[1]), 0.05);  // the label's one decimal
-  ASSERT_TRUE(std::regex_search(svg, s, std::regex("detector amplitude ([0-9.]+) N m")));
+  ASSERT_TRUE(std::regex_search(judder.svg, s, std::regex("detector amplitude ([0-9.]+) N m")));
   EXPECT_NEAR(std::stod(s[1]), std::stod(v[2]), 0.05);  // both printed to three digits
 
-  const auto hill = run_cli("run " + source_path("scenarios/networks/haldex_car_low_mu_uphill.toml") + " -o l.h5", dir);
-  ASSERT_EQ(hill.exit_code, 0) << hill.err;
-  ASSERT_TRUE(std::regex_search(hill.out, v,
-                                std::regex("Verdict: none \\(largest oscillation ([0-9.]+) N m at ([0-9.]+) Hz\\)")))
-      << hill.out;
-  ASSERT_EQ(run_cli("plot l.h5 --what spectrum -o hill.svg", dir).exit_code, 0);
-  const std::string hill_svg = slurp(dir / "hill.svg");
-  ASSERT_TRUE(std::regex_search(hill_svg, s, std::regex("largest oscillation ([0-9.]+) N m at ([0-9.]+) Hz")));
+  const auto hill = network_spectrum(dir, "haldex_car_low_mu_uphill", "hill");
+  ASSERT_TRUE(std::regex_search(hill.summary, v, kNoneVerdict)) << hill.summary;
+  ASSERT_TRUE(std::regex_search(hill.svg, s, std::regex("largest oscillation ([0-9.]+) N m at ([0-9.]+) Hz")));
   EXPECT_EQ(s[2].str(), v[2].str());
   EXPECT_LT(std::stod(s[2]), 5.0);
 }
@@ -226,26 +235,21 @@ TEST(CliPlot, NetworkSpectrumMarksTheRunsVerdict) {
 TEST(CliPlot, NetworkSpectrumOfANoneVerdictNamesTheDetectorsFigures) {
   if (!have_gnuplot()) GTEST_SKIP() << "gnuplot not installed";
   const auto dir = scratch_dir("plot_network_none");
-  const auto run = run_cli("run " + source_path("scenarios/networks/four_inertia_chain.toml") + " -o c.h5", dir);
-  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto chain = network_spectrum(dir, "four_inertia_chain", "chain");
   std::smatch v;
-  ASSERT_TRUE(std::regex_search(run.out, v,
-                                std::regex("Verdict: none \\(largest oscillation ([0-9.]+) N m at ([0-9.]+) Hz\\)")))
-      << run.out;
-  const auto r = run_cli("plot c.h5 --what spectrum -o spectrum.svg", dir);
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  const std::string svg = slurp(dir / "spectrum.svg");
+  ASSERT_TRUE(std::regex_search(chain.summary, v, kNoneVerdict)) << chain.summary;
   std::smatch s;
-  ASSERT_TRUE(std::regex_search(svg, s, std::regex("no shudder: largest oscillation ([0-9.]+) N m at ([0-9.]+) Hz")))
-      << svg;
+  ASSERT_TRUE(
+      std::regex_search(chain.svg, s, std::regex("no shudder: largest oscillation ([0-9.]+) N m at ([0-9.]+) Hz")))
+      << chain.svg;
   EXPECT_EQ(s[1].str(), v[1].str());  // both printed to three digits
   EXPECT_EQ(s[2].str(), v[2].str());
   // The chain's clutches ring well above the threshold as they lock, once each: a transient,
   // which the summary's none already says and the label must not call "under the threshold".
-  ASSERT_TRUE(
-      std::regex_search(svg, s, std::regex("above the threshold ([0-9.]+) N m but not sustained \\(a transient\\)")));
+  ASSERT_TRUE(std::regex_search(chain.svg, s,
+                                std::regex("above the threshold ([0-9.]+) N m but not sustained \\(a transient\\)")));
   EXPECT_GT(std::stod(v[1]), std::stod(s[1]));
-  EXPECT_THAT(svg, Not(HasSubstr("under the threshold")));
+  EXPECT_THAT(chain.svg, Not(HasSubstr("under the threshold")));
   // Prescribed slip at constant speed rings far below the threshold.
   const auto quiet = run_in("plot_prescribed_none", short_prescribed_scenario(), "pg.h5");
   ASSERT_EQ(run_cli("plot pg.h5 --what spectrum -o pg.svg", quiet).exit_code, 0);
