@@ -9,7 +9,7 @@
 #include "dynamics/signal_names.hpp"
 #include "components/channel_recorder.hpp"
 #include "components/energy_scalars.hpp"
-#include "components/multirate_clutch.hpp"
+#include "components/network_stepper.hpp"
 
 namespace shudder::rig_models {
 
@@ -44,8 +44,9 @@ SpeedLoopGains speed_loop_gains(const RigParams& p) {
 
 LsctrRig::LsctrRig(const RigParams& params, const clutch::WetClutch& clutch, const components::DriveCycle& cycle)
     : p_(params),
+      clutch_(&clutch),
       contact_(clutch, params.bearing_drag, params.stick_time),
-      speed_rpm_(cycle.slip_speed_rpm),
+      cycle_(cycle),
       force_N_(cycle.normal_force_N) {
   require(p_.drive_inertia_kg_m2 > 0, "rig drive inertia must be > 0 kg m^2");
   require(p_.housing_inertia_kg_m2 > 0, "rig housing inertia must be > 0 kg m^2");
@@ -58,9 +59,6 @@ LsctrRig::LsctrRig(const RigParams& params, const clutch::WetClutch& clutch, con
   const SpeedLoopGains gains = speed_loop_gains(p_);
   kp_ = gains.kp_Nms_per_rad;
   ki_ = gains.ki_Nm_per_rad;
-  // The tuning's modal analysis does not evaluate the clutch law; any context serves.
-  const auto law = std::make_shared<components::ClutchContactLaw>(
-      contact_, std::make_shared<components::ClutchContext>(start_inputs()));
   const auto damping = [&](double k_bar) {
     return 2.0 * p_.bar_damping_ratio * std::sqrt(k_bar * p_.housing_inertia_kg_m2);
   };
@@ -68,7 +66,7 @@ LsctrRig::LsctrRig(const RigParams& params, const clutch::WetClutch& clutch, con
   if (p_.bar_stiffness_Nm_per_rad > 0) {
     k_bar_ = k_network_ = p_.bar_stiffness_Nm_per_rad;
     c_bar_ = damping(k_bar_);
-    build(k_bar_, c_bar_, law);  // validates the network
+    build_with_bar(k_bar_, c_bar_);  // validates the network
     return;
   }
   // Start from the isolated housing on the bar, then correct on the full modal analysis (the
@@ -79,7 +77,7 @@ LsctrRig::LsctrRig(const RigParams& params, const clutch::WetClutch& clutch, con
   for (int iter = 0; iter < 8; ++iter) {
     k_network_ = k_bar_;
     c_bar_ = damping(k_bar_);
-    const auto m = build(k_bar_, c_bar_, law).modes();
+    const auto m = build_with_bar(k_bar_, c_bar_).network().modes();
     const double f = m.frequencies_Hz[clutch_side_mode(m)];
     clutch_side_Hz_ = f;
     if (std::abs(f / target - 1.0) < 1e-10) break;
@@ -87,67 +85,92 @@ LsctrRig::LsctrRig(const RigParams& params, const clutch::WetClutch& clutch, con
   }
 }
 
-dynamics::TorsionalNetwork LsctrRig::build(double k_bar, double c_bar,
-                                           std::shared_ptr<const dynamics::ContactLaw> law) const {
-  const components::PiecewiseLinear speed = speed_rpm_;
-  dynamics::TorsionalNetwork n;
-  n.add_inertia({"drive", p_.drive_inertia_kg_m2});
-  n.add_inertia({"housing", p_.housing_inertia_kg_m2});
-  n.add_motor({"motor", kDrive, [speed](double t) { return units::rpm_to_rad_s(speed(t)); }, kp_, ki_,
-               p_.motor_torque_limit_Nm});
-  if (p_.motor_ripple.amplitude_Nm > 0)
-    n.add_torque_source({"motor_ripple", kDrive, components::MotorRippleTorque(p_.motor_ripple, speed_rpm_)});
-  n.add_contact({"clutch", kDrive, kHousing, std::move(law)});
-  n.add_shaft({"torsion_bar", kHousing, dynamics::kGround, k_bar, c_bar});
-  n.validate();
-  return n;
+components::NetworkSpec LsctrRig::spec_with_bar(double k_bar, double c_bar, const RigSettings& cfg) const {
+  using namespace components;
+  NetworkSpec s;
+  // The start: steady sliding at the cycle's first speed, every ring at the clutch's start
+  // temperature, the friction torque carried by the bar and supplied by the loop's integrator
+  // (so the record starts without a spurious transient); or everything at rest.
+  double w0 = 0, torque0_Nm = 0;
+  if (!p_.start_at_rest) {
+    w0 = units::rpm_to_rad_s(cycle_.slip_speed_rpm(0.0));
+    ClutchContext context(start_inputs());
+    torque0_Nm = contact_.kinetic_torque_Nm(context, std::abs(w0), 0.0) * (w0 >= 0 ? 1.0 : -1.0);
+  }
+  s.inertias.push_back({"drive", p_.drive_inertia_kg_m2, w0, 0.0});
+  s.inertias.push_back({"housing", p_.housing_inertia_kg_m2, 0.0, torque0_Nm / k_bar});
+
+  MotorSpec m;
+  m.name = "motor";
+  m.node = "drive";
+  m.speed_rpm = Signal::table(cycle_.slip_speed_rpm.times_s(), cycle_.slip_speed_rpm.values(), true);
+  m.kp_Nms_per_rad = kp_;
+  m.ki_Nm_per_rad = ki_;
+  m.torque_limit_Nm = p_.motor_torque_limit_Nm;
+  m.start_torque_Nm = torque0_Nm;
+  m.ripple = p_.motor_ripple;
+  s.motors.push_back(m);
+
+  ClutchSpec c;
+  c.name = "clutch";
+  c.a = "drive";
+  c.b = "housing";
+  c.law = ClutchSpec::Law::kWet;
+  c.max_force_N = cycle_.normal_force_N.max_value();
+  std::vector<double> u;
+  for (double f : cycle_.normal_force_N.values()) u.push_back(c.max_force_N > 0 ? f / c.max_force_N : 0.0);
+  c.force_signal = Signal::table(cycle_.normal_force_N.times_s(), u, true);
+  c.wet.fluid = clutch_->fluid();
+  c.wet.clutch = clutch_->params();
+  c.wet.oil_volume_given = c.wet.oil_flow_given = true;
+  c.wet.bearing_drag = p_.bearing_drag;
+  c.wet.stick_time = p_.stick_time;
+  c.judged_on = "torsion_bar";
+  s.clutches.push_back(c);
+  s.shafts.push_back({"torsion_bar", "housing", kGroundNode, k_bar, c_bar, 0.0});
+
+  s.settings.duration_s = cfg.duration_s;
+  s.settings.sample_rate_Hz = cfg.sample_rate_Hz;
+  s.settings.thermal_step_s = cfg.thermal_step_s;
+  s.settings.integrator = p_.integrator;
+  return s;
 }
 
-dynamics::TorsionalNetwork LsctrRig::network(std::shared_ptr<components::ClutchContext> clutch_context) const {
-  return build(k_network_, c_bar_, std::make_shared<components::ClutchContactLaw>(contact_, std::move(clutch_context)));
+components::NetworkSpec LsctrRig::spec(const RigSettings& settings) const {
+  return spec_with_bar(k_network_, c_bar_, settings);
 }
 
-dynamics::TorsionalNetwork LsctrRig::network(std::shared_ptr<components::ClutchContext> clutch_context,
-                                             double bar_damping_ratio) const {
-  const double c_bar = 2.0 * bar_damping_ratio * std::sqrt(k_network_ * p_.housing_inertia_kg_m2);
-  return build(k_network_, c_bar, std::make_shared<components::ClutchContactLaw>(contact_, std::move(clutch_context)));
+BuiltRig LsctrRig::build_with_bar(double k_bar, double c_bar) const {
+  BuiltRig b;
+  b.spec_ = std::make_unique<components::NetworkSpec>(spec_with_bar(k_bar, c_bar, RigSettings{}));
+  b.built_ = components::build_network(*b.spec_);
+  *b.built_->clutches.front().context = components::ClutchContext(start_inputs());
+  return b;
 }
 
-dynamics::TorsionalNetwork LsctrRig::network() const {
-  return network(std::make_shared<components::ClutchContext>(start_inputs()));
+BuiltRig LsctrRig::build(std::optional<double> bar_damping_ratio) const {
+  if (!bar_damping_ratio) return build_with_bar(k_network_, c_bar_);
+  return build_with_bar(k_network_, 2.0 * *bar_damping_ratio * std::sqrt(k_network_ * p_.housing_inertia_kg_m2));
 }
 
 double LsctrRig::clutch_side_frequency_Hz() const {
   if (clutch_side_Hz_ >= 0) return clutch_side_Hz_;
-  const auto m = network().modes();
+  const auto m = build().network().modes();
   return m.frequencies_Hz[clutch_side_mode(m)];
 }
 
-dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& clutch,
+dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& clutch_model,
                             const components::DriveCycle& cycle, const RigSettings& cfg) {
   if (!(cfg.duration_s > 0) || !(cfg.thermal_step_s > 0) || !(cfg.sample_rate_Hz > 0))
     throw std::invalid_argument("duration, thermal step and sample rate must be > 0");
-  const LsctrRig rig(params, clutch, cycle);
+  const LsctrRig rig(params, clutch_model, cycle);
+  const components::NetworkSpec spec = rig.spec(cfg);
+  components::NetworkStepper stepper(spec, cfg.duration_s);
+  // The network's own copy of the clutch (the same parameters and fluid) and its thermal state.
+  const clutch::WetClutch& clutch = *stepper.built().clutches[LsctrRig::kClutch].wet;
   const auto& th = clutch.thermal();
-  clutch::ThermalState ts = clutch.initial_state();
-  const auto clutch_context = std::make_shared<components::ClutchContext>(
-      components::ClutchHeldInputs{th.interface_temps_C(ts), cycle.normal_force_N});
-  const auto& law = rig.clutch_contact();
-  const dynamics::TorsionalNetwork network = rig.network(clutch_context);
-
-  // Start in steady sliding (the bar already carries the friction torque and the speed loop's
-  // integrator supplies it, so the record starts without a spurious transient), or at rest.
-  dynamics::Simulation sim(network, params.integrator);
-  Eigen::VectorXd theta = Eigen::VectorXd::Zero(2), omega = Eigen::VectorXd::Zero(2),
-                  integral = Eigen::VectorXd::Zero(1);
-  if (!params.start_at_rest) {
-    const double w0 = units::rpm_to_rad_s(cycle.slip_speed_rpm(0.0));
-    const double t0_Nm = law.kinetic_torque_Nm(*clutch_context, std::abs(w0), 0.0) * (w0 >= 0 ? 1.0 : -1.0);
-    theta[LsctrRig::kHousing] = t0_Nm / rig.bar_stiffness_Nm_per_rad();
-    omega[LsctrRig::kDrive] = w0;
-    integral[0] = t0_Nm / rig.motor_ki();
-  }
-  sim.initialize(0.0, theta, omega, integral);
+  const clutch::ThermalState& ts = stepper.thermal()[0];
+  const dynamics::Simulation& sim = stepper.simulation();
 
   // Channels: mechanical ones come from dynamics samples, thermal ones from the thermal state,
   // interpolated across each thermal step (channel_recorder.hpp).
@@ -202,10 +225,8 @@ dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& cl
   std::vector<double> snaps = cfg.snapshot_times_s;
   std::sort(snaps.begin(), snaps.end());
   std::size_t next_snap = 0;
-  clutch::FrictionDataRange data_range(*clutch.fluid().friction);
-  components::run_multirate(
-      sim, *clutch_context, clutch, ts, LsctrRig::kClutch, cfg.duration_s, cfg.thermal_step_s, cfg.sample_rate_Hz,
-      [&](const dynamics::Sample& s) { recorder.sample(s); },
+  stepper.advance_to(
+      cfg.duration_s, [&](const dynamics::Sample& s) { recorder.sample(s); },
       [&](const components::SlowStep& step) {
         peak_interface_C = std::max(peak_interface_C, th.interface_temps_C(ts).maxCoeff());
         recorder.step(ts, step.ta_s, step.tb_s);
@@ -214,9 +235,8 @@ dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& cl
           rec.snapshots.push_back({step.tb_s, th.field_C(ts)});
           ++next_snap;
         }
-      },
-      &data_range);
-  rec.blocks.push_back(components::friction_range_block(data_range));
+      });
+  rec.blocks.push_back(components::friction_range_block(stepper.data_ranges().front()));
 
   const int nr = th.radial_cells();
   for (int i = 0; i < nr; ++i) rec.grid_r_m.push_back(th.ring_radius_m()[i]);

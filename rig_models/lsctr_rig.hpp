@@ -22,6 +22,7 @@
 //   speed-loop bandwidth 20 Hz, PI zero at a quarter of it: a typical geared servo drive.
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "clutch/wet_clutch.hpp"
@@ -31,6 +32,8 @@
 #include "components/clutch_contact.hpp"
 #include "components/drive_cycle.hpp"
 #include "components/motor_ripple.hpp"
+#include "components/network_builder.hpp"
+#include "components/network_spec.hpp"
 
 namespace shudder::rig_models {
 
@@ -70,25 +73,38 @@ struct SpeedLoopGains {
 };
 SpeedLoopGains speed_loop_gains(const RigParams& params);
 
-/// The rig's network and its derived parameters. Node 0 drive, node 1 housing; contact 0 clutch.
-/// A const model: the clutch's held inputs (ring temperatures, clamp force) live in a
-/// ClutchContext owned by the run or the analysis, to which the network's clutch law is bound.
+/// The rig built as a network (components/network_builder.hpp): what a run integrates and an
+/// analysis linearises. Node 0 drive, node 1 housing; contact 0 the clutch; shaft 0 the bar;
+/// motor 0 the drive's. The clutch's held inputs (ring temperatures, clamp force) are
+/// clutch_context(), to which the network's clutch law is bound.
+class BuiltRig {
+ public:
+  const dynamics::TorsionalNetwork& network() const { return built_->network; }
+  components::ClutchContext& clutch_context() const { return *built_->clutches.front().context; }
+  const components::BuiltNetwork& built() const { return *built_; }
+
+ private:
+  friend class LsctrRig;
+  std::unique_ptr<components::NetworkSpec> spec_;  // the built network refers to it
+  std::unique_ptr<components::BuiltNetwork> built_;
+};
+
+/// The rig's parameters and what is derived from them (the bar's stiffness from its target
+/// frequency, the speed loop's gains), and the rig as network components. A const model: a
+/// run or an analysis builds its own network from it (build()).
 class LsctrRig {
  public:
-  /// Throws std::invalid_argument for invalid parameters.
+  /// Throws std::invalid_argument for invalid parameters. `clutch` must outlive the rig.
   LsctrRig(const RigParams& params, const clutch::WetClutch& clutch, const components::DriveCycle& cycle);
 
   const components::ClutchContact& clutch_contact() const { return contact_; }
   /// Every ring at the clutch's start temperature, the cycle's clamp force.
   components::ClutchHeldInputs start_inputs() const { return contact_.start_inputs(force_N_); }
-  /// The network with its clutch law bound to `clutch_context`.
-  dynamics::TorsionalNetwork network(std::shared_ptr<components::ClutchContext> clutch_context) const;
-  /// The same with the bar's damping ratio replaced (its stiffness held).
-  dynamics::TorsionalNetwork network(std::shared_ptr<components::ClutchContext> clutch_context,
-                                     double bar_damping_ratio) const;
-  /// The network bound to a fresh context at start_inputs() (modal analysis does not evaluate
-  /// the law; nothing is shared with other callers).
-  dynamics::TorsionalNetwork network() const;
+  /// The rig as network components (rig_models/rig_expansion.hpp), run with `settings`.
+  components::NetworkSpec spec(const RigSettings& settings) const;
+  /// The network of spec(RigSettings{}); with `bar_damping_ratio` the bar's damping replaced
+  /// (its stiffness held). Its clutch context holds start_inputs().
+  BuiltRig build(std::optional<double> bar_damping_ratio = std::nullopt) const;
   const RigParams& params() const { return p_; }
   double bar_stiffness_Nm_per_rad() const { return k_bar_; }
   double bar_damping_Nms_per_rad() const { return c_bar_; }
@@ -100,10 +116,13 @@ class LsctrRig {
   static constexpr int kDrive = 0, kHousing = 1, kClutch = 0, kBar = 0;
 
  private:
-  dynamics::TorsionalNetwork build(double k_bar, double c_bar, std::shared_ptr<const dynamics::ContactLaw> law) const;
+  components::NetworkSpec spec_with_bar(double k_bar, double c_bar, const RigSettings& settings) const;
+  BuiltRig build_with_bar(double k_bar, double c_bar) const;
   RigParams p_;
+  const clutch::WetClutch* clutch_;
   components::ClutchContact contact_;
-  components::PiecewiseLinear speed_rpm_, force_N_;
+  components::DriveCycle cycle_;
+  components::PiecewiseLinear force_N_;
   double k_bar_ = 0, c_bar_ = 0, kp_ = 0, ki_ = 0;
   // Stiffness the network is built with: k_bar_ itself unless the tuning loop ran out of
   // iterations (then k_bar_ holds the next correction, as it always has).
@@ -111,8 +130,9 @@ class LsctrRig {
   double clutch_side_Hz_ = -1.0;  // from the tuning's modal analysis; < 0: not computed
 };
 
-/// Simulates the rig on the cycle with the clutch's thermal model (multi-rate coupling) and
-/// records the sensors (docs/formats/measured_run.md names) plus internal signals.
+/// Simulates the rig on the cycle: its network (spec()) run by components::NetworkStepper, the
+/// clutch's thermal model coupled multi-rate, recorded as the rig's sensors
+/// (docs/formats/measured_run.md names) plus internal signals.
 dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& clutch,
                             const components::DriveCycle& cycle, const RigSettings& settings);
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -64,8 +65,9 @@ StabilityPoint stability_at(const rig_models::LsctrRig& rig, components::ClutchC
 
 StabilityPoint rig_stability(const rig_models::LsctrRig& rig, const components::ClutchHeldInputs& clutch_inputs,
                              double slip_rpm, double t_s) {
-  const auto context = std::make_shared<components::ClutchContext>(clutch_inputs);
-  return stability_at(rig, *context, rig.network(context), slip_rpm, t_s);
+  const rig_models::BuiltRig built = rig.build();
+  built.clutch_context() = components::ClutchContext(clutch_inputs);
+  return stability_at(rig, built.clutch_context(), built.network(), slip_rpm, t_s);
 }
 
 StabilityPoint rig_stability(const rig_models::RigParams& params, const clutch::WetClutch& clutch, double force_N,
@@ -93,8 +95,9 @@ StabilityMap stability_map(const rig_models::RigParams& params, const clutch::We
 
   // One rig: the speed reference only feeds the motor's steady state, not its linear loop.
   const rig_models::LsctrRig rig(params, clutch, steady_cycle(force_N, speeds_rpm.empty() ? 0.0 : speeds_rpm.front()));
-  const auto context = std::make_shared<components::ClutchContext>(rig.start_inputs());
-  const dynamics::TorsionalNetwork network = rig.network(context);
+  const rig_models::BuiltRig built = rig.build();
+  components::ClutchContext* context = &built.clutch_context();
+  const dynamics::TorsionalNetwork& network = built.network();
   // Temperatures outside: setting them rebuilds the law's frozen friction once per column.
   for (Eigen::Index j = 0; j < nt; ++j) {
     context->set_ring_temperatures(
@@ -126,9 +129,11 @@ double critical_bar_damping_ratio(const rig_models::RigParams& params, const clu
   p.bar_stiffness_Nm_per_rad =
       rig_models::LsctrRig(params, clutch, steady_cycle(force_N, slip_rpm)).bar_stiffness_Nm_per_rad();
   const rig_models::LsctrRig rig(p, clutch, steady_cycle(force_N, slip_rpm));
-  const auto context = std::make_shared<components::ClutchContext>(uniform_inputs(rig, clutch, interface_temp_C));
+  const components::ClutchHeldInputs inputs = uniform_inputs(rig, clutch, interface_temp_C);
   const auto margin = [&](double zeta) {
-    return stability_at(rig, *context, rig.network(context, zeta), slip_rpm).margin_per_s;
+    const rig_models::BuiltRig built = rig.build(zeta);
+    built.clutch_context() = components::ClutchContext(inputs);
+    return stability_at(rig, built.clutch_context(), built.network(), slip_rpm).margin_per_s;
   };
   if (margin(0.0) <= 0.0) return 0.0;
   if (margin(max_ratio) > 0.0) return std::numeric_limits<double>::infinity();
@@ -150,12 +155,14 @@ CriticalBar critical_bar(const rig_models::RigParams& params, const clutch::WetC
   rig_models::RigParams p = params;
   p.bar_stiffness_Nm_per_rad = 0.0;
   const components::DriveCycle cycle = steady_cycle(force_N, slip_rpm);
-  std::shared_ptr<components::ClutchContext> context;  // the operating point, made with the first rig
+  std::optional<components::ClutchHeldInputs> inputs;  // the operating point, made with the first rig
   const auto unstable = [&](double f) {
     p.bar_natural_frequency_Hz = f;
     const rig_models::LsctrRig rig(p, clutch, cycle);
-    if (!context) context = std::make_shared<components::ClutchContext>(uniform_inputs(rig, clutch, interface_temp_C));
-    return stability_at(rig, *context, rig.network(context), slip_rpm).margin_per_s > 0.0;
+    if (!inputs) inputs = uniform_inputs(rig, clutch, interface_temp_C);
+    const rig_models::BuiltRig built = rig.build();
+    built.clutch_context() = components::ClutchContext(*inputs);
+    return stability_at(rig, built.clutch_context(), built.network(), slip_rpm).margin_per_s > 0.0;
   };
   const bool lo_unstable = unstable(lo_Hz);
   if (unstable(hi_Hz) == lo_unstable) return {kNaN, kNaN};

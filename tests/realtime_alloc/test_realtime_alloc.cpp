@@ -73,8 +73,9 @@ TEST(RealtimeAlloc, RigNetworkFixedStepAllocatesNothingWhileSlipping) {
   const clutch::WetClutch clutch = sc.make_clutch();
   const auto& m = std::get<rig_models::RigModel>(sc.model);
   const rig_models::LsctrRig rig(m.params, clutch, m.cycle);
-  const auto context = std::make_shared<components::ClutchContext>(rig.start_inputs());
-  const dynamics::TorsionalNetwork net = rig.network(context);
+  const rig_models::BuiltRig built = rig.build();
+  components::ClutchContext* context = &built.clutch_context();
+  const dynamics::TorsionalNetwork& net = built.network();
   dynamics::IntegratorSettings settings;
   settings.fixed_step_s = 1e-4;
   dynamics::Simulation sim(net, settings);

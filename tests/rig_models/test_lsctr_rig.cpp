@@ -139,7 +139,7 @@ TEST(RigBar, StiffnessDerivedFromTargetFrequencyMatchesClutchSideModeAndClosedFo
     auto params = shudder::test::rig_model(sc).params;
     params.bar_natural_frequency_Hz = target_Hz;
     const LsctrRig rig(params, clutch, shudder::test::rig_model(sc).cycle);
-    const Modes m = rig.network().modes();
+    const Modes m = rig.build().network().modes();
     const Eigen::Index j = housing_mode(m);
     const double f = m.frequencies_Hz[j];
     record("bar_" + std::to_string(static_cast<int>(target_Hz)) + "Hz",
@@ -383,7 +383,7 @@ TEST(RigShudder, NegativeSlopeFluidOscillatesAtTheClutchSideDampedFrequencyAndFo
     shudder::test::rig_model(sc).params.bar_natural_frequency_Hz = bars_Hz[b];
     const WetClutch clutch = sc.make_clutch();
     const LsctrRig rig(shudder::test::rig_model(sc).params, clutch, shudder::test::rig_model(sc).cycle);
-    const double f_damped = housing_eigenvalue(rig.network().modes()).imag() / kTwoPi;
+    const double f_damped = housing_eigenvalue(rig.build().network().modes()).imag() / kTwoPi;
     const Recording rec = run_rig(without_ripple(shudder::test::rig_model(sc).params), clutch,
                                   shudder::test::rig_model(sc).cycle, shudder::test::rig_model(sc).settings);
     const auto& t = signal(rec, "time_s");
