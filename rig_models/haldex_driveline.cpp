@@ -12,7 +12,7 @@
 #include "dynamics/signal_names.hpp"
 #include "components/channel_recorder.hpp"
 #include "components/energy_scalars.hpp"
-#include "components/multirate_clutch.hpp"
+#include "components/network_stepper.hpp"
 
 namespace shudder::rig_models {
 
@@ -52,6 +52,8 @@ std::array<double, 2> static_axle_loads_N(const DrivelineParams& p, double grade
 HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::WetClutch& clutch,
                                  const DrivelineInputs& inputs)
     : p_(params),
+      clutch_(&clutch),
+      inputs_(inputs),
       hydraulics_(params.hydraulics, pack_torque_per_newton(params, clutch)),
       controller_(params.controller),
       valve_opening_(inputs.valve_opening),
@@ -147,8 +149,8 @@ HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::We
   road_load_ = std::make_shared<const components::RoadLoad>(rl);
   grade_torque_Nm_ = -weight_N * std::sin(theta) * r;
 
-  // Builds the network once to validate it; runs build their own around their context.
-  network();
+  // Builds the network once to validate it; runs and analyses build their own.
+  build();
 }
 
 components::HaldexCommand HaldexDriveline::start_command() const {
@@ -170,84 +172,139 @@ components::ClutchHeldInputs HaldexDriveline::start_inputs() const {
   return contact_.start_inputs(components::PiecewiseLinear({0.0}, {hydraulics_.clamp_force_N(0.0)}));
 }
 
-dynamics::TorsionalNetwork HaldexDriveline::network(std::shared_ptr<components::ClutchContext> coupling_context,
-                                                    std::shared_ptr<components::HaldexCommand> command) const {
-  return build(std::make_shared<components::HaldexCouplingLaw>(contact_, std::move(coupling_context), hydraulics_,
-                                                               std::move(command)));
+namespace {
+
+components::Signal schedule_signal(const components::PiecewiseLinear& f) {
+  return components::Signal::table(f.times_s(), f.values(), true);
 }
 
-dynamics::TorsionalNetwork HaldexDriveline::network(std::shared_ptr<components::ClutchContext> coupling_context) const {
-  return network(std::move(coupling_context), std::make_shared<components::HaldexCommand>(start_command()));
-}
+}  // namespace
 
-dynamics::TorsionalNetwork HaldexDriveline::network() const {
-  return network(std::make_shared<components::ClutchContext>(start_inputs()));
-}
+components::NetworkSpec HaldexDriveline::spec(const DrivelineSettings& cfg) const {
+  using namespace components;
+  const DrivelineParams& p = p_;
+  const DrivelineInputs& in = inputs_;
+  const double r = p.wheel_radius_m;
+  const double w_vehicle = in.start_speed_km_h / 3.6 / r;
+  const Eigen::VectorXd w = rolling_speed_ratios() * w_vehicle;
+  NetworkSpec s;
 
-dynamics::TorsionalNetwork HaldexDriveline::build(std::shared_ptr<const dynamics::ContactLaw> law) const {
-  const double r = p_.wheel_radius_m;
-  using dynamics::Gear;
-  using dynamics::Inertia;
-  using dynamics::Shaft;
-  dynamics::TorsionalNetwork n;
-  n.add_inertia(Inertia{"engine", p_.engine_inertia_kg_m2});
-  n.add_inertia(Inertia{"front_diff", p_.front_diff_inertia_kg_m2});
-  n.add_inertia(Inertia{"front_side_left", p_.side_gear_inertia_kg_m2});
-  n.add_inertia(Inertia{"front_side_right", p_.side_gear_inertia_kg_m2});
-  n.add_inertia(Inertia{"wheel_fl", p_.wheel_inertia_kg_m2});
-  n.add_inertia(Inertia{"wheel_fr", p_.wheel_inertia_kg_m2});
-  n.add_inertia(Inertia{"vehicle", p_.vehicle_mass_kg * r * r});
-  n.add_inertia(Inertia{"ptu", p_.ptu_inertia_kg_m2});
-  n.add_inertia(Inertia{"coupling_in", p_.coupling_half_inertia_kg_m2});
-  n.add_inertia(Inertia{"coupling_out", p_.coupling_half_inertia_kg_m2});
-  n.add_inertia(Inertia{"rear_diff", p_.rear_diff_inertia_kg_m2});
-  n.add_inertia(Inertia{"rear_side_left", p_.side_gear_inertia_kg_m2});
-  n.add_inertia(Inertia{"rear_side_right", p_.side_gear_inertia_kg_m2});
-  n.add_inertia(Inertia{"wheel_rl", p_.wheel_inertia_kg_m2});
-  n.add_inertia(Inertia{"wheel_rr", p_.wheel_inertia_kg_m2});
+  // Bodies in the node order (the vehicle is a node of its own kind, last).
+  const std::array<std::pair<const char*, double>, kVehicle> bodies{{{"engine", p.engine_inertia_kg_m2},
+                                                                     {"front_diff", p.front_diff_inertia_kg_m2},
+                                                                     {"front_side_left", p.side_gear_inertia_kg_m2},
+                                                                     {"front_side_right", p.side_gear_inertia_kg_m2},
+                                                                     {"wheel_fl", p.wheel_inertia_kg_m2},
+                                                                     {"wheel_fr", p.wheel_inertia_kg_m2},
+                                                                     {"ptu", p.ptu_inertia_kg_m2},
+                                                                     {"coupling_in", p.coupling_half_inertia_kg_m2},
+                                                                     {"coupling_out", p.coupling_half_inertia_kg_m2},
+                                                                     {"rear_diff", p.rear_diff_inertia_kg_m2},
+                                                                     {"rear_side_left", p.side_gear_inertia_kg_m2},
+                                                                     {"rear_side_right", p.side_gear_inertia_kg_m2},
+                                                                     {"wheel_rl", p.wheel_inertia_kg_m2},
+                                                                     {"wheel_rr", p.wheel_inertia_kg_m2}}};
+  for (int i = 0; i < kVehicle; ++i)
+    s.inertias.push_back({bodies[static_cast<std::size_t>(i)].first, bodies[static_cast<std::size_t>(i)].second, w[i]});
 
-  const double k_h = p_.halfshaft_stiffness_Nm_per_rad, c_h = p_.halfshaft_damping_Nms_per_rad;
-  n.add_shaft(Shaft{"front_left_halfshaft", kFrontSideLeft, kFrontLeftWheel, k_h, c_h});
-  n.add_shaft(Shaft{"front_right_halfshaft", kFrontSideRight, kFrontRightWheel, k_h, c_h});
-  n.add_shaft(
-      Shaft{"propshaft", kPtu, kCouplingIn, p_.propshaft_stiffness_Nm_per_rad, p_.propshaft_damping_Nms_per_rad});
-  n.add_shaft(Shaft{"rear_left_halfshaft", kRearSideLeft, kRearLeftWheel, k_h, c_h});
-  n.add_shaft(Shaft{"rear_right_halfshaft", kRearSideRight, kRearRightWheel, k_h, c_h});
+  const double theta = std::atan(in.grade_percent / 100.0);
+  const double weight_N = p.vehicle_mass_kg * kGravity_m_s2;
+  VehicleSpec v;
+  v.name = "vehicle";
+  v.mass_kg = p.vehicle_mass_kg;
+  v.wheel_radius_m = r;
+  v.speed_m_s = in.start_speed_km_h / 3.6;
+  v.grade_percent = in.grade_percent;
+  v.road.rolling_resistance_N = p.rolling_resistance_coefficient * weight_N * std::cos(theta);
+  v.road.drag_coefficient_area_m2 = p.drag_coefficient_area_m2;
+  v.road.air_density_kg_m3 = p.air_density_kg_m3;
+  s.vehicles.push_back(v);
 
-  n.add_gear(Gear{"gearbox_and_final_drive", kEngine, kFrontDiff, p_.gear_ratio * p_.final_drive_ratio});
-  n.add_gear(Gear{"power_take_off", kPtu, kFrontDiff, p_.ptu_ratio});
-  n.add_gear(Gear{"rear_differential", kCouplingOut, kRearDiff, p_.rear_diff_ratio});
-  n.add_differential(dynamics::Differential{"front_differential", kFrontDiff, kFrontSideLeft, kFrontSideRight});
-  n.add_differential(dynamics::Differential{"rear_differential", kRearDiff, kRearSideLeft, kRearSideRight});
+  const double k_h = p.halfshaft_stiffness_Nm_per_rad, c_h = p.halfshaft_damping_Nms_per_rad;
+  s.shafts = {
+      {"front_left_halfshaft", "front_side_left", "wheel_fl", k_h, c_h, 0.0},
+      {"front_right_halfshaft", "front_side_right", "wheel_fr", k_h, c_h, 0.0},
+      {"propshaft", "ptu", "coupling_in", p.propshaft_stiffness_Nm_per_rad, p.propshaft_damping_Nms_per_rad, 0.0},
+      {"rear_left_halfshaft", "rear_side_left", "wheel_rl", k_h, c_h, 0.0},
+      {"rear_right_halfshaft", "rear_side_right", "wheel_rr", k_h, c_h, 0.0}};
+  s.gears = {{"gearbox_and_final_drive", "engine", "front_diff", p.gear_ratio * p.final_drive_ratio},
+             {"power_take_off", "ptu", "front_diff", p.ptu_ratio},
+             {"rear_final_drive", "coupling_out", "rear_diff", p.rear_diff_ratio}};
+  s.differentials = {{"front_differential", "front_diff", "front_side_left", "front_side_right"},
+                     {"rear_differential", "rear_diff", "rear_side_left", "rear_side_right"}};
 
-  const std::array<int, 4> wheel_nodes{kFrontLeftWheel, kFrontRightWheel, kRearLeftWheel, kRearRightWheel};
   const std::array<const char*, 4> tyre_names{"tyre_fl", "tyre_fr", "tyre_rl", "tyre_rr"};
-  for (std::size_t w = 0; w < 4; ++w)
-    n.add_force_element(dynamics::ForceElement{tyre_names[w], wheel_nodes[w], kVehicle, path_ratios_[w], tyres_[w]});
-  n.add_force_element(dynamics::ForceElement{"road_load", kVehicle, dynamics::kGround, 1.0, road_load_});
-  // The engine's firing pulsation, the driveline's physical seed (engine_pulsation.hpp).
-  if (p_.engine_pulsation.amplitude_Nm > 0)
-    n.add_force_element(dynamics::ForceElement{"engine_firing_pulsation", kEngine, dynamics::kGround, 1.0,
-                                               std::make_shared<const components::EnginePulsationLaw>(
-                                                   p_.engine_pulsation, units::rpm_to_rad_s(p_.engine.stall_speed_rpm),
-                                                   units::rpm_to_rad_s(p_.engine.idle_speed_rpm))});
+  const std::array<const char*, 4> wheels{"wheel_fl", "wheel_fr", "wheel_rl", "wheel_rr"};
+  for (int i = 0; i < 4; ++i) {
+    TyreSpec t;
+    t.name = tyre_names[static_cast<std::size_t>(i)];
+    t.wheel = wheels[static_cast<std::size_t>(i)];
+    t.vehicle = "vehicle";
+    t.params = tyre(i).params();
+    t.path_ratio = path_ratios_[static_cast<std::size_t>(i)];
+    s.tyres.push_back(t);
+  }
+  if (p.engine_pulsation.amplitude_Nm > 0)
+    s.firing_pulsations.push_back(
+        {"firing", "engine", p.engine_pulsation, p.engine.stall_speed_rpm, p.engine.idle_speed_rpm});
 
-  n.add_contact(dynamics::FrictionContact{"haldex_coupling", kCouplingIn, kCouplingOut, std::move(law)});
-  if (throttle_) {
-    const components::Engine engine = engine_;
-    const components::PiecewiseLinear throttle = *throttle_;
-    n.add_torque_source(dynamics::TorqueSource{
-        "engine", kEngine, {}, [engine, throttle](double t, double w) { return engine.torque_Nm(w, throttle(t)); }});
+  // The engine: its map with the throttle, or the raw torque schedule; the pedal the control
+  // unit reads is the throttle, or the raw torque over the full-load curve's peak.
+  Signal pedal_signal = Signal::constant(0.0);
+  if (in.throttle) {
+    EngineSpec e;
+    e.name = "engine_map";
+    e.node = "engine";
+    e.params = p.engine;
+    e.throttle = schedule_signal(*in.throttle);
+    s.engines.push_back(e);
+    pedal_signal = e.throttle;
   } else {
-    const components::PiecewiseLinear engine = engine_torque_Nm_;
-    n.add_torque_source(dynamics::TorqueSource{"engine", kEngine, [engine](double t) { return engine(t); }});
+    s.torque_sources.push_back({"engine_torque", "engine", schedule_signal(in.engine_torque_Nm)});
+    const auto& full = p.engine.full_load_torque_Nm.values();
+    const double peak = *std::max_element(full.begin(), full.end());
+    std::vector<double> u;
+    for (double t : in.engine_torque_Nm.values()) u.push_back(peak > 0 ? t / peak : 0.0);
+    pedal_signal = Signal::table(in.engine_torque_Nm.times_s(), u, true);
   }
-  if (grade_torque_Nm_ != 0.0) {
-    const double grade = grade_torque_Nm_;
-    n.add_torque_source(dynamics::TorqueSource{"grade", kVehicle, [grade](double) { return grade; }});
-  }
-  n.validate();
-  return n;
+
+  ClutchSpec c;
+  c.name = "haldex";
+  c.a = "coupling_in";
+  c.b = "coupling_out";
+  c.law = ClutchSpec::Law::kHaldex;
+  c.wet.fluid = clutch_->fluid();
+  c.wet.clutch = clutch_->params();  // the pack's oil already applied by the scenario (apply_pack_oil)
+  c.wet.oil_volume_given = c.wet.oil_flow_given = true;
+  c.wet.stick_time = p.stick_time;
+  HaldexSpec& h = c.haldex;
+  h.hydraulics = p.hydraulics;
+  h.controller = p.controller;
+  h.nominal_friction = p.nominal_friction;
+  h.front_axle = "front_diff";
+  h.rear_axle = "rear_diff";
+  h.front_path_ratio = 0.5 * (path_ratios_[kFL] + path_ratios_[kFR]);
+  h.rear_path_ratio = 0.5 * (path_ratios_[kRL] + path_ratios_[kRR]);
+  h.wheel_radius_m = r;
+  h.pedal = pedal_signal;
+  if (in.valve_opening) h.valve_opening = schedule_signal(*in.valve_opening);
+  if (in.valve_pressure_bar) h.valve_pressure_bar = schedule_signal(*in.valve_pressure_bar);
+  s.clutches.push_back(c);
+
+  s.settings.duration_s = cfg.duration_s;
+  s.settings.sample_rate_Hz = cfg.sample_rate_Hz;
+  s.settings.thermal_step_s = cfg.slow_step_s;
+  s.settings.integrator = p.integrator;
+  return s;
+}
+
+BuiltDriveline HaldexDriveline::build() const {
+  BuiltDriveline b;
+  b.spec_ = std::make_unique<components::NetworkSpec>(spec(DrivelineSettings{}));
+  b.built_ = components::build_network(*b.spec_);
+  b.coupling_context() = components::ClutchContext(start_inputs());
+  b.command() = start_command();
+  return b;
 }
 
 double HaldexDriveline::engine_torque_Nm(double t, double w) const {
@@ -390,51 +447,26 @@ std::vector<DrivelineRecorder::Channel> driveline_channels(
   };
 }
 
-// The control unit's instants: every control period after t = 0 and before the run's end,
-// independent of the thermal step.
-std::vector<double> control_instants_s(double control_period_s, double duration_s) {
-  std::vector<double> times;
-  for (long k = 1; static_cast<double>(k) * control_period_s < duration_s - 1e-12; ++k)
-    times.push_back(static_cast<double>(k) * control_period_s);
-  return times;
-}
-
 }  // namespace
 
-dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::WetClutch& clutch,
+dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::WetClutch& clutch_model,
                                   const DrivelineInputs& inputs, const DrivelineSettings& cfg) {
   if (!(cfg.duration_s > 0) || !(cfg.slow_step_s > 0) || !(cfg.sample_rate_Hz > 0))
     throw std::invalid_argument("driveline: duration, slow step and sample rate must be > 0");
   if (!std::isfinite(inputs.start_speed_km_h) || inputs.start_speed_km_h < 0)
     throw std::invalid_argument("driveline: start speed must be a finite value >= 0 km/h");
-  const HaldexDriveline dl(params, clutch, inputs);
+  const HaldexDriveline dl(params, clutch_model, inputs);
   using D = HaldexDriveline;
+  const components::NetworkSpec spec = dl.spec(cfg);
+  components::NetworkStepper stepper(spec, cfg.duration_s);
+  // The network's own copy of the pack (the same parameters and fluid) and its thermal state.
+  const components::BuiltClutch& coupling = stepper.built().clutches[D::kCoupling];
+  const clutch::WetClutch& clutch = *coupling.wet;
   const auto& th = clutch.thermal();
-  clutch::ThermalState ts = clutch.initial_state();
-  const auto coupling_context = std::make_shared<components::ClutchContext>(dl.start_inputs());
-  coupling_context->set_ring_temperatures(th.interface_temps_C(ts));
-  // Laminar leakage scales with 1/ν of the coupling's oil (its sump temperature), Walther's law.
-  const clutch::WaltherViscosity viscosity(clutch.fluid().nu40_cSt, clutch.fluid().nu100_cSt);
-  const double nu40_cSt = viscosity.kinematic_cSt(40.0);
-  const auto command = std::make_shared<components::HaldexCommand>(dl.start_command());
-  command->leak_scale = nu40_cSt / viscosity.kinematic_cSt(ts.sump_temp_C);
-  // The control unit's speed signals start steady at the rolling speeds, and its first command
-  // is set from them before the network takes the valve's start opening from it.
-  const double w_vehicle = inputs.start_speed_km_h / 3.6 / params.wheel_radius_m;
-  const Eigen::VectorXd w_start = dl.rolling_speed_ratios() * w_vehicle;
-  components::SampledSpeedSignal front_axle, rear_axle;
-  front_axle.start(0.0, w_start[D::kFrontDiff]);
-  rear_axle.start(0.0, w_start[D::kRearDiff]);
-  command->opening = dl.commanded_opening(0.0, front_axle.value_rad_s(), rear_axle.value_rad_s());
-  const dynamics::TorsionalNetwork network = dl.network(coupling_context, command);
-
-  dynamics::Simulation sim(network, params.integrator);
-  sim.initialize(0.0, Eigen::VectorXd::Zero(D::kNodes), w_start, Eigen::VectorXd());
-  const int z_coupling = sim.contact_state_index(D::kCoupling);
-  const auto pressure_bar = [z_coupling](const dynamics::Sample& s) {
-    return s.contact_states[z_coupling + components::HaldexCouplingLaw::kPressure];
-  };
-  const auto clamp_force_N = [&](const dynamics::Sample& s) { return dl.hydraulics().clamp_force_N(pressure_bar(s)); };
+  const clutch::ThermalState& ts = stepper.thermal()[0];
+  const dynamics::Simulation& sim = stepper.simulation();
+  const int z_coupling = coupling.state_index;
+  const auto clamp_force_N = [&coupling](const dynamics::Sample& s) { return coupling.normal_force_N(s); };
 
   dynamics::Recording rec;
   DrivelineRecorder recorder(rec, driveline_channels(dl, params, th, z_coupling, clamp_force_N));
@@ -449,34 +481,17 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
   recorder.sample(sim.sample());
   recorder.start(ts);
   double peak_C = th.interface_temps_C(ts).maxCoeff();
-  clutch::FrictionDataRange data_range(*clutch.fluid().friction);
-  // The control unit's instants: every control period, independent of the thermal step.
-  const double control_period_s = 1e-3 * params.controller.control_period_ms;
-  const std::vector<double> control_times_s = control_instants_s(control_period_s, cfg.duration_s);
-  const double filter_s = 1e-3 * params.controller.speed_filter_time_constant_ms;
-  components::run_multirate(
-      sim,
-      {components::MultirateClutch{coupling_context.get(), &clutch, &ts, D::kCoupling, &data_range, clamp_force_N}},
-      cfg.duration_s, cfg.slow_step_s, cfg.sample_rate_Hz,
+  stepper.advance_to(
+      cfg.duration_s,
       [&](const dynamics::Sample& s) {
         watch_stall(s);
         recorder.sample(s);
       },
       [&](const components::SlowStep& step) {
-        command->leak_scale = nu40_cSt / viscosity.kinematic_cSt(ts.sump_temp_C);
         peak_C = std::max(peak_C, th.interface_temps_C(ts).maxCoeff());
         recorder.step(ts, step.ta_s, step.tb_s);
-      },
-      control_times_s,
-      [&](double t) {
-        // The unit reads each axle's mean speed over the period just ended, filters it and sets
-        // the valve command it holds until the next instant.
-        const dynamics::Sample s = sim.sample();
-        const double front = front_axle.update(s.theta_rad[D::kFrontDiff], control_period_s, filter_s);
-        const double rear = rear_axle.update(s.theta_rad[D::kRearDiff], control_period_s, filter_s);
-        command->opening = dl.commanded_opening(t, front, rear);
       });
-  rec.blocks.push_back(components::friction_range_block(data_range));
+  rec.blocks.push_back(components::friction_range_block(stepper.data_ranges().front()));
 
   const double n_if = clutch.params().sliding_interfaces;
   const auto me = sim.energy();

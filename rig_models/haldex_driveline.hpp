@@ -55,6 +55,8 @@
 #include "components/haldex_controller.hpp"
 #include "components/haldex_coupling_law.hpp"
 #include "components/haldex_hydraulics.hpp"
+#include "components/network_builder.hpp"
+#include "components/network_spec.hpp"
 #include "components/tyre.hpp"
 
 namespace shudder::rig_models {
@@ -129,25 +131,40 @@ struct DrivelineSettings {
   double sample_rate_Hz = 1000.0;
 };
 
-/// A const model: the coupling's held inputs (ring temperatures; the valve command, pressure
-/// setting and leakage scale) live in a ClutchContext and a HaldexCommand owned by the run, to
-/// which the network's coupling law is bound.
+/// The car built as a network (components/network_builder.hpp): what a run integrates and an
+/// analysis linearises, in HaldexDriveline's node, shaft, contact and force-element order. The
+/// coupling's held inputs (ring temperatures) are coupling_context() and the valve command its
+/// control unit holds is command(), both bound to the network's coupling law.
+class BuiltDriveline {
+ public:
+  const dynamics::TorsionalNetwork& network() const { return built_->network; }
+  components::ClutchContext& coupling_context() const { return *built_->clutches.front().context; }
+  components::HaldexCommand& command() const { return *built_->clutches.front().command; }
+  const components::BuiltNetwork& built() const { return *built_; }
+
+ private:
+  friend class HaldexDriveline;
+  std::unique_ptr<components::NetworkSpec> spec_;  // the built network refers to it
+  std::unique_ptr<components::BuiltNetwork> built_;
+};
+
+/// The car's parameters and what is derived from them (tyres, road load, the turn's path
+/// ratios, the control unit's reading), and the car as network components (spec()). A const
+/// model: a run or an analysis builds its own network from it (build()).
 class HaldexDriveline {
  public:
-  /// Throws std::invalid_argument for invalid parameters.
+  /// Throws std::invalid_argument for invalid parameters. `clutch` must outlive the driveline.
   HaldexDriveline(const DrivelineParams& params, const clutch::WetClutch& clutch, const DrivelineInputs& inputs);
 
   /// Every ring at the clutch's start temperature, the clamp force of the unpressurised pump.
   components::ClutchHeldInputs start_inputs() const;
   /// The command at the start: the valve open, the raw pressure setting if one is given.
   components::HaldexCommand start_command() const;
-  /// The network with the coupling's law bound to the run's held inputs.
-  dynamics::TorsionalNetwork network(std::shared_ptr<components::ClutchContext> coupling_context,
-                                     std::shared_ptr<components::HaldexCommand> command) const;
-  /// The same with a fresh start_command() (its states then set by the caller, e.g. for modes).
-  dynamics::TorsionalNetwork network(std::shared_ptr<components::ClutchContext> coupling_context) const;
-  /// The network bound to a fresh context at start_inputs() (for inspection and modes).
-  dynamics::TorsionalNetwork network() const;
+  /// The car as network components (rig_models/driveline_expansion.hpp), run with `settings`.
+  components::NetworkSpec spec(const DrivelineSettings& settings) const;
+  /// The network of spec(DrivelineSettings{}), its coupling context at start_inputs() and its
+  /// command at start_command().
+  BuiltDriveline build() const;
   /// The coupling law's states [p, u] for a clamp force and valve opening (operating points).
   Eigen::VectorXd coupling_states(double clamp_force_N, double opening) const;
   const components::HaldexHydraulics& hydraulics() const { return hydraulics_; }
@@ -189,7 +206,6 @@ class HaldexDriveline {
     kFrontSideRight,
     kFrontLeftWheel,
     kFrontRightWheel,
-    kVehicle,
     kPtu,
     kCouplingIn,
     kCouplingOut,
@@ -198,6 +214,7 @@ class HaldexDriveline {
     kRearSideRight,
     kRearLeftWheel,
     kRearRightWheel,
+    kVehicle,  // the car's mass, last: a network builds its vehicles after its inertias
     kNodes
   };
   enum ShaftIndex { kFrontLeftHalfshaft, kFrontRightHalfshaft, kPropshaft, kRearLeftHalfshaft, kRearRightHalfshaft };
@@ -207,8 +224,9 @@ class HaldexDriveline {
   static constexpr double kGravity_m_s2 = 9.80665;
 
  private:
-  dynamics::TorsionalNetwork build(std::shared_ptr<const dynamics::ContactLaw> coupling_law) const;
   DrivelineParams p_;
+  const clutch::WetClutch* clutch_;
+  DrivelineInputs inputs_;
   components::HaldexHydraulics hydraulics_;
   components::HaldexController controller_;
   std::optional<components::PiecewiseLinear> valve_opening_, valve_pressure_bar_;
@@ -227,11 +245,11 @@ class HaldexDriveline {
 /// front_axle_load_share on the level, moved rearwards by m g (h/L) sin θ uphill (see the header).
 std::array<double, 2> static_axle_loads_N(const DrivelineParams& params, double grade_percent);
 
-/// Simulates the driveline with the coupling's thermal model and hydraulics (multi-rate) and
-/// records speeds, torques, pressure and temperatures; judges the coupling's judder from its
-/// torque and slip (analysis/shudder_detection.hpp, from 2 Hz), counting only an oscillation
-/// that still has half its amplitude at the end of the record (a torque step's ringing of the
-/// shuffle mode dies out and is not judder).
+/// Simulates the driveline: its network (spec()) run by components::NetworkStepper, the
+/// coupling's thermal model coupled multi-rate, its hydraulics integrated with the motion and its
+/// control unit sampled at its period; records speeds, torques, pressure and temperatures
+/// (docs/formats/run_output.md). Judging the coupling is a study of the recording
+/// (studies/driveline_judgement.hpp).
 dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::WetClutch& clutch,
                                   const DrivelineInputs& inputs, const DrivelineSettings& settings);
 

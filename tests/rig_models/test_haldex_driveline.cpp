@@ -74,7 +74,7 @@ TEST(HaldexDriveline, LockedStraightDrivingAcceleratesLikeOneInertia) {
   const HaldexDriveline dl(p, pack.clutch, in);
   const Eigen::VectorXd ratio = dl.rolling_speed_ratios();
   double j_eq = 0;
-  for (int i = 0; i < ratio.size(); ++i) j_eq += dl.network().inertias()[i].inertia_kg_m2 * ratio[i] * ratio[i];
+  for (int i = 0; i < ratio.size(); ++i) j_eq += dl.build().network().inertias()[i].inertia_kg_m2 * ratio[i] * ratio[i];
   const double w0 = 10.0 / 3.6 / p.wheel_radius_m;
   const double w_expected = w0 + 100.0 * ratio[HaldexDriveline::kEngine] * 3.0 / j_eq;
   const double w_end = last(rec, "vehicle_speed_km_h") / 3.6 / p.wheel_radius_m;
@@ -167,7 +167,7 @@ TEST(HaldexDriveline, CoastsDownOnTheRoadLoadsClosedForm) {
   const HaldexDriveline dl(p, pack.clutch, in);
   const Eigen::VectorXd ratio = dl.rolling_speed_ratios();
   double j_eq = 0;
-  for (int i = 0; i < ratio.size(); ++i) j_eq += dl.network().inertias()[i].inertia_kg_m2 * ratio[i] * ratio[i];
+  for (int i = 0; i < ratio.size(); ++i) j_eq += dl.build().network().inertias()[i].inertia_kg_m2 * ratio[i] * ratio[i];
   const double r = p.wheel_radius_m, m_eff = j_eq / (r * r);
   const double f_rr = p.rolling_resistance_coefficient * p.vehicle_mass_kg * HaldexDriveline::kGravity_m_s2;
   const double k = 0.5 * p.air_density_kg_m3 * p.drag_coefficient_area_m2;

@@ -29,7 +29,7 @@ TEST(HaldexTakeUp, NegativeSlopeJudderSitsAtASlippingCouplingMode) {
 
   // The modes with the coupling slipping (no friction stiffness across it): the nearest one.
   const HaldexDriveline dl(model.params, clutch, model.manoeuvre);
-  const auto modes = dl.network().modes({false});
+  const auto modes = dl.build().network().modes({false});
   double nearest_Hz = 0;
   for (Eigen::Index j = 0; j < modes.frequencies_Hz.size(); ++j)
     if (std::abs(modes.frequencies_Hz[j] - judder_Hz) < std::abs(nearest_Hz - judder_Hz))

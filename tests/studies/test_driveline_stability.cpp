@@ -110,9 +110,10 @@ TEST(DrivelineStability, MatrixEqualsFiniteDifferenceJacobianOfTheNonlinearRhs) 
   const studies::DrivelineStability st = studies::driveline_stability(dl, clutch, op, false);
   ASSERT_LT(st.coupling_slope_Nms, 0.0);
 
-  auto ctx = std::make_shared<components::ClutchContext>(dl.start_inputs());
-  ctx->set_ring_temperatures(Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), op.interface_temp_C));
-  const dynamics::TorsionalNetwork net = dl.network(ctx);
+  const rig_models::BuiltDriveline built = dl.build();
+  built.coupling_context().set_ring_temperatures(
+      Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), op.interface_temp_C));
+  const dynamics::TorsionalNetwork& net = built.network();
   // The same operating point as driveline_stability: its node speeds and tyre deflections.
   Eigen::VectorXd w0(D::kNodes);
   {
@@ -192,7 +193,7 @@ TEST(DrivelineStability, AtRestLockedEqualsTheNetworkModesWithTyreSprings) {
   Eigen::MatrixXd road = Eigen::MatrixXd::Zero(D::kNodes, D::kNodes);
   const double r = model.params.wheel_radius_m;
   road(D::kVehicle, D::kVehicle) = (dl.road_load().force_N(1e-7) - dl.road_load().force_N(-1e-7)) / 2e-7 * r * r;
-  const auto ref = dl.network().modes({true}, road);
+  const auto ref = dl.build().network().modes({true}, road);
   double shuffle_ref = 0;
   for (Eigen::Index j = 0; j < ref.damped_eigenvalues.size(); ++j)
     if (std::abs(ref.damped_eigenvalues[j].imag()) > 2 * std::numbers::pi * 0.5) {
