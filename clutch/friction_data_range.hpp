@@ -14,8 +14,8 @@
 //   temp below/above   some ring's interface temperature outside the temperature range
 //   load below/above   the clamp force outside the load range
 // Each adds dt to its time; `outside_s` counts a step once however many ranges it leaves.
-// The extremes seen are kept for the message. Every runner (prescribed slip, the rig and the
-// driveline's coupling through run_multirate) feeds one tally per clutch.
+// The extremes seen are kept for the message. Every runner (prescribed slip, and every network's
+// wet clutches through the multi-rate coupling) feeds one tally per clutch.
 
 #include <Eigen/Dense>
 #include <limits>

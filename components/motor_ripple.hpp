@@ -22,6 +22,8 @@
 // Integrator cost: the ripple is smooth, but dopri5 must resolve its period, so above the bar
 // mode's frequency it shortens the step (measured: docs/rig_model.md). A = 0 removes the source.
 
+#include <vector>
+
 #include "components/drive_cycle.hpp"
 
 namespace shudder::components {
@@ -49,6 +51,9 @@ class MotorRippleTorque {
   double revolutions(double t_s) const;
   MotorRipple r_;
   PiecewiseLinear speed_rpm_;
+  // From 0 s on: the reference's knots (0 first), its speed there and the revolutions up to each
+  // (the integral's trapezoids summed once, so a time costs one search, not a sum over knots).
+  std::vector<double> knot_t_s_, knot_rpm_, knot_rev_;
 };
 
 }  // namespace shudder::components

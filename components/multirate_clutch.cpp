@@ -12,14 +12,6 @@ namespace {
 constexpr double kDivergedTemp_C = 1e4;
 }  // namespace
 
-void run_multirate(dynamics::Simulation& sim, ClutchContext& context, const clutch::WetClutch& clutch,
-                   clutch::ThermalState& ts, int contact, double duration_s, double slow_step_s, double sample_rate_Hz,
-                   const std::function<void(const dynamics::Sample&)>& on_sample,
-                   const std::function<void(const SlowStep&)>& after_step, clutch::FrictionDataRange* data_range) {
-  run_multirate(sim, {MultirateClutch{&context, &clutch, &ts, contact, data_range}}, duration_s, slow_step_s,
-                sample_rate_Hz, on_sample, after_step);
-}
-
 // Per clutch: its thermal workspace, the ring heat at the last step's end and the hold's
 // temperatures (header).
 struct MultirateCoupling::Slot {

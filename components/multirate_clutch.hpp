@@ -1,18 +1,19 @@
 #pragma once
-// The multi-rate coupling of docs/architecture.md for a torsional network with one wet-clutch contact (the
-// rig's clutch, the Haldex coupling): the torsional states are integrated adaptively to the end
-// of each slow step, sampled on the way; then the clutch's thermal model is advanced over the
-// step with the exact friction energy per ring the integrator accumulated, and the mean slip
-// (relative rotation / step) for the oil flow; the run's clutch context (the held inputs the
-// contact law reads) gets the ring temperatures for the next step, the caller may update other
-// held inputs (a clamp force), and the stepper restarts. The thermal solver's workspace lives
-// here, one per run.
+// The multi-rate coupling of docs/architecture.md for a torsional network with any number of
+// wet-clutch contacts (every network that has one: the rig, the Haldex car, a user's drivetrain,
+// all run by components/network_stepper.hpp): the torsional states are integrated adaptively to
+// the end of each slow step, sampled on the way; then each clutch's thermal model is advanced over
+// the step with the exact friction energy per ring its contact accumulated, and the mean slip
+// (relative rotation / step) for the oil flow; each clutch context (the held inputs the contact
+// law reads) gets the ring temperatures for the next step, the caller may update other held
+// inputs (a control unit's command), and the stepper restarts. The thermal solvers' workspaces
+// live here, one per clutch and run.
 //
 // Ring temperatures across a slow step: a continuous first-order hold. Holding each
-// ring's thermal-update value over the step (a zero-order hold, before) made the friction torque
+// ring's thermal-update value over the step (a zero-order hold) would make the friction torque
 // a staircase with a step at every update: a numerical forcing at 1/Δt_th and its harmonics (the
-// 10 ms step's third harmonic, 300 Hz, sat on the 300 Hz bar mode and set the onset of shudder).
-// Now, with T_k the interface temperatures of the update at t_k, the friction over
+// 10 ms step's third harmonic, 300 Hz, sits on the 300 Hz bar mode and would set the onset of
+// shudder). With T_k the interface temperatures of the update at t_k, the friction over
 // [t_k, t_k+1] sees each ring move linearly (ClutchContext::set_ring_temperature_ramp) from
 //   S_k = E_k (where the previous step's ramp ended: no jump at t_k)   to
 //   E_k+1 = T_k + (T_k − T_k−1) Δt_k+1 / Δt_k   (linear extrapolation of the last two updates).
@@ -30,8 +31,8 @@
 // friction at such temperatures and it would creep on with ever smaller steps.
 // Slow steps end exactly on the duration and on the sample times they meet: summed steps drift
 // by round-off (1000 × 10 ms gives 9.99999999999983 s, which would lose the last sample; from
-// ~2 s a step ended just before the sample meant to close it, so that sample came after the
-// step's update — the driveline's next clamp force — while earlier ones came before it). Step k
+// ~2 s a step would end just before the sample meant to close it, so that sample would come
+// after the step's update while earlier ones come before it). Step k
 // ends at t0 + k·step, moved onto the duration or the sample k'/rate when within 1e-9 of a step;
 // a sample at a step's end is always delivered before that step's update.
 
@@ -117,16 +118,5 @@ class MultirateCoupling {
   double ta_s_ = 0.0;    // its start
   dynamics::Sample sa_;  // the simulation there
 };
-
-/// Runs `sim` from its current time to `duration_s`; `on_sample` gets every sample at
-/// `sample_rate_Hz` (k / rate, k >= 1), `after_step` each completed slow step after the thermal
-/// update of `ts` and of the ring temperatures held in `context` (the context the network's
-/// clutch law is bound to). `data_range` (if given) tallies each step's slip, held ring
-/// temperatures and clamp force against the friction law's data (clutch/friction_data_range.hpp).
-void run_multirate(dynamics::Simulation& sim, ClutchContext& context, const clutch::WetClutch& clutch,
-                   clutch::ThermalState& ts, int contact, double duration_s, double slow_step_s, double sample_rate_Hz,
-                   const std::function<void(const dynamics::Sample&)>& on_sample,
-                   const std::function<void(const SlowStep&)>& after_step,
-                   clutch::FrictionDataRange* data_range = nullptr);
 
 }  // namespace shudder::components

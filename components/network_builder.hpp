@@ -46,7 +46,7 @@ struct BuiltClutch {
   int contact = -1;
   double geometry_factor_m = 0.0;                      // torque per unit μ F: plain R, wet n r_mean
   std::shared_ptr<const PlainFrictionLaw> plain;       // plain law
-  std::unique_ptr<clutch::WetClutch> wet;              // wet law: the clutch...
+  std::shared_ptr<const clutch::WetClutch> wet;        // wet law: the clutch...
   std::shared_ptr<components::ClutchContext> context;  // ...and the inputs its run holds
   // Haldex law: the coupling's law, the command its control unit sets, the nodes it reads, and
   // where its states (pressure, valve opening) sit in Sample::contact_states.
@@ -79,7 +79,13 @@ struct BuiltNetwork {
 /// Throws std::invalid_argument for parameters the oil cannot be applied to.
 clutch::WetClutchParams pack_params(const ClutchSpec& clutch);
 
+/// How much build_network checks: everything (a spec as a user wrote it), or not the topology
+/// (the checks of the header above but the components' own): for a machine that rebuilds a spec
+/// whose topology it has built with every check before (the rig's and the car's analyses
+/// rebuild their network for each operating point they linearise about).
+enum class NetworkChecks { kAll, kSkipTopology };
+
 /// Checks and builds; throws NetworkError. `spec` must outlive the result.
-std::unique_ptr<BuiltNetwork> build_network(const NetworkSpec& spec);
+std::unique_ptr<BuiltNetwork> build_network(const NetworkSpec& spec, NetworkChecks checks = NetworkChecks::kAll);
 
 }  // namespace shudder::components

@@ -5,6 +5,7 @@
 // "ground" is the fixed frame. Units SI (rad/s, N m, N, kg m², m); files use rpm where engineers
 // do and say so in the key.
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -57,6 +58,10 @@ struct WetPackSpec {
   components::StickTimeFriction stick_time;
   std::vector<std::string> enabled_effects;
   bool oil_volume_given = false, oil_flow_given = false;  // the [clutch] table's oil.sump_volume_ml, supply_flow_ml_min
+  // The clutch already built from `clutch` (with the pack's oil applied) and `fluid`, which a
+  // machine that writes itself as a network from its own clutch hands over: the builder then
+  // takes it instead of building its own (building one assembles the thermal model's grid).
+  std::shared_ptr<const clutch::WetClutch> prebuilt;
 };
 /// A Haldex limited-slip coupling's own parts beside its wet pack (components/haldex_coupling_law.hpp):
 /// the hydraulics that clamp the pack (F = F_preload + A p, p a state of the run) and the control

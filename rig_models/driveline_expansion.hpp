@@ -4,10 +4,11 @@
 // tyres with their turn's path ratios and road friction, the vehicle with its road load and
 // grade, the engine (its throttle map or a torque schedule) with its firing pulsation, and the
 // Haldex coupling with its pack, hydraulics and control unit, the manoeuvre's schedules as table
-// signals, every part rolling with the start speed. Run through components/network_run.hpp it
-// gives the driveline kind's run (tests/rig_models/test_driveline_expansion.cpp holds every
-// shipped driveline scenario to it), and it is what a user starts from to change the car's
-// layout (docs/formats/network_file.md).
+// signals, every part rolling with the start speed. It is the network the driveline kind runs
+// (run_driveline: HaldexDriveline::spec, stepped by components/network_stepper.hpp;
+// tests/rig_models/test_driveline_expansion.cpp holds every shipped driveline scenario's kind run
+// to its network run), and what a user starts from to change the car's layout
+// (docs/formats/network_file.md).
 //
 // Component names follow the driveline's nodes and shafts; the coupling is `haldex`, the
 // engine `engine_torque` (a schedule) or `engine_map` (a throttle), the pulsation `firing`,

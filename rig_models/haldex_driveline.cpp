@@ -149,8 +149,8 @@ HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::We
   road_load_ = std::make_shared<const components::RoadLoad>(rl);
   grade_torque_Nm_ = -weight_N * std::sin(theta) * r;
 
-  // Builds the network once to validate it; runs and analyses build their own.
-  build();
+  // Builds the network once with every check; runs and analyses build their own.
+  build(components::NetworkChecks::kAll);
 }
 
 components::HaldexCommand HaldexDriveline::start_command() const {
@@ -180,7 +180,7 @@ components::Signal schedule_signal(const components::PiecewiseLinear& f) {
 
 }  // namespace
 
-components::NetworkSpec HaldexDriveline::spec(const DrivelineSettings& cfg) const {
+components::NetworkSpec HaldexDriveline::spec(const DrivelineSettings& cfg, bool share_clutch) const {
   using namespace components;
   const DrivelineParams& p = p_;
   const DrivelineInputs& in = inputs_;
@@ -277,6 +277,7 @@ components::NetworkSpec HaldexDriveline::spec(const DrivelineSettings& cfg) cons
   c.wet.clutch = clutch_->params();  // the pack's oil already applied by the scenario (apply_pack_oil)
   c.wet.oil_volume_given = c.wet.oil_flow_given = true;
   c.wet.stick_time = p.stick_time;
+  if (share_clutch) c.wet.prebuilt = std::shared_ptr<const clutch::WetClutch>(std::shared_ptr<void>(), clutch_);
   HaldexSpec& h = c.haldex;
   h.hydraulics = p.hydraulics;
   h.controller = p.controller;
@@ -298,10 +299,10 @@ components::NetworkSpec HaldexDriveline::spec(const DrivelineSettings& cfg) cons
   return s;
 }
 
-BuiltDriveline HaldexDriveline::build() const {
+BuiltDriveline HaldexDriveline::build(components::NetworkChecks checks) const {
   BuiltDriveline b;
-  b.spec_ = std::make_unique<components::NetworkSpec>(spec(DrivelineSettings{}));
-  b.built_ = components::build_network(*b.spec_);
+  b.spec_ = std::make_unique<components::NetworkSpec>(spec(DrivelineSettings{}, true));
+  b.built_ = components::build_network(*b.spec_, checks);
   b.coupling_context() = components::ClutchContext(start_inputs());
   b.command() = start_command();
   return b;
@@ -457,11 +458,10 @@ dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::W
     throw std::invalid_argument("driveline: start speed must be a finite value >= 0 km/h");
   const HaldexDriveline dl(params, clutch_model, inputs);
   using D = HaldexDriveline;
-  const components::NetworkSpec spec = dl.spec(cfg);
+  const components::NetworkSpec spec = dl.spec(cfg, true);
   components::NetworkStepper stepper(spec, cfg.duration_s);
-  // The network's own copy of the pack (the same parameters and fluid) and its thermal state.
   const components::BuiltClutch& coupling = stepper.built().clutches[D::kCoupling];
-  const clutch::WetClutch& clutch = *coupling.wet;
+  const clutch::WetClutch& clutch = clutch_model;
   const auto& th = clutch.thermal();
   const clutch::ThermalState& ts = stepper.thermal()[0];
   const dynamics::Simulation& sim = stepper.simulation();

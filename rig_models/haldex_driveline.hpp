@@ -35,6 +35,12 @@
 //     disc temperatures' update. The pack's own oil (volume, cooling flow) replaces the rig's sump
 //     and forced flow (components/pack_oil.hpp).
 //
+// The car is written as network components (spec(); rig_models/driveline_expansion.hpp names
+// them), assembled by components/network_builder.hpp and run by components/network_stepper.hpp
+// with the coupling's control unit, the same code as any network scenario; what is the car's own
+// is its parameters, what is derived from them (tyres, loads, the turn's path ratios), the
+// operating points its stability studies linearise about and the channels it records.
+//
 // Parameters are not in the thesis: every default below is an ESTIMATE for a mid-size AWD car of
 // the thesis' era (1.7 t, 1st gear; wheelbase and track of a VW Golf IV 4motion, the first
 // Haldex car), named and overridable. Together they put the first driveline (shuffle) mode at a
@@ -160,11 +166,15 @@ class HaldexDriveline {
   components::ClutchHeldInputs start_inputs() const;
   /// The command at the start: the valve open, the raw pressure setting if one is given.
   components::HaldexCommand start_command() const;
-  /// The car as network components (rig_models/driveline_expansion.hpp), run with `settings`.
-  components::NetworkSpec spec(const DrivelineSettings& settings) const;
+  /// The car as network components (rig_models/driveline_expansion.hpp), run with `settings`. The
+  /// spec holds copies of the pack's parameters and fluid and stands alone; with `share_clutch`
+  /// its networks take this car's clutch itself instead of building their own (which must then
+  /// outlive them).
+  components::NetworkSpec spec(const DrivelineSettings& settings, bool share_clutch = false) const;
   /// The network of spec(DrivelineSettings{}), its coupling context at start_inputs() and its
-  /// command at start_command().
-  BuiltDriveline build() const;
+  /// command at start_command(). The constructor has built it with every check; later builds
+  /// skip the topology's by default.
+  BuiltDriveline build(components::NetworkChecks checks = components::NetworkChecks::kSkipTopology) const;
   /// The coupling law's states [p, u] for a clamp force and valve opening (operating points).
   Eigen::VectorXd coupling_states(double clamp_force_N, double opening) const;
   const components::HaldexHydraulics& hydraulics() const { return hydraulics_; }

@@ -66,7 +66,7 @@ LsctrRig::LsctrRig(const RigParams& params, const clutch::WetClutch& clutch, con
   if (p_.bar_stiffness_Nm_per_rad > 0) {
     k_bar_ = k_network_ = p_.bar_stiffness_Nm_per_rad;
     c_bar_ = damping(k_bar_);
-    build_with_bar(k_bar_, c_bar_);  // validates the network
+    build_with_bar(k_bar_, c_bar_, components::NetworkChecks::kAll);  // validates the network
     return;
   }
   // Start from the isolated housing on the bar, then correct on the full modal analysis (the
@@ -77,7 +77,9 @@ LsctrRig::LsctrRig(const RigParams& params, const clutch::WetClutch& clutch, con
   for (int iter = 0; iter < 8; ++iter) {
     k_network_ = k_bar_;
     c_bar_ = damping(k_bar_);
-    const auto m = build_with_bar(k_bar_, c_bar_).network().modes();
+    // The first build checks the network; the others change only the bar's stiffness.
+    const auto checks = iter == 0 ? components::NetworkChecks::kAll : components::NetworkChecks::kSkipTopology;
+    const auto m = build_with_bar(k_bar_, c_bar_, checks).network().modes();
     const double f = m.frequencies_Hz[clutch_side_mode(m)];
     clutch_side_Hz_ = f;
     if (std::abs(f / target - 1.0) < 1e-10) break;
@@ -85,7 +87,8 @@ LsctrRig::LsctrRig(const RigParams& params, const clutch::WetClutch& clutch, con
   }
 }
 
-components::NetworkSpec LsctrRig::spec_with_bar(double k_bar, double c_bar, const RigSettings& cfg) const {
+components::NetworkSpec LsctrRig::spec_with_bar(double k_bar, double c_bar, const RigSettings& cfg,
+                                                bool share_clutch) const {
   using namespace components;
   NetworkSpec s;
   // The start: steady sliding at the cycle's first speed, every ring at the clutch's start
@@ -125,6 +128,7 @@ components::NetworkSpec LsctrRig::spec_with_bar(double k_bar, double c_bar, cons
   c.wet.oil_volume_given = c.wet.oil_flow_given = true;
   c.wet.bearing_drag = p_.bearing_drag;
   c.wet.stick_time = p_.stick_time;
+  if (share_clutch) c.wet.prebuilt = std::shared_ptr<const clutch::WetClutch>(std::shared_ptr<void>(), clutch_);
   c.judged_on = "torsion_bar";
   s.clutches.push_back(c);
   s.shafts.push_back({"torsion_bar", "housing", kGroundNode, k_bar, c_bar, 0.0});
@@ -136,14 +140,14 @@ components::NetworkSpec LsctrRig::spec_with_bar(double k_bar, double c_bar, cons
   return s;
 }
 
-components::NetworkSpec LsctrRig::spec(const RigSettings& settings) const {
-  return spec_with_bar(k_network_, c_bar_, settings);
+components::NetworkSpec LsctrRig::spec(const RigSettings& settings, bool share_clutch) const {
+  return spec_with_bar(k_network_, c_bar_, settings, share_clutch);
 }
 
-BuiltRig LsctrRig::build_with_bar(double k_bar, double c_bar) const {
+BuiltRig LsctrRig::build_with_bar(double k_bar, double c_bar, components::NetworkChecks checks) const {
   BuiltRig b;
-  b.spec_ = std::make_unique<components::NetworkSpec>(spec_with_bar(k_bar, c_bar, RigSettings{}));
-  b.built_ = components::build_network(*b.spec_);
+  b.spec_ = std::make_unique<components::NetworkSpec>(spec_with_bar(k_bar, c_bar, RigSettings{}, true));
+  b.built_ = components::build_network(*b.spec_, checks);
   *b.built_->clutches.front().context = components::ClutchContext(start_inputs());
   return b;
 }
@@ -164,10 +168,9 @@ dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& cl
   if (!(cfg.duration_s > 0) || !(cfg.thermal_step_s > 0) || !(cfg.sample_rate_Hz > 0))
     throw std::invalid_argument("duration, thermal step and sample rate must be > 0");
   const LsctrRig rig(params, clutch_model, cycle);
-  const components::NetworkSpec spec = rig.spec(cfg);
+  const components::NetworkSpec spec = rig.spec(cfg, true);
   components::NetworkStepper stepper(spec, cfg.duration_s);
-  // The network's own copy of the clutch (the same parameters and fluid) and its thermal state.
-  const clutch::WetClutch& clutch = *stepper.built().clutches[LsctrRig::kClutch].wet;
+  const clutch::WetClutch& clutch = clutch_model;
   const auto& th = clutch.thermal();
   const clutch::ThermalState& ts = stepper.thermal()[0];
   const dynamics::Simulation& sim = stepper.simulation();

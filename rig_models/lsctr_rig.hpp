@@ -13,6 +13,12 @@
 // frequency of the clutch-side mode (the housing on the bar with the clutch slipping), refined
 // on the modal analysis so the mode matches the target (modes() of the network).
 //
+// The rig is written as network components (spec(): nodes `drive` and `housing`, `motor`,
+// `clutch`, `torsion_bar`; rig_models/rig_expansion.hpp), assembled by
+// components/network_builder.hpp and run by components/network_stepper.hpp, the same code as
+// any network scenario; what is the rig's own is its parameters, the bar's tuning and the
+// channels it records under the measured-run names.
+//
 // Unpublished quantities (estimates; overridable in [rig]):
 //   drive inertia 0.6 kg m²: servo rotor ~1e-3 kg m² through a ~24:1 gearbox (3000 rpm motor
 //       for the rig's 125 rpm maximum) gives ~0.58 kg m², plus ~0.02 kg m² of shaft and disc.
@@ -100,8 +106,11 @@ class LsctrRig {
   const components::ClutchContact& clutch_contact() const { return contact_; }
   /// Every ring at the clutch's start temperature, the cycle's clamp force.
   components::ClutchHeldInputs start_inputs() const { return contact_.start_inputs(force_N_); }
-  /// The rig as network components (rig_models/rig_expansion.hpp), run with `settings`.
-  components::NetworkSpec spec(const RigSettings& settings) const;
+  /// The rig as network components (rig_models/rig_expansion.hpp), run with `settings`. The spec
+  /// holds copies of the clutch's parameters and fluid and stands alone; with `share_clutch` its
+  /// networks take this rig's clutch itself instead of building their own (which must then
+  /// outlive them).
+  components::NetworkSpec spec(const RigSettings& settings, bool share_clutch = false) const;
   /// The network of spec(RigSettings{}); with `bar_damping_ratio` the bar's damping replaced
   /// (its stiffness held). Its clutch context holds start_inputs().
   BuiltRig build(std::optional<double> bar_damping_ratio = std::nullopt) const;
@@ -116,8 +125,10 @@ class LsctrRig {
   static constexpr int kDrive = 0, kHousing = 1, kClutch = 0, kBar = 0;
 
  private:
-  components::NetworkSpec spec_with_bar(double k_bar, double c_bar, const RigSettings& settings) const;
-  BuiltRig build_with_bar(double k_bar, double c_bar) const;
+  components::NetworkSpec spec_with_bar(double k_bar, double c_bar, const RigSettings& settings,
+                                        bool share_clutch) const;
+  BuiltRig build_with_bar(double k_bar, double c_bar,
+                          components::NetworkChecks checks = components::NetworkChecks::kSkipTopology) const;
   RigParams p_;
   const clutch::WetClutch* clutch_;
   components::ClutchContact contact_;

@@ -6,8 +6,9 @@
 // the clutch judged on the bar as the torque cell reads it. The start is the rig's: steady
 // sliding at the cycle's first speed with the bar already twisted by the friction torque and the
 // speed loop's integrator holding it (the housing's start angle and the motor's start torque),
-// or everything at rest. Run through components/network_run.hpp it gives the rig kind's run
-// (tests/rig_models/test_rig_expansion.cpp holds every shipped rig scenario to it).
+// or everything at rest. It is the network the rig kind runs (run_rig: LsctrRig::spec, stepped by
+// components/network_stepper.hpp); tests/rig_models/test_rig_expansion.cpp holds every shipped
+// rig scenario's kind run to its network run.
 //
 // Names: nodes `drive` and `housing`, `motor`, `clutch`, `torsion_bar`.
 
