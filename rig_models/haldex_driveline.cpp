@@ -450,18 +450,17 @@ std::vector<DrivelineRecorder::Channel> driveline_channels(
 
 }  // namespace
 
-dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::WetClutch& clutch_model,
+dynamics::Recording run_driveline(const DrivelineParams& params, const clutch::WetClutch& clutch,
                                   const DrivelineInputs& inputs, const DrivelineSettings& cfg) {
   if (!(cfg.duration_s > 0) || !(cfg.slow_step_s > 0) || !(cfg.sample_rate_Hz > 0))
     throw std::invalid_argument("driveline: duration, slow step and sample rate must be > 0");
   if (!std::isfinite(inputs.start_speed_km_h) || inputs.start_speed_km_h < 0)
     throw std::invalid_argument("driveline: start speed must be a finite value >= 0 km/h");
-  const HaldexDriveline dl(params, clutch_model, inputs);
+  const HaldexDriveline dl(params, clutch, inputs);
   using D = HaldexDriveline;
   const components::NetworkSpec spec = dl.spec(cfg, true);
   components::NetworkStepper stepper(spec, cfg.duration_s);
   const components::BuiltClutch& coupling = stepper.built().clutches[D::kCoupling];
-  const clutch::WetClutch& clutch = clutch_model;
   const auto& th = clutch.thermal();
   const clutch::ThermalState& ts = stepper.thermal()[0];
   const dynamics::Simulation& sim = stepper.simulation();

@@ -163,14 +163,13 @@ double LsctrRig::clutch_side_frequency_Hz() const {
   return m.frequencies_Hz[clutch_side_mode(m)];
 }
 
-dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& clutch_model,
+dynamics::Recording run_rig(const RigParams& params, const clutch::WetClutch& clutch,
                             const components::DriveCycle& cycle, const RigSettings& cfg) {
   if (!(cfg.duration_s > 0) || !(cfg.thermal_step_s > 0) || !(cfg.sample_rate_Hz > 0))
     throw std::invalid_argument("duration, thermal step and sample rate must be > 0");
-  const LsctrRig rig(params, clutch_model, cycle);
+  const LsctrRig rig(params, clutch, cycle);
   const components::NetworkSpec spec = rig.spec(cfg, true);
   components::NetworkStepper stepper(spec, cfg.duration_s);
-  const clutch::WetClutch& clutch = clutch_model;
   const auto& th = clutch.thermal();
   const clutch::ThermalState& ts = stepper.thermal()[0];
   const dynamics::Simulation& sim = stepper.simulation();
