@@ -55,7 +55,6 @@ HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::We
       clutch_(&clutch),
       inputs_(inputs),
       hydraulics_(params.hydraulics, pack_torque_per_newton(params, clutch)),
-      controller_(params.controller),
       valve_opening_(inputs.valve_opening),
       valve_pressure_bar_(inputs.valve_pressure_bar),
       contact_(clutch, components::BearingDrag{}, params.stick_time),
@@ -110,7 +109,6 @@ HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::We
       if (!std::isfinite(v) || v < 0 || v > p_.hydraulics.relief_pressure_bar)
         throw std::invalid_argument("driveline: valve_pressure_bar must be within [0, relief_pressure_bar]");
   path_ratios_ = wheel_path_ratios(p_, inputs);
-  turn_axle_ratio_ = (path_ratios_[kFL] + path_ratios_[kFR]) / (path_ratios_[kRL] + path_ratios_[kRR]);
   for (const auto& [v, what] : std::initializer_list<std::pair<std::optional<double>, const char*>>{
            {p_.tyre_slip_stiffness_N, "tyre_slip_stiffness_N"},
            {p_.tyre_slip_stiffness_per_load, "tyre_slip_stiffness_per_load"}})
@@ -150,7 +148,8 @@ HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::We
   grade_torque_Nm_ = -weight_N * std::sin(theta) * r;
 
   // Builds the network once with every check; runs and analyses build their own.
-  build(components::NetworkChecks::kAll);
+  checked_ = build(components::NetworkChecks::kAll);
+  control_unit_ = std::make_unique<components::HaldexControlUnit>(checked_.built().clutches.front());
 }
 
 components::HaldexCommand HaldexDriveline::start_command() const {
@@ -312,35 +311,8 @@ double HaldexDriveline::engine_torque_Nm(double t, double w) const {
   return throttle_ ? engine_.torque_Nm(w, (*throttle_)(t)) : engine_torque_Nm_(t);
 }
 
-double HaldexDriveline::pedal(double t) const {
-  if (throttle_) return std::clamp((*throttle_)(t), 0.0, 1.0);
-  const auto& full = engine_.params().full_load_torque_Nm.values();
-  const double peak = *std::max_element(full.begin(), full.end());
-  return peak > 0 ? std::clamp(engine_torque_Nm_(t) / peak, 0.0, 1.0) : 0.0;
-}
-
-components::ControllerReading HaldexDriveline::reading(double t, double front_rad_s, double rear_rad_s) const {
-  const Eigen::VectorXd rolling = rolling_speed_ratios();
-  components::ControllerReading r;
-  // Each axle's speed over its path ratio is the car's as that axle sees it; the slower one
-  // slips least in traction.
-  const double vehicle_rad_s = std::min(front_rad_s / rolling[kFrontDiff], rear_rad_s / rolling[kRearDiff]);
-  r.vehicle_speed_km_h = vehicle_rad_s * p_.wheel_radius_m * 3.6;
-  r.front_axle_rpm = units::rad_s_to_rpm(front_rad_s);
-  r.rear_axle_rpm = units::rad_s_to_rpm(rear_rad_s);
-  r.turn_axle_ratio = turn_axle_ratio_;
-  r.pedal = pedal(t);
-  return r;
-}
-
-double HaldexDriveline::commanded_opening(double t, double front_rad_s, double rear_rad_s) const {
-  if (valve_opening_) return (*valve_opening_)(t);
-  if (valve_pressure_bar_) return 0.0;  // a raw pressure setting: shut below it
-  return controller_.valve_opening(reading(t, front_rad_s, rear_rad_s));
-}
-
 double HaldexDriveline::valve_opening(const dynamics::Sample& s) const {
-  return commanded_opening(s.t_s, s.omega_rad_s[kFrontDiff], s.omega_rad_s[kRearDiff]);
+  return control_unit_->commanded_opening(s.t_s, s.omega_rad_s[kFrontDiff], s.omega_rad_s[kRearDiff]);
 }
 
 double HaldexDriveline::valve_setting_bar(double t) const {

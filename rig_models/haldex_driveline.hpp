@@ -58,6 +58,7 @@
 #include "components/drive_cycle.hpp"
 #include "components/engine.hpp"
 #include "components/engine_pulsation.hpp"
+#include "components/haldex_control.hpp"
 #include "components/haldex_controller.hpp"
 #include "components/haldex_coupling_law.hpp"
 #include "components/haldex_hydraulics.hpp"
@@ -178,20 +179,12 @@ class HaldexDriveline {
   /// The coupling law's states [p, u] for a clamp force and valve opening (operating points).
   Eigen::VectorXd coupling_states(double clamp_force_N, double opening) const;
   const components::HaldexHydraulics& hydraulics() const { return hydraulics_; }
-  const components::HaldexController& controller() const { return controller_; }
-  /// What the control unit reads at time t from the (sampled, filtered) axle speeds: the vehicle
-  /// speed it estimates from the slower axle (as an ABS reference speed does), the turn, the pedal.
-  components::ControllerReading reading(double t_s, double front_axle_rad_s, double rear_axle_rad_s) const;
-  /// The valve opening commanded at time t for those axle speeds (the controller's, or the raw
-  /// schedule's; shut under a raw pressure setting).
-  double commanded_opening(double t_s, double front_axle_rad_s, double rear_axle_rad_s) const;
-  /// The same at a steady state (the axles' instantaneous speeds), and the pressure setting (the
-  /// relief pressure unless a raw one is given).
+  /// The valve opening the run's control unit (components/haldex_control.hpp) commands for the
+  /// axles' speeds of a steady state `s` (the controller's, or the raw schedule's; shut under a
+  /// raw pressure setting), and the pressure setting (the relief pressure unless a raw one is
+  /// given).
   double valve_opening(const dynamics::Sample& s) const;
   double valve_setting_bar(double t_s) const;
-  /// The accelerator pedal the controller reads: the throttle, or the raw torque over the
-  /// full-load curve's peak (0–1).
-  double pedal(double t_s) const;
   const DrivelineParams& params() const { return p_; }
   /// Speed of every node per unit vehicle speed (rad/s per rad/s) when all rolls together.
   Eigen::VectorXd rolling_speed_ratios() const;
@@ -238,9 +231,7 @@ class HaldexDriveline {
   const clutch::WetClutch* clutch_;
   DrivelineInputs inputs_;
   components::HaldexHydraulics hydraulics_;
-  components::HaldexController controller_;
   std::optional<components::PiecewiseLinear> valve_opening_, valve_pressure_bar_;
-  double turn_axle_ratio_ = 1.0;
   components::ClutchContact contact_;
   components::PiecewiseLinear engine_torque_Nm_;
   std::optional<components::PiecewiseLinear> throttle_;
@@ -249,6 +240,10 @@ class HaldexDriveline {
   std::array<std::shared_ptr<const components::BrushTyre>, 4> tyres_;
   std::shared_ptr<const components::RoadLoad> road_load_;
   double grade_torque_Nm_ = 0;
+  // The network built with every check, and a control unit on its coupling: what valve_opening
+  // asks (the run's own control logic, not a copy of it).
+  BuiltDriveline checked_;
+  std::unique_ptr<components::HaldexControlUnit> control_unit_;
 };
 
 /// The static axle loads (front, rear; N) on a grade (%, uphill > 0): the car's weight split by
