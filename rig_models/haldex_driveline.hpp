@@ -156,7 +156,7 @@ class BuiltDriveline {
 };
 
 /// The car's parameters and what is derived from them (tyres, road load, the turn's path
-/// ratios, the control unit's reading), and the car as network components (spec()). A const
+/// ratios), and the car as network components (spec()). A const
 /// model: a run or an analysis builds its own network from it (build()).
 class HaldexDriveline {
  public:

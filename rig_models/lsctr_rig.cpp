@@ -55,6 +55,8 @@ LsctrRig::LsctrRig(const RigParams& params, const clutch::WetClutch& clutch, con
   require(p_.bar_damping_ratio >= 0, "torsion bar damping ratio must be >= 0");
   require(p_.speed_loop_bandwidth_Hz > 0, "speed loop bandwidth must be > 0 Hz");
   require(p_.motor_torque_limit_Nm > 0, "motor torque limit must be > 0 N m");
+  require(cycle.normal_force_N.max_value() > 0,
+          "the drive cycle's normal force is 0 N throughout, so the clutch never loads; give a normal force > 0 N");
 
   const SpeedLoopGains gains = speed_loop_gains(p_);
   kp_ = gains.kp_Nms_per_rad;

@@ -562,3 +562,18 @@ TEST(RigThermalCoupling, HalvingTheThermalStepChangesEndTorqueAndTemperatureByLe
 }
 
 }  // namespace
+
+// A drive cycle whose clamp force never rises above 0 N cannot load the clutch: refused with
+// what to change, naming the cycle's force (not the network component the rig is written as).
+TEST(RigCycle, ZeroNormalForceThroughoutIsRefused) {
+  const Scenario sc = scenario("rig_case1_25kN_378Hz.toml");
+  const WetClutch clutch = sc.make_clutch();
+  auto cycle = shudder::test::rig_model(sc).cycle;
+  cycle.normal_force_N = shudder::components::PiecewiseLinear({0.0}, {0.0});
+  try {
+    const LsctrRig rig(shudder::test::rig_model(sc).params, clutch, cycle);
+    FAIL() << "a rig without clamp force was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("normal force is 0 N throughout"), std::string::npos) << e.what();
+  }
+}
