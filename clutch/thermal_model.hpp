@@ -131,8 +131,8 @@ class ThermalModel;
 
 /// The solver's scratch for one run (not physics state): the system matrix, its band LU and
 /// the right-hand side. Owned by whoever steps the model (one per run, or per thread); the LU is
-/// re-factorised only when the step size or the oil flow changed since the last step. A step
-/// with an unchanged factorisation allocates nothing here.
+/// re-factorised only when the step size (by more than 1e-12 relative) or the oil flow changed
+/// since the last step. A step with an unchanged factorisation allocates nothing here.
 class ThermalWorkspace {
  public:
   /// Sized and analysed for `model`'s grid; use it only with that model.
