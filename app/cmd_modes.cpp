@@ -52,7 +52,7 @@ void print_modes(const dynamics::TorsionalNetwork& net, const dynamics::Modes& m
 void print_rig_modes(const io::Scenario& sc, const rig_models::RigModel& model) {
   const clutch::WetClutch clutch = sc.make_clutch();
   const rig_models::LsctrRig rig(model.params, clutch, model.cycle);
-  const rig_models::BuiltRig built = rig.build();
+  const components::OwnedNetwork built = rig.build();
   const auto& net = built.network();
   std::printf(
       "Scenario %s: torsion bar %.6g N m/rad (c = %.4g N m s/rad), speed loop Kp %.4g N m s/rad, "

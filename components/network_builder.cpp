@@ -452,4 +452,27 @@ std::unique_ptr<BuiltNetwork> build_network(const NetworkSpec& spec, NetworkChec
   return built;
 }
 
+OwnedNetwork::OwnedNetwork(NetworkSpec spec, NetworkChecks checks)
+    : spec_(std::make_unique<const NetworkSpec>(std::move(spec))), built_(build_network(*spec_, checks)) {}
+
+const BuiltClutch& OwnedNetwork::clutch(std::size_t c) const {
+  if (c >= built_->clutches.size())
+    throw std::invalid_argument("network: clutch " + std::to_string(c) + " asked of a network with " +
+                                std::to_string(built_->clutches.size()) + " clutches");
+  return built_->clutches[c];
+}
+
+ClutchContext& OwnedNetwork::clutch_context(std::size_t c) const {
+  const BuiltClutch& b = clutch(c);
+  if (!b.context) throw std::invalid_argument("clutch '" + b.name() + "' has no held inputs: it is not a wet clutch");
+  return *b.context;
+}
+
+HaldexCommand& OwnedNetwork::command(std::size_t c) const {
+  const BuiltClutch& b = clutch(c);
+  if (!b.command)
+    throw std::invalid_argument("clutch '" + b.name() + "' has no valve command: it is not a Haldex coupling");
+  return *b.command;
+}
+
 }  // namespace shudder::components

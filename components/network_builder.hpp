@@ -88,4 +88,28 @@ enum class NetworkChecks { kAll, kSkipTopology };
 /// Checks and builds; throws NetworkError. `spec` must outlive the result.
 std::unique_ptr<BuiltNetwork> build_network(const NetworkSpec& spec, NetworkChecks checks = NetworkChecks::kAll);
 
+/// A spec and the network built from it, kept together (the built network refers to its
+/// spec): what a machine written as components (the rig, the car) hands the analyses that
+/// linearise or probe it. The clutch laws are bound to the contexts and commands below, so
+/// setting them sets what the network's laws read.
+class OwnedNetwork {
+ public:
+  /// build_network(spec, checks); throws NetworkError.
+  explicit OwnedNetwork(NetworkSpec spec, NetworkChecks checks = NetworkChecks::kAll);
+
+  const NetworkSpec& spec() const { return *spec_; }
+  const BuiltNetwork& built() const { return *built_; }
+  const dynamics::TorsionalNetwork& network() const { return built_->network; }
+  /// The held inputs (ring temperatures, clamp force) of clutch `c`, a wet clutch or a Haldex
+  /// coupling; std::invalid_argument for another law or an index out of range.
+  ClutchContext& clutch_context(std::size_t c = 0) const;
+  /// The valve command of clutch `c`, a Haldex coupling; std::invalid_argument otherwise.
+  HaldexCommand& command(std::size_t c = 0) const;
+
+ private:
+  const BuiltClutch& clutch(std::size_t c) const;
+  std::unique_ptr<const NetworkSpec> spec_;
+  std::unique_ptr<BuiltNetwork> built_;
+};
+
 }  // namespace shudder::components

@@ -148,8 +148,8 @@ HaldexDriveline::HaldexDriveline(const DrivelineParams& params, const clutch::We
   grade_torque_Nm_ = -weight_N * std::sin(theta) * r;
 
   // Builds the network once with every check; runs and analyses build their own.
-  checked_ = build(components::NetworkChecks::kAll);
-  control_unit_ = std::make_unique<components::HaldexControlUnit>(checked_.built().clutches.front());
+  checked_.emplace(build(components::NetworkChecks::kAll));
+  control_unit_ = std::make_unique<components::HaldexControlUnit>(checked_->built().clutches.front());
 }
 
 components::HaldexCommand HaldexDriveline::start_command() const {
@@ -298,11 +298,9 @@ components::NetworkSpec HaldexDriveline::spec(const DrivelineSettings& cfg, bool
   return s;
 }
 
-BuiltDriveline HaldexDriveline::build(components::NetworkChecks checks) const {
-  BuiltDriveline b;
-  b.spec_ = std::make_unique<components::NetworkSpec>(spec(DrivelineSettings{}, true));
-  b.built_ = components::build_network(*b.spec_, checks);
-  b.coupling_context() = components::ClutchContext(start_inputs());
+components::OwnedNetwork HaldexDriveline::build(components::NetworkChecks checks) const {
+  components::OwnedNetwork b(spec(DrivelineSettings{}, true), checks);
+  b.clutch_context() = components::ClutchContext(start_inputs());
   b.command() = start_command();
   return b;
 }

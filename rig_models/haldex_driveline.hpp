@@ -138,23 +138,6 @@ struct DrivelineSettings {
   double sample_rate_Hz = 1000.0;
 };
 
-/// The car built as a network (components/network_builder.hpp): what a run integrates and an
-/// analysis linearises, in HaldexDriveline's node, shaft, contact and force-element order. The
-/// coupling's held inputs (ring temperatures) are coupling_context() and the valve command its
-/// control unit holds is command(), both bound to the network's coupling law.
-class BuiltDriveline {
- public:
-  const dynamics::TorsionalNetwork& network() const { return built_->network; }
-  components::ClutchContext& coupling_context() const { return *built_->clutches.front().context; }
-  components::HaldexCommand& command() const { return *built_->clutches.front().command; }
-  const components::BuiltNetwork& built() const { return *built_; }
-
- private:
-  friend class HaldexDriveline;
-  std::unique_ptr<components::NetworkSpec> spec_;  // the built network refers to it
-  std::unique_ptr<components::BuiltNetwork> built_;
-};
-
 /// The car's parameters and what is derived from them (tyres, road load, the turn's path
 /// ratios), and the car as network components (spec()). A const
 /// model: a run or an analysis builds its own network from it (build()).
@@ -172,10 +155,11 @@ class HaldexDriveline {
   /// its networks take this car's clutch itself instead of building their own (which must then
   /// outlive them).
   components::NetworkSpec spec(const DrivelineSettings& settings, bool share_clutch = false) const;
-  /// The network of spec(DrivelineSettings{}), its coupling context at start_inputs() and its
-  /// command at start_command(). The constructor has built it with every check; later builds
-  /// skip the topology's by default.
-  BuiltDriveline build(components::NetworkChecks checks = components::NetworkChecks::kSkipTopology) const;
+  /// The network of spec(DrivelineSettings{}): what a run integrates and an analysis linearises,
+  /// in this class' node, shaft, contact and force-element order. Its coupling (clutch 0) holds
+  /// start_inputs() and its command start_command(). The constructor has built it with every
+  /// check; later builds skip the topology's by default.
+  components::OwnedNetwork build(components::NetworkChecks checks = components::NetworkChecks::kSkipTopology) const;
   /// The coupling law's states [p, u] for a clamp force and valve opening (operating points).
   Eigen::VectorXd coupling_states(double clamp_force_N, double opening) const;
   const components::HaldexHydraulics& hydraulics() const { return hydraulics_; }
@@ -242,7 +226,7 @@ class HaldexDriveline {
   double grade_torque_Nm_ = 0;
   // The network built with every check, and a control unit on its coupling: what valve_opening
   // asks (the run's own control logic, not a copy of it).
-  BuiltDriveline checked_;
+  std::optional<components::OwnedNetwork> checked_;
   std::unique_ptr<components::HaldexControlUnit> control_unit_;
 };
 

@@ -146,15 +146,13 @@ components::NetworkSpec LsctrRig::spec(const RigSettings& settings, bool share_c
   return spec_with_bar(k_network_, c_bar_, settings, share_clutch);
 }
 
-BuiltRig LsctrRig::build_with_bar(double k_bar, double c_bar, components::NetworkChecks checks) const {
-  BuiltRig b;
-  b.spec_ = std::make_unique<components::NetworkSpec>(spec_with_bar(k_bar, c_bar, RigSettings{}, true));
-  b.built_ = components::build_network(*b.spec_, checks);
-  *b.built_->clutches.front().context = components::ClutchContext(start_inputs());
+components::OwnedNetwork LsctrRig::build_with_bar(double k_bar, double c_bar, components::NetworkChecks checks) const {
+  components::OwnedNetwork b(spec_with_bar(k_bar, c_bar, RigSettings{}, true), checks);
+  b.clutch_context() = components::ClutchContext(start_inputs());
   return b;
 }
 
-BuiltRig LsctrRig::build(std::optional<double> bar_damping_ratio) const {
+components::OwnedNetwork LsctrRig::build(std::optional<double> bar_damping_ratio) const {
   if (!bar_damping_ratio) return build_with_bar(k_network_, c_bar_);
   return build_with_bar(k_network_, 2.0 * *bar_damping_ratio * std::sqrt(k_network_ * p_.housing_inertia_kg_m2));
 }

@@ -79,22 +79,6 @@ struct SpeedLoopGains {
 };
 SpeedLoopGains speed_loop_gains(const RigParams& params);
 
-/// The rig built as a network (components/network_builder.hpp): what a run integrates and an
-/// analysis linearises. Node 0 drive, node 1 housing; contact 0 the clutch; shaft 0 the bar;
-/// motor 0 the drive's. The clutch's held inputs (ring temperatures, clamp force) are
-/// clutch_context(), to which the network's clutch law is bound.
-class BuiltRig {
- public:
-  const dynamics::TorsionalNetwork& network() const { return built_->network; }
-  components::ClutchContext& clutch_context() const { return *built_->clutches.front().context; }
-  const components::BuiltNetwork& built() const { return *built_; }
-
- private:
-  friend class LsctrRig;
-  std::unique_ptr<components::NetworkSpec> spec_;  // the built network refers to it
-  std::unique_ptr<components::BuiltNetwork> built_;
-};
-
 /// The rig's parameters and what is derived from them (the bar's stiffness from its target
 /// frequency, the speed loop's gains), and the rig as network components. A const model: a
 /// run or an analysis builds its own network from it (build()).
@@ -111,9 +95,11 @@ class LsctrRig {
   /// networks take this rig's clutch itself instead of building their own (which must then
   /// outlive them).
   components::NetworkSpec spec(const RigSettings& settings, bool share_clutch = false) const;
-  /// The network of spec(RigSettings{}); with `bar_damping_ratio` the bar's damping replaced
-  /// (its stiffness held). Its clutch context holds start_inputs().
-  BuiltRig build(std::optional<double> bar_damping_ratio = std::nullopt) const;
+  /// The network of spec(RigSettings{}): what a run integrates and an analysis linearises
+  /// (node kDrive and kHousing, contact kClutch, shaft kBar, motor 0 the drive's). With
+  /// `bar_damping_ratio` the bar's damping replaced (its stiffness held). Its clutch context
+  /// holds start_inputs().
+  components::OwnedNetwork build(std::optional<double> bar_damping_ratio = std::nullopt) const;
   const RigParams& params() const { return p_; }
   double bar_stiffness_Nm_per_rad() const { return k_bar_; }
   double bar_damping_Nms_per_rad() const { return c_bar_; }
@@ -127,8 +113,8 @@ class LsctrRig {
  private:
   components::NetworkSpec spec_with_bar(double k_bar, double c_bar, const RigSettings& settings,
                                         bool share_clutch) const;
-  BuiltRig build_with_bar(double k_bar, double c_bar,
-                          components::NetworkChecks checks = components::NetworkChecks::kSkipTopology) const;
+  components::OwnedNetwork build_with_bar(
+      double k_bar, double c_bar, components::NetworkChecks checks = components::NetworkChecks::kSkipTopology) const;
   RigParams p_;
   const clutch::WetClutch* clutch_;
   components::ClutchContact contact_;

@@ -85,8 +85,8 @@ DrivelineOperatingPoint quasi_static_operating_point(const rig_models::HaldexDri
   const auto floor_slip = [&](double slip) {
     return std::abs(slip) >= min_slip ? slip : std::copysign(min_slip, slip);
   };
-  const rig_models::BuiltDriveline built = dl.build();
-  built.coupling_context().set_ring_temperatures(
+  const components::OwnedNetwork built = dl.build();
+  built.clutch_context().set_ring_temperatures(
       Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), op.interface_temp_C));
   const dynamics::TorsionalNetwork& net = built.network();
   double j_eq = 0.0, j_front = 0.0, j_rear = 0.0;
@@ -220,8 +220,8 @@ dynamics::LinearSystem linearise_driveline(const rig_models::HaldexDriveline& dl
   if (!std::isfinite(op.interface_temp_C) || !std::isfinite(op.vehicle_speed_m_s) ||
       !std::isfinite(op.coupling_slip_rad_s) || !std::isfinite(op.t_s))
     throw std::invalid_argument("driveline stability: the operating point must be finite");
-  const rig_models::BuiltDriveline built = dl.build();
-  built.coupling_context().set_ring_temperatures(
+  const components::OwnedNetwork built = dl.build();
+  built.clutch_context().set_ring_temperatures(
       Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), op.interface_temp_C));
   const dynamics::TorsionalNetwork& net = built.network();
 
@@ -309,8 +309,8 @@ CouplingMode least_damped_mode(const DrivelineStability& st) {
 ThermalFeedback coupling_thermal_feedback(const rig_models::HaldexDriveline& dl, const clutch::WetClutch& clutch,
                                           const DrivelineOperatingPoint& op, double frequency_Hz) {
   const int n_rings = clutch.thermal().radial_cells();
-  const rig_models::BuiltDriveline built = dl.build();
-  components::ClutchContext* ctx = &built.coupling_context();
+  const components::OwnedNetwork built = dl.build();
+  components::ClutchContext* ctx = &built.clutch_context();
   const auto& law = *built.network().contacts()[D::kCoupling].law;
   const double slip = std::abs(op.coupling_slip_rad_s);
   const Eigen::VectorXd z = dl.coupling_states(op.clamp_force_N, 1.0);

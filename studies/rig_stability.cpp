@@ -65,7 +65,7 @@ StabilityPoint stability_at(const rig_models::LsctrRig& rig, components::ClutchC
 
 StabilityPoint rig_stability(const rig_models::LsctrRig& rig, const components::ClutchHeldInputs& clutch_inputs,
                              double slip_rpm, double t_s) {
-  const rig_models::BuiltRig built = rig.build();
+  const components::OwnedNetwork built = rig.build();
   built.clutch_context() = components::ClutchContext(clutch_inputs);
   return stability_at(rig, built.clutch_context(), built.network(), slip_rpm, t_s);
 }
@@ -95,7 +95,7 @@ StabilityMap stability_map(const rig_models::RigParams& params, const clutch::We
 
   // One rig: the speed reference only feeds the motor's steady state, not its linear loop.
   const rig_models::LsctrRig rig(params, clutch, steady_cycle(force_N, speeds_rpm.empty() ? 0.0 : speeds_rpm.front()));
-  const rig_models::BuiltRig built = rig.build();
+  const components::OwnedNetwork built = rig.build();
   components::ClutchContext* context = &built.clutch_context();
   const dynamics::TorsionalNetwork& network = built.network();
   // Temperatures outside: setting them rebuilds the law's frozen friction once per column.
@@ -131,7 +131,7 @@ double critical_bar_damping_ratio(const rig_models::RigParams& params, const clu
   const rig_models::LsctrRig rig(p, clutch, steady_cycle(force_N, slip_rpm));
   const components::ClutchHeldInputs inputs = uniform_inputs(rig, clutch, interface_temp_C);
   const auto margin = [&](double zeta) {
-    const rig_models::BuiltRig built = rig.build(zeta);
+    const components::OwnedNetwork built = rig.build(zeta);
     built.clutch_context() = components::ClutchContext(inputs);
     return stability_at(rig, built.clutch_context(), built.network(), slip_rpm).margin_per_s;
   };
@@ -160,7 +160,7 @@ CriticalBar critical_bar(const rig_models::RigParams& params, const clutch::WetC
     p.bar_natural_frequency_Hz = f;
     const rig_models::LsctrRig rig(p, clutch, cycle);
     if (!inputs) inputs = uniform_inputs(rig, clutch, interface_temp_C);
-    const rig_models::BuiltRig built = rig.build();
+    const components::OwnedNetwork built = rig.build();
     built.clutch_context() = components::ClutchContext(*inputs);
     return stability_at(rig, built.clutch_context(), built.network(), slip_rpm).margin_per_s > 0.0;
   };

@@ -73,7 +73,7 @@ TEST(RealtimeAlloc, RigNetworkFixedStepAllocatesNothingWhileSlipping) {
   const clutch::WetClutch clutch = sc.make_clutch();
   const auto& m = std::get<rig_models::RigModel>(sc.model);
   const rig_models::LsctrRig rig(m.params, clutch, m.cycle);
-  const rig_models::BuiltRig built = rig.build();
+  const components::OwnedNetwork built = rig.build();
   components::ClutchContext* context = &built.clutch_context();
   const dynamics::TorsionalNetwork& net = built.network();
   dynamics::IntegratorSettings settings;

@@ -110,8 +110,8 @@ TEST(DrivelineStability, MatrixEqualsFiniteDifferenceJacobianOfTheNonlinearRhs) 
   const studies::DrivelineStability st = studies::driveline_stability(dl, clutch, op, false);
   ASSERT_LT(st.coupling_slope_Nms, 0.0);
 
-  const rig_models::BuiltDriveline built = dl.build();
-  built.coupling_context().set_ring_temperatures(
+  const components::OwnedNetwork built = dl.build();
+  built.clutch_context().set_ring_temperatures(
       Eigen::VectorXd::Constant(clutch.thermal().radial_cells(), op.interface_temp_C));
   const dynamics::TorsionalNetwork& net = built.network();
   // The same operating point as driveline_stability: its node speeds and tyre deflections.
