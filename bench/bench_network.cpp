@@ -4,6 +4,8 @@
 //                                shafts at 60 rpm; four wet clutches (fluid C, 10 kN) join chain
 //                                nodes 4, 8, 12, 16 to four housings on torsion bars to ground,
 //                                each slipping all the run with its own thermal model.
+//   Network20Bodies4WetClutches10Rings  the same with [solver] radial_cells = 10 (half the
+//                                rings of each clutch's thermal grid): what a coarser grid buys.
 //   NetworkScaling/B/C           the same build with B chain bodies and C clutches (C housings),
 //                                for how cost grows with bodies and with clutches.
 // Counter real_time_factor = simulated seconds per wall second.
@@ -23,9 +25,10 @@ namespace {
 constexpr double kDuration_s = 2.0;
 
 // The network's scenario text: `chain` inertias, `clutches` wet clutches spread along the chain.
-std::string network_text(int chain, int clutches) {
+std::string network_text(int chain, int clutches, int radial_cells = 20) {
   std::ostringstream os;
   os << "[scenario]\ntype = \"network\"\nduration_s = " << kDuration_s << "\n[output]\nsample_rate_Hz = 1000\n";
+  os << "[solver]\nradial_cells = " << radial_cells << "\n";
   os << "[network.motor]\ntype = \"motor\"\nnode = \"body_0\"\nspeed_rpm = 60\nkp_Nms_per_rad = 10\n"
         "ki_Nm_per_rad = 300\ntorque_limit_Nm = 2000\n";
   for (int i = 0; i < chain; ++i) {
@@ -46,8 +49,8 @@ std::string network_text(int chain, int clutches) {
   return os.str();
 }
 
-void run(benchmark::State& state, int chain, int clutches) {
-  const auto sc = io::load_network_scenario_text(network_text(chain, clutches), "bench_network.toml");
+void run(benchmark::State& state, int chain, int clutches, int radial_cells = 20) {
+  const auto sc = io::load_network_scenario_text(network_text(chain, clutches, radial_cells), "bench_network.toml");
   double wall_s = 0.0;
   studies::NetworkRun result;
   for (auto _ : state) {
@@ -63,6 +66,7 @@ void run(benchmark::State& state, int chain, int clutches) {
 }
 
 void BM_Network20Bodies4WetClutches(benchmark::State& state) { run(state, 16, 4); }
+void BM_Network20Bodies4WetClutches10Rings(benchmark::State& state) { run(state, 16, 4, 10); }
 void BM_NetworkScaling(benchmark::State& state) {
   run(state, static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
 }
@@ -70,6 +74,7 @@ void BM_NetworkScaling(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_Network20Bodies4WetClutches)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_Network20Bodies4WetClutches10Rings)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_NetworkScaling)
     ->Args({8, 0})
     ->Args({16, 0})

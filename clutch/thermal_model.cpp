@@ -206,7 +206,7 @@ void ThermalModel::factorise_if_changed(ThermalWorkspace& w, double storage_step
                                         double time_s) const {
   // A multi-rate run's steps are differences of products t0 + k·step and differ from each other
   // by a few ulp: such a step reuses the factorisation (its storage term is then off by
-  // < 1e-12 relative, far below the scheme's own error), where a bitwise test refactorised
+  // < 1e-12 relative, far below the scheme's own error), where a bitwise test would refactorise
   // on every step. The flow term is compared exactly: it moves with the physics.
   const bool same_step = std::abs(storage_step_s - w.factored_storage_step_s_) <= kSameStepRelative * storage_step_s;
   if (same_step && flow_W_per_K == w.factored_flow_W_per_K_) return;

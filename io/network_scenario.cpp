@@ -379,7 +379,11 @@ NetworkScenario load_network_scenario_text(const std::string& text, const std::s
     cfg.duration_s = head.number("duration_s", Range::closed(1e-3, 1e5));
     head.finish();
   }
+  // Rings of every wet pack's thermal grid (as a scenario's [solver] radial_cells): the friction
+  // of each right-hand side and the thermal solve cost in proportion to them.
+  std::optional<int> radial_cells;
   if (auto solver = root.optional_table("solver")) {
+    if (solver->has("radial_cells")) radial_cells = static_cast<int>(solver->integer_or("radial_cells", 20, 2, 2000));
     cfg.thermal_step_s =
         solver->number_or("thermal_step_ms", cfg.thermal_step_s * 1e3, Range::closed(1e-3, 1e4)) * 1e-3;
     auto& integ = cfg.integrator;
@@ -400,6 +404,9 @@ NetworkScenario load_network_scenario_text(const std::string& text, const std::s
   }
   net.finish();
   root.finish();
+  if (radial_cells)
+    for (auto& k : sc.spec.clutches)
+      if (k.law != components::ClutchSpec::Law::kPlain) k.wet.clutch.thermal.radial_cells = *radial_cells;
   // A tyre's radius defaults to its vehicle's wheel radius.
   for (auto& t : sc.spec.tyres)
     if (std::isnan(t.params.radius_m)) {

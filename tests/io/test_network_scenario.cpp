@@ -176,6 +176,25 @@ TEST(NetworkScenario, OutOfRangeAndMalformedInputsAreInputErrors) {
   refused(two_inertias(car + tyre), "vertical_load_N': is required for a tyre without an axle");
 }
 
+// [solver] radial_cells sets the rings of every wet clutch's thermal grid (as a scenario's
+// [solver] does for its one clutch); a plain clutch has none. Out of range it names the key.
+TEST(NetworkScenario, SolverRadialCellsSetEveryWetClutchsRings) {
+  const std::string wet =
+      "[network.wet]\ntype = \"clutch\"\nlaw = \"wet\"\nfrom = \"wheel_side\"\nto = \"ground\"\n"
+      "max_force_N = 1000\n[network.wet.clutch]\nfluid = \"" +
+      test::source_path("scenarios/fluids/lsc_fluid_c.toml") + "\"\nstart_temp_C = 40\n";
+  const auto rings = [&](const std::string& solver) {
+    const auto sc = load_network_scenario_text(two_inertias(wet + solver), "net.toml");
+    for (const auto& k : sc.spec.clutches)
+      if (k.name == "wet") return k.wet.clutch.thermal.radial_cells;
+    return -1;
+  };
+  EXPECT_EQ(rings(""), 20);
+  EXPECT_EQ(rings("[solver]\nradial_cells = 10\n"), 10);
+  const std::string e = error_of(two_inertias(wet + "[solver]\nradial_cells = 1\n"));
+  EXPECT_NE(e.find("solver.radial_cells"), std::string::npos) << e;
+}
+
 // Magnitudes far from the examples' (a 1e-6 kg m^2 pinion, a 1e4 kg m^2 flywheel, a 100:1 gear,
 // 20000 rpm) still run and close their energy account: nothing in the path assumes a car's scale.
 TEST(NetworkScenario, ExtremeMagnitudesRunAndCloseTheirEnergyAccount) {
