@@ -1,6 +1,8 @@
 #include "io/scenario.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -411,7 +413,12 @@ std::string set_scenario_key(const std::string& text, const std::string& path, c
   if (leaf.empty()) throw InputError(path, 0, key, "empty key");
   if (const auto* old = table->get(leaf); old && !old->is_number())
     throw InputError(path, 0, key, "holds a non-number; only numeric keys can be swept");
-  table->insert_or_assign(leaf, value);
+  // A whole number is written as a TOML integer: integer keys (`solver.radial_cells`,
+  // `clutch.sliding_interfaces`) refuse a float, and number keys read an integer exactly.
+  if (std::isfinite(value) && value == std::trunc(value) && std::abs(value) < 9.0e15)
+    table->insert_or_assign(leaf, static_cast<std::int64_t>(value));
+  else
+    table->insert_or_assign(leaf, value);
   std::ostringstream os;
   os << doc;
   return os.str();

@@ -54,7 +54,7 @@ components::WetPackSpec read_wet_pack(TomlTable& component, const std::string& s
                                       std::vector<std::string>& warnings);
 
 /// The scenario text with numeric `key` (dotted, tables created as needed) set to `value`
-/// (comments are not kept). Used by sweeps.
+/// (comments are not kept); a whole number is written as an integer. Used by sweeps.
 std::string set_scenario_key(const std::string& text, const std::string& path, const std::string& key, double value);
 
 }  // namespace shudder::io

@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "io/hdf5_sweep.hpp"
+#include "io/scenario.hpp"
 #include "tests/support/cli.hpp"
 
 using namespace shudder;
@@ -176,4 +177,27 @@ TEST(CliSweep, ARepeatedSetKeyIsRefusedBeforeRunning) {
                       "once (list several values as KEY=V1,V2,...)"});
   EXPECT_FALSE(std::filesystem::exists(dir / "sw.h5"));
   EXPECT_FALSE(std::filesystem::exists(dir / "sw.h5.parts"));
+}
+
+// An integer key (the thermal grid's rings) can be swept: a whole value goes into the case's
+// scenario as a TOML integer, which the integer key requires (a float is refused, exit 2).
+TEST(CliSweep, AnIntegerKeySweeps) {
+  const auto dir = scratch_dir("sweep_integer_key");
+  write_file(dir / "s.toml", shipped_scenario_text("paper_g_case1_25kN.toml"));
+  const auto r = run_cli("sweep s.toml --set solver.radial_cells=10,20 --jobs 2 -o sw.h5 --quiet", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const io::SweepTable t = io::read_sweep_table((dir / "sw.h5").string());
+  const auto* key = t.find("solver.radial_cells");
+  ASSERT_NE(key, nullptr);
+  EXPECT_THAT(key->values, ::testing::ElementsAre(10.0, 20.0));
+  ASSERT_EQ(t.text_column.size(), 2u);
+}
+
+// What a case's scenario holds: whole values as integers, others as floats.
+TEST(CliSweep, AWholeValueIsWrittenAsAnInteger) {
+  const std::string text = "[solver]\nradial_cells = 20\nthermal_step_ms = 10.0\n";
+  const std::string a = io::set_scenario_key(text, "s.toml", "solver.radial_cells", 10.0);
+  EXPECT_THAT(a, HasSubstr("radial_cells = 10\n"));
+  const std::string b = io::set_scenario_key(text, "s.toml", "solver.thermal_step_ms", 2.5);
+  EXPECT_THAT(b, HasSubstr("thermal_step_ms = 2.5"));
 }
