@@ -190,7 +190,11 @@ TEST(CliSweep, AnIntegerKeySweeps) {
   const auto* key = t.find("solver.radial_cells");
   ASSERT_NE(key, nullptr);
   EXPECT_THAT(key->values, ::testing::ElementsAre(10.0, 20.0));
+  // A refused key fails its case, which the sweep records and finishes with exit 0: neither did.
+  EXPECT_EQ(r.err, "");
   ASSERT_EQ(t.text_column.size(), 2u);
+  for (const auto& verdict : t.text_column) EXPECT_NE(verdict, "failed");
+  for (const auto& message : t.message_column) EXPECT_EQ(message, "");
 }
 
 // What a case's scenario holds: whole values as integers, others as floats.

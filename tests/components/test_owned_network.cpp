@@ -2,6 +2,7 @@
 // it hands out only where a clutch has them.
 #include <gtest/gtest.h>
 
+#include <stdexcept>
 #include <string>
 
 #include "components/network_builder.hpp"
@@ -32,25 +33,26 @@ TEST(OwnedNetwork, KeepsItsSpecForTheNetworkBuiltFromIt) {
   EXPECT_DOUBLE_EQ(owned.network().inertias()[1].inertia_kg_m2, 1.5);
 }
 
+// The message of the std::invalid_argument `ask` throws ("" if it throws none).
+template <typename F>
+std::string refusal(F ask) {
+  try {
+    ask();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
 TEST(OwnedNetwork, APlainClutchHasNoHeldInputsNorValveCommand) {
   const OwnedNetwork owned = two_inertias_and_a_plain_clutch();
-  try {
-    owned.clutch_context(0);
-    FAIL() << "a plain clutch gave a wet clutch's context";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("'launch'"), std::string::npos) << e.what();
-  }
-  EXPECT_THROW(owned.command(0), std::invalid_argument);
+  EXPECT_NE(refusal([&] { owned.clutch_context(0); }).find("'launch'"), std::string::npos);
+  EXPECT_NE(refusal([&] { owned.command(0); }).find("not a Haldex coupling"), std::string::npos);
 }
 
 TEST(OwnedNetwork, AClutchIndexBeyondTheNetworkIsRefused) {
   const OwnedNetwork owned = two_inertias_and_a_plain_clutch();
-  try {
-    owned.clutch_context(1);
-    FAIL() << "clutch 1 of a network with one";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("1 clutches"), std::string::npos) << e.what();
-  }
+  EXPECT_NE(refusal([&] { owned.clutch_context(1); }).find("1 clutches"), std::string::npos);
 }
 
 }  // namespace
